@@ -1,0 +1,158 @@
+//! Plane-strain isotropic linear elasticity with P1 triangles.
+//!
+//! Degrees of freedom are interleaved: dof `2 i` is the x displacement of node `i`, dof `2 i + 1` its y
+//! displacement. Stresses use Voigt order `(σ_xx, σ_yy, σ_xy)` and strains `(ε_xx, ε_yy, 2 ε_xy)`.
+
+use faer::sparse::{SparseColMat, Triplet};
+use nalgebra::{Matrix3, SMatrix, Vector3};
+
+use crate::error::{Error, Result};
+use crate::mesh::Mesh;
+
+/// Strain-displacement matrix of one P1 triangle: `ε = B v_T`, with `v_T` the 6 local dofs.
+pub type StrainDisplacement = SMatrix<f64, 3, 6>;
+
+/// Isotropic material in plane strain.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material {
+    /// Young's modulus E > 0.
+    pub young: f64,
+    /// Poisson's ratio ν, −1 < ν < 1/2.
+    pub poisson: f64,
+}
+
+impl Material {
+    /// Checks E > 0 and −1 < ν < 1/2 (both finite).
+    ///
+    /// # Errors
+    /// [`Error::BadMaterial`] naming the constant.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.young.is_finite() && self.young > 0.0) {
+            return Err(Error::BadMaterial {
+                what: format!("Young's modulus must be positive and finite, got {}", self.young),
+            });
+        }
+        if !(self.poisson.is_finite() && self.poisson > -1.0 && self.poisson < 0.5) {
+            return Err(Error::BadMaterial {
+                what: format!("Poisson's ratio must lie in (-1, 0.5) in plane strain, got {}", self.poisson),
+            });
+        }
+        Ok(())
+    }
+
+    /// Plane-strain elasticity matrix `C` with `σ = C ε` (Voigt, engineering shear strain).
+    pub fn elasticity_matrix(&self) -> Matrix3<f64> {
+        let (e, nu) = (self.young, self.poisson);
+        let f = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
+        Matrix3::new(f * (1.0 - nu), f * nu, 0.0, f * nu, f * (1.0 - nu), 0.0, 0.0, 0.0, f * (1.0 - 2.0 * nu) / 2.0)
+    }
+
+    /// Von Mises stress of a plane-strain stress state (σ_zz = ν (σ_xx + σ_yy)).
+    pub fn von_mises(&self, s: [f64; 3]) -> f64 {
+        let szz = self.poisson * (s[0] + s[1]);
+        (0.5 * ((s[0] - s[1]).powi(2) + (s[1] - szz).powi(2) + (szz - s[0]).powi(2)) + 3.0 * s[2] * s[2]).sqrt()
+    }
+}
+
+/// Local dof indices of triangle `tri` (interleaved x, y per node).
+pub fn element_dofs(tri: &[usize; 3]) -> [usize; 6] {
+    [2 * tri[0], 2 * tri[0] + 1, 2 * tri[1], 2 * tri[1] + 1, 2 * tri[2], 2 * tri[2] + 1]
+}
+
+/// Strain-displacement matrix `B` of triangle `t` (constant over the triangle).
+pub fn strain_displacement(mesh: &Mesh, t: usize) -> StrainDisplacement {
+    let [p0, p1, p2] = mesh.vertices(t);
+    let two_area = 2.0 * mesh.area(t);
+    // Gradients of the barycentric coordinates.
+    let b = [p1[1] - p2[1], p2[1] - p0[1], p0[1] - p1[1]];
+    let c = [p2[0] - p1[0], p0[0] - p2[0], p1[0] - p0[0]];
+    let mut m = StrainDisplacement::zeros();
+    for i in 0..3 {
+        let (dx, dy) = (b[i] / two_area, c[i] / two_area);
+        m[(0, 2 * i)] = dx;
+        m[(1, 2 * i + 1)] = dy;
+        m[(2, 2 * i)] = dy;
+        m[(2, 2 * i + 1)] = dx;
+    }
+    m
+}
+
+/// Element stiffness `|T| Bᵀ C B` (6 × 6).
+pub fn element_stiffness(mesh: &Mesh, t: usize, c: &Matrix3<f64>) -> SMatrix<f64, 6, 6> {
+    let b = strain_displacement(mesh, t);
+    b.transpose() * c * b * mesh.area(t)
+}
+
+/// Triplets of the global stiffness matrix (2N × 2N, duplicates to be summed).
+pub fn stiffness_triplets(mesh: &Mesh, material: &Material) -> Vec<Triplet<usize, usize, f64>> {
+    let c = material.elasticity_matrix();
+    let mut trip = Vec::with_capacity(36 * mesh.n_triangles());
+    for (t, tri) in mesh.triangles().iter().enumerate() {
+        let k = element_stiffness(mesh, t, &c);
+        let dofs = element_dofs(tri);
+        for (j, &dj) in dofs.iter().enumerate() {
+            for (i, &di) in dofs.iter().enumerate() {
+                trip.push(Triplet::new(di, dj, k[(i, j)]));
+            }
+        }
+    }
+    trip
+}
+
+/// Global stiffness matrix K (2N × 2N, all dofs, no support applied).
+///
+/// # Errors
+/// Never for a validated mesh; the `Result` carries faer's allocation failure as a setup error.
+pub fn stiffness(mesh: &Mesh, material: &Material) -> Result<SparseColMat<usize, f64>> {
+    let n = 2 * mesh.n_nodes();
+    SparseColMat::try_new_from_triplets(n, n, &stiffness_triplets(mesh, material))
+        .map_err(|e| Error::NotPositiveDefinite { what: format!("assembly failed: {e:?}") })
+}
+
+/// Load vector of a constant body force `f` (per unit area): each node of T gets `|T| f / 3`.
+pub fn body_force_vector(mesh: &Mesh, f: [f64; 2], rhs: &mut [f64]) {
+    for (t, tri) in mesh.triangles().iter().enumerate() {
+        let w = mesh.area(t) / 3.0;
+        for &i in tri {
+            rhs[2 * i] += w * f[0];
+            rhs[2 * i + 1] += w * f[1];
+        }
+    }
+}
+
+/// Load vector of a constant traction `g` (force per unit length) on a set of boundary edges.
+pub fn traction_vector(mesh: &Mesh, edges: &[[usize; 2]], g: [f64; 2], rhs: &mut [f64]) {
+    for &[a, b] in edges {
+        let w = 0.5 * mesh.edge_length(a, b);
+        for i in [a, b] {
+            rhs[2 * i] += w * g[0];
+            rhs[2 * i + 1] += w * g[1];
+        }
+    }
+}
+
+/// Constant stress `(σ_xx, σ_yy, σ_xy)` in every triangle for the nodal displacement `u` (length 2N).
+pub fn element_stresses(mesh: &Mesh, material: &Material, u: &[f64]) -> Vec<[f64; 3]> {
+    let c = material.elasticity_matrix();
+    mesh.triangles()
+        .iter()
+        .enumerate()
+        .map(|(t, tri)| {
+            let ut = nalgebra::SVector::<f64, 6>::from_iterator(element_dofs(tri).iter().map(|&d| u[d]));
+            let s: Vector3<f64> = c * (strain_displacement(mesh, t) * ut);
+            [s[0], s[1], s[2]]
+        })
+        .collect()
+}
+
+/// Elastic energy norm `sqrt(uᵀ K u)` of a nodal displacement, element by element.
+pub fn energy_norm(mesh: &Mesh, material: &Material, u: &[f64]) -> f64 {
+    let c = material.elasticity_matrix();
+    let mut e = 0.0;
+    for (t, tri) in mesh.triangles().iter().enumerate() {
+        let ut = nalgebra::SVector::<f64, 6>::from_iterator(element_dofs(tri).iter().map(|&d| u[d]));
+        let eps = strain_displacement(mesh, t) * ut;
+        e += mesh.area(t) * eps.dot(&(c * eps));
+    }
+    e.sqrt()
+}

@@ -1,0 +1,294 @@
+//! Results of a solve: fields as plain vectors, the contact state per multiplier dof, the discrete KKT
+//! residuals of (3.1) and a report of how the solve ended.
+
+use crate::condensation::Condensed;
+use crate::coulomb::{QpPhase, SolverSettings};
+use crate::elasticity::{element_stresses, stiffness_triplets};
+use crate::problem::Problem;
+
+/// How a solve ended. Not an error: a solve that did not converge still returns its last iterate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SolveStatus {
+    /// Every QP solved and (Coulomb) the fixed point converged.
+    Converged,
+    /// The fixed point reached its iteration cap.
+    MaxIterations,
+    /// A QP failed at the given fixed-point iteration (0 = the initial QP).
+    QpFailed {
+        /// Fixed-point iteration.
+        iteration: usize,
+        /// clarabel's status.
+        reason: &'static str,
+    },
+}
+
+/// Contact state of a multiplier dof.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactState {
+    /// λ_n = 0.
+    Separation,
+    /// In contact, |λ_t| below the threshold.
+    Stick,
+    /// In contact, |λ_t| at the threshold (μ λ_n or the Tresca bound).
+    Slip,
+}
+
+/// Wall times per phase, in seconds.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Timings {
+    /// Stiffness and load assembly.
+    pub assembly: f64,
+    /// Γ_C geometry, T_H and the Γ_C matrices.
+    pub contact_matrices: f64,
+    /// Assembling and factorizing A = K − G.
+    pub factorization: f64,
+    /// Condensing onto the multipliers (H, c).
+    pub condensation: f64,
+    /// All QPs (including the fixed point).
+    pub qp: f64,
+    /// Recovering u.
+    pub recovery: f64,
+}
+
+/// Discrete KKT residuals of (3.1) at the returned solution, each made dimensionless.
+///
+/// With `r = E u − d − Dγ λ` (the discrete, stabilized gap and slip: `r_n ≤ 0` is non-penetration),
+/// `Λ = max λ_n` and `R = max(|E u|, |d|)` (the scale of the gaps):
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct KktResiduals {
+    /// `‖A u + Eᵀ λ − f‖_∞ / max(‖f‖_∞, ‖Eᵀ λ‖_∞)`: the equation of (3.1).
+    pub equilibrium: f64,
+    /// `max(−λ_n)₊ / Λ`.
+    pub normal_sign: f64,
+    /// `max(r_n)₊ / R`: penetration in the weak sense of the method.
+    pub non_penetration: f64,
+    /// `max |λ_n r_n| / (Λ R)`.
+    pub normal_complementarity: f64,
+    /// `max(|λ_t| − bound)₊ / Λ` (bound = μ λ_n, or the Tresca threshold).
+    pub friction_bound: f64,
+    /// `max (bound − |λ_t|) |r_t| / (Λ R)`: no slip below the threshold.
+    pub stick: f64,
+    /// `max (−λ_t r_t)₊ / (Λ R)`: slip in the direction of λ_t.
+    pub slip_direction: f64,
+}
+
+impl KktResiduals {
+    /// Largest residual.
+    pub fn max(&self) -> f64 {
+        [
+            self.equilibrium,
+            self.normal_sign,
+            self.non_penetration,
+            self.normal_complementarity,
+            self.friction_bound,
+            self.stick,
+            self.slip_direction,
+        ]
+        .into_iter()
+        .fold(0.0, f64::max)
+    }
+}
+
+/// Report of a solve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Report {
+    /// How it ended.
+    pub status: SolveStatus,
+    /// Fixed-point iterations (0 for frictionless and Tresca).
+    pub iterations: usize,
+    /// Relative change of λ_n after each fixed-point iteration.
+    pub residual_history: Vec<f64>,
+    /// Interior-point iterations of each QP.
+    pub qp_iterations: Vec<u32>,
+    /// γ0 used.
+    pub gamma0: f64,
+    /// Admissible bound on γ0.
+    pub gamma0_bound: f64,
+    /// Timings per phase.
+    pub timings: Timings,
+}
+
+/// The solution of a contact problem.
+#[derive(Debug, Clone)]
+pub struct Solution {
+    /// Nodal displacements, interleaved (x, y) per node (2N).
+    pub displacement: Vec<f64>,
+    /// Constant stress (σ_xx, σ_yy, σ_xy) per triangle.
+    pub stress: Vec<[f64; 3]>,
+    /// Von Mises stress per triangle (plane strain).
+    pub von_mises: Vec<f64>,
+    /// Reaction forces on clamped dofs (2N, zero elsewhere): `K u − f`.
+    pub reactions: Vec<f64>,
+    /// Abscissae of the multiplier dofs.
+    pub multiplier_abscissae: Vec<f64>,
+    /// λ_n at multiplier dofs.
+    pub lambda_n: Vec<f64>,
+    /// λ_t at multiplier dofs (zeros if frictionless).
+    pub lambda_t: Vec<f64>,
+    /// Tangential threshold per multiplier dof (μ g at the fixed point, the Tresca threshold, or 0).
+    pub friction_threshold: Vec<f64>,
+    /// Contact state per multiplier dof.
+    pub states: Vec<ContactState>,
+    /// Abscissae of the midpoints of the FE edges of Γ_C.
+    pub edge_abscissae: Vec<f64>,
+    /// σ_n(u_h) on each FE edge of Γ_C.
+    pub sigma_n: Vec<f64>,
+    /// σ_t(u_h) on each FE edge of Γ_C.
+    pub sigma_t: Vec<f64>,
+    /// Abscissae of the FE nodes of Γ_C.
+    pub node_abscissae: Vec<f64>,
+    /// u_n at the FE nodes of Γ_C.
+    pub u_n: Vec<f64>,
+    /// u_t − s (slip relative to the obstacle) at the FE nodes of Γ_C.
+    pub slip: Vec<f64>,
+    /// Gap g = g₀ − δ at the FE nodes of Γ_C.
+    pub gap: Vec<f64>,
+    /// Total normal contact force `∫ λ_n`.
+    pub normal_force: f64,
+    /// Total tangential contact force `∫ λ_t`.
+    pub tangential_force: f64,
+    /// Largest pointwise penetration `max(u_n − g)₊` over the FE nodes of Γ_C.
+    pub max_penetration: f64,
+    /// Discrete KKT residuals.
+    pub kkt: KktResiduals,
+    /// How the solve went.
+    pub report: Report,
+}
+
+impl Solution {
+    pub(crate) fn new(
+        problem: &Problem,
+        condensed: &Condensed,
+        u_free: Vec<f64>,
+        phase: QpPhase,
+        settings: &SolverSettings,
+        timings: crate::solution::Timings,
+    ) -> Self {
+        let q = condensed.q();
+        let mesh = &problem.mesh;
+        let material = &problem.spec.material;
+        let displacement = problem.expand(&u_free);
+        let stress = element_stresses(mesh, material, &displacement);
+        let von_mises = stress.iter().map(|s| material.von_mises(*s)).collect();
+        // Reactions K u − f on all dofs (zero up to round-off on free dofs).
+        let mut reactions: Vec<f64> = problem.f_full.iter().map(|f| -f).collect();
+        for t in stiffness_triplets(mesh, material) {
+            reactions[t.row] += t.val * displacement[t.col];
+        }
+        for (r, s) in reactions.iter_mut().zip(&problem.free) {
+            if s.is_some() {
+                *r = 0.0;
+            }
+        }
+        let contact = &problem.contact;
+        let (n, t) = (contact.normal, contact.tangent);
+        let lambda = &phase.lambda;
+        let (lambda_n, lambda_t) = (lambda[..q].to_vec(), lambda[q..].to_vec());
+        let friction_threshold = match phase.mu {
+            Some(mu) => lambda_n.iter().map(|l| mu * l.max(0.0)).collect(),
+            None => phase.bound.clone(),
+        };
+        let sig = |s: &[f64; 3], a: [f64; 2], b: [f64; 2]| {
+            a[0] * (s[0] * b[0] + s[2] * b[1]) + a[1] * (s[2] * b[0] + s[1] * b[1])
+        };
+        let sigma_n = contact.edges.iter().map(|e| sig(&stress[e.triangle], n, n)).collect();
+        let sigma_t = contact.edges.iter().map(|e| sig(&stress[e.triangle], t, n)).collect();
+        let edge_abscissae = contact.node_xi.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
+        let shift = problem.spec.obstacle.shift;
+        let mut u_n = Vec::with_capacity(contact.nodes.len());
+        let mut slip = Vec::with_capacity(contact.nodes.len());
+        let mut gap = Vec::with_capacity(contact.nodes.len());
+        for (&node, &xi) in contact.nodes.iter().zip(&contact.node_xi) {
+            let (ux, uy) = (displacement[2 * node], displacement[2 * node + 1]);
+            u_n.push(ux * n[0] + uy * n[1]);
+            slip.push(ux * t[0] + uy * t[1] - shift);
+            gap.push(problem.spec.obstacle.gap(xi).unwrap_or(f64::NAN));
+        }
+        let max_penetration = u_n.iter().zip(&gap).map(|(u, g)| (u - g).max(0.0)).fold(0.0, f64::max);
+        let w = &problem.mortar.psi_integrals;
+        let normal_force = lambda_n.iter().zip(w).map(|(l, w)| l * w).sum();
+        let tangential_force = lambda_t.iter().zip(w).map(|(l, w)| l * w).sum();
+
+        let kkt = kkt_residuals(problem, condensed, &u_free, lambda, &friction_threshold);
+        let lam_scale = lambda_n.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let theta = settings.qp.tol.sqrt() * lam_scale;
+        let frictional = phase.mu.is_some() || !phase.bound.is_empty() && phase.bound.iter().any(|b| *b > 0.0);
+        let states = (0..q)
+            .map(|j| {
+                if lambda_n[j] <= theta {
+                    ContactState::Separation
+                } else if frictional && lambda_t[j].abs() >= friction_threshold[j] - theta {
+                    ContactState::Slip
+                } else {
+                    ContactState::Stick
+                }
+            })
+            .collect();
+        Self {
+            displacement,
+            stress,
+            von_mises,
+            reactions,
+            multiplier_abscissae: problem.multipliers.dof_abscissae(),
+            lambda_n,
+            lambda_t,
+            friction_threshold,
+            states,
+            edge_abscissae,
+            sigma_n,
+            sigma_t,
+            node_abscissae: contact.node_xi.clone(),
+            u_n,
+            slip,
+            gap,
+            normal_force,
+            tangential_force,
+            max_penetration,
+            kkt,
+            report: Report {
+                status: phase.status,
+                iterations: phase.iterations,
+                residual_history: phase.history,
+                qp_iterations: phase.qp_iterations,
+                gamma0: condensed.gamma0,
+                gamma0_bound: problem.gamma0_bound.0,
+                timings,
+            },
+        }
+    }
+
+    /// Displacement of node `i`.
+    pub fn node_displacement(&self, i: usize) -> [f64; 2] {
+        [self.displacement[2 * i], self.displacement[2 * i + 1]]
+    }
+}
+
+fn kkt_residuals(problem: &Problem, c: &Condensed, u: &[f64], lambda: &[f64], bound: &[f64]) -> KktResiduals {
+    let q = c.q();
+    let n = problem.n_free;
+    let au = c.apply_a(u);
+    let etl = c.apply_et(lambda, n);
+    let inf = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let res: Vec<f64> = au.iter().zip(&etl).zip(&problem.f_free).map(|((a, e), f)| a + e - f).collect();
+    let eq_scale = inf(&problem.f_free).max(inf(&etl)).max(f64::MIN_POSITIVE);
+    let eu = c.apply_e(u);
+    // r = E u − d − Dγ λ.
+    let mut r: Vec<f64> = eu.iter().zip(&c.d).map(|(a, b)| a - b).collect();
+    for &(i, j, v) in &problem.mortar.d_h.entries {
+        r[i] -= c.gamma0 * v * lambda[j];
+        r[q + i] -= c.gamma0 * v * lambda[q + j];
+    }
+    let lam = inf(&lambda[..q]).max(f64::MIN_POSITIVE);
+    let gap_scale = inf(&eu).max(inf(&c.d)).max(f64::MIN_POSITIVE);
+    let mut k = KktResiduals { equilibrium: inf(&res) / eq_scale, ..Default::default() };
+    for j in 0..q {
+        let (ln, lt, rn, rt) = (lambda[j], lambda[q + j], r[j], r[q + j]);
+        k.normal_sign = k.normal_sign.max((-ln).max(0.0) / lam);
+        k.non_penetration = k.non_penetration.max(rn.max(0.0) / gap_scale);
+        k.normal_complementarity = k.normal_complementarity.max((ln * rn).abs() / (lam * gap_scale));
+        k.friction_bound = k.friction_bound.max((lt.abs() - bound[j]).max(0.0) / lam);
+        k.stick = k.stick.max((bound[j] - lt.abs()).max(0.0) * rt.abs() / (lam * gap_scale));
+        k.slip_direction = k.slip_direction.max((-lt * rt).max(0.0) / (lam * gap_scale));
+    }
+    k
+}

@@ -1,0 +1,299 @@
+//! The Tresca subproblem P(g) (3.2) as a convex QP over the multipliers, solved with clarabel.
+//!
+//! # The QP
+//! With `A = K − G` (stabilized stiffness, positive definite for admissible γ0), `E = B − Cγ S` (the
+//! multiplier–displacement coupling: mortar term minus the γ-weighted stress term, `2q × n`),
+//! `Dγ = blockdiag(∫γψψ, ∫γψψ)` and `d = (∫ψ g, ∫ψ s)` (obstacle), the Lagrangian 𝓛_γ of §3.2 reads
+//!
+//! `𝓛(v, ν) = ½ vᵀ A v − fᵀ v + νᵀ (E v − d) − ½ νᵀ Dγ ν`.
+//!
+//! Minimising over v gives `v = A⁻¹ (f − Eᵀ ν)`; the saddle point is then the maximiser over the cone
+//! `M_H(g) = {ν_n ≥ 0, |ν_t| ≤ g}` of the concave dual, i.e. the QP
+//!
+//! `min ½ νᵀ H ν + cᵀ ν  s.t.  ν_n ≥ 0, −g ≤ ν_t ≤ g`,   `H = E A⁻¹ Eᵀ + Dγ`,  `c = d − E A⁻¹ f`.
+//!
+//! Its KKT conditions are exactly (3.2): the v-stationarity `A u + Eᵀ λ = f` is the equation of (3.2)
+//! (the γ terms of the first line are the `−G u` and `−Cγᵀ`-parts of `A` and `Eᵀ`), and the first-order
+//! condition of the QP over the convex set, `(ν − λ)ᵀ (H λ + c) ≥ 0 ∀ν`, is
+//! `(ν − λ)ᵀ (E u − d − Dγ λ) ≤ 0`: the inequality of (3.2), term by term. H is dense but small: it lives
+//! on Γ_C (2q unknowns), and it does not depend on g, so the Coulomb fixed point only changes the bounds.
+//!
+//! # Scaling
+//! clarabel's tolerances are absolute as well as relative, so the QP is non-dimensionalised before it is
+//! handed over. The unknowns are `x = (ν_n / s, τ)` with `s = c_s / h_s` (`h_s = max diag H_nn`,
+//! `c_s = max |c_n|`, the size of λ_n for which the quadratic and linear terms balance) and
+//! `ν_t = diag(g) τ`, and the objective is divided by the largest diagonal entry of the resulting P. The
+//! scaled data are O(1) whatever the units of E and of lengths.
+
+use std::time::Instant;
+
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{DefaultSettings, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus};
+
+use crate::error::{check_setting, Error, Result};
+
+/// Which sparse direct solver clarabel uses for its KKT systems.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KktSolver {
+    /// clarabel's built-in QDLDL.
+    Qdldl,
+    /// clarabel's faer-based supernodal solver (cargo feature `faer-qp`, on by default).
+    Faer,
+}
+
+impl Default for KktSolver {
+    /// [`KktSolver::Faer`] when compiled in (the faster on our dense QPs), else [`KktSolver::Qdldl`].
+    fn default() -> Self {
+        if cfg!(feature = "faer-qp") {
+            Self::Faer
+        } else {
+            Self::Qdldl
+        }
+    }
+}
+
+/// Settings of the QP solver.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct QpSettings {
+    /// Tolerance on the scaled QP (gap, feasibility). Default 1e-10.
+    pub tol: f64,
+    /// Iteration cap of the interior-point method. Default 200.
+    pub max_iter: u32,
+    /// KKT solver. Default [`KktSolver::default`].
+    pub kkt_solver: KktSolver,
+}
+
+impl Default for QpSettings {
+    fn default() -> Self {
+        Self { tol: 1e-10, max_iter: 200, kkt_solver: KktSolver::default() }
+    }
+}
+
+impl QpSettings {
+    /// Checks the ranges: `0 < tol < 1`, `max_iter ≥ 1`, and that the KKT solver is compiled in.
+    ///
+    /// # Errors
+    /// [`Error::BadSetting`] naming the setting.
+    pub fn validate(&self) -> Result<()> {
+        check_setting("qp.tol", self.tol, self.tol > 0.0 && self.tol < 1.0, "must lie in (0, 1)")?;
+        check_setting("qp.max_iter", self.max_iter as f64, self.max_iter >= 1, "must be at least 1")?;
+        if self.kkt_solver == KktSolver::Faer && !cfg!(feature = "faer-qp") {
+            return Err(Error::BadSetting {
+                name: "qp.kkt_solver",
+                value: f64::NAN,
+                what: "the faer KKT solver needs tribo built with the cargo feature `faer-qp`".to_string(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// How one QP solve ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum QpStatus {
+    /// Solved to tolerance.
+    Solved,
+    /// Solved to reduced accuracy (clarabel's "almost solved").
+    Inaccurate,
+    /// Failed; the string is clarabel's status.
+    Failed(&'static str),
+}
+
+/// Result of one QP solve.
+#[derive(Debug, Clone)]
+pub struct QpOutcome {
+    /// The multipliers ν = (ν_n, ν_t) (unscaled; ν_t empty for a frictionless QP).
+    pub nu: Vec<f64>,
+    /// Status.
+    pub status: QpStatus,
+    /// Interior-point iterations.
+    pub iterations: u32,
+    /// Wall time in seconds.
+    pub seconds: f64,
+}
+
+/// The QP of P(g), set up once; the tangential bounds g can be changed between solves.
+///
+/// A frictional QP is written in the variables `(ν_n, τ)` with `ν_t = diag(g) τ`, `|τ| ≤ 1`: the box of τ
+/// always has an interior, even where g vanishes (separated dofs), which a box `−0 ≤ ν_t ≤ 0` would not
+/// have. Changing g then changes the values of P and q but not their pattern, so clarabel's set-up
+/// (symbolic factorization of its KKT matrix) is reused across the whole fixed point.
+pub struct TrescaQp {
+    solver: Option<DefaultSolver<f64>>,
+    h: Vec<f64>,
+    c: Vec<f64>,
+    q: usize,
+    frictional: bool,
+    n_scale: f64,
+    bounds: Vec<f64>,
+}
+
+impl std::fmt::Debug for TrescaQp {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("TrescaQp").field("q", &self.q).field("frictional", &self.frictional).finish()
+    }
+}
+
+fn status_name(s: SolverStatus) -> &'static str {
+    match s {
+        SolverStatus::Unsolved => "unsolved",
+        SolverStatus::Solved => "solved",
+        SolverStatus::PrimalInfeasible => "primal infeasible",
+        SolverStatus::DualInfeasible => "dual infeasible (the contact problem has no bounded multiplier)",
+        SolverStatus::AlmostSolved => "almost solved",
+        SolverStatus::AlmostPrimalInfeasible => "almost primal infeasible",
+        SolverStatus::AlmostDualInfeasible => "almost dual infeasible",
+        SolverStatus::MaxIterations => "iteration limit",
+        SolverStatus::MaxTime => "time limit",
+        SolverStatus::NumericalError => "numerical error",
+        SolverStatus::InsufficientProgress => "insufficient progress",
+        SolverStatus::CallbackTerminated => "stopped by callback",
+    }
+}
+
+fn check_bounds(g: &[f64], q: usize) -> Result<()> {
+    if g.len() != q {
+        return Err(Error::BadThreshold { what: format!("{} values given, {} multiplier dofs", g.len(), q) });
+    }
+    match g.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {
+        Some(j) => {
+            Err(Error::BadThreshold { what: format!("value {j} is {}; thresholds must be finite and ≥ 0", g[j]) })
+        }
+        None => Ok(()),
+    }
+}
+
+impl TrescaQp {
+    /// Sets up the QP. `h` is the dense symmetric `H` (column-major, `k × k` with `k = q` for a
+    /// frictionless QP and `k = 2q` otherwise), `c` the linear term, `bounds` the tangential bounds
+    /// (length q) for a frictional QP, `None` for a frictionless one.
+    ///
+    /// # Errors
+    /// [`Error::QpSetup`] if clarabel rejects the data; [`Error::BadSetting`], [`Error::BadThreshold`].
+    pub fn new(h: &[f64], c: &[f64], q: usize, bounds: Option<&[f64]>, settings: &QpSettings) -> Result<Self> {
+        settings.validate()?;
+        let frictional = bounds.is_some();
+        let k = if frictional { 2 * q } else { q };
+        debug_assert_eq!(h.len(), k * k, "bug: H has the wrong size");
+        debug_assert_eq!(c.len(), k, "bug: c has the wrong size");
+        if let Some(g) = bounds {
+            check_bounds(g, q)?;
+        }
+        let h_s = (0..q).map(|i| h[i * k + i]).fold(0.0, f64::max);
+        let c_s = c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let mut qp = Self {
+            solver: None,
+            h: h.to_vec(),
+            c: c.to_vec(),
+            q,
+            frictional,
+            n_scale: if h_s > 0.0 { c_s / h_s } else { 0.0 },
+            bounds: bounds.map_or_else(Vec::new, <[f64]>::to_vec),
+        };
+        if c_s == 0.0 || h_s <= 0.0 {
+            // Nothing pushes the body onto the obstacle (c_n = 0): λ_n = 0, hence λ_t = 0, solves P(g).
+            return Ok(qp);
+        }
+        let (p, qv) = qp.scaled_data();
+        // Upper triangle of P in CSC.
+        let mut colptr = Vec::with_capacity(k + 1);
+        let mut rowval = Vec::with_capacity(k * (k + 1) / 2);
+        colptr.push(0);
+        for j in 0..k {
+            rowval.extend(0..=j);
+            colptr.push(rowval.len());
+        }
+        let p = CscMatrix::new(k, k, colptr, rowval, p);
+        // Constraints A x + s = b, s ≥ 0:  −ν_n ≤ 0;  τ ≤ 1;  −τ ≤ 1.
+        let m = if frictional { 3 * q } else { q };
+        let mut colptr = Vec::with_capacity(k + 1);
+        let (mut rowval, mut nzval) = (Vec::with_capacity(m), Vec::with_capacity(m));
+        colptr.push(0);
+        for j in 0..q {
+            rowval.push(j);
+            nzval.push(-1.0);
+            colptr.push(rowval.len());
+        }
+        if frictional {
+            for j in 0..q {
+                rowval.extend([q + j, 2 * q + j]);
+                nzval.extend([1.0, -1.0]);
+                colptr.push(rowval.len());
+            }
+        }
+        let a = CscMatrix::new(m, k, colptr, rowval, nzval);
+        let b: Vec<f64> = (0..m).map(|i| if i < q { 0.0 } else { 1.0 }).collect();
+        let mut cs = DefaultSettings::<f64> {
+            verbose: false,
+            tol_gap_abs: settings.tol,
+            tol_gap_rel: settings.tol,
+            tol_feas: settings.tol,
+            tol_ktratio: settings.tol.sqrt(),
+            max_iter: settings.max_iter,
+            presolve_enable: false,
+            ..DefaultSettings::default()
+        };
+        cs.direct_solve_method = match settings.kkt_solver {
+            KktSolver::Qdldl => "qdldl".to_string(),
+            KktSolver::Faer => "faer".to_string(),
+        };
+        let solver = DefaultSolver::new(&p, &qv, &a, &b, &[NonnegativeConeT(m)], cs)
+            .map_err(|e| Error::QpSetup { what: e.to_string() })?;
+        qp.solver = Some(solver);
+        Ok(qp)
+    }
+
+    /// Values of the upper triangle of the scaled P (column by column) and the scaled q, for the current
+    /// bounds: variables `x = (ν_n / s, τ)`, objective divided by the largest diagonal entry.
+    fn scaled_data(&self) -> (Vec<f64>, Vec<f64>) {
+        let (q, s) = (self.q, self.n_scale);
+        let k = if self.frictional { 2 * q } else { q };
+        let w: Vec<f64> = (0..k).map(|i| if i < q { s } else { self.bounds[i - q] }).collect();
+        let f = (0..k).map(|i| w[i] * w[i] * self.h[i * k + i]).fold(0.0, f64::max);
+        let mut p = Vec::with_capacity(k * (k + 1) / 2);
+        for j in 0..k {
+            for i in 0..=j {
+                p.push(w[i] * self.h[j * k + i] * w[j] / f);
+            }
+        }
+        let qv = (0..k).map(|i| w[i] * self.c[i] / f).collect();
+        (p, qv)
+    }
+
+    /// Replaces the tangential bounds g (length q) without rebuilding the solver.
+    ///
+    /// # Errors
+    /// [`Error::BadThreshold`] for a wrong length or a negative value; [`Error::QpSetup`] if clarabel
+    /// refuses the update.
+    pub fn set_bounds(&mut self, g: &[f64]) -> Result<()> {
+        debug_assert!(self.frictional, "bug: bounds on a frictionless QP");
+        check_bounds(g, self.q)?;
+        self.bounds.copy_from_slice(g);
+        if self.solver.is_some() {
+            let (p, qv) = self.scaled_data();
+            let solver = self.solver.as_mut().expect("checked");
+            solver.update_P(&p).map_err(|e| Error::QpSetup { what: format!("{e:?}") })?;
+            solver.update_q(&qv).map_err(|e| Error::QpSetup { what: format!("{e:?}") })?;
+        }
+        Ok(())
+    }
+
+    /// Solves the QP.
+    pub fn solve(&mut self) -> QpOutcome {
+        let q = self.q;
+        let k = if self.frictional { 2 * q } else { q };
+        let Some(solver) = self.solver.as_mut() else {
+            return QpOutcome { nu: vec![0.0; k], status: QpStatus::Solved, iterations: 0, seconds: 0.0 };
+        };
+        let clock = Instant::now();
+        solver.solve();
+        let sol = &solver.solution;
+        let status = match sol.status {
+            SolverStatus::Solved => QpStatus::Solved,
+            SolverStatus::AlmostSolved => QpStatus::Inaccurate,
+            s => QpStatus::Failed(status_name(s)),
+        };
+        let nu = (0..k).map(|i| if i < q { sol.x[i] * self.n_scale } else { sol.x[i] * self.bounds[i - q] }).collect();
+        QpOutcome { nu, status, iterations: sol.iterations, seconds: clock.elapsed().as_secs_f64() }
+    }
+}

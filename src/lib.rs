@@ -1,0 +1,1 @@
+//! Test and benchmark harness package for the tribo workspace (see tests/ and benches/).
