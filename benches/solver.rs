@@ -1,1 +1,269 @@
-fn main() {}
+//! Criterion benches of the solve pipeline on the Hertz scene (`crates/tribo/examples/hertz.rs`): a rigid
+//! cylinder (R = 1) pushed 0.01 into the block (−2, 2) × (−2, 0), clamped at the bottom, E = 200, ν = 0.3,
+//! P1 multipliers on the FE points of Γ_C, γ0 = half the admissible bound, meshes graded toward the
+//! contact zone. Every group takes the finest mesh size `h_min` as its parameter.
+//!
+//! Groups (one per phase):
+//! - `mesh`: [`graded_rectangle`];
+//! - `assembly`: [`Problem::new`] (K, loads, Γ_C geometry, T_H, Γ_C matrices);
+//! - `gamma_c_matrices`: [`tribo::mortar::MortarMatrices::new`] alone;
+//! - `condensation`: [`Condensed::new`] (sparse Cholesky of K − G and the Schur complement onto Γ_C);
+//! - `tresca`: one Tresca solve (threshold 0.5) on a prebuilt [`Condensed`];
+//! - `coulomb`: one whole Coulomb solve (μ = 0.3, shift 0.004) on a prebuilt [`Condensed`], on coarser
+//!   meshes (at h_min = 0.005 the plain fixed point cycles and runs its 100 iterations);
+//! - `qp_kkt_solver`: frictionless and Tresca solves with clarabel's QDLDL against its faer KKT solver;
+//! - `cholesky_reference`: sparse Cholesky factorization + solve of K alone (the plain elastic solve the
+//!   Coulomb solve is compared with), also at h_min = 0.04 so that every Coulomb size has its reference.
+//!
+//! The set-up prints, once per mesh, the numbers of unknowns (n_free) and of multiplier dofs (q), and the
+//! status of the Coulomb solves. `cargo bench --bench solver -- --test` runs every bench once.
+
+use std::cell::RefCell;
+use std::collections::BTreeMap;
+use std::hint::black_box;
+use std::rc::Rc;
+use std::time::Duration;
+
+use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkGroup, BenchmarkId, Criterion, SamplingMode};
+use faer::linalg::solvers::Solve;
+use faer::sparse::SparseColMat;
+use faer::Mat;
+use tribo::mortar::MortarMatrices;
+use tribo::{
+    graded_rectangle, Condensed, Friction, Grading, KktSolver, Material, Mesh, MultiplierPoints, MultiplierSpace,
+    Obstacle, ObstacleShape, Problem, ProblemSpec, Side, SolveStatus, SolverSettings, Stabilization, Threshold,
+};
+
+/// Mesh sizes of the set-up, Tresca and KKT-solver groups.
+const SIZES: [f64; 3] = [0.02, 0.01, 0.005];
+/// Mesh sizes of the Coulomb group (the plain fixed point does not converge at 0.005).
+const COULOMB_SIZES: [f64; 3] = [0.04, 0.02, 0.01];
+/// Mesh sizes of the Cholesky reference: the union of the two.
+const CHOLESKY_SIZES: [f64; 4] = [0.04, 0.02, 0.01, 0.005];
+
+const STABILIZATION: Stabilization = Stabilization::Fraction(0.5);
+const TRESCA_THRESHOLD: f64 = 0.5;
+const MU: f64 = 0.3;
+const COULOMB_SHIFT: f64 = 0.004;
+
+fn grading(h_min: f64) -> Grading {
+    Grading { side: Side::Top, segment: [-0.3, 0.3], h_min, h_max: 0.5, growth: 0.3 }
+}
+
+fn hertz_mesh(h_min: f64) -> Mesh {
+    graded_rectangle([-2.0, 2.0], [-2.0, 0.0], &grading(h_min)).expect("Hertz mesh")
+}
+
+fn hertz_spec(shift: f64) -> ProblemSpec {
+    ProblemSpec {
+        material: Material { young: 200.0, poisson: 0.3 },
+        clamped: vec!["bottom".into()],
+        body_force: [0.0, 0.0],
+        tractions: vec![],
+        contact: "top".into(),
+        obstacle: Obstacle { shape: ObstacleShape::Circle { center: 0.0, radius: 1.0 }, approach: 0.01, shift },
+        multiplier_points: MultiplierPoints::RatioToFe(1.0),
+        multiplier_space: MultiplierSpace::P1,
+    }
+}
+
+/// One Hertz problem, assembled and condensed.
+struct Scene {
+    mesh: Mesh,
+    spec: ProblemSpec,
+    problem: Problem,
+    condensed: Condensed,
+}
+
+impl Scene {
+    fn new(h_min: f64, shift: f64) -> Self {
+        let mesh = hertz_mesh(h_min);
+        let spec = hertz_spec(shift);
+        let problem = Problem::new(mesh.clone(), spec.clone()).expect("Hertz problem");
+        let condensed = Condensed::new(&problem, STABILIZATION).expect("condensation");
+        eprintln!(
+            "[hertz h_min = {h_min}, shift = {shift}] nodes {} triangles {} n_free {} q {} (2q = {}) γ0 {:.3e}",
+            mesh.n_nodes(),
+            mesh.triangles().len(),
+            problem.n_free,
+            problem.n_multipliers(),
+            2 * problem.n_multipliers(),
+            condensed.gamma0,
+        );
+        Self { mesh, spec, problem, condensed }
+    }
+}
+
+thread_local! {
+    static SCENES: RefCell<BTreeMap<(u64, u64), Rc<Scene>>> = RefCell::new(BTreeMap::new());
+}
+
+/// The scene of size `h_min` and obstacle shift `shift`, built (and described on stderr) once.
+fn scene(h_min: f64, shift: f64) -> Rc<Scene> {
+    let key = (h_min.to_bits(), shift.to_bits());
+    SCENES.with(|s| s.borrow_mut().entry(key).or_insert_with(|| Rc::new(Scene::new(h_min, shift))).clone())
+}
+
+/// Settings of the slow groups: few samples, a flat sampling plan, a short warm-up.
+fn configure_slow(group: &mut BenchmarkGroup<'_, criterion::measurement::WallTime>, seconds: u64) {
+    group.sample_size(10).measurement_time(Duration::from_secs(seconds)).sampling_mode(SamplingMode::Flat);
+}
+
+fn bench_mesh(c: &mut Criterion) {
+    let mut group = c.benchmark_group("mesh");
+    group.measurement_time(Duration::from_secs(2));
+    for h_min in SIZES {
+        let _ = scene(h_min, 0.0);
+        group.bench_with_input(BenchmarkId::from_parameter(h_min), &h_min, |b, &h| {
+            b.iter(|| graded_rectangle([-2.0, 2.0], [-2.0, 0.0], black_box(&grading(h))).unwrap())
+        });
+    }
+    group.finish();
+}
+
+fn bench_assembly(c: &mut Criterion) {
+    let mut group = c.benchmark_group("assembly");
+    group.measurement_time(Duration::from_secs(2));
+    for h_min in SIZES {
+        let s = scene(h_min, 0.0);
+        group.bench_with_input(BenchmarkId::from_parameter(h_min), &s, |b, s| {
+            b.iter_batched(
+                || (s.mesh.clone(), s.spec.clone()),
+                |(mesh, spec)| Problem::new(mesh, spec).unwrap(),
+                BatchSize::LargeInput,
+            )
+        });
+    }
+    group.finish();
+
+    let mut group = c.benchmark_group("gamma_c_matrices");
+    group.measurement_time(Duration::from_secs(2));
+    for h_min in SIZES {
+        let s = scene(h_min, 0.0);
+        group.bench_with_input(BenchmarkId::from_parameter(h_min), &s, |b, s| {
+            let p = &s.problem;
+            b.iter(|| MortarMatrices::new(black_box(&p.contact), &p.multipliers, &p.h_t, &p.spec.obstacle).unwrap())
+        });
+    }
+    group.finish();
+}
+
+fn bench_condensation(c: &mut Criterion) {
+    let mut group = c.benchmark_group("condensation");
+    configure_slow(&mut group, 3);
+    for h_min in SIZES {
+        let s = scene(h_min, 0.0);
+        group.bench_with_input(BenchmarkId::from_parameter(h_min), &s, |b, s| {
+            b.iter(|| Condensed::new(black_box(&s.problem), STABILIZATION).unwrap())
+        });
+    }
+    group.finish();
+}
+
+fn tresca() -> Friction {
+    Friction::Tresca(Threshold::Uniform(TRESCA_THRESHOLD))
+}
+
+fn bench_tresca(c: &mut Criterion) {
+    let mut group = c.benchmark_group("tresca");
+    configure_slow(&mut group, 4);
+    let settings = SolverSettings::default();
+    for h_min in SIZES {
+        let s = scene(h_min, 0.0);
+        let sol = s.condensed.solve(&s.problem, &tresca(), &settings, None).unwrap();
+        assert_eq!(sol.report.status, SolveStatus::Converged, "Tresca at h_min = {h_min}");
+        group.bench_with_input(BenchmarkId::from_parameter(h_min), &s, |b, s| {
+            b.iter(|| s.condensed.solve(black_box(&s.problem), &tresca(), &settings, None).unwrap())
+        });
+    }
+    group.finish();
+}
+
+fn bench_coulomb(c: &mut Criterion) {
+    let mut group = c.benchmark_group("coulomb");
+    configure_slow(&mut group, 5);
+    let settings = SolverSettings::default();
+    let friction = Friction::Coulomb { mu: MU };
+    for h_min in COULOMB_SIZES {
+        let s = scene(h_min, COULOMB_SHIFT);
+        let sol = s.condensed.solve(&s.problem, &friction, &settings, None).unwrap();
+        eprintln!(
+            "[coulomb h_min = {h_min}] status {:?}, {} fixed-point iterations, QP iterations {:?}",
+            sol.report.status, sol.report.iterations, sol.report.qp_iterations
+        );
+        assert_eq!(sol.report.status, SolveStatus::Converged, "Coulomb at h_min = {h_min}");
+        group.bench_with_input(BenchmarkId::from_parameter(h_min), &s, |b, s| {
+            b.iter(|| s.condensed.solve(black_box(&s.problem), &friction, &settings, None).unwrap())
+        });
+    }
+    group.finish();
+}
+
+fn bench_qp_kkt_solver(c: &mut Criterion) {
+    let mut group = c.benchmark_group("qp_kkt_solver");
+    configure_slow(&mut group, 3);
+    let cases = [("frictionless", Friction::Frictionless), ("tresca", tresca())];
+    for h_min in SIZES {
+        let s = scene(h_min, 0.0);
+        for (law, friction) in &cases {
+            for (name, kkt) in [("qdldl", KktSolver::Qdldl), ("faer", KktSolver::Faer)] {
+                let mut settings = SolverSettings::default();
+                settings.qp.kkt_solver = kkt;
+                let sol = s.condensed.solve(&s.problem, friction, &settings, None).unwrap();
+                assert_eq!(sol.report.status, SolveStatus::Converged, "{law} with {name} at h_min = {h_min}");
+                group.bench_with_input(BenchmarkId::new(format!("{law}/{name}"), h_min), &s, |b, s| {
+                    b.iter(|| s.condensed.solve(black_box(&s.problem), friction, &settings, None).unwrap())
+                });
+            }
+        }
+    }
+    group.finish();
+}
+
+/// Sparse Cholesky factorization (symbolic + numeric) of `k` and one solve with `f`.
+fn cholesky_solve(k: &SparseColMat<usize, f64>, f: &[f64]) -> Mat<f64> {
+    let llt = k.sp_cholesky(faer::Side::Lower).expect("K is positive definite");
+    let mut x = Mat::<f64>::from_fn(f.len(), 1, |i, _| f[i]);
+    llt.solve_in_place(x.as_mut());
+    x
+}
+
+fn bench_cholesky_reference(c: &mut Criterion) {
+    let mut group = c.benchmark_group("cholesky_reference");
+    group.sample_size(10).measurement_time(Duration::from_secs(2));
+    for h_min in CHOLESKY_SIZES {
+        let s = scene(h_min, 0.0);
+        let p = &s.problem;
+        let n = p.n_free;
+        let k = SparseColMat::try_new_from_triplets(n, n, &p.k_free).expect("K");
+        // Sanity check of K u = f. The Hertz load comes from the obstacle only (f_free = 0, which costs the
+        // same to solve), so check the residual against a non-trivial right-hand side.
+        let f: Vec<f64> = (0..n).map(|i| ((i % 7) as f64) - 3.0).collect();
+        let u = cholesky_solve(&k, &f);
+        let ku = &k * &u;
+        let res = (0..n).map(|i| (ku[(i, 0)] - f[i]).abs()).fold(0.0, f64::max);
+        assert!(res < 1e-8 * f.iter().map(|v| v.abs()).fold(0.0, f64::max), "K u = f residual {res:e}");
+        group.bench_with_input(BenchmarkId::new("factor_solve", h_min), &k, |b, k| {
+            b.iter(|| cholesky_solve(black_box(k), &p.f_free))
+        });
+        group.bench_with_input(BenchmarkId::new("triplets_factor_solve", h_min), p, |b, p| {
+            b.iter(|| {
+                let k = SparseColMat::try_new_from_triplets(n, n, black_box(&p.k_free)).unwrap();
+                cholesky_solve(&k, &p.f_free)
+            })
+        });
+    }
+    group.finish();
+}
+
+fn config() -> Criterion {
+    Criterion::default().sample_size(10).warm_up_time(Duration::from_millis(500)).nresamples(20_000)
+}
+
+criterion_group! {
+    name = benches;
+    config = config();
+    targets = bench_mesh, bench_assembly, bench_condensation, bench_tresca, bench_coulomb, bench_qp_kkt_solver,
+        bench_cholesky_reference
+}
+criterion_main!(benches);
