@@ -137,6 +137,20 @@ impl Condensed {
         self.e_rows.len() / 2
     }
 
+    /// A natural size of λ_n for this problem, `max |c_n| / max diag H_nn`: the multiplier at which the
+    /// quadratic and linear terms of the QP balance. It is non-zero even when the solution is λ = 0, so it
+    /// serves as the scale of tolerances on λ.
+    pub fn lambda_scale(&self) -> f64 {
+        let (k, q) = (2 * self.q(), self.q());
+        let h = (0..q).map(|i| self.h[i * k + i]).fold(0.0, f64::max);
+        let c = self.c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        if h > 0.0 {
+            c / h
+        } else {
+            0.0
+        }
+    }
+
     /// The normal-normal block `H_nn` (column-major q × q).
     pub fn h_normal(&self) -> Vec<f64> {
         let (k, q) = (2 * self.q(), self.q());

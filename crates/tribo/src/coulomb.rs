@@ -63,7 +63,8 @@ impl Friction {
 /// Settings of the Coulomb fixed point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FixedPointSettings {
-    /// Stop when `‖λ_n^{k+1} − λ_n^k‖₂ ≤ tol_change_rel ‖λ_n^{k+1}‖₂`. Default 1e-8.
+    /// Stop when `‖λ_n^{k+1} − λ_n^k‖₂ ≤ tol_change_rel ‖λ_n^{k+1}‖₂` (or when the change is below the
+    /// QP's noise level, `qp.tol` times [`Condensed::lambda_scale`]). Default 1e-8.
     pub tol_change_rel: f64,
     /// Iteration cap. Default 100.
     pub max_iter: usize,
@@ -266,6 +267,7 @@ impl Condensed {
                 break;
             }
             let lam_n = &out.nu[..q];
+            let max_diff = lam_n.iter().zip(&g).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
             let diff: f64 = lam_n.iter().zip(&g).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt();
             let norm: f64 = lam_n.iter().map(|a| a * a).sum::<f64>().sqrt();
             let change = if norm > 0.0 { diff / norm } else { diff };
@@ -273,7 +275,11 @@ impl Condensed {
             notify(Progress { iteration: it, change, qp_iterations: out.iterations, qp_seconds: out.seconds });
             phase.bound = g.iter().map(|v| mu * v.max(0.0)).collect();
             phase.lambda = out.nu;
-            if change <= fp.tol_change_rel {
+            // Converged when the relative change is small, or when the change is at the QP's own noise
+            // level (tol × the natural size of λ): e.g. λ ≡ 0 without contact, where a relative change
+            // compares round-off with round-off.
+            let noise = settings.qp.tol * self.lambda_scale();
+            if change <= fp.tol_change_rel || max_diff <= noise {
                 phase.status = SolveStatus::Converged;
                 break;
             }

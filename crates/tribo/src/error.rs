@@ -154,6 +154,18 @@ pub enum Error {
         /// Second node.
         b: usize,
     },
+    /// A traction is applied on Γ_C: the method takes σ(u)·n = −λ there, so Γ_N and Γ_C must not overlap.
+    #[error("traction set '{traction_set}' shares edge ({a}, {b}) with the contact boundary '{set}': Γ_N and Γ_C must not overlap")]
+    TractionOnContact {
+        /// Contact edge set name.
+        set: String,
+        /// Traction edge set name.
+        traction_set: String,
+        /// First node.
+        a: usize,
+        /// Second node.
+        b: usize,
+    },
     /// An obstacle description is bad.
     #[error("obstacle: {what}")]
     BadObstacle {

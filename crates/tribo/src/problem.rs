@@ -127,9 +127,23 @@ impl Problem {
 
         let clock = Instant::now();
         let contact = ContactBoundary::new(&mesh, &spec.contact)?;
+        let contact_edges: std::collections::HashSet<[usize; 2]> =
+            contact.edges.iter().map(|e| [e.left.min(e.right), e.left.max(e.right)]).collect();
         for e in &contact.edges {
             if clamped_edges.contains(&[e.left.min(e.right), e.left.max(e.right)]) {
                 return Err(Error::ContactOverlapsDirichlet { set: spec.contact.clone(), a: e.left, b: e.right });
+            }
+        }
+        for (traction_set, _) in &spec.tractions {
+            for &[a, b] in mesh.edge_set(traction_set)? {
+                if contact_edges.contains(&[a.min(b), a.max(b)]) {
+                    return Err(Error::TractionOnContact {
+                        set: spec.contact.clone(),
+                        traction_set: traction_set.clone(),
+                        a,
+                        b,
+                    });
+                }
             }
         }
         let multipliers = MultiplierMesh::new(&contact, &spec.multiplier_points, spec.multiplier_space)?;

@@ -53,7 +53,7 @@ pub struct Timings {
 /// Discrete KKT residuals of (3.1) at the returned solution, each made dimensionless.
 ///
 /// With `r = E u − d − Dγ λ` (the discrete, stabilized gap and slip: `r_n ≤ 0` is non-penetration),
-/// `Λ = max λ_n` and `R = max(|E u|, |d|)` (the scale of the gaps):
+/// `Λ = max(max λ_n, Condensed::lambda_scale)` and `R = max(|E u|, |d|)` (the scale of the gaps):
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct KktResiduals {
     /// `‖A u + Eᵀ λ − f‖_∞ / max(‖f‖_∞, ‖Eᵀ λ‖_∞)`: the equation of (3.1).
@@ -210,7 +210,7 @@ impl Solution {
         let tangential_force = lambda_t.iter().zip(w).map(|(l, w)| l * w).sum();
 
         let kkt = kkt_residuals(problem, condensed, &u_free, lambda, &friction_threshold);
-        let lam_scale = lambda_n.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let lam_scale = lambda_n.iter().fold(condensed.lambda_scale(), |m, v| m.max(v.abs()));
         let theta = settings.qp.tol.sqrt() * lam_scale;
         let frictional = phase.mu.is_some() || !phase.bound.is_empty() && phase.bound.iter().any(|b| *b > 0.0);
         let states = (0..q)
@@ -278,7 +278,7 @@ fn kkt_residuals(problem: &Problem, c: &Condensed, u: &[f64], lambda: &[f64], bo
         r[i] -= c.gamma0 * v * lambda[j];
         r[q + i] -= c.gamma0 * v * lambda[q + j];
     }
-    let lam = inf(&lambda[..q]).max(f64::MIN_POSITIVE);
+    let lam = inf(&lambda[..q]).max(c.lambda_scale()).max(f64::MIN_POSITIVE);
     let gap_scale = inf(&eu).max(inf(&c.d)).max(f64::MIN_POSITIVE);
     let mut k = KktResiduals { equilibrium: inf(&res) / eq_scale, ..Default::default() };
     for j in 0..q {

@@ -1,0 +1,108 @@
+//! Scenes shared by the integration tests.
+#![allow(dead_code)]
+
+use tribo::*;
+
+/// The Hertz scene of the issue: rigid cylinder R = 1 pushed `approach` into (−2, 2) × (−2, 0), clamped at
+/// the bottom, E = 200, ν = 0.3, mesh graded toward [−0.3, 0.3] on the top side.
+pub fn hertz_problem(
+    h_min: f64,
+    approach: f64,
+    shift: f64,
+    points: MultiplierPoints,
+    space: MultiplierSpace,
+) -> Problem {
+    let mesh = graded_rectangle(
+        [-2.0, 2.0],
+        [-2.0, 0.0],
+        &Grading { side: Side::Top, segment: [-0.3, 0.3], h_min, h_max: 0.5, growth: 0.3 },
+    )
+    .expect("valid grading");
+    let spec = ProblemSpec {
+        material: Material { young: 200.0, poisson: 0.3 },
+        clamped: vec!["bottom".into()],
+        body_force: [0.0, 0.0],
+        tractions: vec![],
+        contact: "top".into(),
+        obstacle: Obstacle { shape: ObstacleShape::Circle { center: 0.0, radius: 1.0 }, approach, shift },
+        multiplier_points: points,
+        multiplier_space: space,
+    };
+    Problem::new(mesh, spec).expect("valid Hertz problem")
+}
+
+/// Plane-strain Hertz pressure for total force `p` (R = 1, E = 200, ν = 0.3) and its half-width.
+pub fn hertz_pressure(p: f64) -> (impl Fn(f64) -> f64, f64) {
+    let (r, e, nu) = (1.0, 200.0, 0.3);
+    let a = (4.0 * p * r * (1.0 - nu * nu) / (std::f64::consts::PI * e)).sqrt();
+    let pmax = 2.0 * p / (std::f64::consts::PI * a);
+    (move |x: f64| if x.abs() < a { pmax * (1.0 - (x / a).powi(2)).sqrt() } else { 0.0 }, a)
+}
+
+/// Relative L2 error of λ_n against the Hertz pressure of the computed force, integrated with 8-point
+/// Gauss on every segment of the union of T_H, the FE nodes and the Hertz edge points ±a (so the square
+/// root singularity sits at a breakpoint).
+pub fn hertz_l2_error(problem: &Problem, sol: &Solution) -> f64 {
+    let (p, a) = hertz_pressure(sol.normal_force);
+    let mut breaks: Vec<f64> = problem.multipliers.xi.iter().chain(&problem.contact.node_xi).copied().collect();
+    breaks.extend([-a, a]);
+    breaks.sort_by(f64::total_cmp);
+    breaks.dedup();
+    let (gx, gw) = gauss8();
+    let (mut num, mut den) = (0.0, 0.0);
+    for w in breaks.windows(2) {
+        let (h, m) = (0.5 * (w[1] - w[0]), 0.5 * (w[1] + w[0]));
+        for (x, wt) in gx.iter().zip(&gw) {
+            let xi = m + h * x;
+            let l = problem.multipliers.evaluate(&sol.lambda_n, xi);
+            num += wt * h * (l - p(xi)).powi(2);
+            den += wt * h * p(xi).powi(2);
+        }
+    }
+    (num / den).sqrt()
+}
+
+/// 8-point Gauss–Legendre rule on [−1, 1].
+pub fn gauss8() -> ([f64; 8], [f64; 8]) {
+    let x = [0.183_434_642_495_649_8, 0.525_532_409_916_329, 0.796_666_477_413_626_7, 0.960_289_856_497_536_3];
+    let w = [0.362_683_783_378_362, 0.313_706_645_877_887_3, 0.222_381_034_453_374_5, 0.101_228_536_290_376_3];
+    ([-x[3], -x[2], -x[1], -x[0], x[0], x[1], x[2], x[3]], [w[3], w[2], w[1], w[0], w[0], w[1], w[2], w[3]])
+}
+
+/// Least-squares slope of log(y) against log(x).
+pub fn fitted_rate(x: &[f64], y: &[f64]) -> f64 {
+    let lx: Vec<f64> = x.iter().map(|v| v.ln()).collect();
+    let ly: Vec<f64> = y.iter().map(|v| v.ln()).collect();
+    let n = lx.len() as f64;
+    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
+    let sxy: f64 = lx.iter().zip(&ly).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = lx.iter().map(|a| (a - mx).powi(2)).sum();
+    sxy / sxx
+}
+
+/// A unit square meshed with alternating diagonals and interior nodes moved by up to 25 % of h in a
+/// deterministic pseudo-random way, so patch tests run on a genuinely irregular mesh.
+pub fn distorted_square(n: usize) -> Mesh {
+    let m = rectangle([0.0, 1.0], [0.0, 1.0], n, n, Diagonal::Alternating).expect("valid");
+    let h = 1.0 / n as f64;
+    let mut seed: u64 = 0x2545_F491_4F6C_DD1D;
+    let mut rnd = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let pts: Vec<[f64; 2]> = m
+        .points()
+        .iter()
+        .map(|p| {
+            let interior = p[0] > 1e-12 && p[0] < 1.0 - 1e-12 && p[1] > 1e-12 && p[1] < 1.0 - 1e-12;
+            if interior {
+                [p[0] + 0.5 * h * rnd(), p[1] + 0.5 * h * rnd()]
+            } else {
+                *p
+            }
+        })
+        .collect();
+    Mesh::new(pts, m.triangles().to_vec(), m.edge_sets().clone()).expect("distortion keeps triangles valid")
+}

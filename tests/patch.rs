@@ -1,0 +1,233 @@
+//! Patch tests: a constant-strain state is reproduced to the QP's accuracy, with and without active
+//! contact, for P0 and P1 multipliers on matching, coarser and finer non-matching T_H, with γ0 = 0 and
+//! γ0 > 0, frictionless, Tresca and Coulomb (stick and slip), on a distorted mesh.
+//!
+//! Exact state: the unit square clamped on its top side, Γ_C its bottom side (n = (0, −1), t = (1, 0)),
+//! `u = (1 − y) (a, b)`: ε_xx = 0, ε_yy = −b, γ_xy = −a, so σ is constant and λ_n = (λ + 2G) b,
+//! λ_t = −G a. The sides carry the tractions σ·n of that state.
+
+mod common;
+
+use tribo::*;
+
+const E: f64 = 1000.0;
+const NU: f64 = 0.25;
+
+fn lame() -> (f64, f64) {
+    (E * NU / ((1.0 + NU) * (1.0 - 2.0 * NU)), E / (2.0 * (1.0 + NU)))
+}
+
+/// Builds the problem for the exact state (a, b); `bottom_traction` for the no-contact case.
+fn patch_problem(
+    a: f64,
+    b: f64,
+    approach: f64,
+    shift: f64,
+    points: MultiplierPoints,
+    space: MultiplierSpace,
+) -> Problem {
+    let (lam, g) = lame();
+    let (sxx, sxy) = (-lam * b, -g * a);
+    let tractions = vec![("left".to_string(), [-sxx, -sxy]), ("right".to_string(), [sxx, sxy])];
+    let spec = ProblemSpec {
+        material: Material { young: E, poisson: NU },
+        clamped: vec!["top".into()],
+        body_force: [0.0, 0.0],
+        tractions,
+        contact: "bottom".into(),
+        obstacle: Obstacle { shape: ObstacleShape::Flat, approach, shift },
+        multiplier_points: points,
+        multiplier_space: space,
+    };
+    Problem::new(common::distorted_square(8), spec).expect("valid patch problem")
+}
+
+struct Case {
+    name: &'static str,
+    a: f64,
+    b: f64,
+    approach: f64,
+    shift: f64,
+    friction: Friction,
+    no_contact: bool,
+}
+
+fn cases() -> Vec<Case> {
+    let (lam, g) = lame();
+    let delta = 1e-3;
+    let ln = (lam + 2.0 * g) * delta;
+    let s = 2e-4;
+    let tau = 0.5 * g * s; // below G s: slip
+    let mu_slip = 0.05; // μ λ_n < G s
+    assert!(mu_slip * ln < g * s, "test set-up: the Coulomb slip case must slip");
+    vec![
+        Case {
+            name: "frictionless",
+            a: 0.0,
+            b: delta,
+            approach: delta,
+            shift: 0.0,
+            friction: Friction::Frictionless,
+            no_contact: false,
+        },
+        Case {
+            name: "Tresca stick",
+            a: s,
+            b: delta,
+            approach: delta,
+            shift: s,
+            friction: Friction::Tresca(Threshold::Uniform(2.0 * g * s)),
+            no_contact: false,
+        },
+        Case {
+            name: "Tresca slip",
+            a: tau / g,
+            b: delta,
+            approach: delta,
+            shift: s,
+            friction: Friction::Tresca(Threshold::Uniform(tau)),
+            no_contact: false,
+        },
+        Case {
+            name: "Coulomb stick",
+            a: s,
+            b: delta,
+            approach: delta,
+            shift: s,
+            friction: Friction::Coulomb { mu: 1.0 },
+            no_contact: false,
+        },
+        Case {
+            name: "Coulomb slip",
+            a: mu_slip * ln / g,
+            b: delta,
+            approach: delta,
+            shift: s,
+            friction: Friction::Coulomb { mu: mu_slip },
+            no_contact: false,
+        },
+    ]
+}
+
+#[test]
+fn constant_strain_states_are_reproduced() {
+    let (lam, g) = lame();
+    let mut worst: f64 = 0.0;
+    for case in cases() {
+        for space in [MultiplierSpace::P0, MultiplierSpace::P1] {
+            for (mesh_name, points) in [
+                ("matching", MultiplierPoints::RatioToFe(1.0)),
+                ("coarser", MultiplierPoints::Size(0.3)),
+                (
+                    "finer",
+                    MultiplierPoints::Abscissae(vec![0.0, 0.05, 0.13, 0.2, 0.31, 0.37, 0.5, 0.52, 0.66, 0.8, 0.9, 1.0]),
+                ),
+            ] {
+                for stab in [Stabilization::None, Stabilization::Fraction(0.5)] {
+                    let problem = patch_problem(case.a, case.b, case.approach, case.shift, points.clone(), space);
+                    let settings = SolverSettings { stabilization: stab, ..Default::default() };
+                    let condensed = Condensed::new(&problem, stab).expect("condenses");
+                    let sol = condensed.solve(&problem, &case.friction, &settings, None).expect("solves");
+                    // The QP is solved to a relative accuracy `qp.tol`; its solution inherits at most that
+                    // times the condition number of H (on its range).
+                    let tol = settings.qp.tol * condition_number(&condensed);
+                    let what = format!("{} / {space:?} / {mesh_name} / {stab:?}", case.name);
+                    // λ is unique only for γ0 > 0 or an inf-sup stable pair (T_H not finer than T_h); with a
+                    // non-unique λ_n the Coulomb fixed point has no reason to settle.
+                    let unique = stab != Stabilization::None || mesh_name != "finer";
+                    if !unique && sol.report.status != SolveStatus::Converged {
+                        continue;
+                    }
+                    assert_eq!(sol.report.status, SolveStatus::Converged, "{what}");
+                    let scale = case.a.abs().max(case.b.abs());
+                    let mut err_u: f64 = 0.0;
+                    for (i, p) in problem.mesh.points().iter().enumerate() {
+                        let exact = [(1.0 - p[1]) * case.a, (1.0 - p[1]) * case.b];
+                        let u = sol.node_displacement(i);
+                        err_u = err_u.max((u[0] - exact[0]).abs().max((u[1] - exact[1]).abs()) / scale);
+                    }
+                    assert!(err_u <= tol, "{what}: displacement error {err_u:e} > {tol:e}");
+                    worst = worst.max(err_u / tol);
+                    if unique {
+                        let (ln, lt) =
+                            if case.no_contact { (0.0, 0.0) } else { ((lam + 2.0 * g) * case.b, -g * case.a) };
+                        let lscale = (lam + 2.0 * g) * case.b.abs();
+                        for j in 0..problem.n_multipliers() {
+                            let e = (sol.lambda_n[j] - ln).abs().max((sol.lambda_t[j] - lt).abs()) / lscale;
+                            assert!(e <= tol, "{what}: multiplier {j} error {e:e}");
+                            worst = worst.max(e / tol);
+                        }
+                    }
+                    // σ_n(u_h), σ_t(u_h) are the exact constant stresses.
+                    let (sn, st) = (-(lam + 2.0 * g) * case.b, g * case.a);
+                    for (k, (a, b)) in sol.sigma_n.iter().zip(&sol.sigma_t).enumerate() {
+                        let e = ((a - sn).abs().max((b - st).abs())) / ((lam + 2.0 * g) * case.b.abs());
+                        assert!(e <= tol, "{what}: contact stress on edge {k} off by {e:e}");
+                    }
+                    let expected_state =
+                        match (case.no_contact, case.name.contains("slip"), case.name.contains("stick")) {
+                            (true, _, _) => Some(ContactState::Separation),
+                            (false, true, _) => Some(ContactState::Slip),
+                            (false, _, true) => Some(ContactState::Stick),
+                            _ => None,
+                        };
+                    if let (Some(state), true) = (expected_state, unique) {
+                        assert!(sol.states.iter().all(|s| *s == state), "{what}: states {:?}", sol.states);
+                    }
+                }
+            }
+        }
+    }
+    eprintln!("patch tests: worst error / (qp.tol · κ(H)) = {worst:.3}");
+}
+
+/// Without active contact: ν = 0, the square clamped on its left side and pulled on its right side,
+/// Γ_C (bottom) traction free at a positive gap. Exact: u = (c x, 0), σ = (E c, 0, 0), λ = 0.
+#[test]
+fn constant_strain_without_contact_is_reproduced() {
+    let c = 1e-3;
+    for space in [MultiplierSpace::P0, MultiplierSpace::P1] {
+        for points in [MultiplierPoints::RatioToFe(1.0), MultiplierPoints::Size(0.3), MultiplierPoints::RatioToFe(0.25)]
+        {
+            for stab in [Stabilization::None, Stabilization::Fraction(0.5)] {
+                let spec = ProblemSpec {
+                    material: Material { young: E, poisson: 0.0 },
+                    clamped: vec!["left".into()],
+                    body_force: [0.0, 0.0],
+                    tractions: vec![("right".to_string(), [E * c, 0.0])],
+                    contact: "bottom".into(),
+                    obstacle: Obstacle { shape: ObstacleShape::Flat, approach: -0.01, shift: 0.0 },
+                    multiplier_points: points.clone(),
+                    multiplier_space: space,
+                };
+                let problem = Problem::new(common::distorted_square(8), spec).expect("valid");
+                let settings = SolverSettings { stabilization: stab, ..Default::default() };
+                let condensed = Condensed::new(&problem, stab).expect("condenses");
+                let tol = settings.qp.tol * condition_number(&condensed);
+                for friction in [Friction::Frictionless, Friction::Coulomb { mu: 0.3 }] {
+                    let sol = condensed.solve(&problem, &friction, &settings, None).expect("solves");
+                    let what = format!("{space:?} / {points:?} / {stab:?} / {friction:?}");
+                    assert_eq!(sol.report.status, SolveStatus::Converged, "{what}: {:?}", sol.report);
+                    for (i, p) in problem.mesh.points().iter().enumerate() {
+                        let u = sol.node_displacement(i);
+                        let e = ((u[0] - c * p[0]).abs().max(u[1].abs())) / c;
+                        assert!(e <= tol, "{what}: node {i} off by {e:e}");
+                    }
+                    assert!(sol.lambda_n.iter().chain(&sol.lambda_t).all(|l| l.abs() <= tol * E * c), "{what}");
+                    assert!(sol.states.iter().all(|s| *s == ContactState::Separation), "{what}: {:?}", sol.states);
+                }
+            }
+        }
+    }
+}
+
+/// Spectral condition number of the condensed multiplier operator H on its range (eigenvalues below
+/// `k ε λ_max` count as its kernel: the non-unique part of λ when γ0 = 0 and T_H is too fine).
+fn condition_number(c: &Condensed) -> f64 {
+    let k = 2 * c.q();
+    let h = nalgebra::DMatrix::from_column_slice(k, k, &c.h);
+    let ev = h.symmetric_eigenvalues();
+    let max = ev.iter().fold(0.0_f64, |a, v| a.max(*v));
+    let min = ev.iter().filter(|v| **v > k as f64 * f64::EPSILON * max).fold(f64::INFINITY, |a, v| a.min(*v));
+    max / min
+}
