@@ -35,31 +35,37 @@ pub struct Piece {
 
 /// Common refinement of two partitions of the same interval (`fe` and `mult` are increasing breakpoints
 /// with equal first and last values).
+///
+/// Every FE node is a breakpoint (exactly: the FE basis is integrated edge by edge). An interior
+/// multiplier point becomes a breakpoint unless it lies within `√ε h_E` of a breakpoint already kept (h_E
+/// the length of the FE edge that contains it): nearly coincident points are merged instead of creating
+/// slivers. Each piece is assigned to the FE edge and the multiplier cell that contain its midpoint.
 pub fn common_refinement(fe: &[f64], mult: &[f64]) -> Vec<Piece> {
     let tol = geometric_tol_rel();
-    let (ne, nc) = (fe.len() - 1, mult.len() - 1);
-    let mut pieces = Vec::with_capacity(ne + nc);
-    let (mut i, mut k) = (0, 0);
-    let mut a = fe[0];
-    while i < ne && k < nc {
-        let (fb, mb) = (fe[i + 1], mult[k + 1]);
-        let local = (fe[i + 1] - fe[i]).min(mult[k + 1] - mult[k]);
-        if (fb - mb).abs() <= tol * local {
-            pieces.push(Piece { a, b: fb, edge: i, cell: k });
-            a = fb;
-            i += 1;
-            k += 1;
-        } else if fb < mb {
-            pieces.push(Piece { a, b: fb, edge: i, cell: k });
-            a = fb;
-            i += 1;
-        } else {
-            pieces.push(Piece { a, b: mb, edge: i, cell: k });
-            a = mb;
-            k += 1;
+    let ne = fe.len() - 1;
+    let edge_of = |x: f64| fe.partition_point(|&y| y <= x).clamp(1, ne) - 1;
+    let mut breaks: Vec<f64> = fe.to_vec();
+    let mut extra: Vec<f64> = Vec::new();
+    for &x in &mult[1..mult.len() - 1] {
+        let e = edge_of(x);
+        let near = tol * (fe[e + 1] - fe[e]);
+        let close_to_fe = (x - fe[e]).abs() <= near || (fe[e + 1] - x).abs() <= near;
+        let close_to_prev = extra.last().is_some_and(|&p| x - p <= near);
+        if !close_to_fe && !close_to_prev {
+            extra.push(x);
         }
     }
-    pieces
+    breaks.extend(extra);
+    breaks.sort_by(f64::total_cmp);
+    let nc = mult.len() - 1;
+    breaks
+        .windows(2)
+        .map(|w| {
+            let mid = 0.5 * (w[0] + w[1]);
+            let cell = mult.partition_point(|&y| y <= mid).clamp(1, nc) - 1;
+            Piece { a: w[0], b: w[1], edge: edge_of(mid), cell }
+        })
+        .collect()
 }
 
 /// A sparse matrix as a list of `(row, col, value)` with summed duplicates, small and built once.
