@@ -129,14 +129,6 @@ fn direct_inequality(problem: &Problem, sol: &Solution, gamma0: f64, nu_n: &[f64
     (val, scale)
 }
 
-/// Spectral condition number of H on its range.
-fn condition_number(c: &Condensed) -> f64 {
-    let k = 2 * c.q();
-    let ev = nalgebra::DMatrix::from_column_slice(k, k, &c.h).symmetric_eigenvalues();
-    let max = ev.iter().fold(0.0_f64, |a, v| a.max(*v));
-    max / ev.iter().filter(|v| **v > k as f64 * f64::EPSILON * max).fold(f64::INFINITY, |a, v| a.min(*v))
-}
-
 fn check(friction: Friction, shift: f64, space: MultiplierSpace, points: MultiplierPoints, stab: Stabilization) {
     let problem = common::hertz_problem(0.02, 0.01, shift, points.clone(), space);
     let settings = SolverSettings { stabilization: stab, ..Default::default() };
@@ -153,7 +145,7 @@ fn check(friction: Friction, shift: f64, space: MultiplierSpace, points: Multipl
     let worst = rmax / smax;
     assert!(worst <= 64.0 * f64::EPSILON * (problem.n_free as f64).sqrt(), "{what}: equation residual {worst:e}");
     // The inequality holds for every ν in the cone, to the QP's accuracy times the conditioning of H.
-    let tol = settings.qp.tol * condition_number(&condensed);
+    let tol = settings.qp.tol * common::condition_number(&condensed);
     let q = problem.n_multipliers();
     let bound = &sol.friction_threshold;
     let mut seed = 7u64;

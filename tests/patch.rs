@@ -130,7 +130,7 @@ fn constant_strain_states_are_reproduced() {
                     let sol = condensed.solve(&problem, &case.friction, &settings, None).expect("solves");
                     // The QP is solved to a relative accuracy `qp.tol`; its solution inherits at most that
                     // times the condition number of H (on its range).
-                    let tol = settings.qp.tol * condition_number(&condensed);
+                    let tol = settings.qp.tol * common::condition_number(&condensed);
                     let what = format!("{} / {space:?} / {mesh_name} / {stab:?}", case.name);
                     // λ is unique only for γ0 > 0 or an inf-sup stable pair (T_H not finer than T_h); with a
                     // non-unique λ_n the Coulomb fixed point has no reason to settle.
@@ -203,7 +203,7 @@ fn constant_strain_without_contact_is_reproduced() {
                 let problem = Problem::new(common::distorted_square(8), spec).expect("valid");
                 let settings = SolverSettings { stabilization: stab, ..Default::default() };
                 let condensed = Condensed::new(&problem, stab).expect("condenses");
-                let tol = settings.qp.tol * condition_number(&condensed);
+                let tol = settings.qp.tol * common::condition_number(&condensed);
                 for friction in [Friction::Frictionless, Friction::Coulomb { mu: 0.3 }] {
                     let sol = condensed.solve(&problem, &friction, &settings, None).expect("solves");
                     let what = format!("{space:?} / {points:?} / {stab:?} / {friction:?}");
@@ -219,15 +219,4 @@ fn constant_strain_without_contact_is_reproduced() {
             }
         }
     }
-}
-
-/// Spectral condition number of the condensed multiplier operator H on its range (eigenvalues below
-/// `k ε λ_max` count as its kernel: the non-unique part of λ when γ0 = 0 and T_H is too fine).
-fn condition_number(c: &Condensed) -> f64 {
-    let k = 2 * c.q();
-    let h = nalgebra::DMatrix::from_column_slice(k, k, &c.h);
-    let ev = h.symmetric_eigenvalues();
-    let max = ev.iter().fold(0.0_f64, |a, v| a.max(*v));
-    let min = ev.iter().filter(|v| **v > k as f64 * f64::EPSILON * max).fold(f64::INFINITY, |a, v| a.min(*v));
-    max / min
 }

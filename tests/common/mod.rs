@@ -106,3 +106,13 @@ pub fn distorted_square(n: usize) -> Mesh {
         .collect();
     Mesh::new(pts, m.triangles().to_vec(), m.edge_sets().clone()).expect("distortion keeps triangles valid")
 }
+
+/// Spectral condition number of the condensed multiplier operator H on its range (eigenvalues below
+/// `k ε λ_max` count as its kernel: the non-unique part of λ when γ0 = 0 and T_H is too fine). A QP
+/// solved to relative accuracy `tol` determines λ to about `tol · κ`.
+pub fn condition_number(c: &Condensed) -> f64 {
+    let k = 2 * c.q();
+    let ev = nalgebra::DMatrix::from_column_slice(k, k, &c.h).symmetric_eigenvalues();
+    let max = ev.iter().fold(0.0_f64, |a, v| a.max(*v));
+    max / ev.iter().filter(|v| **v > k as f64 * f64::EPSILON * max).fold(f64::INFINITY, |a, v| a.min(*v))
+}

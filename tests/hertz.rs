@@ -1,0 +1,159 @@
+//! Named scenes: Hertz convergence under graded refinement, stabilization against the checkerboard of
+//! the classic method when T_H is finer than T_h, and the Coulomb fixed point with an obstacle shift.
+
+mod common;
+
+use common::{fitted_rate, hertz_l2_error, hertz_problem};
+use tribo::*;
+
+/// Frictionless Hertz: the relative L2 error of λ_n against the plane-strain Hertz pressure decreases
+/// under refinement of a mesh graded toward the contact zone. The Hertz pressure is the half-plane
+/// solution (the block is finite), and the pressure has square-root edges that no mesh aligns with, so
+/// the expected rate is about 1 (the measured slope is printed).
+#[test]
+fn hertz_pressure_converges_on_graded_meshes() {
+    let h = [0.04, 0.02, 0.01, 0.005];
+    let mut errors = Vec::new();
+    for &h_min in &h {
+        let problem = hertz_problem(h_min, 0.01, 0.0, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+        let sol = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+        assert_eq!(sol.report.status, SolveStatus::Converged);
+        let (_, a) = common::hertz_pressure(sol.normal_force);
+        errors.push(hertz_l2_error(&problem, &sol));
+        eprintln!(
+            "h_min {h_min}: n = {}, q = {}, force {:.5}, a = {a:.4}, rel. L2 error {:.4e}",
+            problem.n_free,
+            problem.n_multipliers(),
+            sol.normal_force,
+            errors.last().unwrap()
+        );
+    }
+    let rate = fitted_rate(&h, &errors);
+    eprintln!("fitted rate {rate:.3}");
+    for w in errors.windows(2) {
+        assert!(w[1] < w[0], "the error must decrease under refinement: {errors:?}");
+    }
+    assert!(rate > 0.8, "fitted L2 rate {rate:.3} (errors {errors:?}); expected about 1");
+}
+
+/// Total variation of λ_n over that of the Hertz pressure of the same force (2 p_max): 1 for a smooth,
+/// single-peaked pressure, much more for a checkerboard.
+fn oscillation(sol: &Solution) -> f64 {
+    let (p, _) = common::hertz_pressure(sol.normal_force);
+    let tv: f64 = sol.lambda_n.windows(2).map(|w| (w[1] - w[0]).abs()).sum();
+    tv / (2.0 * p(0.0))
+}
+
+/// With P1 multipliers finer than the FE mesh (H = h/2, h/4), the classic method (γ0 = 0) gives a
+/// checkerboard λ_n; the stabilized method (γ0 = half its admissible bound) damps it several-fold.
+#[test]
+fn stabilization_removes_the_checkerboard() {
+    let mesh = rectangle([-2.0, 2.0], [-2.0, 0.0], 80, 40, Diagonal::Right).expect("valid");
+    let solve = |ratio: f64, stab: Stabilization| {
+        let spec = ProblemSpec {
+            material: Material { young: 200.0, poisson: 0.3 },
+            clamped: vec!["bottom".into()],
+            body_force: [0.0, 0.0],
+            tractions: vec![],
+            contact: "top".into(),
+            obstacle: Obstacle {
+                shape: ObstacleShape::Circle { center: 0.0, radius: 1.0 },
+                approach: 0.05,
+                shift: 0.0,
+            },
+            multiplier_points: MultiplierPoints::RatioToFe(ratio),
+            multiplier_space: MultiplierSpace::P1,
+        };
+        let problem = Problem::new(mesh.clone(), spec).expect("valid");
+        let settings = SolverSettings { stabilization: stab, ..Default::default() };
+        let sol = problem.solve(&Friction::Frictionless, &settings, None).expect("solves");
+        assert_eq!(sol.report.status, SolveStatus::Converged);
+        oscillation(&sol)
+    };
+    let matching = solve(1.0, Stabilization::Fraction(0.5));
+    eprintln!("H = h, θ = 0.5: oscillation {matching:.3}");
+    assert!(matching < 1.5, "matching meshes must give a smooth pressure: {matching:.3}");
+    for ratio in [0.5, 0.25] {
+        let classic = solve(ratio, Stabilization::None);
+        let stabilized = solve(ratio, Stabilization::Fraction(0.5));
+        eprintln!("H/h = {ratio}: oscillation γ0 = 0: {classic:.3}, θ = 0.5: {stabilized:.3}");
+        assert!(classic > 5.0, "γ0 = 0 with H/h = {ratio} should oscillate: {classic:.3}");
+        assert!(
+            stabilized < classic / 3.0,
+            "stabilization must damp the checkerboard: {stabilized:.3} vs {classic:.3}"
+        );
+    }
+}
+
+/// Coulomb friction μ = 0.3 with an obstacle shift s = 0.004: the fixed point converges, with stick and
+/// slip dofs, and the Coulomb law holds at the fixed point.
+#[test]
+fn coulomb_fixed_point_converges_with_stick_and_slip() {
+    let problem = hertz_problem(0.01, 0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    let mut seen = Vec::new();
+    let mut observer = |p: &Progress| seen.push(p.iteration);
+    let sol =
+        problem.solve(&Friction::Coulomb { mu: 0.3 }, &SolverSettings::default(), Some(&mut observer)).expect("solves");
+    let r = &sol.report;
+    eprintln!(
+        "Coulomb μ = 0.3: {:?} after {} iterations, history {:?}, QP time {:.3} s, total {:.3} s",
+        r.status,
+        r.iterations,
+        r.residual_history,
+        r.timings.qp,
+        r.timings.assembly
+            + r.timings.contact_matrices
+            + r.timings.factorization
+            + r.timings.condensation
+            + r.timings.qp
+    );
+    assert_eq!(r.status, SolveStatus::Converged);
+    assert_eq!(seen.len(), r.iterations + 1, "the observer sees the initial QP and every iteration");
+    let count = |s: ContactState| sol.states.iter().filter(|x| **x == s).count();
+    assert!(count(ContactState::Stick) > 0 && count(ContactState::Slip) > 0, "states {:?}", sol.states);
+    assert!(sol.tangential_force.abs() > 0.0);
+    // At the fixed point the threshold is μ λ_n and |λ_t| ≤ μ λ_n holds (to the QP tolerance).
+    let lmax = sol.lambda_n.iter().fold(0.0_f64, |m, v| m.max(*v));
+    for j in 0..sol.lambda_n.len() {
+        assert!(sol.lambda_t[j].abs() <= 0.3 * sol.lambda_n[j].max(0.0) + 1e-6 * lmax, "dof {j}");
+    }
+    // Relaxation reaches the same fixed point.
+    let mut settings = SolverSettings::default();
+    settings.fixed_point.relaxation = 0.5;
+    let relaxed = problem.solve(&Friction::Coulomb { mu: 0.3 }, &settings, None).expect("solves");
+    assert_eq!(relaxed.report.status, SolveStatus::Converged);
+    let diff = sol.lambda_n.iter().zip(&relaxed.lambda_n).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(diff <= 1e-6 * lmax, "relaxed fixed point differs by {diff:e}");
+}
+
+/// Two paths to the frictionless solution: μ = 0 and a vanishing Tresca threshold.
+#[test]
+fn frictionless_limits_agree() {
+    let problem = hertz_problem(0.02, 0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    let s = SolverSettings::default();
+    let condensed = Condensed::new(&problem, s.stabilization).unwrap();
+    let a = condensed.solve(&problem, &Friction::Frictionless, &s, None).unwrap();
+    let b = condensed.solve(&problem, &Friction::Coulomb { mu: 0.0 }, &s, None).unwrap();
+    let c = condensed.solve(&problem, &Friction::Tresca(Threshold::Uniform(0.0)), &s, None).unwrap();
+    // Two different QPs (q and 2q unknowns), each determining λ to about tol · κ(H), agree to twice that.
+    let tol = 2.0 * s.qp.tol * common::condition_number(&condensed);
+    let lmax = a.lambda_n.iter().fold(0.0_f64, |m, v| m.max(*v));
+    for other in [&b, &c] {
+        let d = a.lambda_n.iter().zip(&other.lambda_n).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()));
+        assert!(d <= tol * lmax, "frictionless paths differ by {d:e} (λ scale {lmax:e}, tol·κ {tol:e})");
+        assert!(other.lambda_t.iter().all(|l| l.abs() <= tol * lmax));
+    }
+}
+
+/// A fixed point that does not converge is reported, not hidden.
+#[test]
+fn iteration_cap_is_reported() {
+    let problem = hertz_problem(0.02, 0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    let mut settings = SolverSettings::default();
+    settings.fixed_point.max_iter = 1;
+    let sol = problem.solve(&Friction::Coulomb { mu: 0.3 }, &settings, None).unwrap();
+    assert_eq!(sol.report.status, SolveStatus::MaxIterations);
+    assert_eq!(sol.report.iterations, 1);
+    assert_eq!(sol.report.residual_history.len(), 1);
+    assert!(sol.report.residual_history[0] > settings.fixed_point.tol_change_rel);
+}
