@@ -1,0 +1,222 @@
+//! One rejection test per input rule: bad input is a typed error that says what and where, never a panic.
+
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+use tribo::*;
+
+fn square() -> Mesh {
+    rectangle([0.0, 1.0], [0.0, 1.0], 4, 4, Diagonal::Right).unwrap()
+}
+
+fn spec() -> ProblemSpec {
+    ProblemSpec {
+        material: Material { young: 100.0, poisson: 0.3 },
+        clamped: vec!["top".into()],
+        body_force: [0.0, -1.0],
+        tractions: vec![],
+        contact: "bottom".into(),
+        obstacle: Obstacle::default(),
+        multiplier_points: MultiplierPoints::RatioToFe(1.0),
+        multiplier_space: MultiplierSpace::P1,
+    }
+}
+
+fn sets(e: &[(&str, Vec<[usize; 2]>)]) -> BTreeMap<String, Vec<[usize; 2]>> {
+    e.iter().map(|(n, v)| (n.to_string(), v.clone())).collect()
+}
+
+fn two_triangles() -> (Vec<[f64; 2]>, Vec<[usize; 3]>) {
+    (vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], vec![[0, 1, 2], [0, 2, 3]])
+}
+
+fn problem_err(mesh: Mesh, spec: ProblemSpec) -> Error {
+    Problem::new(mesh, spec).expect_err("must be rejected")
+}
+
+#[test]
+fn mesh_rules() {
+    let (p, t) = two_triangles();
+    assert_eq!(Mesh::new(p.clone(), vec![], sets(&[])).unwrap_err(), Error::EmptyMesh);
+    let mut bad = p.clone();
+    bad[2][1] = f64::NAN;
+    assert!(matches!(Mesh::new(bad, t.clone(), sets(&[])).unwrap_err(), Error::NonFiniteCoordinate { node: 2, .. }));
+    assert!(matches!(
+        Mesh::new(p.clone(), vec![[0, 1, 7]], sets(&[])).unwrap_err(),
+        Error::NodeIndexOutOfRange { element: 0, node: 7, .. }
+    ));
+    let mut flat = p.clone();
+    flat.push([0.5, 0.0]);
+    assert!(matches!(
+        Mesh::new(flat, vec![[0, 4, 1], [0, 1, 2], [0, 2, 3]], sets(&[])).unwrap_err(),
+        Error::DegenerateTriangle { element: 0, .. }
+    ));
+    assert!(matches!(
+        Mesh::new(p.clone(), vec![[0, 1, 2], [0, 3, 2]], sets(&[])).unwrap_err(),
+        Error::InvertedTriangle { element: 1, .. }
+    ));
+    let mut extra = p.clone();
+    extra.push([5.0, 5.0]);
+    assert_eq!(Mesh::new(extra, t.clone(), sets(&[])).unwrap_err(), Error::UnusedNode { node: 4 });
+    assert_eq!(
+        Mesh::new(p.clone(), vec![[0, 1, 2], [1, 2, 0], [0, 2, 3]], sets(&[])).unwrap_err(),
+        Error::DuplicateTriangle { first: 0, second: 1 }
+    );
+    let e = Mesh::new(p.clone(), t.clone(), sets(&[("diag", vec![[0, 2]])])).unwrap_err();
+    assert!(matches!(&e, Error::NotABoundaryEdge { set, index: 0, a: 0, b: 2 } if set == "diag"), "{e}");
+    assert!(e.to_string().contains("'diag'"), "{e}");
+    assert!(matches!(Mesh::new(p, t, sets(&[("empty", vec![])])).unwrap_err(), Error::EmptyEdgeSet { .. }));
+    let e = square().edge_set("topp").unwrap_err();
+    assert!(e.to_string().contains("topp") && e.to_string().contains("bottom"), "{e}");
+}
+
+#[test]
+fn generator_rules() {
+    for r in [
+        rectangle([0.0, 1.0], [0.0, 1.0], 0, 3, Diagonal::Right),
+        rectangle([1.0, 0.0], [0.0, 1.0], 2, 3, Diagonal::Right),
+        rectangle([0.0, f64::NAN], [0.0, 1.0], 2, 3, Diagonal::Right),
+        graded_rectangle(
+            [0.0, 1.0],
+            [0.0, 1.0],
+            &Grading { side: Side::Top, segment: [0.2, 0.4], h_min: -1.0, h_max: 0.5, growth: 0.3 },
+        ),
+        graded_rectangle(
+            [0.0, 1.0],
+            [0.0, 1.0],
+            &Grading { side: Side::Top, segment: [0.2, 3.0], h_min: 0.1, h_max: 0.5, growth: 0.3 },
+        ),
+    ] {
+        assert!(matches!(r.unwrap_err(), Error::BadGenerator { .. }));
+    }
+}
+
+#[test]
+fn material_load_and_support_rules() {
+    for (young, poisson) in [(0.0, 0.3), (-1.0, 0.3), (f64::NAN, 0.3), (1.0, 0.5), (1.0, -1.0)] {
+        let s = ProblemSpec { material: Material { young, poisson }, ..spec() };
+        assert!(matches!(problem_err(square(), s), Error::BadMaterial { .. }), "E = {young}, ν = {poisson}");
+    }
+    let s = ProblemSpec { body_force: [f64::INFINITY, 0.0], ..spec() };
+    assert!(matches!(problem_err(square(), s), Error::NonFiniteLoad { .. }));
+    let s = ProblemSpec { tractions: vec![("left".into(), [f64::NAN, 0.0])], ..spec() };
+    assert!(matches!(problem_err(square(), s), Error::NonFiniteLoad { target, .. } if target == "left"));
+    let s = ProblemSpec { tractions: vec![("lft".into(), [1.0, 0.0])], ..spec() };
+    assert!(matches!(problem_err(square(), s), Error::UnknownEdgeSet { name, .. } if name == "lft"));
+    let s = ProblemSpec { clamped: vec![], ..spec() };
+    assert_eq!(problem_err(square(), s), Error::NoDirichlet);
+}
+
+#[test]
+fn contact_geometry_rules() {
+    // An L-shaped set is not straight.
+    let mut m = square().edge_sets().clone();
+    let mut l = m["bottom"].clone();
+    l.extend(m["right"].iter().copied());
+    m.insert("corner".into(), l);
+    let mesh = Mesh::new(square().points().to_vec(), square().triangles().to_vec(), m).unwrap();
+    let e = problem_err(mesh, ProblemSpec { contact: "corner".into(), ..spec() });
+    assert!(matches!(e, Error::ContactNotStraight { .. }), "{e}");
+    // Two separate pieces of the bottom side.
+    let mut m = square().edge_sets().clone();
+    let b = m["bottom"].clone();
+    m.insert("pieces".into(), vec![b[0], b[2]]);
+    let mesh = Mesh::new(square().points().to_vec(), square().triangles().to_vec(), m).unwrap();
+    assert!(matches!(
+        problem_err(mesh, ProblemSpec { contact: "pieces".into(), ..spec() }),
+        Error::ContactNotConnected { .. }
+    ));
+    let s = ProblemSpec { clamped: vec!["bottom".into()], ..spec() };
+    assert!(matches!(problem_err(square(), s), Error::ContactOverlapsDirichlet { .. }));
+    let s = ProblemSpec { tractions: vec![("bottom".into(), [0.0, 1.0])], ..spec() };
+    assert!(matches!(problem_err(square(), s), Error::TractionOnContact { .. }));
+}
+
+#[test]
+fn obstacle_rules() {
+    for shape in [
+        ObstacleShape::Circle { center: 0.0, radius: 0.0 },
+        ObstacleShape::Parabola { center: f64::NAN, radius: 1.0 },
+        ObstacleShape::Polyline { xi: vec![0.0, 0.0], gap: vec![0.0, 1.0] },
+        ObstacleShape::Polyline { xi: vec![0.0, 1.0], gap: vec![0.0] },
+    ] {
+        let s = ProblemSpec { obstacle: Obstacle { shape, approach: 0.0, shift: 0.0 }, ..spec() };
+        assert!(matches!(problem_err(square(), s), Error::BadObstacle { .. }));
+    }
+    let s = ProblemSpec { obstacle: Obstacle { approach: f64::NAN, ..Obstacle::default() }, ..spec() };
+    assert!(matches!(problem_err(square(), s), Error::BadObstacle { .. }));
+    let f = GapFunction(Arc::new(|x: f64| if x > 0.5 { f64::NAN } else { 0.0 }));
+    let s = ProblemSpec { obstacle: Obstacle { shape: ObstacleShape::Function(f), ..Obstacle::default() }, ..spec() };
+    let e = problem_err(square(), s);
+    assert!(matches!(e, Error::BadObstacle { .. }) && e.to_string().contains("abscissa"), "{e}");
+}
+
+#[test]
+fn multiplier_rules() {
+    let with = |p: MultiplierPoints| problem_err(square(), ProblemSpec { multiplier_points: p, ..spec() });
+    assert!(matches!(
+        with(MultiplierPoints::Abscissae(vec![0.0, 0.5, 0.4, 1.0])),
+        Error::MultiplierPointsNotIncreasing { index: 2, .. }
+    ));
+    assert!(matches!(
+        with(MultiplierPoints::Abscissae(vec![0.0, 0.5, 1.2])),
+        Error::MultiplierPointOffContact { index: 2, .. }
+    ));
+    assert!(matches!(
+        with(MultiplierPoints::Points(vec![[0.0, 0.0], [0.5, 0.1], [1.0, 0.0]])),
+        Error::MultiplierPointOffContact { index: 1, .. }
+    ));
+    assert!(matches!(
+        with(MultiplierPoints::Abscissae(vec![0.1, 0.5, 1.0])),
+        Error::MultiplierMeshDoesNotCover { which: "first", .. }
+    ));
+    assert!(matches!(
+        with(MultiplierPoints::Abscissae(vec![0.0, 0.5, 0.9])),
+        Error::MultiplierMeshDoesNotCover { which: "last", .. }
+    ));
+    for p in [
+        MultiplierPoints::Size(0.0),
+        MultiplierPoints::RatioToFe(-1.0),
+        MultiplierPoints::Abscissae(vec![0.0]),
+        MultiplierPoints::Abscissae(vec![0.0, f64::NAN, 1.0]),
+    ] {
+        assert!(matches!(with(p), Error::BadMultiplierMesh { .. }));
+    }
+}
+
+#[test]
+fn settings_rules() {
+    let problem = Problem::new(square(), spec()).unwrap();
+    let s = SolverSettings::default();
+    let bad = |f: &Friction, s: &SolverSettings| problem.solve(f, s, None).expect_err("must be rejected");
+    assert!(matches!(bad(&Friction::Coulomb { mu: -0.1 }, &s), Error::BadSetting { name: "mu", .. }));
+    assert!(matches!(bad(&Friction::Coulomb { mu: f64::NAN }, &s), Error::BadSetting { name: "mu", .. }));
+    assert!(matches!(bad(&Friction::Tresca(Threshold::Uniform(-1.0)), &s), Error::BadThreshold { .. }));
+    assert!(matches!(bad(&Friction::Tresca(Threshold::PerDof(vec![1.0; 2])), &s), Error::BadThreshold { .. }));
+    let mut t = s;
+    t.qp.tol = 0.0;
+    assert!(matches!(bad(&Friction::Frictionless, &t), Error::BadSetting { name: "qp.tol", .. }));
+    let mut t = s;
+    t.fixed_point.relaxation = 1.5;
+    assert!(matches!(bad(&Friction::Frictionless, &t), Error::BadSetting { name: "fixed_point.relaxation", .. }));
+    let mut t = s;
+    t.fixed_point.max_iter = 0;
+    assert!(matches!(bad(&Friction::Frictionless, &t), Error::BadSetting { name: "fixed_point.max_iter", .. }));
+    for stab in [Stabilization::Gamma0(-1.0), Stabilization::Fraction(1.0), Stabilization::Fraction(f64::NAN)] {
+        let t = SolverSettings { stabilization: stab, ..s };
+        assert!(matches!(bad(&Friction::Frictionless, &t), Error::BadSetting { .. }), "{stab:?}");
+    }
+    let bound = problem.gamma0_bound.0;
+    let t = SolverSettings { stabilization: Stabilization::Gamma0(1.5 * bound), ..s };
+    let e = bad(&Friction::Frictionless, &t);
+    assert!(matches!(e, Error::Gamma0TooLarge { element, .. } if element == problem.gamma0_bound.1), "{e}");
+    assert!(e.to_string().contains(&format!("{bound:e}")), "the message states the bound: {e}");
+}
+
+/// Far beyond the admissible bound K − G is indefinite: the factorization reports it as an error.
+#[test]
+fn indefinite_stabilized_stiffness_is_an_error() {
+    let problem = Problem::new(square(), spec()).unwrap();
+    let e = Condensed::with_gamma0(&problem, 1e3 * problem.gamma0_bound.0).expect_err("indefinite");
+    assert!(matches!(e, Error::NotPositiveDefinite { .. }), "{e}");
+}
