@@ -1,0 +1,46 @@
+"""tribo: 2D frictional contact in linear elasticity with the stabilized Lagrange multiplier method.
+
+The compiled core lives in the private module ``tribo._tribo``; this package re-exports it and adds
+mesh input/output (``tribo.io``), TOML scenes (``tribo.scene``), a command line (``tribo.cli``) and,
+if matplotlib is installed, plots (``tribo.plot``, not imported here).
+
+>>> import tribo
+>>> mesh = tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 4, 4)
+>>> problem = tribo.Problem(mesh, young=1.0, poisson=0.3, clamped="bottom", contact="top",
+...                         obstacle=tribo.Obstacle.flat(), approach=0.01)
+>>> solution = problem.solve()
+>>> solution.report.status
+'converged'
+"""
+
+from tribo._tribo import (
+    STATE_NAMES,
+    ContactGeometryError,
+    Mesh,
+    MeshError,
+    Obstacle,
+    Problem,
+    Report,
+    SettingsError,
+    Solution,
+    SolverError,
+    TriboError,
+    __version__,
+    solver_defaults,
+)
+
+__all__ = [
+    "STATE_NAMES",
+    "ContactGeometryError",
+    "Mesh",
+    "MeshError",
+    "Obstacle",
+    "Problem",
+    "Report",
+    "SettingsError",
+    "Solution",
+    "SolverError",
+    "TriboError",
+    "__version__",
+    "solver_defaults",
+]
