@@ -1,24 +1,25 @@
-//! Hertz contact: a rigid cylinder (R = 1) pushed δ = 0.01 into the block (−2, 2) × (−2, 0), clamped at
-//! the bottom, E = 200, ν = 0.3. Prints the contact force, the contact half-width and the L2 error of
-//! λ_n against the plane-strain Hertz pressure for a few meshes graded toward the contact zone.
+//! Hertz contact, frictionless or with Coulomb friction: a rigid cylinder (R = 1) pushed δ = 0.01 into
+//! the block (−2, 2) × (−2, 0), clamped at the bottom, E = 200, ν = 0.3, on meshes graded toward the
+//! contact zone. Prints, per mesh, the contact force, the Hertz half-width, the relative L2 error of λ_n
+//! against the plane-strain Hertz pressure (frictionless), the fixed-point iterations and the time.
+//!
+//! `cargo run --release -p tribo --example hertz [MU]` (MU > 0: Coulomb with an obstacle shift 0.004).
 use tribo::*;
 
 fn main() -> Result<()> {
-    let mu: f64 = std::env::args().nth(1).map_or(0.0, |s| s.parse().unwrap());
+    let mu: f64 = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(0.0);
+    let (young, nu, radius) = (200.0, 0.3, 1.0);
     for h_min in [0.04, 0.02, 0.01, 0.005] {
-        let mesh = graded_rectangle(
-            [-2.0, 2.0],
-            [-2.0, 0.0],
-            &Grading { side: Side::Top, segment: [-0.3, 0.3], h_min, h_max: 0.5, growth: 0.3 },
-        )?;
+        let grading = Grading { side: Side::Top, segment: [-0.3, 0.3], h_min, h_max: 0.5, growth: 0.3 };
+        let mesh = graded_rectangle([-2.0, 2.0], [-2.0, 0.0], &grading)?;
         let spec = ProblemSpec {
-            material: Material { young: 200.0, poisson: 0.3 },
+            material: Material { young, poisson: nu },
             clamped: vec!["bottom".into()],
             body_force: [0.0, 0.0],
             tractions: vec![],
             contact: "top".into(),
             obstacle: Obstacle {
-                shape: ObstacleShape::Circle { center: 0.0, radius: 1.0 },
+                shape: ObstacleShape::Circle { center: 0.0, radius },
                 approach: 0.01,
                 shift: if mu > 0.0 { 0.004 } else { 0.0 },
             },
@@ -26,57 +27,32 @@ fn main() -> Result<()> {
             multiplier_space: MultiplierSpace::P1,
         };
         let problem = Problem::new(mesh, spec)?;
-        let mut settings = SolverSettings::default();
-        if std::env::var("TRIBO_FAER").is_ok() {
-            settings.qp.kkt_solver = KktSolver::Faer;
-        }
-        if let Ok(w) = std::env::var("TRIBO_THETA") {
-            settings.stabilization = Stabilization::Fraction(w.parse().unwrap());
-        }
-        if let Ok(w) = std::env::var("TRIBO_TOL") {
-            settings.qp.tol = w.parse().unwrap();
-        }
-        if let Ok(w) = std::env::var("TRIBO_RELAX") {
-            settings.fixed_point.relaxation = w.parse().unwrap();
-        }
         let friction = if mu > 0.0 { Friction::Coulomb { mu } } else { Friction::Frictionless };
-        let t = std::time::Instant::now();
-        let sol = problem.solve(&friction, &settings, None)?;
-        let el = t.elapsed().as_secs_f64();
+        let clock = std::time::Instant::now();
+        let sol = problem.solve(&friction, &SolverSettings::default(), None)?;
+        let seconds = clock.elapsed().as_secs_f64();
         let p = sol.normal_force;
-        let nu = 0.3;
-        let a = (4.0 * p * 1.0 * (1.0 - nu * nu) / (std::f64::consts::PI * 200.0)).sqrt();
+        let a = (4.0 * p * radius * (1.0 - nu * nu) / (std::f64::consts::PI * young)).sqrt();
         let hertz =
             |x: f64| if x.abs() < a { 2.0 * p / (std::f64::consts::PI * a * a) * (a * a - x * x).sqrt() } else { 0.0 };
+        // Relative L2 error by fine sampling of λ_n.
         let (mut num, mut den) = (0.0, 0.0);
-        // L2 error by fine sampling of the P1 multiplier.
-        let m = &problem.multipliers;
-        let nsamp = 20000;
-        for k in 0..nsamp {
-            let x = -2.0 + 4.0 * (k as f64 + 0.5) / nsamp as f64;
-            let l = m.evaluate(&sol.lambda_n, x);
-            num += (l - hertz(x)).powi(2);
+        for k in 0..20000 {
+            let x = -2.0 + 4.0 * (k as f64 + 0.5) / 20000.0;
+            num += (problem.multipliers.evaluate(&sol.lambda_n, x) - hertz(x)).powi(2);
             den += hertz(x).powi(2);
         }
-        let n_contact = sol.states.iter().filter(|s| **s != ContactState::Separation).count();
-        let n_slip = sol.states.iter().filter(|s| **s == ContactState::Slip).count();
+        let count = |s: ContactState| sol.states.iter().filter(|x| **x == s).count();
         println!(
-            "h_min {h_min}: n_free {} q {} P {p:.6} a {a:.4} relL2 {:.4e} kkt {:.2e} status {:?} its {} contact {n_contact} slip {n_slip} pen {:.2e} time {el:.3}s {:?}",
+            "h_min {h_min:<6} unknowns {:>5}  q {:>4}  force {p:.5}  a {a:.4}  L2 error vs Hertz {:.3e}  {:?} after {} iterations  stick {} slip {}  {seconds:.3} s",
             problem.n_free,
             problem.n_multipliers(),
             (num / den).sqrt(),
-            sol.kkt.max(),
             sol.report.status,
             sol.report.iterations,
-            sol.max_penetration,
-            sol.report.timings
+            count(ContactState::Stick),
+            count(ContactState::Slip),
         );
-        if std::env::var("TRIBO_DEBUG").is_ok() {
-            println!(
-                "history {:?}\nqp its {:?}\nkkt {:?}",
-                sol.report.residual_history, sol.report.qp_iterations, sol.kkt
-            );
-        }
     }
     Ok(())
 }

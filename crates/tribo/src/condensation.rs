@@ -172,9 +172,9 @@ impl Condensed {
     pub fn apply_a(&self, x: &[f64]) -> Vec<f64> {
         let mut y = vec![0.0; x.len()];
         let a = self.a.as_ref();
-        for j in 0..a.ncols() {
+        for (j, xj) in x.iter().enumerate() {
             for (i, v) in a.row_idx_of_col(j).zip(a.val_of_col(j)) {
-                y[i] += v * x[j];
+                y[i] += v * xj;
             }
         }
         y

@@ -180,7 +180,7 @@ fn from_ratio(fe: &[f64], r: f64) -> Result<Vec<f64>> {
     if (r - k).abs() <= tol * r && k >= 1.0 {
         let k = k as usize;
         let mut x: Vec<f64> = fe.iter().step_by(k).copied().collect();
-        if n % k != 0 {
+        if !n.is_multiple_of(k) {
             // The last segment would be shorter than k FE edges: end there, merging a stub of less than
             // half a segment into the previous one.
             if n % k < k.div_ceil(2) && x.len() > 1 {

@@ -29,7 +29,8 @@ pub enum ContactState {
     Separation,
     /// In contact, |λ_t| below the threshold.
     Stick,
-    /// In contact, |λ_t| at the threshold (μ λ_n or the Tresca bound).
+    /// In contact, |λ_t| at the threshold (μ λ_n or the Tresca bound); every contact dof of a
+    /// frictionless problem (threshold 0) slips.
     Slip,
 }
 
@@ -127,7 +128,10 @@ pub struct Solution {
     pub lambda_t: Vec<f64>,
     /// Tangential threshold per multiplier dof (μ g at the fixed point, the Tresca threshold, or 0).
     pub friction_threshold: Vec<f64>,
-    /// Contact state per multiplier dof.
+    /// Contact state per multiplier dof: separation where `λ_n ≤ √tol Λ`, slip where
+    /// `|λ_t| ≥ threshold − √tol Λ`, stick otherwise (`tol` the QP tolerance, Λ the scale of λ_n: an
+    /// interior-point solution puts inactive bounds at about `tol / (active value)`, so `√tol` is the
+    /// geometric middle between "zero" and "non-zero").
     pub states: Vec<ContactState>,
     /// Abscissae of the midpoints of the FE edges of Γ_C.
     pub edge_abscissae: Vec<f64>,
@@ -212,12 +216,11 @@ impl Solution {
         let kkt = kkt_residuals(problem, condensed, &u_free, lambda, &friction_threshold);
         let lam_scale = lambda_n.iter().fold(condensed.lambda_scale(), |m, v| m.max(v.abs()));
         let theta = settings.qp.tol.sqrt() * lam_scale;
-        let frictional = phase.mu.is_some() || !phase.bound.is_empty() && phase.bound.iter().any(|b| *b > 0.0);
         let states = (0..q)
             .map(|j| {
                 if lambda_n[j] <= theta {
                     ContactState::Separation
-                } else if frictional && lambda_t[j].abs() >= friction_threshold[j] - theta {
+                } else if lambda_t[j].abs() >= friction_threshold[j] - theta {
                     ContactState::Slip
                 } else {
                     ContactState::Stick

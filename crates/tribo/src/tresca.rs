@@ -269,9 +269,8 @@ impl TrescaQp {
         debug_assert!(self.frictional, "bug: bounds on a frictionless QP");
         check_bounds(g, self.q)?;
         self.bounds.copy_from_slice(g);
-        if self.solver.is_some() {
-            let (p, qv) = self.scaled_data();
-            let solver = self.solver.as_mut().expect("checked");
+        let (p, qv) = self.scaled_data();
+        if let Some(solver) = self.solver.as_mut() {
             solver.update_P(&p).map_err(|e| Error::QpSetup { what: format!("{e:?}") })?;
             solver.update_q(&qv).map_err(|e| Error::QpSetup { what: format!("{e:?}") })?;
         }
