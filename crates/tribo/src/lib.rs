@@ -61,3 +61,8 @@ pub use problem::{Problem, ProblemSpec};
 pub use solution::{ContactState, KktResiduals, Report, Solution, SolveStatus, Timings};
 pub use stabilization::Stabilization;
 pub use tresca::{KktSolver, QpSettings, QpStatus};
+
+/// The Rust example of README.md, compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;
