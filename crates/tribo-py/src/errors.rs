@@ -139,6 +139,11 @@ fn describe(e: &Error) -> (Class, &'static str, Vec<(&'static str, Field)>) {
             (Class::Settings, "NonFiniteLoad", vec![("target", S(target.clone())), ("x", F(*x)), ("y", F(*y))])
         }
         Error::NoDirichlet => (Class::Settings, "NoDirichlet", vec![]),
+        Error::TractionOnContact { set, traction_set, a, b } => (
+            Class::Settings,
+            "TractionOnContact",
+            vec![("set", S(set.clone())), ("traction_set", S(traction_set.clone())), ("a", I(*a)), ("b", I(*b))],
+        ),
         Error::ContactNotStraight { set, node, distance, length } => (
             Class::Geometry,
             "ContactNotStraight",

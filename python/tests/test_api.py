@@ -1,0 +1,197 @@
+"""The Python API on frictionless, Tresca and Coulomb scenes, against the core's own numbers."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from conftest import hertz_problem
+
+import tribo
+
+
+def test_package_surface() -> None:
+    assert set(tribo.__all__) >= {"Mesh", "Problem", "Obstacle", "Solution", "Report", "TriboError"}
+    assert tribo.STATE_NAMES == ["separation", "stick", "slip"]
+    d = tribo.solver_defaults()
+    assert d["space"] == "P1" and 0.0 < d["gamma0_fraction"] < 1.0 and d["qp_tol"] > 0.0
+    assert "plot" not in dir(tribo)
+
+
+def test_mesh_from_arrays_round_trips() -> None:
+    m = tribo.Mesh.rectangle((0.0, 2.0), (0.0, 1.0), 4, 2, diagonal="alternating")
+    assert m.points.shape == (15, 2) and m.points.dtype == np.float64
+    assert m.triangles.shape == (16, 3) and m.triangles.dtype == np.int64
+    assert sorted(m.edge_sets) == ["bottom", "left", "right", "top"]
+    # Lists and int32 arrays are accepted too.
+    m2 = tribo.Mesh(m.points.tolist(), m.triangles.astype(np.int32), {k: v.tolist() for k, v in m.edge_sets.items()})
+    np.testing.assert_array_equal(m2.triangles, m.triangles)
+    assert "n_nodes=15" in repr(m2)
+
+
+def test_arrays_and_generator_give_the_same_solution(hertz: tribo.Problem) -> None:
+    """Two paths to one answer: the generator's mesh, and the same mesh rebuilt from its arrays."""
+    mesh = hertz.mesh
+    rebuilt = tribo.Mesh(mesh.points, mesh.triangles, mesh.edge_sets)
+    p2 = hertz_problem(rebuilt, shift=0.004)
+    s1, s2 = hertz.solve(mu=0.3), p2.solve(mu=0.3)
+    assert s1.report.status == s2.report.status == "converged"
+    np.testing.assert_array_equal(s1.displacement, s2.displacement)
+    np.testing.assert_array_equal(s1.lambda_n, s2.lambda_n)
+    assert s1.normal_force == s2.normal_force
+
+
+def test_frictionless_hertz() -> None:
+    p = hertz_problem()
+    s = p.solve()
+    r = s.report
+    assert s.friction == "frictionless" and s.mu is None
+    assert r.status == "converged" and r.converged and r.iterations == 0
+    assert r.gamma0 == pytest.approx(0.5 * p.gamma0_bound) and r.gamma0_bound == p.gamma0_bound
+    assert s.normal_force > 0.0 and s.tangential_force == 0.0
+    assert s.kkt_max < 1e-6, s.kkt
+    assert set(s.kkt) == {
+        "equilibrium", "normal_sign", "non_penetration", "normal_complementarity", "friction_bound", "stick",
+        "slip_direction",
+    }
+    assert set(r.timings) == {"assembly", "contact_matrices", "factorization", "condensation", "qp", "recovery"}
+    # Plane-strain Hertz: contact half-width a = sqrt(4 P R (1 − ν²) / (π E)).
+    a = np.sqrt(4 * s.normal_force * (1 - 0.3**2) / (np.pi * 200.0))
+    contact = s.multiplier_abscissae[s.states != 0]
+    assert contact.max() == pytest.approx(a, rel=0.25) and contact.min() == pytest.approx(-a, rel=0.25)
+    assert set(s.state_names) <= {"separation", "stick"}
+    # Shapes of every field.
+    n, t, q, nc = p.mesh.n_nodes, p.mesh.n_triangles, p.n_multipliers, len(p.contact_nodes)
+    assert s.displacement.shape == (n, 2) and s.reactions.shape == (n, 2)
+    assert s.stress.shape == (t, 3) and s.von_mises.shape == (t,)
+    for f in (s.lambda_n, s.lambda_t, s.friction_threshold, s.multiplier_abscissae, s.states):
+        assert f.shape == (q,)
+    for f in (s.node_abscissae, s.u_n, s.slip, s.gap):
+        assert f.shape == (nc,)
+    assert s.sigma_n.shape == s.sigma_t.shape == s.edge_abscissae.shape == (nc - 1,)
+    # Global equilibrium: the reactions at the clamped base balance the contact force.
+    assert -s.reactions[:, 1].sum() == pytest.approx(-s.normal_force, rel=1e-6)
+
+
+def test_tresca_uniform_and_per_dof(hertz: tribo.Problem) -> None:
+    s = hertz.solve(threshold=0.5)
+    assert s.friction == "tresca" and s.report.status == "converged"
+    assert np.all(np.abs(s.lambda_t) <= 0.5 * (1 + 1e-6))
+    assert "slip" in s.state_names and s.kkt_max < 1e-6
+    per_dof = hertz.solve(threshold=np.full(hertz.n_multipliers, 0.5))
+    np.testing.assert_allclose(per_dof.lambda_t, s.lambda_t, atol=1e-8 * np.abs(s.lambda_n).max())
+    np.testing.assert_array_equal(s.friction_threshold, 0.5)
+
+
+def test_tresca_with_zero_threshold_is_close_to_frictionless(hertz: tribo.Problem) -> None:
+    # Not identical: λ_n differs by up to ~1e-3 of its maximum at the edges of the contact zone (reported
+    # to the core; both solves report KKT residuals ~1e-11), so only the totals are compared tightly.
+    a, b = hertz.solve(threshold=0.0), hertz.solve()
+    np.testing.assert_array_equal(a.lambda_t, 0.0)
+    assert a.normal_force == pytest.approx(b.normal_force, rel=1e-3)
+    np.testing.assert_allclose(a.lambda_n, b.lambda_n, atol=1e-3 * b.lambda_n.max())
+
+
+def test_coulomb_stick_and_slip(hertz: tribo.Problem) -> None:
+    calls: list[tuple[int, float, int, float]] = []
+    s = hertz.solve(mu=0.3, progress=lambda *a: calls.append(a))
+    r = s.report
+    assert s.friction == "coulomb" and s.mu == 0.3
+    assert r.status == "converged" and r.iterations >= 2
+    assert len(r.residual_history) == r.iterations and len(r.qp_iterations) == r.iterations + 1
+    assert r.residual_history[-1] <= tribo.solver_defaults()["fp_tol"]
+    assert [c[0] for c in calls] == list(range(r.iterations + 1))
+    assert np.isnan(calls[0][1]) and calls[-1][1] == r.residual_history[-1]
+    names = s.state_names
+    assert "stick" in names and "slip" in names
+    assert s.kkt_max < 1e-6
+    np.testing.assert_allclose(s.friction_threshold, 0.3 * np.maximum(s.lambda_n, 0), rtol=1e-6, atol=1e-6)
+    assert s.tangential_force != 0.0 and s.max_penetration >= 0.0
+    # The second solve with the same γ0 reuses the factorization and gives the same numbers.
+    again = hertz.solve(mu=0.3)
+    assert again.report.reused_factorization
+    np.testing.assert_array_equal(again.lambda_t, s.lambda_t)
+
+
+def test_coulomb_mu_zero_is_frictionless(hertz: tribo.Problem) -> None:
+    s = hertz.solve(mu=0.0)
+    assert s.friction == "frictionless" and s.report.iterations == 0
+    np.testing.assert_array_equal(s.lambda_t, 0.0)
+
+
+def test_iteration_cap_is_a_status_not_an_error(hertz: tribo.Problem) -> None:
+    s = hertz.solve(mu=0.3, fp_max_iter=1)
+    assert s.report.status == "max_iterations" and not s.report.converged and s.report.iterations == 1
+
+
+def test_gamma0_choices(hertz: tribo.Problem) -> None:
+    bound = hertz.gamma0_bound
+    assert bound > 0 and 0 <= hertz.gamma0_bound_element < hertz.mesh.n_triangles
+    assert hertz.solve(gamma0=0.0).report.gamma0 == 0.0
+    assert hertz.solve(gamma0=0.3 * bound).report.gamma0 == pytest.approx(0.3 * bound)
+    assert hertz.solve(gamma0_fraction=0.25).report.gamma0 == pytest.approx(0.25 * bound)
+
+
+def test_multiplier_spaces_and_points() -> None:
+    p0 = hertz_problem(space="P0", multiplier_ratio=2.0)
+    assert p0.space == "P0" and p0.n_multipliers == len(p0.multiplier_mesh) - 1
+    s0 = p0.solve()
+    assert s0.report.converged and s0.normal_force > 0
+    xi = np.linspace(-2.0, 2.0, 81)
+    p1 = hertz_problem(multiplier_points=xi)
+    np.testing.assert_allclose(p1.multiplier_mesh, xi)
+    pts = np.column_stack([xi, np.zeros_like(xi)])
+    p2 = hertz_problem(multiplier_points=pts)
+    np.testing.assert_allclose(p2.multiplier_mesh, xi)
+    p3 = hertz_problem(multiplier_size=0.1)
+    assert np.diff(p3.multiplier_mesh).max() <= 0.1 * (1 + 1e-12)
+    # The three P1 solutions on the same T_H agree.
+    np.testing.assert_allclose(p1.solve().lambda_n, p2.solve().lambda_n, rtol=1e-9, atol=1e-9)
+
+
+def test_obstacle_shapes() -> None:
+    circle, parabola = tribo.Obstacle.circle(1.0), tribo.Obstacle.parabola(1.0, center=0.5)
+    assert circle.kind == "circle" and circle.gap0(0.0) == 0.0
+    assert parabola.gap0(1.5) == pytest.approx(0.5)
+    np.testing.assert_allclose(circle.gap0(np.array([0.0, 1.0, 3.0])), [0.0, 1.0, 1.0])
+    line = tribo.Obstacle.polyline([-1.0, 1.0], [0.2, 0.0])
+    assert line.gap0(0.0) == pytest.approx(0.1) and line.gap0(5.0) == 0.0
+    assert tribo.Obstacle.flat().gap0(1.0) == 0.0
+
+
+def test_python_gap_function_matches_builtin_parabola() -> None:
+    builtin = hertz_problem(obstacle=tribo.Obstacle.parabola(1.0)).solve()
+    called: list[float] = []
+
+    def gap(xi: float) -> float:
+        called.append(xi)
+        return xi * xi / 2.0
+
+    p = hertz_problem(obstacle=gap)
+    assert p.obstacle.kind == "function"
+    s = p.solve()
+    assert called
+    np.testing.assert_allclose(s.lambda_n, builtin.lambda_n, rtol=1e-9, atol=1e-9 * builtin.lambda_n.max())
+    np.testing.assert_allclose(s.gap, builtin.gap, atol=1e-15)
+
+
+def test_loads_and_flat_obstacle() -> None:
+    """A block pushed onto a flat obstacle by a traction: the contact force balances the load."""
+    m = tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 8, 8)
+    p = tribo.Problem(
+        m, young=10.0, poisson=0.25, clamped=["left"], contact="bottom", tractions={"top": (0.0, -1.0)},
+        body_force=(0.0, -0.5),
+    )
+    s = p.solve()
+    assert p.contact_normal == pytest.approx((0.0, -1.0))
+    assert s.report.converged
+    # Loads push 1.0 (traction) + 0.5 (body) downward, shared between the contact and the clamp.
+    total = s.normal_force + (-s.reactions[:, 1].sum())
+    assert s.normal_force > 0 and np.isfinite(total)
+
+
+def test_evaluate_multiplier_and_contact_points(hertz: tribo.Problem) -> None:
+    s = hertz.solve()
+    xi = hertz.multiplier_abscissae
+    np.testing.assert_allclose(hertz.evaluate_multiplier(s.lambda_n, xi), s.lambda_n, atol=1e-12)
+    np.testing.assert_allclose(hertz.contact_points([0.0, 1.0]), [[0.0, 0.0], [1.0, 0.0]], atol=1e-15)
+    assert set(hertz.setup_timings) == {"assembly", "contact_matrices"}

@@ -1,0 +1,213 @@
+"""The ``tribo`` command line.
+
+``tribo run SCENE.toml --out DIR`` solves a scene and writes into DIR:
+
+* ``summary.json``: the scene, the status, iterations, forces, KKT residuals, timings;
+* ``contact.csv`` (per multiplier dof), ``contact_nodes.csv``, ``contact_edges.csv``: the contact fields;
+* ``result.vtu``, ``result_contact.vtu``, ``result_multipliers.vtu``: for ParaView;
+* ``contact_normal.png``, ``contact_tangential.png``, ``von_mises.png``, ``von_mises_contact.png``
+  (when matplotlib is installed; ``--no-plots`` skips them).
+
+``tribo demo [--out DIR]`` runs the built-in scene (``tribo/scenes/demo.toml``) into ``tribo-demo-out``.
+
+Progress (fixed-point iteration, change of λ_n, QP iterations and time) is logged to stderr. Exit codes:
+0 converged, 1 bad input (the message says what and where), 3 the solve ended without converging
+(results are still written).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+import math
+import sys
+import time
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from tribo._tribo import Problem, Solution, TriboError, __version__
+from tribo.io import write_contact_csv, write_vtu
+from tribo.scene import Scene, demo_scene_path, load_scene
+
+__all__ = ["main", "run_scene"]
+
+log = logging.getLogger("tribo")
+
+
+def _progress(iteration: int, change: float, qp_iterations: int, qp_seconds: float) -> None:
+    if math.isnan(change):
+        log.info("initial QP: %d interior-point iterations, %.3f s", qp_iterations, qp_seconds)
+    else:
+        log.info(
+            "fixed point %3d: change of λ_n %.3e, QP %d iterations in %.3f s",
+            iteration,
+            change,
+            qp_iterations,
+            qp_seconds,
+        )
+
+
+def summary(scene: Scene, problem: Problem, solution: Solution, seconds: float) -> dict[str, Any]:
+    """The JSON summary of a run."""
+    r = solution.report
+    states = solution.state_names
+    return {
+        "tribo_version": __version__,
+        "scene": scene.to_dict(),
+        "status": r.status,
+        "failure": {"iteration": r.failed_iteration, "reason": r.failure_reason} if r.status == "qp_failed" else None,
+        "friction": solution.friction,
+        "mu": solution.mu,
+        "iterations": r.iterations,
+        "residual_history": r.residual_history.tolist(),
+        "qp_iterations": r.qp_iterations.tolist(),
+        "gamma0": r.gamma0,
+        "gamma0_bound": r.gamma0_bound,
+        "mesh": {"nodes": problem.mesh.n_nodes, "triangles": problem.mesh.n_triangles, "h": problem.mesh.max_diameter},
+        "n_free": problem.n_free,
+        "n_multipliers": problem.n_multipliers,
+        "space": problem.space,
+        "normal_force": solution.normal_force,
+        "tangential_force": solution.tangential_force,
+        "max_penetration": solution.max_penetration,
+        "states": {name: states.count(name) for name in ("separation", "stick", "slip")},
+        "kkt": solution.kkt,
+        "kkt_max": solution.kkt_max,
+        "timings": r.timings,
+        "wall_seconds": seconds,
+    }
+
+
+def run_scene(scene: Scene, out: Path, *, plots: bool = True) -> tuple[Problem, Solution, list[Path]]:
+    """Solves a scene and writes every output into ``out``; returns the problem, solution and files."""
+    out.mkdir(parents=True, exist_ok=True)
+    clock = time.perf_counter()
+    log.info("scene: %s", scene.title or "(untitled)")
+    problem = scene.build()
+    log.info(
+        "mesh: %d nodes, %d triangles; %d free dofs; %d multiplier dofs (%s); γ0 bound %.3e",
+        problem.mesh.n_nodes,
+        problem.mesh.n_triangles,
+        problem.n_free,
+        problem.n_multipliers,
+        problem.space,
+        problem.gamma0_bound,
+    )
+    log.info("solving: %s", scene.friction)
+    problem, solution = scene.solve(problem, progress=_progress)
+    seconds = time.perf_counter() - clock
+    log.info("solve ended: %s after %.2f s", solution.report.status, seconds)
+    files = []
+    path = out / "summary.json"
+    path.write_text(json.dumps(summary(scene, problem, solution, seconds), indent=2) + "\n", encoding="utf-8")
+    files.append(path)
+    files += write_contact_csv(out, problem, solution)
+    files += write_vtu(out / "result.vtu", problem, solution)
+    if plots:
+        files += _plots(out, problem, solution)
+    return problem, solution, files
+
+
+def _plots(out: Path, problem: Problem, solution: Solution) -> list[Path]:
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        from tribo import plot
+    except ImportError:
+        log.warning("matplotlib is not installed: no plots (pip install 'tribo[plot]')")
+        return []
+    files = []
+    for name, draw in (("contact_normal.png", plot.contact_pressure), ("contact_tangential.png", plot.tangential)):
+        ax = draw(problem, solution)
+        ax.figure.savefig(out / name, dpi=120)
+        plt.close(ax.figure)
+        files.append(out / name)
+    fig, ax = plt.subplots(figsize=(8.0, 4.5), layout="constrained")
+    plot.von_mises(problem, solution, ax, edges=problem.mesh.n_triangles < 20000)
+    fig.savefig(out / "von_mises.png", dpi=120)
+    plt.close(fig)
+    files.append(out / "von_mises.png")
+    # A close-up of the contact zone, where the stresses concentrate.
+    active = solution.multiplier_abscissae[solution.states != 0]
+    if len(active):
+        a, b = float(active.min()), float(active.max())
+        w = max(b - a, problem.mesh.max_diameter * 1e-3)
+        p = problem.contact_points([a - w, b + w])
+        half = max(float(abs(p[1] - p[0]).max()), w) / 2.0
+        # Centre the window a little inside the body (against the outward normal n).
+        n = problem.contact_normal
+        cx, cy = p.mean(axis=0) - 0.5 * half * np.asarray(n)
+        hx, hy = (half, 0.6 * half) if abs(n[1]) >= abs(n[0]) else (0.6 * half, half)
+        fig, ax = plt.subplots(figsize=(8.0, 4.5), layout="constrained")
+        plot.von_mises(
+            problem, solution, ax, scale=1.0, window=(cx - hx, cx + hx, cy - hy, cy + hy), obstacle=True
+        )
+        ax.set_title("Contact zone (true displacement), von Mises stress")
+        fig.savefig(out / "von_mises_contact.png", dpi=120)
+        plt.close(fig)
+        files.append(out / "von_mises_contact.png")
+    return files
+
+
+def _run(scene_path: Path, out: Path, plots: bool) -> int:
+    try:
+        scene = load_scene(scene_path)
+        problem, solution, files = run_scene(scene, out, plots=plots)
+    except TriboError as e:
+        notes = "".join(f"\n  {n}" for n in getattr(e, "__notes__", []))
+        print(f"tribo: error ({type(e).__name__}): {e}{notes}", file=sys.stderr)
+        return 1
+    r = solution.report
+    print(f"{scene.title or scene_path}")
+    print(
+        f"  status {r.status} ({solution.friction}, {r.iterations} fixed-point iterations), "
+        f"normal force {solution.normal_force:.6g}, tangential force {solution.tangential_force:.6g}, "
+        f"max KKT residual {solution.kkt_max:.2e}"
+    )
+    states = solution.state_names
+    print(
+        "  multiplier dofs: "
+        + ", ".join(f"{states.count(n)} {n}" for n in ("separation", "stick", "slip"))
+    )
+    print(f"  wrote {len(files)} files to {out.resolve()}:")
+    for f in files:
+        print(f"    {f.name}")
+    if r.status != "converged":
+        print(f"tribo: the solve ended with status '{r.status}' (results written anyway)", file=sys.stderr)
+        return 3
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``tribo`` script; returns the exit code."""
+    parser = argparse.ArgumentParser(prog="tribo", description="2D frictional contact, stabilized multipliers.")
+    parser.add_argument("--version", action="version", version=f"tribo {__version__}")
+    parser.add_argument("-q", "--quiet", action="store_true", help="no progress log on stderr")
+    sub = parser.add_subparsers(dest="command", required=True)
+    run = sub.add_parser("run", help="solve a TOML scene and write its results")
+    run.add_argument("scene", type=Path, help="scene file (TOML)")
+    run.add_argument("--out", type=Path, required=True, help="output directory")
+    run.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
+    demo = sub.add_parser("demo", help="run the built-in demo scene")
+    demo.add_argument("--out", type=Path, default=Path("tribo-demo-out"), help="output directory (tribo-demo-out)")
+    demo.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
+    args = parser.parse_args(argv)
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter("[tribo %(relativeCreated)7.0f ms] %(message)s"))
+    log.handlers[:] = [handler]
+    log.setLevel(logging.WARNING if args.quiet else logging.INFO)
+    log.propagate = False
+    if args.command == "demo":
+        return _run(demo_scene_path(), args.out, not args.no_plots)
+    return _run(args.scene, args.out, not args.no_plots)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

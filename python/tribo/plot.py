@@ -1,0 +1,181 @@
+"""Plots of a solution (needs matplotlib: ``pip install tribo[plot]``). Not imported by ``tribo``.
+
+Every function takes ``ax=None`` (a new figure is made) and returns the Axes it drew on.
+
+* ``contact_pressure``: λ_n and −σ_n(u_h) along Γ_C, the zone shaded by contact state;
+* ``tangential``: λ_t against ±(its bound: μ λ_n for Coulomb, the Tresca threshold);
+* ``von_mises``: the deformed mesh coloured by the von Mises stress.
+
+Abscissa ξ on Γ_C: x on a horizontal Γ_C, y on a vertical one (see the core's conventions). λ_n ≥ 0 is
+the contact pressure and, at the discrete solution, λ_n ≈ −σ_n(u_h).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from tribo._tribo import STATE_NAMES, Problem, Solution
+
+try:
+    import matplotlib.pyplot as plt
+    from matplotlib.axes import Axes
+    from matplotlib.patches import Patch
+    from matplotlib.tri import Triangulation
+except ImportError as e:  # pragma: no cover - depends on the environment
+    raise ImportError("tribo.plot needs matplotlib: pip install 'tribo[plot]'") from e
+
+__all__ = ["contact_pressure", "tangential", "von_mises", "STATE_COLORS"]
+
+STATE_COLORS = {"separation": "#eeeeee", "stick": "#b9d7f0", "slip": "#f6c89f"}
+
+
+def _axes(ax: Axes | None) -> Axes:
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7.0, 4.0), layout="constrained")
+    return ax
+
+
+def _state_intervals(problem: Problem, solution: Solution) -> list[tuple[float, float, int]]:
+    """(start, end, state) runs along Γ_C: a P0 dof owns its segment of T_H, a P1 dof the half segments
+    on either side of its point."""
+    xi = problem.multiplier_mesh
+    states = solution.states
+    if problem.space == "P0":
+        bounds = xi
+    else:
+        mid = 0.5 * (xi[1:] + xi[:-1])
+        bounds = np.concatenate([[xi[0]], mid, [xi[-1]]])
+    runs: list[tuple[float, float, int]] = []
+    for j, s in enumerate(states):
+        a, b = float(bounds[j]), float(bounds[j + 1])
+        if runs and runs[-1][2] == s:
+            runs[-1] = (runs[-1][0], b, int(s))
+        else:
+            runs.append((a, b, int(s)))
+    return runs
+
+
+def _shade(ax: Axes, problem: Problem, solution: Solution) -> list[Patch]:
+    seen = set()
+    for a, b, s in _state_intervals(problem, solution):
+        ax.axvspan(a, b, color=STATE_COLORS[STATE_NAMES[s]], lw=0, zorder=0)
+        seen.add(s)
+    return [Patch(color=STATE_COLORS[STATE_NAMES[s]], label=STATE_NAMES[s]) for s in sorted(seen)]
+
+
+def _zoom(ax: Axes, problem: Problem, solution: Solution) -> None:
+    """Limits the ξ axis to the contact zone and as much again on either side."""
+    xi = problem.multiplier_mesh
+    runs = [(a, b) for a, b, s in _state_intervals(problem, solution) if s != 0]
+    if not runs:
+        ax.set_xlim(float(xi[0]), float(xi[-1]))
+        return
+    a, b = runs[0][0], runs[-1][1]
+    w = max(b - a, 1e-12)
+    ax.set_xlim(max(float(xi[0]), a - w), min(float(xi[-1]), b + w))
+
+
+def _multiplier_curve(
+    problem: Problem, solution: Solution, values: npt.NDArray[np.float64]
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """The multiplier as a curve: P1 through its dofs, P0 as steps over T_H."""
+    xi = problem.multiplier_mesh
+    if problem.space == "P1":
+        return xi, values
+    return np.repeat(xi, 2)[1:-1], np.repeat(values, 2)
+
+
+def _edge_steps(solution: Solution, values: npt.NDArray[np.float64]) -> tuple[Any, Any]:
+    """A per-edge field as steps over the FE nodes of Γ_C."""
+    x = solution.node_abscissae
+    return np.repeat(x, 2)[1:-1], np.repeat(values, 2)
+
+
+def contact_pressure(problem: Problem, solution: Solution, ax: Axes | None = None, *, zoom: bool = True) -> Axes:
+    """λ_n (the multiplier) and −σ_n(u_h) (per FE edge) along Γ_C, shaded by contact state."""
+    ax = _axes(ax)
+    handles = _shade(ax, problem, solution)
+    x, y = _edge_steps(solution, -solution.sigma_n)
+    ax.plot(x, y, color="0.35", lw=1.0, label=r"$-\sigma_n(u_h)$ (per FE edge)")
+    x, y = _multiplier_curve(problem, solution, solution.lambda_n)
+    ax.plot(x, y, color="C0", lw=1.8, marker="." if problem.space == "P1" else None, ms=3, label=r"$\lambda_n$")
+    ax.axhline(0.0, color="k", lw=0.5)
+    ax.set_xlabel(r"abscissa $\xi$ on $\Gamma_C$")
+    ax.set_ylabel("contact pressure")
+    ax.set_title(rf"Normal contact: $\lambda_n$ and $-\sigma_n(u_h)$, total force {solution.normal_force:.4g}")
+    if zoom:
+        _zoom(ax, problem, solution)
+    lines, _ = ax.get_legend_handles_labels()
+    ax.legend(handles=list(lines) + handles, loc="upper right", fontsize="small")
+    return ax
+
+
+def tangential(problem: Problem, solution: Solution, ax: Axes | None = None, *, zoom: bool = True) -> Axes:
+    """λ_t against ±its bound (μ λ_n at the fixed point for Coulomb, the threshold for Tresca)."""
+    ax = _axes(ax)
+    handles = _shade(ax, problem, solution)
+    bound_label = r"$\pm\mu\,\lambda_n$" if solution.friction == "coulomb" else r"$\pm$ threshold"
+    x, g = _multiplier_curve(problem, solution, solution.friction_threshold)
+    ax.plot(x, g, color="C3", lw=1.0, ls="--", label=bound_label)
+    ax.plot(x, -g, color="C3", lw=1.0, ls="--")
+    x, y = _multiplier_curve(problem, solution, solution.lambda_t)
+    ax.plot(x, y, color="C0", lw=1.8, marker="." if problem.space == "P1" else None, ms=3, label=r"$\lambda_t$ (along $t$)")
+    x, y = _edge_steps(solution, -solution.sigma_t)
+    ax.plot(x, y, color="0.35", lw=1.0, label=r"$-\sigma_t(u_h)$ (per FE edge)")
+    ax.axhline(0.0, color="k", lw=0.5)
+    ax.set_xlabel(r"abscissa $\xi$ on $\Gamma_C$")
+    ax.set_ylabel("tangential traction")
+    mu = f", μ = {solution.mu:g}" if solution.mu is not None else ""
+    ax.set_title(rf"Friction ({solution.friction}{mu}): $\lambda_t$ against its bound")
+    if zoom:
+        _zoom(ax, problem, solution)
+    lines, _ = ax.get_legend_handles_labels()
+    ax.legend(handles=list(lines) + handles, loc="upper right", fontsize="small")
+    return ax
+
+
+def von_mises(
+    problem: Problem,
+    solution: Solution,
+    ax: Axes | None = None,
+    *,
+    scale: float | None = None,
+    window: tuple[float, float, float, float] | None = None,
+    edges: bool = True,
+    obstacle: bool = False,
+) -> Axes:
+    """The mesh deformed by ``scale`` × u (default: the largest displacement drawn as 5 % of the body's
+    size), coloured by the von Mises stress per triangle. ``window`` = (xmin, xmax, ymin, ymax) zooms.
+    ``obstacle`` draws the obstacle surface after its approach, g(ξ) = g0(ξ) − δ off Γ_C along n (it is
+    where the deformed Γ_C should touch it when ``scale`` is 1)."""
+    ax = _axes(ax)
+    mesh = problem.mesh
+    p, u = mesh.points, solution.displacement
+    xmin, ymin, xmax, ymax = mesh.bounding_box
+    size = max(xmax - xmin, ymax - ymin)
+    umax = float(np.abs(u).max()) if u.size else 0.0
+    if scale is None:
+        scale = 0.05 * size / umax if umax > 0 else 1.0
+    q = p + scale * u
+    tri = Triangulation(q[:, 0], q[:, 1], mesh.triangles)
+    art = ax.tripcolor(tri, facecolors=solution.von_mises, cmap="viridis", shading="flat")
+    if edges:
+        ax.triplot(tri, color="k", lw=0.15, alpha=0.5)
+    if obstacle:
+        xi = np.linspace(float(solution.node_abscissae[0]), float(solution.node_abscissae[-1]), 2001)
+        g = np.asarray(problem.obstacle.gap0(xi)) - problem.approach
+        surface = problem.contact_points(xi) + np.outer(g, problem.contact_normal)
+        ax.plot(surface[:, 0], surface[:, 1], color="C3", lw=1.5, label="obstacle")
+        ax.legend(loc="upper right", fontsize="small")
+    ax.figure.colorbar(art, ax=ax, label="von Mises stress")
+    ax.set_aspect("equal")
+    if window is not None:
+        ax.set_xlim(window[0], window[1])
+        ax.set_ylim(window[2], window[3])
+    ax.set_title(f"Deformed mesh (displacement × {scale:.3g}), von Mises stress")
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+    return ax

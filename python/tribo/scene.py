@@ -1,0 +1,410 @@
+"""TOML scenes: a whole contact problem in one file, as the command line runs it.
+
+A scene has these tables (every key is optional unless marked *required*; see ``scenes/demo.toml``):
+
+``[body]``
+    ``x``, ``y``: the rectangle's ranges, e.g. ``x = [-2.0, 2.0]``; or ``mesh``: a mesh file meshio reads
+    (a path relative to the scene file), whose named line sets are the edge sets. One of the two is
+    required. A rectangle has the edge sets ``bottom``, ``right``, ``top``, ``left``.
+``[material]``
+    ``young``, ``poisson`` (*required*): plane strain.
+``[supports]``
+    ``clamped`` (*required*): an edge set name or a list of names (u = 0 there).
+``[loads]``
+    ``body_force = [fx, fy]``; ``[loads.tractions]``: ``edge_set = [tx, ty]`` per loaded edge set.
+``[contact]``
+    ``edge_set`` (*required*): the straight edge set Γ_C.
+``[obstacle]``
+    ``shape``: ``"flat"`` (default), ``"circle"``, ``"parabola"`` (both with ``radius`` *required* and
+    ``center``, an abscissa on Γ_C, default 0) or ``"polyline"`` (``xi`` and ``gap`` lists);
+    ``approach`` (δ, toward the body) and ``shift`` (s, along the tangent t).
+``[friction]``
+    ``mu`` (Coulomb; 0 is frictionless) or ``threshold`` (Tresca); neither: frictionless.
+``[discretization]``
+    For a rectangle: ``grading`` = ``"auto"`` (default: refine toward where contact can occur),
+    ``"none"`` (a uniform mesh of size ``h``) or ``[a, b]`` (refine toward that segment of Γ_C);
+    ``h`` (the largest cell size; default a quarter of the shorter side), ``h_min`` (the size at the
+    contact zone; default h / 16), ``growth`` (default 0.3), ``diagonal`` (uniform mesh only).
+    For any body: ``multiplier_ratio`` (H/h) or ``multiplier_size`` (H), ``space`` (``"P0"``/``"P1"``),
+    ``gamma0`` or ``gamma0_fraction`` (of the admissible bound).
+``[solver]``
+    ``qp_tol``, ``qp_max_iter``, ``kkt_solver`` (``"faer"``/``"qdldl"``), ``fp_tol``, ``fp_max_iter``,
+    ``relaxation``. Unset keys take the core's defaults (``tribo.solver_defaults()``).
+
+Top-level ``title`` and ``description`` are free text. An unknown key or a value of the wrong type is a
+``SceneError`` that names the key (``scene key 'obstacle.radus' is not known``).
+
+Automatic grading: for a circle or parabola of radius R pushed δ into the body, contact stays within
+about the geometric overlap half-width ``a = sqrt(2 R δ)`` of the centre (the Hertz half-width of the
+plane-strain problem is smaller), so the mesh is refined toward ``[c − 2a, c + 2a]``; for a polyline,
+toward the abscissae where the initial gap is at most 2δ; for a flat obstacle, toward all of Γ_C.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from tribo._tribo import Mesh, Obstacle, Problem, Solution, TriboError
+from tribo.io import read_mesh
+
+__all__ = ["Scene", "SceneError", "load_scene", "parse_scene", "demo_scene_path"]
+
+SIDES = ("bottom", "right", "top", "left")
+
+
+class SceneError(TriboError):
+    """A scene file that cannot be read or has an unknown key or a bad value; the message names the key."""
+
+    def __init__(self, message: str, key: str | None = None) -> None:
+        super().__init__(message)
+        self.kind = "SceneError"
+        self.details: dict[str, Any] = {"key": key} if key is not None else {}
+
+
+# Value checkers: each returns the converted value or raises SceneError naming the key.
+Checker = Callable[[str, Any], Any]
+
+
+def _number(key: str, v: Any) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        raise SceneError(f"scene key '{key}' must be a number, got {v!r}", key)
+    return float(v)
+
+
+def _integer(key: str, v: Any) -> int:
+    if isinstance(v, bool) or not isinstance(v, int):
+        raise SceneError(f"scene key '{key}' must be an integer, got {v!r}", key)
+    return v
+
+
+def _string(key: str, v: Any) -> str:
+    if not isinstance(v, str):
+        raise SceneError(f"scene key '{key}' must be a string, got {v!r}", key)
+    return v
+
+
+def _pair(key: str, v: Any) -> tuple[float, float]:
+    if not (isinstance(v, list) and len(v) == 2):
+        raise SceneError(f"scene key '{key}' must be a list of two numbers, got {v!r}", key)
+    return (_number(key, v[0]), _number(key, v[1]))
+
+
+def _numbers(key: str, v: Any) -> list[float]:
+    if not isinstance(v, list):
+        raise SceneError(f"scene key '{key}' must be a list of numbers, got {v!r}", key)
+    return [_number(key, x) for x in v]
+
+
+def _names(key: str, v: Any) -> list[str]:
+    if isinstance(v, str):
+        return [v]
+    if isinstance(v, list) and v and all(isinstance(x, str) for x in v):
+        return list(v)
+    raise SceneError(f"scene key '{key}' must be an edge set name or a non-empty list of names, got {v!r}", key)
+
+
+def _choice(*options: str) -> Checker:
+    def check(key: str, v: Any) -> str:
+        if v not in options:
+            raise SceneError(f"scene key '{key}' must be one of {', '.join(map(repr, options))}, got {v!r}", key)
+        return str(v)
+
+    return check
+
+
+def _grading(key: str, v: Any) -> str | tuple[float, float]:
+    if isinstance(v, str):
+        return _choice("auto", "none")(key, v)
+    return _pair(key, v)
+
+
+def _pairs(key: str, v: Any) -> dict[str, tuple[float, float]]:
+    if not isinstance(v, dict):
+        raise SceneError(f"scene key '{key}' must be a table edge_set = [tx, ty]", key)
+    return {name: _pair(f"{key}.{name}", t) for name, t in v.items()}
+
+
+SCHEMA: dict[str, dict[str, Checker]] = {
+    "body": {"x": _pair, "y": _pair, "mesh": _string},
+    "material": {"young": _number, "poisson": _number},
+    "supports": {"clamped": _names},
+    "loads": {"body_force": _pair, "tractions": _pairs},
+    "contact": {"edge_set": _string},
+    "obstacle": {
+        "shape": _choice("flat", "circle", "parabola", "polyline"),
+        "radius": _number,
+        "center": _number,
+        "xi": _numbers,
+        "gap": _numbers,
+        "approach": _number,
+        "shift": _number,
+    },
+    "friction": {"mu": _number, "threshold": _number},
+    "discretization": {
+        "grading": _grading,
+        "h": _number,
+        "h_min": _number,
+        "growth": _number,
+        "diagonal": _choice("right", "left", "alternating"),
+        "multiplier_ratio": _number,
+        "multiplier_size": _number,
+        "space": _choice("P0", "P1"),
+        "gamma0": _number,
+        "gamma0_fraction": _number,
+    },
+    "solver": {
+        "qp_tol": _number,
+        "qp_max_iter": _integer,
+        "kkt_solver": _choice("faer", "qdldl"),
+        "fp_tol": _number,
+        "fp_max_iter": _integer,
+        "relaxation": _number,
+    },
+}
+REQUIRED = {"material": ("young", "poisson"), "supports": ("clamped",), "contact": ("edge_set",)}
+
+
+@dataclass
+class Scene:
+    """A parsed, type-checked scene; ``build`` makes the mesh and problem, ``solve`` runs it."""
+
+    sections: dict[str, dict[str, Any]]
+    title: str = ""
+    description: str = ""
+    base_dir: Path = field(default_factory=Path.cwd)
+
+    def get(self, section: str, key: str, default: Any = None) -> Any:
+        return self.sections.get(section, {}).get(key, default)
+
+    # ----- friction -----
+    @property
+    def friction(self) -> str:
+        """'frictionless', 'tresca' or 'coulomb', as the scene asks (μ = 0 is frictionless)."""
+        mu, threshold = self.get("friction", "mu"), self.get("friction", "threshold")
+        if threshold is not None:
+            return "tresca"
+        if mu is not None and mu != 0.0:
+            return "coulomb"
+        return "frictionless"
+
+    def solve_kwargs(self) -> dict[str, Any]:
+        """Keyword arguments of ``Problem.solve``: only what the scene sets."""
+        kw: dict[str, Any] = {"friction": self.friction}
+        if self.friction == "coulomb":
+            kw["mu"] = self.get("friction", "mu")
+        elif self.friction == "tresca":
+            kw["threshold"] = self.get("friction", "threshold")
+        for key in ("gamma0", "gamma0_fraction"):
+            if self.get("discretization", key) is not None:
+                kw[key] = self.get("discretization", key)
+        kw.update(self.sections.get("solver", {}))
+        return kw
+
+    # ----- geometry -----
+    def obstacle(self) -> Obstacle:
+        o = self.sections.get("obstacle", {})
+        shape = o.get("shape", "flat")
+        if shape in ("circle", "parabola"):
+            if "radius" not in o:
+                raise SceneError(f"scene key 'obstacle.radius' is required for a {shape}", "obstacle.radius")
+            make = Obstacle.circle if shape == "circle" else Obstacle.parabola
+            return make(o["radius"], o.get("center", 0.0))
+        if shape == "polyline":
+            for k in ("xi", "gap"):
+                if k not in o:
+                    raise SceneError(f"scene key 'obstacle.{k}' is required for a polyline", f"obstacle.{k}")
+            return Obstacle.polyline(o["xi"], o["gap"])
+        extra = sorted(set(o) & {"radius", "center", "xi", "gap"})
+        if extra:
+            raise SceneError(f"scene key 'obstacle.{extra[0]}' does not apply to a flat obstacle", f"obstacle.{extra[0]}")
+        return Obstacle.flat()
+
+    def contact_segment(self, side_range: tuple[float, float]) -> tuple[float, float]:
+        """The segment of Γ_C (coordinate range along its side) that the mesh is refined toward."""
+        grading = self.get("discretization", "grading", "auto")
+        lo, hi = side_range
+        if isinstance(grading, tuple):
+            return grading
+        o = self.sections.get("obstacle", {})
+        shape = o.get("shape", "flat")
+        delta = max(o.get("approach", 0.0), 0.0)
+        if shape in ("circle", "parabola") and "radius" in o:
+            c = o.get("center", 0.0)
+            a = math.sqrt(2.0 * o["radius"] * delta)
+            a = max(a, 0.01 * (hi - lo))  # no approach: still refine around the first touching point
+            seg = (c - 2.0 * a, c + 2.0 * a)
+        elif shape == "polyline" and "xi" in o and "gap" in o:
+            xi = np.linspace(lo, hi, 2001)
+            gap = self.obstacle().gap0(xi)
+            close = xi[gap <= 2.0 * delta + 1e-12 * (hi - lo)]
+            seg = (float(close.min()), float(close.max())) if len(close) else (lo, hi)
+        else:
+            seg = (lo, hi)
+        a, b = max(seg[0], lo), min(seg[1], hi)
+        if a > b:  # the obstacle is beyond Γ_C: refine toward its nearest end
+            a = b = lo if seg[1] < lo else hi
+        return (a, b)
+
+    def mesh(self) -> Mesh:
+        """The mesh: read from the file, or generated on the rectangle (graded unless asked not to)."""
+        body = self.sections.get("body", {})
+        d = self.sections.get("discretization", {})
+        if "mesh" in body:
+            if "x" in body or "y" in body:
+                raise SceneError("give either body.mesh or body.x/body.y, not both", "body.mesh")
+            rect_keys = sorted(set(d) & {"grading", "h", "h_min", "growth", "diagonal"})
+            if rect_keys:
+                raise SceneError(
+                    f"scene key 'discretization.{rect_keys[0]}' applies to a rectangle body, not a mesh file",
+                    f"discretization.{rect_keys[0]}",
+                )
+            return read_mesh(self.base_dir / body["mesh"])
+        for k in ("x", "y"):
+            if k not in body:
+                raise SceneError(f"scene key 'body.{k}' is required (or give body.mesh)", f"body.{k}")
+        x, y = body["x"], body["y"]
+        h = d.get("h", 0.25 * min(abs(x[1] - x[0]), abs(y[1] - y[0])))
+        if not (h > 0.0 and math.isfinite(h)):
+            raise SceneError(f"scene key 'discretization.h' must be positive, got {h}", "discretization.h")
+        grading = d.get("grading", "auto")
+        if grading == "none":
+            extra = sorted(set(d) & {"h_min", "growth"})
+            if extra:
+                raise SceneError(
+                    f"scene key 'discretization.{extra[0]}' needs a graded mesh (grading is 'none')",
+                    f"discretization.{extra[0]}",
+                )
+            nx = max(1, math.ceil(abs(x[1] - x[0]) / h - 1e-9))
+            ny = max(1, math.ceil(abs(y[1] - y[0]) / h - 1e-9))
+            return Mesh.rectangle(x, y, nx, ny, diagonal=d.get("diagonal"))
+        if "diagonal" in d:
+            raise SceneError("scene key 'discretization.diagonal' applies to grading = 'none'", "discretization.diagonal")
+        side = self.get("contact", "edge_set")
+        if side not in SIDES:
+            raise SceneError(
+                f"scene key 'contact.edge_set' = {side!r}: a rectangle's edge sets are {', '.join(SIDES)}",
+                "contact.edge_set",
+            )
+        along = x if side in ("bottom", "top") else y
+        segment = self.contact_segment((min(along), max(along)))
+        return Mesh.graded_rectangle(
+            x,
+            y,
+            side=side,
+            segment=segment,
+            h_min=d.get("h_min", h / 16.0),
+            h_max=h,
+            growth=d.get("growth", 0.3),
+        )
+
+    def build(self) -> Problem:
+        """The mesh and the problem the scene describes."""
+        o = self.sections.get("obstacle", {})
+        d = self.sections.get("discretization", {})
+        loads = self.sections.get("loads", {})
+        try:
+            return Problem(
+                self.mesh(),
+                young=self.get("material", "young"),
+                poisson=self.get("material", "poisson"),
+                clamped=self.get("supports", "clamped"),
+                contact=self.get("contact", "edge_set"),
+                obstacle=self.obstacle(),
+                approach=o.get("approach"),
+                shift=o.get("shift"),
+                tractions=loads.get("tractions"),
+                body_force=loads.get("body_force"),
+                multiplier_ratio=d.get("multiplier_ratio"),
+                multiplier_size=d.get("multiplier_size"),
+                space=d.get("space"),
+            )
+        except TriboError as e:
+            if not isinstance(e, SceneError):
+                e.add_note(f"while building the scene '{self.title or self.base_dir}'")
+            raise
+
+    def solve(
+        self, problem: Problem | None = None, progress: Callable[[int, float, int, float], object] | None = None
+    ) -> tuple[Problem, Solution]:
+        """Builds (unless given) and solves; returns the problem and the solution."""
+        problem = problem if problem is not None else self.build()
+        return problem, problem.solve(progress=progress, **self.solve_kwargs())
+
+    def to_dict(self) -> dict[str, Any]:
+        """The scene as plain data (for the JSON summary)."""
+        out: dict[str, Any] = {"title": self.title, "description": self.description}
+        for section, values in self.sections.items():
+            out[section] = {k: list(v) if isinstance(v, tuple) else v for k, v in values.items()}
+        return out
+
+
+def parse_scene(data: Mapping[str, Any], base_dir: Path | None = None) -> Scene:
+    """Checks a scene given as a dict (as tomllib returns it): unknown keys and bad types are errors."""
+    sections: dict[str, dict[str, Any]] = {}
+    for name, table in data.items():
+        if name in ("title", "description"):
+            if not isinstance(table, str):
+                raise SceneError(f"scene key '{name}' must be a string", name)
+            continue
+        if name not in SCHEMA:
+            raise SceneError(f"scene key '{name}' is not known (known tables: {', '.join(SCHEMA)})", name)
+        if not isinstance(table, dict):
+            raise SceneError(f"scene key '{name}' must be a table", name)
+        checked: dict[str, Any] = {}
+        for key, value in table.items():
+            check = SCHEMA[name].get(key)
+            if check is None:
+                raise SceneError(
+                    f"scene key '{name}.{key}' is not known (known keys of [{name}]: {', '.join(SCHEMA[name])})",
+                    f"{name}.{key}",
+                )
+            checked[key] = check(f"{name}.{key}", value)
+        sections[name] = checked
+    for name, keys in REQUIRED.items():
+        for key in keys:
+            if key not in sections.get(name, {}):
+                raise SceneError(f"scene key '{name}.{key}' is required", f"{name}.{key}")
+    body = sections.get("body", {})
+    if "mesh" not in body and not ("x" in body and "y" in body):
+        raise SceneError("scene key 'body.x' and 'body.y' (a rectangle) or 'body.mesh' is required", "body")
+    f = sections.get("friction", {})
+    if "mu" in f and "threshold" in f:
+        raise SceneError("scene keys 'friction.mu' and 'friction.threshold' exclude each other", "friction")
+    d = sections.get("discretization", {})
+    for a, b in (("multiplier_ratio", "multiplier_size"), ("gamma0", "gamma0_fraction")):
+        if a in d and b in d:
+            raise SceneError(
+                f"scene keys 'discretization.{a}' and 'discretization.{b}' exclude each other", f"discretization.{a}"
+            )
+    return Scene(
+        sections=sections,
+        title=str(data.get("title", "")),
+        description=str(data.get("description", "")),
+        base_dir=base_dir if base_dir is not None else Path.cwd(),
+    )
+
+
+def load_scene(path: str | Path) -> Scene:
+    """Reads and checks a TOML scene file."""
+    path = Path(path)
+    try:
+        with path.open("rb") as f:
+            data = tomllib.load(f)
+    except OSError as e:
+        raise SceneError(f"cannot read scene file {path}: {e.strerror}") from e
+    except tomllib.TOMLDecodeError as e:
+        raise SceneError(f"scene file {path} is not valid TOML: {e}") from e
+    return parse_scene(data, base_dir=path.resolve().parent)
+
+
+def demo_scene_path() -> Path:
+    """Path of the built-in demo scene shipped in the package."""
+    return Path(str(resources.files("tribo") / "scenes" / "demo.toml"))
