@@ -135,6 +135,7 @@ class Problem:
         fp_max_iter: int | None = None,
         relaxation: float | None = None,
         progress: _ProgressCallback | None = None,
+        check_gamma0: bool = True,
     ) -> Solution: ...
     @property
     def mesh(self) -> Mesh: ...

@@ -307,10 +307,12 @@ impl PyProblem {
     /// γ0 is `gamma0`, or `gamma0_fraction` × the admissible bound, or the core's default. Every other
     /// setting left at None takes the core's default (see `solver_defaults()`). `progress`, if given,
     /// is called as progress(iteration, change, qp_iterations, qp_seconds) after every QP.
+    /// `check_gamma0=False` takes an explicit `gamma0` even at or above the admissible bound (for
+    /// studies of what happens there; the factorization then may fail with SolverError).
     #[pyo3(signature = (
         *, friction = None, mu = None, threshold = None, gamma0 = None, gamma0_fraction = None,
         qp_tol = None, qp_max_iter = None, kkt_solver = None, fp_tol = None, fp_max_iter = None,
-        relaxation = None, progress = None,
+        relaxation = None, progress = None, check_gamma0 = true,
     ))]
     #[allow(clippy::too_many_arguments)]
     fn solve(
@@ -328,6 +330,7 @@ impl PyProblem {
         fp_max_iter: Option<usize>,
         relaxation: Option<f64>,
         progress: Option<Py<PyAny>>,
+        check_gamma0: bool,
     ) -> PyResult<PySolution> {
         let threshold = match threshold {
             None => None,
@@ -392,7 +395,11 @@ impl PyProblem {
         settings.validate().py_err()?;
         law.validate().py_err()?;
         let (bound, element) = self.inner.gamma0_bound;
-        let g0 = resolve_gamma0(settings.stabilization, bound, element).py_err()?;
+        let g0 = match (check_gamma0, settings.stabilization) {
+            // Studies beyond the admissible bound: γ0 is taken as given, the factorization may fail.
+            (false, Stabilization::Gamma0(g)) if g.is_finite() && g >= 0.0 => g,
+            _ => resolve_gamma0(settings.stabilization, bound, element).py_err()?,
+        };
 
         let cached = self.condensed.lock().ok().and_then(|c| c.clone()).filter(|c| c.gamma0 == g0);
         let reused = cached.is_some();

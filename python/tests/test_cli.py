@@ -1,0 +1,172 @@
+"""The scene files and the command line: tribo run, tribo demo, errors that name the key."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import tribo
+from tribo.cli import main
+from tribo.scene import SceneError, demo_scene_path, load_scene, parse_scene
+
+SCENE = """
+title = "small Tresca scene"
+[body]
+x = [-1.0, 1.0]
+y = [-1.0, 0.0]
+[material]
+young = 100.0
+poisson = 0.25
+[supports]
+clamped = ["bottom"]
+[contact]
+edge_set = "top"
+[obstacle]
+shape = "parabola"
+radius = 2.0
+approach = 0.005
+shift = 0.001
+[friction]
+threshold = 0.2
+[discretization]
+h = 0.25
+h_min = 0.03
+space = "P0"
+multiplier_ratio = 2.0
+gamma0_fraction = 0.3
+[solver]
+qp_tol = 1e-9
+"""
+
+
+def test_demo_scene_runs_in_process(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["demo", "--out", str(tmp_path / "demo")]) == 0
+    out = capsys.readouterr()
+    assert "status converged" in out.out and str((tmp_path / "demo").resolve()) in out.out
+    assert "fixed point" in out.err and "change of λ_n" in out.err
+    summary = json.loads((tmp_path / "demo" / "summary.json").read_text())
+    assert summary["status"] == "converged" and summary["friction"] == "coulomb"
+    assert summary["states"]["stick"] > 0 and summary["states"]["slip"] > 0
+    assert summary["kkt_max"] < 1e-6 and summary["normal_force"] > 0
+    for name in ("contact.csv", "result.vtu", "result_contact.vtu", "contact_normal.png", "von_mises.png"):
+        assert (tmp_path / "demo" / name).stat().st_size > 0
+
+
+def test_demo_scene_matches_the_issue() -> None:
+    s = load_scene(demo_scene_path())
+    assert s.friction == "coulomb" and s.get("friction", "mu") == 0.3
+    assert s.get("obstacle", "radius") == 1.0 and s.get("obstacle", "approach") == 0.01
+    assert s.get("obstacle", "shift") == 0.004 and s.get("discretization", "h_min") == 0.01
+    assert s.get("discretization", "gamma0_fraction") == 0.5
+
+
+def test_run_scene_subprocess(tmp_path: Path) -> None:
+    scene = tmp_path / "tresca.toml"
+    scene.write_text(SCENE)
+    r = subprocess.run(
+        [sys.executable, "-m", "tribo.cli", "run", str(scene), "--out", str(tmp_path / "o"), "--no-plots"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert r.returncode == 0, r.stderr
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert summary["friction"] == "tresca" and summary["space"] == "P0"
+    assert summary["gamma0"] == pytest.approx(0.3 * summary["gamma0_bound"])
+    assert not (tmp_path / "o" / "contact_normal.png").exists()
+
+
+def test_scene_friction_levels() -> None:
+    base = load_toml(SCENE)
+    base["friction"] = {}
+    assert parse_scene(base).friction == "frictionless"
+    base["friction"] = {"mu": 0.0}
+    assert parse_scene(base).friction == "frictionless"
+    assert "mu" not in parse_scene(base).solve_kwargs()
+    base["friction"] = {"mu": 0.4}
+    assert parse_scene(base).solve_kwargs()["mu"] == 0.4
+
+
+def test_scene_auto_grading_targets_the_contact_zone() -> None:
+    s = parse_scene(load_toml(SCENE))
+    a = (2 * 2.0 * 0.005) ** 0.5
+    assert s.contact_segment((-1.0, 1.0)) == pytest.approx((-2 * a, 2 * a))
+    s.sections["obstacle"] = {"shape": "flat"}
+    assert s.contact_segment((-1.0, 1.0)) == (-1.0, 1.0)
+    s.sections["obstacle"] = {"shape": "polyline", "xi": [-1.0, 0.0, 1.0], "gap": [0.1, 0.0, 0.1], "approach": 0.01}
+    lo, hi = s.contact_segment((-1.0, 1.0))
+    assert lo == pytest.approx(-0.2, abs=2e-3) and hi == pytest.approx(0.2, abs=2e-3)
+
+
+def load_toml(text: str) -> dict:  # type: ignore[type-arg]
+    import tomllib
+
+    return tomllib.loads(text)
+
+
+@pytest.mark.parametrize(
+    ("edit", "message"),
+    [
+        (lambda d: d["obstacle"].update(radus=1.0), "scene key 'obstacle.radus' is not known"),
+        (lambda d: d.update(solvr={}), "scene key 'solvr' is not known"),
+        (lambda d: d["material"].update(young="stiff"), "scene key 'material.young' must be a number"),
+        (lambda d: d["material"].pop("poisson"), "scene key 'material.poisson' is required"),
+        (lambda d: d["body"].update(x=[0.0]), "scene key 'body.x' must be a list of two numbers"),
+        (lambda d: d["obstacle"].update(shape="cone"), "scene key 'obstacle.shape' must be one of"),
+        (lambda d: d["friction"].update(mu=0.3), "exclude each other"),
+        (lambda d: d["solver"].update(qp_max_iter=1.5), "scene key 'solver.qp_max_iter' must be an integer"),
+        (lambda d: d["discretization"].update(grading="some"), "scene key 'discretization.grading'"),
+    ],
+)
+def test_scene_errors_name_the_key(edit, message: str) -> None:  # type: ignore[no-untyped-def]
+    d = load_toml(SCENE)
+    edit(d)
+    with pytest.raises(SceneError, match=message.replace("(", r"\(")) as info:
+        parse_scene(d)
+    assert isinstance(info.value, tribo.TriboError)
+
+
+def test_scene_build_errors(tmp_path: Path) -> None:
+    d = load_toml(SCENE)
+    d["obstacle"] = {"shape": "circle"}
+    with pytest.raises(SceneError, match="obstacle.radius"):
+        parse_scene(d).build()
+    d = load_toml(SCENE)
+    d["material"]["young"] = -1.0
+    with pytest.raises(tribo.SettingsError) as info:
+        parse_scene(d).build()
+    assert any("scene" in n for n in info.value.__notes__)
+
+
+def test_cli_reports_errors(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    bad = tmp_path / "bad.toml"
+    bad.write_text(SCENE.replace("radius = 2.0", "radus = 2.0"))
+    assert main(["run", str(bad), "--out", str(tmp_path / "o")]) == 1
+    assert "scene key 'obstacle.radus' is not known" in capsys.readouterr().err
+    assert main(["run", str(tmp_path / "missing.toml"), "--out", str(tmp_path / "o")]) == 1
+    (tmp_path / "broken.toml").write_text("[body\n")
+    assert main(["run", str(tmp_path / "broken.toml"), "--out", str(tmp_path / "o")]) == 1
+
+
+def test_cli_not_converged_exit_code(tmp_path: Path) -> None:
+    scene = tmp_path / "cap.toml"
+    scene.write_text(SCENE.replace("threshold = 0.2", "mu = 0.3") + "fp_max_iter = 1\n")
+    assert main(["-q", "run", str(scene), "--out", str(tmp_path / "o"), "--no-plots"]) == 3
+    assert json.loads((tmp_path / "o" / "summary.json").read_text())["status"] == "max_iterations"
+
+
+def test_mesh_file_scene(tmp_path: Path) -> None:
+    from test_io import MSH22
+
+    (tmp_path / "square.msh").write_text(MSH22)
+    scene = tmp_path / "sq.toml"
+    scene.write_text(
+        'body.mesh = "square.msh"\nmaterial.young = 1.0\nmaterial.poisson = 0.3\nsupports.clamped = "bottom"\n'
+        'contact.edge_set = "top"\nobstacle.approach = 0.01\n'
+    )
+    problem, solution = load_scene(scene).solve()
+    assert solution.report.converged and problem.mesh.n_triangles == 4

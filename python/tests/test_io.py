@@ -1,0 +1,127 @@
+"""meshio interop: a Gmsh file in, VTU files out and back, the contact CSV tables."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import meshio
+import numpy as np
+import pytest
+from conftest import hertz_problem
+
+import tribo
+from tribo.io import mesh_from_meshio, read_mesh, write_contact_csv, write_vtu
+
+# A unit square split into 4 triangles around its centre (node 5); node 6 is a geometry point used by
+# no triangle; triangle 2 is listed clockwise. Physical lines: bottom (1), top (2); surface: body (3).
+MSH22 = """$MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+3
+1 1 "bottom"
+1 2 "top"
+2 3 "body"
+$EndPhysicalNames
+$Nodes
+6
+1 0 0 0
+2 1 0 0
+3 1 1 0
+4 0 1 0
+5 0.5 0.5 0
+6 3 3 0
+$EndNodes
+$Elements
+7
+1 15 2 0 6 6
+2 1 2 1 1 1 2
+3 1 2 2 3 3 4
+4 2 2 3 1 1 2 5
+5 2 2 3 1 2 3 5
+6 2 2 3 1 3 5 4
+7 2 2 3 1 4 1 5
+$EndElements
+"""
+
+
+def test_read_gmsh_physical_groups(tmp_path: Path) -> None:
+    path = tmp_path / "square.msh"
+    path.write_text(MSH22)
+    mesh = read_mesh(path)
+    assert mesh.n_nodes == 5 and mesh.n_triangles == 4
+    assert sorted(mesh.edge_sets) == ["bottom", "top"]
+    assert len(mesh.edge_sets["top"]) == 1
+    np.testing.assert_allclose(mesh.points[mesh.edge_sets["bottom"][0]], [[0.0, 0.0], [1.0, 0.0]])
+    # The clockwise triangle was turned around: the mesh validated.
+    renamed = read_mesh(path, edge_sets={"contact": "top", "base": "bottom"})
+    assert sorted(renamed.edge_sets) == ["base", "contact"]
+    with pytest.raises(tribo.MeshError, match="no edge set"):
+        read_mesh(path, edge_sets={"contact": "lid"})
+
+
+def test_gmsh_mesh_solves(tmp_path: Path) -> None:
+    # A finer Gmsh file written by meshio itself (gmsh 2.2 ascii) from a generated mesh.
+    src = tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 6, 6)
+    lines = np.vstack([src.edge_sets["bottom"], src.edge_sets["top"]])
+    tags = np.array([1] * len(src.edge_sets["bottom"]) + [2] * len(src.edge_sets["top"]))
+    m = meshio.Mesh(
+        np.column_stack([src.points, np.zeros(src.n_nodes)]),
+        [("triangle", src.triangles), ("line", lines)],
+        cell_data={
+            "gmsh:physical": [np.full(src.n_triangles, 3), tags],
+            "gmsh:geometrical": [np.full(src.n_triangles, 3), tags],
+        },
+        field_data={"bottom": np.array([1, 1]), "top": np.array([2, 1]), "body": np.array([3, 2])},
+    )
+    path = tmp_path / "block.msh"
+    meshio.write(str(path), m, file_format="gmsh22", binary=False)
+    mesh = read_mesh(path)
+    np.testing.assert_array_equal(mesh.edge_sets["top"], src.edge_sets["top"])
+    a = tribo.Problem(mesh, young=1.0, poisson=0.3, clamped="bottom", contact="top", approach=0.01).solve()
+    b = tribo.Problem(src, young=1.0, poisson=0.3, clamped="bottom", contact="top", approach=0.01).solve()
+    np.testing.assert_allclose(a.displacement, b.displacement, rtol=1e-12, atol=1e-15)
+
+
+def test_meshio_rejects_what_tribo_cannot_use() -> None:
+    quad = meshio.Mesh(np.zeros((4, 2)), [("quad", np.array([[0, 1, 2, 3]]))])
+    with pytest.raises(tribo.MeshError, match="no linear triangles"):
+        mesh_from_meshio(quad)
+    tilted = meshio.Mesh(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 1.0]]), [("triangle", np.array([[0, 1, 2]]))])
+    with pytest.raises(tribo.MeshError, match="not planar"):
+        mesh_from_meshio(tilted)
+    with pytest.raises(tribo.MeshError, match="cannot read"):
+        read_mesh("/nonexistent/mesh.msh")
+
+
+@pytest.mark.parametrize("space", ["P1", "P0"])
+def test_vtu_round_trip(tmp_path: Path, space: str) -> None:
+    problem = hertz_problem(shift=0.004, space=space)
+    s = problem.solve(mu=0.3)
+    body, contact, multipliers = write_vtu(tmp_path / "out" / "result.vtu", problem, s)
+    assert body.name == "result.vtu" and contact.name == "result_contact.vtu"
+    m = meshio.read(body)
+    np.testing.assert_allclose(m.points[:, :2], problem.mesh.points)
+    np.testing.assert_array_equal(m.cells_dict["triangle"], problem.mesh.triangles)
+    np.testing.assert_allclose(m.point_data["displacement"][:, :2], s.displacement)
+    np.testing.assert_allclose(m.cell_data["von_mises"][0], s.von_mises)
+    np.testing.assert_allclose(m.cell_data["stress"][0], s.stress)
+    c = meshio.read(contact)
+    np.testing.assert_allclose(c.point_data["u_n"], s.u_n)
+    np.testing.assert_allclose(c.cell_data["sigma_n"][0], s.sigma_n)
+    mm = meshio.read(multipliers)
+    data = mm.point_data if space == "P1" else {k: v[0] for k, v in mm.cell_data.items()}
+    np.testing.assert_allclose(data["lambda_n"], s.lambda_n)
+    np.testing.assert_allclose(data["lambda_t"], s.lambda_t)
+    np.testing.assert_array_equal(data["state"], s.states)
+
+
+def test_contact_csv(tmp_path: Path, hertz: tribo.Problem) -> None:
+    s = hertz.solve(mu=0.3)
+    paths = write_contact_csv(tmp_path, hertz, s)
+    assert [p.name for p in paths] == ["contact.csv", "contact_nodes.csv", "contact_edges.csv"]
+    table = np.genfromtxt(paths[0], delimiter=",", names=True, dtype=None, encoding="utf-8")
+    np.testing.assert_allclose(table["lambda_n"], s.lambda_n)
+    assert list(table["state"]) == s.state_names
+    nodes = np.genfromtxt(paths[1], delimiter=",", names=True)
+    np.testing.assert_allclose(nodes["slip"], s.slip)
