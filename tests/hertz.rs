@@ -157,3 +157,80 @@ fn iteration_cap_is_reported() {
     assert_eq!(sol.report.residual_history.len(), 1);
     assert!(sol.report.residual_history[0] > settings.fixed_point.tol_change_rel);
 }
+
+/// The working set gives the solution of the QP over all of Γ_C (frictionless and Tresca, whose
+/// solutions are unique): two QPs, each determining λ to about tol · κ(H), agree to twice that.
+#[test]
+fn working_set_agrees_with_the_full_qp() {
+    for points in [MultiplierPoints::RatioToFe(1.0), MultiplierPoints::Size(0.013)] {
+        let problem = hertz_problem(0.01, 0.01, 0.004, points, MultiplierSpace::P1);
+        let s = SolverSettings::default();
+        let condensed = Condensed::new(&problem, s.stabilization).unwrap();
+        let tol = 2.0 * s.qp.tol * common::condition_number(&condensed);
+        let full = SolverSettings { qp: QpSettings { working_set: false, ..s.qp }, ..s };
+        for friction in [Friction::Frictionless, Friction::Tresca(Threshold::Uniform(0.5))] {
+            let a = condensed.solve(&problem, &friction, &s, None).unwrap();
+            let b = condensed.solve(&problem, &friction, &full, None).unwrap();
+            assert_eq!(a.report.status, SolveStatus::Converged);
+            assert_eq!(b.report.status, SolveStatus::Converged);
+            let lmax = b.lambda_n.iter().fold(0.0_f64, |m, v| m.max(*v));
+            let d = (0..a.lambda_n.len())
+                .map(|j| (a.lambda_n[j] - b.lambda_n[j]).abs().max((a.lambda_t[j] - b.lambda_t[j]).abs()))
+                .fold(0.0, f64::max);
+            assert!(
+                d <= tol * lmax,
+                "{friction:?}: working set differs from the full QP by {d:e} (tol·κ·Λ {:e})",
+                tol * lmax
+            );
+        }
+    }
+}
+
+/// Units do not matter: scaling E (and hence λ) by 1e-3 or 1e6 scales λ exactly and leaves u unchanged,
+/// to the accuracy of the QP (the QP is non-dimensionalised before clarabel sees it).
+#[test]
+fn results_do_not_depend_on_the_units_of_e() {
+    let solve = |young: f64| {
+        let mut problem = hertz_problem(0.02, 0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+        let mut spec = problem.spec.clone();
+        spec.material.young = young;
+        problem = Problem::new(problem.mesh.clone(), spec).unwrap();
+        let s = SolverSettings::default();
+        let condensed = Condensed::new(&problem, s.stabilization).unwrap();
+        let kappa = common::condition_number(&condensed);
+        (
+            condensed.solve(&problem, &Friction::Tresca(Threshold::Uniform(0.3 * young / 200.0)), &s, None).unwrap(),
+            kappa,
+        )
+    };
+    let (reference, kappa) = solve(200.0);
+    let tol = 2.0 * QpSettings::default().tol * kappa;
+    let lmax = reference.lambda_n.iter().fold(0.0_f64, |m, v| m.max(*v));
+    let umax = reference.displacement.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    for young in [0.2, 2e8] {
+        let (sol, _) = solve(young);
+        let f = young / 200.0;
+        let dl = reference.lambda_n.iter().zip(&sol.lambda_n).fold(0.0_f64, |m, (a, b)| m.max((a - b / f).abs()));
+        let du = reference.displacement.iter().zip(&sol.displacement).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(dl <= tol * lmax, "E = {young}: λ/E differs by {dl:e}");
+        assert!(du <= tol * umax, "E = {young}: u differs by {du:e}");
+    }
+}
+
+/// Global equilibrium: the reactions on the clamped side balance the contact force.
+#[test]
+fn reactions_balance_the_contact_force() {
+    let problem = hertz_problem(0.02, 0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P0);
+    let sol = problem.solve(&Friction::Coulomb { mu: 0.3 }, &SolverSettings::default(), None).unwrap();
+    let (n, t) = (problem.contact.normal, problem.contact.tangent);
+    let rx: f64 = sol.reactions.iter().step_by(2).sum();
+    let ry: f64 = sol.reactions.iter().skip(1).step_by(2).sum();
+    let (p, tf) = (sol.normal_force, sol.tangential_force);
+    let expected = [p * n[0] + tf * t[0], p * n[1] + tf * t[1]];
+    // Both sides are sums of O(n) rounded terms: n · 64 ε relative.
+    let tol = problem.n_free as f64 * 64.0 * f64::EPSILON * p.abs();
+    assert!(
+        (rx - expected[0]).abs() <= tol && (ry - expected[1]).abs() <= tol,
+        "reactions ({rx}, {ry}) vs contact force {expected:?}"
+    );
+}

@@ -9,7 +9,8 @@ use crate::error::{check_setting, Error, Result};
 use crate::problem::Problem;
 use crate::solution::{Solution, SolveStatus, Timings};
 use crate::stabilization::Stabilization;
-use crate::tresca::{QpSettings, QpStatus, TrescaQp};
+use crate::tresca::{QpSettings, QpStatus};
+use crate::working_set::WorkingSetQp;
 
 /// The friction model.
 #[derive(Debug, Clone, PartialEq)]
@@ -191,8 +192,8 @@ impl Condensed {
         };
         let frictionless = matches!(friction, Friction::Frictionless | Friction::Coulomb { mu: 0.0 });
         if frictionless || matches!(friction, Friction::Coulomb { .. }) {
-            let mut qp = TrescaQp::new(&self.h_normal(), &self.c[..q], q, None, &settings.qp)?;
-            let out = qp.solve();
+            let mut qp = WorkingSetQp::new(&self.h_normal(), &self.c[..q], q, None, &settings.qp)?;
+            let out = qp.solve()?;
             notify(Progress { iteration: 0, change: f64::NAN, qp_iterations: out.iterations, qp_seconds: out.seconds });
             phase.lambda[..q].copy_from_slice(&out.nu);
             phase.qp_iterations.push(out.iterations);
@@ -208,8 +209,8 @@ impl Condensed {
                     Threshold::Uniform(s) => vec![*s; q],
                     Threshold::PerDof(v) => v.clone(),
                 };
-                let mut qp = TrescaQp::new(&self.h, &self.c, q, Some(&phase.bound), &settings.qp)?;
-                let out = qp.solve();
+                let mut qp = WorkingSetQp::new(&self.h, &self.c, q, Some(&phase.bound), &settings.qp)?;
+                let out = qp.solve()?;
                 notify(Progress {
                     iteration: 0,
                     change: f64::NAN,
@@ -255,10 +256,10 @@ impl Condensed {
         phase.mu = Some(mu);
         let mut g: Vec<f64> = phase.lambda[..q].to_vec();
         let bound: Vec<f64> = g.iter().map(|v| mu * v.max(0.0)).collect();
-        let mut qp = TrescaQp::new(&self.h, &self.c, q, Some(&bound), &settings.qp)?;
+        let mut qp = WorkingSetQp::new(&self.h, &self.c, q, Some(&bound), &settings.qp)?;
         phase.status = SolveStatus::MaxIterations;
         for it in 1..=fp.max_iter {
-            let out = qp.solve();
+            let out = qp.solve()?;
             phase.qp_iterations.push(out.iterations);
             phase.qp_seconds += out.seconds;
             phase.iterations = it;

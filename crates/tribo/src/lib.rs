@@ -47,6 +47,7 @@ pub mod problem;
 pub mod solution;
 pub mod stabilization;
 pub mod tresca;
+pub mod working_set;
 
 pub use condensation::Condensed;
 pub use contact::ContactBoundary;

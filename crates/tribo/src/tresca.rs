@@ -61,11 +61,14 @@ pub struct QpSettings {
     pub max_iter: u32,
     /// KKT solver. Default [`KktSolver::default`].
     pub kkt_solver: KktSolver,
+    /// Solve over a working set of multiplier dofs grown until the KKT conditions of the whole QP hold
+    /// (see [`crate::working_set`]). Default true; false solves every QP over all of Γ_C.
+    pub working_set: bool,
 }
 
 impl Default for QpSettings {
     fn default() -> Self {
-        Self { tol: 1e-10, max_iter: 200, kkt_solver: KktSolver::default() }
+        Self { tol: 1e-10, max_iter: 200, kkt_solver: KktSolver::default(), working_set: true }
     }
 }
 

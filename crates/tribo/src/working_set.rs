@@ -1,0 +1,189 @@
+//! A working set of multiplier dofs for the Γ_C QP: solve over the dofs that can be in contact, check
+//! the optimality conditions of the *whole* QP, grow the set where they fail, repeat.
+//!
+//! The QP `min ½ νᵀ H ν + cᵀ ν` over `ν_n ≥ 0, |ν_t| ≤ b` is dense in the 2q multiplier unknowns of all
+//! of Γ_C, but the contact zone is often a small part of Γ_C. Fixing `ν_n,j = ν_t,j = 0` outside a set S
+//! gives a smaller QP (same H, rows and columns of S) whose solution ν_S, extended by zeros, solves the
+//! whole QP exactly when the dropped dofs satisfy their optimality conditions:
+//!
+//! * `(H ν + c)_n,j ≥ 0` — no pressure would appear there (the discrete gap is open), and
+//! * `b_j = 0` — the friction bound forces `ν_t,j = 0` (so every dof with a positive bound is kept in S).
+//!
+//! A dropped dof with `(H ν + c)_n,j < −√tol c_s` (c_s = max |c_n|) is added, with its neighbours, and the
+//! QP is solved again. The threshold is the one that separates "zero" from "non-zero" multipliers in the
+//! contact states (a dof below it would carry `λ_n ≲ √tol Λ`). S only grows during a solve and across the
+//! Coulomb iterations, so the clarabel set-up is reused whenever S did not change. The initial S holds the
+//! dofs where the body, without contact forces, would penetrate (`c_n,j < 0`), and their neighbours.
+
+use crate::error::Result;
+use crate::tresca::{QpOutcome, QpSettings, QpStatus, TrescaQp};
+
+/// The Γ_C QP solved over a growing working set.
+#[derive(Debug)]
+pub struct WorkingSetQp {
+    h: Vec<f64>,
+    c: Vec<f64>,
+    q: usize,
+    bounds: Option<Vec<f64>>,
+    settings: QpSettings,
+    set: Vec<usize>,
+    qp: Option<TrescaQp>,
+    /// Number of QPs solved on sub-problems (for reports).
+    pub solves: usize,
+}
+
+impl WorkingSetQp {
+    /// Sets up the QP (same arguments as [`TrescaQp::new`]).
+    ///
+    /// # Errors
+    /// As [`TrescaQp::new`].
+    pub fn new(h: &[f64], c: &[f64], q: usize, bounds: Option<&[f64]>, settings: &QpSettings) -> Result<Self> {
+        settings.validate()?;
+        let mut ws = Self {
+            h: h.to_vec(),
+            c: c.to_vec(),
+            q,
+            bounds: bounds.map(<[f64]>::to_vec),
+            settings: *settings,
+            set: Vec::new(),
+            qp: None,
+            solves: 0,
+        };
+        if let Some(b) = bounds {
+            ws.check_bounds(b)?;
+        }
+        let initial: Vec<usize> =
+            if settings.working_set { (0..q).filter(|&j| c[j] < 0.0).collect() } else { (0..q).collect() };
+        ws.grow(&initial);
+        Ok(ws)
+    }
+
+    fn check_bounds(&self, b: &[f64]) -> Result<()> {
+        if b.len() != self.q {
+            return Err(crate::Error::BadThreshold {
+                what: format!("{} values given, {} multiplier dofs", b.len(), self.q),
+            });
+        }
+        match b.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {
+            Some(j) => Err(crate::Error::BadThreshold {
+                what: format!("value {j} is {}; thresholds must be finite and ≥ 0", b[j]),
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// Adds dofs (and their neighbours) and the dofs with a positive bound to the set.
+    fn grow(&mut self, dofs: &[usize]) -> bool {
+        let mut member = vec![false; self.q];
+        for &j in &self.set {
+            member[j] = true;
+        }
+        let before = self.set.len();
+        let add = |j: usize, member: &mut Vec<bool>, set: &mut Vec<usize>| {
+            if !member[j] {
+                member[j] = true;
+                set.push(j);
+            }
+        };
+        for &j in dofs {
+            for k in j.saturating_sub(1)..=(j + 1).min(self.q - 1) {
+                add(k, &mut member, &mut self.set);
+            }
+        }
+        if let Some(b) = &self.bounds {
+            for (j, v) in b.iter().enumerate() {
+                if *v > 0.0 {
+                    add(j, &mut member, &mut self.set);
+                }
+            }
+        }
+        self.set.sort_unstable();
+        self.set.len() != before
+    }
+
+    /// Replaces the tangential bounds.
+    ///
+    /// # Errors
+    /// [`crate::Error::BadThreshold`]; QP update errors.
+    pub fn set_bounds(&mut self, b: &[f64]) -> Result<()> {
+        self.check_bounds(b)?;
+        self.bounds = Some(b.to_vec());
+        if self.grow(&[]) {
+            self.qp = None;
+        } else if let Some(qp) = self.qp.as_mut() {
+            let sub: Vec<f64> = self.set.iter().map(|&j| b[j]).collect();
+            qp.set_bounds(&sub)?;
+        }
+        Ok(())
+    }
+
+    fn build(&self) -> Result<TrescaQp> {
+        let (q, s) = (self.q, self.set.len());
+        let frictional = self.bounds.is_some();
+        let k = if frictional { 2 * q } else { q };
+        let idx: Vec<usize> = if frictional {
+            self.set.iter().copied().chain(self.set.iter().map(|j| q + j)).collect()
+        } else {
+            self.set.clone()
+        };
+        let ks = idx.len();
+        let mut h = vec![0.0; ks * ks];
+        for (b, &jb) in idx.iter().enumerate() {
+            for (a, &ja) in idx.iter().enumerate() {
+                h[b * ks + a] = self.h[jb * k + ja];
+            }
+        }
+        let c: Vec<f64> = idx.iter().map(|&i| self.c[i]).collect();
+        let bounds: Option<Vec<f64>> = self.bounds.as_ref().map(|b| self.set.iter().map(|&j| b[j]).collect());
+        TrescaQp::new(&h, &c, s, bounds.as_deref(), &self.settings)
+    }
+
+    /// Solves the whole QP; the returned ν has the full size (q or 2q).
+    ///
+    /// # Errors
+    /// QP set-up errors.
+    pub fn solve(&mut self) -> Result<QpOutcome> {
+        let q = self.q;
+        let frictional = self.bounds.is_some();
+        let k = if frictional { 2 * q } else { q };
+        let c_s = self.c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let threshold = -self.settings.tol.sqrt() * c_s;
+        let (mut iterations, mut seconds) = (0, 0.0);
+        loop {
+            if self.qp.is_none() {
+                self.qp = Some(self.build()?);
+            }
+            let out = self.qp.as_mut().expect("built above").solve();
+            self.solves += 1;
+            iterations += out.iterations;
+            seconds += out.seconds;
+            let s = self.set.len();
+            let mut nu = vec![0.0; k];
+            for (a, &j) in self.set.iter().enumerate() {
+                nu[j] = out.nu[a];
+                if frictional {
+                    nu[q + j] = out.nu[s + a];
+                }
+            }
+            if matches!(out.status, QpStatus::Failed(_)) || s == q {
+                return Ok(QpOutcome { nu, status: out.status, iterations, seconds });
+            }
+            // Optimality of the dropped dofs: (H ν + c)_n,j ≥ threshold.
+            let mut member = vec![false; q];
+            for &j in &self.set {
+                member[j] = true;
+            }
+            let support: Vec<usize> = (0..k).filter(|&i| nu[i] != 0.0).collect();
+            let violated: Vec<usize> = (0..q)
+                .filter(|&j| !member[j])
+                .filter(|&j| support.iter().map(|&i| self.h[i * k + j] * nu[i]).sum::<f64>() + self.c[j] < threshold)
+                .collect();
+            if violated.is_empty() {
+                return Ok(QpOutcome { nu, status: out.status, iterations, seconds });
+            }
+            log::debug!("working set: {} dofs violate optimality, growing from {s}", violated.len());
+            self.grow(&violated);
+            self.qp = None;
+        }
+    }
+}
