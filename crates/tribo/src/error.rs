@@ -1,4 +1,4 @@
-//! Typed errors: bad input is an [`Error`], never a panic.
+//! Typed errors: bad input is an [`enum@Error`], never a panic.
 //!
 //! Numerical outcomes of a solve (converged, iteration cap reached, QP failed) are *not* errors: they are
 //! reported by [`crate::SolveStatus`] inside the solution, so a caller always sees how far a solve got.

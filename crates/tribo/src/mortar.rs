@@ -75,7 +75,7 @@ pub struct Coo {
     pub nrows: usize,
     /// Number of columns.
     pub ncols: usize,
-    /// Entries (duplicates summed by [`Coo::compress`]).
+    /// Entries, sorted by (row, column), duplicates summed.
     pub entries: Vec<(usize, usize, f64)>,
 }
 
