@@ -19,3 +19,19 @@ def test_stubtest(tmp_path: Path) -> None:
         timeout=300,
     )
     assert r.returncode == 0, r.stdout + r.stderr
+
+
+def test_package_type_checks(tmp_path: Path) -> None:
+    """`mypy --strict` on the pure-Python package (with the stub as the compiled module's types)."""
+    pytest.importorskip("mypy")
+    root = Path(__file__).resolve().parents[2]
+    if not (root / "python" / "tribo" / "_tribo.pyi").exists():
+        pytest.skip("needs the source tree")
+    r = subprocess.run(
+        [sys.executable, "-m", "mypy", "--config-file", str(root / "pyproject.toml"), "--cache-dir", str(tmp_path)],
+        capture_output=True,
+        text=True,
+        cwd=root,
+        timeout=600,
+    )
+    assert r.returncode == 0, r.stdout + r.stderr

@@ -28,6 +28,8 @@ from tribo._tribo import (
     __version__,
     solver_defaults,
 )
+from tribo.io import read_mesh, write_vtu
+from tribo.scene import SceneError, load_scene
 
 __all__ = [
     "STATE_NAMES",
@@ -37,10 +39,14 @@ __all__ = [
     "Obstacle",
     "Problem",
     "Report",
+    "SceneError",
     "SettingsError",
     "Solution",
     "SolverError",
     "TriboError",
     "__version__",
+    "load_scene",
+    "read_mesh",
     "solver_defaults",
+    "write_vtu",
 ]

@@ -125,9 +125,10 @@ def _plots(out: Path, problem: Problem, solution: Solution) -> list[Path]:
         return []
     files = []
     for name, draw in (("contact_normal.png", plot.contact_pressure), ("contact_tangential.png", plot.tangential)):
-        ax = draw(problem, solution)
-        ax.figure.savefig(out / name, dpi=120)
-        plt.close(ax.figure)
+        fig, ax = plt.subplots(figsize=(7.0, 4.0), layout="constrained")
+        draw(problem, solution, ax)
+        fig.savefig(out / name, dpi=120)
+        plt.close(fig)
         files.append(out / name)
     fig, ax = plt.subplots(figsize=(8.0, 4.5), layout="constrained")
     plot.von_mises(problem, solution, ax, edges=problem.mesh.n_triangles < 20000)

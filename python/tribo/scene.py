@@ -122,7 +122,7 @@ def _choice(*options: str) -> Checker:
 
 def _grading(key: str, v: Any) -> str | tuple[float, float]:
     if isinstance(v, str):
-        return _choice("auto", "none")(key, v)
+        return str(_choice("auto", "none")(key, v))
     return _pair(key, v)
 
 
