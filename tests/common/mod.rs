@@ -112,7 +112,7 @@ pub fn distorted_square(n: usize) -> Mesh {
 /// solved to relative accuracy `tol` determines λ to about `tol · κ`.
 pub fn condition_number(c: &Condensed) -> f64 {
     let k = 2 * c.q();
-    let ev = nalgebra::DMatrix::from_column_slice(k, k, &c.h).symmetric_eigenvalues();
+    let ev = nalgebra::DMatrix::from_column_slice(k, k, &c.dense_h()).symmetric_eigenvalues();
     let max = ev.iter().fold(0.0_f64, |a, v| a.max(*v));
     max / ev.iter().filter(|v| **v > k as f64 * f64::EPSILON * max).fold(f64::INFINITY, |a, v| a.min(*v))
 }

@@ -53,6 +53,12 @@ fn main() -> Result<()> {
             count(ContactState::Stick),
             count(ContactState::Slip),
         );
+        let t = &sol.report.timings;
+        println!(
+            "    timings [s]: assembly {:.4}  Γ_C matrices {:.4}  factorization {:.4}  condensation {:.4}  QPs {:.4} ({} QPs, IPM iterations {:?})  recovery {:.4}",
+            t.assembly, t.contact_matrices, t.factorization, t.condensation, t.qp,
+            sol.report.qp_iterations.len(), sol.report.qp_iterations, t.recovery
+        );
     }
     Ok(())
 }

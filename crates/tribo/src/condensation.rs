@@ -1,10 +1,14 @@
 //! The stabilized system condensed onto Γ_C: one sparse Cholesky factorization of `A = K − G`, then the
-//! dense multiplier operator `H = E A⁻¹ Eᵀ + Dγ` and the linear term `c = d − E A⁻¹ f` of the QP.
+//! multiplier operator `H = E A⁻¹ Eᵀ + Dγ` and the linear term `c = d − E A⁻¹ f` of the QP.
 //!
-//! This is the only place that touches all n displacement unknowns: 2q solves with the factor (in
-//! blocks of columns), after which every Tresca QP and every Coulomb fixed-point iteration works with
-//! the 2q multiplier unknowns only. The displacement is recovered at the end with one more solve.
+//! This is the only place that touches all n displacement unknowns. `c` costs one solve; a column of H
+//! costs one solve with the factor (done in blocks of columns) and is computed only when a QP asks for it
+//! and then kept: the working-set QP ([`crate::working_set`]) only needs the columns of the multiplier
+//! dofs that can be in contact, so on a long Γ_C with a small contact zone most of H is never formed.
+//! Every Tresca QP and every Coulomb fixed-point iteration works with multiplier unknowns only; the
+//! displacement is recovered at the end with one more solve.
 
+use std::sync::Mutex;
 use std::time::Instant;
 
 use faer::linalg::solvers::Solve;
@@ -23,8 +27,15 @@ const BLOCK: usize = 64;
 pub struct CondensationTimings {
     /// Assembling `A = K − G` and its sparse Cholesky factorization (symbolic + numeric).
     pub factorization: f64,
-    /// Forming `H` and `c` (2q solves and products).
+    /// Forming `c` and the columns of `H` asked for so far (one solve per column).
     pub schur: f64,
+}
+
+/// Lazily computed columns of H, and the time spent computing them.
+#[derive(Default)]
+struct Columns {
+    cols: Vec<Option<Vec<f64>>>,
+    seconds: f64,
 }
 
 /// The condensed problem for one value of γ0.
@@ -37,12 +48,14 @@ pub struct Condensed {
     a: SparseColMat<usize, f64>,
     /// Rows of E (2q sparse rows over the free dofs).
     pub e_rows: Vec<Vec<(usize, f64)>>,
-    /// Dense H (column-major, 2q × 2q).
-    pub h: Vec<f64>,
+    /// Columns of H computed so far (2q of them at most, each of length 2q).
+    columns: Mutex<Columns>,
     /// Linear term c (2q).
     pub c: Vec<f64>,
     /// `d` (2q): gap and shift moments.
     pub d: Vec<f64>,
+    /// Dγ by columns (row, value).
+    d_cols: Vec<Vec<(usize, f64)>>,
     /// Timings.
     pub timings: CondensationTimings,
 }
@@ -86,36 +99,12 @@ impl Condensed {
         let e_rows = problem.coupling_rows(gamma0);
         let k = e_rows.len();
         let q = k / 2;
-        let mut h = vec![0.0; k * k];
-        let mut x = Mat::<f64>::zeros(n, BLOCK.min(k.max(1)));
-        for start in (0..k).step_by(BLOCK) {
-            let width = BLOCK.min(k - start);
-            let mut xb = x.as_mut().subcols_mut(0, width);
-            xb.fill(0.0);
-            for (col, row) in e_rows[start..start + width].iter().enumerate() {
-                for &(d, v) in row {
-                    xb[(d, col)] = v;
-                }
-            }
-            llt.solve_in_place(xb.as_mut());
-            for (i, row) in e_rows.iter().enumerate() {
-                for col in 0..width {
-                    h[(start + col) * k + i] = row.iter().map(|&(d, v)| v * xb[(d, col)]).sum();
-                }
-            }
-        }
-        // Symmetrize (rounding) and add Dγ on both diagonal blocks.
-        for j in 0..k {
-            for i in 0..j {
-                let s = 0.5 * (h[j * k + i] + h[i * k + j]);
-                h[j * k + i] = s;
-                h[i * k + j] = s;
-            }
-        }
+        // Dγ by columns: for column j of block b, the rows i of the same block.
+        let mut d_cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); k];
         if gamma0 > 0.0 {
             for &(i, j, v) in &problem.mortar.d_h.entries {
-                h[j * k + i] += gamma0 * v;
-                h[(q + j) * k + q + i] += gamma0 * v;
+                d_cols[j].push((i, gamma0 * v));
+                d_cols[q + j].push((q + i, gamma0 * v));
             }
         }
         let u_f = solve(&llt, &problem.f_free);
@@ -129,7 +118,18 @@ impl Condensed {
             .collect();
         let c = e_rows.iter().zip(&d).map(|(row, di)| di - dot(row, &u_f)).collect();
         let schur = clock.elapsed().as_secs_f64();
-        Ok(Self { gamma0, llt, a, e_rows, h, c, d, timings: CondensationTimings { factorization, schur } })
+        let columns = Mutex::new(Columns { cols: vec![None; k], seconds: schur });
+        Ok(Self {
+            gamma0,
+            llt,
+            a,
+            e_rows,
+            d_cols,
+            c,
+            d,
+            columns,
+            timings: CondensationTimings { factorization, schur },
+        })
     }
 
     /// Number of multiplier dofs per component.
@@ -137,24 +137,87 @@ impl Condensed {
         self.e_rows.len() / 2
     }
 
-    /// A natural size of λ_n for this problem, `max |c_n| / max diag H_nn`: the multiplier at which the
-    /// quadratic and linear terms of the QP balance. It is non-zero even when the solution is λ = 0, so it
-    /// serves as the scale of tolerances on λ.
+    /// A natural size of λ_n for this problem, `|c_j| / H_jj` at the normal dof j where `|c_n|` is
+    /// largest: the multiplier at which the quadratic and linear terms of the QP balance there. It is
+    /// non-zero even when the solution is λ = 0, so it serves as the scale of tolerances on λ.
     pub fn lambda_scale(&self) -> f64 {
-        let (k, q) = (2 * self.q(), self.q());
-        let h = (0..q).map(|i| self.h[i * k + i]).fold(0.0, f64::max);
-        let c = self.c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        if h > 0.0 {
-            c / h
+        let q = self.q();
+        let Some((j, cj)) = self.c[..q].iter().enumerate().max_by(|a, b| a.1.abs().total_cmp(&b.1.abs())) else {
+            return 0.0;
+        };
+        let hjj = self.with_columns(&[j], |cols| cols[j].as_ref().expect("computed")[j]);
+        if hjj > 0.0 {
+            cj.abs() / hjj
         } else {
             0.0
         }
     }
 
-    /// The normal-normal block `H_nn` (column-major q × q).
-    pub fn h_normal(&self) -> Vec<f64> {
-        let (k, q) = (2 * self.q(), self.q());
-        (0..q).flat_map(|j| self.h[j * k..j * k + q].iter().copied()).collect()
+    /// Runs `f` on the column cache after making sure the columns `idx` of H are computed.
+    pub(crate) fn with_columns<R>(&self, idx: &[usize], f: impl FnOnce(&[Option<Vec<f64>>]) -> R) -> R {
+        let mut guard = self.columns.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let missing: Vec<usize> = idx.iter().copied().filter(|&i| guard.cols[i].is_none()).collect();
+        if !missing.is_empty() {
+            let clock = Instant::now();
+            let n = self.a.nrows();
+            let k = self.e_rows.len();
+            let mut x = Mat::<f64>::zeros(n, BLOCK.min(missing.len()));
+            for chunk in missing.chunks(BLOCK) {
+                let mut xb = x.as_mut().subcols_mut(0, chunk.len());
+                xb.fill(0.0);
+                for (col, &i) in chunk.iter().enumerate() {
+                    for &(d, v) in &self.e_rows[i] {
+                        xb[(d, col)] = v;
+                    }
+                }
+                self.llt.solve_in_place(xb.as_mut());
+                for (col, &i) in chunk.iter().enumerate() {
+                    let mut h: Vec<f64> =
+                        self.e_rows.iter().map(|row| row.iter().map(|&(d, v)| v * xb[(d, col)]).sum()).collect();
+                    for &(r, v) in &self.d_cols[i] {
+                        h[r] += v;
+                    }
+                    debug_assert_eq!(h.len(), k);
+                    guard.cols[i] = Some(h);
+                }
+            }
+            guard.seconds += clock.elapsed().as_secs_f64();
+        }
+        f(&guard.cols)
+    }
+
+    /// The sub-matrix `H[rows, cols]` (column-major), computing the columns it needs.
+    pub fn h_block(&self, rows: &[usize], cols: &[usize]) -> Vec<f64> {
+        self.with_columns(cols, |all| {
+            cols.iter()
+                .flat_map(|&j| {
+                    let col = all[j].as_ref().expect("computed");
+                    rows.iter().map(move |&i| col[i])
+                })
+                .collect()
+        })
+    }
+
+    /// The whole dense H (column-major 2q × 2q): all 2q columns.
+    pub fn dense_h(&self) -> Vec<f64> {
+        let all: Vec<usize> = (0..self.e_rows.len()).collect();
+        self.h_block(&all, &all)
+    }
+
+    /// Seconds spent so far forming `c` and columns of H.
+    pub fn condensation_seconds(&self) -> f64 {
+        self.columns.lock().unwrap_or_else(std::sync::PoisonError::into_inner).seconds
+    }
+
+    /// Number of columns of H computed so far.
+    pub fn computed_columns(&self) -> usize {
+        self.columns
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .cols
+            .iter()
+            .filter(|c| c.is_some())
+            .count()
     }
 
     /// The displacement (free dofs) for multipliers λ (2q): `u = A⁻¹ (f − Eᵀ λ)`.

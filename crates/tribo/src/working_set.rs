@@ -15,14 +15,15 @@
 //! Coulomb iterations, so the clarabel set-up is reused whenever S did not change. The initial S holds the
 //! dofs where the body, without contact forces, would penetrate (`c_n,j < 0`), and their neighbours.
 
-use crate::error::Result;
+use crate::condensation::Condensed;
+use crate::error::{Error, Result};
 use crate::tresca::{QpOutcome, QpSettings, QpStatus, TrescaQp};
 
-/// The Γ_C QP solved over a growing working set.
+/// The Γ_C QP solved over a growing working set; the columns of H come from a [`Condensed`] system,
+/// computed when the set first needs them.
 #[derive(Debug)]
-pub struct WorkingSetQp {
-    h: Vec<f64>,
-    c: Vec<f64>,
+pub struct WorkingSetQp<'a> {
+    condensed: &'a Condensed,
     q: usize,
     bounds: Option<Vec<f64>>,
     settings: QpSettings,
@@ -32,26 +33,21 @@ pub struct WorkingSetQp {
     pub solves: usize,
 }
 
-impl WorkingSetQp {
-    /// Sets up the QP (same arguments as [`TrescaQp::new`]).
+impl<'a> WorkingSetQp<'a> {
+    /// Sets up the QP of P(g) on `condensed`: frictionless if `bounds` is `None`, else with the tangential
+    /// bounds g (one per multiplier dof).
     ///
     /// # Errors
-    /// As [`TrescaQp::new`].
-    pub fn new(h: &[f64], c: &[f64], q: usize, bounds: Option<&[f64]>, settings: &QpSettings) -> Result<Self> {
+    /// [`Error::BadThreshold`], [`Error::BadSetting`].
+    pub fn new(condensed: &'a Condensed, bounds: Option<&[f64]>, settings: &QpSettings) -> Result<Self> {
         settings.validate()?;
-        let mut ws = Self {
-            h: h.to_vec(),
-            c: c.to_vec(),
-            q,
-            bounds: bounds.map(<[f64]>::to_vec),
-            settings: *settings,
-            set: Vec::new(),
-            qp: None,
-            solves: 0,
-        };
+        let q = condensed.q();
+        let mut ws = Self { condensed, q, bounds: None, settings: *settings, set: Vec::new(), qp: None, solves: 0 };
         if let Some(b) = bounds {
             ws.check_bounds(b)?;
+            ws.bounds = Some(b.to_vec());
         }
+        let c = &condensed.c;
         let initial: Vec<usize> =
             if settings.working_set { (0..q).filter(|&j| c[j] < 0.0).collect() } else { (0..q).collect() };
         ws.grow(&initial);
@@ -60,19 +56,17 @@ impl WorkingSetQp {
 
     fn check_bounds(&self, b: &[f64]) -> Result<()> {
         if b.len() != self.q {
-            return Err(crate::Error::BadThreshold {
-                what: format!("{} values given, {} multiplier dofs", b.len(), self.q),
-            });
+            return Err(Error::BadThreshold { what: format!("{} values given, {} multiplier dofs", b.len(), self.q) });
         }
         match b.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {
-            Some(j) => Err(crate::Error::BadThreshold {
-                what: format!("value {j} is {}; thresholds must be finite and ≥ 0", b[j]),
-            }),
+            Some(j) => {
+                Err(Error::BadThreshold { what: format!("value {j} is {}; thresholds must be finite and ≥ 0", b[j]) })
+            }
             None => Ok(()),
         }
     }
 
-    /// Adds dofs (and their neighbours) and the dofs with a positive bound to the set.
+    /// Adds dofs (and their neighbours) and the dofs with a positive bound to the set; true if it grew.
     fn grow(&mut self, dofs: &[usize]) -> bool {
         let mut member = vec![false; self.q];
         for &j in &self.set {
@@ -104,7 +98,7 @@ impl WorkingSetQp {
     /// Replaces the tangential bounds.
     ///
     /// # Errors
-    /// [`crate::Error::BadThreshold`]; QP update errors.
+    /// [`Error::BadThreshold`]; QP update errors.
     pub fn set_bounds(&mut self, b: &[f64]) -> Result<()> {
         self.check_bounds(b)?;
         self.bounds = Some(b.to_vec());
@@ -117,28 +111,25 @@ impl WorkingSetQp {
         Ok(())
     }
 
-    fn build(&self) -> Result<TrescaQp> {
-        let (q, s) = (self.q, self.set.len());
-        let frictional = self.bounds.is_some();
-        let k = if frictional { 2 * q } else { q };
-        let idx: Vec<usize> = if frictional {
+    /// Indices into the 2q unknowns (ν_n then ν_t) of the current set.
+    fn unknowns(&self) -> Vec<usize> {
+        let q = self.q;
+        if self.bounds.is_some() {
             self.set.iter().copied().chain(self.set.iter().map(|j| q + j)).collect()
         } else {
             self.set.clone()
-        };
-        let ks = idx.len();
-        let mut h = vec![0.0; ks * ks];
-        for (b, &jb) in idx.iter().enumerate() {
-            for (a, &ja) in idx.iter().enumerate() {
-                h[b * ks + a] = self.h[jb * k + ja];
-            }
         }
-        let c: Vec<f64> = idx.iter().map(|&i| self.c[i]).collect();
-        let bounds: Option<Vec<f64>> = self.bounds.as_ref().map(|b| self.set.iter().map(|&j| b[j]).collect());
-        TrescaQp::new(&h, &c, s, bounds.as_deref(), &self.settings)
     }
 
-    /// Solves the whole QP; the returned ν has the full size (q or 2q).
+    fn build(&self) -> Result<TrescaQp> {
+        let idx = self.unknowns();
+        let h = self.condensed.h_block(&idx, &idx);
+        let c: Vec<f64> = idx.iter().map(|&i| self.condensed.c[i]).collect();
+        let bounds: Option<Vec<f64>> = self.bounds.as_ref().map(|b| self.set.iter().map(|&j| b[j]).collect());
+        TrescaQp::new(&h, &c, self.set.len(), bounds.as_deref(), &self.settings)
+    }
+
+    /// Solves the whole QP; the returned ν has the full size (q, or 2q with friction).
     ///
     /// # Errors
     /// QP set-up errors.
@@ -146,7 +137,8 @@ impl WorkingSetQp {
         let q = self.q;
         let frictional = self.bounds.is_some();
         let k = if frictional { 2 * q } else { q };
-        let c_s = self.c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let c = &self.condensed.c;
+        let c_s = c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let threshold = -self.settings.tol.sqrt() * c_s;
         let (mut iterations, mut seconds) = (0, 0.0);
         loop {
@@ -168,16 +160,21 @@ impl WorkingSetQp {
             if matches!(out.status, QpStatus::Failed(_)) || s == q {
                 return Ok(QpOutcome { nu, status: out.status, iterations, seconds });
             }
-            // Optimality of the dropped dofs: (H ν + c)_n,j ≥ threshold.
+            // Optimality of the dropped dofs: (H ν + c)_n,j ≥ threshold, with ν supported on the set.
             let mut member = vec![false; q];
             for &j in &self.set {
                 member[j] = true;
             }
-            let support: Vec<usize> = (0..k).filter(|&i| nu[i] != 0.0).collect();
-            let violated: Vec<usize> = (0..q)
-                .filter(|&j| !member[j])
-                .filter(|&j| support.iter().map(|&i| self.h[i * k + j] * nu[i]).sum::<f64>() + self.c[j] < threshold)
-                .collect();
+            let support: Vec<usize> = self.unknowns().into_iter().filter(|&i| nu[i] != 0.0).collect();
+            let violated: Vec<usize> = self.condensed.with_columns(&support, |cols| {
+                (0..q)
+                    .filter(|&j| !member[j])
+                    .filter(|&j| {
+                        let hv: f64 = support.iter().map(|&i| cols[i].as_ref().expect("computed")[j] * nu[i]).sum();
+                        hv + c[j] < threshold
+                    })
+                    .collect()
+            });
             if violated.is_empty() {
                 return Ok(QpOutcome { nu, status: out.status, iterations, seconds });
             }
