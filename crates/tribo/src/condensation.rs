@@ -12,7 +12,8 @@ use std::sync::Mutex;
 use std::time::Instant;
 
 use faer::linalg::solvers::Solve;
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::linalg::solvers::Llt;
+use faer::sparse::SparseColMat;
 use faer::{Mat, Side};
 
 use crate::error::{Error, Result};
@@ -25,7 +26,8 @@ const BLOCK: usize = 64;
 /// Timings of the condensation, in seconds.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct CondensationTimings {
-    /// Assembling `A = K − G` and its sparse Cholesky factorization (symbolic + numeric).
+    /// Forming `A = K − G` and its numeric sparse Cholesky factorization (the symbolic one is the
+    /// problem's).
     pub factorization: f64,
     /// Forming `c` and the columns of `H` asked for so far (one solve per column).
     pub schur: f64,
@@ -43,7 +45,7 @@ pub struct Condensed {
     /// The γ0 in use.
     pub gamma0: f64,
     /// Sparse Cholesky factor of A.
-    llt: faer::sparse::linalg::solvers::Llt<usize, f64>,
+    llt: Llt<usize, f64>,
     /// A as a sparse matrix (for residuals).
     a: SparseColMat<usize, f64>,
     /// Rows of E (2q sparse rows over the free dofs).
@@ -85,13 +87,23 @@ impl Condensed {
     /// [`Error::NotPositiveDefinite`] if the Cholesky factorization fails.
     pub fn with_gamma0(problem: &Problem, gamma0: f64) -> Result<Self> {
         let clock = Instant::now();
-        let n = problem.n_free;
-        let mut trip: Vec<Triplet<usize, usize, f64>> = problem.k_free.clone();
-        trip.extend(problem.stabilization_triplets(gamma0));
-        let a = SparseColMat::try_new_from_triplets(n, n, &trip)
-            .map_err(|e| Error::NotPositiveDefinite { what: format!("assembly failed: {e:?}") })?;
-        let llt = a.sp_cholesky(Side::Lower).map_err(|e| Error::NotPositiveDefinite {
-            what: format!("{e:?} (γ0 = {gamma0:e}, admissible bound {:e})", problem.gamma0_bound.0),
+        // A = K − G on K's pattern (G couples the dofs of one triangle, all present in K), factorized
+        // with the symbolic analysis of the problem: only values change with γ0.
+        let k = &problem.k_matrix;
+        let (pattern, k_values) = k.parts();
+        let mut values = k_values.to_vec();
+        let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
+        for t in problem.stabilization_triplets(gamma0) {
+            let range = col_ptr[t.col]..col_ptr[t.col + 1];
+            let pos = row_idx[range.clone()].binary_search(&t.row).expect("G lies in the pattern of K");
+            values[range.start + pos] += t.val;
+        }
+        let pattern = pattern.to_owned().map_err(|e| Error::NotPositiveDefinite { what: format!("{e:?}") })?;
+        let a = SparseColMat::new(pattern, values);
+        let llt = Llt::try_new_with_symbolic(problem.symbolic.clone(), a.as_ref(), Side::Lower).map_err(|e| {
+            Error::NotPositiveDefinite {
+                what: format!("{e:?} (γ0 = {gamma0:e}, admissible bound {:e})", problem.gamma0_bound.0),
+            }
         })?;
         let factorization = clock.elapsed().as_secs_f64();
 
@@ -264,7 +276,7 @@ fn dot(row: &[(usize, f64)], x: &[f64]) -> f64 {
     row.iter().map(|&(d, v)| v * x[d]).sum()
 }
 
-fn solve(llt: &faer::sparse::linalg::solvers::Llt<usize, f64>, b: &[f64]) -> Vec<f64> {
+fn solve(llt: &Llt<usize, f64>, b: &[f64]) -> Vec<f64> {
     let mut x = Mat::<f64>::from_fn(b.len(), 1, |i, _| b[i]);
     llt.solve_in_place(x.as_mut());
     (0..b.len()).map(|i| x[(i, 0)]).collect()

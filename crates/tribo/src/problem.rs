@@ -3,7 +3,9 @@
 
 use std::time::Instant;
 
-use faer::sparse::Triplet;
+use faer::sparse::linalg::solvers::SymbolicLlt;
+use faer::sparse::{SparseColMat, Triplet};
+use faer::Side;
 use nalgebra::SVector;
 
 use crate::contact::ContactBoundary;
@@ -39,7 +41,7 @@ pub struct ProblemSpec {
 /// Timings of the set-up phases, in seconds.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct SetupTimings {
-    /// Stiffness and load assembly.
+    /// Stiffness and load assembly, and the symbolic Cholesky factorization of K's pattern.
     pub assembly: f64,
     /// Contact geometry, multiplier mesh and Γ_C matrices.
     pub contact_matrices: f64,
@@ -62,8 +64,12 @@ pub struct Problem {
     pub free: Vec<Option<usize>>,
     /// Number of unknowns (free dofs).
     pub n_free: usize,
-    /// Stiffness triplets restricted to free dofs (duplicates not summed).
-    pub k_free: Vec<Triplet<usize, usize, f64>>,
+    /// Stiffness K restricted to the free dofs (CSC, both triangles). Its pattern is also the pattern of
+    /// the stabilized `A = K − G` (G couples the dofs of one triangle only).
+    pub k_matrix: SparseColMat<usize, f64>,
+    /// Symbolic Cholesky factorization of that pattern (fill-reducing ordering, elimination tree),
+    /// computed once and reused for every γ0.
+    pub symbolic: SymbolicLlt<usize>,
     /// Load vector on free dofs.
     pub f_free: Vec<f64>,
     /// Full load vector (all 2N dofs), for reactions.
@@ -123,6 +129,11 @@ impl Problem {
             .into_iter()
             .filter_map(|t| Some(Triplet::new(free[t.row]?, free[t.col]?, t.val)))
             .collect();
+        let k_matrix = SparseColMat::try_new_from_triplets(n_free, n_free, &k_free)
+            .map_err(|e| Error::NotPositiveDefinite { what: format!("assembly failed: {e:?}") })?;
+        drop(k_free);
+        let symbolic = SymbolicLlt::try_new(k_matrix.symbolic(), Side::Lower)
+            .map_err(|e| Error::NotPositiveDefinite { what: format!("symbolic factorization failed: {e:?}") })?;
         let assembly = clock.elapsed().as_secs_f64();
 
         let clock = Instant::now();
@@ -161,7 +172,8 @@ impl Problem {
             mortar,
             free,
             n_free,
-            k_free,
+            k_matrix,
+            symbolic,
             f_free,
             f_full,
             stress_ops,
