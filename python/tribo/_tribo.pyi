@@ -131,6 +131,7 @@ class Problem:
         qp_tol: float | None = None,
         qp_max_iter: int | None = None,
         kkt_solver: Literal["faer", "qdldl"] | None = None,
+        working_set: bool | None = None,
         fp_tol: float | None = None,
         fp_max_iter: int | None = None,
         relaxation: float | None = None,

@@ -16,7 +16,7 @@ use pyo3::types::PyDict;
 use tribo::{MultiplierPoints, MultiplierSpace, SolverSettings, Stabilization};
 
 /// The core's default settings, as a dict of the keyword names `Problem` and `Problem.solve` take:
-/// gamma0_fraction, qp_tol, qp_max_iter, kkt_solver, fp_tol, fp_max_iter, relaxation,
+/// gamma0_fraction, qp_tol, qp_max_iter, kkt_solver, working_set, fp_tol, fp_max_iter, relaxation,
 /// multiplier_ratio, space.
 #[pyfunction]
 fn solver_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
@@ -30,6 +30,7 @@ fn solver_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("qp_tol", s.qp.tol)?;
     d.set_item("qp_max_iter", s.qp.max_iter)?;
     d.set_item("kkt_solver", problem::kkt_solver_name(s.qp.kkt_solver))?;
+    d.set_item("working_set", s.qp.working_set)?;
     d.set_item("fp_tol", s.fixed_point.tol_change_rel)?;
     d.set_item("fp_max_iter", s.fixed_point.max_iter)?;
     d.set_item("relaxation", s.fixed_point.relaxation)?;

@@ -305,14 +305,15 @@ impl PyProblem {
     /// The friction law is `friction` ('frictionless', 'tresca' or 'coulomb'), or, when None, inferred:
     /// `mu` given → Coulomb (mu = 0 is frictionless), `threshold` given → Tresca, neither → frictionless.
     /// γ0 is `gamma0`, or `gamma0_fraction` × the admissible bound, or the core's default. Every other
-    /// setting left at None takes the core's default (see `solver_defaults()`). `progress`, if given,
+    /// setting left at None takes the core's default (see `solver_defaults()`); `working_set=False`
+    /// solves every QP over all of Γ_C instead of over the dofs that can be in contact. `progress`, if given,
     /// is called as progress(iteration, change, qp_iterations, qp_seconds) after every QP.
     /// `check_gamma0=False` takes an explicit `gamma0` even at or above the admissible bound (for
     /// studies of what happens there; the factorization then may fail with SolverError).
     #[pyo3(signature = (
         *, friction = None, mu = None, threshold = None, gamma0 = None, gamma0_fraction = None,
-        qp_tol = None, qp_max_iter = None, kkt_solver = None, fp_tol = None, fp_max_iter = None,
-        relaxation = None, progress = None, check_gamma0 = true,
+        qp_tol = None, qp_max_iter = None, kkt_solver = None, working_set = None, fp_tol = None,
+        fp_max_iter = None, relaxation = None, progress = None, check_gamma0 = true,
     ))]
     #[allow(clippy::too_many_arguments)]
     fn solve(
@@ -326,6 +327,7 @@ impl PyProblem {
         qp_tol: Option<f64>,
         qp_max_iter: Option<u32>,
         kkt_solver: Option<&str>,
+        working_set: Option<bool>,
         fp_tol: Option<f64>,
         fp_max_iter: Option<usize>,
         relaxation: Option<f64>,
@@ -376,6 +378,9 @@ impl PyProblem {
             Some("qdldl") => KktSolver::Qdldl,
             Some(k) => return Err(settings_error(format!("kkt_solver must be 'faer' or 'qdldl', got '{k}'"))),
         };
+        if let Some(w) = working_set {
+            settings.qp.working_set = w;
+        }
         if let Some(t) = fp_tol {
             settings.fixed_point.tol_change_rel = t;
         }
