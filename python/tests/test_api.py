@@ -212,3 +212,16 @@ def test_working_set_matches_the_full_qp() -> None:
         scale = np.abs(b.lambda_n).max()
         np.testing.assert_allclose(a.lambda_n, b.lambda_n, rtol=0.0, atol=5e-5 * scale)
     np.testing.assert_array_equal(a.states, b.states)
+
+
+def test_scene_solver_working_set_key() -> None:
+    import tomllib
+
+    from tribo.scene import SceneError, demo_scene_path, parse_scene
+
+    data = tomllib.loads(demo_scene_path().read_text())
+    data["solver"] = {"working_set": False}
+    assert parse_scene(data).solve_kwargs()["working_set"] is False
+    data["solver"] = {"working_set": 1}
+    with pytest.raises(SceneError, match="solver.working_set"):
+        parse_scene(data)

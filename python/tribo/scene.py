@@ -28,8 +28,8 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     For any body: ``multiplier_ratio`` (H/h) or ``multiplier_size`` (H), ``space`` (``"P0"``/``"P1"``),
     ``gamma0`` or ``gamma0_fraction`` (of the admissible bound).
 ``[solver]``
-    ``qp_tol``, ``qp_max_iter``, ``kkt_solver`` (``"faer"``/``"qdldl"``), ``fp_tol``, ``fp_max_iter``,
-    ``relaxation``. Unset keys take the core's defaults (``tribo.solver_defaults()``).
+    ``qp_tol``, ``qp_max_iter``, ``kkt_solver`` (``"faer"``/``"qdldl"``), ``working_set`` (true/false),
+    ``fp_tol``, ``fp_max_iter``, ``relaxation``. Unset keys take the core's defaults (``tribo.solver_defaults()``).
 
 Top-level ``title`` and ``description`` are free text. An unknown key or a value of the wrong type is a
 ``SceneError`` that names the key (``scene key 'obstacle.radus' is not known``).
@@ -82,6 +82,12 @@ def _number(key: str, v: Any) -> float:
 def _integer(key: str, v: Any) -> int:
     if isinstance(v, bool) or not isinstance(v, int):
         raise SceneError(f"scene key '{key}' must be an integer, got {v!r}", key)
+    return v
+
+
+def _boolean(key: str, v: Any) -> bool:
+    if not isinstance(v, bool):
+        raise SceneError(f"scene key '{key}' must be true or false, got {v!r}", key)
     return v
 
 
@@ -164,6 +170,7 @@ SCHEMA: dict[str, dict[str, Checker]] = {
         "qp_tol": _number,
         "qp_max_iter": _integer,
         "kkt_solver": _choice("faer", "qdldl"),
+        "working_set": _boolean,
         "fp_tol": _number,
         "fp_max_iter": _integer,
         "relaxation": _number,
