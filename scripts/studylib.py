@@ -1,0 +1,260 @@
+"""Shared pieces of the studies in scripts/: the Hertz scene, the error measures and the output helpers.
+
+The scene is the one of tests/common/mod.rs: a rigid cylinder R = 1 pushed `approach` into the block
+(−2, 2) × (−2, 0), clamped at the bottom, contact on the top, E = 200, ν = 0.3. The error measures mirror
+the Rust tests:
+
+* ``lambda_l2_error``: relative L2 error of λ_n against the plane-strain Hertz pressure of the computed
+  force (a² = 4PR(1−ν²)/(πE), p_max = 2P/(πa)), 8-point Gauss on every segment of the union of T_H, the
+  FE nodes of Γ_C and ±a (so the square-root edge of the pressure sits on a breakpoint);
+* ``oscillation``: total variation of the λ_n dof values over that of the Hertz pressure (2 p_max);
+* ``energy_error``: ‖u_ref − I u_h‖_K / ‖u_ref‖_K on a fine reference mesh, I the P1 interpolation of the
+  coarse displacement at the fine nodes (matplotlib.tri.LinearTriInterpolator), K assembled element by
+  element in numpy (plane strain, P1).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+import tribo
+
+ROOT = Path(__file__).resolve().parent.parent
+DOCS = ROOT / "docs"
+YOUNG, POISSON, RADIUS = 200.0, 0.3, 1.0
+BOX = ((-2.0, 2.0), (-2.0, 0.0))
+
+# Gauss–Legendre, 8 points on [−1, 1].
+GAUSS_X, GAUSS_W = np.polynomial.legendre.leggauss(8)
+
+
+def uniform_mesh(nx: int) -> tribo.Mesh:
+    """Rectangle nx × nx/2 on (−2, 2) × (−2, 0): square cells of side h = 4/nx, right diagonals."""
+    return tribo.Mesh.rectangle(*BOX, nx, nx // 2)
+
+
+def graded_mesh(h_min: float, h_max: float = 0.5, growth: float = 0.3) -> tribo.Mesh:
+    """Mesh graded toward [−0.3, 0.3] on the top side."""
+    return tribo.Mesh.graded_rectangle(
+        *BOX, side="top", segment=(-0.3, 0.3), h_min=h_min, h_max=h_max, growth=growth
+    )
+
+
+def hertz_problem(
+    mesh: tribo.Mesh,
+    *,
+    approach: float = 0.01,
+    shift: float = 0.0,
+    space: str = "P1",
+    ratio: float = 1.0,
+    poisson: float = POISSON,
+) -> tribo.Problem:
+    """The Hertz problem on `mesh`; T_H has size ratio × the FE edge size (H/h = ratio)."""
+    return tribo.Problem(
+        mesh,
+        young=YOUNG,
+        poisson=poisson,
+        clamped="bottom",
+        contact="top",
+        obstacle=tribo.Obstacle.circle(RADIUS),
+        approach=approach,
+        shift=shift,
+        space=space,  # type: ignore[arg-type]
+        multiplier_ratio=ratio,
+    )
+
+
+def hertz_pressure(force: float, poisson: float = POISSON) -> tuple[Callable[[np.ndarray], np.ndarray], float, float]:
+    """Plane-strain Hertz pressure p(x) of total force `force` per unit depth, its half-width a and p_max."""
+    a = math.sqrt(4.0 * force * RADIUS * (1.0 - poisson**2) / (math.pi * YOUNG))
+    pmax = 2.0 * force / (math.pi * a)
+
+    def p(x: np.ndarray) -> np.ndarray:
+        x = np.asarray(x, dtype=float)
+        return np.where(np.abs(x) < a, pmax * np.sqrt(np.clip(1.0 - (x / a) ** 2, 0.0, None)), 0.0)
+
+    return p, a, pmax
+
+
+def _gauss_points(breaks: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss points and weights of the 8-point rule on every segment between sorted unique breakpoints."""
+    b = np.unique(breaks)
+    h, m = 0.5 * np.diff(b), 0.5 * (b[1:] + b[:-1])
+    x = (m[:, None] + h[:, None] * GAUSS_X[None, :]).ravel()
+    w = (h[:, None] * GAUSS_W[None, :]).ravel()
+    return x, w
+
+
+def contact_breaks(problem: tribo.Problem) -> np.ndarray:
+    """T_H points, multiplier dof positions and FE nodes of Γ_C."""
+    return np.concatenate([problem.multiplier_mesh, problem.multiplier_abscissae, _node_xi(problem)])
+
+
+def _node_xi(problem: tribo.Problem) -> np.ndarray:
+    pts = problem.mesh.points[problem.contact_nodes]
+    return np.asarray(pts[:, 0], dtype=float)  # Γ_C is the top side: ξ = x
+
+
+def lambda_l2_error(problem: tribo.Problem, sol: tribo.Solution, poisson: float = POISSON) -> float:
+    """Relative L2 error of λ_n against the Hertz pressure of the computed force."""
+    p, a, _ = hertz_pressure(sol.normal_force, poisson)
+    x, w = _gauss_points(np.concatenate([contact_breaks(problem), [-a, a]]))
+    lam = problem.evaluate_multiplier(sol.lambda_n, x)
+    ref = p(x)
+    return float(np.sqrt(np.sum(w * (lam - ref) ** 2) / np.sum(w * ref**2)))
+
+
+def sigma_pieces(problem: tribo.Problem, sol: tribo.Solution) -> tuple[np.ndarray, np.ndarray]:
+    """Breakpoints (sorted FE nodes of Γ_C) and the contact pressure −σ_n(u_h), constant on each edge."""
+    nodes = np.sort(_node_xi(problem))
+    order = np.argsort(sol.edge_abscissae)
+    mids = np.asarray(sol.edge_abscissae)[order]
+    if len(nodes) != len(mids) + 1 or not np.all((mids > nodes[:-1]) & (mids < nodes[1:])):
+        raise RuntimeError("contact edges are not the segments between consecutive contact nodes")
+    return nodes, -np.asarray(sol.sigma_n)[order]
+
+
+def sigma_l2_error(problem: tribo.Problem, sol: tribo.Solution, poisson: float = POISSON) -> float:
+    """Relative L2 error of −σ_n(u_h) (piecewise constant on the FE edges) against the Hertz pressure."""
+    p, a, _ = hertz_pressure(sol.normal_force, poisson)
+    nodes, values = sigma_pieces(problem, sol)
+    x, w = _gauss_points(np.concatenate([nodes, [-a, a]]))
+    s = values[np.clip(np.searchsorted(nodes, x) - 1, 0, len(values) - 1)]
+    ref = p(x)
+    return float(np.sqrt(np.sum(w * (s - ref) ** 2) / np.sum(w * ref**2)))
+
+
+def oscillation(sol: tribo.Solution, poisson: float = POISSON) -> float:
+    """TV(λ_n dofs) / (2 p_max): about 1 for a smooth single-peaked pressure, much more for a checkerboard."""
+    _, _, pmax = hertz_pressure(sol.normal_force, poisson)
+    order = np.argsort(sol.multiplier_abscissae)
+    return float(np.sum(np.abs(np.diff(np.asarray(sol.lambda_n)[order]))) / (2.0 * pmax))
+
+
+@dataclass
+class Reference:
+    """A fine solution with what the error measures need."""
+
+    problem: tribo.Problem
+    solution: tribo.Solution
+    energy: float  # ‖u_ref‖_K
+
+    def lambda_n_error(self, problem: tribo.Problem, sol: tribo.Solution) -> float:
+        """Relative L2 error of λ_n against the reference λ_n."""
+        x, w = _gauss_points(np.concatenate([contact_breaks(problem), contact_breaks(self.problem)]))
+        mine = problem.evaluate_multiplier(sol.lambda_n, x)
+        ref = self.problem.evaluate_multiplier(self.solution.lambda_n, x)
+        return float(np.sqrt(np.sum(w * (mine - ref) ** 2) / np.sum(w * ref**2)))
+
+    def sigma_n_error(self, problem: tribo.Problem, sol: tribo.Solution) -> float:
+        """Relative L2 error of −σ_n(u_h) against the reference λ_n."""
+        nodes, values = sigma_pieces(problem, sol)
+        x, w = _gauss_points(np.concatenate([nodes, contact_breaks(self.problem)]))
+        x, w = x[(x > nodes[0]) & (x < nodes[-1])], w[(x > nodes[0]) & (x < nodes[-1])]
+        s = values[np.clip(np.searchsorted(nodes, x) - 1, 0, len(values) - 1)]
+        ref = self.problem.evaluate_multiplier(self.solution.lambda_n, x)
+        return float(np.sqrt(np.sum(w * (s - ref) ** 2) / np.sum(w * ref**2)))
+
+    def energy_error(self, problem: tribo.Problem, sol: tribo.Solution) -> float:
+        """‖u_ref − I u_h‖_K / ‖u_ref‖_K on the reference mesh."""
+        iu = interpolate(problem.mesh, np.asarray(sol.displacement), self.problem.mesh.points)
+        diff = np.asarray(self.solution.displacement) - iu
+        return math.sqrt(energy(self.problem.mesh, diff, problem.poisson)) / self.energy
+
+
+def make_reference(problem: tribo.Problem, **solve: Any) -> Reference:
+    sol = problem.solve(**solve)
+    if sol.report.status != "converged":
+        raise RuntimeError(f"the reference solve did not converge: {sol.report.status}")
+    return Reference(problem, sol, math.sqrt(energy(problem.mesh, np.asarray(sol.displacement), problem.poisson)))
+
+
+def elasticity_matrix(young: float = YOUNG, poisson: float = POISSON) -> np.ndarray:
+    """Plane-strain C for (σ_xx, σ_yy, σ_xy) against (ε_xx, ε_yy, 2ε_xy)."""
+    c = young / ((1.0 + poisson) * (1.0 - 2.0 * poisson))
+    return c * np.array([[1.0 - poisson, poisson, 0.0], [poisson, 1.0 - poisson, 0.0], [0.0, 0.0, 0.5 - poisson]])
+
+
+def strain_operators(mesh: tribo.Mesh) -> tuple[np.ndarray, np.ndarray]:
+    """Per triangle: B (3 × 6, interleaved x, y dofs) and the area."""
+    p = mesh.points[mesh.triangles]  # (nt, 3, 2)
+    x, y = p[:, :, 0], p[:, :, 1]
+    b = np.stack([y[:, 1] - y[:, 2], y[:, 2] - y[:, 0], y[:, 0] - y[:, 1]], axis=1)
+    c = np.stack([x[:, 2] - x[:, 1], x[:, 0] - x[:, 2], x[:, 1] - x[:, 0]], axis=1)
+    area2 = (x[:, 1] - x[:, 0]) * (y[:, 2] - y[:, 0]) - (x[:, 2] - x[:, 0]) * (y[:, 1] - y[:, 0])
+    bm = np.zeros((len(x), 3, 6))
+    bm[:, 0, 0::2] = b / area2[:, None]
+    bm[:, 1, 1::2] = c / area2[:, None]
+    bm[:, 2, 0::2] = c / area2[:, None]
+    bm[:, 2, 1::2] = b / area2[:, None]
+    return bm, 0.5 * np.abs(area2)
+
+
+def energy(mesh: tribo.Mesh, u: np.ndarray, poisson: float = POISSON) -> float:
+    """uᵀ K u for a nodal displacement u (n_nodes × 2), element by element."""
+    bm, area = strain_operators(mesh)
+    ue = np.asarray(u)[mesh.triangles].reshape(len(area), 6)
+    eps = np.einsum("tij,tj->ti", bm, ue)
+    return float(np.sum(area * np.einsum("ti,ij,tj->t", eps, elasticity_matrix(YOUNG, poisson), eps)))
+
+
+def interpolate(mesh: tribo.Mesh, u: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """P1 interpolation of the nodal field u of `mesh` at `points`."""
+    import matplotlib.tri as mtri
+
+    tri = mtri.Triangulation(mesh.points[:, 0], mesh.points[:, 1], mesh.triangles)
+    out = np.empty((len(points), 2))
+    for k in range(2):
+        vals = mtri.LinearTriInterpolator(tri, u[:, k])(points[:, 0], points[:, 1])
+        if np.ma.is_masked(vals) and np.any(np.ma.getmaskarray(vals)):
+            raise RuntimeError("a point lies outside the coarse mesh")
+        out[:, k] = np.asarray(vals)
+    return out
+
+
+def timed(fn: Callable[[], Any]) -> tuple[Any, float]:
+    """(fn(), wall seconds)."""
+    t = time.perf_counter()
+    out = fn()
+    return out, time.perf_counter() - t
+
+
+def fitted_rate(x: Sequence[float], y: Sequence[float]) -> float:
+    """Least-squares slope of log y against log x."""
+    return float(np.polyfit(np.log(np.asarray(x, float)), np.log(np.asarray(y, float)), 1)[0])
+
+
+def markdown_table(headers: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
+    """A GitHub markdown table; floats printed with 3 significant digits."""
+
+    def fmt(v: Any) -> str:
+        if isinstance(v, float):
+            return "nan" if math.isnan(v) else f"{v:.3g}"
+        return str(v)
+
+    lines = ["| " + " | ".join(headers) + " |", "|" + "|".join("---" for _ in headers) + "|"]
+    lines += ["| " + " | ".join(fmt(v) for v in row) + " |" for row in rows]
+    return "\n".join(lines) + "\n"
+
+
+def write_csv(path: Path, headers: Sequence[str], rows: Sequence[Sequence[Any]]) -> None:
+    with open(path, "w") as f:
+        f.write(",".join(headers) + "\n")
+        for r in rows:
+            f.write(",".join(f"{v:.6g}" if isinstance(v, float) else str(v) for v in r) + "\n")
+
+
+def pyplot() -> Any:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
