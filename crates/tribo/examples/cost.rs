@@ -1,0 +1,167 @@
+//! Cost per phase of a Coulomb solve on the Hertz scene, against one sparse Cholesky factorization + solve
+//! of K alone (the plain elastic solve a contact solve is compared with).
+//!
+//! Scene: rigid cylinder R = 1 pushed δ = 0.01 into (−2, 2) × (−2, 0), clamped at the bottom, E = 200,
+//! ν = 0.3, Coulomb μ = 0.3 with an obstacle shift s = 0.004, P1 multipliers on T_H = the FE edges,
+//! γ0 = 0.5 × its admissible bound, default solver settings (working-set QP). Two mesh families:
+//! `uniform` (rectangle nx × nx/2, right diagonals) and `graded` (graded toward [−0.3, 0.3] on the top
+//! side, h_max = 0.5, growth 0.3).
+//!
+//! For every mesh and friction law it prints and writes to `docs/cost.csv` the time of each phase (seconds):
+//! `problem_new` = [`Problem::new`] (assembly of K and the loads + Γ_C matrices), `condensed` =
+//! [`Condensed::new`] work (numeric factorization of K − G + condensation onto Γ_C, including the columns
+//! of H formed on demand by the QPs), `qp` (all QPs of the fixed point), `recovery`, the whole solve
+//! `total` (wall clock of `Problem::new` + `solve`), the Cholesky reference (symbolic + numeric sparse
+//! Cholesky of K + one solve, best of 3 at small sizes) and the ratio of the two.
+//!
+//! Every mesh is solved frictionless (one QP) and with Coulomb friction; the Coulomb solve is no longer
+//! timed on finer meshes of a family once it did not converge (100 fixed-point iterations: the plain
+//! fixed point stops converging on graded meshes with h_min ≤ 0.00125) or took more than MAX_SECONDS / 2.
+//!
+//! `cargo run --release -p tribo --example cost [MAX_SECONDS]`: a family stops growing once one solve
+//! took more than MAX_SECONDS (default 30), so the largest run stays under about a minute.
+use std::io::Write;
+use std::time::Instant;
+
+use faer::linalg::solvers::Solve;
+use faer::Mat;
+use tribo::*;
+
+/// One mesh of a family: its label, the size parameter and the mesh.
+fn meshes(family: &str) -> Vec<(f64, Mesh)> {
+    match family {
+        "uniform" => [40usize, 80, 160, 240, 320, 400]
+            .iter()
+            .map(|&nx| {
+                let mesh = rectangle([-2.0, 2.0], [-2.0, 0.0], nx, nx / 2, Diagonal::Right).expect("valid");
+                (4.0 / nx as f64, mesh)
+            })
+            .collect(),
+        _ => [0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125, 0.000625, 0.0003125, 0.00015625]
+            .iter()
+            .map(|&h_min| {
+                let grading = Grading { side: Side::Top, segment: [-0.3, 0.3], h_min, h_max: 0.5, growth: 0.3 };
+                (h_min, graded_rectangle([-2.0, 2.0], [-2.0, 0.0], &grading).expect("valid"))
+            })
+            .collect(),
+    }
+}
+
+fn spec() -> ProblemSpec {
+    ProblemSpec {
+        material: Material { young: 200.0, poisson: 0.3 },
+        clamped: vec!["bottom".into()],
+        body_force: [0.0, 0.0],
+        tractions: vec![],
+        contact: "top".into(),
+        obstacle: Obstacle { shape: ObstacleShape::Circle { center: 0.0, radius: 1.0 }, approach: 0.01, shift: 0.004 },
+        multiplier_points: MultiplierPoints::RatioToFe(1.0),
+        multiplier_space: MultiplierSpace::P1,
+    }
+}
+
+/// Symbolic + numeric sparse Cholesky of K and one solve; returns the time in seconds (best of `reps`).
+fn cholesky_seconds(problem: &Problem, reps: usize) -> f64 {
+    let n = problem.n_free;
+    let f: Vec<f64> = (0..n).map(|i| ((i % 7) as f64) - 3.0).collect();
+    let mut best = f64::INFINITY;
+    for _ in 0..reps {
+        let clock = Instant::now();
+        let llt = problem.k_matrix.sp_cholesky(faer::Side::Lower).expect("K is positive definite");
+        let mut x = Mat::from_fn(n, 1, |i, _| f[i]);
+        llt.solve_in_place(x.as_mut());
+        best = best.min(clock.elapsed().as_secs_f64());
+        std::hint::black_box(&x);
+    }
+    best
+}
+
+fn main() -> Result<()> {
+    let max_seconds: f64 = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(30.0);
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/cost.csv");
+    std::fs::create_dir_all(path.parent().unwrap()).expect("docs/ is writable");
+    let mut csv = std::fs::File::create(&path).expect("docs/cost.csv is writable");
+    writeln!(
+        csv,
+        "family,h,n_free,q,friction,status,iterations,problem_new,condensed,qp,recovery,total,cholesky,ratio"
+    )
+    .unwrap();
+    println!(
+        "{:<8} {:>9} {:>7} {:>5} {:>12} {:>13} {:>4} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6}",
+        "family",
+        "h",
+        "n_free",
+        "q",
+        "friction",
+        "status",
+        "it",
+        "new [s]",
+        "cond [s]",
+        "QPs [s]",
+        "rec [s]",
+        "total[s]",
+        "chol [s]",
+        "ratio"
+    );
+    for family in ["uniform", "graded"] {
+        let mut coulomb_on = true;
+        for (h, mesh) in meshes(family) {
+            let clock = Instant::now();
+            let problem = Problem::new(mesh, spec())?;
+            let setup = clock.elapsed().as_secs_f64();
+            let reps = if problem.n_free < 50_000 { 3 } else { 1 };
+            let chol = cholesky_seconds(&problem, reps);
+            let mut slowest: f64 = 0.0;
+            let frictions: &[(&str, Friction)] = if coulomb_on {
+                &[("frictionless", Friction::Frictionless), ("coulomb", Friction::Coulomb { mu: 0.3 })]
+            } else {
+                &[("frictionless", Friction::Frictionless)]
+            };
+            for (name, friction) in frictions {
+                let clock = Instant::now();
+                let sol = problem.solve(friction, &SolverSettings::default(), None)?;
+                let total = setup + clock.elapsed().as_secs_f64();
+                slowest = slowest.max(total);
+                let t = &sol.report.timings;
+                let status = format!("{:?}", sol.report.status);
+                let cols = [
+                    t.assembly + t.contact_matrices,
+                    t.factorization + t.condensation,
+                    t.qp,
+                    t.recovery,
+                    total,
+                    chol,
+                    total / chol,
+                ];
+                println!(
+                    "{family:<8} {h:>9.6} {:>7} {:>5} {name:>12} {status:>13} {:>4} {:>8.4} {:>8.4} {:>8.4} {:>8.4} {:>8.4} {:>8.4} {:>6.1}",
+                    problem.n_free,
+                    problem.n_multipliers(),
+                    sol.report.iterations,
+                    cols[0], cols[1], cols[2], cols[3], cols[4], cols[5], cols[6]
+                );
+                let cols: Vec<String> = cols.iter().map(|v| format!("{v:.6}")).collect();
+                writeln!(
+                    csv,
+                    "{family},{h},{},{},{name},{status},{},{}",
+                    problem.n_free,
+                    problem.n_multipliers(),
+                    sol.report.iterations,
+                    cols.join(",")
+                )
+                .unwrap();
+                csv.flush().unwrap();
+                if *name == "coulomb" && (sol.report.status != SolveStatus::Converged || total > max_seconds / 2.0) {
+                    println!("{family}: the Coulomb solve is not timed on finer meshes ({status}, {total:.1} s)");
+                    coulomb_on = false;
+                }
+            }
+            if slowest > max_seconds {
+                println!("{family}: one solve took {slowest:.1} s > {max_seconds} s, stopping this family");
+                break;
+            }
+        }
+    }
+    println!("wrote {}", path.display());
+    Ok(())
+}

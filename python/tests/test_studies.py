@@ -1,0 +1,106 @@
+"""Smoke versions of the studies in scripts/ (tiny configurations writing into tmp_path).
+
+Each test runs a study's main function with --smoke and checks that its table, CSV and chart exist and that
+the numbers are sane; the full studies (`python scripts/study_*.py`) write docs/.
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+import sys
+from pathlib import Path
+from types import ModuleType
+
+import pytest
+
+pytest.importorskip("matplotlib")
+
+SCRIPTS = Path(__file__).resolve().parents[2] / "scripts"
+
+
+def study(name: str) -> ModuleType:
+    if str(SCRIPTS) not in sys.path:
+        sys.path.insert(0, str(SCRIPTS))
+    return importlib.import_module(name)
+
+
+def outputs(tmp_path: Path, stem: str) -> None:
+    for ext in ("md", "csv", "png"):
+        f = tmp_path / f"{stem}.{ext}"
+        assert f.is_file() and f.stat().st_size > 0, f
+    assert (tmp_path / f"{stem}.png").stat().st_size < 300_000
+
+
+def test_checkerboard(tmp_path: Path) -> None:
+    rows = study("study_checkerboard").main(["--smoke", "--out", str(tmp_path)])
+    outputs(tmp_path, "checkerboard")
+    get = {(r["space"], r["ratio"], r["theta"]): r for r in rows}
+    assert all(r["status"] == "converged" for r in rows)
+    for space in ("P0", "P1"):
+        # T_H four times finer than T_h: the classic method oscillates, the stabilized one much less.
+        assert get[(space, 0.25, 0.0)]["tv"] > 5.0
+        assert get[(space, 0.25, 0.5)]["tv"] < get[(space, 0.25, 0.0)]["tv"] / 3.0
+        # Matching meshes: a single smooth peak.
+        assert get[(space, 1.0, 0.5)]["tv"] < 1.5
+        assert 0.0 < get[(space, 1.0, 0.5)]["l2"] < 0.5
+
+
+def test_gamma0_bound(tmp_path: Path) -> None:
+    res = study("study_gamma0_bound").main(["--smoke", "--out", str(tmp_path)])
+    outputs(tmp_path, "gamma0_bound")
+    ((bound, star),) = res["bounds"].values()
+    # The per-triangle bound is sufficient: the true bound lies above it, within 2×.
+    assert bound < star < 2.0 * bound
+    for r in res["rows"]:
+        refused = r["outcome"].startswith("refused")
+        assert refused == (r["gamma0"] > star), r
+        if not refused:
+            assert r["outcome"] == "converged" and 0.0 < r["l2"] < 1.0
+
+
+def test_coulomb_fixed_point(tmp_path: Path) -> None:
+    res = study("study_coulomb_fixed_point").main(["--smoke", "--out", str(tmp_path)])
+    outputs(tmp_path, "coulomb_fixed_point")
+    for r in res["grid"] + res["refine"]:
+        assert r["iterations"] <= 100 and r["force"] > 0.0
+        if r["mu"] == 0.0:
+            assert r["iterations"] == 0 and r["stick"] == 0
+    assert all(r["status"] == "converged" for r in res["refine"])
+
+
+def test_work_precision(tmp_path: Path) -> None:
+    res = study("study_work_precision").main(["--smoke", "--out", str(tmp_path)])
+    outputs(tmp_path, "work_precision")
+    for r in res["rows"]:
+        assert r["seconds"] > 0.0 and r["status"] == "converged"
+        assert 0.0 < r["energy"] < 1.0 and 0.0 < r["ref_l2"] < 2.0
+        if r["friction"] == "frictionless":
+            assert 0.0 < r["hertz_l2"] < 2.0
+    # Refining the graded mesh reduces the displacement error.
+    g = [r for r in res["rows"] if r["family"] == "graded" and r["space"] == "P1" and r["friction"] == "frictionless"]
+    assert g[-1]["energy"] < g[0]["energy"]
+
+
+def test_convergence(tmp_path: Path) -> None:
+    res = study("study_convergence").main(["--smoke", "--out", str(tmp_path)])
+    outputs(tmp_path, "convergence")
+    for (friction, family, key), (vs_h, _) in res["rates"].items():
+        assert math.isfinite(vs_h)
+        if family == "graded":
+            assert vs_h > 0.3, (friction, family, key, vs_h)
+
+
+def test_plot_cost(tmp_path: Path) -> None:
+    csv = tmp_path / "cost_in.csv"
+    lines = ["family,h,n_free,q,friction,status,iterations,problem_new,condensed,qp,recovery,total,cholesky,ratio"]
+    for fam in ("uniform", "graded"):
+        for k, n in enumerate([1000, 4000, 16000]):
+            for fr, it in (("frictionless", 0), ("coulomb", 6)):
+                t = 1e-3 * (n / 1000) ** 1.2
+                lines.append(f"{fam},{0.1 / 2**k},{n},{40 * 2**k},{fr},Converged,{it},{t},{2 * t},{t / 2},{t / 10},"
+                             f"{3.6 * t},{t},3.6")
+    csv.write_text("\n".join(lines) + "\n")
+    res = study("plot_cost").main(["--csv", str(csv), "--out", str(tmp_path)])
+    assert (tmp_path / "cost.png").is_file() and (tmp_path / "cost.md").is_file()
+    assert abs(res["fits"][("uniform", "coulomb", "total")] - 1.2) < 1e-6

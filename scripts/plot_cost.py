@@ -1,0 +1,100 @@
+"""Study 4 — cost per phase against problem size, from docs/cost.csv.
+
+docs/cost.csv is written by the Rust example `cargo run --release -p tribo --example cost`; this script
+plots time against displacement unknowns (log–log) per phase, for uniform and graded meshes, fits the
+exponent of each phase (least squares over the sizes where the phase takes ≥ 1 ms) and writes
+docs/cost.png and docs/cost.md.
+
+    cargo run --release -p tribo --example cost && python scripts/plot_cost.py
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+import sys
+from pathlib import Path
+from typing import Any
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import studylib as sl  # noqa: E402
+
+PHASES = [("problem_new", "Problem::new (assembly + Γ_C)"), ("condensed", "factorization + condensation"),
+          ("qp", "QPs"), ("recovery", "recovery"), ("total", "whole solve"), ("cholesky", "Cholesky of K + solve")]
+
+
+def load(path: Path) -> list[dict[str, Any]]:
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        for k, v in r.items():
+            if k not in ("family", "friction", "status"):
+                r[k] = float(v)
+    return rows
+
+
+def exponent(rs: list[dict[str, Any]], key: str) -> float:
+    pts = [(r["n_free"], r[key]) for r in rs if r[key] >= 1e-3]
+    return sl.fitted_rate(*zip(*pts)) if len(pts) >= 2 else math.nan
+
+
+def run(csv_path: Path, out: Path) -> dict[str, Any]:
+    rows = load(csv_path)
+    out.mkdir(parents=True, exist_ok=True)
+    groups = [(fam, fr) for fam in ("uniform", "graded") for fr in ("frictionless", "coulomb")
+              if any(r["family"] == fam and r["friction"] == fr for r in rows)]
+    fits: dict[tuple[str, str, str], float] = {}
+    md = ["# Study 4: cost per phase\n\n",
+          "Hertz, P1, H = h, γ0 = 0.5 × bound, Coulomb μ = 0.3, shift 0.004, default settings (working-set QP). "
+          "Times in seconds on the 2-core development machine (other jobs may have run concurrently). "
+          "Regenerate with `cargo run --release -p tribo --example cost && python scripts/plot_cost.py`.\n\n"
+          "## Fitted exponents (time ∝ n^p over the sizes where a phase takes ≥ 1 ms)\n\n"]
+    table = []
+    for fam, fr in groups:
+        rs = [r for r in rows if r["family"] == fam and r["friction"] == fr and r["status"] == "Converged"]
+        for key, _ in PHASES:
+            fits[(fam, fr, key)] = exponent(rs, key)
+        table.append([fam, fr] + [f"{fits[(fam, fr, k)]:.2f}" for k, _ in PHASES])
+    md.append(sl.markdown_table(["mesh", "friction"] + [name for _, name in PHASES], table))
+    md.append("\n## All runs\n\n")
+    md.append(sl.markdown_table(
+        ["mesh", "h", "n", "q", "friction", "status", "iterations"] + [k for k, _ in PHASES] + ["total / Cholesky"],
+        [[r["family"], r["h"], int(r["n_free"]), int(r["q"]), r["friction"], r["status"], int(r["iterations"])]
+         + [r[k] for k, _ in PHASES] + [r["ratio"]] for r in rows]))
+    (out / "cost.md").write_text("".join(md))
+
+    plt = sl.pyplot()
+    fig, axes = plt.subplots(1, len(groups), figsize=(4.6 * len(groups), 4.8), sharey=True, squeeze=False)
+    for ax, (fam, fr) in zip(axes[0], groups):
+        rs = [r for r in rows if r["family"] == fam and r["friction"] == fr]
+        for (key, name), c in zip(PHASES, ["C0", "C1", "C2", "C3", "k", "C7"]):
+            ax.plot([r["n_free"] for r in rs], [max(r[key], 1e-5) for r in rs], "o-" if key != "cholesky" else "s--",
+                    color=c, ms=4, lw=2.2 if key == "total" else 1.2, label=f"{name}: n^{fits[(fam, fr, key)]:.2f}")
+        bad = [r for r in rs if r["status"] != "Converged"]
+        ax.plot([r["n_free"] for r in bad], [r["total"] for r in bad], "rx", ms=10, mew=2,
+                label="max_iterations" if bad else None)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("displacement unknowns n")
+        ax.set_title(f"{fam} meshes, {fr}")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7, loc="upper left")
+    axes[0, 0].set_ylabel("wall time  [s]")
+    fig.suptitle("Cost per phase, Hertz scene (fitted exponents over runs ≥ 1 ms, converged runs only)")
+    fig.tight_layout()
+    fig.savefig(out / "cost.png", dpi=85)
+    plt.close(fig)
+    return dict(rows=rows, fits=fits)
+
+
+def main(argv: list[str] | None = None) -> dict[str, Any]:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--csv", type=Path, default=sl.DOCS / "cost.csv", help="input (default docs/cost.csv)")
+    ap.add_argument("--out", type=Path, default=sl.DOCS, help="output directory (default docs/)")
+    args = ap.parse_args(argv)
+    return run(args.csv, args.out)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,157 @@
+"""Study 1c — where the Coulomb fixed point stops converging, and what relaxation recovers.
+
+Hertz with Coulomb friction (approach 0.01, obstacle shift s = 0.004), graded mesh h_min = 0.01, P1, H = h,
+γ0 = 0.5 × bound, working-set QP (the default), fixed point `g ← (1 − ω) g + ω Φ_H(g)` with at most 100
+iterations. Grid: μ from 0 to 2, ν ∈ {0, 0.2, 0.3, 0.45}, ω ∈ {1, 0.5, 0.25} with the default QP tolerance
+1e-10, and ω = 1 with qp_tol = 1e-12. Then μ = 0.3, ν = 0.3 under
+refinement (h_min 0.04 → 0.00125) for the three ω.
+
+    python scripts/study_coulomb_fixed_point.py     # docs/coulomb_fixed_point.{md,csv,png}
+    python scripts/study_coulomb_fixed_point.py --smoke --out /tmp/x
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import studylib as sl  # noqa: E402
+
+MUS = [0.0, 0.1, 0.2, 0.3, 0.5, 0.7, 0.9, 1.1, 1.3, 1.5, 2.0]
+NUS = [0.0, 0.2, 0.3, 0.45]
+# (relaxation ω, QP tolerance): the default QP tolerance 1e-10 with three ω, and ω = 1 with a tighter QP.
+OMEGAS = [(1.0, 1e-10), (0.5, 1e-10), (0.25, 1e-10), (1.0, 1e-12)]
+H_MINS = [0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125]
+SHIFT = 0.004
+
+
+def solve_row(problem: Any, mu: float, setting: tuple[float, float], **extra: Any) -> dict[str, Any]:
+    omega, qp_tol = setting
+    sol, sec = sl.timed(lambda: problem.solve(mu=mu, relaxation=omega, qp_tol=qp_tol))
+    rep = sol.report
+    hist = rep.residual_history
+    row = dict(mu=mu, omega=omega, qp_tol=qp_tol, setting=setting, status=rep.status, iterations=rep.iterations,
+               last_change=float(hist[-1]) if len(hist) else 0.0, seconds=sec, force=sol.normal_force,
+               stick=int(sum(1 for s in sol.state_names if s == "stick")),
+               slip=int(sum(1 for s in sol.state_names if s == "slip")), **extra)
+    return row
+
+
+def run(smoke: bool, out: Path) -> dict[str, Any]:
+    mus = [0.0, 0.3, 1.5] if smoke else MUS
+    nus = [0.3] if smoke else NUS
+    omegas = [(1.0, 1e-10), (1.0, 1e-12)] if smoke else OMEGAS
+    h_mins = [0.04, 0.02] if smoke else H_MINS
+    h_grid = 0.04 if smoke else 0.01
+    grid: list[dict[str, Any]] = []
+    for nu in nus:
+        problem = sl.hertz_problem(sl.graded_mesh(h_grid), shift=SHIFT, poisson=nu)
+        for omega in omegas:
+            for mu in mus:
+                grid.append(solve_row(problem, mu, omega, nu=nu, h_min=h_grid, n_free=problem.n_free))
+                r = grid[-1]
+                print(f"ν={nu:<5} ω, qp_tol={omega} μ={mu:<4} {r['status']:>15} it {r['iterations']:>3} "
+                      f"change {r['last_change']:.1e}  {r['seconds']:.2f} s")
+    refine: list[dict[str, Any]] = []
+    for h in h_mins:
+        problem = sl.hertz_problem(sl.graded_mesh(h), shift=SHIFT)
+        for omega in omegas:
+            refine.append(solve_row(problem, 0.3, omega, nu=sl.POISSON, h_min=h, n_free=problem.n_free))
+            r = refine[-1]
+            print(f"h_min={h:<8} ω, qp_tol={omega} {r['status']:>15} it {r['iterations']:>3} "
+                  f"change {r['last_change']:.1e}  {r['seconds']:.2f} s")
+    write(grid, refine, mus, nus, omegas, h_grid, out)
+    return dict(grid=grid, refine=refine)
+
+
+def name(setting: tuple[float, float]) -> str:
+    return f"ω = {setting[0]:g}, qp_tol = {setting[1]:.0e}"
+
+
+def first_failure(rows: list[dict[str, Any]], nu: float, omega: tuple[float, float]) -> float:
+    """Smallest μ whose fixed point did not converge (nan if all converged)."""
+    bad = [r["mu"] for r in rows if r["nu"] == nu and r["setting"] == omega and r["status"] != "converged"]
+    return min(bad) if bad else math.nan
+
+
+def write(grid: list[dict[str, Any]], refine: list[dict[str, Any]], mus: list[float], nus: list[float],
+          omegas: list[tuple[float, float]], h_grid: float, out: Path) -> None:
+    out.mkdir(parents=True, exist_ok=True)
+    keys = ["h_min", "n_free", "nu", "omega", "qp_tol", "mu", "status", "iterations", "last_change", "seconds", "force",
+            "stick", "slip"]
+    sl.write_csv(out / "coulomb_fixed_point.csv", keys, [[r[k] for k in keys] for r in grid + refine])
+    get = {(r["nu"], r["setting"], r["mu"]): r for r in grid}
+    md = [f"# Study 1c: the Coulomb fixed point against μ, ν and the relaxation ω\n\n"
+          f"Hertz, approach 0.01, shift {SHIFT}, graded h_min = {h_grid}, P1, H = h, γ0 = 0.5 × bound, "
+          "working-set QP, at most 100 iterations. Entry: fixed-point iterations (`max` = status "
+          "max_iterations after 100; the last relative change of λ_n in brackets). Regenerate with "
+          "`python scripts/study_coulomb_fixed_point.py`.\n"]
+
+    def cell(r: dict[str, Any]) -> str:
+        return str(r["iterations"]) if r["status"] == "converged" else f"max ({r['last_change']:.0e})"
+
+    for omega in omegas:
+        md.append(f"\n## {name(omega)}\n\n")
+        md.append(sl.markdown_table(["ν \\ μ"] + [f"{m:g}" for m in mus],
+                                    [[f"{nu:g}"] + [cell(get[(nu, omega, m)]) for m in mus] for nu in nus]))
+    md.append("\n## Smallest μ that fails (max_iterations)\n\n")
+    md.append(sl.markdown_table(["ν"] + [name(o) for o in omegas],
+                                [[f"{nu:g}"] + [first_failure(grid, nu, o) for o in omegas] for nu in nus]))
+    md.append("\n## Under refinement, μ = 0.3, ν = 0.3\n\n")
+    hs = sorted({r["h_min"] for r in refine}, reverse=True)
+    rget = {(r["h_min"], r["setting"]): r for r in refine}
+    md.append(sl.markdown_table(["h_min", "unknowns"] + [name(o) for o in omegas],
+                                [[h, rget[(h, omegas[0])]["n_free"]] + [f"{cell(rget[(h, o)])}, {rget[(h, o)]['seconds']:.2g} s"
+                                                                          for o in omegas] for h in hs]))
+    (out / "coulomb_fixed_point.md").write_text("".join(md))
+
+    plt = sl.pyplot()
+    fig, axes = plt.subplots(1, len(omegas) + 1, figsize=(3.9 * (len(omegas) + 1), 4.4))
+    colors = plt.cm.plasma(np.linspace(0.0, 0.8, len(nus)))
+    for ax, omega in zip(axes, omegas):
+        for nu, c in zip(nus, colors):
+            rs = [get[(nu, omega, m)] for m in mus]
+            ax.plot(mus, [r["iterations"] for r in rs], "o-", color=c, ms=4, label=f"ν = {nu:g}")
+            bad = [r for r in rs if r["status"] != "converged"]
+            ax.plot([r["mu"] for r in bad], [r["iterations"] for r in bad], "x", color=c, ms=10, mew=2)
+        ax.set_title(f"{name(omega)}\n(× = max_iterations)")
+        ax.set_xlabel("friction coefficient μ  [–]")
+        ax.set_ylabel("fixed-point iterations")
+        ax.set_yscale("log")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    ax = axes[-1]
+    for omega, c in zip(omegas, ["C0", "C1", "C2", "C3"]):
+        rs = [rget[(h, omega)] for h in hs]
+        ax.plot([r["n_free"] for r in rs], [r["iterations"] for r in rs], "o-", color=c, label=name(omega))
+        bad = [r for r in rs if r["status"] != "converged"]
+        ax.plot([r["n_free"] for r in bad], [r["iterations"] for r in bad], "x", color=c, ms=10, mew=2)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("displacement unknowns (graded meshes)")
+    ax.set_ylabel("fixed-point iterations")
+    ax.set_title("μ = 0.3, ν = 0.3 under refinement")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.suptitle(f"Coulomb fixed point, Hertz with shift {SHIFT} (grid on graded h_min = {h_grid})")
+    fig.tight_layout()
+    fig.savefig(out / "coulomb_fixed_point.png", dpi=90)
+    plt.close(fig)
+
+
+def main(argv: list[str] | None = None) -> dict[str, Any]:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--smoke", action="store_true", help="tiny configuration (seconds)")
+    ap.add_argument("--out", type=Path, default=sl.DOCS, help="output directory (default docs/)")
+    args = ap.parse_args(argv)
+    return run(args.smoke, args.out)
+
+
+if __name__ == "__main__":
+    main()
