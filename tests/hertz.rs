@@ -91,7 +91,10 @@ fn stabilization_removes_the_checkerboard() {
 fn coulomb_fixed_point_converges_with_stick_and_slip() {
     let problem = hertz_problem(0.01, 0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
     let mut seen = Vec::new();
-    let mut observer = |p: &Progress| seen.push(p.iteration);
+    let mut observer = |p: &Progress| {
+        seen.push(p.iteration);
+        std::ops::ControlFlow::Continue(())
+    };
     let sol =
         problem.solve(&Friction::Coulomb { mu: 0.3 }, &SolverSettings::default(), Some(&mut observer)).expect("solves");
     let r = &sol.report;
@@ -233,4 +236,22 @@ fn reactions_balance_the_contact_force() {
         (rx - expected[0]).abs() <= tol && (ry - expected[1]).abs() <= tol,
         "reactions ({rx}, {ry}) vs contact force {expected:?}"
     );
+}
+
+/// An observer can stop a long solve: the status says where, the last iterate comes back.
+#[test]
+fn observer_can_interrupt_the_fixed_point() {
+    let problem = hertz_problem(0.02, 0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    let mut stop_after_two = |p: &Progress| {
+        if p.iteration >= 2 {
+            std::ops::ControlFlow::Break(())
+        } else {
+            std::ops::ControlFlow::Continue(())
+        }
+    };
+    let sol =
+        problem.solve(&Friction::Coulomb { mu: 0.3 }, &SolverSettings::default(), Some(&mut stop_after_two)).unwrap();
+    assert_eq!(sol.report.status, SolveStatus::Interrupted { iteration: 2 });
+    assert_eq!(sol.report.iterations, 2);
+    assert!(sol.normal_force > 0.0);
 }

@@ -225,3 +225,17 @@ def test_scene_solver_working_set_key() -> None:
     data["solver"] = {"working_set": 1}
     with pytest.raises(SceneError, match="solver.working_set"):
         parse_scene(data)
+
+
+def test_raising_progress_callback_stops_the_solve(hertz: tribo.Problem) -> None:
+    """A callback that raises stops the fixed point at once; its exception reaches the caller."""
+    seen: list[int] = []
+
+    def stop(iteration: int, change: float, qp_iterations: int, qp_seconds: float) -> None:
+        seen.append(iteration)
+        if iteration >= 1:
+            raise KeyboardInterrupt("stop")
+
+    with pytest.raises(KeyboardInterrupt):
+        hertz.solve(mu=0.3, progress=stop)
+    assert seen == [0, 1]

@@ -415,10 +415,8 @@ impl PyProblem {
                 Some(c) => c,
                 None => Arc::new(Condensed::with_gamma0(problem, g0)?),
             };
+            // A callback that raises (or Ctrl-C) stops the solve; the exception is re-raised below.
             let mut report = |p: &Progress| {
-                if callback_error.is_some() {
-                    return;
-                }
                 if let Some(f) = &progress {
                     Python::attach(|py| {
                         let r = f.call1(py, (p.iteration, p.change, p.qp_iterations, p.qp_seconds));
@@ -426,6 +424,11 @@ impl PyProblem {
                             callback_error = Some(e);
                         }
                     });
+                }
+                if callback_error.is_some() {
+                    std::ops::ControlFlow::Break(())
+                } else {
+                    std::ops::ControlFlow::Continue(())
                 }
             };
             let observer: Option<tribo::Observer<'_>> = if progress.is_some() { Some(&mut report) } else { None };

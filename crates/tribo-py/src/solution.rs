@@ -27,14 +27,10 @@ pub struct PyReport {
 
 #[pymethods]
 impl PyReport {
-    /// 'converged', 'max_iterations' or 'qp_failed'.
+    /// 'converged', 'max_iterations', 'interrupted' (the progress callback raised) or 'qp_failed'.
     #[getter]
     fn status(&self) -> &'static str {
-        match self.inner.status {
-            SolveStatus::Converged => "converged",
-            SolveStatus::MaxIterations => "max_iterations",
-            SolveStatus::QpFailed { .. } => "qp_failed",
-        }
+        status_name(self.inner.status)
     }
 
     /// True when the status is 'converged'.
@@ -318,13 +314,19 @@ impl PySolution {
         format!(
             "Solution(friction='{}', status='{}', normal_force={:.6e}, tangential_force={:.6e})",
             self.friction,
-            match self.inner.report.status {
-                SolveStatus::Converged => "converged",
-                SolveStatus::MaxIterations => "max_iterations",
-                SolveStatus::QpFailed { .. } => "qp_failed",
-            },
+            status_name(self.inner.report.status),
             self.inner.normal_force,
             self.inner.tangential_force
         )
+    }
+}
+
+/// The Python name of a solve status.
+fn status_name(s: SolveStatus) -> &'static str {
+    match s {
+        SolveStatus::Converged => "converged",
+        SolveStatus::MaxIterations => "max_iterations",
+        SolveStatus::Interrupted { .. } => "interrupted",
+        SolveStatus::QpFailed { .. } => "qp_failed",
     }
 }

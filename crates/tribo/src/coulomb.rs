@@ -2,6 +2,7 @@
 //! is the fixed point of `Φ_H : g ↦ λ_Hn(g)` (Definition 1), each evaluation a Tresca QP P(g) whose matrix
 //! does not change (only the bounds μ g do).
 
+use std::ops::ControlFlow;
 use std::time::Instant;
 
 use crate::condensation::Condensed;
@@ -128,8 +129,9 @@ pub struct Progress {
     pub qp_seconds: f64,
 }
 
-/// A progress observer: called after every QP.
-pub type Observer<'a> = &'a mut dyn FnMut(&Progress);
+/// A progress observer: called after every QP. Returning `ControlFlow::Break(())` stops the solve,
+/// which then ends with [`SolveStatus::Interrupted`] and its last iterate.
+pub type Observer<'a> = &'a mut dyn FnMut(&Progress) -> ControlFlow<()>;
 
 /// What the QP phase produced: multipliers (2q), the tangential bound used, status, history.
 pub(crate) struct QpPhase {
@@ -177,8 +179,9 @@ impl Condensed {
                 p.qp_iterations,
                 p.qp_seconds
             );
-            if let Some(o) = observer.as_mut() {
-                o(&p);
+            match observer.as_mut() {
+                Some(o) => o(&p),
+                None => ControlFlow::Continue(()),
             }
         };
         let mut phase = QpPhase {
@@ -195,8 +198,16 @@ impl Condensed {
         if frictionless || matches!(friction, Friction::Coulomb { .. }) {
             let mut qp = WorkingSetQp::new(self, None, &settings.qp)?;
             let out = qp.solve()?;
-            notify(Progress { iteration: 0, change: f64::NAN, qp_iterations: out.iterations, qp_seconds: out.seconds });
+            let flow = notify(Progress {
+                iteration: 0,
+                change: f64::NAN,
+                qp_iterations: out.iterations,
+                qp_seconds: out.seconds,
+            });
             phase.lambda[..q].copy_from_slice(&out.nu);
+            if flow.is_break() {
+                phase.status = SolveStatus::Interrupted { iteration: 0 };
+            }
             phase.qp_iterations.push(out.iterations);
             phase.qp_seconds += out.seconds;
             if let Some(s) = qp_failed(0, out.status) {
@@ -212,13 +223,16 @@ impl Condensed {
                 };
                 let mut qp = WorkingSetQp::new(self, Some(&phase.bound), &settings.qp)?;
                 let out = qp.solve()?;
-                notify(Progress {
+                let flow = notify(Progress {
                     iteration: 0,
                     change: f64::NAN,
                     qp_iterations: out.iterations,
                     qp_seconds: out.seconds,
                 });
                 phase.lambda = out.nu;
+                if flow.is_break() {
+                    phase.status = SolveStatus::Interrupted { iteration: 0 };
+                }
                 phase.qp_iterations.push(out.iterations);
                 phase.qp_seconds += out.seconds;
                 if let Some(s) = qp_failed(0, out.status) {
@@ -226,6 +240,7 @@ impl Condensed {
                 }
             }
             Friction::Coulomb { mu } if phase.status == SolveStatus::Converged => {
+                // (not after an interrupted or failed initial QP)
                 self.fixed_point(*mu, settings, &mut phase, &mut notify)?;
             }
             Friction::Coulomb { .. } => {}
@@ -252,7 +267,7 @@ impl Condensed {
         mu: f64,
         settings: &SolverSettings,
         phase: &mut QpPhase,
-        notify: &mut dyn FnMut(Progress),
+        notify: &mut dyn FnMut(Progress) -> ControlFlow<()>,
     ) -> Result<()> {
         let q = self.q();
         let fp = settings.fixed_point;
@@ -276,7 +291,8 @@ impl Condensed {
             let norm: f64 = lam_n.iter().map(|a| a * a).sum::<f64>().sqrt();
             let change = if norm > 0.0 { diff / norm } else { diff };
             phase.history.push(change);
-            notify(Progress { iteration: it, change, qp_iterations: out.iterations, qp_seconds: out.seconds });
+            let flow =
+                notify(Progress { iteration: it, change, qp_iterations: out.iterations, qp_seconds: out.seconds });
             phase.bound = g.iter().map(|v| mu * v.max(0.0)).collect();
             phase.lambda = out.nu;
             // Converged when the relative change is small, or when the change is at the QP's own noise
@@ -285,6 +301,10 @@ impl Condensed {
             let noise = settings.qp.tol * self.lambda_scale();
             if change <= fp.tol_change_rel || max_diff <= noise {
                 phase.status = SolveStatus::Converged;
+                break;
+            }
+            if flow.is_break() {
+                phase.status = SolveStatus::Interrupted { iteration: it };
                 break;
             }
             let w = fp.relaxation;

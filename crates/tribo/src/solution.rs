@@ -13,6 +13,11 @@ pub enum SolveStatus {
     Converged,
     /// The fixed point reached its iteration cap.
     MaxIterations,
+    /// The observer asked to stop after the given fixed-point iteration (0 = the initial QP).
+    Interrupted {
+        /// Fixed-point iteration.
+        iteration: usize,
+    },
     /// A QP failed at the given fixed-point iteration (0 = the initial QP).
     QpFailed {
         /// Fixed-point iteration.
