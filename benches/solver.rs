@@ -95,7 +95,7 @@ impl Scene {
 }
 
 thread_local! {
-    static SCENES: RefCell<BTreeMap<(u64, u64), Rc<Scene>>> = RefCell::new(BTreeMap::new());
+    static SCENES: RefCell<BTreeMap<(u64, u64), Rc<Scene>>> = const { RefCell::new(BTreeMap::new()) };
 }
 
 /// The scene of size `h_min` and obstacle shift `shift`, built (and described on stderr) once.

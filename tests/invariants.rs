@@ -37,9 +37,9 @@ proptest! {
         for r in &modes {
             let rmax = r.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
             let mut kr = vec![0.0; n];
-            for j in 0..n {
+            for (j, rj) in r.iter().enumerate() {
                 for (i, v) in k.row_idx_of_col(j).zip(k.val_of_col(j)) {
-                    kr[i] += v * r[j];
+                    kr[i] += v * rj;
                 }
             }
             let res = kr.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
