@@ -103,7 +103,9 @@ def _node_xi(problem: tribo.Problem) -> np.ndarray:
 
 
 def lambda_l2_error(problem: tribo.Problem, sol: tribo.Solution, poisson: float = POISSON) -> float:
-    """Relative L2 error of λ_n against the Hertz pressure of the computed force."""
+    """Relative L2 error of λ_n against the Hertz pressure of the computed force (nan if no force)."""
+    if sol.normal_force <= 0.0:
+        return math.nan
     p, a, _ = hertz_pressure(sol.normal_force, poisson)
     x, w = _gauss_points(np.concatenate([contact_breaks(problem), [-a, a]]))
     lam = problem.evaluate_multiplier(sol.lambda_n, x)
@@ -123,6 +125,8 @@ def sigma_pieces(problem: tribo.Problem, sol: tribo.Solution) -> tuple[np.ndarra
 
 def sigma_l2_error(problem: tribo.Problem, sol: tribo.Solution, poisson: float = POISSON) -> float:
     """Relative L2 error of −σ_n(u_h) (piecewise constant on the FE edges) against the Hertz pressure."""
+    if sol.normal_force <= 0.0:
+        return math.nan
     p, a, _ = hertz_pressure(sol.normal_force, poisson)
     nodes, values = sigma_pieces(problem, sol)
     x, w = _gauss_points(np.concatenate([nodes, [-a, a]]))
@@ -133,6 +137,8 @@ def sigma_l2_error(problem: tribo.Problem, sol: tribo.Solution, poisson: float =
 
 def oscillation(sol: tribo.Solution, poisson: float = POISSON) -> float:
     """TV(λ_n dofs) / (2 p_max): about 1 for a smooth single-peaked pressure, much more for a checkerboard."""
+    if sol.normal_force <= 0.0:
+        return math.nan
     _, _, pmax = hertz_pressure(sol.normal_force, poisson)
     order = np.argsort(sol.multiplier_abscissae)
     return float(np.sum(np.abs(np.diff(np.asarray(sol.lambda_n)[order]))) / (2.0 * pmax))
