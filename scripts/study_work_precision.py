@@ -132,7 +132,7 @@ def write(rows: list[dict[str, Any]], refs: dict[str, Any], out: Path) -> None:
                       crossing(rs, "energy", TARGET, "n_free"), best[key], best["energy"], best["n_free"], best["seconds"]])
     md.append(sl.markdown_table(
         ["friction", "mesh", "multipliers", f"n for λ_n err {TARGET:.0%}", "time [s]", f"n for energy err {TARGET:.0%}",
-         "best λ_n err", "best energy err", "n (finest)", "time (finest) [s]"], table))
+         "best λ_n err", "energy err (same run)", "n (best)", "time (best) [s]"], table))
     zero = [r for r in rows if r["force"] <= 0.0]
     md.append(f"\nSolves with zero contact force (T_H too coarse to see the contact zone; error nan): {len(zero)}"
               + "".join(f"; {r['friction']} {r['family']} h = {r['h']:g} {label(r['space'], r['ratio'], r['theta'])}"
