@@ -10,7 +10,7 @@ use crate::error::{check_setting, Error, Result};
 use crate::problem::Problem;
 use crate::solution::{Solution, SolveStatus, Timings};
 use crate::stabilization::Stabilization;
-use crate::tresca::{QpSettings, QpStatus};
+use crate::tresca::{QpOutcome, QpSettings, QpStatus};
 use crate::working_set::WorkingSetQp;
 
 /// The friction model.
@@ -145,6 +145,22 @@ pub(crate) struct QpPhase {
     pub qp_seconds: f64,
 }
 
+impl QpPhase {
+    /// Books a QP solved outside the fixed point (iteration 0): progress, counts, status.
+    fn record_single_qp(&mut self, out: &QpOutcome, notify: &mut dyn FnMut(Progress) -> ControlFlow<()>) {
+        let flow =
+            notify(Progress { iteration: 0, change: f64::NAN, qp_iterations: out.iterations, qp_seconds: out.seconds });
+        if flow.is_break() {
+            self.status = SolveStatus::Interrupted { iteration: 0 };
+        }
+        self.qp_iterations.push(out.iterations);
+        self.qp_seconds += out.seconds;
+        if let Some(s) = qp_failed(0, out.status) {
+            self.status = s;
+        }
+    }
+}
+
 fn qp_failed(iteration: usize, s: QpStatus) -> Option<SolveStatus> {
     match s {
         QpStatus::Solved | QpStatus::Inaccurate => None,
@@ -196,23 +212,9 @@ impl Condensed {
         };
         let frictionless = matches!(friction, Friction::Frictionless | Friction::Coulomb { mu: 0.0 });
         if frictionless || matches!(friction, Friction::Coulomb { .. }) {
-            let mut qp = WorkingSetQp::new(self, None, &settings.qp)?;
-            let out = qp.solve()?;
-            let flow = notify(Progress {
-                iteration: 0,
-                change: f64::NAN,
-                qp_iterations: out.iterations,
-                qp_seconds: out.seconds,
-            });
+            let out = WorkingSetQp::new(self, None, &settings.qp)?.solve()?;
             phase.lambda[..q].copy_from_slice(&out.nu);
-            if flow.is_break() {
-                phase.status = SolveStatus::Interrupted { iteration: 0 };
-            }
-            phase.qp_iterations.push(out.iterations);
-            phase.qp_seconds += out.seconds;
-            if let Some(s) = qp_failed(0, out.status) {
-                phase.status = s;
-            }
+            phase.record_single_qp(&out, &mut notify);
         }
         match friction {
             Friction::Frictionless | Friction::Coulomb { mu: 0.0 } => {}
@@ -221,23 +223,9 @@ impl Condensed {
                     Threshold::Uniform(s) => vec![*s; q],
                     Threshold::PerDof(v) => v.clone(),
                 };
-                let mut qp = WorkingSetQp::new(self, Some(&phase.bound), &settings.qp)?;
-                let out = qp.solve()?;
-                let flow = notify(Progress {
-                    iteration: 0,
-                    change: f64::NAN,
-                    qp_iterations: out.iterations,
-                    qp_seconds: out.seconds,
-                });
-                phase.lambda = out.nu;
-                if flow.is_break() {
-                    phase.status = SolveStatus::Interrupted { iteration: 0 };
-                }
-                phase.qp_iterations.push(out.iterations);
-                phase.qp_seconds += out.seconds;
-                if let Some(s) = qp_failed(0, out.status) {
-                    phase.status = s;
-                }
+                let out = WorkingSetQp::new(self, Some(&phase.bound), &settings.qp)?.solve()?;
+                phase.lambda.copy_from_slice(&out.nu);
+                phase.record_single_qp(&out, &mut notify);
             }
             Friction::Coulomb { mu } if phase.status == SolveStatus::Converged => {
                 // (not after an interrupted or failed initial QP)
