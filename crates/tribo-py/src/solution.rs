@@ -27,7 +27,8 @@ pub struct PyReport {
 
 #[pymethods]
 impl PyReport {
-    /// 'converged', 'max_iterations', 'interrupted' (the progress callback raised) or 'qp_failed'.
+    /// 'converged', 'max_iterations', 'stagnated', 'interrupted' (the progress callback raised) or
+    /// 'qp_failed'.
     #[getter]
     fn status(&self) -> &'static str {
         status_name(self.inner.status)
@@ -326,6 +327,7 @@ fn status_name(s: SolveStatus) -> &'static str {
     match s {
         SolveStatus::Converged => "converged",
         SolveStatus::MaxIterations => "max_iterations",
+        SolveStatus::Stagnated => "stagnated",
         SolveStatus::Interrupted { .. } => "interrupted",
         SolveStatus::QpFailed { .. } => "qp_failed",
     }

@@ -94,6 +94,10 @@ impl FixedPointSettings {
     }
 }
 
+/// Fixed-point iterations without a new smallest change after which the fixed point is declared
+/// stagnated: a contraction, however slow, makes a new minimum every iteration.
+pub const STAGNATION_WINDOW: usize = 10;
+
 /// All solver settings.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SolverSettings {
@@ -264,6 +268,7 @@ impl Condensed {
         let bound: Vec<f64> = g.iter().map(|v| mu * v.max(0.0)).collect();
         let mut qp = WorkingSetQp::new(self, Some(&bound), &settings.qp)?;
         phase.status = SolveStatus::MaxIterations;
+        let (mut best, mut since_best) = (f64::INFINITY, 0);
         for it in 1..=fp.max_iter {
             let out = qp.solve()?;
             phase.qp_iterations.push(out.iterations);
@@ -294,6 +299,17 @@ impl Condensed {
             if flow.is_break() {
                 phase.status = SolveStatus::Interrupted { iteration: it };
                 break;
+            }
+            // A converging fixed point keeps making new minima of the change; one that cycles, or that
+            // has reached the accuracy to which the QP determines λ, does not.
+            if change < best {
+                (best, since_best) = (change, 0);
+            } else {
+                since_best += 1;
+                if since_best >= STAGNATION_WINDOW {
+                    phase.status = SolveStatus::Stagnated;
+                    break;
+                }
             }
             let w = fp.relaxation;
             for (gj, lj) in g.iter_mut().zip(&phase.lambda[..q]) {

@@ -13,6 +13,10 @@ pub enum SolveStatus {
     Converged,
     /// The fixed point reached its iteration cap.
     MaxIterations,
+    /// The change of λ_n made no new minimum for [`crate::coulomb::STAGNATION_WINDOW`] iterations: the
+    /// fixed point cycles, or it has reached the accuracy to which the QP determines λ (see the residual
+    /// history; a tighter `qp.tol` or a finer mesh may help).
+    Stagnated,
     /// The observer asked to stop after the given fixed-point iteration (0 = the initial QP).
     Interrupted {
         /// Fixed-point iteration.

@@ -52,10 +52,15 @@ impl Default for KktSolver {
     }
 }
 
+/// The tolerance a QP falls back to when it fails at a tighter one.
+pub const FALLBACK_TOL: f64 = 1e-10;
+
 /// Settings of the QP solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct QpSettings {
-    /// Tolerance on the scaled QP (gap, feasibility). Default 1e-10.
+    /// Tolerance on the scaled QP (gap, feasibility). Default 1e-12: λ is determined to about
+    /// `tol · κ(H)` (κ ~ 1e5 on contact meshes), and the Coulomb fixed point cannot settle below that;
+    /// a QP that fails at 1e-12 is solved again at [`FALLBACK_TOL`].
     pub tol: f64,
     /// Iteration cap of the interior-point method. Default 200.
     pub max_iter: u32,
@@ -68,7 +73,7 @@ pub struct QpSettings {
 
 impl Default for QpSettings {
     fn default() -> Self {
-        Self { tol: 1e-10, max_iter: 200, kkt_solver: KktSolver::default(), working_set: true }
+        Self { tol: 1e-12, max_iter: 200, kkt_solver: KktSolver::default(), working_set: true }
     }
 }
 
@@ -123,6 +128,7 @@ pub struct QpOutcome {
 /// (symbolic factorization of its KKT matrix) is reused across the whole fixed point.
 pub struct TrescaQp {
     solver: Option<DefaultSolver<f64>>,
+    settings: QpSettings,
     h: Vec<f64>,
     c: Vec<f64>,
     q: usize,
@@ -186,6 +192,7 @@ impl TrescaQp {
         let c_s = c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let mut qp = Self {
             solver: None,
+            settings: *settings,
             h: h.to_vec(),
             c: c.to_vec(),
             q,
@@ -197,7 +204,15 @@ impl TrescaQp {
             // Nothing pushes the body onto the obstacle (c_n = 0): λ_n = 0, hence λ_t = 0, solves P(g).
             return Ok(qp);
         }
-        let (p, qv) = qp.scaled_data();
+        qp.solver = Some(qp.setup()?);
+        Ok(qp)
+    }
+
+    /// Builds clarabel's solver for the current data and settings.
+    fn setup(&self) -> Result<DefaultSolver<f64>> {
+        let (q, frictional, settings) = (self.q, self.frictional, &self.settings);
+        let k = if frictional { 2 * q } else { q };
+        let (p, qv) = self.scaled_data();
         // Upper triangle of P in CSC.
         let mut colptr = Vec::with_capacity(k + 1);
         let mut rowval = Vec::with_capacity(k * (k + 1) / 2);
@@ -240,10 +255,8 @@ impl TrescaQp {
             KktSolver::Qdldl => "qdldl".to_string(),
             KktSolver::Faer => "faer".to_string(),
         };
-        let solver = DefaultSolver::new(&p, &qv, &a, &b, &[NonnegativeConeT(m)], cs)
-            .map_err(|e| Error::QpSetup { what: e.to_string() })?;
-        qp.solver = Some(solver);
-        Ok(qp)
+        DefaultSolver::new(&p, &qv, &a, &b, &[NonnegativeConeT(m)], cs)
+            .map_err(|e| Error::QpSetup { what: e.to_string() })
     }
 
     /// Values of the upper triangle of the scaled P (column by column) and the scaled q, for the current
@@ -280,8 +293,30 @@ impl TrescaQp {
         Ok(())
     }
 
-    /// Solves the QP.
+    /// Solves the QP. If it fails at a tolerance tighter than [`FALLBACK_TOL`], it is solved again at
+    /// that tolerance (and stays there): clarabel cannot always reach 1e-12 on a badly conditioned H, and
+    /// an answer to 1e-10 beats none. Such an outcome is reported as [`QpStatus::Inaccurate`].
     pub fn solve(&mut self) -> QpOutcome {
+        let out = self.solve_once();
+        if !matches!(out.status, QpStatus::Failed(_)) || self.settings.tol >= FALLBACK_TOL {
+            return out;
+        }
+        log::warn!("QP failed ({:?}) at tol {:e}: solving again at {FALLBACK_TOL:e}", out.status, self.settings.tol);
+        self.settings.tol = FALLBACK_TOL;
+        match self.setup() {
+            Ok(solver) => self.solver = Some(solver),
+            Err(_) => return out,
+        }
+        let mut again = self.solve_once();
+        again.iterations += out.iterations;
+        again.seconds += out.seconds;
+        if again.status == QpStatus::Solved {
+            again.status = QpStatus::Inaccurate;
+        }
+        again
+    }
+
+    fn solve_once(&mut self) -> QpOutcome {
         let q = self.q;
         let k = if self.frictional { 2 * q } else { q };
         let Some(solver) = self.solver.as_mut() else {
