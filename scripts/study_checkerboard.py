@@ -10,7 +10,6 @@ multipliers: the oscillation indicator TV(λ_n)/(2 p_max) and the relative L2 er
 
 from __future__ import annotations
 
-import argparse
 import sys
 from pathlib import Path
 from typing import Any
@@ -108,11 +107,7 @@ def write(rows: list[dict[str, Any]], ratios: list[float], thetas: list[float], 
 
 
 def main(argv: list[str] | None = None) -> list[dict[str, Any]]:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--smoke", action="store_true", help="tiny configuration (seconds)")
-    ap.add_argument("--out", type=Path, default=sl.DOCS, help="output directory (default docs/)")
-    args = ap.parse_args(argv)
-    return run(args.smoke, args.out)
+    return sl.cli(run, __doc__, argv)
 
 
 if __name__ == "__main__":

@@ -17,7 +17,6 @@ against log(n) (n = displacement unknowns; an error ~ h^r on a uniform 2D mesh i
 
 from __future__ import annotations
 
-import argparse
 import math
 import sys
 from pathlib import Path
@@ -108,11 +107,7 @@ def write(rows: list[dict[str, Any]], refs: dict[str, Any], out: Path) -> dict[t
 
 
 def main(argv: list[str] | None = None) -> dict[str, Any]:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--smoke", action="store_true", help="tiny configuration (seconds)")
-    ap.add_argument("--out", type=Path, default=sl.DOCS, help="output directory (default docs/)")
-    args = ap.parse_args(argv)
-    return run(args.smoke, args.out)
+    return sl.cli(run, __doc__, argv)
 
 
 if __name__ == "__main__":

@@ -12,7 +12,6 @@ refinement (h_min 0.04 → 0.00125) for the three ω.
 
 from __future__ import annotations
 
-import argparse
 import math
 import sys
 from pathlib import Path
@@ -89,18 +88,21 @@ def write(grid: list[dict[str, Any]], refine: list[dict[str, Any]], mus: list[fl
     get = {(r["nu"], r["setting"], r["mu"]): r for r in grid}
     md = [f"# Study 1c: the Coulomb fixed point against μ, ν and the relaxation ω\n\n"
           f"Hertz, approach 0.01, shift {SHIFT}, graded h_min = {h_grid}, P1, H = h, γ0 = 0.5 × bound, "
-          "working-set QP, at most 100 iterations. Entry: fixed-point iterations (`max` = status "
-          "max_iterations after 100; the last relative change of λ_n in brackets). Regenerate with "
+          "working-set QP, at most 100 iterations. Entry: fixed-point iterations; for a run that did not converge "
+          "its status (`stagnated`: no new smallest change for 10 iterations) and the last relative change "
+          "of λ_n in brackets. qp_tol = 1e-12 is the default. Regenerate with "
           "`python scripts/study_coulomb_fixed_point.py`.\n"]
 
     def cell(r: dict[str, Any]) -> str:
-        return str(r["iterations"]) if r["status"] == "converged" else f"max ({r['last_change']:.0e})"
+        if r["status"] == "converged":
+            return str(r["iterations"])
+        return f"{r['status']} at {r['iterations']} ({r['last_change']:.0e})"
 
     for omega in omegas:
         md.append(f"\n## {name(omega)}\n\n")
         md.append(sl.markdown_table(["ν \\ μ"] + [f"{m:g}" for m in mus],
                                     [[f"{nu:g}"] + [cell(get[(nu, omega, m)]) for m in mus] for nu in nus]))
-    md.append("\n## Smallest μ that fails (max_iterations)\n\n")
+    md.append("\n## Smallest μ that does not converge\n\n")
     md.append(sl.markdown_table(["ν"] + [name(o) for o in omegas],
                                 [[f"{nu:g}"] + [first_failure(grid, nu, o) for o in omegas] for nu in nus]))
     md.append("\n## Under refinement, μ = 0.3, ν = 0.3\n\n")
@@ -120,7 +122,7 @@ def write(grid: list[dict[str, Any]], refine: list[dict[str, Any]], mus: list[fl
             ax.plot(mus, [r["iterations"] for r in rs], "o-", color=c, ms=4, label=f"ν = {nu:g}")
             bad = [r for r in rs if r["status"] != "converged"]
             ax.plot([r["mu"] for r in bad], [r["iterations"] for r in bad], "x", color=c, ms=10, mew=2)
-        ax.set_title(f"{name(omega)}\n(× = max_iterations)")
+        ax.set_title(f"{name(omega)}\n(× = not converged: stagnated)")
         ax.set_xlabel("friction coefficient μ  [–]")
         ax.set_ylabel("fixed-point iterations")
         ax.set_yscale("log")
@@ -146,11 +148,7 @@ def write(grid: list[dict[str, Any]], refine: list[dict[str, Any]], mus: list[fl
 
 
 def main(argv: list[str] | None = None) -> dict[str, Any]:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--smoke", action="store_true", help="tiny configuration (seconds)")
-    ap.add_argument("--out", type=Path, default=sl.DOCS, help="output directory (default docs/)")
-    args = ap.parse_args(argv)
-    return run(args.smoke, args.out)
+    return sl.cli(run, __doc__, argv)
 
 
 if __name__ == "__main__":

@@ -14,7 +14,6 @@ A relative to K is κ(K⁻¹ A) = 1 / (1 − γ0 / γ0*).
 
 from __future__ import annotations
 
-import argparse
 import math
 import sys
 from pathlib import Path
@@ -140,11 +139,7 @@ def write(rows: list[dict[str, Any]], bounds: dict[float, tuple[float, float]], 
 
 
 def main(argv: list[str] | None = None) -> dict[str, Any]:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--smoke", action="store_true", help="tiny configuration (seconds)")
-    ap.add_argument("--out", type=Path, default=sl.DOCS, help="output directory (default docs/)")
-    args = ap.parse_args(argv)
-    return run(args.smoke, args.out)
+    return sl.cli(run, __doc__, argv)
 
 
 if __name__ == "__main__":

@@ -16,7 +16,6 @@ P1 multipliers; H/h ∈ {2, 1, 1/2}; γ0 ∈ {0, 0.5 × bound}. Errors:
 
 from __future__ import annotations
 
-import argparse
 import math
 import sys
 from pathlib import Path
@@ -172,11 +171,7 @@ def write(rows: list[dict[str, Any]], refs: dict[str, Any], out: Path) -> None:
 
 
 def main(argv: list[str] | None = None) -> dict[str, Any]:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--smoke", action="store_true", help="tiny configuration (seconds)")
-    ap.add_argument("--out", type=Path, default=sl.DOCS, help="output directory (default docs/)")
-    args = ap.parse_args(argv)
-    return run(args.smoke, args.out)
+    return sl.cli(run, __doc__, argv)
 
 
 if __name__ == "__main__":

@@ -15,6 +15,7 @@ the Rust tests:
 
 from __future__ import annotations
 
+import argparse
 import math
 import time
 from collections.abc import Callable, Sequence
@@ -264,3 +265,12 @@ def pyplot() -> Any:
     import matplotlib.pyplot as plt
 
     return plt
+
+
+def cli(run: Callable[[bool, Path], Any], doc: str | None, argv: list[str] | None = None) -> Any:
+    """The command line every study shares: ``--smoke`` (tiny configuration) and ``--out DIR``."""
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--smoke", action="store_true", help="tiny configuration (seconds)")
+    ap.add_argument("--out", type=Path, default=DOCS, help="output directory (default docs/)")
+    args = ap.parse_args(argv)
+    return run(args.smoke, args.out)
