@@ -9,11 +9,13 @@
 //! - `gamma_c_matrices`: [`tribo::mortar::MortarMatrices::new`] alone;
 //! - `condensation`: [`Condensed::new`] (sparse Cholesky of K − G and the Schur complement onto Γ_C);
 //! - `tresca`: one Tresca solve (threshold 0.5) on a prebuilt [`Condensed`];
-//! - `coulomb`: one whole Coulomb solve (μ = 0.3, shift 0.004) on a prebuilt [`Condensed`], on coarser
-//!   meshes (at h_min = 0.005 the plain fixed point cycles and runs its 100 iterations);
+//! - `coulomb`: one whole Coulomb solve (μ = 0.3, shift 0.004) on a prebuilt [`Condensed`];
 //! - `qp_kkt_solver`: frictionless and Tresca solves with clarabel's QDLDL against its faer KKT solver;
 //! - `cholesky_reference`: sparse Cholesky factorization + solve of K alone (the plain elastic solve the
-//!   Coulomb solve is compared with), also at h_min = 0.04 so that every Coulomb size has its reference.
+//!   Coulomb solve is compared with), also at h_min = 0.04 so that every Coulomb size has its reference;
+//! - `admissible_gamma0`: the admissible bound on γ0 (a 3 × 3 eigenproblem per contact triangle);
+//! - `uniform_103k`: every phase on a uniform 320 × 160 mesh (103k unknowns): `Problem::new`,
+//!   `Condensed::new`, the whole Coulomb solve, and the Cholesky reference.
 //!
 //! The set-up prints, once per mesh, the numbers of unknowns (n_free) and of multiplier dofs (q), and the
 //! status of the Coulomb solves. `cargo bench --bench solver -- --test` runs every bench once.
@@ -36,7 +38,7 @@ use tribo::{
 
 /// Mesh sizes of the set-up, Tresca and KKT-solver groups.
 const SIZES: [f64; 3] = [0.02, 0.01, 0.005];
-/// Mesh sizes of the Coulomb group (the plain fixed point does not converge at 0.005).
+/// Mesh sizes of the Coulomb group.
 const COULOMB_SIZES: [f64; 3] = [0.04, 0.02, 0.01];
 /// Mesh sizes of the Cholesky reference: the union of the two.
 const CHOLESKY_SIZES: [f64; 4] = [0.04, 0.02, 0.01, 0.005];
@@ -250,6 +252,53 @@ fn bench_cholesky_reference(c: &mut Criterion) {
     group.finish();
 }
 
+fn bench_admissible_gamma0(c: &mut Criterion) {
+    let mut group = c.benchmark_group("admissible_gamma0");
+    group.sample_size(10).measurement_time(Duration::from_secs(2));
+    for h_min in SIZES {
+        let s = scene(h_min, 0.0);
+        group.bench_with_input(BenchmarkId::from_parameter(h_min), &s, |b, s| {
+            b.iter(|| tribo::stabilization::admissible_gamma0(black_box(&s.mesh), &s.spec.material, &s.problem.contact))
+        });
+    }
+    group.finish();
+}
+
+/// Every phase at more than 100k unknowns: a uniform 320 × 160 mesh of the Hertz block (h = 0.0125).
+fn bench_uniform_103k(c: &mut Criterion) {
+    let mut group = c.benchmark_group("uniform_103k");
+    configure_slow(&mut group, 20);
+    let mesh = tribo::rectangle([-2.0, 2.0], [-2.0, 0.0], 320, 160, tribo::Diagonal::Alternating).expect("mesh");
+    let spec = hertz_spec(COULOMB_SHIFT);
+    let problem = Problem::new(mesh.clone(), spec.clone()).expect("problem");
+    let condensed = Condensed::new(&problem, STABILIZATION).expect("condensation");
+    let settings = SolverSettings::default();
+    let coulomb = Friction::Coulomb { mu: MU };
+    let check = condensed.solve(&problem, &coulomb, &settings, None).expect("solve");
+    eprintln!(
+        "[uniform 320 x 160] n_free {} q {} Coulomb {:?} after {} iterations",
+        problem.n_free,
+        problem.n_multipliers(),
+        check.report.status,
+        check.report.iterations
+    );
+    assert_eq!(check.report.status, SolveStatus::Converged);
+    group.bench_function("problem_new", |b| {
+        b.iter_batched(|| (mesh.clone(), spec.clone()), |(m, s)| Problem::new(m, s).unwrap(), BatchSize::LargeInput)
+    });
+    group.bench_function("condensed_new", |b| b.iter(|| Condensed::new(black_box(&problem), STABILIZATION).unwrap()));
+    group.bench_function("coulomb_solve", |b| {
+        b.iter(|| {
+            // A fresh condensation each time: the columns of H are computed on demand and cached.
+            let c = Condensed::new(&problem, STABILIZATION).unwrap();
+            c.solve(&problem, &coulomb, &settings, None).unwrap()
+        })
+    });
+    let k = problem.k_matrix.clone();
+    group.bench_function("cholesky_reference", |b| b.iter(|| cholesky_solve(black_box(&k), &problem.f_free)));
+    group.finish();
+}
+
 fn config() -> Criterion {
     Criterion::default().sample_size(10).warm_up_time(Duration::from_millis(500)).nresamples(20_000)
 }
@@ -258,6 +307,6 @@ criterion_group! {
     name = benches;
     config = config();
     targets = bench_mesh, bench_assembly, bench_condensation, bench_tresca, bench_coulomb, bench_qp_kkt_solver,
-        bench_cholesky_reference
+        bench_cholesky_reference, bench_admissible_gamma0, bench_uniform_103k
 }
 criterion_main!(benches);
