@@ -14,6 +14,13 @@
 //! the global matrix may stay definite somewhat beyond it. γ0 scales like 1/E and like 1/(the shape of
 //! the contact triangles); choosing γ0 as a fraction of the bound makes the choice unit free.
 
+//!
+//! # Where Γ_C is not in contact
+//! The stabilization acts on all of Γ_C: where λ_H = 0 it still adds `−∫γ σ(u_h)·σ(v_h)`. The exact
+//! solution has σ·n = 0 there, so the method stays consistent, but the discrete displacement differs from a
+//! plain elastic solve by a term of order γ0 (measured 3e-4 in energy on a small scene). A traction on
+//! Γ_C itself is rejected ([`crate::Error::TractionOnContact`]): the method takes σ·n = −λ on all of Γ_C.
+
 use nalgebra::{Matrix3, SVector, Vector3};
 
 use crate::contact::ContactBoundary;
