@@ -144,8 +144,9 @@ fn check(friction: Friction, shift: f64, space: MultiplierSpace, points: Multipl
     let smax = d.scale.iter().fold(0.0_f64, |m, r| m.max(*r));
     let worst = rmax / smax;
     assert!(worst <= 64.0 * f64::EPSILON * (problem.n_free as f64).sqrt(), "{what}: equation residual {worst:e}");
-    // The inequality holds for every ν in the cone, to the QP's accuracy times the conditioning of H.
-    let tol = settings.qp.tol * common::condition_number(&condensed);
+    // The inequality holds for every ν in the cone, to the accuracy the QP reached times the
+    // conditioning of H.
+    let tol = common::reached_qp_tol(&settings, &sol) * common::condition_number(&condensed);
     let q = problem.n_multipliers();
     let bound = &sol.friction_threshold;
     let mut seed = 7u64;

@@ -65,6 +65,7 @@ def summary(scene: Scene, problem: Problem, solution: Solution, seconds: float) 
         "iterations": r.iterations,
         "residual_history": r.residual_history.tolist(),
         "qp_iterations": r.qp_iterations.tolist(),
+        "qp_inaccurate": r.qp_inaccurate,
         "gamma0": r.gamma0,
         "gamma0_bound": r.gamma0_bound,
         "mesh": {"nodes": problem.mesh.n_nodes, "triangles": problem.mesh.n_triangles, "h": problem.mesh.max_diameter},

@@ -116,3 +116,13 @@ pub fn condition_number(c: &Condensed) -> f64 {
     let max = ev.iter().fold(0.0_f64, |a, v| a.max(*v));
     max / ev.iter().filter(|v| **v > k as f64 * f64::EPSILON * max).fold(f64::INFINITY, |a, v| a.min(*v))
 }
+
+/// The tolerance the QPs of a solve actually met: `qp.tol`, or [`tribo::tresca::FALLBACK_TOL`] if any of
+/// them only reached that (the report counts them).
+pub fn reached_qp_tol(settings: &SolverSettings, sol: &Solution) -> f64 {
+    if sol.report.qp_inaccurate > 0 {
+        settings.qp.tol.max(tribo::tresca::FALLBACK_TOL)
+    } else {
+        settings.qp.tol
+    }
+}

@@ -76,6 +76,12 @@ impl PyReport {
         PyArray1::from_vec(py, self.inner.qp_iterations.iter().map(|&i| i64::from(i)).collect())
     }
 
+    /// How many QPs met only the fallback tolerance (1e-10), not `qp_tol`.
+    #[getter]
+    fn qp_inaccurate(&self) -> usize {
+        self.inner.qp_inaccurate
+    }
+
     /// γ0 used.
     #[getter]
     fn gamma0(&self) -> f64 {

@@ -146,10 +146,19 @@ pub(crate) struct QpPhase {
     pub iterations: usize,
     pub history: Vec<f64>,
     pub qp_iterations: Vec<u32>,
+    /// QPs that met only [`crate::tresca::FALLBACK_TOL`], not `qp.tol`.
+    pub qp_inaccurate: usize,
     pub qp_seconds: f64,
 }
 
 impl QpPhase {
+    /// Counts a QP's interior-point iterations, time and accuracy.
+    fn book(&mut self, out: &QpOutcome) {
+        self.qp_iterations.push(out.iterations);
+        self.qp_seconds += out.seconds;
+        self.qp_inaccurate += usize::from(out.status == QpStatus::Inaccurate);
+    }
+
     /// Books a QP solved outside the fixed point (iteration 0): progress, counts, status.
     fn record_single_qp(&mut self, out: &QpOutcome, notify: &mut dyn FnMut(Progress) -> ControlFlow<()>) {
         let flow =
@@ -157,8 +166,7 @@ impl QpPhase {
         if flow.is_break() {
             self.status = SolveStatus::Interrupted { iteration: 0 };
         }
-        self.qp_iterations.push(out.iterations);
-        self.qp_seconds += out.seconds;
+        self.book(out);
         if let Some(s) = qp_failed(0, out.status) {
             self.status = s;
         }
@@ -212,6 +220,7 @@ impl Condensed {
             iterations: 0,
             history: Vec::new(),
             qp_iterations: Vec::new(),
+            qp_inaccurate: 0,
             qp_seconds: 0.0,
         };
         let frictionless = matches!(friction, Friction::Frictionless | Friction::Coulomb { mu: 0.0 });
@@ -271,8 +280,7 @@ impl Condensed {
         let (mut best, mut since_best) = (f64::INFINITY, 0);
         for it in 1..=fp.max_iter {
             let out = qp.solve()?;
-            phase.qp_iterations.push(out.iterations);
-            phase.qp_seconds += out.seconds;
+            phase.book(&out);
             phase.iterations = it;
             if let Some(s) = qp_failed(it, out.status) {
                 phase.status = s;

@@ -110,6 +110,9 @@ pub struct Report {
     pub residual_history: Vec<f64>,
     /// Interior-point iterations of each QP.
     pub qp_iterations: Vec<u32>,
+    /// How many of those QPs met only [`crate::tresca::FALLBACK_TOL`] (1e-10), not `qp.tol`: their λ is
+    /// determined to about `FALLBACK_TOL · κ(H)` instead of `qp.tol · κ(H)`.
+    pub qp_inaccurate: usize,
     /// γ0 used.
     pub gamma0: f64,
     /// Admissible bound on γ0.
@@ -262,6 +265,7 @@ impl Solution {
                 iterations: phase.iterations,
                 residual_history: phase.history,
                 qp_iterations: phase.qp_iterations,
+                qp_inaccurate: phase.qp_inaccurate,
                 gamma0: condensed.gamma0,
                 gamma0_bound: problem.gamma0_bound.0,
                 timings,

@@ -101,7 +101,9 @@ impl QpSettings {
 pub enum QpStatus {
     /// Solved to tolerance.
     Solved,
-    /// Solved to reduced accuracy (clarabel's "almost solved").
+    /// Solved to reduced accuracy: the scaled QP's gap and feasibility residuals meet
+    /// `max(tol, FALLBACK_TOL)` but not `tol` (clarabel's "almost solved" with our reduced tolerances,
+    /// or a re-solve at [`FALLBACK_TOL`]).
     Inaccurate,
     /// Failed; the string is clarabel's status.
     Failed(&'static str),
@@ -129,6 +131,8 @@ pub struct QpOutcome {
 pub struct TrescaQp {
     solver: Option<DefaultSolver<f64>>,
     settings: QpSettings,
+    /// The tolerance asked for (`settings.tol` may have fallen back to [`FALLBACK_TOL`]).
+    requested_tol: f64,
     h: Vec<f64>,
     c: Vec<f64>,
     q: usize,
@@ -193,6 +197,7 @@ impl TrescaQp {
         let mut qp = Self {
             solver: None,
             settings: *settings,
+            requested_tol: settings.tol,
             h: h.to_vec(),
             c: c.to_vec(),
             q,
@@ -241,12 +246,20 @@ impl TrescaQp {
         }
         let a = CscMatrix::new(m, k, colptr, rowval, nzval);
         let b: Vec<f64> = (0..m).map(|i| if i < q { 0.0 } else { 1.0 }).collect();
+        // clarabel stops early ("almost solved") when it cannot make progress but meets its *reduced*
+        // tolerances, 5e-5 (gap) and 1e-4 (feasibility) by default: far too loose for λ (a Tresca QP
+        // stopped there was 3 % off). We accept only answers that meet the looser of tol and FALLBACK_TOL.
+        let accepted = settings.tol.max(FALLBACK_TOL);
         let mut cs = DefaultSettings::<f64> {
             verbose: false,
             tol_gap_abs: settings.tol,
             tol_gap_rel: settings.tol,
             tol_feas: settings.tol,
             tol_ktratio: settings.tol.sqrt(),
+            reduced_tol_gap_abs: accepted,
+            reduced_tol_gap_rel: accepted,
+            reduced_tol_feas: accepted,
+            reduced_tol_ktratio: accepted.sqrt(),
             max_iter: settings.max_iter,
             presolve_enable: false,
             ..DefaultSettings::default()
@@ -294,8 +307,9 @@ impl TrescaQp {
     }
 
     /// Solves the QP. If it fails at a tolerance tighter than [`FALLBACK_TOL`], it is solved again at
-    /// that tolerance (and stays there): clarabel cannot always reach 1e-12 on a badly conditioned H, and
-    /// an answer to 1e-10 beats none. Such an outcome is reported as [`QpStatus::Inaccurate`].
+    /// that tolerance (and stays there for later solves with new bounds): clarabel cannot always reach
+    /// 1e-12 on a badly conditioned H, and an answer to 1e-10 beats none. Every answer that meets only
+    /// the fallback tolerance is reported as [`QpStatus::Inaccurate`].
     pub fn solve(&mut self) -> QpOutcome {
         let out = self.solve_once();
         if !matches!(out.status, QpStatus::Failed(_)) || self.settings.tol >= FALLBACK_TOL {
@@ -310,9 +324,6 @@ impl TrescaQp {
         let mut again = self.solve_once();
         again.iterations += out.iterations;
         again.seconds += out.seconds;
-        if again.status == QpStatus::Solved {
-            again.status = QpStatus::Inaccurate;
-        }
         again
     }
 
@@ -326,8 +337,8 @@ impl TrescaQp {
         solver.solve();
         let sol = &solver.solution;
         let status = match sol.status {
-            SolverStatus::Solved => QpStatus::Solved,
-            SolverStatus::AlmostSolved => QpStatus::Inaccurate,
+            SolverStatus::Solved if self.settings.tol <= self.requested_tol => QpStatus::Solved,
+            SolverStatus::Solved | SolverStatus::AlmostSolved => QpStatus::Inaccurate,
             s => QpStatus::Failed(status_name(s)),
         };
         let nu = (0..k).map(|i| if i < q { sol.x[i] * self.n_scale } else { sol.x[i] * self.bounds[i - q] }).collect();
