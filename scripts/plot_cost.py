@@ -39,6 +39,11 @@ def exponent(rs: list[dict[str, Any]], key: str) -> float:
     return sl.fitted_rate(*zip(*pts)) if len(pts) >= 2 else math.nan
 
 
+def rate_label(rate: float) -> str:
+    """The legend's fitted exponent; runs under 1 ms are timer noise and give no fit."""
+    return "< 2 runs ≥ 1 ms, no fit" if math.isnan(rate) else f"n^{rate:.2f}"
+
+
 def run(csv_path: Path, out: Path) -> dict[str, Any]:
     rows = load(csv_path)
     out.mkdir(parents=True, exist_ok=True)
@@ -55,7 +60,7 @@ def run(csv_path: Path, out: Path) -> dict[str, Any]:
         rs = [r for r in rows if r["family"] == fam and r["friction"] == fr and r["status"] == "Converged"]
         for key, _ in PHASES:
             fits[(fam, fr, key)] = exponent(rs, key)
-        table.append([fam, fr] + [f"{fits[(fam, fr, k)]:.2f}" for k, _ in PHASES])
+        table.append([fam, fr] + [rate_label(fits[(fam, fr, k)]).removeprefix("n^") for k, _ in PHASES])
     md.append(sl.markdown_table(["mesh", "friction"] + [name for _, name in PHASES], table))
     md.append("\n## All runs\n\n")
     md.append(sl.markdown_table(
@@ -70,10 +75,10 @@ def run(csv_path: Path, out: Path) -> dict[str, Any]:
         rs = [r for r in rows if r["family"] == fam and r["friction"] == fr]
         for (key, name), c in zip(PHASES, ["C0", "C1", "C2", "C3", "k", "C7"]):
             ax.plot([r["n_free"] for r in rs], [max(r[key], 1e-5) for r in rs], "o-" if key != "cholesky" else "s--",
-                    color=c, ms=4, lw=2.2 if key == "total" else 1.2, label=f"{name}: n^{fits[(fam, fr, key)]:.2f}")
+                    color=c, ms=4, lw=2.2 if key == "total" else 1.2, label=f"{name}: {rate_label(fits[(fam, fr, key)])}")
         bad = [r for r in rs if r["status"] != "Converged"]
         ax.plot([r["n_free"] for r in bad], [r["total"] for r in bad], "rx", ms=10, mew=2,
-                label="max_iterations" if bad else None)
+                label="not converged: " + ", ".join(sorted({r["status"] for r in bad})) if bad else None)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("displacement unknowns n")
