@@ -55,9 +55,9 @@ fn main() -> Result<()> {
         );
         let t = &sol.report.timings;
         println!(
-            "    timings [s]: assembly {:.4}  Γ_C matrices {:.4}  factorization {:.4}  condensation {:.4}  QPs {:.4} ({} QPs, IPM iterations {:?})  recovery {:.4}",
+            "    timings [s]: assembly {:.4}  Γ_C matrices {:.4}  factorization {:.4}  condensation {:.4}  QPs {:.4} ({} QPs, {} only to the fallback tolerance, IPM iterations {:?})  recovery {:.4}",
             t.assembly, t.contact_matrices, t.factorization, t.condensation, t.qp,
-            sol.report.qp_iterations.len(), sol.report.qp_iterations, t.recovery
+            sol.report.qp_iterations.len(), sol.report.qp_inaccurate, sol.report.qp_iterations, t.recovery
         );
     }
     Ok(())
