@@ -176,6 +176,33 @@ fn check_bounds(g: &[f64], q: usize) -> Result<()> {
     }
 }
 
+/// clarabel's settings for our tolerances: presolve off (so data updates work), its KKT solver, and
+/// *reduced* tolerances no looser than ours. clarabel stops early ("almost solved") when it cannot make
+/// progress but meets its reduced tolerances, 5e-5 (gap) and 1e-4 (feasibility) by default: far too
+/// loose for λ (a Tresca QP stopped there was 3 % off). We accept only answers that meet the looser of
+/// `tol` and [`FALLBACK_TOL`].
+fn clarabel_settings(settings: &QpSettings) -> DefaultSettings<f64> {
+    let accepted = settings.tol.max(FALLBACK_TOL);
+    DefaultSettings::<f64> {
+        verbose: false,
+        tol_gap_abs: settings.tol,
+        tol_gap_rel: settings.tol,
+        tol_feas: settings.tol,
+        tol_ktratio: settings.tol.sqrt(),
+        reduced_tol_gap_abs: accepted,
+        reduced_tol_gap_rel: accepted,
+        reduced_tol_feas: accepted,
+        reduced_tol_ktratio: accepted.sqrt(),
+        max_iter: settings.max_iter,
+        presolve_enable: false,
+        direct_solve_method: match settings.kkt_solver {
+            KktSolver::Qdldl => "qdldl".to_string(),
+            KktSolver::Faer => "faer".to_string(),
+        },
+        ..DefaultSettings::default()
+    }
+}
+
 impl TrescaQp {
     /// Sets up the QP. `h` is the dense symmetric `H` (column-major, `k × k` with `k = q` for a
     /// frictionless QP and `k = 2q` otherwise), `c` the linear term, `bounds` the tangential bounds
@@ -246,28 +273,7 @@ impl TrescaQp {
         }
         let a = CscMatrix::new(m, k, colptr, rowval, nzval);
         let b: Vec<f64> = (0..m).map(|i| if i < q { 0.0 } else { 1.0 }).collect();
-        // clarabel stops early ("almost solved") when it cannot make progress but meets its *reduced*
-        // tolerances, 5e-5 (gap) and 1e-4 (feasibility) by default: far too loose for λ (a Tresca QP
-        // stopped there was 3 % off). We accept only answers that meet the looser of tol and FALLBACK_TOL.
-        let accepted = settings.tol.max(FALLBACK_TOL);
-        let mut cs = DefaultSettings::<f64> {
-            verbose: false,
-            tol_gap_abs: settings.tol,
-            tol_gap_rel: settings.tol,
-            tol_feas: settings.tol,
-            tol_ktratio: settings.tol.sqrt(),
-            reduced_tol_gap_abs: accepted,
-            reduced_tol_gap_rel: accepted,
-            reduced_tol_feas: accepted,
-            reduced_tol_ktratio: accepted.sqrt(),
-            max_iter: settings.max_iter,
-            presolve_enable: false,
-            ..DefaultSettings::default()
-        };
-        cs.direct_solve_method = match settings.kkt_solver {
-            KktSolver::Qdldl => "qdldl".to_string(),
-            KktSolver::Faer => "faer".to_string(),
-        };
+        let cs = clarabel_settings(settings);
         DefaultSolver::new(&p, &qv, &a, &b, &[NonnegativeConeT(m)], cs)
             .map_err(|e| Error::QpSetup { what: e.to_string() })
     }
@@ -343,5 +349,57 @@ impl TrescaQp {
         };
         let nu = (0..k).map(|i| if i < q { sol.x[i] * self.n_scale } else { sol.x[i] * self.bounds[i - q] }).collect();
         QpOutcome { nu, status, iterations: sol.iterations, seconds: clock.elapsed().as_secs_f64() }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A small frictional QP (q = 2) with both normal multipliers active and one tangential bound hit.
+    fn small_qp(settings: &QpSettings) -> TrescaQp {
+        #[rustfmt::skip]
+        let h = [
+            4.0, 1.0, 0.5, 0.0,
+            1.0, 3.0, 0.0, 0.5,
+            0.5, 0.0, 2.0, 0.3,
+            0.0, 0.5, 0.3, 2.0,
+        ];
+        let c = [-2.0, -1.5, 1.0, -0.1];
+        TrescaQp::new(&h, &c, 2, Some(&[0.2, 0.2]), settings).expect("valid QP")
+    }
+
+    #[test]
+    fn almost_solved_is_never_looser_than_the_fallback_tolerance() {
+        for tol in [1e-14, 1e-12, FALLBACK_TOL, 1e-8, 1e-6] {
+            let cs = clarabel_settings(&QpSettings { tol, ..Default::default() });
+            let accepted = tol.max(FALLBACK_TOL);
+            for (name, v) in [
+                ("gap_abs", cs.reduced_tol_gap_abs),
+                ("gap_rel", cs.reduced_tol_gap_rel),
+                ("feas", cs.reduced_tol_feas),
+            ] {
+                assert!(v <= accepted, "tol {tol:e}: reduced {name} = {v:e} accepts answers worse than {accepted:e}");
+            }
+            assert!(cs.reduced_tol_ktratio <= accepted.sqrt(), "tol {tol:e}: reduced κ/τ ratio");
+        }
+    }
+
+    /// After a fallback a QP stays at FALLBACK_TOL for later solves (new bounds), and each of those
+    /// answers is reported as Inaccurate, not Solved; the same QP asked for FALLBACK_TOL is Solved.
+    #[test]
+    fn answers_after_a_fallback_are_reported_inaccurate() {
+        let strict = QpSettings { tol: 1e-12, ..Default::default() };
+        let mut qp = small_qp(&strict);
+        assert_eq!(qp.solve().status, QpStatus::Solved, "a well-conditioned QP reaches 1e-12");
+        // What solve() does when clarabel fails at the requested tolerance.
+        qp.settings.tol = FALLBACK_TOL;
+        qp.solver = Some(qp.setup().expect("set up"));
+        for bounds in [[0.2, 0.2], [0.1, 0.3]] {
+            qp.set_bounds(&bounds).expect("valid bounds");
+            assert_eq!(qp.solve().status, QpStatus::Inaccurate, "bounds {bounds:?}");
+        }
+        let mut loose = small_qp(&QpSettings { tol: FALLBACK_TOL, ..Default::default() });
+        assert_eq!(loose.solve().status, QpStatus::Solved);
     }
 }
