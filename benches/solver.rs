@@ -1,21 +1,22 @@
-//! Criterion benches of the solve pipeline on the Hertz scene (`crates/tribo/examples/hertz.rs`): a rigid
-//! cylinder (R = 1) pushed 0.01 into the block (−2, 2) × (−2, 0), clamped at the bottom, E = 200, ν = 0.3,
-//! P1 multipliers on the FE points of Γ_C, γ0 = half the admissible bound, meshes graded toward the
-//! contact zone. Every group takes the finest mesh size `h_min` as its parameter.
+//! Criterion benches of the solve pipeline on the Hertz scene (`python/tribo/scenes/hertz.toml`, read by
+//! `tribo-testkit`): a rigid cylinder (R = 1) pushed 0.01 into the block (−2, 2) × (−2, 0), clamped at the
+//! bottom, E = 200, ν = 0.3, P1 multipliers on the FE points of Γ_C, γ0 = half the admissible bound,
+//! meshes graded toward the contact zone. Every group takes the finest mesh size `h_min` as its
+//! parameter. `cargo bench` at the top of the repository runs them (they belong to the `tribo` crate).
 //!
 //! Groups (one per phase):
 //! - `mesh`: [`graded_rectangle`];
 //! - `assembly`: [`Problem::new`] (K, loads, Γ_C geometry, T_H, Γ_C matrices);
 //! - `gamma_c_matrices`: [`tribo::mortar::MortarMatrices::new`] alone;
-//! - `condensation`: [`Condensed::new`] (sparse Cholesky of K − G and the Schur complement onto Γ_C);
-//! - `tresca`: one Tresca solve (threshold 0.5) on a prebuilt [`Condensed`];
-//! - `coulomb`: one whole Coulomb solve (μ = 0.3, shift 0.004) on a prebuilt [`Condensed`];
+//! - `condensation`: [`Problem::condense`] without its cache (sparse Cholesky of K − G and `c`);
+//! - `tresca`: one Tresca solve (threshold 0.5) on a prebuilt [`tribo::Condensed`];
+//! - `coulomb`: one whole Coulomb solve (μ = 0.3, shift 0.004) on a prebuilt [`tribo::Condensed`];
 //! - `qp_kkt_solver`: frictionless and Tresca solves with clarabel's QDLDL against its faer KKT solver;
 //! - `cholesky_reference`: sparse Cholesky factorization + solve of K alone (the plain elastic solve the
 //!   Coulomb solve is compared with), also at h_min = 0.04 so that every Coulomb size has its reference;
 //! - `admissible_gamma0`: the admissible bound on γ0 (a 3 × 3 eigenproblem per contact triangle);
 //! - `uniform_103k`: every phase on a uniform 320 × 160 mesh (103k unknowns): `Problem::new`,
-//!   `Condensed::new`, the whole Coulomb solve, and the Cholesky reference.
+//!   `Problem::condense`, the whole Coulomb solve, and the Cholesky reference.
 //!
 //! The set-up prints, once per mesh, the numbers of unknowns (n_free) and of multiplier dofs (q), and the
 //! status of the Coulomb solves. `cargo bench --bench solver -- --test` runs every bench once.
@@ -32,9 +33,10 @@ use faer::sparse::SparseColMat;
 use faer::Mat;
 use tribo::mortar::MortarMatrices;
 use tribo::{
-    graded_rectangle, Condensed, Friction, Grading, KktSolver, Material, Mesh, MultiplierPoints, MultiplierSpace,
-    Obstacle, ObstacleShape, Problem, ProblemSpec, Side, SolveStatus, SolverSettings, Stabilization, Threshold,
+    Friction, Grading, KktSolver, Mesh, MultiplierPoints, MultiplierSpace, Problem, ProblemSpec, Side, SolveStatus,
+    SolverSettings, Stabilization, Threshold,
 };
+use tribo_testkit::{hertz_mesh, hertz_scene, hertz_spec};
 
 /// Mesh sizes of the set-up, Tresca and KKT-solver groups.
 const SIZES: [f64; 3] = [0.02, 0.01, 0.005];
@@ -49,40 +51,27 @@ const MU: f64 = 0.3;
 const COULOMB_SHIFT: f64 = 0.004;
 
 fn grading(h_min: f64) -> Grading {
-    Grading { side: Side::Top, segment: [-0.3, 0.3], h_min, h_max: 0.5, growth: 0.3 }
+    let s = hertz_scene();
+    Grading { side: Side::Top, segment: s.segment, h_min, h_max: s.h_max, growth: s.growth }
 }
 
-fn hertz_mesh(h_min: f64) -> Mesh {
-    graded_rectangle([-2.0, 2.0], [-2.0, 0.0], &grading(h_min)).expect("Hertz mesh")
+fn spec(shift: f64) -> ProblemSpec {
+    hertz_spec(hertz_scene().approach, shift, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1)
 }
 
-fn hertz_spec(shift: f64) -> ProblemSpec {
-    ProblemSpec {
-        material: Material { young: 200.0, poisson: 0.3 },
-        clamped: vec!["bottom".into()],
-        body_force: [0.0, 0.0],
-        tractions: vec![],
-        contact: "top".into(),
-        obstacle: Obstacle { shape: ObstacleShape::Circle { center: 0.0, radius: 1.0 }, approach: 0.01, shift },
-        multiplier_points: MultiplierPoints::RatioToFe(1.0),
-        multiplier_space: MultiplierSpace::P1,
-    }
-}
-
-/// One Hertz problem, assembled and condensed.
+/// One Hertz problem, assembled (and condensed once, so its factorization is cached).
 struct Scene {
     mesh: Mesh,
     spec: ProblemSpec,
     problem: Problem,
-    condensed: Condensed,
 }
 
 impl Scene {
     fn new(h_min: f64, shift: f64) -> Self {
         let mesh = hertz_mesh(h_min);
-        let spec = hertz_spec(shift);
+        let spec = spec(shift);
         let problem = Problem::new(mesh.clone(), spec.clone()).expect("Hertz problem");
-        let condensed = Condensed::new(&problem, STABILIZATION).expect("condensation");
+        let gamma0 = problem.condense(STABILIZATION).expect("condensation").gamma0();
         eprintln!(
             "[hertz h_min = {h_min}, shift = {shift}] nodes {} triangles {} n_free {} q {} (2q = {}) γ0 {:.3e}",
             mesh.n_nodes(),
@@ -90,9 +79,9 @@ impl Scene {
             problem.n_free,
             problem.n_multipliers(),
             2 * problem.n_multipliers(),
-            condensed.gamma0,
+            gamma0,
         );
-        Self { mesh, spec, problem, condensed }
+        Self { mesh, spec, problem }
     }
 }
 
@@ -117,7 +106,8 @@ fn bench_mesh(c: &mut Criterion) {
     for h_min in SIZES {
         let _ = scene(h_min, 0.0);
         group.bench_with_input(BenchmarkId::from_parameter(h_min), &h_min, |b, &h| {
-            b.iter(|| graded_rectangle([-2.0, 2.0], [-2.0, 0.0], black_box(&grading(h))).unwrap())
+            let sc = hertz_scene();
+            b.iter(|| tribo::graded_rectangle(sc.x, sc.y, black_box(&grading(h))).unwrap())
         });
     }
     group.finish();
@@ -144,7 +134,8 @@ fn bench_assembly(c: &mut Criterion) {
         let s = scene(h_min, 0.0);
         group.bench_with_input(BenchmarkId::from_parameter(h_min), &s, |b, s| {
             let p = &s.problem;
-            b.iter(|| MortarMatrices::new(black_box(&p.contact), &p.multipliers, &p.h_t, &p.spec.obstacle).unwrap())
+            let h_t: Vec<f64> = p.contact.edges.iter().map(|e| p.mesh.diameter(e.triangle)).collect();
+            b.iter(|| MortarMatrices::new(black_box(&p.contact), &p.multipliers, &h_t, &p.spec.obstacle).unwrap())
         });
     }
     group.finish();
@@ -156,7 +147,10 @@ fn bench_condensation(c: &mut Criterion) {
     for h_min in SIZES {
         let s = scene(h_min, 0.0);
         group.bench_with_input(BenchmarkId::from_parameter(h_min), &s, |b, s| {
-            b.iter(|| Condensed::new(black_box(&s.problem), STABILIZATION).unwrap())
+            b.iter(|| {
+                s.problem.forget_factorization();
+                s.problem.condense(black_box(STABILIZATION)).unwrap().gamma0()
+            })
         });
     }
     group.finish();
@@ -172,10 +166,11 @@ fn bench_tresca(c: &mut Criterion) {
     let settings = SolverSettings::default();
     for h_min in SIZES {
         let s = scene(h_min, 0.0);
-        let sol = s.condensed.solve(&s.problem, &tresca(), &settings, None).unwrap();
+        let condensed = s.problem.condense(STABILIZATION).unwrap();
+        let sol = condensed.solve(&tresca(), &settings, None).unwrap();
         assert_eq!(sol.report.status, SolveStatus::Converged, "Tresca at h_min = {h_min}");
-        group.bench_with_input(BenchmarkId::from_parameter(h_min), &s, |b, s| {
-            b.iter(|| s.condensed.solve(black_box(&s.problem), &tresca(), &settings, None).unwrap())
+        group.bench_with_input(BenchmarkId::from_parameter(h_min), &condensed, |b, c| {
+            b.iter(|| c.solve(black_box(&tresca()), &settings, None).unwrap())
         });
     }
     group.finish();
@@ -188,14 +183,15 @@ fn bench_coulomb(c: &mut Criterion) {
     let friction = Friction::Coulomb { mu: MU };
     for h_min in COULOMB_SIZES {
         let s = scene(h_min, COULOMB_SHIFT);
-        let sol = s.condensed.solve(&s.problem, &friction, &settings, None).unwrap();
+        let condensed = s.problem.condense(STABILIZATION).unwrap();
+        let sol = condensed.solve(&friction, &settings, None).unwrap();
         eprintln!(
             "[coulomb h_min = {h_min}] status {:?}, {} fixed-point iterations, QP iterations {:?}",
             sol.report.status, sol.report.iterations, sol.report.qp_iterations
         );
         assert_eq!(sol.report.status, SolveStatus::Converged, "Coulomb at h_min = {h_min}");
-        group.bench_with_input(BenchmarkId::from_parameter(h_min), &s, |b, s| {
-            b.iter(|| s.condensed.solve(black_box(&s.problem), &friction, &settings, None).unwrap())
+        group.bench_with_input(BenchmarkId::from_parameter(h_min), &condensed, |b, c| {
+            b.iter(|| c.solve(black_box(&friction), &settings, None).unwrap())
         });
     }
     group.finish();
@@ -207,14 +203,15 @@ fn bench_qp_kkt_solver(c: &mut Criterion) {
     let cases = [("frictionless", Friction::Frictionless), ("tresca", tresca())];
     for h_min in SIZES {
         let s = scene(h_min, 0.0);
+        let condensed = s.problem.condense(STABILIZATION).unwrap();
         for (law, friction) in &cases {
             for (name, kkt) in [("qdldl", KktSolver::Qdldl), ("faer", KktSolver::Faer)] {
                 let mut settings = SolverSettings::default();
                 settings.qp.kkt_solver = kkt;
-                let sol = s.condensed.solve(&s.problem, friction, &settings, None).unwrap();
+                let sol = condensed.solve(friction, &settings, None).unwrap();
                 assert_eq!(sol.report.status, SolveStatus::Converged, "{law} with {name} at h_min = {h_min}");
-                group.bench_with_input(BenchmarkId::new(format!("{law}/{name}"), h_min), &s, |b, s| {
-                    b.iter(|| s.condensed.solve(black_box(&s.problem), friction, &settings, None).unwrap())
+                group.bench_with_input(BenchmarkId::new(format!("{law}/{name}"), h_min), &condensed, |b, c| {
+                    b.iter(|| c.solve(black_box(friction), &settings, None).unwrap())
                 });
             }
         }
@@ -269,12 +266,11 @@ fn bench_uniform_103k(c: &mut Criterion) {
     let mut group = c.benchmark_group("uniform_103k");
     configure_slow(&mut group, 20);
     let mesh = tribo::rectangle([-2.0, 2.0], [-2.0, 0.0], 320, 160, tribo::Diagonal::Alternating).expect("mesh");
-    let spec = hertz_spec(COULOMB_SHIFT);
+    let spec = spec(COULOMB_SHIFT);
     let problem = Problem::new(mesh.clone(), spec.clone()).expect("problem");
-    let condensed = Condensed::new(&problem, STABILIZATION).expect("condensation");
     let settings = SolverSettings::default();
     let coulomb = Friction::Coulomb { mu: MU };
-    let check = condensed.solve(&problem, &coulomb, &settings, None).expect("solve");
+    let check = problem.solve(&coulomb, &settings, None).expect("solve");
     eprintln!(
         "[uniform 320 x 160] n_free {} q {} Coulomb {:?} after {} iterations",
         problem.n_free,
@@ -286,12 +282,17 @@ fn bench_uniform_103k(c: &mut Criterion) {
     group.bench_function("problem_new", |b| {
         b.iter_batched(|| (mesh.clone(), spec.clone()), |(m, s)| Problem::new(m, s).unwrap(), BatchSize::LargeInput)
     });
-    group.bench_function("condensed_new", |b| b.iter(|| Condensed::new(black_box(&problem), STABILIZATION).unwrap()));
+    group.bench_function("condense", |b| {
+        b.iter(|| {
+            problem.forget_factorization();
+            problem.condense(black_box(STABILIZATION)).unwrap().gamma0()
+        })
+    });
     group.bench_function("coulomb_solve", |b| {
         b.iter(|| {
-            // A fresh condensation each time: the columns of H are computed on demand and cached.
-            let c = Condensed::new(&problem, STABILIZATION).unwrap();
-            c.solve(&problem, &coulomb, &settings, None).unwrap()
+            // A fresh factorization each time: the columns of H are computed on demand and kept with it.
+            problem.forget_factorization();
+            problem.solve(black_box(&coulomb), &settings, None).unwrap()
         })
     });
     let k = problem.k_matrix.clone();

@@ -2,8 +2,8 @@
 
 Hertz with Coulomb friction (approach 0.01, obstacle shift s = 0.004), graded mesh h_min = 0.01, P1, H = h,
 γ0 = 0.5 × bound, working-set QP (the default), fixed point `g ← (1 − ω) g + ω Φ_H(g)` with at most 100
-iterations. Grid: μ from 0 to 2, ν ∈ {0, 0.2, 0.3, 0.45}, ω ∈ {1, 0.5, 0.25} with the default QP tolerance
-1e-10, and ω = 1 with qp_tol = 1e-12. Then μ = 0.3, ν = 0.3 under
+iterations. Grid: μ from 0 to 2, ν ∈ {0, 0.2, 0.3, 0.45}, ω ∈ {1, 0.5, 0.25} with the QP tolerance 1e-10
+(the fallback tolerance), and ω = 1 with the default qp_tol = 1e-12. Then μ = 0.3, ν = 0.3 under
 refinement (h_min 0.04 → 0.00125) for the three ω.
 
     python scripts/study_coulomb_fixed_point.py     # docs/coulomb_fixed_point.{md,csv,png}
@@ -24,7 +24,8 @@ import studylib as sl  # noqa: E402
 
 MUS = [0.0, 0.1, 0.2, 0.3, 0.5, 0.7, 0.9, 1.1, 1.3, 1.5, 2.0]
 NUS = [0.0, 0.2, 0.3, 0.45]
-# (relaxation ω, QP tolerance): the default QP tolerance 1e-10 with three ω, and ω = 1 with a tighter QP.
+# (relaxation ω, QP tolerance): QP tolerance 1e-10 (the fallback tolerance, and the default before 0.1)
+# with three ω, and ω = 1 with the default 1e-12.
 OMEGAS = [(1.0, 1e-10), (0.5, 1e-10), (0.25, 1e-10), (1.0, 1e-12)]
 H_MINS = [0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125]
 SHIFT = 0.004
@@ -32,7 +33,7 @@ SHIFT = 0.004
 
 def solve_row(problem: Any, mu: float, setting: tuple[float, float], **extra: Any) -> dict[str, Any]:
     omega, qp_tol = setting
-    sol, sec = sl.timed(lambda: problem.solve(mu=mu, relaxation=omega, qp_tol=qp_tol))
+    sol, sec = sl.timed(lambda: problem.solve(mu=mu, fp_relaxation=omega, qp_tol=qp_tol))
     rep = sol.report
     hist = rep.residual_history
     row = dict(mu=mu, omega=omega, qp_tol=qp_tol, setting=setting, status=rep.status, iterations=rep.iterations,

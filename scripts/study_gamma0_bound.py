@@ -29,11 +29,33 @@ import tribo  # noqa: E402
 FRACTIONS = [0.5, 0.75, 0.9, 1.0, 1.1, 1.25, 1.4, 1.5, 1.55, 1.58, 1.6, 1.7, 1.8, 1.9, 2.0, 2.5, 3.0]
 
 
+def elasticity_matrix(young: float, poisson: float) -> np.ndarray:
+    """Plane-strain C for (σ_xx, σ_yy, σ_xy) against (ε_xx, ε_yy, 2ε_xy), written here independently of the
+    core (the point of this study's γ0*)."""
+    c = young / ((1.0 + poisson) * (1.0 - 2.0 * poisson))
+    return c * np.array([[1.0 - poisson, poisson, 0.0], [poisson, 1.0 - poisson, 0.0], [0.0, 0.0, 0.5 - poisson]])
+
+
+def strain_operators(mesh: tribo.Mesh) -> tuple[np.ndarray, np.ndarray]:
+    """Per triangle: B (3 × 6, interleaved x, y dofs) and the area."""
+    p = mesh.points[mesh.triangles]  # (nt, 3, 2)
+    x, y = p[:, :, 0], p[:, :, 1]
+    b = np.stack([y[:, 1] - y[:, 2], y[:, 2] - y[:, 0], y[:, 0] - y[:, 1]], axis=1)
+    c = np.stack([x[:, 2] - x[:, 1], x[:, 0] - x[:, 2], x[:, 1] - x[:, 0]], axis=1)
+    area2 = (x[:, 1] - x[:, 0]) * (y[:, 2] - y[:, 0]) - (x[:, 2] - x[:, 0]) * (y[:, 1] - y[:, 0])
+    bm = np.zeros((len(x), 3, 6))
+    bm[:, 0, 0::2] = b / area2[:, None]
+    bm[:, 1, 1::2] = c / area2[:, None]
+    bm[:, 2, 0::2] = c / area2[:, None]
+    bm[:, 2, 1::2] = b / area2[:, None]
+    return bm, 0.5 * np.abs(area2)
+
+
 def true_bound(problem: tribo.Problem) -> float:
     """Largest γ0 with K − G positive definite (dense numpy; K and G assembled here independently)."""
     mesh = problem.mesh
-    bm, area = sl.strain_operators(mesh)
-    c = sl.elasticity_matrix(problem.young, problem.poisson)
+    bm, area = strain_operators(mesh)
+    c = elasticity_matrix(problem.young, problem.poisson)
     ke = area[:, None, None] * np.einsum("tki,kl,tlj->tij", bm, c, bm)
     dofs = np.stack([2 * mesh.triangles, 2 * mesh.triangles + 1], axis=2).reshape(-1, 6)
     ndof = 2 * mesh.n_nodes

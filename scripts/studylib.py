@@ -1,16 +1,16 @@
 """Shared pieces of the studies in scripts/: the Hertz scene, the error measures and the output helpers.
 
-The scene is the one of tests/common/mod.rs: a rigid cylinder R = 1 pushed `approach` into the block
-(−2, 2) × (−2, 0), clamped at the bottom, contact on the top, E = 200, ν = 0.3. The error measures mirror
-the Rust tests:
+The scene is `tribo/scenes/hertz.toml`, the one the Rust and Python tests read: a rigid cylinder R = 1
+pushed `approach` into the block (−2, 2) × (−2, 0), clamped at the bottom, contact on the top, E = 200,
+ν = 0.3. The error measures mirror the Rust tests:
 
 * ``lambda_l2_error``: relative L2 error of λ_n against the plane-strain Hertz pressure of the computed
   force (a² = 4PR(1−ν²)/(πE), p_max = 2P/(πa)), 8-point Gauss on every segment of the union of T_H, the
   FE nodes of Γ_C and ±a (so the square-root edge of the pressure sits on a breakpoint);
 * ``oscillation``: total variation of the λ_n dof values over that of the Hertz pressure (2 p_max);
 * ``energy_error``: ‖u_ref − I u_h‖_K / ‖u_ref‖_K on a fine reference mesh, I the P1 interpolation of the
-  coarse displacement at the fine nodes (matplotlib.tri.LinearTriInterpolator), K assembled element by
-  element in numpy (plane strain, P1).
+  coarse displacement at the fine nodes (matplotlib.tri.LinearTriInterpolator), the norm the core's
+  (``Problem.energy_norm``).
 """
 
 from __future__ import annotations
@@ -26,11 +26,15 @@ from typing import Any
 import numpy as np
 
 import tribo
+from tribo.scene import load_scene, scene_path
 
 ROOT = Path(__file__).resolve().parent.parent
 DOCS = ROOT / "docs"
-YOUNG, POISSON, RADIUS = 200.0, 0.3, 1.0
-BOX = ((-2.0, 2.0), (-2.0, 0.0))
+HERTZ = load_scene(scene_path("hertz"))
+YOUNG, POISSON = float(HERTZ.get("material", "young")), float(HERTZ.get("material", "poisson"))
+RADIUS = float(HERTZ.get("obstacle", "radius"))
+BOX = (tuple(HERTZ.get("body", "x")), tuple(HERTZ.get("body", "y")))
+SEGMENT = tuple(HERTZ.get("discretization", "grading"))
 
 # Gauss–Legendre, 8 points on [−1, 1].
 GAUSS_X, GAUSS_W = np.polynomial.legendre.leggauss(8)
@@ -42,10 +46,8 @@ def uniform_mesh(nx: int) -> tribo.Mesh:
 
 
 def graded_mesh(h_min: float, h_max: float = 0.5, growth: float = 0.3) -> tribo.Mesh:
-    """Mesh graded toward [−0.3, 0.3] on the top side."""
-    return tribo.Mesh.graded_rectangle(
-        *BOX, side="top", segment=(-0.3, 0.3), h_min=h_min, h_max=h_max, growth=growth
-    )
+    """Mesh graded toward the scene's segment of the top side ([−0.3, 0.3])."""
+    return tribo.Mesh.graded_rectangle(*BOX, side="top", segment=SEGMENT, h_min=h_min, h_max=h_max, growth=growth)
 
 
 def hertz_problem(
@@ -95,12 +97,7 @@ def _gauss_points(breaks: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def contact_breaks(problem: tribo.Problem) -> np.ndarray:
     """T_H points, multiplier dof positions and FE nodes of Γ_C."""
-    return np.concatenate([problem.multiplier_mesh, problem.multiplier_abscissae, _node_xi(problem)])
-
-
-def _node_xi(problem: tribo.Problem) -> np.ndarray:
-    pts = problem.mesh.points[problem.contact_nodes]
-    return np.asarray(pts[:, 0], dtype=float)  # Γ_C is the top side: ξ = x
+    return np.concatenate([problem.multiplier_mesh, problem.multiplier_abscissae, problem.node_abscissae])
 
 
 def lambda_l2_error(problem: tribo.Problem, sol: tribo.Solution, poisson: float = POISSON) -> float:
@@ -116,7 +113,7 @@ def lambda_l2_error(problem: tribo.Problem, sol: tribo.Solution, poisson: float 
 
 def sigma_pieces(problem: tribo.Problem, sol: tribo.Solution) -> tuple[np.ndarray, np.ndarray]:
     """Breakpoints (sorted FE nodes of Γ_C) and the contact pressure −σ_n(u_h), constant on each edge."""
-    nodes = np.sort(_node_xi(problem))
+    nodes = np.sort(problem.node_abscissae)
     order = np.argsort(sol.edge_abscissae)
     mids = np.asarray(sol.edge_abscissae)[order]
     if len(nodes) != len(mids) + 1 or not np.all((mids > nodes[:-1]) & (mids < nodes[1:])):
@@ -173,43 +170,14 @@ class Reference:
         """‖u_ref − I u_h‖_K / ‖u_ref‖_K on the reference mesh."""
         iu = interpolate(problem.mesh, np.asarray(sol.displacement), self.problem.mesh.points)
         diff = np.asarray(self.solution.displacement) - iu
-        return math.sqrt(energy(self.problem.mesh, diff, problem.poisson)) / self.energy
+        return self.problem.energy_norm(diff) / self.energy
 
 
 def make_reference(problem: tribo.Problem, **solve: Any) -> Reference:
     sol = problem.solve(**solve)
     if sol.report.status != "converged":
         raise RuntimeError(f"the reference solve did not converge: {sol.report.status}")
-    return Reference(problem, sol, math.sqrt(energy(problem.mesh, np.asarray(sol.displacement), problem.poisson)))
-
-
-def elasticity_matrix(young: float = YOUNG, poisson: float = POISSON) -> np.ndarray:
-    """Plane-strain C for (σ_xx, σ_yy, σ_xy) against (ε_xx, ε_yy, 2ε_xy)."""
-    c = young / ((1.0 + poisson) * (1.0 - 2.0 * poisson))
-    return c * np.array([[1.0 - poisson, poisson, 0.0], [poisson, 1.0 - poisson, 0.0], [0.0, 0.0, 0.5 - poisson]])
-
-
-def strain_operators(mesh: tribo.Mesh) -> tuple[np.ndarray, np.ndarray]:
-    """Per triangle: B (3 × 6, interleaved x, y dofs) and the area."""
-    p = mesh.points[mesh.triangles]  # (nt, 3, 2)
-    x, y = p[:, :, 0], p[:, :, 1]
-    b = np.stack([y[:, 1] - y[:, 2], y[:, 2] - y[:, 0], y[:, 0] - y[:, 1]], axis=1)
-    c = np.stack([x[:, 2] - x[:, 1], x[:, 0] - x[:, 2], x[:, 1] - x[:, 0]], axis=1)
-    area2 = (x[:, 1] - x[:, 0]) * (y[:, 2] - y[:, 0]) - (x[:, 2] - x[:, 0]) * (y[:, 1] - y[:, 0])
-    bm = np.zeros((len(x), 3, 6))
-    bm[:, 0, 0::2] = b / area2[:, None]
-    bm[:, 1, 1::2] = c / area2[:, None]
-    bm[:, 2, 0::2] = c / area2[:, None]
-    bm[:, 2, 1::2] = b / area2[:, None]
-    return bm, 0.5 * np.abs(area2)
-
-
-def energy(mesh: tribo.Mesh, u: np.ndarray, poisson: float = POISSON) -> float:
-    """uᵀ K u for a nodal displacement u (n_nodes × 2), element by element."""
-    bm, area = strain_operators(mesh)
-    ue = np.asarray(u)[mesh.triangles].reshape(len(area), 6)
-    eps = np.einsum("tij,tj->ti", bm, ue)
-    return float(np.sum(area * np.einsum("ti,ij,tj->t", eps, elasticity_matrix(YOUNG, poisson), eps)))
+    return Reference(problem, sol, problem.energy_norm(sol.displacement))
 
 
 def interpolate(mesh: tribo.Mesh, u: np.ndarray, points: np.ndarray) -> np.ndarray:

@@ -26,7 +26,9 @@ from tribo._tribo import (
     SolverError,
     TriboError,
     __version__,
+    choices,
     solver_defaults,
+    solver_settings,
 )
 from tribo.io import read_mesh, write_vtu
 from tribo.scene import SceneError, load_scene
@@ -45,8 +47,10 @@ __all__ = [
     "SolverError",
     "TriboError",
     "__version__",
+    "choices",
     "load_scene",
     "read_mesh",
     "solver_defaults",
+    "solver_settings",
     "write_vtu",
 ]

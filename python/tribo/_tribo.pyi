@@ -26,6 +26,8 @@ __all__ = [
     "Solution",
     "Report",
     "solver_defaults",
+    "solver_settings",
+    "choices",
 ]
 
 __version__: str
@@ -43,6 +45,8 @@ class SettingsError(TriboError): ...
 class SolverError(TriboError): ...
 
 def solver_defaults() -> dict[str, Any]: ...
+def solver_settings() -> dict[str, dict[str, Any]]: ...
+def choices() -> dict[str, list[str]]: ...
 @final
 class Mesh:
     def __new__(
@@ -128,15 +132,15 @@ class Problem:
         threshold: float | _ArrayLike | None = None,
         gamma0: float | None = None,
         gamma0_fraction: float | None = None,
-        qp_tol: float | None = None,
-        qp_max_iter: int | None = None,
-        kkt_solver: Literal["faer", "qdldl"] | None = None,
-        working_set: bool | None = None,
-        fp_tol: float | None = None,
-        fp_max_iter: int | None = None,
-        relaxation: float | None = None,
-        progress: _ProgressCallback | None = None,
         check_gamma0: bool = True,
+        progress: _ProgressCallback | None = None,
+        qp_tol: float = ...,
+        qp_max_iter: int = ...,
+        qp_kkt_solver: Literal["faer", "qdldl"] = ...,
+        qp_working_set: bool = ...,
+        fp_tol: float = ...,
+        fp_max_iter: int = ...,
+        fp_relaxation: float = ...,
     ) -> Solution: ...
     @property
     def mesh(self) -> Mesh: ...
@@ -180,6 +184,9 @@ class Problem:
     def multiplier_abscissae(self) -> _Floats1: ...
     def contact_points(self, xi: _ArrayLike) -> _Floats2: ...
     def evaluate_multiplier(self, values: _ArrayLike, xi: _ArrayLike) -> _Floats1: ...
+    def energy_norm(self, u: _ArrayLike) -> float: ...
+    @property
+    def node_abscissae(self) -> _Floats1: ...
     @property
     def setup_timings(self) -> dict[str, float]: ...
 
@@ -189,6 +196,8 @@ class Report:
     def status(self) -> Literal["converged", "max_iterations", "stagnated", "interrupted", "qp_failed"]: ...
     @property
     def converged(self) -> bool: ...
+    @property
+    def interrupted_iteration(self) -> int | None: ...
     @property
     def failed_iteration(self) -> int | None: ...
     @property

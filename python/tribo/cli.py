@@ -98,7 +98,8 @@ def run_scene(scene: Scene, out: Path, *, plots: bool = True) -> tuple[Problem, 
         problem.space,
         problem.gamma0_bound,
     )
-    log.info("solving: %s", scene.friction)
+    given = ", ".join(f"{k} = {v}" for k, v in scene.sections.get("friction", {}).items())
+    log.info("solving (%s)", given or "no friction given: frictionless")
     problem, solution = scene.solve(problem, progress=_progress)
     seconds = time.perf_counter() - clock
     log.info("solve ended: %s after %.2f s", solution.report.status, seconds)

@@ -19,7 +19,8 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     ``center``, an abscissa on Γ_C, default 0) or ``"polyline"`` (``xi`` and ``gap`` lists);
     ``approach`` (δ, toward the body) and ``shift`` (s, along the tangent t).
 ``[friction]``
-    ``mu`` (Coulomb; 0 is frictionless) or ``threshold`` (Tresca); neither: frictionless.
+    ``mu`` (Coulomb; 0 is frictionless) or ``threshold`` (Tresca); neither: frictionless (the core decides,
+    with the same rule as ``Problem.solve``).
 ``[discretization]``
     For a rectangle: ``grading`` = ``"auto"`` (default: refine toward where contact can occur),
     ``"none"`` (a uniform mesh of size ``h``) or ``[a, b]`` (refine toward that segment of Γ_C);
@@ -28,8 +29,10 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     For any body: ``multiplier_ratio`` (H/h) or ``multiplier_size`` (H), ``space`` (``"P0"``/``"P1"``),
     ``gamma0`` or ``gamma0_fraction`` (of the admissible bound).
 ``[solver]``
-    ``qp_tol``, ``qp_max_iter``, ``kkt_solver`` (``"faer"``/``"qdldl"``), ``working_set`` (true/false),
-    ``fp_tol``, ``fp_max_iter``, ``relaxation``. Unset keys take the core's defaults (``tribo.solver_defaults()``).
+    Any solver setting by the name ``Problem.solve`` takes (``tribo.solver_settings()`` lists them with
+    their kinds and defaults): ``qp_tol``, ``qp_max_iter``, ``qp_kkt_solver`` (``"faer"``/``"qdldl"``),
+    ``qp_working_set`` (true/false), ``fp_tol``, ``fp_max_iter``, ``fp_relaxation``. Unset keys take the
+    core's defaults. The table of keys is built from the core's, so it cannot drift from it.
 
 Top-level ``title`` and ``description`` are free text. An unknown key or a value of the wrong type is a
 ``SceneError`` that names the key (``scene key 'obstacle.radus' is not known``).
@@ -52,12 +55,20 @@ from typing import Any
 
 import numpy as np
 
-from tribo._tribo import Mesh, Obstacle, Problem, Solution, TriboError
+from tribo._tribo import Mesh, Obstacle, Problem, Solution, TriboError, choices, solver_settings
 from tribo.io import read_mesh
 
-__all__ = ["Scene", "SceneError", "load_scene", "parse_scene", "demo_scene_path"]
+__all__ = ["Scene", "SceneError", "load_scene", "parse_scene", "demo_scene_path", "scene_path"]
 
-SIDES = ("bottom", "right", "top", "left")
+CHOICES = choices()
+SIDES = tuple(CHOICES["side"])
+
+# Keys renamed so that a scene key, a Python keyword and the core's setting name are one name.
+RENAMED = {
+    "solver.kkt_solver": "solver.qp_kkt_solver",
+    "solver.working_set": "solver.qp_working_set",
+    "solver.relaxation": "solver.fp_relaxation",
+}
 
 
 class SceneError(TriboError):
@@ -83,6 +94,16 @@ def _integer(key: str, v: Any) -> int:
     if isinstance(v, bool) or not isinstance(v, int):
         raise SceneError(f"scene key '{key}' must be an integer, got {v!r}", key)
     return v
+
+
+def _count(largest: int) -> Checker:
+    def check(key: str, v: Any) -> int:
+        n = _integer(key, v)
+        if not 0 <= n <= largest:
+            raise SceneError(f"scene key '{key}' must be an integer in [0, {largest}], got {n}", key)
+        return n
+
+    return check
 
 
 def _boolean(key: str, v: Any) -> bool:
@@ -138,6 +159,18 @@ def _pairs(key: str, v: Any) -> dict[str, tuple[float, float]]:
     return {name: _pair(f"{key}.{name}", t) for name, t in v.items()}
 
 
+def _setting_checker(spec: dict[str, Any]) -> Checker:
+    """The checker of one solver setting, from its kind in the core's table."""
+    kind = spec["kind"]
+    if kind == "float":
+        return _number
+    if kind == "bool":
+        return _boolean
+    if kind == "count":
+        return _count(int(spec["max"]))
+    return _choice(*spec["options"])
+
+
 SCHEMA: dict[str, dict[str, Checker]] = {
     "body": {"x": _pair, "y": _pair, "mesh": _string},
     "material": {"young": _number, "poisson": _number},
@@ -159,22 +192,14 @@ SCHEMA: dict[str, dict[str, Checker]] = {
         "h": _number,
         "h_min": _number,
         "growth": _number,
-        "diagonal": _choice("right", "left", "alternating"),
+        "diagonal": _choice(*CHOICES["diagonal"]),
         "multiplier_ratio": _number,
         "multiplier_size": _number,
-        "space": _choice("P0", "P1"),
+        "space": _choice(*CHOICES["space"]),
         "gamma0": _number,
         "gamma0_fraction": _number,
     },
-    "solver": {
-        "qp_tol": _number,
-        "qp_max_iter": _integer,
-        "kkt_solver": _choice("faer", "qdldl"),
-        "working_set": _boolean,
-        "fp_tol": _number,
-        "fp_max_iter": _integer,
-        "relaxation": _number,
-    },
+    "solver": {name: _setting_checker(spec) for name, spec in solver_settings().items()},
 }
 REQUIRED = {"material": ("young", "poisson"), "supports": ("clamped",), "contact": ("edge_set",)}
 
@@ -191,24 +216,10 @@ class Scene:
     def get(self, section: str, key: str, default: Any = None) -> Any:
         return self.sections.get(section, {}).get(key, default)
 
-    # ----- friction -----
-    @property
-    def friction(self) -> str:
-        """'frictionless', 'tresca' or 'coulomb', as the scene asks (μ = 0 is frictionless)."""
-        mu, threshold = self.get("friction", "mu"), self.get("friction", "threshold")
-        if threshold is not None:
-            return "tresca"
-        if mu is not None and mu != 0.0:
-            return "coulomb"
-        return "frictionless"
-
     def solve_kwargs(self) -> dict[str, Any]:
-        """Keyword arguments of ``Problem.solve``: only what the scene sets."""
-        kw: dict[str, Any] = {"friction": self.friction}
-        if self.friction == "coulomb":
-            kw["mu"] = self.get("friction", "mu")
-        elif self.friction == "tresca":
-            kw["threshold"] = self.get("friction", "threshold")
+        """Keyword arguments of ``Problem.solve``: only what the scene sets (the core picks the friction
+        law from ``mu`` and ``threshold``, as for any call of ``Problem.solve``)."""
+        kw: dict[str, Any] = dict(self.sections.get("friction", {}))
         for key in ("gamma0", "gamma0_fraction"):
             if self.get("discretization", key) is not None:
                 kw[key] = self.get("discretization", key)
@@ -368,6 +379,10 @@ def parse_scene(data: Mapping[str, Any], base_dir: Path | None = None) -> Scene:
         checked: dict[str, Any] = {}
         for key, value in table.items():
             check = SCHEMA[name].get(key)
+            if check is None and f"{name}.{key}" in RENAMED:
+                raise SceneError(
+                    f"scene key '{name}.{key}' was renamed '{RENAMED[f'{name}.{key}']}'", f"{name}.{key}"
+                )
             if check is None:
                 raise SceneError(
                     f"scene key '{name}.{key}' is not known (known keys of [{name}]: {', '.join(SCHEMA[name])})",
@@ -412,6 +427,15 @@ def load_scene(path: str | Path) -> Scene:
     return parse_scene(data, base_dir=path.resolve().parent)
 
 
+def scene_path(name: str) -> Path:
+    """Path of a scene shipped in the package: ``"demo"``, ``"hertz"``."""
+    path = Path(str(resources.files("tribo") / "scenes" / f"{name}.toml"))
+    if not path.is_file():
+        shipped = sorted(p.stem for p in path.parent.glob("*.toml"))
+        raise SceneError(f"no shipped scene named '{name}' (shipped: {', '.join(shipped)})")
+    return path
+
+
 def demo_scene_path() -> Path:
     """Path of the built-in demo scene shipped in the package."""
-    return Path(str(resources.files("tribo") / "scenes" / "demo.toml"))
+    return scene_path("demo")

@@ -3,6 +3,10 @@
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyInt};
+use tribo::SettingValue;
+
+use crate::errors::settings_error;
 
 /// An error constructor (which exception class a bad array raises).
 pub type ErrFn = fn(String) -> PyErr;
@@ -102,4 +106,24 @@ pub fn mat<'py, T: numpy::Element + Copy, const K: usize>(py: Python<'py>, r: &[
 /// An (n, 2) array from an interleaved (x, y) vector.
 pub fn pairs<'py>(py: Python<'py>, v: &[f64]) -> Bound<'py, PyArray2<f64>> {
     Array2::from_shape_vec((v.len() / 2, 2), v.to_vec()).expect("interleaved pairs").into_pyarray(py)
+}
+
+/// A Python value as a solver setting: a bool, an integer, a real number or an option's name.
+pub fn setting_value(v: &Bound<'_, PyAny>, name: &str) -> PyResult<SettingValue> {
+    if let Ok(b) = v.cast::<PyBool>() {
+        return Ok(SettingValue::Bool(b.is_true()));
+    }
+    if let Ok(i) = v.extract::<i64>() {
+        return Ok(SettingValue::Int(i));
+    }
+    if v.is_instance_of::<PyInt>() {
+        return Err(settings_error(format!("setting '{name}' = {v} is out of range")));
+    }
+    if let Ok(f) = v.extract::<f64>() {
+        return Ok(SettingValue::Float(f));
+    }
+    if let Ok(s) = v.extract::<String>() {
+        return Ok(SettingValue::Name(s));
+    }
+    Err(settings_error(format!("setting '{name}' must be a number, a bool or a name, got {v}")))
 }

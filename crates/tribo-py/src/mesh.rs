@@ -5,10 +5,10 @@ use std::collections::BTreeMap;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyMapping};
-use tribo::{Diagonal, Grading, Side};
+use tribo::{Choice, Diagonal, Grading, Side};
 
 use crate::convert::{floats, indices, mat, rows};
-use crate::errors::{mesh_error, IntoPy};
+use crate::errors::{mesh_error, ToPyResult};
 
 fn mesh_err(msg: String) -> PyErr {
     mesh_error(msg)
@@ -21,16 +21,6 @@ fn mesh_err(msg: String) -> PyErr {
 #[pyclass(frozen, name = "Mesh", module = "tribo")]
 pub struct PyMesh {
     pub inner: tribo::Mesh,
-}
-
-fn parse_side(side: &str) -> PyResult<Side> {
-    match side {
-        "bottom" => Ok(Side::Bottom),
-        "right" => Ok(Side::Right),
-        "top" => Ok(Side::Top),
-        "left" => Ok(Side::Left),
-        _ => Err(mesh_error(format!("side must be 'bottom', 'right', 'top' or 'left', got '{side}'"))),
-    }
 }
 
 fn range(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<[f64; 2]> {
@@ -79,13 +69,7 @@ impl PyMesh {
         ny: usize,
         diagonal: Option<&str>,
     ) -> PyResult<Self> {
-        let diagonal = match diagonal {
-            None => Diagonal::default(),
-            Some("right") => Diagonal::Right,
-            Some("left") => Diagonal::Left,
-            Some("alternating") => Diagonal::Alternating,
-            Some(d) => return Err(mesh_error(format!("diagonal must be 'right', 'left' or 'alternating', got '{d}'"))),
-        };
+        let diagonal = diagonal.map_or(Ok(Diagonal::default()), Diagonal::parse).py_err()?;
         let (x, y) = (range(x, "x")?, range(y, "y")?);
         let inner = py.detach(|| tribo::rectangle(x, y, nx, ny, diagonal)).py_err()?;
         Ok(Self { inner })
@@ -107,7 +91,8 @@ impl PyMesh {
         growth: f64,
     ) -> PyResult<Self> {
         let (x, y) = (range(x, "x")?, range(y, "y")?);
-        let grading = Grading { side: parse_side(side)?, segment: range(segment, "segment")?, h_min, h_max, growth };
+        let grading =
+            Grading { side: Side::parse(side).py_err()?, segment: range(segment, "segment")?, h_min, h_max, growth };
         let inner = py.detach(|| tribo::graded_rectangle(x, y, &grading)).py_err()?;
         Ok(Self { inner })
     }

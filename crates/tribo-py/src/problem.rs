@@ -1,18 +1,19 @@
 //! `Obstacle` and `Problem`: the contact problem, its set-up and its solve.
 
+use std::ops::ControlFlow;
 use std::sync::{Arc, Mutex};
 
 use numpy::{PyArray1, PyArray2};
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat};
-use tribo::stabilization::resolve_gamma0;
 use tribo::{
-    Condensed, Friction, GapFunction, KktSolver, Material, MultiplierPoints, MultiplierSpace, ObstacleShape,
+    Choice, Friction, FrictionLaw, GapFunction, Material, MultiplierPoints, MultiplierSpace, ObstacleShape,
     ProblemSpec, Progress, SolverSettings, Stabilization, Threshold,
 };
 
-use crate::convert::{floats, mat, rows, vec1};
-use crate::errors::{geometry_error, settings_error, IntoPy};
+use crate::convert::{floats, mat, rows, setting_value, vec1};
+use crate::errors::{geometry_error, settings_error, to_pyerr, ToPyResult};
 use crate::mesh::PyMesh;
 use crate::solution::PySolution;
 
@@ -148,38 +149,14 @@ impl PyObstacle {
     }
 }
 
-/// A contact problem, validated and assembled once (independent of γ0 and friction).
+/// A contact problem, validated and assembled once (independent of γ0 and friction). It keeps the
+/// factorization of its last solve, reused by the next solve with the same γ0.
 #[pyclass(frozen, name = "Problem", module = "tribo")]
 pub struct PyProblem {
     inner: tribo::Problem,
     mesh: Py<PyMesh>,
     obstacle: Py<PyObstacle>,
     slot: Option<ErrorSlot>,
-    /// The last condensed system: reused by a later solve with the same γ0.
-    condensed: Mutex<Option<Arc<Condensed>>>,
-}
-
-fn parse_space(space: Option<&str>) -> PyResult<MultiplierSpace> {
-    match space {
-        None => Ok(MultiplierSpace::default()),
-        Some("P0" | "p0") => Ok(MultiplierSpace::P0),
-        Some("P1" | "p1") => Ok(MultiplierSpace::P1),
-        Some(s) => Err(geometry_error(format!("space must be 'P0' or 'P1', got '{s}'"))),
-    }
-}
-
-pub fn space_name(s: MultiplierSpace) -> &'static str {
-    match s {
-        MultiplierSpace::P0 => "P0",
-        MultiplierSpace::P1 => "P1",
-    }
-}
-
-pub fn kkt_solver_name(s: KktSolver) -> &'static str {
-    match s {
-        KktSolver::Qdldl => "qdldl",
-        KktSolver::Faer => "faer",
-    }
 }
 
 fn names(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<String>> {
@@ -193,6 +170,42 @@ fn names(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<String>> {
 fn vec2(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<[f64; 2]> {
     let v = floats(obj, what, &[Some(2)], settings_err)?;
     Ok([v[0], v[1]])
+}
+
+/// The solve's keywords as core values: the friction law, γ0 and the settings table.
+fn solve_arguments(
+    friction: Option<&str>,
+    mu: Option<f64>,
+    threshold: Option<&Bound<'_, PyAny>>,
+    stabilization: (Option<f64>, Option<f64>, bool),
+    settings: Option<&Bound<'_, PyDict>>,
+) -> PyResult<(Friction, SolverSettings)> {
+    let threshold = match threshold {
+        None => None,
+        Some(t) => Some(match t.extract::<f64>() {
+            Ok(s) => Threshold::Uniform(s),
+            Err(_) => Threshold::PerDof(floats(t, "threshold", &[None], settings_err)?),
+        }),
+    };
+    let law = friction.map(FrictionLaw::parse).transpose().py_err()?;
+    let friction = Friction::from_keywords(law, mu, threshold).py_err()?;
+    let (gamma0, fraction, checked) = stabilization;
+    let mut s = SolverSettings {
+        stabilization: Stabilization::from_keywords(gamma0, fraction, checked).py_err()?,
+        ..Default::default()
+    };
+    for (key, value) in settings.into_iter().flat_map(|d| d.iter()) {
+        let name: String = key.extract()?;
+        match s.set(&name, setting_value(&value, &name)?) {
+            Err(tribo::Error::UnknownSetting { known, .. }) => {
+                return Err(PyTypeError::new_err(format!(
+                    "Problem.solve() got an unexpected keyword argument '{name}' (solver settings: {known})"
+                )));
+            }
+            other => other.py_err()?,
+        }
+    }
+    Ok((friction, s))
 }
 
 #[pymethods]
@@ -290,30 +303,30 @@ impl PyProblem {
             contact,
             obstacle: spec_obstacle,
             multiplier_points: points,
-            multiplier_space: parse_space(space)?,
+            multiplier_space: space.map_or(Ok(MultiplierSpace::default()), MultiplierSpace::parse).py_err()?,
         };
         let mesh_inner = mesh.get().inner.clone();
         let slot = obs.slot.clone();
-        let inner = py
-            .detach(|| tribo::Problem::new(mesh_inner, spec))
-            .map_err(|e| chain_gap_error(py, &slot, crate::errors::to_pyerr(e)))?;
-        Ok(Self { inner, mesh, obstacle, slot, condensed: Mutex::new(None) })
+        let inner =
+            py.detach(|| tribo::Problem::new(mesh_inner, spec)).map_err(|e| chain_gap_error(py, &slot, to_pyerr(e)))?;
+        Ok(Self { inner, mesh, obstacle, slot })
     }
 
     /// Solves the problem; returns a Solution whose `report.status` says how the solve ended.
     ///
     /// The friction law is `friction` ('frictionless', 'tresca' or 'coulomb'), or, when None, inferred:
     /// `mu` given → Coulomb (mu = 0 is frictionless), `threshold` given → Tresca, neither → frictionless.
-    /// γ0 is `gamma0`, or `gamma0_fraction` × the admissible bound, or the core's default. Every other
-    /// setting left at None takes the core's default (see `solver_defaults()`); `working_set=False`
-    /// solves every QP over all of Γ_C instead of over the dofs that can be in contact. `progress`, if given,
-    /// is called as progress(iteration, change, qp_iterations, qp_seconds) after every QP.
-    /// `check_gamma0=False` takes an explicit `gamma0` even at or above the admissible bound (for
-    /// studies of what happens there; the factorization then may fail with SolverError).
+    /// γ0 is `gamma0`, or `gamma0_fraction` × the admissible bound, or the core's default;
+    /// `check_gamma0=False` takes an explicit `gamma0` even at or above the admissible bound (for studies
+    /// of what happens there; the factorization may then fail with SolverError). Every other keyword is
+    /// a solver setting by its name in `solver_defaults()` (qp_tol, qp_max_iter, qp_kkt_solver,
+    /// qp_working_set, fp_tol, fp_max_iter, fp_relaxation); unset ones take the core's defaults.
+    /// `progress`, if given, is called as progress(iteration, change, qp_iterations, qp_seconds) after
+    /// every QP; returning False stops the solve (status 'interrupted', with the last iterate), raising
+    /// stops it and propagates. Ctrl-C is honoured between QPs.
     #[pyo3(signature = (
         *, friction = None, mu = None, threshold = None, gamma0 = None, gamma0_fraction = None,
-        qp_tol = None, qp_max_iter = None, kkt_solver = None, working_set = None, fp_tol = None,
-        fp_max_iter = None, relaxation = None, progress = None, check_gamma0 = true,
+        check_gamma0 = true, progress = None, **settings,
     ))]
     #[allow(clippy::too_many_arguments)]
     fn solve(
@@ -324,72 +337,12 @@ impl PyProblem {
         threshold: Option<&Bound<'_, PyAny>>,
         gamma0: Option<f64>,
         gamma0_fraction: Option<f64>,
-        qp_tol: Option<f64>,
-        qp_max_iter: Option<u32>,
-        kkt_solver: Option<&str>,
-        working_set: Option<bool>,
-        fp_tol: Option<f64>,
-        fp_max_iter: Option<usize>,
-        relaxation: Option<f64>,
-        progress: Option<Py<PyAny>>,
         check_gamma0: bool,
+        progress: Option<Py<PyAny>>,
+        settings: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<PySolution> {
-        let threshold = match threshold {
-            None => None,
-            Some(t) => Some(match t.extract::<f64>() {
-                Ok(s) => Threshold::Uniform(s),
-                Err(_) => Threshold::PerDof(floats(t, "threshold", &[None], settings_err)?),
-            }),
-        };
-        let law = match (friction, mu, threshold) {
-            (_, Some(_), Some(_)) => {
-                return Err(settings_error("give mu (Coulomb) or threshold (Tresca), not both"));
-            }
-            (None | Some("coulomb"), Some(mu), None) => Friction::Coulomb { mu },
-            (None | Some("tresca"), None, Some(t)) => Friction::Tresca(t),
-            (None | Some("frictionless"), None, None) => Friction::Frictionless,
-            (Some("coulomb"), None, _) => return Err(settings_error("friction='coulomb' needs mu")),
-            (Some("tresca"), _, None) => return Err(settings_error("friction='tresca' needs threshold")),
-            (Some("frictionless"), _, _) => {
-                return Err(settings_error("friction='frictionless' takes neither mu nor threshold"))
-            }
-            (Some(f), _, _) => {
-                return Err(settings_error(format!(
-                    "friction must be 'frictionless', 'tresca' or 'coulomb', got '{f}'"
-                )))
-            }
-        };
-        let mut settings = SolverSettings::default();
-        settings.stabilization = match (gamma0, gamma0_fraction) {
-            (Some(_), Some(_)) => return Err(settings_error("give gamma0 or gamma0_fraction, not both")),
-            (Some(g), None) => Stabilization::Gamma0(g),
-            (None, Some(f)) => Stabilization::Fraction(f),
-            (None, None) => settings.stabilization,
-        };
-        if let Some(t) = qp_tol {
-            settings.qp.tol = t;
-        }
-        if let Some(m) = qp_max_iter {
-            settings.qp.max_iter = m;
-        }
-        settings.qp.kkt_solver = match kkt_solver {
-            None => settings.qp.kkt_solver,
-            Some("faer") => KktSolver::Faer,
-            Some("qdldl") => KktSolver::Qdldl,
-            Some(k) => return Err(settings_error(format!("kkt_solver must be 'faer' or 'qdldl', got '{k}'"))),
-        };
-        if let Some(w) = working_set {
-            settings.qp.working_set = w;
-        }
-        if let Some(t) = fp_tol {
-            settings.fixed_point.tol_change_rel = t;
-        }
-        if let Some(m) = fp_max_iter {
-            settings.fixed_point.max_iter = m;
-        }
-        if let Some(w) = relaxation {
-            settings.fixed_point.relaxation = w;
-        }
+        let (law, settings) =
+            solve_arguments(friction, mu, threshold, (gamma0, gamma0_fraction, check_gamma0), settings)?;
         if let Some(p) = &progress {
             if !p.bind(py).is_callable() {
                 return Err(settings_error(
@@ -397,48 +350,36 @@ impl PyProblem {
                 ));
             }
         }
-        settings.validate().py_err()?;
-        law.validate().py_err()?;
-        let (bound, element) = self.inner.gamma0_bound;
-        let g0 = match (check_gamma0, settings.stabilization) {
-            // Studies beyond the admissible bound: γ0 is taken as given, the factorization may fail.
-            (false, Stabilization::Gamma0(g)) if g.is_finite() && g >= 0.0 => g,
-            _ => resolve_gamma0(settings.stabilization, bound, element).py_err()?,
-        };
-
-        let cached = self.condensed.lock().ok().and_then(|c| c.clone()).filter(|c| c.gamma0 == g0);
-        let reused = cached.is_some();
         let mut callback_error: Option<PyErr> = None;
         let problem = &self.inner;
-        let result = py.detach(|| -> tribo::Result<(Arc<Condensed>, tribo::Solution)> {
-            let condensed = match cached {
-                Some(c) => c,
-                None => Arc::new(Condensed::with_gamma0(problem, g0)?),
+        let result = py.detach(|| {
+            // After every QP: the progress callback (False stops the solve, an exception stops it and is
+            // re-raised below) and Ctrl-C.
+            let mut observe = |p: &Progress| {
+                Python::attach(|py| {
+                    let stop = match &progress {
+                        Some(f) => match f.call1(py, (p.iteration, p.change, p.qp_iterations, p.qp_seconds)) {
+                            Ok(r) => r.bind(py).is(pyo3::types::PyBool::new(py, false)),
+                            Err(e) => {
+                                callback_error = Some(e);
+                                true
+                            }
+                        },
+                        None => false,
+                    };
+                    if let Err(e) = py.check_signals() {
+                        callback_error.get_or_insert(e);
+                    }
+                    if stop || callback_error.is_some() {
+                        ControlFlow::Break(())
+                    } else {
+                        ControlFlow::Continue(())
+                    }
+                })
             };
-            // A callback that raises (or Ctrl-C) stops the solve; the exception is re-raised below.
-            let mut report = |p: &Progress| {
-                if let Some(f) = &progress {
-                    Python::attach(|py| {
-                        let r = f.call1(py, (p.iteration, p.change, p.qp_iterations, p.qp_seconds));
-                        if let Err(e) = r.and_then(|_| py.check_signals()) {
-                            callback_error = Some(e);
-                        }
-                    });
-                }
-                if callback_error.is_some() {
-                    std::ops::ControlFlow::Break(())
-                } else {
-                    std::ops::ControlFlow::Continue(())
-                }
-            };
-            let observer: Option<tribo::Observer<'_>> = if progress.is_some() { Some(&mut report) } else { None };
-            let solution = condensed.solve(problem, &law, &settings, observer)?;
-            Ok((condensed, solution))
+            problem.solve(&law, &settings, Some(&mut observe))
         });
-        let (condensed, solution) = result.map_err(|e| chain_gap_error(py, &self.slot, crate::errors::to_pyerr(e)))?;
-        if let Ok(mut c) = self.condensed.lock() {
-            *c = Some(condensed);
-        }
+        let solution = result.map_err(|e| chain_gap_error(py, &self.slot, to_pyerr(e)))?;
         if let Some(e) = callback_error {
             return Err(e);
         }
@@ -447,12 +388,7 @@ impl PyProblem {
             err.set_cause(py, Some(e));
             return Err(err);
         }
-        let (friction_name, mu) = match &law {
-            Friction::Frictionless | Friction::Coulomb { mu: 0.0 } => ("frictionless", None),
-            Friction::Tresca(_) => ("tresca", None),
-            Friction::Coulomb { mu } => ("coulomb", Some(*mu)),
-        };
-        PySolution::new(solution, friction_name, mu, reused)
+        PySolution::new(solution)
     }
 
     /// The mesh.
@@ -506,7 +442,7 @@ impl PyProblem {
     /// Multiplier space, 'P0' or 'P1'.
     #[getter]
     fn space(&self) -> &'static str {
-        space_name(self.inner.multipliers.space)
+        self.inner.multipliers.space.as_str()
     }
 
     /// Number of free displacement dofs.
@@ -524,13 +460,13 @@ impl PyProblem {
     /// The admissible bound on γ0 (K − G stays positive definite below it).
     #[getter]
     fn gamma0_bound(&self) -> f64 {
-        self.inner.gamma0_bound.0
+        self.inner.gamma0_bound.value
     }
 
     /// The triangle that sets the admissible bound on γ0.
     #[getter]
     fn gamma0_bound_element(&self) -> usize {
-        self.inner.gamma0_bound.1
+        self.inner.gamma0_bound.triangle
     }
 
     /// Outward unit normal n on Γ_C.
@@ -557,6 +493,12 @@ impl PyProblem {
     #[getter]
     fn contact_nodes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
         PyArray1::from_vec(py, self.inner.contact.nodes.iter().map(|&n| n as i64).collect())
+    }
+
+    /// Abscissae of the FE nodes of Γ_C (in the order of `contact_nodes`).
+    #[getter]
+    fn node_abscissae<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        vec1(py, &self.inner.contact.node_xi)
     }
 
     /// FE edges of Γ_C by increasing abscissa, (n_c − 1, 2) int64 (left, right node).
@@ -598,6 +540,14 @@ impl PyProblem {
         Ok(PyArray1::from_vec(py, x.iter().map(|&x| self.inner.multipliers.evaluate(&v, x)).collect()))
     }
 
+    /// The elastic energy norm sqrt(uᵀ K u) of a nodal displacement `u` (N, 2) on this problem's mesh and
+    /// material (K without supports), element by element.
+    fn energy_norm(&self, u: &Bound<'_, PyAny>) -> PyResult<f64> {
+        let n = self.inner.mesh.n_nodes();
+        let u = floats(u, "u", &[Some(n), Some(2)], settings_err)?;
+        Ok(tribo::elasticity::energy_norm(&self.inner.mesh, &self.inner.spec.material, &u))
+    }
+
     /// Set-up wall times in seconds: {'assembly', 'contact_matrices'}.
     #[getter]
     fn setup_timings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
@@ -612,9 +562,9 @@ impl PyProblem {
             "Problem(n_free={}, n_multipliers={}, space='{}', contact='{}', gamma0_bound={:e})",
             self.inner.n_free,
             self.inner.n_multipliers(),
-            space_name(self.inner.multipliers.space),
+            self.inner.multipliers.space,
             self.inner.spec.contact,
-            self.inner.gamma0_bound.0
+            self.inner.gamma0_bound.value
         )
     }
 }

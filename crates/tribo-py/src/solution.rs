@@ -3,35 +3,32 @@
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use tribo::{ContactState, SolveStatus};
+use tribo::{Choice, SolveStatus};
 
 use crate::convert::{mat, pairs, vec1};
-
-/// Names of the contact states, indexed by the small ints of `Solution.states`.
-pub const STATE_NAMES: [&str; 3] = ["separation", "stick", "slip"];
-
-fn state_code(s: ContactState) -> i8 {
-    match s {
-        ContactState::Separation => 0,
-        ContactState::Stick => 1,
-        ContactState::Slip => 2,
-    }
-}
 
 /// How a solve went: status, iterations, γ0 and timings.
 #[pyclass(frozen, name = "Report", module = "tribo")]
 pub struct PyReport {
     inner: tribo::Report,
-    reused: bool,
 }
 
 #[pymethods]
 impl PyReport {
-    /// 'converged', 'max_iterations', 'stagnated', 'interrupted' (the progress callback raised) or
-    /// 'qp_failed'.
+    /// 'converged', 'max_iterations', 'stagnated', 'interrupted' (the progress callback returned False)
+    /// or 'qp_failed'.
     #[getter]
     fn status(&self) -> &'static str {
-        status_name(self.inner.status)
+        self.inner.status.name()
+    }
+
+    /// For 'interrupted': the fixed-point iteration after which the solve stopped, else None.
+    #[getter]
+    fn interrupted_iteration(&self) -> Option<usize> {
+        match self.inner.status {
+            SolveStatus::Interrupted { iteration } => Some(iteration),
+            _ => None,
+        }
     }
 
     /// True when the status is 'converged'.
@@ -98,7 +95,7 @@ impl PyReport {
     /// 'factorization' and 'condensation' timings are then those of that earlier solve).
     #[getter]
     fn reused_factorization(&self) -> bool {
-        self.reused
+        self.inner.reused_factorization
     }
 
     /// Wall times per phase in seconds: assembly, contact_matrices, factorization, condensation, qp,
@@ -139,15 +136,13 @@ impl PyReport {
 #[pyclass(frozen, name = "Solution", module = "tribo")]
 pub struct PySolution {
     inner: tribo::Solution,
-    friction: &'static str,
-    mu: Option<f64>,
     report: Py<PyReport>,
 }
 
 impl PySolution {
-    pub fn new(inner: tribo::Solution, friction: &'static str, mu: Option<f64>, reused: bool) -> PyResult<Self> {
-        let report = Python::attach(|py| Py::new(py, PyReport { inner: inner.report.clone(), reused }))?;
-        Ok(Self { inner, friction, mu, report })
+    pub fn new(inner: tribo::Solution) -> PyResult<Self> {
+        let report = Python::attach(|py| Py::new(py, PyReport { inner: inner.report.clone() }))?;
+        Ok(Self { inner, report })
     }
 }
 
@@ -156,13 +151,13 @@ impl PySolution {
     /// Friction law solved: 'frictionless', 'tresca' or 'coulomb'.
     #[getter]
     fn friction(&self) -> &'static str {
-        self.friction
+        self.inner.report.friction.as_str()
     }
 
     /// Coulomb coefficient μ, or None.
     #[getter]
     fn mu(&self) -> Option<f64> {
-        self.mu
+        self.inner.report.mu
     }
 
     /// Nodal displacements, (N, 2).
@@ -216,13 +211,13 @@ impl PySolution {
     /// Contact state per multiplier dof as int8: 0 separation, 1 stick, 2 slip (see STATE_NAMES).
     #[getter]
     fn states<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i8>> {
-        PyArray1::from_vec(py, self.inner.states.iter().map(|&s| state_code(s)).collect())
+        PyArray1::from_vec(py, self.inner.states.iter().map(|&s| s.code() as i8).collect())
     }
 
     /// Contact state per multiplier dof as strings.
     #[getter]
     fn state_names(&self) -> Vec<&'static str> {
-        self.inner.states.iter().map(|&s| STATE_NAMES[state_code(s) as usize]).collect()
+        self.inner.states.iter().map(|&s| s.as_str()).collect()
     }
 
     /// Abscissae of the midpoints of the FE edges of Γ_C.
@@ -320,21 +315,10 @@ impl PySolution {
     fn __repr__(&self) -> String {
         format!(
             "Solution(friction='{}', status='{}', normal_force={:.6e}, tangential_force={:.6e})",
-            self.friction,
-            status_name(self.inner.report.status),
+            self.inner.report.friction,
+            self.inner.report.status.name(),
             self.inner.normal_force,
             self.inner.tangential_force
         )
-    }
-}
-
-/// The Python name of a solve status.
-fn status_name(s: SolveStatus) -> &'static str {
-    match s {
-        SolveStatus::Converged => "converged",
-        SolveStatus::MaxIterations => "max_iterations",
-        SolveStatus::Stagnated => "stagnated",
-        SolveStatus::Interrupted { .. } => "interrupted",
-        SolveStatus::QpFailed { .. } => "qp_failed",
     }
 }

@@ -1,6 +1,10 @@
 //! The stabilized system condensed onto Γ_C: one sparse Cholesky factorization of `A = K − G`, then the
 //! multiplier operator `H = E A⁻¹ Eᵀ + Dγ` and the linear term `c = d − E A⁻¹ f` of the QP.
 //!
+//! This module is linear algebra only: it is handed `K`, `−G`, the rows of `E`, `Dγ`, `f` and `d` (built by
+//! [`crate::Problem::condense`] from [`crate::stabilization`] and [`crate::mortar`]) and knows nothing of
+//! meshes or contact.
+//!
 //! This is the only place that touches all n displacement unknowns. `c` costs one solve; a column of H
 //! costs one solve with the factor (done in blocks of columns) and is computed only when a QP asks for it
 //! and then kept: the working-set QP ([`crate::working_set`]) only needs the columns of the multiplier
@@ -12,26 +16,14 @@ use std::sync::Mutex;
 use std::time::Instant;
 
 use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::Llt;
-use faer::sparse::SparseColMat;
+use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, Side};
 
 use crate::error::{Error, Result};
-use crate::problem::Problem;
-use crate::stabilization::{resolve_gamma0, Stabilization};
 
 /// Number of right-hand sides solved together when forming `A⁻¹ Eᵀ`.
 const BLOCK: usize = 64;
-
-/// Timings of the condensation, in seconds.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct CondensationTimings {
-    /// Forming `A = K − G` and its numeric sparse Cholesky factorization (the symbolic one is the
-    /// problem's).
-    pub factorization: f64,
-    /// Forming `c` and the columns of `H` asked for so far (one solve per column).
-    pub schur: f64,
-}
 
 /// Lazily computed columns of H, and the time spent computing them.
 #[derive(Default)]
@@ -40,108 +32,91 @@ struct Columns {
     seconds: f64,
 }
 
-/// The condensed problem for one value of γ0.
-pub struct Condensed {
+/// The factorization of `A = K − G` for one γ0 and the condensed operators it defines: `E`, `Dγ`, `c`,
+/// `d` and the columns of H (computed on demand and kept).
+pub struct Factor {
     /// The γ0 in use.
     pub gamma0: f64,
     /// Sparse Cholesky factor of A.
     llt: Llt<usize, f64>,
     /// A as a sparse matrix (for residuals).
     a: SparseColMat<usize, f64>,
-    /// Rows of E (2q sparse rows over the free dofs).
+    /// Rows of E (2q sparse rows over the unknowns).
     pub e_rows: Vec<Vec<(usize, f64)>>,
     /// Columns of H computed so far (2q of them at most, each of length 2q).
     columns: Mutex<Columns>,
     /// Linear term c (2q).
     pub c: Vec<f64>,
-    /// `d` (2q): gap and shift moments.
+    /// `d` (2q): the obstacle's gap and shift moments.
     pub d: Vec<f64>,
-    /// Dγ by columns (row, value).
+    /// Dγ by columns over the 2q unknowns (row, value): the q × q block `Dγ` twice on the diagonal.
     d_cols: Vec<Vec<(usize, f64)>>,
-    /// Timings.
-    pub timings: CondensationTimings,
+    /// Wall time of forming A and its numeric factorization, in seconds.
+    pub factorization_seconds: f64,
 }
 
-impl std::fmt::Debug for Condensed {
+impl std::fmt::Debug for Factor {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Condensed").field("gamma0", &self.gamma0).field("2q", &self.c.len()).finish()
+        f.debug_struct("Factor").field("gamma0", &self.gamma0).field("2q", &self.c.len()).finish()
     }
 }
 
-impl Condensed {
-    /// Factorizes A and condenses onto the multipliers.
+impl Factor {
+    /// Factorizes `A = K + minus_g` (on K's pattern, with K's symbolic factorization) and forms `c`.
+    ///
+    /// `e_rows` are the 2q rows of E over the unknowns, `d_gamma` the entries `(i, j, v)` of the q × q
+    /// block Dγ (the same block acts on the normal and on the tangential multipliers), `f` the load and
+    /// `d` the obstacle moments (2q).
     ///
     /// # Errors
-    /// [`Error::BadSetting`] / [`Error::Gamma0TooLarge`] for a bad γ0; [`Error::NotPositiveDefinite`] if
-    /// the Cholesky factorization fails.
-    pub fn new(problem: &Problem, stabilization: Stabilization) -> Result<Self> {
-        let (bound, element) = problem.gamma0_bound;
-        let gamma0 = resolve_gamma0(stabilization, bound, element)?;
-        Self::with_gamma0(problem, gamma0)
-    }
-
-    /// As [`Condensed::new`] with γ0 given and *not* checked against the admissible bound: for studies
-    /// of what happens beyond it. The factorization still fails cleanly if A is not definite.
-    ///
-    /// # Errors
-    /// [`Error::NotPositiveDefinite`] if the Cholesky factorization fails.
-    pub fn with_gamma0(problem: &Problem, gamma0: f64) -> Result<Self> {
+    /// [`Error::NotPositiveDefinite`] if the Cholesky factorization fails; [`Error::Assembly`] if `−G`
+    /// does not lie in the pattern of K.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        k: &SparseColMat<usize, f64>,
+        symbolic: &SymbolicLlt<usize>,
+        minus_g: &[Triplet<usize, usize, f64>],
+        e_rows: Vec<Vec<(usize, f64)>>,
+        d_gamma: Vec<(usize, usize, f64)>,
+        f: &[f64],
+        d: Vec<f64>,
+        gamma0: f64,
+    ) -> Result<Self> {
         let clock = Instant::now();
         // A = K − G on K's pattern (G couples the dofs of one triangle, all present in K), factorized
-        // with the symbolic analysis of the problem: only values change with γ0.
-        let k = &problem.k_matrix;
+        // with the symbolic analysis of K: only values change with γ0.
         let (pattern, k_values) = k.parts();
         let mut values = k_values.to_vec();
         let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
-        for t in problem.stabilization_triplets(gamma0) {
+        for t in minus_g {
             let range = col_ptr[t.col]..col_ptr[t.col + 1];
-            let pos = row_idx[range.clone()].binary_search(&t.row).expect("G lies in the pattern of K");
+            let Ok(pos) = row_idx[range.clone()].binary_search(&t.row) else {
+                return Err(Error::Assembly {
+                    matrix: "K − G",
+                    what: format!("({}, {}) is not in K's pattern", t.row, t.col),
+                });
+            };
             values[range.start + pos] += t.val;
         }
-        let pattern = pattern.to_owned().map_err(|e| Error::NotPositiveDefinite { what: format!("{e:?}") })?;
+        let pattern = pattern.to_owned().map_err(|e| Error::Assembly { matrix: "K − G", what: format!("{e:?}") })?;
         let a = SparseColMat::new(pattern, values);
-        let llt = Llt::try_new_with_symbolic(problem.symbolic.clone(), a.as_ref(), Side::Lower).map_err(|e| {
-            Error::NotPositiveDefinite {
-                what: format!("{e:?} (γ0 = {gamma0:e}, admissible bound {:e})", problem.gamma0_bound.0),
-            }
-        })?;
-        let factorization = clock.elapsed().as_secs_f64();
+        let llt = Llt::try_new_with_symbolic(symbolic.clone(), a.as_ref(), Side::Lower)
+            .map_err(|e| Error::NotPositiveDefinite { what: format!("{e:?}") })?;
+        let factorization_seconds = clock.elapsed().as_secs_f64();
 
         let clock = Instant::now();
-        let e_rows = problem.coupling_rows(gamma0);
         let k = e_rows.len();
         let q = k / 2;
         // Dγ by columns: for column j of block b, the rows i of the same block.
         let mut d_cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); k];
-        if gamma0 > 0.0 {
-            for &(i, j, v) in &problem.mortar.d_h.entries {
-                d_cols[j].push((i, gamma0 * v));
-                d_cols[q + j].push((q + i, gamma0 * v));
-            }
+        for &(i, j, v) in &d_gamma {
+            d_cols[j].push((i, v));
+            d_cols[q + j].push((q + i, v));
         }
-        let u_f = solve(&llt, &problem.f_free);
-        let shift = problem.spec.obstacle.shift;
-        let d: Vec<f64> = problem
-            .mortar
-            .gap_moments
-            .iter()
-            .copied()
-            .chain(problem.mortar.psi_integrals.iter().map(|w| w * shift))
-            .collect();
+        let u_f = solve(&llt, f);
         let c = e_rows.iter().zip(&d).map(|(row, di)| di - dot(row, &u_f)).collect();
-        let schur = clock.elapsed().as_secs_f64();
-        let columns = Mutex::new(Columns { cols: vec![None; k], seconds: schur });
-        Ok(Self {
-            gamma0,
-            llt,
-            a,
-            e_rows,
-            d_cols,
-            c,
-            d,
-            columns,
-            timings: CondensationTimings { factorization, schur },
-        })
+        let columns = Mutex::new(Columns { cols: vec![None; k], seconds: clock.elapsed().as_secs_f64() });
+        Ok(Self { gamma0, llt, a, e_rows, d_cols, c, d, columns, factorization_seconds })
     }
 
     /// Number of multiplier dofs per component.
@@ -172,7 +147,6 @@ impl Condensed {
         if !missing.is_empty() {
             let clock = Instant::now();
             let n = self.a.nrows();
-            let k = self.e_rows.len();
             let mut x = Mat::<f64>::zeros(n, BLOCK.min(missing.len()));
             for chunk in missing.chunks(BLOCK) {
                 let mut xb = x.as_mut().subcols_mut(0, chunk.len());
@@ -189,7 +163,6 @@ impl Condensed {
                     for &(r, v) in &self.d_cols[i] {
                         h[r] += v;
                     }
-                    debug_assert_eq!(h.len(), k);
                     guard.cols[i] = Some(h);
                 }
             }
@@ -221,17 +194,6 @@ impl Condensed {
         self.columns.lock().unwrap_or_else(std::sync::PoisonError::into_inner).seconds
     }
 
-    /// Number of columns of H computed so far.
-    pub fn computed_columns(&self) -> usize {
-        self.columns
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner)
-            .cols
-            .iter()
-            .filter(|c| c.is_some())
-            .count()
-    }
-
     /// The displacement (free dofs) for multipliers λ (2q): `u = A⁻¹ (f − Eᵀ λ)`.
     pub fn displacement(&self, f: &[f64], lambda: &[f64]) -> Vec<f64> {
         let mut rhs = f.to_vec();
@@ -255,14 +217,25 @@ impl Condensed {
         y
     }
 
+    /// `Dγ λ` (2q).
+    pub fn apply_d(&self, lambda: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; lambda.len()];
+        for (col, l) in self.d_cols.iter().zip(lambda) {
+            for &(r, v) in col {
+                y[r] += v * l;
+            }
+        }
+        y
+    }
+
     /// `E u` (2q).
     pub fn apply_e(&self, u: &[f64]) -> Vec<f64> {
         self.e_rows.iter().map(|row| dot(row, u)).collect()
     }
 
     /// `Eᵀ λ` (free dofs).
-    pub fn apply_et(&self, lambda: &[f64], n: usize) -> Vec<f64> {
-        let mut y = vec![0.0; n];
+    pub fn apply_et(&self, lambda: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; self.a.nrows()];
         for (row, l) in self.e_rows.iter().zip(lambda) {
             for &(d, v) in row {
                 y[d] += v * l;

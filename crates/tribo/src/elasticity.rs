@@ -102,15 +102,15 @@ pub fn stiffness_triplets(mesh: &Mesh, material: &Material) -> Vec<Triplet<usize
 /// Global stiffness matrix K (2N × 2N, all dofs, no support applied).
 ///
 /// # Errors
-/// Never for a validated mesh; the `Result` carries faer's allocation failure as a setup error.
+/// [`Error::Assembly`] if faer cannot build the matrix (index overflow, allocation failure).
 pub fn stiffness(mesh: &Mesh, material: &Material) -> Result<SparseColMat<usize, f64>> {
     let n = 2 * mesh.n_nodes();
     SparseColMat::try_new_from_triplets(n, n, &stiffness_triplets(mesh, material))
-        .map_err(|e| Error::NotPositiveDefinite { what: format!("assembly failed: {e:?}") })
+        .map_err(|e| Error::Assembly { matrix: "K", what: format!("{e:?}") })
 }
 
-/// Load vector of a constant body force `f` (per unit area): each node of T gets `|T| f / 3`.
-pub fn body_force_vector(mesh: &Mesh, f: [f64; 2], rhs: &mut [f64]) {
+/// Adds the load of a constant body force `f` (per unit area) to `rhs`: each node of T gets `|T| f / 3`.
+pub fn add_body_force(mesh: &Mesh, f: [f64; 2], rhs: &mut [f64]) {
     for (t, tri) in mesh.triangles().iter().enumerate() {
         let w = mesh.area(t) / 3.0;
         for &i in tri {
@@ -120,8 +120,8 @@ pub fn body_force_vector(mesh: &Mesh, f: [f64; 2], rhs: &mut [f64]) {
     }
 }
 
-/// Load vector of a constant traction `g` (force per unit length) on a set of boundary edges.
-pub fn traction_vector(mesh: &Mesh, edges: &[[usize; 2]], g: [f64; 2], rhs: &mut [f64]) {
+/// Adds the load of a constant traction `g` (force per unit length) on a set of boundary edges to `rhs`.
+pub fn add_traction(mesh: &Mesh, edges: &[[usize; 2]], g: [f64; 2], rhs: &mut [f64]) {
     for &[a, b] in edges {
         let w = 0.5 * mesh.edge_length(a, b);
         for i in [a, b] {

@@ -9,6 +9,7 @@
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::f64::consts::PI;
 
+use crate::choice::{named_choice, Choice};
 use crate::error::{Error, Result};
 use crate::mesh::{Mesh, Point};
 
@@ -43,17 +44,13 @@ pub enum Side {
     Left,
 }
 
-impl Side {
-    /// The name of the edge set of this side: `"bottom"`, `"right"`, `"top"` or `"left"`.
-    pub fn name(&self) -> &'static str {
-        match self {
-            Side::Bottom => "bottom",
-            Side::Right => "right",
-            Side::Top => "top",
-            Side::Left => "left",
-        }
-    }
-}
+// The name of a side is the name of its edge set.
+named_choice!(Side, "side", { Side::Bottom => "bottom", Side::Right => "right", Side::Top => "top", Side::Left => "left" });
+named_choice!(Diagonal, "diagonal", {
+    Diagonal::Right => "right",
+    Diagonal::Left => "left",
+    Diagonal::Alternating => "alternating",
+});
 
 /// Where and how strongly [`graded_rectangle`] refines.
 #[derive(Debug, Clone, PartialEq)]
@@ -102,7 +99,7 @@ fn side_sets(sides: [Vec<(u64, [usize; 2])>; 4]) -> BTreeMap<String, Vec<[usize;
         .zip(sides)
         .map(|(side, mut edges)| {
             edges.sort_unstable_by_key(|e| e.0);
-            (side.name().to_string(), edges.into_iter().map(|e| e.1).collect())
+            (side.as_str().to_string(), edges.into_iter().map(|e| e.1).collect())
         })
         .collect()
 }
@@ -171,9 +168,7 @@ fn check_grading(x: [f64; 2], y: [f64; 2], g: &Grading) -> Result<[[f64; 2]; 2]>
     if !(a.is_finite() && b.is_finite() && a <= b && along[0] <= a && b <= along[1]) {
         return Err(bad(format!(
             "segment [{a}, {b}] must be finite, increasing and inside the {} side [{}, {}]",
-            g.side.name(),
-            along[0],
-            along[1]
+            g.side, along[0], along[1]
         )));
     }
     Ok(match g.side {
@@ -426,10 +421,10 @@ mod tests {
         assert!(rel(boundary_length, 2.0 * (w + h)) < 1e-12);
         assert_eq!(mesh.edge_set_names().collect::<Vec<_>>(), ["bottom", "left", "right", "top"]);
         for side in SIDES {
-            let edges = mesh.edge_set(side.name()).unwrap();
+            let edges = mesh.edge_set(side.as_str()).unwrap();
             let length: f64 = edges.iter().map(|e| mesh.edge_length(e[0], e[1])).sum();
             let expected = if matches!(side, Side::Bottom | Side::Top) { w } else { h };
-            assert!(rel(length, expected) < 1e-12, "{} has length {length}", side.name());
+            assert!(rel(length, expected) < 1e-12, "{} has length {length}", side.as_str());
             for e in edges {
                 assert!(on_side(p[e[0]], x, y, side) && on_side(p[e[1]], x, y, side));
             }
@@ -522,7 +517,7 @@ mod tests {
             let g = Grading { side, segment, h_min: 0.01, h_max: 0.4, growth: 0.5 };
             let mesh = graded_rectangle(x, y, &g).unwrap();
             check_mesh(&mesh, x, y);
-            let shortest = mesh.edge_set(side.name()).unwrap().iter().map(|e| mesh.edge_length(e[0], e[1]));
+            let shortest = mesh.edge_set(side.as_str()).unwrap().iter().map(|e| mesh.edge_length(e[0], e[1]));
             assert!(shortest.fold(f64::INFINITY, f64::min) <= g.h_min);
         }
         // h_min = h_max: the base grid, unrefined (3 / 0.5 x 1 / 0.5 cells).

@@ -20,48 +20,71 @@
 //!
 //! ## How it is solved
 //! 1. [`Problem::new`] validates and assembles K, the loads, Γ_C, T_H and the Γ_C matrices ([`mortar`]).
-//! 2. [`Condensed::new`] factorizes `A = K − G` once (sparse Cholesky, faer) and condenses onto the
-//!    multipliers: `H = E A⁻¹ Eᵀ + Dγ` (see [`tresca`] for the QP and why its KKT conditions are (3.2)).
-//! 3. [`Condensed::solve`] solves one QP (frictionless, Tresca) or iterates the fixed point
-//!    `g ↦ λ_Hn(g)` of Definition 1 (Coulomb, [`coulomb`]), each step a clarabel QP over 2q unknowns
-//!    whose matrix never changes.
+//! 2. [`Problem::condense`] factorizes `A = K − G` (sparse Cholesky, faer) for the chosen γ0 and condenses
+//!    onto the multipliers: `H = E A⁻¹ Eᵀ + Dγ` ([`condensation`]; see [`qp`] for the QP and why its KKT
+//!    conditions are (3.2)). The problem keeps that factorization for the next solve with the same γ0.
+//! 3. [`Condensed::solve`] ([`solve`]) solves one QP (frictionless, Tresca) or iterates the fixed point
+//!    `g ↦ λ_Hn(g)` of Definition 1 (Coulomb), each step a box-constrained QP over 2q unknowns whose
+//!    matrix never changes. [`Problem::solve`] does steps 2 and 3 in one call.
 //! 4. The displacement is recovered with one more solve; [`Solution`] carries every field, the contact
-//!    state per multiplier dof, the discrete KKT residuals and a [`Report`].
+//!    state per multiplier dof, the discrete KKT residuals and a [`Report`] that says how the solve ended.
+//!
+//! ## Module layout
+//! Mathematics first: [`mesh`], [`generate`], [`elasticity`], [`contact`], [`obstacle`], [`multiplier`],
+//! [`mortar`], [`stabilization`] (the γ0-dependent operators), [`problem`]; then the solver:
+//! [`condensation`] (linear algebra of `A` and `H`), [`qp`] (clarabel), [`working_set`], [`friction`],
+//! [`settings`], [`solve`] (the driver and the fixed point) and [`solution`]. [`choice`] gives every enum
+//! of options its names. No module imports one that imports it back (a test reads the `use` lines).
+//!
+//! ## References
+//! * V. Lleras, *A stabilized Lagrange multiplier method for the finite element approximation of
+//!   frictional contact problems in elastostatics*, Mathematical Modelling of Natural Phenomena 4(1),
+//!   163–182, 2009. The discrete problem (3.1), the Tresca subproblem (3.2) and the fixed point
+//!   (Definition 1) cited throughout are that paper's.
+//! * H. J. C. Barbosa, T. J. R. Hughes, *The finite element method with Lagrange multipliers on the
+//!   boundary: circumventing the Babuška–Brezzi condition*, Computer Methods in Applied Mechanics and
+//!   Engineering 85(1), 109–128, 1991: the stabilization.
 //!
 //! ## Conventions
 //! Dofs are interleaved (x, y) per node; stresses are `(σ_xx, σ_yy, σ_xy)`; n is the outward normal on
 //! Γ_C and `t = (−n₂, n₁)`; abscissae on Γ_C are described in [`contact`].
 #![warn(missing_docs)]
 
+pub mod choice;
 pub mod condensation;
 pub mod contact;
-pub mod coulomb;
 pub mod elasticity;
 pub mod error;
+pub mod friction;
 pub mod generate;
 pub mod mesh;
 pub mod mortar;
 pub mod multiplier;
 pub mod obstacle;
 pub mod problem;
+pub mod qp;
+pub mod settings;
 pub mod solution;
+pub mod solve;
 pub mod stabilization;
-pub mod tresca;
 pub mod working_set;
 
-pub use condensation::Condensed;
+pub use choice::Choice;
+pub use condensation::Factor;
 pub use contact::ContactBoundary;
-pub use coulomb::{FixedPointSettings, Friction, Observer, Progress, SolverSettings, Threshold};
 pub use elasticity::Material;
 pub use error::{Error, Result};
+pub use friction::{Friction, FrictionLaw, Threshold};
 pub use generate::{graded_rectangle, rectangle, Diagonal, Grading, Side};
 pub use mesh::Mesh;
 pub use multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace};
 pub use obstacle::{GapFunction, Obstacle, ObstacleShape};
-pub use problem::{Problem, ProblemSpec};
+pub use problem::{Condensed, Problem, ProblemSpec};
+pub use qp::{QpOutcome, QpStatus};
+pub use settings::{FixedPointSettings, KktSolver, QpSettings, SettingInfo, SettingKind, SettingValue, SolverSettings};
 pub use solution::{ContactState, KktResiduals, Report, Solution, SolveStatus, Timings};
-pub use stabilization::Stabilization;
-pub use tresca::{KktSolver, QpSettings, QpStatus};
+pub use solve::{Observer, Progress};
+pub use stabilization::{Gamma0Bound, Stabilization};
 
 /// The Rust example of README.md, compiled and run as a doctest.
 #[cfg(doctest)]

@@ -25,8 +25,8 @@ pub struct Mesh {
     points: Vec<Point>,
     triangles: Vec<[usize; 3]>,
     edge_sets: BTreeMap<String, Vec<[usize; 2]>>,
-    /// Boundary edge (sorted node pair) -> (triangle, local edge index opposite to vertex `local`).
-    boundary: HashMap<[usize; 2], (usize, usize)>,
+    /// Boundary edge (sorted node pair) -> the triangle that owns it.
+    boundary: HashMap<[usize; 2], usize>,
 }
 
 /// Signed area of the triangle (a, b, c): positive when counter-clockwise.
@@ -64,7 +64,7 @@ impl Mesh {
         let n = points.len();
         let mut used = vec![false; n];
         let mut seen: HashMap<[usize; 3], usize> = HashMap::with_capacity(triangles.len());
-        let mut edge_count: HashMap<[usize; 2], (usize, usize, usize)> = HashMap::with_capacity(2 * triangles.len());
+        let mut edge_count: HashMap<[usize; 2], (usize, usize)> = HashMap::with_capacity(2 * triangles.len());
         for (element, tri) in triangles.iter().enumerate() {
             for &node in tri {
                 if node >= n {
@@ -90,14 +90,14 @@ impl Mesh {
                 used[tri[local]] = true;
                 let (p, q) = (tri[(local + 1) % 3], tri[(local + 2) % 3]);
                 let e = [p.min(q), p.max(q)];
-                edge_count.entry(e).and_modify(|v| v.2 += 1).or_insert((element, local, 1));
+                edge_count.entry(e).and_modify(|v| v.1 += 1).or_insert((element, 1));
             }
         }
         if let Some(node) = used.iter().position(|u| !u) {
             return Err(Error::UnusedNode { node });
         }
-        let boundary: HashMap<[usize; 2], (usize, usize)> =
-            edge_count.into_iter().filter(|(_, v)| v.2 == 1).map(|(e, v)| (e, (v.0, v.1))).collect();
+        let boundary: HashMap<[usize; 2], usize> =
+            edge_count.into_iter().filter(|(_, v)| v.1 == 1).map(|(e, v)| (e, v.0)).collect();
         for (set, edges) in &edge_sets {
             if edges.is_empty() {
                 return Err(Error::EmptyEdgeSet { name: set.clone() });
@@ -154,7 +154,7 @@ impl Mesh {
 
     /// The triangle that owns a boundary edge, or `None` if (a, b) is not a boundary edge.
     pub fn boundary_triangle(&self, a: usize, b: usize) -> Option<usize> {
-        self.boundary.get(&[a.min(b), a.max(b)]).map(|&(t, _)| t)
+        self.boundary.get(&[a.min(b), a.max(b)]).copied()
     }
 
     /// All boundary edges as sorted node pairs (in no particular order).
@@ -194,16 +194,5 @@ impl Mesh {
     /// Length of the edge (a, b).
     pub fn edge_length(&self, a: usize, b: usize) -> f64 {
         dist2(self.points[a], self.points[b]).sqrt()
-    }
-
-    /// Nodes touched by the edges of a set (sorted, unique).
-    ///
-    /// # Errors
-    /// [`Error::UnknownEdgeSet`] if there is no such set.
-    pub fn edge_set_nodes(&self, name: &str) -> Result<Vec<usize>> {
-        let mut nodes: Vec<usize> = self.edge_set(name)?.iter().flat_map(|e| [e[0], e[1]]).collect();
-        nodes.sort_unstable();
-        nodes.dedup();
-        Ok(nodes)
     }
 }

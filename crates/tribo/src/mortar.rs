@@ -97,15 +97,6 @@ impl Coo {
         self
     }
 
-    /// Dense copy (row-major `nrows × ncols`), for tests and small problems.
-    pub fn to_dense(&self) -> Vec<Vec<f64>> {
-        let mut d = vec![vec![0.0; self.ncols]; self.nrows];
-        for &(i, j, v) in &self.entries {
-            d[i][j] += v;
-        }
-        d
-    }
-
     /// Row sums.
     pub fn row_sums(&self) -> Vec<f64> {
         let mut s = vec![0.0; self.nrows];
@@ -119,8 +110,6 @@ impl Coo {
 /// All the Γ_C matrices of the method.
 #[derive(Debug, Clone)]
 pub struct MortarMatrices {
-    /// The common refinement they were integrated on.
-    pub pieces: Vec<Piece>,
     /// `M1 = ∫ φ_i φ_j`.
     pub m1: Coo,
     /// `M2 = ∫ φ_i ψ_j`.
@@ -200,7 +189,6 @@ impl MortarMatrices {
             }
         }
         Ok(Self {
-            pieces,
             m1: m1.compress(),
             m2: m2.compress(),
             m3: m3.compress(),

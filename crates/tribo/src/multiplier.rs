@@ -5,6 +5,7 @@
 //! bounded by a P0/P1 threshold) on Γ_C exactly when its dof values are, so `M_Hn` and `M_Ht(g)` are
 //! bounds on dof values.
 
+use crate::choice::named_choice;
 use crate::contact::{geometric_tol_rel, ContactBoundary};
 use crate::error::{Error, Result};
 use crate::mesh::Point;
@@ -18,6 +19,8 @@ pub enum MultiplierSpace {
     #[default]
     P1,
 }
+
+named_choice!(MultiplierSpace, "multiplier space", { MultiplierSpace::P0 => "P0", MultiplierSpace::P1 => "P1" });
 
 /// How the points of T_H are given.
 #[derive(Debug, Clone, PartialEq)]
@@ -106,11 +109,6 @@ impl MultiplierMesh {
             MultiplierSpace::P0 => self.xi.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect(),
             MultiplierSpace::P1 => self.xi.clone(),
         }
-    }
-
-    /// Largest segment length H.
-    pub fn max_size(&self) -> f64 {
-        self.xi.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max)
     }
 
     /// Basis functions of segment `k` that do not vanish there, evaluated at `xi`: up to two

@@ -1,21 +1,27 @@
 //! A contact problem: mesh, material, supports, loads, contact boundary, obstacle and multiplier mesh,
-//! assembled once into everything that does not depend on γ0 or on friction.
+//! assembled once into everything that does not depend on γ0 or on friction; and its condensed form for
+//! one γ0 ([`Condensed`]), which borrows the problem it was built from.
+//!
+//! The problem keeps the factorization of its last [`Problem::condense`] (one entry, keyed by γ0), so
+//! solving it again with the same γ0 (another friction law, other solver settings) costs no
+//! factorization: [`crate::Report::reused_factorization`] says when that happened.
 
+use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Instant;
 
 use faer::sparse::linalg::solvers::SymbolicLlt;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Side;
-use nalgebra::SVector;
 
+use crate::condensation::Factor;
 use crate::contact::ContactBoundary;
-use crate::elasticity::{body_force_vector, element_dofs, stiffness_triplets, traction_vector, Material};
+use crate::elasticity::{add_body_force, add_traction, stiffness_triplets, Material};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::mortar::MortarMatrices;
 use crate::multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace};
 use crate::obstacle::Obstacle;
-use crate::stabilization::{admissible_gamma0, stress_operators};
+use crate::stabilization::{admissible_gamma0, ContactStress, Gamma0Bound, Stabilization};
 
 /// Everything that defines a contact problem besides the mesh.
 #[derive(Debug, Clone)]
@@ -74,14 +80,82 @@ pub struct Problem {
     pub f_free: Vec<f64>,
     /// Full load vector (all 2N dofs), for reactions.
     pub f_full: Vec<f64>,
-    /// Per contact edge: σ_n, σ_t as 6-vectors over the owning triangle's dofs.
-    pub stress_ops: Vec<[SVector<f64, 6>; 2]>,
-    /// Diameter h_T of the triangle owning each contact edge.
-    pub h_t: Vec<f64>,
+    /// σ_n(v), σ_t(v) on each contact edge as linear forms of the unknowns.
+    pub contact_stress: ContactStress,
     /// Admissible bound on γ0 and the triangle that sets it.
-    pub gamma0_bound: (f64, usize),
+    pub gamma0_bound: Gamma0Bound,
     /// Set-up timings.
     pub timings: SetupTimings,
+    /// The factorization of the last [`Problem::condense`].
+    factor_cache: FactorCache,
+}
+
+/// A one-entry cache of the factorization, keyed by γ0. A clone of the problem shares the entry it had
+/// (the factorization depends only on the problem's data and γ0).
+#[derive(Default)]
+struct FactorCache(Mutex<Option<Arc<Factor>>>);
+
+impl FactorCache {
+    fn get(&self, gamma0: f64) -> Option<Arc<Factor>> {
+        let guard = self.0.lock().unwrap_or_else(PoisonError::into_inner);
+        guard.as_ref().filter(|f| f.gamma0.to_bits() == gamma0.to_bits()).cloned()
+    }
+
+    fn set(&self, factor: Arc<Factor>) {
+        *self.0.lock().unwrap_or_else(PoisonError::into_inner) = Some(factor);
+    }
+}
+
+impl Clone for FactorCache {
+    fn clone(&self) -> Self {
+        Self(Mutex::new(self.0.lock().unwrap_or_else(PoisonError::into_inner).clone()))
+    }
+}
+
+impl std::fmt::Debug for FactorCache {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let gamma0 = self.0.lock().unwrap_or_else(PoisonError::into_inner).as_ref().map(|f| f.gamma0);
+        f.debug_tuple("FactorCache").field(&gamma0).finish()
+    }
+}
+
+/// A problem condensed onto its multipliers for one γ0: the problem (borrowed, so a factorization can
+/// never be paired with another problem) and the factorization of `A = K − G` with the multiplier
+/// operator it defines ([`Factor`]). Build it with [`Problem::condense`]; solve with
+/// [`Condensed::solve`].
+#[derive(Debug, Clone)]
+pub struct Condensed<'p> {
+    problem: &'p Problem,
+    factor: Arc<Factor>,
+    reused: bool,
+}
+
+impl<'p> Condensed<'p> {
+    /// The problem this was condensed from.
+    pub fn problem(&self) -> &'p Problem {
+        self.problem
+    }
+
+    /// The factorization and the condensed operators.
+    pub fn factor(&self) -> &Factor {
+        &self.factor
+    }
+
+    /// The γ0 in use.
+    pub fn gamma0(&self) -> f64 {
+        self.factor.gamma0
+    }
+
+    /// Number of multiplier dofs q (per component).
+    pub fn q(&self) -> usize {
+        self.factor.q()
+    }
+
+    /// True when the factorization came from the problem's cache (an earlier condensation with the same
+    /// γ0) rather than being computed now.
+    pub fn reused_factorization(&self) -> bool {
+        self.reused
+    }
 }
 
 impl Problem {
@@ -120,9 +194,9 @@ impl Problem {
             }
         }
         let mut f_full = vec![0.0; n_dofs];
-        body_force_vector(&mesh, spec.body_force, &mut f_full);
+        add_body_force(&mesh, spec.body_force, &mut f_full);
         for (set, g) in &spec.tractions {
-            traction_vector(&mesh, mesh.edge_set(set)?, *g, &mut f_full);
+            add_traction(&mesh, mesh.edge_set(set)?, *g, &mut f_full);
         }
         let f_free = restrict(&free, &f_full, n_free);
         let k_free: Vec<_> = stiffness_triplets(&mesh, &spec.material)
@@ -130,10 +204,10 @@ impl Problem {
             .filter_map(|t| Some(Triplet::new(free[t.row]?, free[t.col]?, t.val)))
             .collect();
         let k_matrix = SparseColMat::try_new_from_triplets(n_free, n_free, &k_free)
-            .map_err(|e| Error::NotPositiveDefinite { what: format!("assembly failed: {e:?}") })?;
+            .map_err(|e| Error::Assembly { matrix: "K", what: format!("{e:?}") })?;
         drop(k_free);
         let symbolic = SymbolicLlt::try_new(k_matrix.symbolic(), Side::Lower)
-            .map_err(|e| Error::NotPositiveDefinite { what: format!("symbolic factorization failed: {e:?}") })?;
+            .map_err(|e| Error::Assembly { matrix: "the symbolic Cholesky factor of K", what: format!("{e:?}") })?;
         let assembly = clock.elapsed().as_secs_f64();
 
         let clock = Instant::now();
@@ -160,9 +234,8 @@ impl Problem {
         let multipliers = MultiplierMesh::new(&contact, &spec.multiplier_points, spec.multiplier_space)?;
         let h_t: Vec<f64> = contact.edges.iter().map(|e| mesh.diameter(e.triangle)).collect();
         let mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &spec.obstacle)?;
-        let stress_ops = stress_operators(&mesh, &spec.material, &contact);
-        let (bound, edge) = admissible_gamma0(&mesh, &spec.material, &contact);
-        let gamma0_bound = (bound, contact.edges[edge].triangle);
+        let contact_stress = ContactStress::new(&mesh, &spec.material, &contact, &free);
+        let gamma0_bound = admissible_gamma0(&mesh, &spec.material, &contact);
         let contact_matrices = clock.elapsed().as_secs_f64();
         Ok(Self {
             mesh,
@@ -176,11 +249,63 @@ impl Problem {
             symbolic,
             f_free,
             f_full,
-            stress_ops,
-            h_t,
+            contact_stress,
             gamma0_bound,
             timings: SetupTimings { assembly, contact_matrices },
+            factor_cache: FactorCache::default(),
         })
+    }
+
+    /// Factorizes `A = K − G` for the γ0 that `stabilization` asks for and condenses onto the
+    /// multipliers, or takes the factorization of the previous call if it had the same γ0.
+    ///
+    /// # Errors
+    /// [`Error::BadSetting`] / [`Error::Gamma0TooLarge`] for a bad γ0; [`Error::NotPositiveDefinite`] if
+    /// `K − G` is not positive definite (only possible for [`Stabilization::Unchecked`] beyond the bound).
+    pub fn condense(&self, stabilization: Stabilization) -> Result<Condensed<'_>> {
+        let gamma0 = self.gamma0_bound.resolve(stabilization)?;
+        if let Some(factor) = self.factor_cache.get(gamma0) {
+            return Ok(Condensed { problem: self, factor, reused: true });
+        }
+        let minus_g = self.contact_stress.stiffness_triplets(&self.mortar, gamma0);
+        let e_rows = self.contact_stress.coupling_rows(&self.contact, &self.mortar, &self.free, gamma0);
+        let d_gamma: Vec<(usize, usize, f64)> = if gamma0 > 0.0 {
+            self.mortar.d_h.entries.iter().map(|&(i, j, v)| (i, j, gamma0 * v)).collect()
+        } else {
+            Vec::new()
+        };
+        let factor = Factor::new(
+            &self.k_matrix,
+            &self.symbolic,
+            &minus_g,
+            e_rows,
+            d_gamma,
+            &self.f_free,
+            self.obstacle_moments(),
+            gamma0,
+        )
+        .map_err(|e| match e {
+            Error::NotPositiveDefinite { what } => Error::NotPositiveDefinite {
+                what: format!("{what} (γ0 = {gamma0:e}, admissible bound {:e})", self.gamma0_bound.value),
+            },
+            e => e,
+        })?;
+        let factor = Arc::new(factor);
+        self.factor_cache.set(factor.clone());
+        Ok(Condensed { problem: self, factor, reused: false })
+    }
+
+    /// Drops the cached factorization, so that the next [`Problem::condense`] factorizes again (for
+    /// benchmarks, and to free its memory).
+    pub fn forget_factorization(&self) {
+        *self.factor_cache.0.lock().unwrap_or_else(PoisonError::into_inner) = None;
+    }
+
+    /// `d = (∫ψ_j g, ∫ψ_j s)` (2q): the obstacle's gap and tangential shift tested with the multiplier
+    /// basis, the part of the QP's linear term that the obstacle contributes (see [`crate::obstacle`]).
+    pub fn obstacle_moments(&self) -> Vec<f64> {
+        let shift = self.spec.obstacle.shift;
+        self.mortar.gap_moments.iter().copied().chain(self.mortar.psi_integrals.iter().map(|w| w * shift)).collect()
     }
 
     /// Number of multiplier dofs q (per component).
@@ -188,80 +313,9 @@ impl Problem {
         self.multipliers.n_dofs()
     }
 
-    /// Free-dof indices of the owning triangle of contact edge `k` (`None` for clamped dofs).
-    pub fn edge_triangle_dofs(&self, k: usize) -> [Option<usize>; 6] {
-        let tri = &self.mesh.triangles()[self.contact.edges[k].triangle];
-        element_dofs(tri).map(|d| self.free[d])
-    }
-
     /// Expands a vector of free dofs to all 2N dofs (zeros on clamped dofs).
     pub fn expand(&self, x: &[f64]) -> Vec<f64> {
         self.free.iter().map(|s| s.map_or(0.0, |i| x[i])).collect()
-    }
-
-    /// Rows of the coupling `E = B − γ0 Cγ S` over free dofs: `2q` sparse rows, normal then tangential.
-    pub fn coupling_rows(&self, gamma0: f64) -> Vec<Vec<(usize, f64)>> {
-        let q = self.n_multipliers();
-        let (n, t) = (self.contact.normal, self.contact.tangent);
-        let mut rows: Vec<Vec<(usize, f64)>> = vec![Vec::new(); 2 * q];
-        // B: ∫ ψ_j v_n = Σ_i M2[i, j] (v_i · n).
-        for &(i, j, m) in &self.mortar.m2.entries {
-            let node = self.contact.nodes[i];
-            for c in 0..2 {
-                if let Some(d) = self.free[2 * node + c] {
-                    rows[j].push((d, m * n[c]));
-                    rows[q + j].push((d, m * t[c]));
-                }
-            }
-        }
-        // −γ0 Cγ S: −γ0 ∫ h_T ψ_j χ_k σ(v)|_k.
-        if gamma0 > 0.0 {
-            for &(j, k, c) in &self.mortar.c_h.entries {
-                let dofs = self.edge_triangle_dofs(k);
-                for (comp, row) in [j, q + j].into_iter().enumerate() {
-                    let s = &self.stress_ops[k][comp];
-                    for (l, d) in dofs.iter().enumerate() {
-                        if let Some(d) = *d {
-                            rows[row].push((d, -gamma0 * c * s[l]));
-                        }
-                    }
-                }
-            }
-        }
-        for r in &mut rows {
-            r.sort_by_key(|e| e.0);
-            let mut out: Vec<(usize, f64)> = Vec::with_capacity(r.len());
-            for &(d, v) in r.iter() {
-                match out.last_mut() {
-                    Some(l) if l.0 == d => l.1 += v,
-                    _ => out.push((d, v)),
-                }
-            }
-            *r = out;
-        }
-        rows
-    }
-
-    /// Triplets of `−G` (the stabilization part of `A = K − G`) over free dofs.
-    pub fn stabilization_triplets(&self, gamma0: f64) -> Vec<Triplet<usize, usize, f64>> {
-        let mut trip = Vec::new();
-        if gamma0 == 0.0 {
-            return trip;
-        }
-        for k in 0..self.contact.n_edges() {
-            let dofs = self.edge_triangle_dofs(k);
-            let w = gamma0 * self.mortar.g_h[k];
-            for s in &self.stress_ops[k] {
-                for (a, da) in dofs.iter().enumerate() {
-                    for (b, db) in dofs.iter().enumerate() {
-                        if let (Some(da), Some(db)) = (da, db) {
-                            trip.push(Triplet::new(*da, *db, -w * s[a] * s[b]));
-                        }
-                    }
-                }
-            }
-        }
-        trip
     }
 }
 

@@ -1,19 +1,21 @@
 //! Results of a solve: fields as plain vectors, the contact state per multiplier dof, the discrete KKT
 //! residuals of (3.1) and a report of how the solve ended.
 
-use crate::condensation::Condensed;
-use crate::coulomb::{QpPhase, SolverSettings};
+use crate::choice::named_choice;
+use crate::condensation::Factor;
 use crate::elasticity::{element_stresses, stiffness_triplets};
+use crate::friction::FrictionLaw;
 use crate::problem::Problem;
 
 /// How a solve ended. Not an error: a solve that did not converge still returns its last iterate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum SolveStatus {
     /// Every QP solved and (Coulomb) the fixed point converged.
     Converged,
     /// The fixed point reached its iteration cap.
     MaxIterations,
-    /// The change of λ_n made no new minimum for [`crate::coulomb::STAGNATION_WINDOW`] iterations: the
+    /// The change of λ_n made no new minimum for [`crate::solve::STAGNATION_WINDOW`] iterations: the
     /// fixed point cycles, or it has reached the accuracy to which the QP determines λ (see the residual
     /// history; a tighter `qp.tol` or a finer mesh may help).
     Stagnated,
@@ -31,6 +33,32 @@ pub enum SolveStatus {
     },
 }
 
+impl SolveStatus {
+    /// The names of the statuses, as [`SolveStatus::name`] gives them.
+    pub const NAMES: [&'static str; 5] = ["converged", "max_iterations", "stagnated", "interrupted", "qp_failed"];
+
+    /// The status's name (without its data): one of [`SolveStatus::NAMES`].
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Converged => "converged",
+            Self::MaxIterations => "max_iterations",
+            Self::Stagnated => "stagnated",
+            Self::Interrupted { .. } => "interrupted",
+            Self::QpFailed { .. } => "qp_failed",
+        }
+    }
+}
+
+impl std::fmt::Display for SolveStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Interrupted { iteration } => write!(f, "interrupted after iteration {iteration}"),
+            Self::QpFailed { iteration, reason } => write!(f, "qp_failed at iteration {iteration} ({reason})"),
+            s => f.write_str(s.name()),
+        }
+    }
+}
+
 /// Contact state of a multiplier dof.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ContactState {
@@ -42,6 +70,12 @@ pub enum ContactState {
     /// frictionless problem (threshold 0) slips.
     Slip,
 }
+
+named_choice!(ContactState, "contact state", {
+    ContactState::Separation => "separation",
+    ContactState::Stick => "stick",
+    ContactState::Slip => "slip",
+});
 
 /// Wall times per phase, in seconds.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -83,7 +117,7 @@ pub struct KktResiduals {
 }
 
 impl KktResiduals {
-    /// Largest residual.
+    /// Largest residual; NaN if any residual is NaN.
     pub fn max(&self) -> f64 {
         [
             self.equilibrium,
@@ -95,7 +129,16 @@ impl KktResiduals {
             self.slip_direction,
         ]
         .into_iter()
-        .fold(0.0, f64::max)
+        .fold(0.0, nan_max)
+    }
+}
+
+/// The larger of two values, NaN if either is NaN (`f64::max` drops a NaN).
+pub(crate) fn nan_max(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.max(b)
     }
 }
 
@@ -104,19 +147,26 @@ impl KktResiduals {
 pub struct Report {
     /// How it ended.
     pub status: SolveStatus,
+    /// The friction law solved (Coulomb with μ = 0 is solved, and reported, as frictionless).
+    pub friction: FrictionLaw,
+    /// The Coulomb coefficient μ (`None` unless the law is Coulomb).
+    pub mu: Option<f64>,
     /// Fixed-point iterations (0 for frictionless and Tresca).
     pub iterations: usize,
     /// Relative change of λ_n after each fixed-point iteration.
     pub residual_history: Vec<f64>,
     /// Interior-point iterations of each QP.
     pub qp_iterations: Vec<u32>,
-    /// How many of those QPs met only [`crate::tresca::FALLBACK_TOL`] (1e-10), not `qp.tol`: their λ is
+    /// How many of those QPs met only [`crate::qp::FALLBACK_TOL`] (1e-10), not `qp.tol`: their λ is
     /// determined to about `FALLBACK_TOL · κ(H)` instead of `qp.tol · κ(H)`.
     pub qp_inaccurate: usize,
     /// γ0 used.
     pub gamma0: f64,
     /// Admissible bound on γ0.
     pub gamma0_bound: f64,
+    /// True when the factorization of `K − G` was reused from an earlier solve of the same problem with
+    /// the same γ0 (the `factorization` timing is then that earlier one).
+    pub reused_factorization: bool,
     /// Timings per phase.
     pub timings: Timings,
 }
@@ -172,18 +222,23 @@ pub struct Solution {
 }
 
 impl Solution {
+    /// Assembles every field from the unknowns `u_free` and the multipliers `lambda` (2q) of a solve,
+    /// with the friction threshold the multipliers were computed for and the QP tolerance (which sets
+    /// the threshold between "zero" and "non-zero" multipliers in the contact states).
     pub(crate) fn new(
         problem: &Problem,
-        condensed: &Condensed,
-        u_free: Vec<f64>,
-        phase: QpPhase,
-        settings: &SolverSettings,
-        timings: crate::solution::Timings,
+        factor: &Factor,
+        u_free: &[f64],
+        lambda: Vec<f64>,
+        friction_threshold: Vec<f64>,
+        qp_tol: f64,
+        report: Report,
     ) -> Self {
+        let condensed = factor;
         let q = condensed.q();
         let mesh = &problem.mesh;
         let material = &problem.spec.material;
-        let displacement = problem.expand(&u_free);
+        let displacement = problem.expand(u_free);
         let stress = element_stresses(mesh, material, &displacement);
         let von_mises = stress.iter().map(|s| material.von_mises(*s)).collect();
         // Reactions K u − f on all dofs (zero up to round-off on free dofs).
@@ -198,12 +253,7 @@ impl Solution {
         }
         let contact = &problem.contact;
         let (n, t) = (contact.normal, contact.tangent);
-        let lambda = &phase.lambda;
         let (lambda_n, lambda_t) = (lambda[..q].to_vec(), lambda[q..].to_vec());
-        let friction_threshold = match phase.mu {
-            Some(mu) => lambda_n.iter().map(|l| mu * l.max(0.0)).collect(),
-            None => phase.bound.clone(),
-        };
         let sig = |s: &[f64; 3], a: [f64; 2], b: [f64; 2]| {
             a[0] * (s[0] * b[0] + s[2] * b[1]) + a[1] * (s[2] * b[0] + s[1] * b[1])
         };
@@ -220,14 +270,14 @@ impl Solution {
             slip.push(ux * t[0] + uy * t[1] - shift);
             gap.push(problem.spec.obstacle.gap(xi).unwrap_or(f64::NAN));
         }
-        let max_penetration = u_n.iter().zip(&gap).map(|(u, g)| (u - g).max(0.0)).fold(0.0, f64::max);
+        let max_penetration = u_n.iter().zip(&gap).map(|(u, g)| nan_max(u - g, 0.0)).fold(0.0, nan_max);
         let w = &problem.mortar.psi_integrals;
         let normal_force = lambda_n.iter().zip(w).map(|(l, w)| l * w).sum();
         let tangential_force = lambda_t.iter().zip(w).map(|(l, w)| l * w).sum();
 
-        let kkt = kkt_residuals(problem, condensed, &u_free, lambda, &friction_threshold);
+        let kkt = kkt_residuals(problem, condensed, u_free, &lambda, &friction_threshold);
         let lam_scale = lambda_n.iter().fold(condensed.lambda_scale(), |m, v| m.max(v.abs()));
-        let theta = settings.qp.tol.sqrt() * lam_scale;
+        let theta = qp_tol.sqrt() * lam_scale;
         let states = (0..q)
             .map(|j| {
                 if lambda_n[j] <= theta {
@@ -260,16 +310,7 @@ impl Solution {
             tangential_force,
             max_penetration,
             kkt,
-            report: Report {
-                status: phase.status,
-                iterations: phase.iterations,
-                residual_history: phase.history,
-                qp_iterations: phase.qp_iterations,
-                qp_inaccurate: phase.qp_inaccurate,
-                gamma0: condensed.gamma0,
-                gamma0_bound: problem.gamma0_bound.0,
-                timings,
-            },
+            report,
         }
     }
 
@@ -279,32 +320,29 @@ impl Solution {
     }
 }
 
-fn kkt_residuals(problem: &Problem, c: &Condensed, u: &[f64], lambda: &[f64], bound: &[f64]) -> KktResiduals {
+fn kkt_residuals(problem: &Problem, c: &Factor, u: &[f64], lambda: &[f64], bound: &[f64]) -> KktResiduals {
     let q = c.q();
-    let n = problem.n_free;
     let au = c.apply_a(u);
-    let etl = c.apply_et(lambda, n);
-    let inf = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let etl = c.apply_et(lambda);
+    let inf = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| nan_max(m, x.abs()));
     let res: Vec<f64> = au.iter().zip(&etl).zip(&problem.f_free).map(|((a, e), f)| a + e - f).collect();
     let eq_scale = inf(&problem.f_free).max(inf(&etl)).max(f64::MIN_POSITIVE);
     let eu = c.apply_e(u);
     // r = E u − d − Dγ λ.
-    let mut r: Vec<f64> = eu.iter().zip(&c.d).map(|(a, b)| a - b).collect();
-    for &(i, j, v) in &problem.mortar.d_h.entries {
-        r[i] -= c.gamma0 * v * lambda[j];
-        r[q + i] -= c.gamma0 * v * lambda[q + j];
-    }
+    let r: Vec<f64> = eu.iter().zip(&c.d).zip(c.apply_d(lambda)).map(|((a, b), dl)| a - b - dl).collect();
     let lam = inf(&lambda[..q]).max(c.lambda_scale()).max(f64::MIN_POSITIVE);
     let gap_scale = inf(&eu).max(inf(&c.d)).max(f64::MIN_POSITIVE);
     let mut k = KktResiduals { equilibrium: inf(&res) / eq_scale, ..Default::default() };
     for j in 0..q {
         let (ln, lt, rn, rt) = (lambda[j], lambda[q + j], r[j], r[q + j]);
-        k.normal_sign = k.normal_sign.max((-ln).max(0.0) / lam);
-        k.non_penetration = k.non_penetration.max(rn.max(0.0) / gap_scale);
-        k.normal_complementarity = k.normal_complementarity.max((ln * rn).abs() / (lam * gap_scale));
-        k.friction_bound = k.friction_bound.max((lt.abs() - bound[j]).max(0.0) / lam);
-        k.stick = k.stick.max((bound[j] - lt.abs()).max(0.0) * rt.abs() / (lam * gap_scale));
-        k.slip_direction = k.slip_direction.max((-lt * rt).max(0.0) / (lam * gap_scale));
+        // Positive parts and maxima propagate NaN (`f64::max` would drop it).
+        let pos = |x: f64| nan_max(x, 0.0);
+        k.normal_sign = nan_max(k.normal_sign, pos(-ln) / lam);
+        k.non_penetration = nan_max(k.non_penetration, pos(rn) / gap_scale);
+        k.normal_complementarity = nan_max(k.normal_complementarity, (ln * rn).abs() / (lam * gap_scale));
+        k.friction_bound = nan_max(k.friction_bound, pos(lt.abs() - bound[j]) / lam);
+        k.stick = nan_max(k.stick, pos(bound[j] - lt.abs()) * rt.abs() / (lam * gap_scale));
+        k.slip_direction = nan_max(k.slip_direction, pos(-lt * rt) / (lam * gap_scale));
     }
     k
 }

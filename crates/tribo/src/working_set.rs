@@ -15,36 +15,35 @@
 //! Coulomb iterations, so the clarabel set-up is reused whenever S did not change. The initial S holds the
 //! dofs where the body, without contact forces, would penetrate (`c_n,j < 0`), and their neighbours.
 
-use crate::condensation::Condensed;
-use crate::error::{Error, Result};
-use crate::tresca::{QpOutcome, QpSettings, QpStatus, TrescaQp};
+use crate::condensation::Factor;
+use crate::error::Result;
+use crate::friction::check_thresholds;
+use crate::qp::{BoxQp, QpOutcome, QpStatus};
+use crate::settings::QpSettings;
 
-/// The Γ_C QP solved over a growing working set; the columns of H come from a [`Condensed`] system,
-/// computed when the set first needs them.
+/// The Γ_C QP solved over a growing working set; the columns of H come from a [`Factor`], computed when
+/// the set first needs them.
 #[derive(Debug)]
 pub struct WorkingSetQp<'a> {
-    condensed: &'a Condensed,
+    condensed: &'a Factor,
     q: usize,
     bounds: Option<Vec<f64>>,
     settings: QpSettings,
     set: Vec<usize>,
-    qp: Option<TrescaQp>,
-    /// Number of QPs solved on sub-problems (for reports).
-    pub solves: usize,
+    qp: Option<BoxQp>,
 }
 
 impl<'a> WorkingSetQp<'a> {
     /// Sets up the QP of P(g) on `condensed`: frictionless if `bounds` is `None`, else with the tangential
-    /// bounds g (one per multiplier dof).
+    /// bounds g (one per multiplier dof). The settings are taken as validated.
     ///
     /// # Errors
-    /// [`Error::BadThreshold`], [`Error::BadSetting`].
-    pub fn new(condensed: &'a Condensed, bounds: Option<&[f64]>, settings: &QpSettings) -> Result<Self> {
-        settings.validate()?;
+    /// [`crate::Error::BadThreshold`].
+    pub fn new(condensed: &'a Factor, bounds: Option<&[f64]>, settings: &QpSettings) -> Result<Self> {
         let q = condensed.q();
-        let mut ws = Self { condensed, q, bounds: None, settings: *settings, set: Vec::new(), qp: None, solves: 0 };
+        let mut ws = Self { condensed, q, bounds: None, settings: *settings, set: Vec::new(), qp: None };
         if let Some(b) = bounds {
-            ws.check_bounds(b)?;
+            check_thresholds(b, q)?;
             ws.bounds = Some(b.to_vec());
         }
         let c = &condensed.c;
@@ -52,18 +51,6 @@ impl<'a> WorkingSetQp<'a> {
             if settings.working_set { (0..q).filter(|&j| c[j] < 0.0).collect() } else { (0..q).collect() };
         ws.grow(&initial);
         Ok(ws)
-    }
-
-    fn check_bounds(&self, b: &[f64]) -> Result<()> {
-        if b.len() != self.q {
-            return Err(Error::BadThreshold { what: format!("{} values given, {} multiplier dofs", b.len(), self.q) });
-        }
-        match b.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {
-            Some(j) => {
-                Err(Error::BadThreshold { what: format!("value {j} is {}; thresholds must be finite and ≥ 0", b[j]) })
-            }
-            None => Ok(()),
-        }
     }
 
     /// Adds dofs (and their neighbours) and the dofs with a positive bound to the set; true if it grew.
@@ -98,9 +85,9 @@ impl<'a> WorkingSetQp<'a> {
     /// Replaces the tangential bounds.
     ///
     /// # Errors
-    /// [`Error::BadThreshold`]; QP update errors.
+    /// [`crate::Error::BadThreshold`]; QP update errors.
     pub fn set_bounds(&mut self, b: &[f64]) -> Result<()> {
-        self.check_bounds(b)?;
+        check_thresholds(b, self.q)?;
         self.bounds = Some(b.to_vec());
         if self.grow(&[]) {
             self.qp = None;
@@ -121,12 +108,12 @@ impl<'a> WorkingSetQp<'a> {
         }
     }
 
-    fn build(&self) -> Result<TrescaQp> {
+    fn build(&self) -> Result<BoxQp> {
         let idx = self.unknowns();
         let h = self.condensed.h_block(&idx, &idx);
         let c: Vec<f64> = idx.iter().map(|&i| self.condensed.c[i]).collect();
         let bounds: Option<Vec<f64>> = self.bounds.as_ref().map(|b| self.set.iter().map(|&j| b[j]).collect());
-        TrescaQp::new(&h, &c, self.set.len(), bounds.as_deref(), &self.settings)
+        BoxQp::new(&h, &c, self.set.len(), bounds.as_deref(), &self.settings)
     }
 
     /// Solves the whole QP; the returned ν has the full size (q, or 2q with friction).
@@ -146,7 +133,6 @@ impl<'a> WorkingSetQp<'a> {
                 self.qp = Some(self.build()?);
             }
             let out = self.qp.as_mut().expect("built above").solve();
-            self.solves += 1;
             iterations += out.iterations;
             seconds += out.seconds;
             let s = self.set.len();

@@ -1,4 +1,5 @@
-//! The Tresca subproblem P(g) (3.2) as a convex QP over the multipliers, solved with clarabel.
+//! The Γ_C QP: the Tresca subproblem P(g) (3.2), and the frictionless problem as its special case without
+//! tangential multipliers, as a convex box-constrained QP over the multipliers, solved with clarabel.
 //!
 //! # The QP
 //! With `A = K − G` (stabilized stiffness, positive definite for admissible γ0), `E = B − Cγ S` (the
@@ -30,71 +31,12 @@ use std::time::Instant;
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{DefaultSettings, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus};
 
-use crate::error::{check_setting, Error, Result};
-
-/// Which sparse direct solver clarabel uses for its KKT systems.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum KktSolver {
-    /// clarabel's built-in QDLDL.
-    Qdldl,
-    /// clarabel's faer-based supernodal solver (cargo feature `faer-qp`, on by default).
-    Faer,
-}
-
-impl Default for KktSolver {
-    /// [`KktSolver::Faer`] when compiled in (the faster on our dense QPs), else [`KktSolver::Qdldl`].
-    fn default() -> Self {
-        if cfg!(feature = "faer-qp") {
-            Self::Faer
-        } else {
-            Self::Qdldl
-        }
-    }
-}
+use crate::error::{Error, Result};
+use crate::friction::check_thresholds;
+use crate::settings::QpSettings;
 
 /// The tolerance a QP falls back to when it fails at a tighter one.
 pub const FALLBACK_TOL: f64 = 1e-10;
-
-/// Settings of the QP solver.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct QpSettings {
-    /// Tolerance on the scaled QP (gap, feasibility). Default 1e-12: λ is determined to about
-    /// `tol · κ(H)` (κ ~ 1e5 on contact meshes), and the Coulomb fixed point cannot settle below that;
-    /// a QP that fails at 1e-12 is solved again at [`FALLBACK_TOL`].
-    pub tol: f64,
-    /// Iteration cap of the interior-point method. Default 200.
-    pub max_iter: u32,
-    /// KKT solver. Default [`KktSolver::default`].
-    pub kkt_solver: KktSolver,
-    /// Solve over a working set of multiplier dofs grown until the KKT conditions of the whole QP hold
-    /// (see [`crate::working_set`]). Default true; false solves every QP over all of Γ_C.
-    pub working_set: bool,
-}
-
-impl Default for QpSettings {
-    fn default() -> Self {
-        Self { tol: 1e-12, max_iter: 200, kkt_solver: KktSolver::default(), working_set: true }
-    }
-}
-
-impl QpSettings {
-    /// Checks the ranges: `0 < tol < 1`, `max_iter ≥ 1`, and that the KKT solver is compiled in.
-    ///
-    /// # Errors
-    /// [`Error::BadSetting`] naming the setting.
-    pub fn validate(&self) -> Result<()> {
-        check_setting("qp.tol", self.tol, self.tol > 0.0 && self.tol < 1.0, "must lie in (0, 1)")?;
-        check_setting("qp.max_iter", self.max_iter as f64, self.max_iter >= 1, "must be at least 1")?;
-        if self.kkt_solver == KktSolver::Faer && !cfg!(feature = "faer-qp") {
-            return Err(Error::BadSetting {
-                name: "qp.kkt_solver",
-                value: f64::NAN,
-                what: "the faer KKT solver needs tribo built with the cargo feature `faer-qp`".to_string(),
-            });
-        }
-        Ok(())
-    }
-}
 
 /// How one QP solve ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -122,13 +64,14 @@ pub struct QpOutcome {
     pub seconds: f64,
 }
 
-/// The QP of P(g), set up once; the tangential bounds g can be changed between solves.
+/// The box-constrained QP of P(g) (frictional) or of the frictionless problem, set up once; the
+/// tangential bounds g can be changed between solves.
 ///
 /// A frictional QP is written in the variables `(ν_n, τ)` with `ν_t = diag(g) τ`, `|τ| ≤ 1`: the box of τ
 /// always has an interior, even where g vanishes (separated dofs), which a box `−0 ≤ ν_t ≤ 0` would not
 /// have. Changing g then changes the values of P and q but not their pattern, so clarabel's set-up
 /// (symbolic factorization of its KKT matrix) is reused across the whole fixed point.
-pub struct TrescaQp {
+pub struct BoxQp {
     solver: Option<DefaultSolver<f64>>,
     settings: QpSettings,
     /// The tolerance asked for (`settings.tol` may have fallen back to [`FALLBACK_TOL`]).
@@ -141,9 +84,9 @@ pub struct TrescaQp {
     bounds: Vec<f64>,
 }
 
-impl std::fmt::Debug for TrescaQp {
+impl std::fmt::Debug for BoxQp {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("TrescaQp").field("q", &self.q).field("frictional", &self.frictional).finish()
+        f.debug_struct("BoxQp").field("q", &self.q).field("frictional", &self.frictional).finish()
     }
 }
 
@@ -161,18 +104,6 @@ fn status_name(s: SolverStatus) -> &'static str {
         SolverStatus::NumericalError => "numerical error",
         SolverStatus::InsufficientProgress => "insufficient progress",
         SolverStatus::CallbackTerminated => "stopped by callback",
-    }
-}
-
-fn check_bounds(g: &[f64], q: usize) -> Result<()> {
-    if g.len() != q {
-        return Err(Error::BadThreshold { what: format!("{} values given, {} multiplier dofs", g.len(), q) });
-    }
-    match g.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {
-        Some(j) => {
-            Err(Error::BadThreshold { what: format!("value {j} is {}; thresholds must be finite and ≥ 0", g[j]) })
-        }
-        None => Ok(()),
     }
 }
 
@@ -195,29 +126,27 @@ fn clarabel_settings(settings: &QpSettings) -> DefaultSettings<f64> {
         reduced_tol_ktratio: accepted.sqrt(),
         max_iter: settings.max_iter,
         presolve_enable: false,
-        direct_solve_method: match settings.kkt_solver {
-            KktSolver::Qdldl => "qdldl".to_string(),
-            KktSolver::Faer => "faer".to_string(),
-        },
+        direct_solve_method: settings.kkt_solver.to_string(),
         ..DefaultSettings::default()
     }
 }
 
-impl TrescaQp {
+impl BoxQp {
     /// Sets up the QP. `h` is the dense symmetric `H` (column-major, `k × k` with `k = q` for a
     /// frictionless QP and `k = 2q` otherwise), `c` the linear term, `bounds` the tangential bounds
     /// (length q) for a frictional QP, `None` for a frictionless one.
     ///
+    /// The settings are taken as validated ([`QpSettings::validate`]).
+    ///
     /// # Errors
-    /// [`Error::QpSetup`] if clarabel rejects the data; [`Error::BadSetting`], [`Error::BadThreshold`].
+    /// [`Error::QpSetup`] if clarabel rejects the data; [`Error::BadThreshold`].
     pub fn new(h: &[f64], c: &[f64], q: usize, bounds: Option<&[f64]>, settings: &QpSettings) -> Result<Self> {
-        settings.validate()?;
         let frictional = bounds.is_some();
         let k = if frictional { 2 * q } else { q };
         debug_assert_eq!(h.len(), k * k, "bug: H has the wrong size");
         debug_assert_eq!(c.len(), k, "bug: c has the wrong size");
         if let Some(g) = bounds {
-            check_bounds(g, q)?;
+            check_thresholds(g, q)?;
         }
         let h_s = (0..q).map(|i| h[i * k + i]).fold(0.0, f64::max);
         let c_s = c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
@@ -302,7 +231,7 @@ impl TrescaQp {
     /// refuses the update.
     pub fn set_bounds(&mut self, g: &[f64]) -> Result<()> {
         debug_assert!(self.frictional, "bug: bounds on a frictionless QP");
-        check_bounds(g, self.q)?;
+        check_thresholds(g, self.q)?;
         self.bounds.copy_from_slice(g);
         let (p, qv) = self.scaled_data();
         if let Some(solver) = self.solver.as_mut() {
@@ -357,7 +286,7 @@ mod tests {
     use super::*;
 
     /// A small frictional QP (q = 2) with both normal multipliers active and one tangential bound hit.
-    fn small_qp(settings: &QpSettings) -> TrescaQp {
+    fn small_qp(settings: &QpSettings) -> BoxQp {
         #[rustfmt::skip]
         let h = [
             4.0, 1.0, 0.5, 0.0,
@@ -366,7 +295,7 @@ mod tests {
             0.0, 0.5, 0.3, 2.0,
         ];
         let c = [-2.0, -1.5, 1.0, -0.1];
-        TrescaQp::new(&h, &c, 2, Some(&[0.2, 0.2]), settings).expect("valid QP")
+        BoxQp::new(&h, &c, 2, Some(&[0.2, 0.2]), settings).expect("valid QP")
     }
 
     #[test]

@@ -4,8 +4,6 @@
 //! at the solutions of frictionless, Tresca and Coulomb problems on the Hertz scene; plus the solver's
 //! own KKT residuals and complementarity.
 
-mod common;
-
 use nalgebra::{SVector, Vector3};
 use tribo::elasticity::{element_dofs, element_stiffness, strain_displacement};
 use tribo::stabilization::traction_components;
@@ -130,10 +128,10 @@ fn direct_inequality(problem: &Problem, sol: &Solution, gamma0: f64, nu_n: &[f64
 }
 
 fn check(friction: Friction, shift: f64, space: MultiplierSpace, points: MultiplierPoints, stab: Stabilization) {
-    let problem = common::hertz_problem(0.02, 0.01, shift, points.clone(), space);
+    let problem = tribo_testkit::hertz_problem(0.02, 0.01, shift, points.clone(), space);
     let settings = SolverSettings { stabilization: stab, ..Default::default() };
-    let condensed = Condensed::new(&problem, stab).expect("condenses");
-    let sol = condensed.solve(&problem, &friction, &settings, None).expect("solves");
+    let condensed = problem.condense(stab).expect("condenses");
+    let sol = condensed.solve(&friction, &settings, None).expect("solves");
     let what = format!("{friction:?} {space:?} {points:?} {stab:?}");
     assert_eq!(sol.report.status, SolveStatus::Converged, "{what}");
     let gamma0 = sol.report.gamma0;
@@ -146,7 +144,7 @@ fn check(friction: Friction, shift: f64, space: MultiplierSpace, points: Multipl
     assert!(worst <= 64.0 * f64::EPSILON * (problem.n_free as f64).sqrt(), "{what}: equation residual {worst:e}");
     // The inequality holds for every ν in the cone, to the accuracy the QP reached times the
     // conditioning of H.
-    let tol = common::reached_qp_tol(&settings, &sol) * common::condition_number(&condensed);
+    let tol = tribo_testkit::reached_qp_tol(&settings, &sol) * tribo_testkit::condition_number(&condensed);
     let q = problem.n_multipliers();
     let bound = &sol.friction_threshold;
     let mut seed = 7u64;

@@ -66,12 +66,12 @@ def test_mesh_error_details() -> None:
 def test_generator_errors() -> None:
     raises(tribo.MeshError, "BadGenerator", lambda: tribo.Mesh.rectangle((1.0, 0.0), (0.0, 1.0), 2, 2))
     raises(tribo.MeshError, "BadGenerator", lambda: tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 0, 2))
-    raises(tribo.MeshError, "BadInput", lambda: tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 2, 2, diagonal="up"))  # type: ignore[arg-type]
+    raises(tribo.MeshError, "UnknownChoice", lambda: tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 2, 2, diagonal="up"))  # type: ignore[arg-type]
     raises(tribo.MeshError, "BadInput", lambda: tribo.Mesh.rectangle((0.0, 1.0, 2.0), (0.0, 1.0), 2, 2))
     g = dict(side="top", segment=(0.0, 0.5), h_min=0.1, h_max=0.5, growth=0.3)
     raises(tribo.MeshError, "BadGenerator", lambda: tribo.Mesh.graded_rectangle((0, 1), (0, 1), **{**g, "h_min": -1.0}))  # type: ignore[arg-type]
     raises(tribo.MeshError, "BadGenerator", lambda: tribo.Mesh.graded_rectangle((0, 1), (0, 1), **{**g, "segment": (0.5, 2.0)}))  # type: ignore[arg-type]
-    raises(tribo.MeshError, "BadInput", lambda: tribo.Mesh.graded_rectangle((0, 1), (0, 1), **{**g, "side": "middle"}))  # type: ignore[arg-type]
+    raises(tribo.MeshError, "UnknownChoice", lambda: tribo.Mesh.graded_rectangle((0, 1), (0, 1), **{**g, "side": "middle"}))  # type: ignore[arg-type]
     with pytest.raises(OverflowError):  # a negative count is a Python-level conversion error, not a panic
         tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), -1, 2)
 
@@ -104,7 +104,7 @@ def test_contact_geometry_errors() -> None:
     raises(tribo.ContactGeometryError, "BadInput", lambda: tribo.Obstacle.function(3.0))  # type: ignore[arg-type]
     raises(tribo.ContactGeometryError, "BadInput", lambda: hertz_problem(obstacle="circle"))
     raises(tribo.ContactGeometryError, "BadObstacle", lambda: hertz_problem(approach=float("nan")))
-    raises(tribo.ContactGeometryError, "BadInput", lambda: hertz_problem(space="P2"))
+    raises(tribo.ContactGeometryError, "UnknownChoice", lambda: hertz_problem(space="P2"))
     raises(tribo.ContactGeometryError, "BadInput", lambda: hertz_problem(multiplier_ratio=1.0, multiplier_size=0.1))
 
 
@@ -156,22 +156,36 @@ def test_settings_errors(hertz: tribo.Problem) -> None:
     assert e.details["bound"] == hertz.gamma0_bound and e.details["element"] == hertz.gamma0_bound_element
     raises(tribo.SettingsError, "BadSetting", lambda: hertz.solve(gamma0_fraction=1.0), "gamma0_fraction")
     raises(tribo.SettingsError, "BadSetting", lambda: hertz.solve(gamma0=-1.0))
-    raises(tribo.SettingsError, "BadInput", lambda: hertz.solve(gamma0=0.0, gamma0_fraction=0.5))
-    raises(tribo.SettingsError, "BadSetting", lambda: hertz.solve(qp_tol=0.0), "qp.tol")
+    raises(tribo.SettingsError, "BadSettingValue", lambda: hertz.solve(gamma0=0.0, gamma0_fraction=0.5))
+    raises(tribo.SettingsError, "BadSettingValue", lambda: hertz.solve(check_gamma0=False), "explicit gamma0")
+    raises(tribo.SettingsError, "BadSetting", lambda: hertz.solve(qp_tol=0.0), "'qp_tol'")
     raises(tribo.SettingsError, "BadSetting", lambda: hertz.solve(qp_max_iter=0))
     raises(tribo.SettingsError, "BadSetting", lambda: hertz.solve(mu=0.3, fp_tol=2.0))
-    raises(tribo.SettingsError, "BadSetting", lambda: hertz.solve(mu=0.3, relaxation=0.0))
+    raises(tribo.SettingsError, "BadSetting", lambda: hertz.solve(mu=0.3, fp_relaxation=0.0))
     raises(tribo.SettingsError, "BadSetting", lambda: hertz.solve(mu=0.3, fp_max_iter=0))
     raises(tribo.SettingsError, "BadThreshold", lambda: hertz.solve(threshold=-1.0))
     raises(tribo.SettingsError, "BadThreshold", lambda: hertz.solve(threshold=[0.1, 0.2]), "multiplier dofs")
     raises(tribo.SettingsError, "BadThreshold", lambda: hertz.solve(threshold=np.full(hertz.n_multipliers, np.nan)))
-    raises(tribo.SettingsError, "BadInput", lambda: hertz.solve(mu=0.3, threshold=0.1))
-    raises(tribo.SettingsError, "BadInput", lambda: hertz.solve(friction="coulomb"))
-    raises(tribo.SettingsError, "BadInput", lambda: hertz.solve(friction="tresca", mu=0.3))
-    raises(tribo.SettingsError, "BadInput", lambda: hertz.solve(friction="viscous"))  # type: ignore[arg-type]
-    raises(tribo.SettingsError, "BadInput", lambda: hertz.solve(kkt_solver="mumps"))  # type: ignore[arg-type]
+    raises(tribo.SettingsError, "BadFriction", lambda: hertz.solve(mu=0.3, threshold=0.1))
+    raises(tribo.SettingsError, "BadFriction", lambda: hertz.solve(friction="coulomb"))
+    raises(tribo.SettingsError, "BadFriction", lambda: hertz.solve(friction="tresca", mu=0.3))
+    raises(tribo.SettingsError, "UnknownChoice", lambda: hertz.solve(friction="viscous"))  # type: ignore[arg-type]
+    raises(tribo.SettingsError, "UnknownChoice", lambda: hertz.solve(qp_kkt_solver="mumps"))  # type: ignore[arg-type]
+    raises(tribo.SettingsError, "BadSettingValue", lambda: hertz.solve(qp_max_iter=2**32), "qp_max_iter")
+    raises(tribo.SettingsError, "BadSettingValue", lambda: hertz.solve(qp_max_iter=-1), "qp_max_iter")
+    raises(tribo.SettingsError, "BadSettingValue", lambda: hertz.solve(fp_max_iter=2.5), "fp_max_iter")
+    raises(tribo.SettingsError, "BadSettingValue", lambda: hertz.solve(qp_tol="tight"), "qp_tol")
+    raises(tribo.SettingsError, "BadInput", lambda: hertz.solve(fp_max_iter=2**70), "out of range")
     raises(tribo.SettingsError, "BadInput", lambda: hertz.solve(progress=42))  # type: ignore[arg-type]
     raises(tribo.SettingsError, "BadInput", lambda: hertz.evaluate_multiplier([1.0], [0.0]))
+
+
+def test_unknown_and_renamed_settings_are_type_errors(hertz: tribo.Problem) -> None:
+    """An unknown keyword is a TypeError, as for any Python function, and the message lists the settings
+    (the names of 0.1's kkt_solver, working_set and relaxation now carry their qp_/fp_ prefix)."""
+    for old in ("kkt_solver", "working_set", "relaxation", "fp_tolerance"):
+        with pytest.raises(TypeError, match=f"'{old}'.*qp_kkt_solver.*fp_relaxation"):
+            hertz.solve(**{old: 1})
 
 
 def test_progress_callback_errors_propagate(hertz: tribo.Problem) -> None:

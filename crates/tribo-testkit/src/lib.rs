@@ -1,10 +1,87 @@
-//! Scenes shared by the integration tests.
-#![allow(dead_code)]
+//! Scenes and measures shared by the tests, benches and examples of tribo (a dev-only crate).
+//!
+//! The Hertz scene is read from `python/tribo/scenes/hertz.toml`, the file the Python tests and the
+//! studies read too, so one scene has one definition across the two languages.
 
 use tribo::*;
 
-/// The Hertz scene of the issue: rigid cylinder R = 1 pushed `approach` into (−2, 2) × (−2, 0), clamped at
-/// the bottom, E = 200, ν = 0.3, mesh graded toward [−0.3, 0.3] on the top side.
+/// The Hertz scene file.
+pub const HERTZ_SCENE: &str = include_str!("../../../python/tribo/scenes/hertz.toml");
+
+/// The parameters of the Hertz scene that the tests and benches use.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HertzScene {
+    /// x range of the block.
+    pub x: [f64; 2],
+    /// y range of the block.
+    pub y: [f64; 2],
+    /// Young's modulus and Poisson's ratio.
+    pub material: Material,
+    /// Radius of the cylinder.
+    pub radius: f64,
+    /// Obstacle approach δ of the scene.
+    pub approach: f64,
+    /// The segment of the top face the mesh is graded toward.
+    pub segment: [f64; 2],
+    /// Largest cell size.
+    pub h_max: f64,
+    /// Cell size at the contact zone in the scene file.
+    pub h_min: f64,
+    /// Growth of the cell size with the distance to the segment.
+    pub growth: f64,
+}
+
+fn pair(t: &toml::Table, section: &str, key: &str) -> [f64; 2] {
+    let v = t[section][key].as_array().unwrap_or_else(|| panic!("{section}.{key} is a pair"));
+    [number(&v[0]), number(&v[1])]
+}
+
+fn number(v: &toml::Value) -> f64 {
+    v.as_float().or_else(|| v.as_integer().map(|i| i as f64)).expect("a number")
+}
+
+/// The Hertz scene as the scene file gives it.
+pub fn hertz_scene() -> HertzScene {
+    let t: toml::Table = HERTZ_SCENE.parse().expect("hertz.toml is valid TOML");
+    let n = |section: &str, key: &str| number(&t[section][key]);
+    assert_eq!(t["obstacle"]["shape"].as_str(), Some("circle"), "the Hertz scene has a circular obstacle");
+    HertzScene {
+        x: pair(&t, "body", "x"),
+        y: pair(&t, "body", "y"),
+        material: Material { young: n("material", "young"), poisson: n("material", "poisson") },
+        radius: n("obstacle", "radius"),
+        approach: n("obstacle", "approach"),
+        segment: pair(&t, "discretization", "grading"),
+        h_max: n("discretization", "h"),
+        h_min: n("discretization", "h_min"),
+        growth: n("discretization", "growth"),
+    }
+}
+
+/// The mesh of the Hertz scene with the given `h_min`, graded toward the scene's segment of the top face.
+pub fn hertz_mesh(h_min: f64) -> Mesh {
+    let s = hertz_scene();
+    let grading = Grading { side: Side::Top, segment: s.segment, h_min, h_max: s.h_max, growth: s.growth };
+    graded_rectangle(s.x, s.y, &grading).expect("valid grading")
+}
+
+/// The specification of the Hertz scene: clamped at the bottom, contact on the top, the cylinder pushed
+/// `approach` and shifted `shift`.
+pub fn hertz_spec(approach: f64, shift: f64, points: MultiplierPoints, space: MultiplierSpace) -> ProblemSpec {
+    let s = hertz_scene();
+    ProblemSpec {
+        material: s.material,
+        clamped: vec!["bottom".into()],
+        body_force: [0.0, 0.0],
+        tractions: vec![],
+        contact: "top".into(),
+        obstacle: Obstacle { shape: ObstacleShape::Circle { center: 0.0, radius: s.radius }, approach, shift },
+        multiplier_points: points,
+        multiplier_space: space,
+    }
+}
+
+/// The Hertz problem on the graded mesh of size `h_min`.
 pub fn hertz_problem(
     h_min: f64,
     approach: f64,
@@ -12,28 +89,13 @@ pub fn hertz_problem(
     points: MultiplierPoints,
     space: MultiplierSpace,
 ) -> Problem {
-    let mesh = graded_rectangle(
-        [-2.0, 2.0],
-        [-2.0, 0.0],
-        &Grading { side: Side::Top, segment: [-0.3, 0.3], h_min, h_max: 0.5, growth: 0.3 },
-    )
-    .expect("valid grading");
-    let spec = ProblemSpec {
-        material: Material { young: 200.0, poisson: 0.3 },
-        clamped: vec!["bottom".into()],
-        body_force: [0.0, 0.0],
-        tractions: vec![],
-        contact: "top".into(),
-        obstacle: Obstacle { shape: ObstacleShape::Circle { center: 0.0, radius: 1.0 }, approach, shift },
-        multiplier_points: points,
-        multiplier_space: space,
-    };
-    Problem::new(mesh, spec).expect("valid Hertz problem")
+    Problem::new(hertz_mesh(h_min), hertz_spec(approach, shift, points, space)).expect("valid Hertz problem")
 }
 
-/// Plane-strain Hertz pressure for total force `p` (R = 1, E = 200, ν = 0.3) and its half-width.
+/// Plane-strain Hertz pressure for total force `p` (R, E, ν of the Hertz scene) and its half-width.
 pub fn hertz_pressure(p: f64) -> (impl Fn(f64) -> f64, f64) {
-    let (r, e, nu) = (1.0, 200.0, 0.3);
+    let s = hertz_scene();
+    let (r, e, nu) = (s.radius, s.material.young, s.material.poisson);
     let a = (4.0 * p * r * (1.0 - nu * nu) / (std::f64::consts::PI * e)).sqrt();
     let pmax = 2.0 * p / (std::f64::consts::PI * a);
     (move |x: f64| if x.abs() < a { pmax * (1.0 - (x / a).powi(2)).sqrt() } else { 0.0 }, a)
@@ -110,18 +172,18 @@ pub fn distorted_square(n: usize) -> Mesh {
 /// Spectral condition number of the condensed multiplier operator H on its range (eigenvalues below
 /// `k ε λ_max` count as its kernel: the non-unique part of λ when γ0 = 0 and T_H is too fine). A QP
 /// solved to relative accuracy `tol` determines λ to about `tol · κ`.
-pub fn condition_number(c: &Condensed) -> f64 {
+pub fn condition_number(c: &Condensed<'_>) -> f64 {
     let k = 2 * c.q();
-    let ev = nalgebra::DMatrix::from_column_slice(k, k, &c.dense_h()).symmetric_eigenvalues();
+    let ev = nalgebra::DMatrix::from_column_slice(k, k, &c.factor().dense_h()).symmetric_eigenvalues();
     let max = ev.iter().fold(0.0_f64, |a, v| a.max(*v));
     max / ev.iter().filter(|v| **v > k as f64 * f64::EPSILON * max).fold(f64::INFINITY, |a, v| a.min(*v))
 }
 
-/// The tolerance the QPs of a solve actually met: `qp.tol`, or [`tribo::tresca::FALLBACK_TOL`] if any of
+/// The tolerance the QPs of a solve actually met: `qp.tol`, or [`tribo::qp::FALLBACK_TOL`] if any of
 /// them only reached that (the report counts them).
 pub fn reached_qp_tol(settings: &SolverSettings, sol: &Solution) -> f64 {
     if sol.report.qp_inaccurate > 0 {
-        settings.qp.tol.max(tribo::tresca::FALLBACK_TOL)
+        settings.qp.tol.max(tribo::qp::FALLBACK_TOL)
     } else {
         settings.qp.tol
     }

@@ -195,21 +195,21 @@ fn settings_rules() {
     assert!(matches!(bad(&Friction::Tresca(Threshold::PerDof(vec![1.0; 2])), &s), Error::BadThreshold { .. }));
     let mut t = s;
     t.qp.tol = 0.0;
-    assert!(matches!(bad(&Friction::Frictionless, &t), Error::BadSetting { name: "qp.tol", .. }));
+    assert!(matches!(bad(&Friction::Frictionless, &t), Error::BadSetting { name: "qp_tol", .. }));
     let mut t = s;
-    t.fixed_point.relaxation = 1.5;
-    assert!(matches!(bad(&Friction::Frictionless, &t), Error::BadSetting { name: "fixed_point.relaxation", .. }));
+    t.fp.relaxation = 1.5;
+    assert!(matches!(bad(&Friction::Frictionless, &t), Error::BadSetting { name: "fp_relaxation", .. }));
     let mut t = s;
-    t.fixed_point.max_iter = 0;
-    assert!(matches!(bad(&Friction::Frictionless, &t), Error::BadSetting { name: "fixed_point.max_iter", .. }));
+    t.fp.max_iter = 0;
+    assert!(matches!(bad(&Friction::Frictionless, &t), Error::BadSetting { name: "fp_max_iter", .. }));
     for stab in [Stabilization::Gamma0(-1.0), Stabilization::Fraction(1.0), Stabilization::Fraction(f64::NAN)] {
         let t = SolverSettings { stabilization: stab, ..s };
         assert!(matches!(bad(&Friction::Frictionless, &t), Error::BadSetting { .. }), "{stab:?}");
     }
-    let bound = problem.gamma0_bound.0;
+    let bound = problem.gamma0_bound.value;
     let t = SolverSettings { stabilization: Stabilization::Gamma0(1.5 * bound), ..s };
     let e = bad(&Friction::Frictionless, &t);
-    assert!(matches!(e, Error::Gamma0TooLarge { element, .. } if element == problem.gamma0_bound.1), "{e}");
+    assert!(matches!(e, Error::Gamma0TooLarge { element, .. } if element == problem.gamma0_bound.triangle), "{e}");
     assert!(e.to_string().contains(&format!("{bound:e}")), "the message states the bound: {e}");
 }
 
@@ -217,6 +217,6 @@ fn settings_rules() {
 #[test]
 fn indefinite_stabilized_stiffness_is_an_error() {
     let problem = Problem::new(square(), spec()).unwrap();
-    let e = Condensed::with_gamma0(&problem, 1e3 * problem.gamma0_bound.0).expect_err("indefinite");
+    let e = problem.condense(Stabilization::Unchecked(1e3 * problem.gamma0_bound.value)).expect_err("indefinite");
     assert!(matches!(e, Error::NotPositiveDefinite { .. }), "{e}");
 }

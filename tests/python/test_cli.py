@@ -56,9 +56,10 @@ def test_demo_scene_runs_in_process(tmp_path: Path, capsys: pytest.CaptureFixtur
         assert (tmp_path / "demo" / name).stat().st_size > 0
 
 
-def test_demo_scene_matches_the_issue() -> None:
+def test_demo_scene_is_the_documented_one() -> None:
+    """The demo scene is the one README.md and the scene's description state."""
     s = load_scene(demo_scene_path())
-    assert s.friction == "coulomb" and s.get("friction", "mu") == 0.3
+    assert s.solve_kwargs()["mu"] == 0.3
     assert s.get("obstacle", "radius") == 1.0 and s.get("obstacle", "approach") == 0.01
     assert s.get("obstacle", "shift") == 0.004 and s.get("discretization", "h_min") == 0.01
     assert s.get("discretization", "gamma0_fraction") == 0.5
@@ -81,14 +82,14 @@ def test_run_scene_subprocess(tmp_path: Path) -> None:
 
 
 def test_scene_friction_levels() -> None:
+    """The scene passes mu/threshold on; the core decides the law (μ = 0 is frictionless)."""
     base = load_toml(SCENE)
-    base["friction"] = {}
-    assert parse_scene(base).friction == "frictionless"
-    base["friction"] = {"mu": 0.0}
-    assert parse_scene(base).friction == "frictionless"
-    assert "mu" not in parse_scene(base).solve_kwargs()
-    base["friction"] = {"mu": 0.4}
-    assert parse_scene(base).solve_kwargs()["mu"] == 0.4
+    for friction, law in (({}, "frictionless"), ({"mu": 0.0}, "frictionless"), ({"mu": 0.4}, "coulomb")):
+        base["friction"] = friction
+        scene = parse_scene(base)
+        assert scene.solve_kwargs().get("mu") == friction.get("mu")
+        _, solution = scene.solve()
+        assert solution.friction == law
 
 
 def test_scene_auto_grading_targets_the_contact_zone() -> None:

@@ -102,7 +102,11 @@ def test_coulomb_stick_and_slip(hertz: tribo.Problem) -> None:
     names = s.state_names
     assert "stick" in names and "slip" in names
     assert s.kkt_max < 1e-6
-    np.testing.assert_allclose(s.friction_threshold, 0.3 * np.maximum(s.lambda_n, 0), rtol=1e-6, atol=1e-6)
+    # Coulomb's law at the fixed point, on the multipliers themselves: |λ_t| ≤ μ λ_n, with equality at slip.
+    lmax = s.lambda_n.max()
+    assert np.all(np.abs(s.lambda_t) <= 0.3 * np.maximum(s.lambda_n, 0) + 1e-6 * lmax)
+    slip = s.states == tribo.STATE_NAMES.index("slip")
+    np.testing.assert_allclose(np.abs(s.lambda_t[slip]), 0.3 * s.lambda_n[slip], atol=1e-6 * lmax)
     assert s.tangential_force != 0.0 and s.max_penetration >= 0.0
     # The second solve with the same γ0 reuses the factorization and gives the same numbers.
     again = hertz.solve(mu=0.3)
@@ -173,18 +177,22 @@ def test_python_gap_function_matches_builtin_parabola() -> None:
 
 
 def test_loads_and_flat_obstacle() -> None:
-    """A block pushed onto a flat obstacle by a traction: the contact force balances the load."""
+    """A block hanging from its top side, pulled down by its weight and a traction onto a flat floor: the
+    floor's contact force and the support's reactions balance the loads."""
     m = tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 8, 8)
     p = tribo.Problem(
-        m, young=10.0, poisson=0.25, clamped=["left"], contact="bottom", tractions={"top": (0.0, -1.0)},
+        m, young=10.0, poisson=0.25, clamped="top", contact="bottom", tractions={"left": (0.3, -0.2)},
         body_force=(0.0, -0.5),
     )
     s = p.solve()
     assert p.contact_normal == pytest.approx((0.0, -1.0))
-    assert s.report.converged
-    # Loads push 1.0 (traction) + 0.5 (body) downward, shared between the contact and the clamp.
-    total = s.normal_force + (-s.reactions[:, 1].sum())
-    assert s.normal_force > 0 and np.isfinite(total)
+    assert s.report.converged and s.normal_force > 0.0
+    # Loads: body force (0, −0.5) on the unit square, traction (0.3, −0.2) on the left side of length 1.
+    # The contact pushes up (−n) with the normal force; no contact triangle touches the clamped top, so the
+    # stabilization adds no net force and the balance is exact up to round-off.
+    load = np.array([0.3, -0.7])
+    total = load + s.reactions.sum(axis=0) + np.array([0.0, s.normal_force])
+    np.testing.assert_allclose(total, 0.0, atol=1e-9 * np.abs(load).max())
 
 
 def test_evaluate_multiplier_and_contact_points(hertz: tribo.Problem) -> None:
@@ -203,11 +211,11 @@ def test_working_set_matches_the_full_qp() -> None:
     κ): with qp_tol = 1e-10 they must agree to 2 · 1e-10 · 2.4e5 ≈ 5e-5 of the pressure scale. On the
     coarsest mesh (h_min = 0.04) λ_n is a 3-dof checkerboard and κ is far larger, so it is not used here.
     """
-    assert tribo.solver_defaults()["working_set"] is True
+    assert tribo.solver_defaults()["qp_working_set"] is True
     for h_min in (0.02, 0.01):
         grading = dict(GRADING, h_min=h_min)
         p = hertz_problem(tribo.Mesh.graded_rectangle(BLOCK["x"], BLOCK["y"], **grading))  # type: ignore[arg-type]
-        a, b = p.solve(), p.solve(working_set=False)
+        a, b = p.solve(), p.solve(qp_working_set=False)
         assert a.report.status == b.report.status == "converged"
         scale = np.abs(b.lambda_n).max()
         np.testing.assert_allclose(a.lambda_n, b.lambda_n, rtol=0.0, atol=5e-5 * scale)
@@ -220,10 +228,10 @@ def test_scene_solver_working_set_key() -> None:
     from tribo.scene import SceneError, demo_scene_path, parse_scene
 
     data = tomllib.loads(demo_scene_path().read_text())
-    data["solver"] = {"working_set": False}
-    assert parse_scene(data).solve_kwargs()["working_set"] is False
-    data["solver"] = {"working_set": 1}
-    with pytest.raises(SceneError, match="solver.working_set"):
+    data["solver"] = {"qp_working_set": False}
+    assert parse_scene(data).solve_kwargs()["qp_working_set"] is False
+    data["solver"] = {"qp_working_set": 1}
+    with pytest.raises(SceneError, match="solver.qp_working_set"):
         parse_scene(data)
 
 
@@ -239,3 +247,19 @@ def test_raising_progress_callback_stops_the_solve(hertz: tribo.Problem) -> None
     with pytest.raises(KeyboardInterrupt):
         hertz.solve(mu=0.3, progress=stop)
     assert seen == [0, 1]
+
+
+def test_progress_callback_returning_false_interrupts(hertz: tribo.Problem) -> None:
+    """A callback that returns False stops the fixed point: status 'interrupted' with the last iterate."""
+    calls: list[int] = []
+
+    def stop_after_two(iteration: int, change: float, qp_iterations: int, qp_seconds: float) -> bool:
+        calls.append(iteration)
+        return iteration < 2
+
+    s = hertz.solve(mu=0.3, progress=stop_after_two)
+    assert s.report.status == "interrupted" and not s.report.converged
+    assert s.report.interrupted_iteration == 2 and calls == [0, 1, 2]
+    assert s.report.iterations == 2 and np.all(np.isfinite(s.lambda_n)) and s.normal_force > 0.0
+    # Any other return value (None, True, 0) lets the solve go on.
+    assert hertz.solve(mu=0.3, progress=lambda *a: None).report.status == "converged"

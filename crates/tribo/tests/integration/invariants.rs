@@ -1,8 +1,6 @@
 //! Invariants as property tests: rigid-body modes in ker K, M1 row sums, the P1 multiplier basis sums to
 //! one, the common refinement covers Γ_C exactly (also with nearly coincident breakpoints).
 
-mod common;
-
 use proptest::prelude::*;
 use tribo::mortar::{common_refinement, MortarMatrices};
 use tribo::*;

@@ -31,4 +31,4 @@ def test_readme_scene_snippet_is_a_valid_scene() -> None:
     assert blocks, "README.md has no scene example"
     scene = parse_scene(tomllib.loads(blocks[0]))
     kw = scene.solve_kwargs()
-    assert kw["friction"] == "coulomb" and kw["mu"] == 0.3
+    assert kw["mu"] == 0.3 and "threshold" not in kw

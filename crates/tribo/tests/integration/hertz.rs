@@ -1,10 +1,8 @@
 //! Named scenes: Hertz convergence under graded refinement, stabilization against the checkerboard of
 //! the classic method when T_H is finer than T_h, and the Coulomb fixed point with an obstacle shift.
 
-mod common;
-
-use common::{fitted_rate, hertz_l2_error, hertz_problem};
 use tribo::*;
+use tribo_testkit::{fitted_rate, hertz_l2_error, hertz_problem};
 
 /// Frictionless Hertz: the relative L2 error of λ_n against the plane-strain Hertz pressure decreases
 /// under refinement of a mesh graded toward the contact zone. The Hertz pressure is the half-plane
@@ -18,7 +16,7 @@ fn hertz_pressure_converges_on_graded_meshes() {
         let problem = hertz_problem(h_min, 0.01, 0.0, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
         let sol = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
         assert_eq!(sol.report.status, SolveStatus::Converged);
-        let (_, a) = common::hertz_pressure(sol.normal_force);
+        let (_, a) = tribo_testkit::hertz_pressure(sol.normal_force);
         errors.push(hertz_l2_error(&problem, &sol));
         eprintln!(
             "h_min {h_min}: n = {}, q = {}, force {:.5}, a = {a:.4}, rel. L2 error {:.4e}",
@@ -39,7 +37,7 @@ fn hertz_pressure_converges_on_graded_meshes() {
 /// Total variation of λ_n over that of the Hertz pressure of the same force (2 p_max): 1 for a smooth,
 /// single-peaked pressure, much more for a checkerboard.
 fn oscillation(sol: &Solution) -> f64 {
-    let (p, _) = common::hertz_pressure(sol.normal_force);
+    let (p, _) = tribo_testkit::hertz_pressure(sol.normal_force);
     let tv: f64 = sol.lambda_n.windows(2).map(|w| (w[1] - w[0]).abs()).sum();
     tv / (2.0 * p(0.0))
 }
@@ -122,7 +120,7 @@ fn coulomb_fixed_point_converges_with_stick_and_slip() {
     }
     // Relaxation reaches the same fixed point.
     let mut settings = SolverSettings::default();
-    settings.fixed_point.relaxation = 0.5;
+    settings.fp.relaxation = 0.5;
     let relaxed = problem.solve(&Friction::Coulomb { mu: 0.3 }, &settings, None).expect("solves");
     assert_eq!(relaxed.report.status, SolveStatus::Converged);
     let diff = sol.lambda_n.iter().zip(&relaxed.lambda_n).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
@@ -134,12 +132,12 @@ fn coulomb_fixed_point_converges_with_stick_and_slip() {
 fn frictionless_limits_agree() {
     let problem = hertz_problem(0.02, 0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
     let s = SolverSettings::default();
-    let condensed = Condensed::new(&problem, s.stabilization).unwrap();
-    let a = condensed.solve(&problem, &Friction::Frictionless, &s, None).unwrap();
-    let b = condensed.solve(&problem, &Friction::Coulomb { mu: 0.0 }, &s, None).unwrap();
-    let c = condensed.solve(&problem, &Friction::Tresca(Threshold::Uniform(0.0)), &s, None).unwrap();
+    let condensed = problem.condense(s.stabilization).unwrap();
+    let a = condensed.solve(&Friction::Frictionless, &s, None).unwrap();
+    let b = condensed.solve(&Friction::Coulomb { mu: 0.0 }, &s, None).unwrap();
+    let c = condensed.solve(&Friction::Tresca(Threshold::Uniform(0.0)), &s, None).unwrap();
     // Two different QPs (q and 2q unknowns), each determining λ to about tol · κ(H), agree to twice that.
-    let tol = 2.0 * s.qp.tol * common::condition_number(&condensed);
+    let tol = 2.0 * s.qp.tol * tribo_testkit::condition_number(&condensed);
     let lmax = a.lambda_n.iter().fold(0.0_f64, |m, v| m.max(*v));
     for other in [&b, &c] {
         let d = a.lambda_n.iter().zip(&other.lambda_n).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()));
@@ -153,12 +151,12 @@ fn frictionless_limits_agree() {
 fn iteration_cap_is_reported() {
     let problem = hertz_problem(0.02, 0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
     let mut settings = SolverSettings::default();
-    settings.fixed_point.max_iter = 1;
+    settings.fp.max_iter = 1;
     let sol = problem.solve(&Friction::Coulomb { mu: 0.3 }, &settings, None).unwrap();
     assert_eq!(sol.report.status, SolveStatus::MaxIterations);
     assert_eq!(sol.report.iterations, 1);
     assert_eq!(sol.report.residual_history.len(), 1);
-    assert!(sol.report.residual_history[0] > settings.fixed_point.tol_change_rel);
+    assert!(sol.report.residual_history[0] > settings.fp.tol);
 }
 
 /// The working set gives the solution of the QP over all of Γ_C (frictionless and Tresca, whose
@@ -169,16 +167,16 @@ fn working_set_agrees_with_the_full_qp() {
     for points in [MultiplierPoints::RatioToFe(1.0), MultiplierPoints::Size(0.013)] {
         let problem = hertz_problem(0.01, 0.01, 0.004, points, MultiplierSpace::P1);
         let s = SolverSettings::default();
-        let condensed = Condensed::new(&problem, s.stabilization).unwrap();
-        let kappa = common::condition_number(&condensed);
+        let condensed = problem.condense(s.stabilization).unwrap();
+        let kappa = tribo_testkit::condition_number(&condensed);
         let full = SolverSettings { qp: QpSettings { working_set: false, ..s.qp }, ..s };
         for friction in [Friction::Frictionless, Friction::Tresca(Threshold::Uniform(0.5))] {
-            let a = condensed.solve(&problem, &friction, &s, None).unwrap();
-            let b = condensed.solve(&problem, &friction, &full, None).unwrap();
+            let a = condensed.solve(&friction, &s, None).unwrap();
+            let b = condensed.solve(&friction, &full, None).unwrap();
             assert_eq!(a.report.status, SolveStatus::Converged);
             assert_eq!(b.report.status, SolveStatus::Converged);
             // Each QP may have fallen back to FALLBACK_TOL (counted in its report).
-            let tol = (common::reached_qp_tol(&s, &a) + common::reached_qp_tol(&full, &b)) * kappa;
+            let tol = (tribo_testkit::reached_qp_tol(&s, &a) + tribo_testkit::reached_qp_tol(&full, &b)) * kappa;
             let lmax = b.lambda_n.iter().fold(0.0_f64, |m, v| m.max(*v));
             let d = (0..a.lambda_n.len())
                 .map(|j| (a.lambda_n[j] - b.lambda_n[j]).abs().max((a.lambda_t[j] - b.lambda_t[j]).abs()))
@@ -202,12 +200,9 @@ fn results_do_not_depend_on_the_units_of_e() {
         spec.material.young = young;
         problem = Problem::new(problem.mesh.clone(), spec).unwrap();
         let s = SolverSettings::default();
-        let condensed = Condensed::new(&problem, s.stabilization).unwrap();
-        let kappa = common::condition_number(&condensed);
-        (
-            condensed.solve(&problem, &Friction::Tresca(Threshold::Uniform(0.3 * young / 200.0)), &s, None).unwrap(),
-            kappa,
-        )
+        let condensed = problem.condense(s.stabilization).unwrap();
+        let kappa = tribo_testkit::condition_number(&condensed);
+        (condensed.solve(&Friction::Tresca(Threshold::Uniform(0.3 * young / 200.0)), &s, None).unwrap(), kappa)
     };
     let (reference, kappa) = solve(200.0);
     let tol = 2.0 * QpSettings::default().tol * kappa;
@@ -271,7 +266,7 @@ fn a_cycling_fixed_point_is_reported_as_stagnated() {
     let h = &sol.report.residual_history;
     eprintln!("stagnated after {} iterations: {h:?}", sol.report.iterations);
     assert_eq!(sol.report.status, SolveStatus::Stagnated);
-    assert!(sol.report.iterations < settings.fixed_point.max_iter);
+    assert!(sol.report.iterations < settings.fp.max_iter);
     let best = h.iter().copied().fold(f64::INFINITY, f64::min);
-    assert!(h[h.len() - tribo::coulomb::STAGNATION_WINDOW..].iter().all(|c| *c >= best));
+    assert!(h[h.len() - tribo::solve::STAGNATION_WINDOW..].iter().all(|c| *c >= best));
 }

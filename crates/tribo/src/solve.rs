@@ -1,0 +1,263 @@
+//! The solve driver: frictionless and Tresca problems are one QP each; Coulomb (3.1) is the fixed point
+//! of `Φ_H : g ↦ λ_Hn(g)` (Definition 1 of the paper), each evaluation a Tresca QP P(g) whose matrix
+//! does not change (only the bounds μ g do). The displacement is recovered at the end with one solve.
+
+use std::ops::ControlFlow;
+use std::time::Instant;
+
+use crate::error::Result;
+use crate::friction::Friction;
+use crate::problem::{Condensed, Problem};
+use crate::qp::{QpOutcome, QpStatus};
+use crate::settings::SolverSettings;
+use crate::solution::{Report, Solution, SolveStatus, Timings};
+use crate::working_set::WorkingSetQp;
+
+/// Fixed-point iterations without a new smallest change after which the fixed point is declared
+/// stagnated: a contraction, however slow, makes a new minimum every iteration.
+pub const STAGNATION_WINDOW: usize = 10;
+
+/// Progress of a solve, reported after every QP.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Progress {
+    /// Fixed-point iteration (0 for the initial frictionless solve).
+    pub iteration: usize,
+    /// Relative change of λ_n (NaN for the initial solve).
+    pub change: f64,
+    /// Interior-point iterations of this QP.
+    pub qp_iterations: u32,
+    /// Wall time of this QP in seconds.
+    pub qp_seconds: f64,
+}
+
+/// A progress observer: called after every QP. Returning `ControlFlow::Break(())` stops the solve,
+/// which then ends with [`SolveStatus::Interrupted`] and its last iterate.
+pub type Observer<'a> = &'a mut dyn FnMut(&Progress) -> ControlFlow<()>;
+
+/// What the QP phase produced: multipliers (2q), the tangential bound used, status, history.
+struct QpPhase {
+    lambda: Vec<f64>,
+    bound: Vec<f64>,
+    status: SolveStatus,
+    iterations: usize,
+    history: Vec<f64>,
+    qp_iterations: Vec<u32>,
+    /// QPs that met only [`crate::qp::FALLBACK_TOL`], not `qp.tol`.
+    qp_inaccurate: usize,
+}
+
+impl QpPhase {
+    /// Counts a QP's interior-point iterations, time and accuracy.
+    fn book(&mut self, out: &QpOutcome) {
+        self.qp_iterations.push(out.iterations);
+        self.qp_inaccurate += usize::from(out.status == QpStatus::Inaccurate);
+    }
+
+    /// Books a QP solved outside the fixed point (iteration 0): progress, counts, status.
+    fn record_single_qp(&mut self, out: &QpOutcome, notify: &mut dyn FnMut(Progress) -> ControlFlow<()>) {
+        let flow =
+            notify(Progress { iteration: 0, change: f64::NAN, qp_iterations: out.iterations, qp_seconds: out.seconds });
+        if flow.is_break() {
+            self.status = SolveStatus::Interrupted { iteration: 0 };
+        }
+        self.book(out);
+        if let Some(s) = qp_failed(0, out.status) {
+            self.status = s;
+        }
+    }
+}
+
+fn qp_failed(iteration: usize, s: QpStatus) -> Option<SolveStatus> {
+    match s {
+        QpStatus::Solved | QpStatus::Inaccurate => None,
+        QpStatus::Failed(reason) => Some(SolveStatus::QpFailed { iteration, reason }),
+    }
+}
+
+impl Condensed<'_> {
+    /// Solves the contact problem with the given friction law on this condensed system.
+    ///
+    /// # Errors
+    /// Bad friction or settings ([`crate::Error::BadSetting`], [`crate::Error::BadThreshold`]); QP set-up
+    /// errors. A QP that fails to converge or a fixed point that does not converge is *not* an error: see
+    /// [`Solution::report`].
+    pub fn solve(
+        &self,
+        friction: &Friction,
+        settings: &SolverSettings,
+        observer: Option<Observer<'_>>,
+    ) -> Result<Solution> {
+        settings.validate()?;
+        friction.validate(self.q())?;
+        self.solve_validated(friction, settings, observer)
+    }
+
+    fn solve_validated(
+        &self,
+        friction: &Friction,
+        settings: &SolverSettings,
+        mut observer: Option<Observer<'_>>,
+    ) -> Result<Solution> {
+        let (problem, factor) = (self.problem(), self.factor());
+        let friction = friction.normalized();
+        let clock = Instant::now();
+        let condensation_before = factor.condensation_seconds();
+        let q = self.q();
+        let mut notify = |p: Progress| {
+            log::debug!(
+                "iteration {} change {:e} qp {} its {:.3} s",
+                p.iteration,
+                p.change,
+                p.qp_iterations,
+                p.qp_seconds
+            );
+            match observer.as_mut() {
+                Some(o) => o(&p),
+                None => ControlFlow::Continue(()),
+            }
+        };
+        let mut phase = QpPhase {
+            lambda: vec![0.0; 2 * q],
+            bound: vec![0.0; q],
+            status: SolveStatus::Converged,
+            iterations: 0,
+            history: Vec::new(),
+            qp_iterations: Vec::new(),
+            qp_inaccurate: 0,
+        };
+        match &friction {
+            Friction::Frictionless | Friction::Coulomb { .. } => {
+                // Coulomb starts from the frictionless λ_n.
+                let out = WorkingSetQp::new(factor, None, &settings.qp)?.solve()?;
+                phase.lambda[..q].copy_from_slice(&out.nu);
+                phase.record_single_qp(&out, &mut notify);
+            }
+            Friction::Tresca(_) => {
+                phase.bound = friction.tresca_bounds(q);
+                let out = WorkingSetQp::new(factor, Some(&phase.bound), &settings.qp)?.solve()?;
+                phase.lambda.copy_from_slice(&out.nu);
+                phase.record_single_qp(&out, &mut notify);
+            }
+        }
+        if let (Friction::Coulomb { mu }, SolveStatus::Converged) = (&friction, phase.status) {
+            // (not after an interrupted or failed initial QP)
+            self.fixed_point(*mu, settings, &mut phase, &mut notify)?;
+        }
+        // Columns of H computed on demand during the QPs count as condensation, not QP time.
+        let condensation_during = factor.condensation_seconds() - condensation_before;
+        let qp_total = clock.elapsed().as_secs_f64() - condensation_during;
+        let clock = Instant::now();
+        let u = factor.displacement(&problem.f_free, &phase.lambda);
+        let recovery = clock.elapsed().as_secs_f64();
+        let timings = Timings {
+            assembly: problem.timings.assembly,
+            contact_matrices: problem.timings.contact_matrices,
+            factorization: factor.factorization_seconds,
+            condensation: factor.condensation_seconds(),
+            qp: qp_total,
+            recovery,
+        };
+        let mu = friction.mu();
+        let threshold = match mu {
+            Some(mu) => phase.lambda[..q].iter().map(|l| mu * l.max(0.0)).collect(),
+            None => phase.bound,
+        };
+        let report = Report {
+            status: phase.status,
+            friction: friction.law(),
+            mu,
+            iterations: phase.iterations,
+            residual_history: phase.history,
+            qp_iterations: phase.qp_iterations,
+            qp_inaccurate: phase.qp_inaccurate,
+            gamma0: factor.gamma0,
+            gamma0_bound: problem.gamma0_bound.value,
+            reused_factorization: self.reused_factorization(),
+            timings,
+        };
+        Ok(Solution::new(problem, factor, &u, phase.lambda, threshold, settings.qp.tol, report))
+    }
+
+    fn fixed_point(
+        &self,
+        mu: f64,
+        settings: &SolverSettings,
+        phase: &mut QpPhase,
+        notify: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+    ) -> Result<()> {
+        let q = self.q();
+        let fp = settings.fp;
+        let mut g: Vec<f64> = phase.lambda[..q].to_vec();
+        let bound: Vec<f64> = g.iter().map(|v| mu * v.max(0.0)).collect();
+        let mut qp = WorkingSetQp::new(self.factor(), Some(&bound), &settings.qp)?;
+        phase.status = SolveStatus::MaxIterations;
+        let (mut best, mut since_best) = (f64::INFINITY, 0);
+        for it in 1..=fp.max_iter {
+            let out = qp.solve()?;
+            phase.book(&out);
+            phase.iterations = it;
+            if let Some(s) = qp_failed(it, out.status) {
+                phase.status = s;
+                break;
+            }
+            let lam_n = &out.nu[..q];
+            let max_diff = lam_n.iter().zip(&g).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+            let diff: f64 = lam_n.iter().zip(&g).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt();
+            let norm: f64 = lam_n.iter().map(|a| a * a).sum::<f64>().sqrt();
+            let change = if norm > 0.0 { diff / norm } else { diff };
+            phase.history.push(change);
+            let flow =
+                notify(Progress { iteration: it, change, qp_iterations: out.iterations, qp_seconds: out.seconds });
+            phase.bound = g.iter().map(|v| mu * v.max(0.0)).collect();
+            phase.lambda = out.nu;
+            // Converged when the relative change is small, or when the change is at the QP's own noise
+            // level (tol × the natural size of λ): e.g. λ ≡ 0 without contact, where a relative change
+            // compares round-off with round-off.
+            let noise = settings.qp.tol * self.factor().lambda_scale();
+            if change <= fp.tol || max_diff <= noise {
+                phase.status = SolveStatus::Converged;
+                break;
+            }
+            if flow.is_break() {
+                phase.status = SolveStatus::Interrupted { iteration: it };
+                break;
+            }
+            // A converging fixed point keeps making new minima of the change; one that cycles, or that
+            // has reached the accuracy to which the QP determines λ, does not.
+            if change < best {
+                (best, since_best) = (change, 0);
+            } else {
+                since_best += 1;
+                if since_best >= STAGNATION_WINDOW {
+                    phase.status = SolveStatus::Stagnated;
+                    break;
+                }
+            }
+            let w = fp.relaxation;
+            for (gj, lj) in g.iter_mut().zip(&phase.lambda[..q]) {
+                *gj = ((1.0 - w) * *gj + w * lj).max(0.0);
+            }
+            let bound: Vec<f64> = g.iter().map(|v| mu * v).collect();
+            qp.set_bounds(&bound)?;
+        }
+        Ok(())
+    }
+}
+
+impl Problem {
+    /// Condenses with `settings.stabilization` (or reuses the factorization of the previous solve with
+    /// the same γ0) and solves: the one-call entry point.
+    ///
+    /// # Errors
+    /// As [`Problem::condense`] and [`Condensed::solve`].
+    pub fn solve(
+        &self,
+        friction: &Friction,
+        settings: &SolverSettings,
+        observer: Option<Observer<'_>>,
+    ) -> Result<Solution> {
+        settings.validate()?;
+        friction.validate(self.n_multipliers())?;
+        self.condense(settings.stabilization)?.solve_validated(friction, settings, observer)
+    }
+}

@@ -1,0 +1,17 @@
+//! tribo's integration tests, one binary with one module per layer:
+//!
+//! * `errors`: one rejection test per input rule;
+//! * `invariants`: property tests of the Γ_C matrices, the multiplier basis and the common refinement;
+//! * `patch`: constant-strain states reproduced exactly, for every multiplier space, γ0 and friction law;
+//! * `kkt`: the discrete problem (3.1) checked by its own quadrature, independent of the assembly;
+//! * `hertz`: named scenes (Hertz convergence, the checkerboard of the classic method, Coulomb);
+//! * `layout`: the module structure of the crate (no import cycles).
+//!
+//! Scenes and measures shared with the benches and examples come from the `tribo-testkit` crate.
+
+mod errors;
+mod hertz;
+mod invariants;
+mod kkt;
+mod layout;
+mod patch;

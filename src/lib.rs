@@ -1,1 +1,0 @@
-//! Test and benchmark harness package for the tribo workspace (see tests/ and benches/).
