@@ -138,6 +138,7 @@ class Problem:
         qp_max_iter: int = ...,
         qp_kkt_solver: Literal["faer", "qdldl"] = ...,
         qp_working_set: bool = ...,
+        qp_method: Literal["auto", "clarabel", "active_set"] = ...,
         fp_tol: float = ...,
         fp_max_iter: int = ...,
         fp_relaxation: float = ...,
@@ -208,6 +209,10 @@ class Report:
     def residual_history(self) -> _Floats1: ...
     @property
     def qp_iterations(self) -> _Ints: ...
+    @property
+    def qp_methods(self) -> list[Literal["clarabel", "active_set"]]: ...
+    @property
+    def qp_fallbacks(self) -> int: ...
     @property
     def qp_inaccurate(self) -> int: ...
     @property

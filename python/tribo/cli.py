@@ -65,6 +65,8 @@ def summary(scene: Scene, problem: Problem, solution: Solution, seconds: float) 
         "iterations": r.iterations,
         "residual_history": r.residual_history.tolist(),
         "qp_iterations": r.qp_iterations.tolist(),
+        "qp_methods": {m: r.qp_methods.count(m) for m in ("clarabel", "active_set")},
+        "qp_fallbacks": r.qp_fallbacks,
         "qp_inaccurate": r.qp_inaccurate,
         "gamma0": r.gamma0,
         "gamma0_bound": r.gamma0_bound,

@@ -14,7 +14,7 @@ mod solution;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use tribo::{
-    Choice, ContactState, Diagonal, FrictionLaw, KktSolver, MultiplierPoints, MultiplierSpace, SettingKind,
+    Choice, ContactState, Diagonal, FrictionLaw, KktSolver, MultiplierPoints, MultiplierSpace, QpMethod, SettingKind,
     SettingValue, Side, SolveStatus, SolverSettings, Stabilization,
 };
 
@@ -76,7 +76,7 @@ fn solver_settings(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 }
 
 /// The names of every choice, as the core parses and prints them: side, diagonal, space, friction,
-/// state (in the order of the int8 codes of `Solution.states`), status and qp_kkt_solver.
+/// state (in the order of the int8 codes of `Solution.states`), status, qp_kkt_solver and qp_method.
 #[pyfunction]
 fn choices(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
@@ -87,6 +87,7 @@ fn choices(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("state", ContactState::names())?;
     d.set_item("status", SolveStatus::NAMES.to_vec())?;
     d.set_item("qp_kkt_solver", KktSolver::names())?;
+    d.set_item("qp_method", QpMethod::names())?;
     Ok(d)
 }
 

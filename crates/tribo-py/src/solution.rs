@@ -67,10 +67,22 @@ impl PyReport {
         vec1(py, &self.inner.residual_history)
     }
 
-    /// Interior-point iterations of each QP.
+    /// Iterations of each QP: interior-point iterations (clarabel) or steps (active set).
     #[getter]
     fn qp_iterations<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
         PyArray1::from_vec(py, self.inner.qp_iterations.iter().map(|&i| i64::from(i)).collect())
+    }
+
+    /// The method that answered each QP: 'clarabel' or 'active_set'.
+    #[getter]
+    fn qp_methods(&self) -> Vec<&'static str> {
+        self.inner.qp_methods.iter().map(|m| m.as_str()).collect()
+    }
+
+    /// How many QPs the active-set method could not certify (clarabel answered them).
+    #[getter]
+    fn qp_fallbacks(&self) -> usize {
+        self.inner.qp_fallbacks
     }
 
     /// How many QPs met only the fallback tolerance (1e-10), not `qp_tol`.

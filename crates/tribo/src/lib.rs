@@ -50,6 +50,7 @@
 //! Γ_C and `t = (−n₂, n₁)`; abscissae on Γ_C are described in [`contact`].
 #![warn(missing_docs)]
 
+pub mod active_set;
 pub mod choice;
 pub mod condensation;
 pub mod contact;
@@ -81,7 +82,9 @@ pub use multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace};
 pub use obstacle::{GapFunction, Obstacle, ObstacleShape};
 pub use problem::{Condensed, Problem, ProblemSpec};
 pub use qp::{QpOutcome, QpStatus};
-pub use settings::{FixedPointSettings, KktSolver, QpSettings, SettingInfo, SettingKind, SettingValue, SolverSettings};
+pub use settings::{
+    FixedPointSettings, KktSolver, QpMethod, QpSettings, SettingInfo, SettingKind, SettingValue, SolverSettings,
+};
 pub use solution::{ContactState, KktResiduals, Report, Solution, SolveStatus, Timings};
 pub use solve::{Observer, Progress};
 pub use stabilization::{Gamma0Bound, Stabilization};

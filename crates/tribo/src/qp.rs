@@ -33,10 +33,41 @@ use clarabel::solver::{DefaultSettings, DefaultSolver, IPSolver, NonnegativeCone
 
 use crate::error::{Error, Result};
 use crate::friction::check_thresholds;
-use crate::settings::QpSettings;
+use crate::settings::{QpMethod, QpSettings};
 
 /// The tolerance a QP falls back to when it fails at a tighter one.
 pub const FALLBACK_TOL: f64 = 1e-10;
+
+/// The scaling of the QP clarabel is handed: `x̃_i = x_i / w_i` (`w_i = s` on a normal unknown, the bound
+/// `g_j` on a tangential one) and the objective divided by `φ = max_i w_i² H_ii`. The active-set method
+/// certifies its answers in the same scaled units ([`crate::active_set`]).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Scaling {
+    /// `w_i` per unknown.
+    pub w: Vec<f64>,
+    /// `φ`.
+    pub phi: f64,
+}
+
+impl Scaling {
+    /// The normal scale `s = c_s / h_s` (`h_s = max diag H_nn`, `c_s = max |c_n|`) of a QP with `q` normal
+    /// unknowns, or `None` when nothing pushes the body onto the obstacle (`c_n = 0`) or `H_nn` vanishes:
+    /// λ = 0 solves such a QP.
+    pub(crate) fn normal_scale(h: &[f64], c: &[f64], q: usize) -> Option<f64> {
+        let k = c.len();
+        let h_s = (0..q).map(|i| h[i * k + i]).fold(0.0, f64::max);
+        let c_s = c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        (c_s > 0.0 && h_s > 0.0).then(|| c_s / h_s)
+    }
+
+    /// The scaling for the normal scale `s` and the tangential bounds (empty for a frictionless QP).
+    pub(crate) fn new(h: &[f64], q: usize, s: f64, bounds: &[f64]) -> Self {
+        let k = q + bounds.len();
+        let w: Vec<f64> = (0..k).map(|i| if i < q { s } else { bounds[i - q] }).collect();
+        let phi = (0..k).map(|i| w[i] * w[i] * h[i * k + i]).fold(0.0, f64::max);
+        Self { w, phi }
+    }
+}
 
 /// How one QP solve ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -58,10 +89,15 @@ pub struct QpOutcome {
     pub nu: Vec<f64>,
     /// Status.
     pub status: QpStatus,
-    /// Interior-point iterations.
+    /// Iterations of the method that answered (interior-point iterations for clarabel, steps for the
+    /// active-set method), including those of a failed attempt before it.
     pub iterations: u32,
     /// Wall time in seconds.
     pub seconds: f64,
+    /// The method that produced the answer: [`QpMethod::Clarabel`] or [`QpMethod::ActiveSet`].
+    pub method: QpMethod,
+    /// True when the active-set method was tried first and could not certify its answer.
+    pub fallback: bool,
 }
 
 /// The box-constrained QP of P(g) (frictional) or of the frictionless problem, set up once; the
@@ -148,8 +184,7 @@ impl BoxQp {
         if let Some(g) = bounds {
             check_thresholds(g, q)?;
         }
-        let h_s = (0..q).map(|i| h[i * k + i]).fold(0.0, f64::max);
-        let c_s = c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let n_scale = Scaling::normal_scale(h, c, q);
         let mut qp = Self {
             solver: None,
             settings: *settings,
@@ -158,10 +193,10 @@ impl BoxQp {
             c: c.to_vec(),
             q,
             frictional,
-            n_scale: if h_s > 0.0 { c_s / h_s } else { 0.0 },
+            n_scale: n_scale.unwrap_or(0.0),
             bounds: bounds.map_or_else(Vec::new, <[f64]>::to_vec),
         };
-        if c_s == 0.0 || h_s <= 0.0 {
+        if n_scale.is_none() {
             // Nothing pushes the body onto the obstacle (c_n = 0): λ_n = 0, hence λ_t = 0, solves P(g).
             return Ok(qp);
         }
@@ -210,10 +245,8 @@ impl BoxQp {
     /// Values of the upper triangle of the scaled P (column by column) and the scaled q, for the current
     /// bounds: variables `x = (ν_n / s, τ)`, objective divided by the largest diagonal entry.
     fn scaled_data(&self) -> (Vec<f64>, Vec<f64>) {
-        let (q, s) = (self.q, self.n_scale);
-        let k = if self.frictional { 2 * q } else { q };
-        let w: Vec<f64> = (0..k).map(|i| if i < q { s } else { self.bounds[i - q] }).collect();
-        let f = (0..k).map(|i| w[i] * w[i] * self.h[i * k + i]).fold(0.0, f64::max);
+        let Scaling { w, phi: f } = Scaling::new(&self.h, self.q, self.n_scale, &self.bounds);
+        let k = w.len();
         let mut p = Vec::with_capacity(k * (k + 1) / 2);
         for j in 0..k {
             for i in 0..=j {
@@ -266,7 +299,14 @@ impl BoxQp {
         let q = self.q;
         let k = if self.frictional { 2 * q } else { q };
         let Some(solver) = self.solver.as_mut() else {
-            return QpOutcome { nu: vec![0.0; k], status: QpStatus::Solved, iterations: 0, seconds: 0.0 };
+            return QpOutcome {
+                nu: vec![0.0; k],
+                status: QpStatus::Solved,
+                iterations: 0,
+                seconds: 0.0,
+                method: QpMethod::Clarabel,
+                fallback: false,
+            };
         };
         let clock = Instant::now();
         solver.solve();
@@ -277,7 +317,14 @@ impl BoxQp {
             s => QpStatus::Failed(status_name(s)),
         };
         let nu = (0..k).map(|i| if i < q { sol.x[i] * self.n_scale } else { sol.x[i] * self.bounds[i - q] }).collect();
-        QpOutcome { nu, status, iterations: sol.iterations, seconds: clock.elapsed().as_secs_f64() }
+        QpOutcome {
+            nu,
+            status,
+            iterations: sol.iterations,
+            seconds: clock.elapsed().as_secs_f64(),
+            method: QpMethod::Clarabel,
+            fallback: false,
+        }
     }
 }
 

@@ -34,6 +34,27 @@ impl Default for KktSolver {
     }
 }
 
+/// Which method solves the Γ_C QPs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum QpMethod {
+    /// clarabel for a QP without a starting point (the first QP of a solve), the warm-started active-set
+    /// method for the others (the Coulomb fixed point), clarabel again for any QP the active-set method
+    /// cannot certify.
+    #[default]
+    Auto,
+    /// clarabel's interior-point method for every QP (the reference).
+    Clarabel,
+    /// The active-set method for every QP ([`crate::active_set`]), cold-started when there is no previous
+    /// answer; clarabel only for a QP it cannot certify.
+    ActiveSet,
+}
+
+named_choice!(QpMethod, "QP method", {
+    QpMethod::Auto => "auto",
+    QpMethod::Clarabel => "clarabel",
+    QpMethod::ActiveSet => "active_set",
+});
+
 /// Settings of the QP solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct QpSettings {
@@ -41,18 +62,27 @@ pub struct QpSettings {
     /// `tol · κ(H)` (κ ~ 1e5 on contact meshes), and the Coulomb fixed point cannot settle below that;
     /// a QP that fails at 1e-12 is solved again at [`crate::qp::FALLBACK_TOL`].
     pub tol: f64,
-    /// Iteration cap of the interior-point method. Default 200.
+    /// Iteration cap of clarabel's interior-point method, and of the active-set method's steps.
+    /// Default 200.
     pub max_iter: u32,
     /// KKT solver. Default [`KktSolver::default`].
     pub kkt_solver: KktSolver,
     /// Solve over a working set of multiplier dofs grown until the KKT conditions of the whole QP hold
     /// (see [`crate::working_set`]). Default true; false solves every QP over all of Γ_C.
     pub working_set: bool,
+    /// The QP method. Default [`QpMethod::Auto`].
+    pub method: QpMethod,
 }
 
 impl Default for QpSettings {
     fn default() -> Self {
-        Self { tol: 1e-12, max_iter: 200, kkt_solver: KktSolver::default(), working_set: true }
+        Self {
+            tol: 1e-12,
+            max_iter: 200,
+            kkt_solver: KktSolver::default(),
+            working_set: true,
+            method: QpMethod::default(),
+        }
     }
 }
 
@@ -233,20 +263,26 @@ impl SettingField for bool {
     }
 }
 
-impl SettingField for KktSolver {
-    fn kind() -> SettingKind {
-        SettingKind::Choice(Self::names())
-    }
-    fn to_value(&self) -> SettingValue {
-        SettingValue::Name(self.as_str().to_string())
-    }
-    fn from_value(name: &'static str, value: SettingValue) -> Result<Self> {
-        match value {
-            SettingValue::Name(s) => Self::parse(&s),
-            v => Err(wrong_kind(name, &format!("one of {}", Self::names().join(", ")), &v)),
+macro_rules! choice_field {
+    ($ty:ty) => {
+        impl SettingField for $ty {
+            fn kind() -> SettingKind {
+                SettingKind::Choice(Self::names())
+            }
+            fn to_value(&self) -> SettingValue {
+                SettingValue::Name(self.as_str().to_string())
+            }
+            fn from_value(name: &'static str, value: SettingValue) -> Result<Self> {
+                match value {
+                    SettingValue::Name(s) => Self::parse(&s),
+                    v => Err(wrong_kind(name, &format!("one of {}", Self::names().join(", ")), &v)),
+                }
+            }
         }
-    }
+    };
 }
+choice_field!(KktSolver);
+choice_field!(QpMethod);
 
 /// The table of settings: flat name, field path, field type.
 macro_rules! settings_table {
@@ -295,6 +331,7 @@ settings_table! {
     "qp_max_iter" => qp.max_iter: u32;
     "qp_kkt_solver" => qp.kkt_solver: KktSolver;
     "qp_working_set" => qp.working_set: bool;
+    "qp_method" => qp.method: QpMethod;
     "fp_tol" => fp.tol: f64;
     "fp_max_iter" => fp.max_iter: usize;
     "fp_relaxation" => fp.relaxation: f64;

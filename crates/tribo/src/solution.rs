@@ -6,6 +6,7 @@ use crate::condensation::Factor;
 use crate::elasticity::{element_stresses, stiffness_triplets};
 use crate::friction::FrictionLaw;
 use crate::problem::Problem;
+use crate::settings::QpMethod;
 
 /// How a solve ended. Not an error: a solve that did not converge still returns its last iterate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -155,8 +156,13 @@ pub struct Report {
     pub iterations: usize,
     /// Relative change of λ_n after each fixed-point iteration.
     pub residual_history: Vec<f64>,
-    /// Interior-point iterations of each QP.
+    /// Iterations of each QP: interior-point iterations (clarabel) or steps (active set), including a
+    /// failed active-set attempt before clarabel.
     pub qp_iterations: Vec<u32>,
+    /// The method that answered each QP ([`QpMethod::Clarabel`] or [`QpMethod::ActiveSet`]).
+    pub qp_methods: Vec<QpMethod>,
+    /// How many QPs the active-set method could not certify, so that clarabel answered them.
+    pub qp_fallbacks: usize,
     /// How many of those QPs met only [`crate::qp::FALLBACK_TOL`] (1e-10), not `qp.tol`: their λ is
     /// determined to about `FALLBACK_TOL · κ(H)` instead of `qp.tol · κ(H)`.
     pub qp_inaccurate: usize,

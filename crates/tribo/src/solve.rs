@@ -9,7 +9,7 @@ use crate::error::Result;
 use crate::friction::Friction;
 use crate::problem::{Condensed, Problem};
 use crate::qp::{QpOutcome, QpStatus};
-use crate::settings::SolverSettings;
+use crate::settings::{QpMethod, SolverSettings};
 use crate::solution::{Report, Solution, SolveStatus, Timings};
 use crate::working_set::WorkingSetQp;
 
@@ -42,6 +42,10 @@ struct QpPhase {
     iterations: usize,
     history: Vec<f64>,
     qp_iterations: Vec<u32>,
+    /// The method that answered each QP.
+    qp_methods: Vec<QpMethod>,
+    /// QPs the active-set method could not certify (clarabel answered them).
+    qp_fallbacks: usize,
     /// QPs that met only [`crate::qp::FALLBACK_TOL`], not `qp.tol`.
     qp_inaccurate: usize,
 }
@@ -50,6 +54,8 @@ impl QpPhase {
     /// Counts a QP's interior-point iterations, time and accuracy.
     fn book(&mut self, out: &QpOutcome) {
         self.qp_iterations.push(out.iterations);
+        self.qp_methods.push(out.method);
+        self.qp_fallbacks += usize::from(out.fallback);
         self.qp_inaccurate += usize::from(out.status == QpStatus::Inaccurate);
     }
 
@@ -123,18 +129,20 @@ impl Condensed<'_> {
             iterations: 0,
             history: Vec::new(),
             qp_iterations: Vec::new(),
+            qp_methods: Vec::new(),
+            qp_fallbacks: 0,
             qp_inaccurate: 0,
         };
         match &friction {
             Friction::Frictionless | Friction::Coulomb { .. } => {
                 // Coulomb starts from the frictionless λ_n.
-                let out = WorkingSetQp::new(factor, None, &settings.qp)?.solve()?;
+                let out = WorkingSetQp::new(factor, None, &settings.qp, None)?.solve()?;
                 phase.lambda[..q].copy_from_slice(&out.nu);
                 phase.record_single_qp(&out, &mut notify);
             }
             Friction::Tresca(_) => {
                 phase.bound = friction.tresca_bounds(q);
-                let out = WorkingSetQp::new(factor, Some(&phase.bound), &settings.qp)?.solve()?;
+                let out = WorkingSetQp::new(factor, Some(&phase.bound), &settings.qp, None)?.solve()?;
                 phase.lambda.copy_from_slice(&out.nu);
                 phase.record_single_qp(&out, &mut notify);
             }
@@ -169,6 +177,8 @@ impl Condensed<'_> {
             iterations: phase.iterations,
             residual_history: phase.history,
             qp_iterations: phase.qp_iterations,
+            qp_methods: phase.qp_methods,
+            qp_fallbacks: phase.qp_fallbacks,
             qp_inaccurate: phase.qp_inaccurate,
             gamma0: factor.gamma0,
             gamma0_bound: problem.gamma0_bound.value,
@@ -189,7 +199,8 @@ impl Condensed<'_> {
         let fp = settings.fp;
         let mut g: Vec<f64> = phase.lambda[..q].to_vec();
         let bound: Vec<f64> = g.iter().map(|v| mu * v.max(0.0)).collect();
-        let mut qp = WorkingSetQp::new(self.factor(), Some(&bound), &settings.qp)?;
+        // Warm start: the frictionless λ_n with λ_t = 0.
+        let mut qp = WorkingSetQp::new(self.factor(), Some(&bound), &settings.qp, Some(&phase.lambda))?;
         phase.status = SolveStatus::MaxIterations;
         let (mut best, mut since_best) = (f64::INFINITY, 0);
         for it in 1..=fp.max_iter {

@@ -14,12 +14,21 @@
 //! contact states (a dof below it would carry `λ_n ≲ √tol Λ`). S only grows during a solve and across the
 //! Coulomb iterations, so the clarabel set-up is reused whenever S did not change. The initial S holds the
 //! dofs where the body, without contact forces, would penetrate (`c_n,j < 0`), and their neighbours.
+//!
+//! # Which method solves the QP on S
+//! [`QpMethod::Clarabel`] always uses clarabel; [`QpMethod::ActiveSet`] the active-set method
+//! ([`crate::active_set`]) from the previous answer (or from zero); [`QpMethod::Auto`] clarabel when there
+//! is no previous answer and the active-set method once there is one. An answer the active-set method
+//! cannot certify is solved again by clarabel, and [`QpOutcome::fallback`] says so.
 
+use std::time::Instant;
+
+use crate::active_set::{self, Bounds, DenseBlock};
 use crate::condensation::Factor;
 use crate::error::Result;
 use crate::friction::check_thresholds;
-use crate::qp::{BoxQp, QpOutcome, QpStatus};
-use crate::settings::QpSettings;
+use crate::qp::{BoxQp, QpOutcome, QpStatus, Scaling};
+use crate::settings::{QpMethod, QpSettings};
 
 /// The Γ_C QP solved over a growing working set; the columns of H come from a [`Factor`], computed when
 /// the set first needs them.
@@ -30,25 +39,42 @@ pub struct WorkingSetQp<'a> {
     bounds: Option<Vec<f64>>,
     settings: QpSettings,
     set: Vec<usize>,
+    /// clarabel's QP on the set (built when first needed, dropped when the set grows).
     qp: Option<BoxQp>,
+    /// H and c on the set's unknowns for the active-set method (dropped when the set grows).
+    dense: Option<DenseBlock>,
+    /// The previous answer (full size): the active-set method's start.
+    last: Option<Vec<f64>>,
 }
 
 impl<'a> WorkingSetQp<'a> {
     /// Sets up the QP of P(g) on `condensed`: frictionless if `bounds` is `None`, else with the tangential
-    /// bounds g (one per multiplier dof). The settings are taken as validated.
+    /// bounds g (one per multiplier dof). `start`, if given, is a starting point (q or 2q values, e.g. the
+    /// frictionless answer for the first Coulomb QP). The settings are taken as validated.
     ///
     /// # Errors
     /// [`crate::Error::BadThreshold`].
-    pub fn new(condensed: &'a Factor, bounds: Option<&[f64]>, settings: &QpSettings) -> Result<Self> {
+    pub fn new(
+        condensed: &'a Factor,
+        bounds: Option<&[f64]>,
+        settings: &QpSettings,
+        start: Option<&[f64]>,
+    ) -> Result<Self> {
         let q = condensed.q();
-        let mut ws = Self { condensed, q, bounds: None, settings: *settings, set: Vec::new(), qp: None };
+        let k = if bounds.is_some() { 2 * q } else { q };
+        let last = start.map(|x| (0..k).map(|i| x.get(i).copied().unwrap_or(0.0)).collect());
+        let mut ws =
+            Self { condensed, q, bounds: None, settings: *settings, set: Vec::new(), qp: None, dense: None, last };
         if let Some(b) = bounds {
             check_thresholds(b, q)?;
             ws.bounds = Some(b.to_vec());
         }
         let c = &condensed.c;
-        let initial: Vec<usize> =
+        let mut initial: Vec<usize> =
             if settings.working_set { (0..q).filter(|&j| c[j] < 0.0).collect() } else { (0..q).collect() };
+        if let Some(x) = &ws.last {
+            initial.extend((0..q).filter(|&j| x[j] != 0.0));
+        }
         ws.grow(&initial);
         Ok(ws)
     }
@@ -91,6 +117,7 @@ impl<'a> WorkingSetQp<'a> {
         self.bounds = Some(b.to_vec());
         if self.grow(&[]) {
             self.qp = None;
+            self.dense = None;
         } else if let Some(qp) = self.qp.as_mut() {
             let sub: Vec<f64> = self.set.iter().map(|&j| b[j]).collect();
             qp.set_bounds(&sub)?;
@@ -108,12 +135,94 @@ impl<'a> WorkingSetQp<'a> {
         }
     }
 
-    fn build(&self) -> Result<BoxQp> {
+    /// The dense QP on the set: H and c on its unknowns, the tangential bounds of its dofs.
+    fn block(&self) -> (Vec<f64>, Vec<f64>, Option<Vec<f64>>) {
         let idx = self.unknowns();
         let h = self.condensed.h_block(&idx, &idx);
         let c: Vec<f64> = idx.iter().map(|&i| self.condensed.c[i]).collect();
-        let bounds: Option<Vec<f64>> = self.bounds.as_ref().map(|b| self.set.iter().map(|&j| b[j]).collect());
-        BoxQp::new(&h, &c, self.set.len(), bounds.as_deref(), &self.settings)
+        (h, c, self.bounds_on_set())
+    }
+
+    /// The tangential bounds of the set's dofs (`None` for a frictionless QP).
+    fn bounds_on_set(&self) -> Option<Vec<f64>> {
+        self.bounds.as_ref().map(|b| self.set.iter().map(|&j| b[j]).collect())
+    }
+
+    /// Solves the QP on the set with clarabel.
+    fn solve_clarabel(&mut self) -> Result<QpOutcome> {
+        let qp = match self.qp.take() {
+            Some(qp) => qp,
+            None => {
+                let (h, c, bounds) = self.block();
+                BoxQp::new(&h, &c, self.set.len(), bounds.as_deref(), &self.settings)?
+            }
+        };
+        Ok(self.qp.insert(qp).solve())
+    }
+
+    /// Solves the QP on the set with the active-set method from `start` (on the set's unknowns); `None`
+    /// if it cannot certify its answer.
+    fn solve_active_set(&mut self, start: &[f64]) -> Option<QpOutcome> {
+        let clock = Instant::now();
+        let s = self.set.len();
+        let b = self.bounds_on_set().unwrap_or_default();
+        let (tol, max_iter) = (self.settings.tol, self.settings.max_iter);
+        let op = match self.dense.take() {
+            Some(op) => op,
+            None => {
+                let (h, c, _) = self.block();
+                DenseBlock::new(h, c)
+            }
+        };
+        let op = self.dense.insert(op);
+        let c = op.linear_term().to_vec();
+        let done = |nu: Vec<f64>, iterations: u32| QpOutcome {
+            nu,
+            status: QpStatus::Solved,
+            iterations,
+            seconds: clock.elapsed().as_secs_f64(),
+            method: QpMethod::ActiveSet,
+            fallback: false,
+        };
+        let Some(n_scale) = Scaling::normal_scale(op.matrix(), &c, s) else {
+            // Nothing pushes the body onto the obstacle: λ = 0 (as on clarabel's path).
+            return Some(done(vec![0.0; c.len()], 0));
+        };
+        let scaling = Scaling::new(op.matrix(), s, n_scale, &b);
+        let lo: Vec<f64> = (0..c.len()).map(|i| if i < s { 0.0 } else { -b[i - s] }).collect();
+        let hi: Vec<f64> = (0..c.len()).map(|i| if i < s { f64::INFINITY } else { b[i - s] }).collect();
+        let out = active_set::solve(op, &c, &Bounds { lo, hi }, start, &scaling, tol, max_iter);
+        log::debug!(
+            "active set on {} unknowns: certified {}, {} Newton and {} gradient steps",
+            c.len(),
+            out.certified,
+            out.newton_steps,
+            out.gradient_steps
+        );
+        out.certified.then(|| done(out.x, out.newton_steps + out.gradient_steps))
+    }
+
+    /// Solves the QP on the set with the method the settings ask for (see the module documentation).
+    fn solve_on_set(&mut self) -> Result<QpOutcome> {
+        let active = match self.settings.method {
+            QpMethod::Clarabel => false,
+            QpMethod::ActiveSet => true,
+            QpMethod::Auto => self.last.is_some(),
+        };
+        if !active {
+            return self.solve_clarabel();
+        }
+        let start: Vec<f64> = match &self.last {
+            Some(x) => self.unknowns().iter().map(|&i| x[i]).collect(),
+            None => vec![0.0; self.unknowns().len()],
+        };
+        if let Some(out) = self.solve_active_set(&start) {
+            return Ok(out);
+        }
+        log::info!("the active-set method could not certify a QP on {} dofs: clarabel solves it", self.set.len());
+        let mut out = self.solve_clarabel()?;
+        out.fallback = true;
+        Ok(out)
     }
 
     /// Solves the whole QP; the returned ν has the full size (q, or 2q with friction).
@@ -127,14 +236,12 @@ impl<'a> WorkingSetQp<'a> {
         let c = &self.condensed.c;
         let c_s = c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let threshold = -self.settings.tol.sqrt() * c_s;
-        let (mut iterations, mut seconds) = (0, 0.0);
+        let (mut iterations, mut seconds, mut fallback) = (0, 0.0, false);
         loop {
-            if self.qp.is_none() {
-                self.qp = Some(self.build()?);
-            }
-            let out = self.qp.as_mut().expect("built above").solve();
+            let out = self.solve_on_set()?;
             iterations += out.iterations;
             seconds += out.seconds;
+            fallback |= out.fallback;
             let s = self.set.len();
             let mut nu = vec![0.0; k];
             for (a, &j) in self.set.iter().enumerate() {
@@ -143,8 +250,13 @@ impl<'a> WorkingSetQp<'a> {
                     nu[q + j] = out.nu[s + a];
                 }
             }
-            if matches!(out.status, QpStatus::Failed(_)) || s == q {
-                return Ok(QpOutcome { nu, status: out.status, iterations, seconds });
+            let done = |nu: Vec<f64>| QpOutcome { nu, iterations, seconds, fallback, ..out.clone() };
+            if matches!(out.status, QpStatus::Failed(_)) {
+                return Ok(done(nu));
+            }
+            self.last = Some(nu.clone());
+            if s == q {
+                return Ok(done(nu));
             }
             // Optimality of the dropped dofs: (H ν + c)_n,j ≥ threshold, with ν supported on the set.
             let mut member = vec![false; q];
@@ -156,17 +268,18 @@ impl<'a> WorkingSetQp<'a> {
                 (0..q)
                     .filter(|&j| !member[j])
                     .filter(|&j| {
-                        let hv: f64 = support.iter().map(|&i| cols[i].as_ref().expect("computed")[j] * nu[i]).sum();
+                        let hv: f64 = support.iter().filter_map(|&i| cols[i].as_ref().map(|col| col[j] * nu[i])).sum();
                         hv + c[j] < threshold
                     })
                     .collect()
             });
             if violated.is_empty() {
-                return Ok(QpOutcome { nu, status: out.status, iterations, seconds });
+                return Ok(done(nu));
             }
             log::debug!("working set: {} dofs violate optimality, growing from {s}", violated.len());
             self.grow(&violated);
             self.qp = None;
+            self.dense = None;
         }
     }
 }

@@ -5,6 +5,7 @@
 //! * `patch`: constant-strain states reproduced exactly, for every multiplier space, γ0 and friction law;
 //! * `kkt`: the discrete problem (3.1) checked by its own quadrature, independent of the assembly;
 //! * `hertz`: named scenes (Hertz convergence, the checkerboard of the classic method, Coulomb);
+//! * `methods`: the active-set method against clarabel, QP by QP, on every scene above;
 //! * `layout`: the module structure of the crate (no import cycles).
 //!
 //! Scenes and measures shared with the benches and examples come from the `tribo-testkit` crate.
@@ -14,4 +15,5 @@ mod hertz;
 mod invariants;
 mod kkt;
 mod layout;
+mod methods;
 mod patch;

@@ -1,0 +1,133 @@
+//! Two paths to one answer: every QP solved by clarabel (the reference) and by the active-set method give
+//! the same displacement (1e-8 relative) and multipliers (1e-7 relative), KKT residuals no worse than
+//! clarabel's and the same number of fixed-point iterations, on the scenes of this suite: Hertz (P0 and
+//! P1, matching, coarser and finer T_H), the distorted patch square and the checkerboard mesh; γ0 = 0
+//! where λ is unique and γ0 > 0; frictionless, Tresca and Coulomb.
+//!
+//! A Tresca QP is degenerate (multipliers on their bound with a vanishing slip at the edges of the stick
+//! zone), and an interior-point answer to such a QP is accurate only to about the square root of its
+//! complementarity residual, not to `tol · κ(H)`: measured here, clarabel's Tresca λ is 1e-5 to 2e-3 off
+//! the exact QP solution, while the active-set answer satisfies the discrete problem to 1e-14. For
+//! Tresca the test therefore requires the active-set answer to satisfy (3.2) to `qp_tol` (clarabel's
+//! does not) and to lie within `√r · κ(H)` of clarabel's, r clarabel's KKT residual.
+
+use tribo::*;
+use tribo_testkit::{distorted_square, hertz_problem};
+
+fn sup(v: &[f64]) -> f64 {
+    v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
+}
+
+fn sup_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
+}
+
+/// Solves with each method and compares; returns how many QPs the active-set method answered.
+fn compare(name: &str, problem: &Problem, friction: &Friction, stabilization: Stabilization) -> usize {
+    let settings = |method| SolverSettings {
+        stabilization,
+        qp: QpSettings { method, ..Default::default() },
+        ..Default::default()
+    };
+    let reference = problem.solve(friction, &settings(QpMethod::Clarabel), None).expect("clarabel solves");
+    assert_eq!(reference.report.status, SolveStatus::Converged, "{name}: clarabel");
+    assert!(reference.report.qp_methods.iter().all(|m| *m == QpMethod::Clarabel), "{name}");
+    let mut answered = 0;
+    for method in [QpMethod::ActiveSet, QpMethod::Auto] {
+        let sol = problem.solve(friction, &settings(method), None).expect("solves");
+        let what = format!("{name}, {friction:?}, {stabilization:?}, {method}");
+        assert_eq!(sol.report.status, SolveStatus::Converged, "{what}");
+        assert_eq!(sol.report.iterations, reference.report.iterations, "{what}: fixed-point iterations");
+        let du = sup_diff(&sol.displacement, &reference.displacement) / sup(&reference.displacement);
+        let lam = sup(&reference.lambda_n).max(f64::MIN_POSITIVE);
+        let dl = sup_diff(&sol.lambda_n, &reference.lambda_n).max(sup_diff(&sol.lambda_t, &reference.lambda_t)) / lam;
+        let (k, k_ref) = (sol.kkt.max(), reference.kkt.max());
+        let (tol_u, tol_l, floor) = match friction {
+            Friction::Tresca(_) => {
+                let kappa = tribo_testkit::condition_number(&problem.condense(stabilization).expect("condenses"));
+                let t = k_ref.sqrt() * kappa;
+                (t.max(1e-8), t.max(1e-7), QpSettings::default().tol)
+            }
+            // At the Coulomb fixed point the residuals of Coulomb's law are set by the fixed point's
+            // stopping rule (fp_tol), not by the QP.
+            Friction::Coulomb { .. } => (1e-8, 1e-7, FixedPointSettings::default().tol),
+            // Both answers are exact to round-off: the floor of the equilibrium residual (as in `kkt`).
+            Friction::Frictionless => (1e-8, 1e-7, 64.0 * f64::EPSILON * (problem.n_free as f64).sqrt()),
+        };
+        assert!(du <= tol_u, "{what}: u differs by {du:e} relative (allowed {tol_u:e})");
+        assert!(dl <= tol_l, "{what}: λ differs by {dl:e} relative (allowed {tol_l:e})");
+        assert!(k <= k_ref.max(floor), "{what}: KKT residual {k:e} against clarabel's {k_ref:e}");
+        let active = sol.report.qp_methods.iter().filter(|m| **m == QpMethod::ActiveSet).count();
+        if method == QpMethod::ActiveSet {
+            assert_eq!(active + sol.report.qp_fallbacks, sol.report.qp_methods.len(), "{what}: every QP tried");
+            answered += active;
+        }
+        eprintln!(
+            "{what}: du {du:.1e} dλ {dl:.1e} KKT {k:.1e} (clarabel {k_ref:.1e}, {} QPs at the fallback tolerance), {active} of {} QPs by active set, {} fallbacks",
+            reference.report.qp_inaccurate,
+            sol.report.qp_methods.len(),
+            sol.report.qp_fallbacks
+        );
+    }
+    answered
+}
+
+#[test]
+fn active_set_and_clarabel_agree_on_hertz() {
+    let mut answered = 0;
+    for (points, space) in [
+        (MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1),
+        (MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P0),
+        (MultiplierPoints::RatioToFe(2.0), MultiplierSpace::P1),
+        (MultiplierPoints::Size(0.013), MultiplierSpace::P1),
+    ] {
+        let problem = hertz_problem(0.02, 0.01, 0.004, points.clone(), space);
+        for stabilization in [Stabilization::None, Stabilization::Fraction(0.5)] {
+            for friction in
+                [Friction::Frictionless, Friction::Tresca(Threshold::Uniform(0.5)), Friction::Coulomb { mu: 0.3 }]
+            {
+                answered += compare(&format!("hertz {points:?} {space}"), &problem, &friction, stabilization);
+            }
+        }
+    }
+    assert!(answered > 0, "the active-set method answered no QP");
+}
+
+#[test]
+fn active_set_and_clarabel_agree_on_the_patch_and_the_checkerboard_mesh() {
+    // The patch square pushed onto a flat obstacle and dragged (stick and slip along the edge).
+    let spec = ProblemSpec {
+        material: Material { young: 1000.0, poisson: 0.25 },
+        clamped: vec!["top".into()],
+        body_force: [0.0, 0.0],
+        tractions: vec![],
+        contact: "bottom".into(),
+        obstacle: Obstacle { shape: ObstacleShape::Parabola { center: 0.5, radius: 2.0 }, approach: 1e-3, shift: 2e-4 },
+        multiplier_points: MultiplierPoints::RatioToFe(1.0),
+        multiplier_space: MultiplierSpace::P1,
+    };
+    let patch = Problem::new(distorted_square(8), spec).expect("valid");
+    for stabilization in [Stabilization::None, Stabilization::Fraction(0.5)] {
+        for friction in
+            [Friction::Frictionless, Friction::Tresca(Threshold::Uniform(0.05)), Friction::Coulomb { mu: 0.3 }]
+        {
+            compare("patch", &patch, &friction, stabilization);
+        }
+    }
+    // T_H finer than T_h: λ is unique only with γ0 > 0.
+    let mesh = rectangle([-2.0, 2.0], [-2.0, 0.0], 80, 40, Diagonal::Right).expect("valid");
+    let spec = ProblemSpec {
+        material: Material { young: 200.0, poisson: 0.3 },
+        clamped: vec!["bottom".into()],
+        body_force: [0.0, 0.0],
+        tractions: vec![],
+        contact: "top".into(),
+        obstacle: Obstacle { shape: ObstacleShape::Circle { center: 0.0, radius: 1.0 }, approach: 0.05, shift: 0.01 },
+        multiplier_points: MultiplierPoints::RatioToFe(0.5),
+        multiplier_space: MultiplierSpace::P1,
+    };
+    let fine = Problem::new(mesh, spec).expect("valid");
+    for friction in [Friction::Frictionless, Friction::Coulomb { mu: 0.3 }] {
+        compare("checkerboard mesh H = h/2", &fine, &friction, Stabilization::Fraction(0.5));
+    }
+}
