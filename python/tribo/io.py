@@ -158,18 +158,20 @@ def mesh_from_meshio(m: Any, *, edge_sets: Mapping[str, str] | None = None) -> M
     """
     points = np.asarray(m.points, dtype=np.float64)
     if points.ndim != 2 or points.shape[1] < 2:
-        raise MeshError(f"mesh points must have 2 or 3 coordinates, got shape {points.shape}")
+        raise _mesh_error(f"mesh points must have 2 or 3 coordinates, got shape {points.shape}", "BadInput")
     if points.shape[1] > 2:
         extent = float(np.ptp(points[:, :2], axis=0).max()) if len(points) else 0.0
         if np.any(np.abs(points[:, 2:]) > 1e-12 * max(extent, 1.0)):
-            raise MeshError("the mesh is not planar: tribo solves 2D problems in the plane z = 0")
+            raise _mesh_error("the mesh is not planar: tribo solves 2D problems in the plane z = 0", "NotPlanar")
         points = points[:, :2]
     blocks = [_cells(b.data, 3, "the triangles") for b in m.cells if b.type == "triangle"]
     others = sorted({b.type for b in m.cells if b.type not in ("triangle", "line", "vertex")})
     if not blocks:
-        raise MeshError(f"the mesh has no linear triangles (cell types: {others or 'none'})")
+        raise _mesh_error(f"the mesh has no linear triangles (cell types: {others or 'none'})", "EmptyMesh")
     if others:
-        raise MeshError(f"only linear triangles (and line cells for edge sets) are supported, found {others}")
+        raise _mesh_error(
+            f"only linear triangles (and line cells for edge sets) are supported, found {others}", "UnsupportedCells"
+        )
     triangles = np.concatenate(blocks)
     _check_indices(triangles, len(points), "triangle {}")
     # Counter-clockwise order, as tribo requires.
@@ -187,12 +189,16 @@ def mesh_from_meshio(m: Any, *, edge_sets: Mapping[str, str] | None = None) -> M
         edges = np.concatenate(parts)
         _check_indices(edges, len(points), f"line {{}} of edge set '{name}'")
         if not used[edges.ravel()].all():
-            raise MeshError(f"edge set '{name}' uses a node that belongs to no triangle")
+            raise _mesh_error(f"edge set '{name}' uses a node that belongs to no triangle", "NotABoundaryEdge", name=name)
         sets[name] = renumber[edges]
     if edge_sets is not None:
         missing = [src for src in edge_sets.values() if src not in sets]
         if missing:
-            raise MeshError(f"the mesh file has no edge set {missing} (it has: {', '.join(sorted(sets))})")
+            raise _mesh_error(
+                f"the mesh file has no edge set {missing} (it has: {', '.join(sorted(sets))})",
+                "UnknownEdgeSet",
+                names=missing,
+            )
         sets = {dst: sets[src] for dst, src in edge_sets.items()}
     return Mesh(points[used], renumber[triangles], sets)
 

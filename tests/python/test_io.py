@@ -214,3 +214,18 @@ def test_meshio_overlap_check_accepts_valid_meshes() -> None:
         t[flip] = t[flip][:, [0, 2, 1]]
         again = mesh_from_meshio(triangles_only(mesh.points, t))
         np.testing.assert_array_equal(np.sort(again.triangles, axis=1), np.sort(mesh.triangles, axis=1))
+
+
+def test_io_errors_carry_kind_and_details(tmp_path: Path) -> None:
+    """MeshErrors raised in Python have the kind and details the core's errors have."""
+    path = tmp_path / "square.msh"
+    path.write_text(MSH22)
+    quad = meshio.Mesh(np.zeros((4, 2)), [("quad", np.array([[0, 1, 2, 3]]))])
+    for f, kind in [
+        (lambda: read_mesh(path, edge_sets={"contact": "lid"}), "UnknownEdgeSet"),
+        (lambda: mesh_from_meshio(quad), "EmptyMesh"),
+        (lambda: mesh_from_meshio(meshio.Mesh(np.zeros(3), [])), "BadInput"),
+    ]:
+        with pytest.raises(tribo.MeshError) as info:
+            f()
+        assert info.value.kind == kind and isinstance(info.value.details, dict)
