@@ -171,3 +171,62 @@ def test_mesh_file_scene(tmp_path: Path) -> None:
     )
     problem, solution = load_scene(scene).solve()
     assert solution.report.converged and problem.mesh.n_triangles == 4
+
+
+@pytest.mark.parametrize(
+    ("edit", "message"),
+    [
+        # D14: values the binding could not convert (OverflowError) are refused in the scene, naming the key.
+        (lambda d: d["solver"].update(qp_max_iter=-1), "'solver.qp_max_iter' must be an integer from 0 to 4294967295"),
+        (lambda d: d["solver"].update(qp_max_iter=2**32), "'solver.qp_max_iter' must be an integer from 0"),
+        (lambda d: d["solver"].update(fp_max_iter=-5), "'solver.fp_max_iter' must be an integer from 0"),
+        (lambda d: d["material"].update(young=float("nan")), "'material.young' must be a finite number"),
+        (lambda d: d["obstacle"].update(approach=float("inf")), "'obstacle.approach' must be a finite number"),
+        (lambda d: d["material"].update(young=10**400), "'material.young' must be a finite number"),
+        (lambda d: d["body"].update(x=[1.0, 1.0]), "'body.x' must be an increasing range"),
+        # D15: keys of another obstacle shape are refused, as they were for a flat obstacle.
+        (lambda d: d["obstacle"].update(xi=[0.0, 1.0]), "'obstacle.xi' does not apply to a parabola obstacle"),
+        (lambda d: d["obstacle"].update(shape="circle", gap=[0.0]), "'obstacle.gap' does not apply to a circle"),
+        (
+            lambda d: d["obstacle"].update(shape="polyline", xi=[-1.0, 1.0], gap=[0.0, 0.0]),
+            "'obstacle.radius' does not apply to a polyline obstacle",
+        ),
+        (lambda d: d["obstacle"].update(shape="flat"), "'obstacle.radius' does not apply to a flat obstacle"),
+        (lambda d: d["obstacle"].pop("radius"), "'obstacle.radius' is required for a parabola"),
+    ],
+)
+def test_scene_values_the_core_cannot_take(edit, message: str) -> None:  # type: ignore[no-untyped-def]
+    d = load_toml(SCENE)
+    edit(d)
+    with pytest.raises(SceneError, match=message.replace("(", r"\(")) as info:
+        parse_scene(d)
+    assert info.value.details["key"] in message
+
+
+def test_polyline_center_is_refused() -> None:
+    d = load_toml(SCENE)
+    d["obstacle"] = {"shape": "polyline", "xi": [-1.0, 1.0], "gap": [0.0, 0.0], "center": 0.5}
+    with pytest.raises(SceneError, match="'obstacle.center' does not apply to a polyline obstacle"):
+        parse_scene(d)
+
+
+def test_scene_build_checks_before_the_grading_uses_values() -> None:
+    """D14: a negative radius with automatic grading was a 'math domain error' in contact_segment; a tiny h
+    on a uniform grid overflowed the binding's integer conversion."""
+    d = load_toml(SCENE)
+    d["obstacle"]["radius"] = -1.0
+    with pytest.raises(tribo.ContactGeometryError, match="radius"):
+        parse_scene(d).build()
+    with pytest.raises(tribo.ContactGeometryError, match="radius"):
+        parse_scene(d).contact_segment((-1.0, 1.0))
+    d = load_toml(SCENE)
+    d["discretization"] = {"grading": "none", "h": 1e-300}
+    with pytest.raises(SceneError, match=r"'discretization.h' = 1e-300 makes a grid of about 2e\+300 x 1e\+300"):
+        parse_scene(d).build()
+
+
+def test_scene_file_not_utf8(tmp_path: Path) -> None:
+    path = tmp_path / "latin1.toml"
+    path.write_bytes(SCENE.replace("small", "caf\xe9").encode("latin-1"))
+    with pytest.raises(SceneError, match="is not UTF-8 text"):
+        load_scene(path)
