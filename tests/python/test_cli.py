@@ -230,3 +230,90 @@ def test_scene_file_not_utf8(tmp_path: Path) -> None:
     path.write_bytes(SCENE.replace("small", "caf\xe9").encode("latin-1"))
     with pytest.raises(SceneError, match="is not UTF-8 text"):
         load_scene(path)
+
+
+def one_error_line(capsys: pytest.CaptureFixture[str], prefix: str = "tribo: error: ") -> str:
+    """The only line on stderr (the runs below are quiet), which starts with `prefix`; no traceback."""
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and len(err.splitlines()) == 1 and err.startswith(prefix), err
+    return err
+
+
+@pytest.mark.parametrize(
+    ("scene", "message"),
+    [
+        (SCENE.replace("radius = 2.0", "radius = -1.0"), "radius must be positive"),
+        (SCENE.replace("qp_tol = 1e-9", "qp_max_iter = -1"), "'solver.qp_max_iter' must be an integer from 0"),
+        (SCENE.replace("qp_tol = 1e-9", "qp_max_iter = 4294967296"), "'solver.qp_max_iter' must be an integer"),
+        (SCENE.replace("qp_tol = 1e-9", "fp_max_iter = -5"), "'solver.fp_max_iter' must be an integer from 0"),
+        (SCENE.replace("h = 0.25\nh_min = 0.03", 'grading = "none"\nh = 1e-300'), "'discretization.h' = 1e-300"),
+        (SCENE.replace("radius = 2.0", "radius = 2.0\nxi = [0.0, 1.0]"), "'obstacle.xi' does not apply"),
+    ],
+)
+def test_cli_bad_scenes_give_one_error_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], scene: str, message: str
+) -> None:
+    """D14: each of these printed a traceback (math domain error, OverflowError…)."""
+    path = tmp_path / "bad.toml"
+    path.write_text(scene)
+    assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 1
+    assert message in one_error_line(capsys)
+
+
+def test_cli_unreadable_input_and_output(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    good = tmp_path / "good.toml"
+    good.write_text(SCENE)
+    latin1 = tmp_path / "latin1.toml"
+    latin1.write_bytes(SCENE.replace("small", "caf\xe9").encode("latin-1"))
+    assert main(["-q", "run", str(latin1), "--out", str(tmp_path / "o")]) == 1
+    assert "is not UTF-8 text" in one_error_line(capsys)
+    (tmp_path / "file").write_text("")
+    assert main(["-q", "run", str(good), "--out", str(tmp_path / "file")]) == 1
+    assert "exists and is not a directory" in one_error_line(capsys)
+    assert main(["-q", "run", str(good), "--out", str(tmp_path / "file" / "sub"), "--no-plots"]) == 1
+    assert "cannot write the results into" in one_error_line(capsys)
+
+
+def test_cli_error_notes_stay_on_the_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = tmp_path / "soft.toml"
+    path.write_text(SCENE.replace("young = 100.0", "young = -1.0"))
+    assert main(["-q", "run", str(path), "--out", str(tmp_path / "o")]) == 1
+    assert "(SettingsError; while building the scene 'small Tresca scene')" in one_error_line(capsys)
+
+
+def test_cli_ctrl_c_ends_with_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A KeyboardInterrupt (here from the progress callback, as Ctrl-C during a solve arrives) is not an
+    internal error: one line, exit code 130."""
+    import tribo.cli
+
+    def interrupt(*args: object) -> None:
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(tribo.cli, "_progress", interrupt)
+    path = tmp_path / "coulomb.toml"
+    path.write_text(SCENE.replace("threshold = 0.2", "mu = 0.3"))
+    assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 130
+    assert one_error_line(capsys, "tribo: interrupted") == "tribo: interrupted\n"
+
+
+class PanicException(BaseException):
+    """Stands for pyo3's PanicException, which derives from BaseException, not Exception."""
+
+
+@pytest.mark.parametrize("exception", [RuntimeError("boom"), PanicException("boom")])
+def test_cli_internal_errors_give_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch, exception: BaseException
+) -> None:
+    import tribo.cli
+
+    def fail(*args: object) -> None:
+        raise exception
+
+    monkeypatch.setattr(tribo.cli, "write_contact_csv", fail)
+    path = tmp_path / "good.toml"
+    path.write_text(SCENE)
+    assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 2
+    line = one_error_line(capsys, "tribo: internal error: ")
+    assert f"{type(exception).__name__}: boom (please report it)" in line
