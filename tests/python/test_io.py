@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 import meshio
@@ -221,11 +222,12 @@ def test_io_errors_carry_kind_and_details(tmp_path: Path) -> None:
     path = tmp_path / "square.msh"
     path.write_text(MSH22)
     quad = meshio.Mesh(np.zeros((4, 2)), [("quad", np.array([[0, 1, 2, 3]]))])
-    for f, kind in [
+    cases: list[tuple[Callable[[], object], str]] = [
         (lambda: read_mesh(path, edge_sets={"contact": "lid"}), "UnknownEdgeSet"),
         (lambda: mesh_from_meshio(quad), "EmptyMesh"),
         (lambda: mesh_from_meshio(meshio.Mesh(np.zeros(3), [])), "BadInput"),
-    ]:
+    ]
+    for f, kind in cases:
         with pytest.raises(tribo.MeshError) as info:
             f()
         assert info.value.kind == kind and isinstance(info.value.details, dict)
