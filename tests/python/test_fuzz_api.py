@@ -1,6 +1,6 @@
 """Fuzzing the Python API (tribo.Mesh, tribo.Problem, Problem.solve) with hostile values (issue 9).
 
-Budget: about 1 200 examples in all by default; ``TRIBO_FUZZ_EXAMPLES=N`` runs N per test (fuzzing.py says
+Budget: about 3 500 examples in all by default; ``TRIBO_FUZZ_EXAMPLES=N`` runs N per test (fuzzing.py says
 how). The promise checked: a TriboError, a TypeError for a wrong Python type, or a result; an accepted
 mesh is usable (finite, indices in range, counter-clockwise); a 'converged' solution is finite throughout.
 

@@ -1,6 +1,6 @@
 """Fuzzing the scene loader and ``tribo run`` (issue 9, D14/D15).
 
-Budget: about 900 examples in all by default; ``TRIBO_FUZZ_EXAMPLES=N`` runs N per test (fuzzing.py says
+Budget: about 1 600 examples in all by default; ``TRIBO_FUZZ_EXAMPLES=N`` runs N per test (fuzzing.py says
 how). The promise checked: loading a scene gives a Scene or a TriboError (SceneError is one); ``tribo run``
 exits with 0, 1 or 3 and prints no traceback, whatever the file holds.
 
@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from fuzzing import fuzz
+from test_io import MSH22
 from hypothesis import event, example, given
 from hypothesis import strategies as st
 
@@ -101,8 +102,9 @@ BASE: dict[str, dict[str, str]] = {
     "discretization": {"h": "0.25", "h_min": "0.03", "space": '"P0"', "multiplier_ratio": "2.0", "gamma0_fraction": "0.3"},
     "solver": {"qp_tol": "1e-9"},
 }
-# Refused (not finite, too large for a float, not a number) and accepted but extreme.
-NUMBERS = ["nan", "-inf", "1" + "0" * 400, '"1.0"', "0.0", "-0.0", "-1.0", "1e-300", "1e300", "-1e300", "1e-12", "1e12"]
+# Accepted by the scene but extreme, and refused (not finite, too large for a float, not a number). The
+# pools list the values that should run first: Hypothesis draws the first elements of a list more often.
+NUMBERS = ["0.0", "-0.0", "-1.0", "1e-300", "1e300", "-1e300", "1e-12", "1e12", "nan", "-inf", "1" + "0" * 400, '"1.0"']
 WRONG = ["true", "1", '"x"', "[]", "[1.0]", "{}", "nan"]
 # Hostile TOML literals for each key (keys not listed take NUMBERS). Left out, with the reason:
 # young 5e-324, 1e300 and up: D1 (a panic); multiplier_ratio below 1e-2 and small multiplier_size: D2, D3;
@@ -146,22 +148,37 @@ EXTRA: dict[tuple[str, str], list[str]] = {
     ("solver", "fp_relaxation"): NUMBERS + ["1.5"],
     ("solver", "qp_kkt_solver"): ['"qdldl"', '"mumps"'],
     ("solver", "qp_working_set"): ["false", "1"],
-    ("body", "mesh"): ['"nowhere.msh"', '"scene.toml"', '"."'],
+    ("body", "mesh"): ['"square.msh"', '"square.msh"', '"nowhere.msh"', '"scene.toml"', '"."'],
 }
-# With 'multiplier_size' the scene's multiplier_ratio goes (they exclude each other); the hostile sizes
-# above are refused or coarse: a size far below the mesh's reaches D3.
-ENTRIES = [(t, k) for t, keys in BASE.items() for k in keys] + sorted(EXTRA)
+ENTRIES = sorted(EXTRA) + [(t, k) for t, keys in reversed(BASE.items()) for k in keys]
+# What adding a key usually changes in the base scene so that it can still run (the rest of the time the
+# conflict itself is tested): {(table, key): (entries removed, entries set)}. The multiplier sizes above
+# are refused or coarse: a size far below the mesh's reaches D3.
+ADJUST: dict[tuple[str, str], tuple[list[tuple[str, str]], dict[tuple[str, str], str]]] = {
+    ("discretization", "multiplier_size"): ([("discretization", "multiplier_ratio")], {}),
+    ("discretization", "gamma0"): ([("discretization", "gamma0_fraction")], {}),
+    ("friction", "mu"): ([("friction", "threshold")], {}),
+    ("discretization", "diagonal"): ([("discretization", "h_min")], {("discretization", "grading"): '"none"'}),
+    ("obstacle", "xi"): ([("obstacle", "radius")], {("obstacle", "shape"): '"polyline"', ("obstacle", "gap"): "[0.0, 0.0]"}),
+    ("obstacle", "gap"): ([("obstacle", "radius")], {("obstacle", "shape"): '"polyline"', ("obstacle", "xi"): "[-1.0, 1.0]"}),
+    ("body", "mesh"): ([("body", "x"), ("body", "y"), ("discretization", "h"), ("discretization", "h_min")], {}),
+}
 
 
 @st.composite
 def scene_texts(draw: st.DrawFn) -> str:
-    """The base scene with one or two entries replaced or added with hostile TOML literals."""
+    """The base scene with one (or two) entries replaced or added with hostile TOML literals."""
     tables = {t: dict(keys) for t, keys in BASE.items()}
-    for table, key in draw(st.lists(st.sampled_from(ENTRIES), min_size=1, max_size=2, unique=True)):
+    n = draw(st.sampled_from([1, 1, 2]))
+    for table, key in draw(st.lists(st.sampled_from(ENTRIES), min_size=n, max_size=n, unique=True)):
+        removed, added = ADJUST.get((table, key), ([], {}))
+        if draw(st.integers(0, 3)) > 0:
+            for t, k in removed:
+                tables[t].pop(k, None)
+            for (t, k), v in added.items():
+                tables.setdefault(t, {})[k] = v
         pool = EXTRA.get((table, key)) or LITERALS.get(key) or NUMBERS
         tables.setdefault(table, {})[key] = draw(st.sampled_from(pool))
-        if key == "multiplier_size":
-            tables["discretization"].pop("multiplier_ratio", None)
         event(f"{table}.{key}")
     return render(tables)
 
@@ -187,6 +204,7 @@ def run_cli(scene: Path, out: Path) -> int:
 @example(render(BASE))
 def test_fuzz_tribo_run(text: str) -> None:
     with tempfile.TemporaryDirectory() as tmp:
+        (Path(tmp) / "square.msh").write_text(MSH22)
         scene = Path(tmp) / "scene.toml"
         scene.write_text(text, encoding="utf-8")
         event(f"exit code {run_cli(scene, Path(tmp) / 'out')}")
