@@ -37,8 +37,8 @@ A scene has these tables (every key is optional unless marked *required*; see ``
 
 Top-level ``title`` and ``description`` are free text. An unknown key or a value of the wrong type is a
 ``SceneError`` that names the key (``scene key 'obstacle.radus' is not known``). Numbers must be finite
-(TOML allows ``nan`` and ``inf``), integers lie in 0 … 2³² − 1, ranges ``x``, ``y`` increase, and a
-uniform grid has at most ``MAX_CELLS`` cells.
+(TOML allows ``nan`` and ``inf``), counts lie in the core's range (``tribo.solver_settings()``), ranges
+``x``, ``y`` increase, and a uniform grid has at most ``MAX_CELLS`` cells.
 
 Automatic grading: for a circle or parabola of radius R pushed δ into the body, contact stays within
 about the geometric overlap half-width ``a = sqrt(2 R δ)`` of the centre (the Hertz half-width of the
@@ -100,13 +100,9 @@ def _number(key: str, v: Any) -> float:
     return x
 
 
-def _integer(key: str, v: Any, lo: int = 0, hi: int = 2**32 - 1) -> int:
-    """An integer in [lo, hi]. The default range is the core's: its iteration counts are 32-bit unsigned,
-    and a value outside it would fail in the binding's conversion (OverflowError) instead of here."""
+def _integer(key: str, v: Any) -> int:
     if isinstance(v, bool) or not isinstance(v, int):
         raise SceneError(f"scene key '{key}' must be an integer, got {v!r}", key)
-    if not lo <= v <= hi:
-        raise SceneError(f"scene key '{key}' must be an integer from {lo} to {hi}, got {v}", key)
     return v
 
 

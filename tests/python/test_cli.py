@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -177,9 +178,9 @@ def test_mesh_file_scene(tmp_path: Path) -> None:
     ("edit", "message"),
     [
         # D14: values the binding could not convert (OverflowError) are refused in the scene, naming the key.
-        (lambda d: d["solver"].update(qp_max_iter=-1), "'solver.qp_max_iter' must be an integer from 0 to 4294967295"),
-        (lambda d: d["solver"].update(qp_max_iter=2**32), "'solver.qp_max_iter' must be an integer from 0"),
-        (lambda d: d["solver"].update(fp_max_iter=-5), "'solver.fp_max_iter' must be an integer from 0"),
+        (lambda d: d["solver"].update(qp_max_iter=-1), "'solver.qp_max_iter' must be an integer in [0, 4294967295]"),
+        (lambda d: d["solver"].update(qp_max_iter=2**32), "'solver.qp_max_iter' must be an integer in [0, 4294967295]"),
+        (lambda d: d["solver"].update(fp_max_iter=-5), "'solver.fp_max_iter' must be an integer in [0, "),
         (lambda d: d["material"].update(young=float("nan")), "'material.young' must be a finite number"),
         (lambda d: d["obstacle"].update(approach=float("inf")), "'obstacle.approach' must be a finite number"),
         (lambda d: d["material"].update(young=10**400), "'material.young' must be a finite number"),
@@ -198,7 +199,7 @@ def test_mesh_file_scene(tmp_path: Path) -> None:
 def test_scene_values_the_core_cannot_take(edit, message: str) -> None:  # type: ignore[no-untyped-def]
     d = load_toml(SCENE)
     edit(d)
-    with pytest.raises(SceneError, match=message.replace("(", r"\(")) as info:
+    with pytest.raises(SceneError, match=re.escape(message)) as info:
         parse_scene(d)
     assert info.value.details["key"] in message
 
@@ -243,9 +244,9 @@ def one_error_line(capsys: pytest.CaptureFixture[str], prefix: str = "tribo: err
     ("scene", "message"),
     [
         (SCENE.replace("radius = 2.0", "radius = -1.0"), "radius must be positive"),
-        (SCENE.replace("qp_tol = 1e-9", "qp_max_iter = -1"), "'solver.qp_max_iter' must be an integer from 0"),
-        (SCENE.replace("qp_tol = 1e-9", "qp_max_iter = 4294967296"), "'solver.qp_max_iter' must be an integer"),
-        (SCENE.replace("qp_tol = 1e-9", "fp_max_iter = -5"), "'solver.fp_max_iter' must be an integer from 0"),
+        (SCENE.replace("qp_tol = 1e-9", "qp_max_iter = -1"), "'solver.qp_max_iter' must be an integer in [0, "),
+        (SCENE.replace("qp_tol = 1e-9", "qp_max_iter = 4294967296"), "'solver.qp_max_iter' must be an integer in [0, "),
+        (SCENE.replace("qp_tol = 1e-9", "fp_max_iter = -5"), "'solver.fp_max_iter' must be an integer in [0, "),
         (SCENE.replace("h = 0.25\nh_min = 0.03", 'grading = "none"\nh = 1e-300'), "'discretization.h' = 1e-300"),
         (SCENE.replace("radius = 2.0", "radius = 2.0\nxi = [0.0, 1.0]"), "'obstacle.xi' does not apply"),
     ],
