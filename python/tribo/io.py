@@ -203,17 +203,31 @@ def mesh_from_meshio(m: Any, *, edge_sets: Mapping[str, str] | None = None) -> M
     return Mesh(points[used], renumber[triangles], sets)
 
 
+def _blank(path: Path) -> bool:
+    """Whether a file holds nothing but whitespace (read until its first other byte: one block for a mesh)."""
+    with path.open("rb") as f:
+        while block := f.read(1 << 16):
+            if block.strip():
+                return False
+    return True
+
+
 def read_mesh(path: str | Path, *, edge_sets: Mapping[str, str] | None = None) -> Mesh:
     """Reads any mesh meshio can read (Gmsh .msh, VTK, XDMF, MED…) into a tribo Mesh.
 
     Every failure to read is a MeshError naming the file. meshio raises many exception types, prints to
-    stdout and stderr, calls ``sys.exit`` when no reader accepts a file, and loops forever on an empty
-    TetGen file: the empty file is refused first, the rest is caught and its output kept for the message.
+    stdout and stderr, calls ``sys.exit`` when no reader accepts a file, and loops forever on a TetGen
+    file that is empty or blank: a blank file is refused first, the rest is caught and meshio's output kept
+    for the message.
     """
     import meshio
 
     path = Path(path)
-    if path.is_file() and path.stat().st_size == 0:
+    try:
+        blank = path.is_file() and _blank(path)
+    except OSError:
+        blank = False  # meshio says why it cannot read the file
+    if blank:
         raise _mesh_error(f"cannot read mesh file {path}: the file is empty", "UnreadableFile", path=str(path))
     said = io.StringIO()
     try:

@@ -129,9 +129,10 @@ def test_contact_csv(tmp_path: Path, hertz: tribo.Problem) -> None:
 
 
 def test_unreadable_files_raise_mesh_error(tmp_path: Path, capfd: pytest.CaptureFixture[str]) -> None:
-    """D16: meshio calls sys.exit(1) when no reader accepts a file (and loops forever on an empty TetGen
+    """D16: meshio calls sys.exit(1) when no reader accepts a file (and loops forever on a blank TetGen
     file); read_mesh raises MeshError naming the file, and meshio's own output does not leak."""
-    for name, content in [("text.msh", "hello\n"), ("empty.msh", ""), ("text.vtu", "1 2 3\n"), ("empty.ele", "")]:
+    cases = [("text.msh", "hello\n"), ("empty.msh", ""), ("text.vtu", "1 2 3\n"), ("empty.ele", ""), ("blank.node", "\n \n")]
+    for name, content in cases:
         path = tmp_path / name
         path.write_text(content)
         with pytest.raises(tribo.MeshError, match=f"cannot read mesh file {path}") as info:
