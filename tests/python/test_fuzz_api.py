@@ -215,7 +215,9 @@ YOUNG = st.one_of(magnitudes(-300, 100).map(abs), st.sampled_from(REFUSED + [0.0
 LOAD = st.one_of(magnitudes(-300, 100), st.sampled_from(REFUSED + [0.0, -0.0, 5e-324]))
 RELATIVE = st.one_of(st.floats(-0.1, 0.1), magnitudes(-300, 2), st.sampled_from(REFUSED + SMALL))
 # Every example pushes the obstacle in or holds it away: with a vanishing approach nothing is in contact
-# and the kkt residuals are NaN or inf with 'converged' (issue 9, minor; test_fuzz_without_contact).
+# and the kkt residuals are NaN or inf with 'converged' (issue 9, minor; test_fuzz_without_contact). A long
+# campaign can still meet that defect by coincidence: an approach equal to a small circle's radius touches
+# Γ_C without force (TRIBO_FUZZ_EXAMPLES=10000 did; test_core_defects.py keeps that example).
 APPROACH = RELATIVE.filter(lambda a: not abs(a) < 1e-100)
 
 
