@@ -11,8 +11,9 @@
 ``tribo demo [--out DIR]`` runs the built-in scene (``tribo/scenes/demo.toml``) into ``tribo-demo-out``.
 
 Progress (fixed-point iteration, change of λ_n, QP iterations and time) is logged to stderr. Exit codes:
-0 converged, 1 bad input (the message says what and where), 3 the solve ended without converging
-(results are still written).
+0 converged, 1 bad input or unwritable output (one line ``tribo: error: …`` says what and where), 3 the
+solve ended without converging (results are still written), 2 an internal error (a bug: one line
+``tribo: internal error: …``, please report it), 130 interrupted (Ctrl-C).
 """
 
 from __future__ import annotations
@@ -161,14 +162,26 @@ def _plots(out: Path, problem: Problem, solution: Solution) -> list[Path]:
     return files
 
 
+def _one_line(text: str) -> str:
+    return " ".join(text.split())
+
+
+def _error(message: str) -> int:
+    print(f"tribo: error: {_one_line(message)}", file=sys.stderr)
+    return 1
+
+
 def _run(scene_path: Path, out: Path, plots: bool) -> int:
+    if out.exists() and not out.is_dir():
+        return _error(f"--out {out} exists and is not a directory")
     try:
         scene = load_scene(scene_path)
         problem, solution, files = run_scene(scene, out, plots=plots)
     except TriboError as e:
-        notes = "".join(f"\n  {n}" for n in getattr(e, "__notes__", []))
-        print(f"tribo: error ({type(e).__name__}): {e}{notes}", file=sys.stderr)
-        return 1
+        context = "; ".join([type(e).__name__, *getattr(e, "__notes__", [])])
+        return _error(f"{e} ({context})")
+    except OSError as e:  # reading went through load_scene and read_mesh: this is writing the results
+        return _error(f"cannot write the results into {out}: {e.strerror or e} ({e.filename or out})")
     r = solution.report
     print(f"{scene.title or scene_path}")
     print(
@@ -209,9 +222,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     log.handlers[:] = [handler]
     log.setLevel(logging.WARNING if args.quiet else logging.INFO)
     log.propagate = False
-    if args.command == "demo":
-        return _run(demo_scene_path(), args.out, not args.no_plots)
-    return _run(args.scene, args.out, not args.no_plots)
+    scene = demo_scene_path() if args.command == "demo" else args.scene
+    try:
+        return _run(scene, args.out, not args.no_plots)
+    except KeyboardInterrupt:
+        print("tribo: interrupted", file=sys.stderr)
+        return 130
+    except (SystemExit, GeneratorExit):
+        raise
+    except BaseException as e:  # noqa: BLE001 - pyo3's PanicException is not an Exception: a bug either way
+        print(f"tribo: internal error: {type(e).__name__}: {_one_line(str(e))} (please report it)", file=sys.stderr)
+        return 2
 
 
 if __name__ == "__main__":

@@ -17,6 +17,8 @@ Writing: ``write_vtu("out/result.vtu", problem, solution)`` writes three files, 
 
 from __future__ import annotations
 
+import contextlib
+import io
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -27,6 +29,14 @@ import numpy.typing as npt
 from tribo._tribo import Mesh, MeshError, Problem, Solution
 
 __all__ = ["mesh_from_meshio", "read_mesh", "write_vtu", "contact_tables", "write_contact_csv"]
+
+
+def _mesh_error(message: str, kind: str, **details: Any) -> MeshError:
+    """A MeshError with the ``kind`` and ``details`` the core's errors carry, so callers can rely on them."""
+    e = MeshError(message)
+    e.kind = kind
+    e.details = details
+    return e
 
 
 def _line_sets(m: Any) -> dict[str, list[npt.NDArray[np.int64]]]:
@@ -45,41 +55,131 @@ def _line_sets(m: Any) -> dict[str, list[npt.NDArray[np.int64]]]:
             tags = np.asarray(tags)
             for tag in np.unique(tags):
                 name = names.get(int(tag), str(int(tag)))
-                sets.setdefault(name, []).append(np.asarray(block.data[tags == tag], dtype=np.int64))
+                sets.setdefault(name, []).append(_cells(block.data[tags == tag], 2, f"edge set '{name}'"))
         return sets
     for name, per_block in getattr(m, "cell_sets", {}).items():
         for block, idx in zip(m.cells, per_block):
             if block.type == "line" and idx is not None and len(idx) > 0:
-                sets.setdefault(name, []).append(np.asarray(block.data[np.asarray(idx)], dtype=np.int64))
+                idx = np.asarray(idx)
+                if not np.issubdtype(idx.dtype, np.integer) or idx.min() < 0 or idx.max() >= len(block.data):
+                    raise _mesh_error(
+                        f"cell set '{name}' refers to line cells outside 0…{len(block.data) - 1}",
+                        "BadCellSet",
+                        name=name,
+                    )
+                sets.setdefault(name, []).append(_cells(block.data[idx], 2, f"edge set '{name}'"))
     return sets
+
+
+def _cells(data: Any, corners: int, what: str) -> npt.NDArray[np.int64]:
+    """A block of cells as an (N, corners) int64 array; refuses other shapes and non-integer indices."""
+    a = np.asarray(data)
+    if a.ndim != 2 or a.shape[1] != corners or not (np.issubdtype(a.dtype, np.integer) or a.size == 0):
+        raise _mesh_error(
+            f"the cells of {what} must be an (N, {corners}) array of node indices, got shape {a.shape} of {a.dtype}",
+            "BadInput",
+        )
+    return a.astype(np.int64)
+
+
+def _check_indices(cells: npt.NDArray[np.int64], n_nodes: int, what: str) -> None:
+    """Refuses a node index outside 0…n_nodes−1. Numpy would wrap −1 (what meshio's Gmsh reader writes for
+    a node tag the file does not define) to the last node, and raise IndexError beyond the end.
+    ``what`` names a cell, with ``{}`` for its number (counted from 0 in file order)."""
+    bad = np.argwhere((cells < 0) | (cells >= n_nodes))
+    if len(bad):
+        row, col = (int(i) for i in bad[0])
+        node = int(cells[row, col])
+        hint = " (the file refers to a node it does not define)" if node < 0 else ""
+        raise _mesh_error(
+            f"{what.format(row)} uses node {node}, but the mesh has {n_nodes} nodes (0 to {n_nodes - 1}){hint}",
+            "NodeIndexOutOfRange",
+            element=row,
+            node=node,
+            n_nodes=n_nodes,
+        )
+
+
+def _check_no_overlap(points: npt.NDArray[np.float64], triangles: npt.NDArray[np.int64]) -> None:
+    """Refuses overlapping triangles, which no later check can see once every triangle is turned
+    counter-clockwise: two triangles that run along one edge in the same direction (one folded onto the
+    other), or triangles that turn more than once around a node, or not exactly once around a node inside
+    the mesh. A reader that maps two node tags to one node (meshio with a Gmsh node tag 0) makes such a mesh.
+    Triangles are numbered from 0 in file order, nodes as in the file."""
+    directed = triangles[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    _, first, inverse, count = np.unique(directed, axis=0, return_index=True, return_inverse=True, return_counts=True)
+    inverse = inverse.reshape(-1)
+    if (count > 1).any():
+        edge = int(np.flatnonzero(count > 1)[0])
+        a, b = (int(t) for t in np.flatnonzero(inverse == edge)[:2] // 3)
+        i, j = (int(n) for n in directed[first[edge]])
+        raise _mesh_error(
+            f"triangles {a} and {b} overlap: both run from node {i} to node {j} once turned counter-clockwise",
+            "OverlappingTriangles",
+            triangles=[a, b],
+            edge=[i, j],
+        )
+    p = points[triangles]
+    u, v = np.roll(p, -1, axis=1) - p, np.roll(p, 1, axis=1) - p
+    with np.errstate(all="ignore"):
+        cross = u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
+        angle = np.arctan2(np.abs(cross), np.einsum("tck,tck->tc", u, v))
+        # Each angle comes from coordinate differences that carry a relative error of eps · (scale / length).
+        scale = float(np.abs(p).max()) if p.size else 0.0
+        shortest = np.minimum(np.hypot(u[..., 0], u[..., 1]), np.hypot(v[..., 0], v[..., 1]))
+        rounding = 8.0 * np.finfo(np.float64).eps * (1.0 + scale / shortest)
+    n = len(points)
+    turn = np.bincount(triangles.ravel(), weights=angle.ravel(), minlength=n)
+    tol = np.bincount(triangles.ravel(), weights=rounding.ravel(), minlength=n)
+    undirected = np.sort(directed, axis=1)
+    _, edge_of, uses = np.unique(undirected, axis=0, return_inverse=True, return_counts=True)
+    on_boundary = np.zeros(n, dtype=bool)
+    on_boundary[undirected[uses[edge_of.reshape(-1)] == 1].ravel()] = True
+    used = np.zeros(n, dtype=bool)
+    used[triangles.ravel()] = True
+    wrong = used & ((turn > 2.0 * np.pi + tol) | (~on_boundary & (np.abs(turn - 2.0 * np.pi) > tol)))
+    if wrong.any():
+        node = int(np.flatnonzero(wrong)[0])
+        raise _mesh_error(
+            f"the triangles around node {node} overlap: their angles there add up to {turn[node] / np.pi:.6g}π"
+            f" instead of {'at most ' if on_boundary[node] else ''}2π",
+            "OverlappingTriangles",
+            node=node,
+            angle=float(turn[node]),
+        )
 
 
 def mesh_from_meshio(m: Any, *, edge_sets: Mapping[str, str] | None = None) -> Mesh:
     """A tribo Mesh from a ``meshio.Mesh``.
 
     ``edge_sets`` optionally renames sets: {tribo name: name or tag in the file}.
-    Raises MeshError if the mesh has no linear triangles or is not planar.
+    Raises MeshError if the mesh has no linear triangles or is not planar, if a cell refers to a node the
+    mesh does not have, or if triangles overlap (the orientation fix below would otherwise hide it).
     """
     points = np.asarray(m.points, dtype=np.float64)
     if points.ndim != 2 or points.shape[1] < 2:
-        raise MeshError(f"mesh points must have 2 or 3 coordinates, got shape {points.shape}")
+        raise _mesh_error(f"mesh points must have 2 or 3 coordinates, got shape {points.shape}", "BadInput")
     if points.shape[1] > 2:
         extent = float(np.ptp(points[:, :2], axis=0).max()) if len(points) else 0.0
         if np.any(np.abs(points[:, 2:]) > 1e-12 * max(extent, 1.0)):
-            raise MeshError("the mesh is not planar: tribo solves 2D problems in the plane z = 0")
+            raise _mesh_error("the mesh is not planar: tribo solves 2D problems in the plane z = 0", "NotPlanar")
         points = points[:, :2]
-    blocks = [np.asarray(b.data, dtype=np.int64) for b in m.cells if b.type == "triangle"]
+    blocks = [_cells(b.data, 3, "the triangles") for b in m.cells if b.type == "triangle"]
     others = sorted({b.type for b in m.cells if b.type not in ("triangle", "line", "vertex")})
     if not blocks:
-        raise MeshError(f"the mesh has no linear triangles (cell types: {others or 'none'})")
+        raise _mesh_error(f"the mesh has no linear triangles (cell types: {others or 'none'})", "EmptyMesh")
     if others:
-        raise MeshError(f"only linear triangles (and line cells for edge sets) are supported, found {others}")
+        raise _mesh_error(
+            f"only linear triangles (and line cells for edge sets) are supported, found {others}", "UnsupportedCells"
+        )
     triangles = np.concatenate(blocks)
+    _check_indices(triangles, len(points), "triangle {}")
     # Counter-clockwise order, as tribo requires.
     p = points[triangles]
     area = (p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1]) - (p[:, 2, 0] - p[:, 0, 0]) * (p[:, 1, 1] - p[:, 0, 1])
     flip = area < 0
     triangles[flip] = triangles[flip][:, [0, 2, 1]]
+    _check_no_overlap(points, triangles)
     # Drop nodes no triangle uses (geometry points, centres of arcs), renumbering the rest.
     used = np.zeros(len(points), dtype=bool)
     used[triangles.ravel()] = True
@@ -87,26 +187,61 @@ def mesh_from_meshio(m: Any, *, edge_sets: Mapping[str, str] | None = None) -> M
     sets = {}
     for name, parts in _line_sets(m).items():
         edges = np.concatenate(parts)
+        _check_indices(edges, len(points), f"line {{}} of edge set '{name}'")
         if not used[edges.ravel()].all():
-            raise MeshError(f"edge set '{name}' uses a node that belongs to no triangle")
+            raise _mesh_error(f"edge set '{name}' uses a node that belongs to no triangle", "NotABoundaryEdge", name=name)
         sets[name] = renumber[edges]
     if edge_sets is not None:
         missing = [src for src in edge_sets.values() if src not in sets]
         if missing:
-            raise MeshError(f"the mesh file has no edge set {missing} (it has: {', '.join(sorted(sets))})")
+            raise _mesh_error(
+                f"the mesh file has no edge set {missing} (it has: {', '.join(sorted(sets))})",
+                "UnknownEdgeSet",
+                names=missing,
+            )
         sets = {dst: sets[src] for dst, src in edge_sets.items()}
     return Mesh(points[used], renumber[triangles], sets)
 
 
+def _blank(path: Path) -> bool:
+    """Whether a file holds nothing but whitespace (read until its first other byte: one block for a mesh)."""
+    with path.open("rb") as f:
+        while block := f.read(1 << 16):
+            if block.strip():
+                return False
+    return True
+
+
 def read_mesh(path: str | Path, *, edge_sets: Mapping[str, str] | None = None) -> Mesh:
-    """Reads any mesh meshio can read (Gmsh .msh, VTK, XDMF, MED…) into a tribo Mesh."""
+    """Reads any mesh meshio can read (Gmsh .msh, VTK, XDMF, MED…) into a tribo Mesh.
+
+    Every failure to read is a MeshError naming the file. meshio raises many exception types, prints to
+    stdout and stderr, calls ``sys.exit`` when no reader accepts a file, and loops forever on a TetGen
+    file that is empty or blank: a blank file is refused first, the rest is caught and meshio's output kept
+    for the message.
+    """
     import meshio
 
+    path = Path(path)
     try:
-        m = meshio.read(str(path))
-    except Exception as e:  # meshio raises a variety of errors for unreadable files
-        raise MeshError(f"cannot read mesh file {path}: {e}") from e
-    return mesh_from_meshio(m, edge_sets=edge_sets)
+        blank = path.is_file() and _blank(path)
+    except OSError:
+        blank = False  # meshio says why it cannot read the file
+    if blank:
+        raise _mesh_error(f"cannot read mesh file {path}: the file is empty", "UnreadableFile", path=str(path))
+    said = io.StringIO()
+    try:
+        with contextlib.redirect_stdout(said), contextlib.redirect_stderr(said):
+            m = meshio.read(str(path))
+    except (Exception, SystemExit) as e:
+        output = " ".join(said.getvalue().split()).removeprefix("Error: ")
+        reason = (str(e) if not isinstance(e, SystemExit) else "") or output or type(e).__name__
+        raise _mesh_error(f"cannot read mesh file {path}: {reason}", "UnreadableFile", path=str(path)) from e
+    try:
+        return mesh_from_meshio(m, edge_sets=edge_sets)
+    except MeshError as e:
+        e.add_note(f"in mesh file {path}")
+        raise
 
 
 def _xyz(p: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:

@@ -16,8 +16,9 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     ``edge_set`` (*required*): the straight edge set Γ_C.
 ``[obstacle]``
     ``shape``: ``"flat"`` (default), ``"circle"``, ``"parabola"`` (both with ``radius`` *required* and
-    ``center``, an abscissa on Γ_C, default 0) or ``"polyline"`` (``xi`` and ``gap`` lists);
-    ``approach`` (δ, toward the body) and ``shift`` (s, along the tangent t).
+    ``center``, an abscissa on Γ_C, default 0) or ``"polyline"`` (``xi`` and ``gap`` lists, *required*);
+    a key of another shape is an error; ``approach`` (δ, toward the body) and ``shift`` (s, along the
+    tangent t).
 ``[friction]``
     ``mu`` (Coulomb; 0 is frictionless) or ``threshold`` (Tresca); neither: frictionless (the core decides,
     with the same rule as ``Problem.solve``).
@@ -35,7 +36,9 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     core's defaults. The table of keys is built from the core's, so it cannot drift from it.
 
 Top-level ``title`` and ``description`` are free text. An unknown key or a value of the wrong type is a
-``SceneError`` that names the key (``scene key 'obstacle.radus' is not known``).
+``SceneError`` that names the key (``scene key 'obstacle.radus' is not known``). Numbers must be finite
+(TOML allows ``nan`` and ``inf``), counts lie in the core's range (``tribo.solver_settings()``), ranges
+``x``, ``y`` increase, and a uniform grid has at most ``MAX_CELLS`` cells.
 
 Automatic grading: for a circle or parabola of radius R pushed δ into the body, contact stays within
 about the geometric overlap half-width ``a = sqrt(2 R δ)`` of the centre (the Hertz half-width of the
@@ -85,9 +88,16 @@ Checker = Callable[[str, Any], Any]
 
 
 def _number(key: str, v: Any) -> float:
+    """A finite number: TOML spells nan and inf, and an integer may be too large for a float."""
     if isinstance(v, bool) or not isinstance(v, (int, float)):
         raise SceneError(f"scene key '{key}' must be a number, got {v!r}", key)
-    return float(v)
+    try:
+        x = float(v)
+    except OverflowError:  # an integer beyond the range of a float
+        x = math.inf
+    if not math.isfinite(x):
+        raise SceneError(f"scene key '{key}' must be a finite number, got {v!r}", key)
+    return x
 
 
 def _integer(key: str, v: Any) -> int:
@@ -122,6 +132,14 @@ def _pair(key: str, v: Any) -> tuple[float, float]:
     if not (isinstance(v, list) and len(v) == 2):
         raise SceneError(f"scene key '{key}' must be a list of two numbers, got {v!r}", key)
     return (_number(key, v[0]), _number(key, v[1]))
+
+
+def _range(key: str, v: Any) -> tuple[float, float]:
+    """An interval [a, b] with a < b (a side of the rectangle)."""
+    a, b = _pair(key, v)
+    if not a < b:
+        raise SceneError(f"scene key '{key}' must be an increasing range [a, b] with a < b, got {v!r}", key)
+    return (a, b)
 
 
 def _numbers(key: str, v: Any) -> list[float]:
@@ -172,7 +190,7 @@ def _setting_checker(spec: dict[str, Any]) -> Checker:
 
 
 SCHEMA: dict[str, dict[str, Checker]] = {
-    "body": {"x": _pair, "y": _pair, "mesh": _string},
+    "body": {"x": _range, "y": _range, "mesh": _string},
     "material": {"young": _number, "poisson": _number},
     "supports": {"clamped": _names},
     "loads": {"body_force": _pair, "tractions": _pairs},
@@ -202,6 +220,12 @@ SCHEMA: dict[str, dict[str, Checker]] = {
     "solver": {name: _setting_checker(spec) for name, spec in solver_settings().items()},
 }
 REQUIRED = {"material": ("young", "poisson"), "supports": ("clamped",), "contact": ("edge_set",)}
+# The keys of [obstacle] that describe its shape: those each shape takes, and those it requires.
+SHAPE_KEYS = {"flat": (), "circle": ("radius", "center"), "parabola": ("radius", "center"), "polyline": ("xi", "gap")}
+SHAPE_REQUIRED = {"flat": (), "circle": ("radius",), "parabola": ("radius",), "polyline": ("xi", "gap")}
+# The most cells (nx · ny) a uniform rectangle may have: the limit of the core's Mesh.rectangle, checked here
+# before nx and ny are rounded to integers (an absurd h would overflow the binding's conversion).
+MAX_CELLS = 20_000_000
 
 
 @dataclass
@@ -228,21 +252,14 @@ class Scene:
 
     # ----- geometry -----
     def obstacle(self) -> Obstacle:
+        """The obstacle (its keys were checked by ``parse_scene``; the core checks their values)."""
         o = self.sections.get("obstacle", {})
         shape = o.get("shape", "flat")
         if shape in ("circle", "parabola"):
-            if "radius" not in o:
-                raise SceneError(f"scene key 'obstacle.radius' is required for a {shape}", "obstacle.radius")
             make = Obstacle.circle if shape == "circle" else Obstacle.parabola
             return make(o["radius"], o.get("center", 0.0))
         if shape == "polyline":
-            for k in ("xi", "gap"):
-                if k not in o:
-                    raise SceneError(f"scene key 'obstacle.{k}' is required for a polyline", f"obstacle.{k}")
             return Obstacle.polyline(o["xi"], o["gap"])
-        extra = sorted(set(o) & {"radius", "center", "xi", "gap"})
-        if extra:
-            raise SceneError(f"scene key 'obstacle.{extra[0]}' does not apply to a flat obstacle", f"obstacle.{extra[0]}")
         return Obstacle.flat()
 
     def contact_segment(self, side_range: tuple[float, float]) -> tuple[float, float]:
@@ -251,17 +268,18 @@ class Scene:
         lo, hi = side_range
         if isinstance(grading, tuple):
             return grading
+        obstacle = self.obstacle()  # first: the core refuses a bad radius before it is used here
         o = self.sections.get("obstacle", {})
         shape = o.get("shape", "flat")
         delta = max(o.get("approach", 0.0), 0.0)
-        if shape in ("circle", "parabola") and "radius" in o:
+        if shape in ("circle", "parabola"):
             c = o.get("center", 0.0)
             a = math.sqrt(2.0 * o["radius"] * delta)
             a = max(a, 0.01 * (hi - lo))  # no approach: still refine around the first touching point
             seg = (c - 2.0 * a, c + 2.0 * a)
-        elif shape == "polyline" and "xi" in o and "gap" in o:
+        elif shape == "polyline":
             xi = np.linspace(lo, hi, 2001)
-            gap = self.obstacle().gap0(xi)
+            gap = obstacle.gap0(xi)
             close = xi[gap <= 2.0 * delta + 1e-12 * (hi - lo)]
             seg = (float(close.min()), float(close.max())) if len(close) else (lo, hi)
         else:
@@ -289,8 +307,8 @@ class Scene:
             if k not in body:
                 raise SceneError(f"scene key 'body.{k}' is required (or give body.mesh)", f"body.{k}")
         x, y = body["x"], body["y"]
-        h = d.get("h", 0.25 * min(abs(x[1] - x[0]), abs(y[1] - y[0])))
-        if not (h > 0.0 and math.isfinite(h)):
+        h = d.get("h", 0.25 * min(x[1] - x[0], y[1] - y[0]))
+        if not h > 0.0:
             raise SceneError(f"scene key 'discretization.h' must be positive, got {h}", "discretization.h")
         grading = d.get("grading", "auto")
         if grading == "none":
@@ -300,8 +318,14 @@ class Scene:
                     f"scene key 'discretization.{extra[0]}' needs a graded mesh (grading is 'none')",
                     f"discretization.{extra[0]}",
                 )
-            nx = max(1, math.ceil(abs(x[1] - x[0]) / h - 1e-9))
-            ny = max(1, math.ceil(abs(y[1] - y[0]) / h - 1e-9))
+            fx, fy = (x[1] - x[0]) / h, (y[1] - y[0]) / h
+            if fx * fy > MAX_CELLS:
+                raise SceneError(
+                    f"scene key 'discretization.h' = {h:g} makes a grid of about {fx:.3g} x {fy:.3g} cells,"
+                    f" more than the limit of {MAX_CELLS}",
+                    "discretization.h",
+                )
+            nx, ny = max(1, math.ceil(fx - 1e-9)), max(1, math.ceil(fy - 1e-9))
             return Mesh.rectangle(x, y, nx, ny, diagonal=d.get("diagonal"))
         if "diagonal" in d:
             raise SceneError("scene key 'discretization.diagonal' applies to grading = 'none'", "discretization.diagonal")
@@ -329,13 +353,14 @@ class Scene:
         d = self.sections.get("discretization", {})
         loads = self.sections.get("loads", {})
         try:
+            obstacle = self.obstacle()  # before the mesh, whose grading uses the obstacle's values
             return Problem(
                 self.mesh(),
                 young=self.get("material", "young"),
                 poisson=self.get("material", "poisson"),
                 clamped=self.get("supports", "clamped"),
                 contact=self.get("contact", "edge_set"),
-                obstacle=self.obstacle(),
+                obstacle=obstacle,
                 approach=o.get("approach"),
                 shift=o.get("shift"),
                 tractions=loads.get("tractions"),
@@ -362,6 +387,17 @@ class Scene:
         for section, values in self.sections.items():
             out[section] = {k: list(v) if isinstance(v, tuple) else v for k, v in values.items()}
         return out
+
+
+def _check_obstacle(o: Mapping[str, Any]) -> None:
+    """The shape keys of [obstacle]: each one the shape requires is given, and none it does not take."""
+    shape = o.get("shape", "flat")
+    for key in sorted(set(o) & {k for keys in SHAPE_KEYS.values() for k in keys}):
+        if key not in SHAPE_KEYS[shape]:
+            raise SceneError(f"scene key 'obstacle.{key}' does not apply to a {shape} obstacle", f"obstacle.{key}")
+    for key in SHAPE_REQUIRED[shape]:
+        if key not in o:
+            raise SceneError(f"scene key 'obstacle.{key}' is required for a {shape}", f"obstacle.{key}")
 
 
 def parse_scene(data: Mapping[str, Any], base_dir: Path | None = None) -> Scene:
@@ -397,6 +433,7 @@ def parse_scene(data: Mapping[str, Any], base_dir: Path | None = None) -> Scene:
     body = sections.get("body", {})
     if "mesh" not in body and not ("x" in body and "y" in body):
         raise SceneError("scene key 'body.x' and 'body.y' (a rectangle) or 'body.mesh' is required", "body")
+    _check_obstacle(sections.get("obstacle", {}))
     f = sections.get("friction", {})
     if "mu" in f and "threshold" in f:
         raise SceneError("scene keys 'friction.mu' and 'friction.threshold' exclude each other", "friction")
@@ -422,6 +459,8 @@ def load_scene(path: str | Path) -> Scene:
             data = tomllib.load(f)
     except OSError as e:
         raise SceneError(f"cannot read scene file {path}: {e.strerror}") from e
+    except UnicodeDecodeError as e:  # tomllib decodes the bytes as UTF-8 before it parses them
+        raise SceneError(f"scene file {path} is not UTF-8 text: {e.reason} at byte {e.start}") from e
     except tomllib.TOMLDecodeError as e:
         raise SceneError(f"scene file {path} is not valid TOML: {e}") from e
     return parse_scene(data, base_dir=path.resolve().parent)

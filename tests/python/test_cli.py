@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -171,3 +172,149 @@ def test_mesh_file_scene(tmp_path: Path) -> None:
     )
     problem, solution = load_scene(scene).solve()
     assert solution.report.converged and problem.mesh.n_triangles == 4
+
+
+@pytest.mark.parametrize(
+    ("edit", "message"),
+    [
+        # D14: values the binding could not convert (OverflowError) are refused in the scene, naming the key.
+        (lambda d: d["solver"].update(qp_max_iter=-1), "'solver.qp_max_iter' must be an integer in [0, 4294967295]"),
+        (lambda d: d["solver"].update(qp_max_iter=2**32), "'solver.qp_max_iter' must be an integer in [0, 4294967295]"),
+        (lambda d: d["solver"].update(fp_max_iter=-5), "'solver.fp_max_iter' must be an integer in [0, "),
+        (lambda d: d["material"].update(young=float("nan")), "'material.young' must be a finite number"),
+        (lambda d: d["obstacle"].update(approach=float("inf")), "'obstacle.approach' must be a finite number"),
+        (lambda d: d["material"].update(young=10**400), "'material.young' must be a finite number"),
+        (lambda d: d["body"].update(x=[1.0, 1.0]), "'body.x' must be an increasing range"),
+        # D15: keys of another obstacle shape are refused, as they were for a flat obstacle.
+        (lambda d: d["obstacle"].update(xi=[0.0, 1.0]), "'obstacle.xi' does not apply to a parabola obstacle"),
+        (lambda d: d["obstacle"].update(shape="circle", gap=[0.0]), "'obstacle.gap' does not apply to a circle"),
+        (
+            lambda d: d["obstacle"].update(shape="polyline", xi=[-1.0, 1.0], gap=[0.0, 0.0]),
+            "'obstacle.radius' does not apply to a polyline obstacle",
+        ),
+        (lambda d: d["obstacle"].update(shape="flat"), "'obstacle.radius' does not apply to a flat obstacle"),
+        (lambda d: d["obstacle"].pop("radius"), "'obstacle.radius' is required for a parabola"),
+    ],
+)
+def test_scene_values_the_core_cannot_take(edit, message: str) -> None:  # type: ignore[no-untyped-def]
+    d = load_toml(SCENE)
+    edit(d)
+    with pytest.raises(SceneError, match=re.escape(message)) as info:
+        parse_scene(d)
+    assert info.value.details["key"] in message
+
+
+def test_polyline_center_is_refused() -> None:
+    d = load_toml(SCENE)
+    d["obstacle"] = {"shape": "polyline", "xi": [-1.0, 1.0], "gap": [0.0, 0.0], "center": 0.5}
+    with pytest.raises(SceneError, match="'obstacle.center' does not apply to a polyline obstacle"):
+        parse_scene(d)
+
+
+def test_scene_build_checks_before_the_grading_uses_values() -> None:
+    """D14: a negative radius with automatic grading was a 'math domain error' in contact_segment; a tiny h
+    on a uniform grid overflowed the binding's integer conversion."""
+    d = load_toml(SCENE)
+    d["obstacle"]["radius"] = -1.0
+    with pytest.raises(tribo.ContactGeometryError, match="radius"):
+        parse_scene(d).build()
+    with pytest.raises(tribo.ContactGeometryError, match="radius"):
+        parse_scene(d).contact_segment((-1.0, 1.0))
+    d = load_toml(SCENE)
+    d["discretization"] = {"grading": "none", "h": 1e-300}
+    with pytest.raises(SceneError, match=r"'discretization.h' = 1e-300 makes a grid of about 2e\+300 x 1e\+300"):
+        parse_scene(d).build()
+
+
+def test_scene_file_not_utf8(tmp_path: Path) -> None:
+    path = tmp_path / "latin1.toml"
+    path.write_bytes(SCENE.replace("small", "caf\xe9").encode("latin-1"))
+    with pytest.raises(SceneError, match="is not UTF-8 text"):
+        load_scene(path)
+
+
+def one_error_line(capsys: pytest.CaptureFixture[str], prefix: str = "tribo: error: ") -> str:
+    """The only line on stderr (the runs below are quiet), which starts with `prefix`; no traceback."""
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and len(err.splitlines()) == 1 and err.startswith(prefix), err
+    return err
+
+
+@pytest.mark.parametrize(
+    ("scene", "message"),
+    [
+        (SCENE.replace("radius = 2.0", "radius = -1.0"), "radius must be positive"),
+        (SCENE.replace("qp_tol = 1e-9", "qp_max_iter = -1"), "'solver.qp_max_iter' must be an integer in [0, "),
+        (SCENE.replace("qp_tol = 1e-9", "qp_max_iter = 4294967296"), "'solver.qp_max_iter' must be an integer in [0, "),
+        (SCENE.replace("qp_tol = 1e-9", "fp_max_iter = -5"), "'solver.fp_max_iter' must be an integer in [0, "),
+        (SCENE.replace("h = 0.25\nh_min = 0.03", 'grading = "none"\nh = 1e-300'), "'discretization.h' = 1e-300"),
+        (SCENE.replace("radius = 2.0", "radius = 2.0\nxi = [0.0, 1.0]"), "'obstacle.xi' does not apply"),
+    ],
+)
+def test_cli_bad_scenes_give_one_error_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], scene: str, message: str
+) -> None:
+    """D14: each of these printed a traceback (math domain error, OverflowError…)."""
+    path = tmp_path / "bad.toml"
+    path.write_text(scene)
+    assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 1
+    assert message in one_error_line(capsys)
+
+
+def test_cli_unreadable_input_and_output(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    good = tmp_path / "good.toml"
+    good.write_text(SCENE)
+    latin1 = tmp_path / "latin1.toml"
+    latin1.write_bytes(SCENE.replace("small", "caf\xe9").encode("latin-1"))
+    assert main(["-q", "run", str(latin1), "--out", str(tmp_path / "o")]) == 1
+    assert "is not UTF-8 text" in one_error_line(capsys)
+    (tmp_path / "file").write_text("")
+    assert main(["-q", "run", str(good), "--out", str(tmp_path / "file")]) == 1
+    assert "exists and is not a directory" in one_error_line(capsys)
+    assert main(["-q", "run", str(good), "--out", str(tmp_path / "file" / "sub"), "--no-plots"]) == 1
+    assert "cannot write the results into" in one_error_line(capsys)
+
+
+def test_cli_error_notes_stay_on_the_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = tmp_path / "soft.toml"
+    path.write_text(SCENE.replace("young = 100.0", "young = -1.0"))
+    assert main(["-q", "run", str(path), "--out", str(tmp_path / "o")]) == 1
+    assert "(SettingsError; while building the scene 'small Tresca scene')" in one_error_line(capsys)
+
+
+def test_cli_ctrl_c_ends_with_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A KeyboardInterrupt (here from the progress callback, as Ctrl-C during a solve arrives) is not an
+    internal error: one line, exit code 130."""
+    import tribo.cli
+
+    def interrupt(*args: object) -> None:
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(tribo.cli, "_progress", interrupt)
+    path = tmp_path / "coulomb.toml"
+    path.write_text(SCENE.replace("threshold = 0.2", "mu = 0.3"))
+    assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 130
+    assert one_error_line(capsys, "tribo: interrupted") == "tribo: interrupted\n"
+
+
+class PanicException(BaseException):
+    """Stands for pyo3's PanicException, which derives from BaseException, not Exception."""
+
+
+@pytest.mark.parametrize("exception", [RuntimeError("boom"), PanicException("boom")])
+def test_cli_internal_errors_give_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch, exception: BaseException
+) -> None:
+    import tribo.cli
+
+    def fail(*args: object) -> None:
+        raise exception
+
+    monkeypatch.setattr(tribo.cli, "write_contact_csv", fail)
+    path = tmp_path / "good.toml"
+    path.write_text(SCENE)
+    assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 2
+    line = one_error_line(capsys, "tribo: internal error: ")
+    assert f"{type(exception).__name__}: boom (please report it)" in line

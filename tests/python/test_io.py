@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 import meshio
@@ -125,3 +126,109 @@ def test_contact_csv(tmp_path: Path, hertz: tribo.Problem) -> None:
     assert list(table["state"]) == s.state_names
     nodes = np.genfromtxt(paths[1], delimiter=",", names=True)
     np.testing.assert_allclose(nodes["slip"], s.slip)
+
+
+def test_unreadable_files_raise_mesh_error(tmp_path: Path, capfd: pytest.CaptureFixture[str]) -> None:
+    """D16: meshio calls sys.exit(1) when no reader accepts a file (and loops forever on a blank TetGen
+    file); read_mesh raises MeshError naming the file, and meshio's own output does not leak."""
+    cases = [("text.msh", "hello\n"), ("empty.msh", ""), ("text.vtu", "1 2 3\n"), ("empty.ele", ""), ("blank.node", "\n \n")]
+    for name, content in cases:
+        path = tmp_path / name
+        path.write_text(content)
+        with pytest.raises(tribo.MeshError, match=f"cannot read mesh file {path}") as info:
+            read_mesh(path)
+        assert info.value.kind == "UnreadableFile" and info.value.details == {"path": str(path)}
+    out = capfd.readouterr()
+    assert out.out == "" and out.err == ""
+
+
+def triangles_only(points: object, triangles: object) -> meshio.Mesh:
+    return meshio.Mesh(np.asarray(points, dtype=float), [("triangle", np.asarray(triangles))])
+
+
+@pytest.mark.parametrize(
+    ("triangles", "match"),
+    [
+        ([[0, 1, 2], [0, 2, -1]], "triangle 1 uses node -1, but the mesh has 4 nodes .* does not define"),
+        ([[0, 1, 2], [0, 2, 4]], "triangle 1 uses node 4, but the mesh has 4 nodes"),
+        ([[0, 1, 2], [0, 2, 2**40]], "triangle 1 uses node 1099511627776"),
+    ],
+)
+def test_meshio_node_index_out_of_range(triangles: list[list[int]], match: str) -> None:
+    """D17: −1 no longer wraps to the last node, and a large index is not an IndexError."""
+    with pytest.raises(tribo.MeshError, match=match) as info:
+        mesh_from_meshio(triangles_only([[0, 0], [1, 0], [1, 1], [0, 1]], triangles))
+    assert info.value.kind == "NodeIndexOutOfRange" and info.value.details["element"] == 1
+
+
+def test_meshio_line_index_out_of_range() -> None:
+    m = meshio.Mesh(
+        np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]),
+        [("triangle", np.array([[0, 1, 2], [0, 2, 3]])), ("line", np.array([[0, 1], [3, -1]]))],
+        cell_sets={"rim": [np.array([], dtype=int), np.array([0, 1])]},
+    )
+    with pytest.raises(tribo.MeshError, match="line 1 of edge set 'rim' uses node -1"):
+        mesh_from_meshio(m)
+
+
+def test_gmsh_node_tag_zero_is_refused(tmp_path: Path) -> None:
+    """D17: with node tags 0…5, meshio maps the elements' node 0 onto node 5 (the geometry point at (3, 3)):
+    the mesh overlaps itself, and solved to 'converged' before."""
+    lines, section = [], ""
+    for line in MSH22.splitlines():
+        section = line if line.startswith("$") else section
+        f = line.split()
+        if section == "$Nodes" and len(f) == 4:
+            f[0] = str(int(f[0]) - 1)
+        elif section == "$Elements" and len(f) > 3:
+            k = 3 + int(f[2])
+            f[k:] = [str(int(n) - 1) for n in f[k:]]
+        lines.append(" ".join(f))
+    path = tmp_path / "tag0.msh"
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(tribo.MeshError, match="triangles 2 and 3 overlap") as info:
+        read_mesh(path)
+    assert info.value.kind == "OverlappingTriangles" and f"in mesh file {path}" in info.value.__notes__
+
+
+def test_meshio_overlapping_triangles_are_refused() -> None:
+    # The folded mesh of D20: triangle 2 lies on triangle 0; turned counter-clockwise, both run from 0 to 1.
+    folded = triangles_only([[0, 0], [1, 0], [1, 1], [0, 1], [0.5, 0.5]], [[0, 1, 2], [0, 2, 3], [0, 1, 4]])
+    with pytest.raises(tribo.MeshError, match="triangles 0 and 2 overlap: both run from node 0 to node 1"):
+        mesh_from_meshio(folded)
+    # A fan that winds twice around its centre (six triangles of 120°): no edge is run twice the same way.
+    angles = np.radians(120.0 * np.arange(6))
+    ring = np.column_stack([np.cos(angles), np.sin(angles)]) * np.repeat([1.0, 2.0], 3)[:, None]
+    fan = [[6, k, (k + 1) % 6] for k in range(6)]
+    with pytest.raises(tribo.MeshError, match=r"around node 6 overlap: .* add up to 4π instead of 2π"):
+        mesh_from_meshio(triangles_only(np.vstack([ring, [[0.0, 0.0]]]), fan))
+
+
+def test_meshio_overlap_check_accepts_valid_meshes() -> None:
+    """No false alarm on strongly graded, far-from-the-origin meshes with mixed orientations."""
+    rng = np.random.default_rng(0)
+    for mesh in (
+        tribo.Mesh.graded_rectangle((-2, 2), (-2, 0), side="top", segment=(-0.01, 0.01), h_min=1e-5, h_max=0.5, growth=0.3),
+        tribo.Mesh.rectangle((1e6, 1e6 + 1e-3), (0.0, 1e-3), 20, 20, diagonal="alternating"),
+    ):
+        t = mesh.triangles.copy()
+        flip = rng.random(len(t)) < 0.5
+        t[flip] = t[flip][:, [0, 2, 1]]
+        again = mesh_from_meshio(triangles_only(mesh.points, t))
+        np.testing.assert_array_equal(np.sort(again.triangles, axis=1), np.sort(mesh.triangles, axis=1))
+
+
+def test_io_errors_carry_kind_and_details(tmp_path: Path) -> None:
+    """MeshErrors raised in Python have the kind and details the core's errors have."""
+    path = tmp_path / "square.msh"
+    path.write_text(MSH22)
+    quad = meshio.Mesh(np.zeros((4, 2)), [("quad", np.array([[0, 1, 2, 3]]))])
+    cases: list[tuple[Callable[[], object], str]] = [
+        (lambda: read_mesh(path, edge_sets={"contact": "lid"}), "UnknownEdgeSet"),
+        (lambda: mesh_from_meshio(quad), "EmptyMesh"),
+        (lambda: mesh_from_meshio(meshio.Mesh(np.zeros(3), [])), "BadInput"),
+    ]
+    for f, kind in cases:
+        with pytest.raises(tribo.MeshError) as info:
+            f()
+        assert info.value.kind == kind and isinstance(info.value.details, dict)
