@@ -100,7 +100,6 @@ def test_d6_nan_gap_at_contact_nodes_is_refused() -> None:
         tribo.Problem(block(), **KW, obstacle=gap, approach=0.01).solve()
 
 
-@pytest.mark.xfail(strict=True, reason="core defect D9: bounds far above the multipliers degrade the QP")
 @pytest.mark.parametrize("friction", [{"threshold": 1e5}, {"threshold": 1e6}, {"mu": 1e8}])
 def test_d9_large_friction_bounds_give_the_same_stick_solution(friction: dict[str, Any]) -> None:
     """All of Γ_C sticks (max |λ_t| ≈ 2) for every bound ≥ 3, so λ is one answer. The all-stick λ for

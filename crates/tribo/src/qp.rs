@@ -21,10 +21,13 @@
 //!
 //! # Scaling
 //! clarabel's tolerances are absolute as well as relative, so the QP is non-dimensionalised before it is
-//! handed over. The unknowns are `x = (ν_n / s, τ)` with `s = c_s / h_s` (`h_s = max diag H_nn`,
+//! handed over. The unknowns are `x = (ν_n / s, ν_t / w_t)` with `s = c_s / h_s` (`h_s = max diag H_nn`,
 //! `c_s = max |c_n|`, the size of λ_n for which the quadratic and linear terms balance) and
-//! `ν_t = diag(g) τ`, and the objective is divided by the largest diagonal entry of the resulting P. The
-//! scaled data are O(1) whatever the units of E and of lengths.
+//! `w_t,j = min(g_j, s_t)`, `s_t = max(s, c_st / h_st)` the natural size of λ_t (`c_st`, `h_st` as `c_s`,
+//! `h_s` on the tangential unknowns); the box is then `|x_t,j| ≤ g_j / w_t,j ≥ 1`. The objective is divided
+//! by the largest diagonal entry of the resulting P. The scaled data are O(1) whatever the units of E and
+//! of lengths, and a friction bound far above the multiplier it limits (a Tresca threshold of 1e6 where
+//! |λ_t| ≈ 2) only loosens the box instead of shrinking every tangential entry of P by g².
 
 use std::time::Instant;
 
@@ -38,9 +41,10 @@ use crate::settings::{QpMethod, QpSettings};
 /// The tolerance a QP falls back to when it fails at a tighter one.
 pub const FALLBACK_TOL: f64 = 1e-10;
 
-/// The scaling of the QP clarabel is handed: `x̃_i = x_i / w_i` (`w_i = s` on a normal unknown, the bound
-/// `g_j` on a tangential one) and the objective divided by `φ = max_i w_i² H_ii`. The active-set method
-/// certifies its answers in the same scaled units ([`crate::active_set`]).
+/// The scaling of the QP clarabel is handed (see the module documentation): `x̃_i = x_i / w_i` (`w_i = s`
+/// on a normal unknown, `min(g_j, s_t)` on a tangential one, 0 where the bound vanishes) and the objective
+/// divided by `φ = max_i w_i² H_ii`. The active-set method certifies its answers in the same scaled units
+/// ([`crate::active_set`]).
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Scaling {
     /// `w_i` per unknown.
@@ -60,12 +64,22 @@ impl Scaling {
         (c_s > 0.0 && h_s > 0.0).then(|| c_s / h_s)
     }
 
-    /// The scaling for the normal scale `s` and the tangential bounds (empty for a frictionless QP).
-    pub(crate) fn new(h: &[f64], q: usize, s: f64, bounds: &[f64]) -> Self {
+    /// The scaling for the normal scale `s`, the linear term `c` and the tangential bounds (empty for a
+    /// frictionless QP).
+    pub(crate) fn new(h: &[f64], c: &[f64], q: usize, s: f64, bounds: &[f64]) -> Self {
         let k = q + bounds.len();
-        let w: Vec<f64> = (0..k).map(|i| if i < q { s } else { bounds[i - q] }).collect();
+        let h_st = (q..k).map(|i| h[i * k + i]).fold(0.0, f64::max);
+        let c_st = c[q..].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let s_t = if h_st > 0.0 { s.max(c_st / h_st) } else { s };
+        let w: Vec<f64> = (0..k).map(|i| if i < q { s } else { bounds[i - q].min(s_t) }).collect();
         let phi = (0..k).map(|i| w[i] * w[i] * h[i * k + i]).fold(0.0, f64::max);
         Self { w, phi }
+    }
+
+    /// The scaled box of the tangential unknowns: `g_j / w_t,j` (1 where the bound vanishes, so that the
+    /// box keeps an interior).
+    pub(crate) fn tangential_box(&self, q: usize, bounds: &[f64]) -> Vec<f64> {
+        bounds.iter().zip(&self.w[q..]).map(|(b, w)| if *w > 0.0 { b / w } else { 1.0 }).collect()
     }
 }
 
@@ -103,9 +117,10 @@ pub struct QpOutcome {
 /// The box-constrained QP of P(g) (frictional) or of the frictionless problem, set up once; the
 /// tangential bounds g can be changed between solves.
 ///
-/// A frictional QP is written in the variables `(ν_n, τ)` with `ν_t = diag(g) τ`, `|τ| ≤ 1`: the box of τ
-/// always has an interior, even where g vanishes (separated dofs), which a box `−0 ≤ ν_t ≤ 0` would not
-/// have. Changing g then changes the values of P and q but not their pattern, so clarabel's set-up
+/// A frictional QP is written in the scaled variables `τ = ν_t / w_t` (see [`Scaling`]) with the box
+/// `|τ_j| ≤ g_j / w_t,j`, and `|τ_j| ≤ 1` where `g_j` vanishes (separated dofs, `w_t,j = 0`): the box always
+/// has an interior, which a box `−0 ≤ ν_t ≤ 0` would not have. Changing g then changes the values of P, q
+/// and b but not their pattern, so clarabel's set-up
 /// (symbolic factorization of its KKT matrix) is reused across the whole fixed point.
 pub struct BoxQp {
     solver: Option<DefaultSolver<f64>>,
@@ -208,7 +223,7 @@ impl BoxQp {
     fn setup(&self) -> Result<DefaultSolver<f64>> {
         let (q, frictional, settings) = (self.q, self.frictional, &self.settings);
         let k = if frictional { 2 * q } else { q };
-        let (p, qv) = self.scaled_data();
+        let (p, qv, b) = self.scaled_data();
         // Upper triangle of P in CSC.
         let mut colptr = Vec::with_capacity(k + 1);
         let mut rowval = Vec::with_capacity(k * (k + 1) / 2);
@@ -236,7 +251,6 @@ impl BoxQp {
             }
         }
         let a = CscMatrix::new(m, k, colptr, rowval, nzval);
-        let b: Vec<f64> = (0..m).map(|i| if i < q { 0.0 } else { 1.0 }).collect();
         let cs = clarabel_settings(settings);
         DefaultSolver::new(&p, &qv, &a, &b, &[NonnegativeConeT(m)], cs)
             .map_err(|e| Error::QpSetup { what: e.to_string() })
@@ -244,8 +258,13 @@ impl BoxQp {
 
     /// Values of the upper triangle of the scaled P (column by column) and the scaled q, for the current
     /// bounds: variables `x = (ν_n / s, τ)`, objective divided by the largest diagonal entry.
-    fn scaled_data(&self) -> (Vec<f64>, Vec<f64>) {
-        let Scaling { w, phi: f } = Scaling::new(&self.h, self.q, self.n_scale, &self.bounds);
+    fn scaled_data(&self) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let scaling = Scaling::new(&self.h, &self.c, self.q, self.n_scale, &self.bounds);
+        // Rows: −x_n ≤ 0, then x_t ≤ box, then −x_t ≤ box.
+        let tbox = scaling.tangential_box(self.q, &self.bounds);
+        let b: Vec<f64> =
+            std::iter::repeat_n(0.0, self.q).chain(tbox.iter().copied()).chain(tbox.iter().copied()).collect();
+        let Scaling { w, phi: f } = scaling;
         let k = w.len();
         let mut p = Vec::with_capacity(k * (k + 1) / 2);
         for j in 0..k {
@@ -254,7 +273,7 @@ impl BoxQp {
             }
         }
         let qv = (0..k).map(|i| w[i] * self.c[i] / f).collect();
-        (p, qv)
+        (p, qv, b)
     }
 
     /// Replaces the tangential bounds g (length q) without rebuilding the solver.
@@ -266,8 +285,9 @@ impl BoxQp {
         debug_assert!(self.frictional, "bug: bounds on a frictionless QP");
         check_thresholds(g, self.q)?;
         self.bounds.copy_from_slice(g);
-        let (p, qv) = self.scaled_data();
+        let (p, qv, b) = self.scaled_data();
         if let Some(solver) = self.solver.as_mut() {
+            solver.update_b(&b).map_err(|e| Error::QpSetup { what: format!("{e:?}") })?;
             solver.update_P(&p).map_err(|e| Error::QpSetup { what: format!("{e:?}") })?;
             solver.update_q(&qv).map_err(|e| Error::QpSetup { what: format!("{e:?}") })?;
         }
@@ -316,7 +336,8 @@ impl BoxQp {
             SolverStatus::Solved | SolverStatus::AlmostSolved => QpStatus::Inaccurate,
             s => QpStatus::Failed(status_name(s)),
         };
-        let nu = (0..k).map(|i| if i < q { sol.x[i] * self.n_scale } else { sol.x[i] * self.bounds[i - q] }).collect();
+        let w = Scaling::new(&self.h, &self.c, q, self.n_scale, &self.bounds).w;
+        let nu = (0..k).map(|i| sol.x[i] * w[i]).collect();
         QpOutcome {
             nu,
             status,

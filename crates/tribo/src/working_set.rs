@@ -188,7 +188,7 @@ impl<'a> WorkingSetQp<'a> {
             // Nothing pushes the body onto the obstacle: λ = 0 (as on clarabel's path).
             return Some(done(vec![0.0; c.len()], 0));
         };
-        let scaling = Scaling::new(op.matrix(), s, n_scale, &b);
+        let scaling = Scaling::new(op.matrix(), &c, s, n_scale, &b);
         let lo: Vec<f64> = (0..c.len()).map(|i| if i < s { 0.0 } else { -b[i - s] }).collect();
         let hi: Vec<f64> = (0..c.len()).map(|i| if i < s { f64::INFINITY } else { b[i - s] }).collect();
         let out = active_set::solve(op, &c, &Bounds { lo, hi }, start, &scaling, tol, max_iter);
