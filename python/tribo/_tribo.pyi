@@ -15,6 +15,7 @@ _Pair = tuple[float, float] | Sequence[float] | npt.NDArray[np.floating[Any]]
 __all__ = [
     "__version__",
     "STATE_NAMES",
+    "MAX_CELLS",
     "TriboError",
     "MeshError",
     "ContactGeometryError",
@@ -32,6 +33,7 @@ __all__ = [
 
 __version__: str
 STATE_NAMES: list[str]
+MAX_CELLS: int
 
 class TriboError(ValueError):
     """Base class of tribo's errors: bad input, never a numerical outcome (see Report.status)."""
@@ -142,6 +144,7 @@ class Problem:
         fp_tol: float = ...,
         fp_max_iter: int = ...,
         fp_relaxation: float = ...,
+        memory_budget: int = ...,
     ) -> Solution: ...
     @property
     def mesh(self) -> Mesh: ...
@@ -194,7 +197,9 @@ class Problem:
 @final
 class Report:
     @property
-    def status(self) -> Literal["converged", "max_iterations", "stagnated", "interrupted", "qp_failed"]: ...
+    def status(
+        self,
+    ) -> Literal["converged", "max_iterations", "stagnated", "interrupted", "qp_failed", "non_finite", "inaccurate"]: ...
     @property
     def converged(self) -> bool: ...
     @property

@@ -58,6 +58,7 @@ from typing import Any
 
 import numpy as np
 
+from tribo._tribo import MAX_CELLS as _MAX_CELLS
 from tribo._tribo import Mesh, Obstacle, Problem, Solution, TriboError, choices, solver_settings
 from tribo.io import read_mesh
 
@@ -225,7 +226,7 @@ SHAPE_KEYS = {"flat": (), "circle": ("radius", "center"), "parabola": ("radius",
 SHAPE_REQUIRED = {"flat": (), "circle": ("radius",), "parabola": ("radius",), "polyline": ("xi", "gap")}
 # The most cells (nx · ny) a uniform rectangle may have: the limit of the core's Mesh.rectangle, checked here
 # before nx and ny are rounded to integers (an absurd h would overflow the binding's conversion).
-MAX_CELLS = 20_000_000
+MAX_CELLS = _MAX_CELLS  # the core's limit (tribo.generate::MAX_CELLS)
 
 
 @dataclass

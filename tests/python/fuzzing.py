@@ -7,7 +7,7 @@ campaign (``TRIBO_FUZZ_EXAMPLES=2000 python -m pytest python/tests -k fuzz``).
 Reproducible. Examples are derandomized (a function of the test alone) and no example database is kept,
 so CI, a laptop and a rerun see the same inputs; a failure prints the input that caused it.
 
-The promise (issue 9). Whatever goes in, the outcome is one of: a ``tribo.TriboError``; a plain
+The promise (README.md, "What tribo guarantees"). Whatever goes in, the outcome is one of: a ``tribo.TriboError``; a plain
 ``TypeError`` where an argument has a wrong Python type; or a result, and if that result is a solution
 whose status is ``converged``, every field it reports is finite.
 """

@@ -72,8 +72,8 @@ def test_generator_errors() -> None:
     raises(tribo.MeshError, "BadGenerator", lambda: tribo.Mesh.graded_rectangle((0, 1), (0, 1), **{**g, "h_min": -1.0}))  # type: ignore[arg-type]
     raises(tribo.MeshError, "BadGenerator", lambda: tribo.Mesh.graded_rectangle((0, 1), (0, 1), **{**g, "segment": (0.5, 2.0)}))  # type: ignore[arg-type]
     raises(tribo.MeshError, "UnknownChoice", lambda: tribo.Mesh.graded_rectangle((0, 1), (0, 1), **{**g, "side": "middle"}))  # type: ignore[arg-type]
-    with pytest.raises(OverflowError):  # a negative count is a Python-level conversion error, not a panic
-        tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), -1, 2)
+    raises(tribo.MeshError, "BadInput", lambda: tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), -1, 2), "nx = -1")
+    raises(tribo.MeshError, "BadInput", lambda: tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 2, 2**70), "ny")
 
 
 def test_problem_mesh_level_errors() -> None:
@@ -232,3 +232,53 @@ def test_no_panic_on_garbage() -> None:
         except BaseException as e:  # noqa: BLE001 - the point is to see every kind
             assert type(e).__name__ != "PanicException", e
             assert isinstance(e, Exception)
+
+
+@pytest.mark.parametrize("exc", [KeyboardInterrupt, SystemExit])
+def test_interrupts_in_a_gap_function_propagate_unchanged(exc: type[BaseException]) -> None:
+    """D7: KeyboardInterrupt or SystemExit raised inside a gap function is not turned into a TriboError."""
+
+    def gap(xi: float) -> float:
+        raise exc()
+
+    with pytest.raises(exc):
+        hertz_problem(obstacle=gap)
+
+
+def test_gap_function_errors_belong_to_their_thread() -> None:
+    """D8: two threads share one Obstacle.function; the failures of one never reach the other."""
+    import threading
+
+    def gap(xi: float) -> float:
+        if threading.current_thread().name == "failing":
+            raise RuntimeError("thread A's failure")
+        return xi * xi / 2.0
+
+    obstacle = tribo.Obstacle.function(gap)
+    mesh = tribo.Mesh.rectangle((-2.0, 2.0), (-1.0, 0.0), 8, 2)
+    leaked: list[BaseException] = []
+    failures = 0
+
+    def good() -> None:
+        for _ in range(40):
+            try:
+                tribo.Problem(mesh, young=200.0, poisson=0.3, clamped="bottom", contact="top", obstacle=obstacle, approach=0.01).solve()
+            except BaseException as e:  # noqa: BLE001 - any exception here is the leak under test
+                leaked.append(e)
+
+    def bad() -> None:
+        nonlocal failures
+        for _ in range(40):
+            try:
+                tribo.Problem(mesh, young=200.0, poisson=0.3, clamped="bottom", contact="top", obstacle=obstacle, approach=0.01)
+            except tribo.ContactGeometryError as e:
+                assert isinstance(e.__cause__, RuntimeError)
+                failures += 1
+
+    threads = [threading.Thread(target=good, name="good"), threading.Thread(target=bad, name="failing")]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not leaked, leaked[:3]
+    assert failures == 40

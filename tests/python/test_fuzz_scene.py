@@ -1,4 +1,4 @@
-"""Fuzzing the scene loader and ``tribo run`` (issue 9, D14/D15).
+"""Fuzzing the scene loader and ``tribo run`` (fuzzing report D14/D15).
 
 Budget: about 1 600 examples in all by default; ``TRIBO_FUZZ_EXAMPLES=N`` runs N per test (fuzzing.py says
 how). The promise checked: loading a scene gives a Scene or a TriboError (SceneError is one); ``tribo run``

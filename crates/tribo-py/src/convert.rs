@@ -68,6 +68,18 @@ pub fn indices(obj: &Bound<'_, PyAny>, what: &str, expected: &[Option<usize>], e
         return Err(err(format!("{what} must hold integers (node indices), got dtype {dtype}")));
     }
     check_shape(&shape, expected, what, err)?;
+    if kind == "u" {
+        // Unsigned: read as u64 so that a huge index is reported as it is (not wrapped to a negative one).
+        let arr = arr.call_method1("astype", ("uint64",))?;
+        let arr = arr.cast::<PyArrayDyn<u64>>().map_err(|e| err(format!("{what}: {e}")))?;
+        let view = arr.readonly();
+        return view
+            .as_array()
+            .iter()
+            .enumerate()
+            .map(|(k, &v)| usize::try_from(v).map_err(|_| err(format!("{what}: entry {k} is {v}, too large an index"))))
+            .collect();
+    }
     let arr = arr.call_method1("astype", ("int64",))?;
     let arr = arr.cast::<PyArrayDyn<i64>>().map_err(|e| err(format!("{what}: {e}")))?;
     let view = arr.readonly();

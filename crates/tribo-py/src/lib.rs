@@ -96,6 +96,7 @@ fn _tribo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("STATE_NAMES", ContactState::names())?;
+    m.add("MAX_CELLS", tribo::generate::MAX_CELLS)?;
     m.add("TriboError", py.get_type::<errors::TriboError>())?;
     m.add("MeshError", py.get_type::<errors::MeshError>())?;
     m.add("ContactGeometryError", py.get_type::<errors::ContactGeometryError>())?;

@@ -65,10 +65,16 @@ impl PyMesh {
         py: Python<'_>,
         x: &Bound<'_, PyAny>,
         y: &Bound<'_, PyAny>,
-        nx: usize,
-        ny: usize,
+        nx: &Bound<'_, PyAny>,
+        ny: &Bound<'_, PyAny>,
         diagonal: Option<&str>,
     ) -> PyResult<Self> {
+        let count = |v: &Bound<'_, PyAny>, name: &str| -> PyResult<usize> {
+            let n: i64 =
+                v.extract().map_err(|_| mesh_error(format!("{name} must be an integer cell count, got {v}")))?;
+            usize::try_from(n).map_err(|_| mesh_error(format!("{name} = {n} must be a positive cell count")))
+        };
+        let (nx, ny) = (count(nx, "nx")?, count(ny, "ny")?);
         let diagonal = diagonal.map_or(Ok(Diagonal::default()), Diagonal::parse).py_err()?;
         let (x, y) = (range(x, "x")?, range(y, "y")?);
         let inner = py.detach(|| tribo::rectangle(x, y, nx, ny, diagonal)).py_err()?;

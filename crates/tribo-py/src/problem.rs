@@ -1,10 +1,11 @@
 //! `Obstacle` and `Problem`: the contact problem, its set-up and its solve.
 
+use std::cell::RefCell;
 use std::ops::ControlFlow;
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
 use numpy::{PyArray1, PyArray2};
-use pyo3::exceptions::PyTypeError;
+use pyo3::exceptions::{PyException, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat};
 use tribo::{
@@ -25,8 +26,17 @@ fn settings_err(msg: String) -> PyErr {
     settings_error(msg)
 }
 
-/// The first exception raised by a Python gap function, kept until the core call returns.
-type ErrorSlot = Arc<Mutex<Option<PyErr>>>;
+thread_local! {
+    /// The first exception a Python gap function raised during the current core call on this thread,
+    /// kept until the call returns. Per thread, so that problems sharing one `Obstacle.function` in two
+    /// threads never see each other's exceptions (the core calls the gap function on the caller's thread).
+    static GAP_ERROR: RefCell<Option<PyErr>> = const { RefCell::new(None) };
+}
+
+/// Takes the exception a gap function raised on this thread, if any.
+fn take_gap_error() -> Option<PyErr> {
+    GAP_ERROR.with(|slot| slot.borrow_mut().take())
+}
 
 /// The shape of a rigid obstacle: the initial gap g0(ξ) ≥ 0 between Γ_C and the obstacle along the
 /// outward normal, ξ the abscissa on Γ_C. Build one with `flat`, `circle`, `parabola`, `polyline` or
@@ -36,45 +46,48 @@ pub struct PyObstacle {
     shape: ObstacleShape,
     kind: &'static str,
     repr: String,
-    /// Where a Python gap function leaves its exception (None for the built-in shapes).
-    slot: Option<ErrorSlot>,
 }
 
 impl PyObstacle {
-    fn checked(shape: ObstacleShape, kind: &'static str, repr: String, slot: Option<ErrorSlot>) -> PyResult<Self> {
+    fn checked(shape: ObstacleShape, kind: &'static str, repr: String) -> PyResult<Self> {
         tribo::Obstacle { shape: shape.clone(), ..Default::default() }.validate().py_err()?;
-        Ok(Self { shape, kind, repr, slot })
+        Ok(Self { shape, kind, repr })
     }
 
     fn from_callable(f: Py<PyAny>) -> PyResult<Self> {
-        let slot: ErrorSlot = Arc::new(Mutex::new(None));
-        let inner_slot = slot.clone();
         let repr = Python::attach(|py| f.bind(py).repr().map(|r| r.to_string()))?;
         // The core calls this during the Γ_C integration (with the GIL released): re-attach for the call.
         // A Python exception or a non-float result becomes NaN, which the core rejects as BadObstacle; the
-        // exception itself is kept and chained to that error.
+        // exception itself is kept (per thread) and chained to that error, or re-raised as it is for
+        // KeyboardInterrupt and SystemExit.
         let call = move |xi: f64| -> f64 {
             Python::attach(|py| match f.call1(py, (xi,)).and_then(|v| v.extract::<f64>(py)) {
                 Ok(g) => g,
                 Err(e) => {
-                    if let Ok(mut s) = inner_slot.lock() {
-                        s.get_or_insert(e);
-                    }
+                    GAP_ERROR.with(|slot| {
+                        slot.borrow_mut().get_or_insert(e);
+                    });
                     f64::NAN
                 }
             })
         };
         let shape = ObstacleShape::Function(GapFunction(Arc::new(call)));
-        Self::checked(shape, "function", format!("Obstacle.function({repr})"), Some(slot))
+        Self::checked(shape, "function", format!("Obstacle.function({repr})"))
     }
 }
 
-/// Takes the exception a Python gap function raised, if any, and chains it to `err`.
-fn chain_gap_error(py: Python<'_>, slot: &Option<ErrorSlot>, err: PyErr) -> PyErr {
-    if let Some(cause) = slot.as_ref().and_then(|s| s.lock().ok().and_then(|mut s| s.take())) {
-        err.set_cause(py, Some(cause));
+/// The exception to raise for a core error: the gap function's own exception if it was a
+/// KeyboardInterrupt or SystemExit (they must propagate unchanged), else `err` with that exception
+/// chained as its cause.
+fn chain_gap_error(py: Python<'_>, err: PyErr) -> PyErr {
+    match take_gap_error() {
+        Some(cause) if !cause.is_instance_of::<PyException>(py) => cause,
+        Some(cause) => {
+            err.set_cause(py, Some(cause));
+            err
+        }
+        None => err,
     }
-    err
 }
 
 #[pymethods]
@@ -82,7 +95,7 @@ impl PyObstacle {
     /// A flat obstacle touching Γ_C: g0 = 0.
     #[staticmethod]
     fn flat() -> PyResult<Self> {
-        Self::checked(ObstacleShape::Flat, "flat", "Obstacle.flat()".into(), None)
+        Self::checked(ObstacleShape::Flat, "flat", "Obstacle.flat()".into())
     }
 
     /// A rigid cylinder of radius R touching Γ_C at abscissa `center`: g0 = R − √(R² − (ξ − c)²).
@@ -90,7 +103,7 @@ impl PyObstacle {
     #[pyo3(signature = (radius, center = 0.0))]
     fn circle(radius: f64, center: f64) -> PyResult<Self> {
         let repr = format!("Obstacle.circle(radius={radius}, center={center})");
-        Self::checked(ObstacleShape::Circle { center, radius }, "circle", repr, None)
+        Self::checked(ObstacleShape::Circle { center, radius }, "circle", repr)
     }
 
     /// The parabolic (Hertz) approximation of a cylinder: g0 = (ξ − c)² / (2R).
@@ -98,7 +111,7 @@ impl PyObstacle {
     #[pyo3(signature = (radius, center = 0.0))]
     fn parabola(radius: f64, center: f64) -> PyResult<Self> {
         let repr = format!("Obstacle.parabola(radius={radius}, center={center})");
-        Self::checked(ObstacleShape::Parabola { center, radius }, "parabola", repr, None)
+        Self::checked(ObstacleShape::Parabola { center, radius }, "parabola", repr)
     }
 
     /// A polyline through (xi[k], gap[k]) (xi strictly increasing), constant beyond its ends.
@@ -107,7 +120,7 @@ impl PyObstacle {
         let xi = floats(xi, "polyline abscissae", &[None], geometry_err)?;
         let gap = floats(gap, "polyline gaps", &[None], geometry_err)?;
         let repr = format!("Obstacle.polyline(<{} points>)", xi.len());
-        Self::checked(ObstacleShape::Polyline { xi, gap }, "polyline", repr, None)
+        Self::checked(ObstacleShape::Polyline { xi, gap }, "polyline", repr)
     }
 
     /// Any Python callable gap(xi: float) -> float giving g0 at an abscissa of Γ_C. It is called
@@ -129,7 +142,7 @@ impl PyObstacle {
     /// The initial gap g0 at abscissae `xi` (a float or an array of floats).
     fn gap0<'py>(&self, py: Python<'py>, xi: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         let o = tribo::Obstacle { shape: self.shape.clone(), ..Default::default() };
-        let take = || self.slot.as_ref().and_then(|s| s.lock().ok().and_then(|mut s| s.take()));
+        take_gap_error();
         let ndim: usize = py.import("numpy")?.call_method1("ndim", (xi,))?.extract()?;
         let out = if ndim == 0 {
             let x = floats(xi, "xi", &[], geometry_err)?;
@@ -138,7 +151,7 @@ impl PyObstacle {
             let x = floats(xi, "xi", &[None], geometry_err)?;
             PyArray1::from_vec(py, x.iter().map(|&x| o.initial_gap(x)).collect()).into_any()
         };
-        match take() {
+        match take_gap_error() {
             Some(e) => Err(e),
             None => Ok(out),
         }
@@ -156,7 +169,6 @@ pub struct PyProblem {
     inner: tribo::Problem,
     mesh: Py<PyMesh>,
     obstacle: Py<PyObstacle>,
-    slot: Option<ErrorSlot>,
 }
 
 fn names(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<String>> {
@@ -306,10 +318,10 @@ impl PyProblem {
             multiplier_space: space.map_or(Ok(MultiplierSpace::default()), MultiplierSpace::parse).py_err()?,
         };
         let mesh_inner = mesh.get().inner.clone();
-        let slot = obs.slot.clone();
+        take_gap_error();
         let inner =
-            py.detach(|| tribo::Problem::new(mesh_inner, spec)).map_err(|e| chain_gap_error(py, &slot, to_pyerr(e)))?;
-        Ok(Self { inner, mesh, obstacle, slot })
+            py.detach(|| tribo::Problem::new(mesh_inner, spec)).map_err(|e| chain_gap_error(py, to_pyerr(e)))?;
+        Ok(Self { inner, mesh, obstacle })
     }
 
     /// Solves the problem; returns a Solution whose `report.status` says how the solve ended.
@@ -379,14 +391,9 @@ impl PyProblem {
             };
             problem.solve(&law, &settings, Some(&mut observe))
         });
-        let solution = result.map_err(|e| chain_gap_error(py, &self.slot, to_pyerr(e)))?;
+        let solution = result.map_err(to_pyerr)?;
         if let Some(e) = callback_error {
             return Err(e);
-        }
-        if let Some(e) = self.slot.as_ref().and_then(|s| s.lock().ok().and_then(|mut s| s.take())) {
-            let err = geometry_error("the gap function raised while the gap was evaluated at the nodes of Γ_C");
-            err.set_cause(py, Some(e));
-            return Err(err);
         }
         PySolution::new(solution)
     }

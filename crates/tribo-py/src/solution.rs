@@ -15,8 +15,9 @@ pub struct PyReport {
 
 #[pymethods]
 impl PyReport {
-    /// 'converged', 'max_iterations', 'stagnated', 'interrupted' (the progress callback returned False)
-    /// or 'qp_failed'.
+    /// 'converged', 'max_iterations', 'stagnated', 'interrupted' (the progress callback returned False),
+    /// 'qp_failed', 'non_finite' (a field overflowed) or 'inaccurate' (KKT residuals above what the
+    /// tolerances justify). Only 'converged' promises finite fields and small residuals.
     #[getter]
     fn status(&self) -> &'static str {
         self.inner.status.name()

@@ -22,20 +22,35 @@ pub struct Material {
 }
 
 impl Material {
-    /// Checks E > 0 and −1 < ν < 1/2 (both finite).
+    /// Checks E > 0 (a normal, not subnormal, float whose elasticity matrix is finite) and
+    /// −1 + √ε ≤ ν ≤ 1/2 − √ε/2.
+    ///
+    /// The margins are derived: with `1 − 2ν < √ε` the volumetric stiffness exceeds the shear stiffness
+    /// by more than 2/√ε ≈ 1.3e8, so the factorization of K loses every digit of the shear part (and the
+    /// method locks long before); `1 + ν < √ε` is the same for the bulk modulus near ν = −1.
     ///
     /// # Errors
     /// [`Error::BadMaterial`] naming the constant.
     pub fn validate(&self) -> Result<()> {
-        if !(self.young.is_finite() && self.young > 0.0) {
-            return Err(Error::BadMaterial {
-                what: format!("Young's modulus must be positive and finite, got {}", self.young),
-            });
+        let bad = |what: String| Err(Error::BadMaterial { what });
+        if !(self.young.is_normal() && self.young > 0.0) {
+            return bad(format!("Young's modulus must be positive, finite and not subnormal, got {:e}", self.young));
         }
-        if !(self.poisson.is_finite() && self.poisson > -1.0 && self.poisson < 0.5) {
-            return Err(Error::BadMaterial {
-                what: format!("Poisson's ratio must lie in (-1, 0.5) in plane strain, got {}", self.poisson),
-            });
+        let nu = self.poisson;
+        if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
+            return bad(format!("Poisson's ratio must lie in (-1, 0.5) in plane strain, got {nu}"));
+        }
+        let margin = f64::EPSILON.sqrt();
+        if 1.0 - 2.0 * nu < margin || 1.0 + nu < margin {
+            return bad(format!(
+                "Poisson's ratio {nu} is too close to {}: 1 − 2ν = {:.2e} and 1 + ν = {:.2e} must both be at least √ε = {margin:.2e}, or the stiffness loses all its digits",
+                if nu > 0.0 { "1/2" } else { "−1" },
+                1.0 - 2.0 * nu,
+                1.0 + nu
+            ));
+        }
+        if !self.elasticity_matrix().iter().all(|c| c.is_finite()) {
+            return bad(format!("Young's modulus {:e} overflows the elasticity matrix", self.young));
         }
         Ok(())
     }
@@ -47,10 +62,16 @@ impl Material {
         Matrix3::new(f * (1.0 - nu), f * nu, 0.0, f * nu, f * (1.0 - nu), 0.0, 0.0, 0.0, f * (1.0 - 2.0 * nu) / 2.0)
     }
 
-    /// Von Mises stress of a plane-strain stress state (σ_zz = ν (σ_xx + σ_yy)).
+    /// Von Mises stress of a plane-strain stress state (σ_zz = ν (σ_xx + σ_yy)), computed on the stresses
+    /// divided by the largest of them so that no square overflows.
     pub fn von_mises(&self, s: [f64; 3]) -> f64 {
-        let szz = self.poisson * (s[0] + s[1]);
-        (0.5 * ((s[0] - s[1]).powi(2) + (s[1] - szz).powi(2) + (szz - s[0]).powi(2)) + 3.0 * s[2] * s[2]).sqrt()
+        let m = s.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        if m == 0.0 || !m.is_finite() {
+            return if m == 0.0 { 0.0 } else { f64::NAN };
+        }
+        let [a, b, c] = s.map(|v| v / m);
+        let szz = self.poisson * (a + b);
+        m * (0.5 * ((a - b).powi(2) + (b - szz).powi(2) + (szz - a).powi(2)) + 3.0 * c * c).sqrt()
     }
 }
 

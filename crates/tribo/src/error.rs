@@ -66,6 +66,43 @@ pub enum Error {
         /// Second triangle.
         second: usize,
     },
+    /// Coordinates so large that a triangle's area or diameter overflows.
+    #[error("triangle {element}: its coordinates are too large for its area ({area:e}) and diameter² ({diameter_sq:e}) to be computed; rescale the mesh")]
+    CoordinatesTooLarge {
+        /// Triangle index.
+        element: usize,
+        /// The area computed.
+        area: f64,
+        /// The squared diameter computed.
+        diameter_sq: f64,
+    },
+    /// Two triangles lie on the same side of an edge (the same directed edge): they overlap, the mesh is
+    /// folded.
+    #[error("triangles {first} and {second} overlap: both have the edge {a} → {b} on the same side (a folded mesh)")]
+    OverlappingTriangles {
+        /// First triangle.
+        first: usize,
+        /// Second triangle.
+        second: usize,
+        /// Edge start node.
+        a: usize,
+        /// Edge end node.
+        b: usize,
+    },
+    /// An edge set lists an edge twice (a load on it would count twice).
+    #[error("edge set '{set}' lists the edge ({a}, {b}) twice (positions {first} and {second})")]
+    DuplicateEdge {
+        /// Name of the edge set.
+        set: String,
+        /// First position.
+        first: usize,
+        /// Second position.
+        second: usize,
+        /// First node.
+        a: usize,
+        /// Second node.
+        b: usize,
+    },
     /// An edge of an edge set is not an edge on the boundary of the mesh.
     #[error("edge {index} ({a}, {b}) of edge set '{set}' is not a boundary edge of the mesh")]
     NotABoundaryEdge {
@@ -118,6 +155,30 @@ pub enum Error {
         x: f64,
         /// y component.
         y: f64,
+    },
+    /// A piece of the body (triangles joined through edges) touches no clamped edge: it can move freely.
+    #[error("the piece of {triangles} triangles containing triangle {triangle} (node {node}) has no clamped edge: it can move freely, so the stiffness is singular (the mesh has {pieces} pieces joined through edges; pieces joined at a single node count as separate)")]
+    FloatingPiece {
+        /// A triangle of the piece.
+        triangle: usize,
+        /// A node of the piece.
+        node: usize,
+        /// Number of triangles in the piece.
+        triangles: usize,
+        /// Number of pieces of the mesh.
+        pieces: usize,
+    },
+    /// Every node of Γ_C is clamped: no multiplier can act.
+    #[error("every node of the contact boundary '{set}' is clamped: the contact conditions cannot act on it")]
+    ContactFullyClamped {
+        /// Edge set name.
+        set: String,
+    },
+    /// The solve's equilibrium residual shows a singular or nearly singular stiffness.
+    #[error("the stiffness is singular or nearly so: the equilibrium residual of the solution is {residual:.2e} (more than √ε); look for a mechanism or a material at its limits")]
+    SingularStiffness {
+        /// The relative equilibrium residual.
+        residual: f64,
     },
     /// No clamped edge: the elastic problem would be singular.
     #[error("no clamped edge set: the body must be clamped on a part of its boundary (Γ_D) of positive length")]
@@ -291,6 +352,16 @@ pub enum Error {
         /// Details from the factorization.
         what: String,
     },
+    /// A solve would need more memory for its dense parts than the budget allows.
+    #[error("{what} would need {needed:.3e} bytes, more than the memory budget of {budget:.3e} bytes (setting 'memory_budget')")]
+    MemoryBudget {
+        /// What would be allocated.
+        what: String,
+        /// Bytes it would need.
+        needed: f64,
+        /// The budget in bytes.
+        budget: f64,
+    },
     /// The QP solver refused the problem at setup.
     #[error("the QP solver could not be set up: {what}")]
     QpSetup {
@@ -438,6 +509,42 @@ impl Error {
                 (ErrorCategory::Solver, "NotPositiveDefinite", vec![("what", T(what.clone()))])
             }
             Self::QpSetup { what } => (ErrorCategory::Solver, "QpSetup", vec![("what", T(what.clone()))]),
+            Self::CoordinatesTooLarge { element, area, diameter_sq } => (
+                ErrorCategory::Mesh,
+                "CoordinatesTooLarge",
+                vec![("element", I(*element)), ("area", F(*area)), ("diameter_sq", F(*diameter_sq))],
+            ),
+            Self::OverlappingTriangles { first, second, a, b } => (
+                ErrorCategory::Mesh,
+                "OverlappingTriangles",
+                vec![("first", I(*first)), ("second", I(*second)), ("a", I(*a)), ("b", I(*b))],
+            ),
+            Self::DuplicateEdge { set, first, second, a, b } => (
+                ErrorCategory::Mesh,
+                "DuplicateEdge",
+                vec![("set", T(set.clone())), ("first", I(*first)), ("second", I(*second)), ("a", I(*a)), ("b", I(*b))],
+            ),
+            Self::FloatingPiece { triangle, node, triangles, pieces } => (
+                ErrorCategory::Settings,
+                "FloatingPiece",
+                vec![
+                    ("triangle", I(*triangle)),
+                    ("node", I(*node)),
+                    ("triangles", I(*triangles)),
+                    ("pieces", I(*pieces)),
+                ],
+            ),
+            Self::ContactFullyClamped { set } => {
+                (ErrorCategory::ContactGeometry, "ContactFullyClamped", vec![("set", T(set.clone()))])
+            }
+            Self::SingularStiffness { residual } => {
+                (ErrorCategory::Solver, "SingularStiffness", vec![("residual", F(*residual))])
+            }
+            Self::MemoryBudget { what, needed, budget } => (
+                ErrorCategory::Solver,
+                "MemoryBudget",
+                vec![("what", T(what.clone())), ("needed", F(*needed)), ("budget", F(*budget))],
+            ),
             Self::UnknownSetting { name, known } => (
                 ErrorCategory::Settings,
                 "UnknownSetting",

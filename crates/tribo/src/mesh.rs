@@ -2,8 +2,9 @@
 //!
 //! A [`Mesh`] is validated once, when it is built ([`Mesh::new`]); everything downstream may then rely on
 //! its invariants: finite coordinates, indices in range, every triangle counter-clockwise with an area
-//! that is not negligible next to its squared diameter, every node used, no duplicate triangle, and every
-//! edge of a named set lying on the boundary.
+//! that is not negligible next to its squared diameter, every node used, no duplicate triangle, no two
+//! triangles overlapping along an edge (a directed edge used twice: a folded mesh), and every edge of a
+//! named set lying on the boundary, once.
 
 use std::collections::{BTreeMap, HashMap};
 
@@ -65,6 +66,9 @@ impl Mesh {
         let mut used = vec![false; n];
         let mut seen: HashMap<[usize; 3], usize> = HashMap::with_capacity(triangles.len());
         let mut edge_count: HashMap<[usize; 2], (usize, usize)> = HashMap::with_capacity(2 * triangles.len());
+        // Each directed edge (p → q of a counter-clockwise triangle) may occur once: two triangles on the
+        // same side of an edge overlap.
+        let mut directed: HashMap<[usize; 2], usize> = HashMap::with_capacity(3 * triangles.len());
         for (element, tri) in triangles.iter().enumerate() {
             for &node in tri {
                 if node >= n {
@@ -74,6 +78,9 @@ impl Mesh {
             let [a, b, c] = tri.map(|i| points[i]);
             let area = signed_area(a, b, c);
             let diameter_sq = dist2(a, b).max(dist2(b, c)).max(dist2(c, a));
+            if !(area.is_finite() && diameter_sq.is_finite()) {
+                return Err(Error::CoordinatesTooLarge { element, area, diameter_sq });
+            }
             if area.abs() <= DEGENERATE_REL * diameter_sq {
                 return Err(Error::DegenerateTriangle { element, area, diameter_sq });
             }
@@ -89,6 +96,10 @@ impl Mesh {
             for local in 0..3 {
                 used[tri[local]] = true;
                 let (p, q) = (tri[(local + 1) % 3], tri[(local + 2) % 3]);
+                if let Some(&first) = directed.get(&[p, q]) {
+                    return Err(Error::OverlappingTriangles { first, second: element, a: p, b: q });
+                }
+                directed.insert([p, q], element);
                 let e = [p.min(q), p.max(q)];
                 edge_count.entry(e).and_modify(|v| v.1 += 1).or_insert((element, 1));
             }
@@ -102,9 +113,13 @@ impl Mesh {
             if edges.is_empty() {
                 return Err(Error::EmptyEdgeSet { name: set.clone() });
             }
+            let mut seen = HashMap::with_capacity(edges.len());
             for (index, &[a, b]) in edges.iter().enumerate() {
                 if !boundary.contains_key(&[a.min(b), a.max(b)]) {
                     return Err(Error::NotABoundaryEdge { set: set.clone(), index, a, b });
+                }
+                if let Some(first) = seen.insert([a.min(b), a.max(b)], index) {
+                    return Err(Error::DuplicateEdge { set: set.clone(), first, second: index, a, b });
                 }
             }
         }

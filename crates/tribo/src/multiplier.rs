@@ -22,6 +22,17 @@ pub enum MultiplierSpace {
 
 named_choice!(MultiplierSpace, "multiplier space", { MultiplierSpace::P0 => "P0", MultiplierSpace::P1 => "P1" });
 
+/// Largest number of points of T_H: far more than any contact boundary needs, small enough that the
+/// vectors of T_H cost at most a few hundred MB (the dense parts of the solve have their own budget,
+/// [`crate::SolverSettings::memory_budget`]).
+pub const MAX_MULTIPLIER_POINTS: usize = 1_000_000;
+
+fn too_many(count: f64) -> Error {
+    Error::BadMultiplierMesh {
+        what: format!("{count:.3e} points asked for, more than the limit of {MAX_MULTIPLIER_POINTS}"),
+    }
+}
+
 /// How the points of T_H are given.
 #[derive(Debug, Clone, PartialEq)]
 pub enum MultiplierPoints {
@@ -82,7 +93,11 @@ impl MultiplierMesh {
                 if !(h.is_finite() && *h > 0.0) {
                     return Err(Error::BadMultiplierMesh { what: format!("size H must be positive, got {h}") });
                 }
-                let n = ((end - start) / h * (1.0 - tol)).ceil().max(1.0) as usize;
+                let count = ((end - start) / h * (1.0 - tol)).ceil().max(1.0);
+                if count.is_nan() || count >= MAX_MULTIPLIER_POINTS as f64 {
+                    return Err(too_many(count + 1.0));
+                }
+                let n = count as usize;
                 (0..=n).map(|k| if k == n { end } else { start + (end - start) * k as f64 / n as f64 }).collect()
             }
             MultiplierPoints::RatioToFe(r) => from_ratio(&contact.node_xi, *r)?,
@@ -173,6 +188,11 @@ fn from_ratio(fe: &[f64], r: f64) -> Result<Vec<f64>> {
     }
     let tol = geometric_tol_rel();
     let n = fe.len() - 1;
+    // Points of T_H: about n / r.
+    let count = n as f64 / r + 1.0;
+    if count.is_nan() || count >= MAX_MULTIPLIER_POINTS as f64 {
+        return Err(too_many(count));
+    }
     let k = r.round();
     let inv = (1.0 / r).round();
     if (r - k).abs() <= tol * r && k >= 1.0 {

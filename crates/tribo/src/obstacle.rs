@@ -117,8 +117,11 @@ impl Obstacle {
         }
     }
 
-    /// Initial gap `g₀(ξ)`.
+    /// Initial gap `g₀(ξ)` (NaN at a non-finite abscissa).
     pub fn initial_gap(&self, xi: f64) -> f64 {
+        if !xi.is_finite() {
+            return f64::NAN;
+        }
         match &self.shape {
             ObstacleShape::Flat => 0.0,
             ObstacleShape::Circle { center, radius } => {

@@ -80,6 +80,8 @@ pub struct Problem {
     pub f_free: Vec<f64>,
     /// Full load vector (all 2N dofs), for reactions.
     pub f_full: Vec<f64>,
+    /// The gap `g = g₀ − δ` at the FE nodes of Γ_C (in the order of `contact.nodes`).
+    pub contact_gap: Vec<f64>,
     /// σ_n(v), σ_t(v) on each contact edge as linear forms of the unknowns.
     pub contact_stress: ContactStress,
     /// Admissible bound on γ0 and the triangle that sets it.
@@ -198,11 +200,22 @@ impl Problem {
         for (set, g) in &spec.tractions {
             add_traction(&mesh, mesh.edge_set(set)?, *g, &mut f_full);
         }
+        if let Some(d) = f_full.iter().position(|v| !v.is_finite()) {
+            return Err(Error::NonFiniteLoad {
+                target: format!("the assembled load at dof {d}"),
+                x: f_full[d],
+                y: f64::NAN,
+            });
+        }
+        check_supported(&mesh, &clamped_edges)?;
         let f_free = restrict(&free, &f_full, n_free);
         let k_free: Vec<_> = stiffness_triplets(&mesh, &spec.material)
             .into_iter()
             .filter_map(|t| Some(Triplet::new(free[t.row]?, free[t.col]?, t.val)))
             .collect();
+        if let Some(t) = k_free.iter().find(|t| !t.val.is_finite()) {
+            return Err(Error::Assembly { matrix: "K", what: format!("entry ({}, {}) is {}", t.row, t.col, t.val) });
+        }
         let k_matrix = SparseColMat::try_new_from_triplets(n_free, n_free, &k_free)
             .map_err(|e| Error::Assembly { matrix: "K", what: format!("{e:?}") })?;
         drop(k_free);
@@ -212,6 +225,8 @@ impl Problem {
 
         let clock = Instant::now();
         let contact = ContactBoundary::new(&mesh, &spec.contact)?;
+        // The gap at the nodes of Γ_C: every value the solver and its results use is checked.
+        let contact_gap = contact.node_xi.iter().map(|&xi| spec.obstacle.gap(xi)).collect::<Result<Vec<f64>>>()?;
         let contact_edges: std::collections::HashSet<[usize; 2]> =
             contact.edges.iter().map(|e| [e.left.min(e.right), e.left.max(e.right)]).collect();
         for e in &contact.edges {
@@ -231,6 +246,9 @@ impl Problem {
                 }
             }
         }
+        if contact.nodes.iter().all(|&node| free[2 * node].is_none() && free[2 * node + 1].is_none()) {
+            return Err(Error::ContactFullyClamped { set: spec.contact.clone() });
+        }
         let multipliers = MultiplierMesh::new(&contact, &spec.multiplier_points, spec.multiplier_space)?;
         let h_t: Vec<f64> = contact.edges.iter().map(|e| mesh.diameter(e.triangle)).collect();
         let mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &spec.obstacle)?;
@@ -249,6 +267,7 @@ impl Problem {
             symbolic,
             f_free,
             f_full,
+            contact_gap,
             contact_stress,
             gamma0_bound,
             timings: SetupTimings { assembly, contact_matrices },
@@ -316,6 +335,55 @@ impl Problem {
     /// Expands a vector of free dofs to all 2N dofs (zeros on clamped dofs).
     pub fn expand(&self, x: &[f64]) -> Vec<f64> {
         self.free.iter().map(|s| s.map_or(0.0, |i| x[i])).collect()
+    }
+}
+
+/// Every piece of the mesh (triangles joined through edges) must touch a clamped edge: a piece without
+/// support, or joined to the rest at a single node, can move freely and makes K singular.
+fn check_supported(mesh: &Mesh, clamped_edges: &std::collections::HashSet<[usize; 2]>) -> Result<()> {
+    let n = mesh.n_triangles();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn root(parent: &mut [usize], mut t: usize) -> usize {
+        while parent[t] != t {
+            parent[t] = parent[parent[t]];
+            t = parent[t];
+        }
+        t
+    }
+    let mut owner: std::collections::HashMap<[usize; 2], usize> = std::collections::HashMap::with_capacity(2 * n);
+    for (t, tri) in mesh.triangles().iter().enumerate() {
+        for local in 0..3 {
+            let (a, b) = (tri[local], tri[(local + 1) % 3]);
+            if let Some(&other) = owner.get(&[a.min(b), a.max(b)]) {
+                let (ra, rb) = (root(&mut parent, t), root(&mut parent, other));
+                parent[ra] = rb;
+            } else {
+                owner.insert([a.min(b), a.max(b)], t);
+            }
+        }
+    }
+    let mut supported = vec![false; n];
+    for edge in clamped_edges {
+        if let Some(&t) = owner.get(edge) {
+            let r = root(&mut parent, t);
+            supported[r] = true;
+        }
+    }
+    let mut size = vec![0usize; n];
+    for t in 0..n {
+        let r = root(&mut parent, t);
+        size[r] += 1;
+    }
+    let pieces = (0..n).filter(|&t| parent[t] == t).count();
+    match (0..n).find(|&t| {
+        let r = root(&mut parent, t);
+        !supported[r]
+    }) {
+        Some(t) => {
+            let r = root(&mut parent, t);
+            Err(Error::FloatingPiece { triangle: t, node: mesh.triangles()[t][0], triangles: size[r], pieces })
+        }
+        None => Ok(()),
     }
 }
 

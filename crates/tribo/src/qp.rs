@@ -55,13 +55,17 @@ pub(crate) struct Scaling {
 
 impl Scaling {
     /// The normal scale `s = c_s / h_s` (`h_s = max diag H_nn`, `c_s = max |c_n|`) of a QP with `q` normal
-    /// unknowns, or `None` when nothing pushes the body onto the obstacle (`c_n = 0`) or `H_nn` vanishes:
-    /// λ = 0 solves such a QP.
+    /// unknowns; where nothing pushes normally (`c_n = 0`) but the tangential term does (a Tresca
+    /// threshold with a shift), the same ratio over all unknowns. `None` only when `c = 0` (or H has no
+    /// positive diagonal): λ = 0 solves such a QP.
     pub(crate) fn normal_scale(h: &[f64], c: &[f64], q: usize) -> Option<f64> {
         let k = c.len();
-        let h_s = (0..q).map(|i| h[i * k + i]).fold(0.0, f64::max);
-        let c_s = c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        (c_s > 0.0 && h_s > 0.0).then(|| c_s / h_s)
+        let ratio = |range: std::ops::Range<usize>| {
+            let h_s = range.clone().map(|i| h[i * k + i]).fold(0.0, f64::max);
+            let c_s = c[range].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            (c_s > 0.0 && h_s > 0.0).then(|| c_s / h_s)
+        };
+        ratio(0..q).or_else(|| ratio(0..k))
     }
 
     /// The scaling for the normal scale `s`, the linear term `c` and the tangential bounds (empty for a
@@ -110,7 +114,8 @@ pub struct QpOutcome {
     pub seconds: f64,
     /// The method that produced the answer: [`QpMethod::Clarabel`] or [`QpMethod::ActiveSet`].
     pub method: QpMethod,
-    /// True when the active-set method was tried first and could not certify its answer.
+    /// True when the first method tried did not answer (the active-set method could not certify, or
+    /// clarabel failed under [`QpMethod::Auto`]) and the other one did.
     pub fallback: bool,
 }
 
@@ -212,7 +217,7 @@ impl BoxQp {
             bounds: bounds.map_or_else(Vec::new, <[f64]>::to_vec),
         };
         if n_scale.is_none() {
-            // Nothing pushes the body onto the obstacle (c_n = 0): λ_n = 0, hence λ_t = 0, solves P(g).
+            // Nothing pushes at all (c = 0): λ = 0 solves P(g).
             return Ok(qp);
         }
         qp.solver = Some(qp.setup()?);

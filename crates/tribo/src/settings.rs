@@ -136,7 +136,7 @@ impl FixedPointSettings {
 }
 
 /// All solver settings.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolverSettings {
     /// γ0. Default: half of the admissible bound.
     pub stabilization: Stabilization,
@@ -144,6 +144,20 @@ pub struct SolverSettings {
     pub qp: QpSettings,
     /// The Coulomb fixed point.
     pub fp: FixedPointSettings,
+    /// Bytes the dense parts of a solve (columns of H, the dense QP) may take. A solve that would need
+    /// more is refused with [`Error::MemoryBudget`], which gives the size. Default 4 GiB.
+    pub memory_budget: usize,
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        Self {
+            stabilization: Stabilization::default(),
+            qp: QpSettings::default(),
+            fp: FixedPointSettings::default(),
+            memory_budget: 4 << 30,
+        }
+    }
 }
 
 impl SolverSettings {
@@ -153,7 +167,9 @@ impl SolverSettings {
     /// [`Error::BadSetting`], [`Error::BadSettingValue`].
     pub fn validate(&self) -> Result<()> {
         self.qp.validate()?;
-        self.fp.validate()
+        self.fp.validate()?;
+        let b = self.memory_budget;
+        check_setting("memory_budget", b as f64, b >= 1 << 20, "must be at least 1 MiB (1048576 bytes)")
     }
 }
 
@@ -335,6 +351,7 @@ settings_table! {
     "fp_tol" => fp.tol: f64;
     "fp_max_iter" => fp.max_iter: usize;
     "fp_relaxation" => fp.relaxation: f64;
+    "memory_budget" => memory_budget: usize;
 }
 
 #[cfg(test)]

@@ -32,11 +32,17 @@ pub enum SolveStatus {
         /// clarabel's status.
         reason: &'static str,
     },
+    /// The solve ran to its end but a reported field or residual is not finite (an overflow).
+    NonFinite,
+    /// The solve ran to its end but its KKT residuals exceed what the tolerances justify
+    /// ([`Solution::accuracy_bound`]).
+    Inaccurate,
 }
 
 impl SolveStatus {
     /// The names of the statuses, as [`SolveStatus::name`] gives them.
-    pub const NAMES: [&'static str; 5] = ["converged", "max_iterations", "stagnated", "interrupted", "qp_failed"];
+    pub const NAMES: [&'static str; 7] =
+        ["converged", "max_iterations", "stagnated", "interrupted", "qp_failed", "non_finite", "inaccurate"];
 
     /// The status's name (without its data): one of [`SolveStatus::NAMES`].
     pub fn name(&self) -> &'static str {
@@ -46,6 +52,8 @@ impl SolveStatus {
             Self::Stagnated => "stagnated",
             Self::Interrupted { .. } => "interrupted",
             Self::QpFailed { .. } => "qp_failed",
+            Self::NonFinite => "non_finite",
+            Self::Inaccurate => "inaccurate",
         }
     }
 }
@@ -98,7 +106,9 @@ pub struct Timings {
 /// Discrete KKT residuals of (3.1) at the returned solution, each made dimensionless.
 ///
 /// With `r = E u − d − Dγ λ` (the discrete, stabilized gap and slip: `r_n ≤ 0` is non-penetration),
-/// `Λ = max(max λ_n, Condensed::lambda_scale)` and `R = max(|E u|, |d|)` (the scale of the gaps):
+/// `Λ = max(‖λ‖∞, Factor::lambda_scale, ‖bound‖∞)` (the size of the multipliers, tangential ones and a
+/// Tresca threshold included) and `R = max(‖E‖ ‖u‖, ‖d‖, ‖Dγ λ‖)` (∞-norms; the size of the
+/// terms of r, so that its round-off is ε R). A residual whose numerator vanishes is 0 whatever its scale:
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct KktResiduals {
     /// `‖A u + Eᵀ λ − f‖_∞ / max(‖f‖_∞, ‖Eᵀ λ‖_∞)`: the equation of (3.1).
@@ -161,7 +171,8 @@ pub struct Report {
     pub qp_iterations: Vec<u32>,
     /// The method that answered each QP ([`QpMethod::Clarabel`] or [`QpMethod::ActiveSet`]).
     pub qp_methods: Vec<QpMethod>,
-    /// How many QPs the active-set method could not certify, so that clarabel answered them.
+    /// How many QPs the first method tried did not answer, so that the other one did (see
+    /// [`crate::QpOutcome::fallback`]).
     pub qp_fallbacks: usize,
     /// How many of those QPs met only [`crate::qp::FALLBACK_TOL`] (1e-10), not `qp.tol`: their λ is
     /// determined to about `FALLBACK_TOL · κ(H)` instead of `qp.tol · κ(H)`.
@@ -269,13 +280,12 @@ impl Solution {
         let shift = problem.spec.obstacle.shift;
         let mut u_n = Vec::with_capacity(contact.nodes.len());
         let mut slip = Vec::with_capacity(contact.nodes.len());
-        let mut gap = Vec::with_capacity(contact.nodes.len());
-        for (&node, &xi) in contact.nodes.iter().zip(&contact.node_xi) {
+        for &node in &contact.nodes {
             let (ux, uy) = (displacement[2 * node], displacement[2 * node + 1]);
             u_n.push(ux * n[0] + uy * n[1]);
             slip.push(ux * t[0] + uy * t[1] - shift);
-            gap.push(problem.spec.obstacle.gap(xi).unwrap_or(f64::NAN));
         }
+        let gap = problem.contact_gap.clone();
         let max_penetration = u_n.iter().zip(&gap).map(|(u, g)| nan_max(u - g, 0.0)).fold(0.0, nan_max);
         let w = &problem.mortar.psi_integrals;
         let normal_force = lambda_n.iter().zip(w).map(|(l, w)| l * w).sum();
@@ -320,9 +330,53 @@ impl Solution {
         }
     }
 
+    /// The largest KKT residual a converged solve may report: `max(√tol, fp_tol)`, `tol` the QP tolerance
+    /// the QPs met (`FALLBACK_TOL` if any met only that). An interior-point answer's complementarity is
+    /// about `tol`, and at most `√tol` where the QP is degenerate; Coulomb's law holds at the fixed point
+    /// to its stopping tolerance.
+    pub fn accuracy_bound(qp_tol: f64, qp_inaccurate: usize, fp_tol: f64) -> f64 {
+        let reached = if qp_inaccurate > 0 { qp_tol.max(crate::qp::FALLBACK_TOL) } else { qp_tol };
+        reached.sqrt().max(fp_tol)
+    }
+
+    /// True when every field, total and residual is finite.
+    pub fn all_finite(&self) -> bool {
+        let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
+        [
+            &self.displacement,
+            &self.von_mises,
+            &self.reactions,
+            &self.lambda_n,
+            &self.lambda_t,
+            &self.friction_threshold,
+            &self.sigma_n,
+            &self.sigma_t,
+            &self.u_n,
+            &self.slip,
+            &self.gap,
+            &self.report.residual_history,
+        ]
+        .into_iter()
+        .all(|v| finite(v))
+            && self.stress.iter().all(|s| finite(s))
+            && [self.normal_force, self.tangential_force, self.max_penetration, self.kkt.max()]
+                .iter()
+                .all(|x| x.is_finite())
+    }
+
     /// Displacement of node `i`.
     pub fn node_displacement(&self, i: usize) -> [f64; 2] {
         [self.displacement[2 * i], self.displacement[2 * i + 1]]
+    }
+}
+
+/// `num / den`, 0 when `num` is 0 (a residual that vanishes is 0 whatever its scale, even a vanishing
+/// one), NaN propagated.
+fn ratio(num: f64, den: f64) -> f64 {
+    if num == 0.0 {
+        0.0
+    } else {
+        num / den
     }
 }
 
@@ -332,23 +386,30 @@ fn kkt_residuals(problem: &Problem, c: &Factor, u: &[f64], lambda: &[f64], bound
     let etl = c.apply_et(lambda);
     let inf = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| nan_max(m, x.abs()));
     let res: Vec<f64> = au.iter().zip(&etl).zip(&problem.f_free).map(|((a, e), f)| a + e - f).collect();
-    let eq_scale = inf(&problem.f_free).max(inf(&etl)).max(f64::MIN_POSITIVE);
+    let eq_scale = inf(&problem.f_free).max(inf(&etl));
     let eu = c.apply_e(u);
     // r = E u − d − Dγ λ.
-    let r: Vec<f64> = eu.iter().zip(&c.d).zip(c.apply_d(lambda)).map(|((a, b), dl)| a - b - dl).collect();
-    let lam = inf(&lambda[..q]).max(c.lambda_scale()).max(f64::MIN_POSITIVE);
-    let gap_scale = inf(&eu).max(inf(&c.d)).max(f64::MIN_POSITIVE);
-    let mut k = KktResiduals { equilibrium: inf(&res) / eq_scale, ..Default::default() };
+    let dl = c.apply_d(lambda);
+    let r: Vec<f64> = eu.iter().zip(&c.d).zip(&dl).map(|((a, b), dl)| a - b - dl).collect();
+    // The scales: Λ the size of λ_n (never 0 when something pushes), R the size of the terms of r (its
+    // round-off is ε R): ‖E‖ ‖u‖ bounds ‖E u‖ and stays positive when the terms cancel.
+    let lam = inf(lambda).max(c.lambda_scale()).max(inf(bound));
+    let e_norm = c.e_rows.iter().map(|row| row.iter().map(|(_, v)| v.abs()).sum::<f64>()).fold(0.0, f64::max);
+    let gap_scale = (e_norm * inf(u)).max(inf(&c.d)).max(inf(&dl));
+    let mut k = KktResiduals { equilibrium: ratio(inf(&res), eq_scale), ..Default::default() };
+    // Positive parts and maxima propagate NaN (`f64::max` would drop it); products of two ratios never
+    // underflow to 0/0.
+    let pos = |x: f64| nan_max(x, 0.0);
     for j in 0..q {
-        let (ln, lt, rn, rt) = (lambda[j], lambda[q + j], r[j], r[q + j]);
-        // Positive parts and maxima propagate NaN (`f64::max` would drop it).
-        let pos = |x: f64| nan_max(x, 0.0);
-        k.normal_sign = nan_max(k.normal_sign, pos(-ln) / lam);
-        k.non_penetration = nan_max(k.non_penetration, pos(rn) / gap_scale);
-        k.normal_complementarity = nan_max(k.normal_complementarity, (ln * rn).abs() / (lam * gap_scale));
-        k.friction_bound = nan_max(k.friction_bound, pos(lt.abs() - bound[j]) / lam);
-        k.stick = nan_max(k.stick, pos(bound[j] - lt.abs()) * rt.abs() / (lam * gap_scale));
-        k.slip_direction = nan_max(k.slip_direction, pos(-lt * rt) / (lam * gap_scale));
+        let (ln, lt) = (ratio(lambda[j], lam), ratio(lambda[q + j], lam));
+        let (rn, rt) = (ratio(r[j], gap_scale), ratio(r[q + j], gap_scale));
+        let b = ratio(bound[j], lam);
+        k.normal_sign = nan_max(k.normal_sign, pos(-ln));
+        k.non_penetration = nan_max(k.non_penetration, pos(rn));
+        k.normal_complementarity = nan_max(k.normal_complementarity, (ln * rn).abs());
+        k.friction_bound = nan_max(k.friction_bound, pos(lt.abs() - b));
+        k.stick = nan_max(k.stick, pos(b - lt.abs()) * rt.abs());
+        k.slip_direction = nan_max(k.slip_direction, pos(-lt * rt));
     }
     k
 }

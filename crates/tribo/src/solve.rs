@@ -5,7 +5,7 @@
 use std::ops::ControlFlow;
 use std::time::Instant;
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::friction::Friction;
 use crate::problem::{Condensed, Problem};
 use crate::qp::{QpOutcome, QpStatus};
@@ -136,13 +136,14 @@ impl Condensed<'_> {
         match &friction {
             Friction::Frictionless | Friction::Coulomb { .. } => {
                 // Coulomb starts from the frictionless λ_n.
-                let out = WorkingSetQp::new(factor, None, &settings.qp, None)?.solve()?;
+                let out = WorkingSetQp::new(factor, None, &settings.qp, settings.memory_budget, None)?.solve()?;
                 phase.lambda[..q].copy_from_slice(&out.nu);
                 phase.record_single_qp(&out, &mut notify);
             }
             Friction::Tresca(_) => {
                 phase.bound = friction.tresca_bounds(q);
-                let out = WorkingSetQp::new(factor, Some(&phase.bound), &settings.qp, None)?.solve()?;
+                let out = WorkingSetQp::new(factor, Some(&phase.bound), &settings.qp, settings.memory_budget, None)?
+                    .solve()?;
                 phase.lambda.copy_from_slice(&out.nu);
                 phase.record_single_qp(&out, &mut notify);
             }
@@ -185,7 +186,23 @@ impl Condensed<'_> {
             reused_factorization: self.reused_factorization(),
             timings,
         };
-        Ok(Solution::new(problem, factor, &u, phase.lambda, threshold, settings.qp.tol, report))
+        let mut solution = Solution::new(problem, factor, &u, phase.lambda, threshold, settings.qp.tol, report);
+        // The equation of (3.1) is solved directly: a residual that lost half of the digits is a singular
+        // stiffness (a mechanism), not a numerical outcome of the contact solve.
+        let residual = solution.kkt.equilibrium;
+        if residual > f64::EPSILON.sqrt() {
+            return Err(Error::SingularStiffness { residual });
+        }
+        if solution.report.status == SolveStatus::Converged {
+            let bound = Solution::accuracy_bound(settings.qp.tol, solution.report.qp_inaccurate, settings.fp.tol);
+            if !solution.all_finite() {
+                solution.report.status = SolveStatus::NonFinite;
+            } else if solution.kkt.max() > bound {
+                log::warn!("KKT residual {:.2e} above what the tolerances justify ({bound:.2e})", solution.kkt.max());
+                solution.report.status = SolveStatus::Inaccurate;
+            }
+        }
+        Ok(solution)
     }
 
     fn fixed_point(
@@ -200,7 +217,8 @@ impl Condensed<'_> {
         let mut g: Vec<f64> = phase.lambda[..q].to_vec();
         let bound: Vec<f64> = g.iter().map(|v| mu * v.max(0.0)).collect();
         // Warm start: the frictionless λ_n with λ_t = 0.
-        let mut qp = WorkingSetQp::new(self.factor(), Some(&bound), &settings.qp, Some(&phase.lambda))?;
+        let mut qp =
+            WorkingSetQp::new(self.factor(), Some(&bound), &settings.qp, settings.memory_budget, Some(&phase.lambda))?;
         phase.status = SolveStatus::MaxIterations;
         let (mut best, mut since_best) = (f64::INFINITY, 0);
         for it in 1..=fp.max_iter {

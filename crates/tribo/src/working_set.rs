@@ -19,13 +19,14 @@
 //! [`QpMethod::Clarabel`] always uses clarabel; [`QpMethod::ActiveSet`] the active-set method
 //! ([`crate::active_set`]) from the previous answer (or from zero); [`QpMethod::Auto`] clarabel when there
 //! is no previous answer and the active-set method once there is one. An answer the active-set method
-//! cannot certify is solved again by clarabel, and [`QpOutcome::fallback`] says so.
+//! cannot certify is solved again by clarabel; under `Auto` a QP clarabel fails on is given to the
+//! active-set method; [`QpOutcome::fallback`] says when the second method answered.
 
 use std::time::Instant;
 
 use crate::active_set::{self, Bounds, DenseBlock};
 use crate::condensation::Factor;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::friction::check_thresholds;
 use crate::qp::{BoxQp, QpOutcome, QpStatus, Scaling};
 use crate::settings::{QpMethod, QpSettings};
@@ -45,6 +46,8 @@ pub struct WorkingSetQp<'a> {
     dense: Option<DenseBlock>,
     /// The previous answer (full size): the active-set method's start.
     last: Option<Vec<f64>>,
+    /// Bytes the dense parts may take.
+    budget: usize,
 }
 
 impl<'a> WorkingSetQp<'a> {
@@ -58,13 +61,23 @@ impl<'a> WorkingSetQp<'a> {
         condensed: &'a Factor,
         bounds: Option<&[f64]>,
         settings: &QpSettings,
+        budget: usize,
         start: Option<&[f64]>,
     ) -> Result<Self> {
         let q = condensed.q();
         let k = if bounds.is_some() { 2 * q } else { q };
         let last = start.map(|x| (0..k).map(|i| x.get(i).copied().unwrap_or(0.0)).collect());
-        let mut ws =
-            Self { condensed, q, bounds: None, settings: *settings, set: Vec::new(), qp: None, dense: None, last };
+        let mut ws = Self {
+            condensed,
+            q,
+            bounds: None,
+            settings: *settings,
+            set: Vec::new(),
+            qp: None,
+            dense: None,
+            last,
+            budget,
+        };
         if let Some(b) = bounds {
             check_thresholds(b, q)?;
             ws.bounds = Some(b.to_vec());
@@ -185,7 +198,7 @@ impl<'a> WorkingSetQp<'a> {
             fallback: false,
         };
         let Some(n_scale) = Scaling::normal_scale(op.matrix(), &c, s) else {
-            // Nothing pushes the body onto the obstacle: λ = 0 (as on clarabel's path).
+            // Nothing pushes at all (c = 0): λ = 0 (as on clarabel's path).
             return Some(done(vec![0.0; c.len()], 0));
         };
         let scaling = Scaling::new(op.matrix(), &c, s, n_scale, &b);
@@ -202,20 +215,52 @@ impl<'a> WorkingSetQp<'a> {
         out.certified.then(|| done(out.x, out.newton_steps + out.gradient_steps))
     }
 
+    /// Refuses a set whose dense parts exceed the budget: its columns of H (each 2q long), the dense QP
+    /// on it and clarabel's or the active-set method's copy and factor of it (about 4 k² values).
+    fn check_budget(&self) -> Result<()> {
+        let k = self.unknowns().len() as f64;
+        let needed = 8.0 * (k * self.condensed.e_rows.len() as f64 + 4.0 * k * k);
+        if needed > self.budget as f64 {
+            return Err(Error::MemoryBudget {
+                what: format!("the dense Γ_C QP over {k} multiplier unknowns (2q = {})", self.condensed.e_rows.len()),
+                needed,
+                budget: self.budget as f64,
+            });
+        }
+        Ok(())
+    }
+
     /// Solves the QP on the set with the method the settings ask for (see the module documentation).
     fn solve_on_set(&mut self) -> Result<QpOutcome> {
+        self.check_budget()?;
         let active = match self.settings.method {
             QpMethod::Clarabel => false,
             QpMethod::ActiveSet => true,
             QpMethod::Auto => self.last.is_some(),
         };
-        if !active {
-            return self.solve_clarabel();
-        }
         let start: Vec<f64> = match &self.last {
             Some(x) => self.unknowns().iter().map(|&i| x[i]).collect(),
             None => vec![0.0; self.unknowns().len()],
         };
+        if !active {
+            let out = self.solve_clarabel()?;
+            // Auto: a QP clarabel cannot solve (a friction bound 1e38 times the multiplier it limits, …)
+            // is given to the active-set method before the solve is declared failed.
+            if self.settings.method == QpMethod::Auto && matches!(out.status, QpStatus::Failed(_)) {
+                log::info!(
+                    "clarabel failed on a QP of {} dofs ({:?}): the active-set method tries",
+                    self.set.len(),
+                    out.status
+                );
+                if let Some(mut again) = self.solve_active_set(&start) {
+                    again.iterations += out.iterations;
+                    again.seconds += out.seconds;
+                    again.fallback = true;
+                    return Ok(again);
+                }
+            }
+            return Ok(out);
+        }
         if let Some(out) = self.solve_active_set(&start) {
             return Ok(out);
         }

@@ -220,3 +220,98 @@ fn indefinite_stabilized_stiffness_is_an_error() {
     let e = problem.condense(Stabilization::Unchecked(1e3 * problem.gamma0_bound.value)).expect_err("indefinite");
     assert!(matches!(e, Error::NotPositiveDefinite { .. }), "{e}");
 }
+
+/// The holes the fuzzing found (issue D-numbers in the comments): each is a typed error now, or an honest
+/// status.
+#[test]
+fn fuzzing_holes_are_typed_errors() {
+    let (p, t) = two_triangles();
+    // D13: an edge listed twice in a set would count its traction twice.
+    let e = Mesh::new(p.clone(), t.clone(), sets(&[("bottom", vec![[0, 1], [1, 0]])])).unwrap_err();
+    assert!(matches!(e, Error::DuplicateEdge { first: 0, second: 1, .. }), "{e}");
+    // D20: a folded mesh (two triangles on the same side of the edge 0 → 1).
+    let mut folded = p.clone();
+    folded.push([0.5, 0.5]);
+    let e = Mesh::new(folded, vec![[0, 1, 2], [0, 2, 3], [0, 1, 4]], sets(&[])).unwrap_err();
+    assert!(matches!(e, Error::OverlappingTriangles { first: 0, second: 2, a: 0, b: 1 }), "{e}");
+    // Coordinates whose area overflows (an inverted triangle would pass with a NaN area).
+    let huge: Vec<[f64; 2]> = p.iter().map(|q| [q[0] * 1e300, q[1] * 1e300]).collect();
+    assert!(matches!(Mesh::new(huge, t.clone(), sets(&[])).unwrap_err(), Error::CoordinatesTooLarge { .. }));
+    // D1, D19, D11: moduli outside the normal floats or overflowing C; ν within √ε of its limits.
+    for (young, poisson) in
+        [(1e-310, 0.3), (5e-324, 0.3), (1e308, 0.3), (1.0, 0.499_999_999_999_999), (1.0, -0.999_999_999_9)]
+    {
+        let s = ProblemSpec { material: Material { young, poisson }, ..spec() };
+        assert!(matches!(problem_err(square(), s), Error::BadMaterial { .. }), "E = {young:e}, ν = {poisson}");
+    }
+    // D10: a piece joined to the rest at one node moves freely.
+    let pts = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [2.0, 1.0], [2.0, 2.0], [1.0, 2.0]];
+    let tris = vec![[0, 1, 2], [0, 2, 3], [2, 4, 5], [2, 5, 6]];
+    let mesh = Mesh::new(pts, tris, sets(&[("bottom", vec![[0, 1]]), ("top", vec![[5, 6]])])).unwrap();
+    let s = ProblemSpec { clamped: vec!["bottom".into()], contact: "top".into(), ..spec() };
+    let e = problem_err(mesh, s);
+    assert!(matches!(e, Error::FloatingPiece { triangles: 2, pieces: 2, .. }), "{e}");
+    // D12: every node of Γ_C clamped.
+    let one = rectangle([0.0, 1.0], [0.0, 1.0], 1, 1, Diagonal::Right).unwrap();
+    let s = ProblemSpec { clamped: vec!["left".into(), "right".into()], contact: "top".into(), ..spec() };
+    assert!(matches!(problem_err(one, s), Error::ContactFullyClamped { .. }));
+    // D4: a load that overflows is refused, or (when only the solution overflows) reported non_finite.
+    let s = ProblemSpec { body_force: [f64::MAX, 0.0], ..spec() };
+    match Problem::new(square(), s) {
+        Err(e) => assert!(matches!(e, Error::NonFiniteLoad { .. }), "{e}"),
+        Ok(p) => {
+            let sol = p.solve(&Friction::Frictionless, &SolverSettings::default(), None).unwrap();
+            assert_ne!(sol.report.status, SolveStatus::Converged, "overflowing fields reported converged");
+        }
+    }
+    // D6: a gap function that is NaN only at the nodes of Γ_C.
+    let nodes: Vec<f64> = (0..=4).map(|i| i as f64 / 4.0).collect();
+    let gap = move |xi: f64| if nodes.iter().any(|x| (x - xi).abs() < 1e-12) { f64::NAN } else { 0.0 };
+    let obstacle = Obstacle { shape: ObstacleShape::Function(GapFunction(Arc::new(gap))), approach: 0.0, shift: 0.0 };
+    assert!(matches!(problem_err(square(), ProblemSpec { obstacle, ..spec() }), Error::BadObstacle { .. }));
+    // D2, D3: multiplier meshes too fine to build are refused before anything is allocated.
+    for points in [MultiplierPoints::RatioToFe(1e-20), MultiplierPoints::Size(1e-300), MultiplierPoints::Size(1e-12)] {
+        let e = problem_err(square(), ProblemSpec { multiplier_points: points.clone(), ..spec() });
+        assert!(matches!(e, Error::BadMultiplierMesh { .. }) && e.to_string().contains("e"), "{points:?}: {e}");
+    }
+    // D3: a dense QP beyond the memory budget is refused with the size it would need.
+    let fine = MultiplierPoints::Abscissae((0..=20_000).map(|i| i as f64 / 20_000.0).collect());
+    let problem = Problem::new(square(), ProblemSpec { multiplier_points: fine, ..spec() }).unwrap();
+    let settings = SolverSettings { memory_budget: 64 << 20, ..Default::default() };
+    match problem.solve(&Friction::Frictionless, &settings, None).unwrap_err() {
+        Error::MemoryBudget { needed, budget, .. } => assert!(needed > budget && budget == (64 << 20) as f64),
+        e => panic!("{e}"),
+    }
+}
+
+/// A Solution reports the gap, von Mises and KKT residuals that do not overflow or divide by a
+/// vanishing scale.
+#[test]
+fn results_stay_finite_at_the_limits() {
+    // D5: von Mises of huge stresses without overflow.
+    let m = Material { young: 1.0, poisson: 0.3 };
+    let v = m.von_mises([1e300, -1e300, 1e300]);
+    assert!(v.is_finite() && v > 1e300, "{v:e}");
+    assert_eq!(m.von_mises([0.0; 3]), 0.0);
+    // Nothing in contact: λ = 0, every residual 0 (it was NaN = 0/0).
+    let s = ProblemSpec { body_force: [0.0, 0.0], ..spec() };
+    let sol = Problem::new(square(), s).unwrap().solve(&Friction::Frictionless, &SolverSettings::default(), None);
+    let sol = sol.unwrap();
+    assert_eq!(sol.report.status, SolveStatus::Converged);
+    assert_eq!(sol.kkt.max(), 0.0, "{:?}", sol.kkt);
+    // A Tresca threshold 1e38 times the multiplier (a shift of 1e-39), nothing pushing normally: λ_t
+    // follows the shift. clarabel makes no progress on a box 1e38 times the answer (an honest qp_failed);
+    // the active-set method solves it, and under auto it takes over from clarabel.
+    let s =
+        ProblemSpec { body_force: [0.0, 0.0], obstacle: Obstacle { shift: 1e-39, ..Obstacle::default() }, ..spec() };
+    let problem = Problem::new(square(), s).unwrap();
+    for method in [QpMethod::Clarabel, QpMethod::ActiveSet, QpMethod::Auto] {
+        let settings = SolverSettings { qp: QpSettings { method, ..Default::default() }, ..Default::default() };
+        let sol = problem.solve(&Friction::Tresca(Threshold::Uniform(1.0)), &settings, None).unwrap();
+        if method == QpMethod::Clarabel && matches!(sol.report.status, SolveStatus::QpFailed { .. }) {
+            continue;
+        }
+        assert_eq!(sol.report.status, SolveStatus::Converged, "{method}: {:?}", sol.kkt);
+        assert!(sol.kkt.max() < 1e-6 && sol.lambda_t.iter().any(|l| *l != 0.0), "{method}: {:?}", sol.kkt);
+    }
+}
