@@ -68,6 +68,7 @@ def summary(scene: Scene, problem: Problem, solution: Solution, seconds: float) 
         "qp_iterations": r.qp_iterations.tolist(),
         "qp_methods": {m: r.qp_methods.count(m) for m in ("clarabel", "active_set")},
         "qp_fallbacks": r.qp_fallbacks,
+        "condensation": r.condensation,
         "qp_inaccurate": r.qp_inaccurate,
         "gamma0": r.gamma0,
         "gamma0_bound": r.gamma0_bound,

@@ -14,8 +14,8 @@ mod solution;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use tribo::{
-    Choice, ContactState, Diagonal, FrictionLaw, KktSolver, MultiplierPoints, MultiplierSpace, QpMethod, SettingKind,
-    SettingValue, Side, SolveStatus, SolverSettings, Stabilization,
+    Choice, Condensation, ContactState, Diagonal, FrictionLaw, KktSolver, MultiplierPoints, MultiplierSpace, QpMethod,
+    SettingKind, SettingValue, Side, SolveStatus, SolverSettings, Stabilization,
 };
 
 fn value<'py>(py: Python<'py>, v: &SettingValue) -> PyResult<Bound<'py, PyAny>> {
@@ -88,6 +88,7 @@ fn choices(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("status", SolveStatus::NAMES.to_vec())?;
     d.set_item("qp_kkt_solver", KktSolver::names())?;
     d.set_item("qp_method", QpMethod::names())?;
+    d.set_item("condensation", Condensation::names())?;
     Ok(d)
 }
 

@@ -80,7 +80,14 @@ impl PyReport {
         self.inner.qp_methods.iter().map(|m| m.as_str()).collect()
     }
 
-    /// How many QPs the active-set method could not certify (clarabel answered them).
+    /// How H was formed: 'columns' (one solve per column the QPs need) or 'schur' (all of it from a
+    /// partial factorization with the Γ_C dofs last).
+    #[getter]
+    fn condensation(&self) -> &'static str {
+        self.inner.condensation.as_str()
+    }
+
+    /// How many QPs the first method tried did not answer, so that the other one did.
     #[getter]
     fn qp_fallbacks(&self) -> usize {
         self.inner.qp_fallbacks

@@ -8,6 +8,9 @@ use tribo::*;
 /// The Hertz scene file.
 pub const HERTZ_SCENE: &str = include_str!("../../../python/tribo/scenes/hertz.toml");
 
+/// The block scene file (a contact zone along the whole bottom edge).
+pub const BLOCK_SCENE: &str = include_str!("../../../python/tribo/scenes/block.toml");
+
 /// The parameters of the Hertz scene that the tests and benches use.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HertzScene {
@@ -90,6 +93,30 @@ pub fn hertz_problem(
     space: MultiplierSpace,
 ) -> Problem {
     Problem::new(hertz_mesh(h_min), hertz_spec(approach, shift, points, space)).expect("valid Hertz problem")
+}
+
+/// The block scene on a uniform `nx × ny` mesh (right diagonals): the block pressed onto a flat foundation
+/// and dragged, with the friction coefficient of the scene file.
+pub fn block_problem(nx: usize, ny: usize) -> (Problem, f64) {
+    let t: toml::Table = BLOCK_SCENE.parse().expect("block.toml is valid TOML");
+    let n = |section: &str, key: &str| number(&t[section][key]);
+    assert_eq!(t["obstacle"]["shape"].as_str(), Some("flat"), "the block scene has a flat foundation");
+    let mesh = rectangle(pair(&t, "body", "x"), pair(&t, "body", "y"), nx, ny, Diagonal::Right).expect("valid");
+    let spec = ProblemSpec {
+        material: Material { young: n("material", "young"), poisson: n("material", "poisson") },
+        clamped: vec![t["supports"]["clamped"].as_str().expect("one set").to_string()],
+        body_force: [0.0, 0.0],
+        tractions: vec![],
+        contact: t["contact"]["edge_set"].as_str().expect("a set").to_string(),
+        obstacle: Obstacle {
+            shape: ObstacleShape::Flat,
+            approach: n("obstacle", "approach"),
+            shift: n("obstacle", "shift"),
+        },
+        multiplier_points: MultiplierPoints::RatioToFe(1.0),
+        multiplier_space: MultiplierSpace::P1,
+    };
+    (Problem::new(mesh, spec).expect("valid block problem"), n("friction", "mu"))
 }
 
 /// Plane-strain Hertz pressure for total force `p` (R, E, ν of the Hertz scene) and its half-width.

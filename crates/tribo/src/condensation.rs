@@ -18,9 +18,11 @@ use std::time::Instant;
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::sparse::{SparseColMat, Triplet};
-use faer::{Mat, Side};
+use faer::{Mat, MatMut, Par, Side};
 
 use crate::error::{Error, Result};
+use crate::schur::{self, SchurSymbolic};
+use crate::settings::Condensation;
 
 /// Number of right-hand sides solved together when forming `A⁻¹ Eᵀ`.
 const BLOCK: usize = 64;
@@ -32,13 +34,65 @@ struct Columns {
     seconds: f64,
 }
 
+/// The sparse Cholesky factorization of A, in one of two orderings.
+enum Direct {
+    /// Fill-reducing (AMD) ordering, the symbolic factorization of K's pattern: columns of H are solves.
+    Columns(Llt<usize, f64>),
+    /// The dofs E touches ordered last ([`crate::schur`]): all of `E A⁻¹ Eᵀ` from the trailing block.
+    Schur(schur::SchurFactor),
+}
+
+impl Direct {
+    fn solve_in_place(&self, x: MatMut<'_, f64>) -> Result<()> {
+        match self {
+            Self::Columns(llt) => {
+                llt.solve_in_place(x);
+                Ok(())
+            }
+            Self::Schur(f) => f.solve_in_place(x, Par::rayon(0)).map_err(schur_error),
+        }
+    }
+}
+
+fn schur_error(e: schur::Error) -> Error {
+    match e {
+        schur::Error::NotPositiveDefinite { dof } => {
+            Error::NotPositiveDefinite { what: format!("non-positive pivot at unknown {dof}") }
+        }
+        schur::Error::TooLarge { what, bytes } => Error::MemoryBudget {
+            what: format!("the partial factorization's {what}"),
+            needed: bytes as f64,
+            budget: f64::NAN,
+        },
+        schur::Error::InvalidInput(what) => Error::Assembly { matrix: "the Schur complement of A", what },
+    }
+}
+
+/// Whether the partial factorization is the cheaper way to H, and fits the memory budget: it forms all
+/// of `E A⁻¹ Eᵀ` (m = 2q rows) for about one factorization with a dense trailing block of `n_c ≈ 2m`
+/// dofs, against `≈ 4 nnz(L) m` flops for m column solves; with `nnz(L) ≈ 6 nnz(K)` on these meshes
+/// (measured 5.5–7) the partial factorization wins when `m² ≲ 3 nnz(L) ≈ 16 nnz(K)` (a square-ish body with
+/// contact along a side: m ~ √n). A long Γ_C with a small contact zone keeps the columns, of which the
+/// working set forms only those it needs.
+fn prefer_schur(nnz_k: usize, e_rows: &[Vec<(usize, f64)>], budget: usize) -> (bool, f64) {
+    let m = e_rows.len() as f64;
+    let mut touched: Vec<usize> = e_rows.iter().flatten().map(|&(d, _)| d).collect();
+    touched.sort_unstable();
+    touched.dedup();
+    let nc = touched.len() as f64;
+    let bytes = 8.0 * (nc * nc + nc * m + 2.0 * m * m);
+    (m * m <= 16.0 * nnz_k as f64 && bytes <= budget as f64, bytes)
+}
+
 /// The factorization of `A = K − G` for one γ0 and the condensed operators it defines: `E`, `Dγ`, `c`,
-/// `d` and the columns of H (computed on demand and kept).
+/// `d` and the columns of H (computed on demand and kept, or all at once by the partial factorization).
 pub struct Factor {
     /// The γ0 in use.
     pub gamma0: f64,
+    /// How H is formed (never [`Condensation::Auto`]: the choice made).
+    pub condensation: Condensation,
     /// Sparse Cholesky factor of A.
-    llt: Llt<usize, f64>,
+    direct: Direct,
     /// A as a sparse matrix (for residuals).
     a: SparseColMat<usize, f64>,
     /// Rows of E (2q sparse rows over the unknowns).
@@ -66,11 +120,13 @@ impl Factor {
     ///
     /// `e_rows` are the 2q rows of E over the unknowns, `d_gamma` the entries `(i, j, v)` of the q × q
     /// block Dγ (the same block acts on the normal and on the tangential multipliers), `f` the load and
-    /// `d` the obstacle moments (2q).
+    /// `d` the obstacle moments (2q). `condensation` chooses how H is formed ([`Condensation::Auto`]: the
+    /// partial factorization where it is cheaper and fits `budget` bytes, see [`crate::schur`]).
     ///
     /// # Errors
     /// [`Error::NotPositiveDefinite`] if the Cholesky factorization fails; [`Error::Assembly`] if `−G`
-    /// does not lie in the pattern of K.
+    /// does not lie in the pattern of K; [`Error::MemoryBudget`] if the partial factorization is asked
+    /// for and its dense parts exceed `budget`.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         k: &SparseColMat<usize, f64>,
@@ -81,6 +137,8 @@ impl Factor {
         f: &[f64],
         d: Vec<f64>,
         gamma0: f64,
+        condensation: Condensation,
+        budget: usize,
     ) -> Result<Self> {
         let clock = Instant::now();
         // A = K − G on K's pattern (G couples the dofs of one triangle, all present in K), factorized
@@ -100,23 +158,53 @@ impl Factor {
         }
         let pattern = pattern.to_owned().map_err(|e| Error::Assembly { matrix: "K − G", what: format!("{e:?}") })?;
         let a = SparseColMat::new(pattern, values);
-        let llt = Llt::try_new_with_symbolic(symbolic.clone(), a.as_ref(), Side::Lower)
-            .map_err(|e| Error::NotPositiveDefinite { what: format!("{e:?}") })?;
-        let factorization_seconds = clock.elapsed().as_secs_f64();
-
-        let clock = Instant::now();
-        let k = e_rows.len();
-        let q = k / 2;
+        let (auto, bytes) = prefer_schur(k.compute_nnz(), &e_rows, budget);
+        let use_schur = match condensation {
+            Condensation::Columns => false,
+            Condensation::Schur => true,
+            Condensation::Auto => auto,
+        };
+        if condensation == Condensation::Schur && bytes > budget as f64 {
+            return Err(Error::MemoryBudget {
+                what: "the partial factorization's dense trailing block and E A⁻¹ Eᵀ".to_string(),
+                needed: bytes,
+                budget: budget as f64,
+            });
+        }
+        let m = e_rows.len();
+        let q = m / 2;
         // Dγ by columns: for column j of block b, the rows i of the same block.
-        let mut d_cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); k];
+        let mut d_cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); m];
         for &(i, j, v) in &d_gamma {
             d_cols[j].push((i, v));
             d_cols[q + j].push((q + i, v));
         }
-        let u_f = solve(&llt, f);
+        let mut cols = vec![None; m];
+        let (direct, factorization_seconds, schur_seconds) = if use_schur {
+            let sym = SchurSymbolic::new(a.symbolic(), &e_rows).map_err(schur_error)?;
+            let factor = sym.factorize(a.as_ref(), Par::rayon(0)).map_err(schur_error)?;
+            let factorization_seconds = clock.elapsed().as_secs_f64();
+            let clock = Instant::now();
+            let s_e = factor.schur(&e_rows, Par::rayon(0)).map_err(schur_error)?;
+            for (j, col) in cols.iter_mut().enumerate() {
+                let mut h: Vec<f64> = (0..m).map(|i| s_e[(i, j)]).collect();
+                for &(r, v) in &d_cols[j] {
+                    h[r] += v;
+                }
+                *col = Some(h);
+            }
+            (Direct::Schur(factor), factorization_seconds, clock.elapsed().as_secs_f64())
+        } else {
+            let llt = Llt::try_new_with_symbolic(symbolic.clone(), a.as_ref(), Side::Lower)
+                .map_err(|e| Error::NotPositiveDefinite { what: format!("{e:?}") })?;
+            (Direct::Columns(llt), clock.elapsed().as_secs_f64(), 0.0)
+        };
+        let clock = Instant::now();
+        let u_f = solve(&direct, f)?;
         let c = e_rows.iter().zip(&d).map(|(row, di)| di - dot(row, &u_f)).collect();
-        let columns = Mutex::new(Columns { cols: vec![None; k], seconds: clock.elapsed().as_secs_f64() });
-        Ok(Self { gamma0, llt, a, e_rows, d_cols, c, d, columns, factorization_seconds })
+        let columns = Mutex::new(Columns { cols, seconds: schur_seconds + clock.elapsed().as_secs_f64() });
+        let condensation = if use_schur { Condensation::Schur } else { Condensation::Columns };
+        Ok(Self { gamma0, condensation, direct, a, e_rows, d_cols, c, d, columns, factorization_seconds })
     }
 
     /// Number of multiplier dofs per component.
@@ -156,7 +244,11 @@ impl Factor {
                         xb[(d, col)] = v;
                     }
                 }
-                self.llt.solve_in_place(xb.as_mut());
+                if let Err(e) = self.direct.solve_in_place(xb.as_mut()) {
+                    // Only the partial factorization's solve can fail (its workspace), and it never asks
+                    // for columns: they are all formed with it.
+                    log::error!("column solve failed: {e}");
+                }
                 for (col, &i) in chunk.iter().enumerate() {
                     let mut h: Vec<f64> =
                         self.e_rows.iter().map(|row| row.iter().map(|&(d, v)| v * xb[(d, col)]).sum()).collect();
@@ -195,14 +287,17 @@ impl Factor {
     }
 
     /// The displacement (free dofs) for multipliers λ (2q): `u = A⁻¹ (f − Eᵀ λ)`.
-    pub fn displacement(&self, f: &[f64], lambda: &[f64]) -> Vec<f64> {
+    ///
+    /// # Errors
+    /// [`Error::MemoryBudget`] if the solve's workspace cannot be allocated.
+    pub fn displacement(&self, f: &[f64], lambda: &[f64]) -> Result<Vec<f64>> {
         let mut rhs = f.to_vec();
         for (row, l) in self.e_rows.iter().zip(lambda) {
             for &(d, v) in row {
                 rhs[d] -= v * l;
             }
         }
-        solve(&self.llt, &rhs)
+        solve(&self.direct, &rhs)
     }
 
     /// `A x` (free dofs).
@@ -249,8 +344,8 @@ fn dot(row: &[(usize, f64)], x: &[f64]) -> f64 {
     row.iter().map(|&(d, v)| v * x[d]).sum()
 }
 
-fn solve(llt: &Llt<usize, f64>, b: &[f64]) -> Vec<f64> {
+fn solve(direct: &Direct, b: &[f64]) -> Result<Vec<f64>> {
     let mut x = Mat::<f64>::from_fn(b.len(), 1, |i, _| b[i]);
-    llt.solve_in_place(x.as_mut());
-    (0..b.len()).map(|i| x[(i, 0)]).collect()
+    direct.solve_in_place(x.as_mut())?;
+    Ok((0..b.len()).map(|i| x[(i, 0)]).collect())
 }

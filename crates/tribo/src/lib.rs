@@ -64,6 +64,7 @@ pub mod multiplier;
 pub mod obstacle;
 pub mod problem;
 pub mod qp;
+pub mod schur;
 pub mod settings;
 pub mod solution;
 pub mod solve;
@@ -83,7 +84,8 @@ pub use obstacle::{GapFunction, Obstacle, ObstacleShape};
 pub use problem::{Condensed, Problem, ProblemSpec};
 pub use qp::{QpOutcome, QpStatus};
 pub use settings::{
-    FixedPointSettings, KktSolver, QpMethod, QpSettings, SettingInfo, SettingKind, SettingValue, SolverSettings,
+    Condensation, FixedPointSettings, KktSolver, QpMethod, QpSettings, SettingInfo, SettingKind, SettingValue,
+    SolverSettings,
 };
 pub use solution::{ContactState, KktResiduals, Report, Solution, SolveStatus, Timings};
 pub use solve::{Observer, Progress};

@@ -21,6 +21,7 @@ use crate::mesh::Mesh;
 use crate::mortar::MortarMatrices;
 use crate::multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace};
 use crate::obstacle::Obstacle;
+use crate::settings::{Condensation, SolverSettings};
 use crate::stabilization::{admissible_gamma0, ContactStress, Gamma0Bound, Stabilization};
 
 /// Everything that defines a contact problem besides the mesh.
@@ -92,19 +93,19 @@ pub struct Problem {
     factor_cache: FactorCache,
 }
 
-/// A one-entry cache of the factorization, keyed by γ0. A clone of the problem shares the entry it had
-/// (the factorization depends only on the problem's data and γ0).
+/// A one-entry cache of the factorization, keyed by γ0 and the condensation asked for. A clone of the
+/// problem shares the entry it had (the factorization depends only on the problem's data and the key).
 #[derive(Default)]
-struct FactorCache(Mutex<Option<Arc<Factor>>>);
+struct FactorCache(Mutex<Option<(Condensation, Arc<Factor>)>>);
 
 impl FactorCache {
-    fn get(&self, gamma0: f64) -> Option<Arc<Factor>> {
+    fn get(&self, gamma0: f64, asked: Condensation) -> Option<Arc<Factor>> {
         let guard = self.0.lock().unwrap_or_else(PoisonError::into_inner);
-        guard.as_ref().filter(|f| f.gamma0.to_bits() == gamma0.to_bits()).cloned()
+        guard.as_ref().filter(|(c, f)| *c == asked && f.gamma0.to_bits() == gamma0.to_bits()).map(|(_, f)| f.clone())
     }
 
-    fn set(&self, factor: Arc<Factor>) {
-        *self.0.lock().unwrap_or_else(PoisonError::into_inner) = Some(factor);
+    fn set(&self, asked: Condensation, factor: Arc<Factor>) {
+        *self.0.lock().unwrap_or_else(PoisonError::into_inner) = Some((asked, factor));
     }
 }
 
@@ -116,7 +117,7 @@ impl Clone for FactorCache {
 
 impl std::fmt::Debug for FactorCache {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let gamma0 = self.0.lock().unwrap_or_else(PoisonError::into_inner).as_ref().map(|f| f.gamma0);
+        let gamma0 = self.0.lock().unwrap_or_else(PoisonError::into_inner).as_ref().map(|(_, f)| f.gamma0);
         f.debug_tuple("FactorCache").field(&gamma0).finish()
     }
 }
@@ -276,14 +277,30 @@ impl Problem {
     }
 
     /// Factorizes `A = K − G` for the γ0 that `stabilization` asks for and condenses onto the
-    /// multipliers, or takes the factorization of the previous call if it had the same γ0.
+    /// multipliers, or takes the factorization of the previous call if it had the same γ0; H is formed
+    /// as the default settings choose ([`Problem::condense_with`] chooses).
     ///
     /// # Errors
     /// [`Error::BadSetting`] / [`Error::Gamma0TooLarge`] for a bad γ0; [`Error::NotPositiveDefinite`] if
     /// `K − G` is not positive definite (only possible for [`Stabilization::Unchecked`] beyond the bound).
     pub fn condense(&self, stabilization: Stabilization) -> Result<Condensed<'_>> {
+        let d = SolverSettings::default();
+        self.condense_with(stabilization, d.condensation, d.memory_budget)
+    }
+
+    /// As [`Problem::condense`], with H formed as `condensation` asks within `memory_budget` bytes.
+    ///
+    /// # Errors
+    /// As [`Problem::condense`]; [`Error::MemoryBudget`] when the partial factorization is asked for and
+    /// does not fit.
+    pub fn condense_with(
+        &self,
+        stabilization: Stabilization,
+        condensation: Condensation,
+        memory_budget: usize,
+    ) -> Result<Condensed<'_>> {
         let gamma0 = self.gamma0_bound.resolve(stabilization)?;
-        if let Some(factor) = self.factor_cache.get(gamma0) {
+        if let Some(factor) = self.factor_cache.get(gamma0, condensation) {
             return Ok(Condensed { problem: self, factor, reused: true });
         }
         let minus_g = self.contact_stress.stiffness_triplets(&self.mortar, gamma0);
@@ -302,6 +319,8 @@ impl Problem {
             &self.f_free,
             self.obstacle_moments(),
             gamma0,
+            condensation,
+            memory_budget,
         )
         .map_err(|e| match e {
             Error::NotPositiveDefinite { what } => Error::NotPositiveDefinite {
@@ -310,7 +329,7 @@ impl Problem {
             e => e,
         })?;
         let factor = Arc::new(factor);
-        self.factor_cache.set(factor.clone());
+        self.factor_cache.set(condensation, factor.clone());
         Ok(Condensed { problem: self, factor, reused: false })
     }
 

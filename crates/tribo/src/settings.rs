@@ -55,6 +55,24 @@ named_choice!(QpMethod, "QP method", {
     QpMethod::ActiveSet => "active_set",
 });
 
+/// How the multiplier operator H is formed (see [`crate::condensation`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Condensation {
+    /// The partial factorization where it is the cheaper and fits the memory budget, else columns.
+    #[default]
+    Auto,
+    /// One sparse solve per column of H, for the columns the QPs need (a fill-reducing ordering).
+    Columns,
+    /// All of H from a partial factorization with the Γ_C dofs ordered last ([`crate::schur`]).
+    Schur,
+}
+
+named_choice!(Condensation, "condensation", {
+    Condensation::Auto => "auto",
+    Condensation::Columns => "columns",
+    Condensation::Schur => "schur",
+});
+
 /// Settings of the QP solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct QpSettings {
@@ -147,6 +165,8 @@ pub struct SolverSettings {
     /// Bytes the dense parts of a solve (columns of H, the dense QP) may take. A solve that would need
     /// more is refused with [`Error::MemoryBudget`], which gives the size. Default 4 GiB.
     pub memory_budget: usize,
+    /// How H is formed. Default [`Condensation::Auto`].
+    pub condensation: Condensation,
 }
 
 impl Default for SolverSettings {
@@ -156,6 +176,7 @@ impl Default for SolverSettings {
             qp: QpSettings::default(),
             fp: FixedPointSettings::default(),
             memory_budget: 4 << 30,
+            condensation: Condensation::default(),
         }
     }
 }
@@ -299,6 +320,7 @@ macro_rules! choice_field {
 }
 choice_field!(KktSolver);
 choice_field!(QpMethod);
+choice_field!(Condensation);
 
 /// The table of settings: flat name, field path, field type.
 macro_rules! settings_table {
@@ -352,6 +374,7 @@ settings_table! {
     "fp_max_iter" => fp.max_iter: usize;
     "fp_relaxation" => fp.relaxation: f64;
     "memory_budget" => memory_budget: usize;
+    "condensation" => condensation: Condensation;
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@ use crate::condensation::Factor;
 use crate::elasticity::{element_stresses, stiffness_triplets};
 use crate::friction::FrictionLaw;
 use crate::problem::Problem;
-use crate::settings::QpMethod;
+use crate::settings::{Condensation, QpMethod};
 
 /// How a solve ended. Not an error: a solve that did not converge still returns its last iterate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -184,6 +184,8 @@ pub struct Report {
     /// True when the factorization of `K − G` was reused from an earlier solve of the same problem with
     /// the same γ0 (the `factorization` timing is then that earlier one).
     pub reused_factorization: bool,
+    /// How H was formed: [`Condensation::Columns`] or [`Condensation::Schur`].
+    pub condensation: Condensation,
     /// Timings per phase.
     pub timings: Timings,
 }

@@ -156,7 +156,7 @@ impl Condensed<'_> {
         let condensation_during = factor.condensation_seconds() - condensation_before;
         let qp_total = clock.elapsed().as_secs_f64() - condensation_during;
         let clock = Instant::now();
-        let u = factor.displacement(&problem.f_free, &phase.lambda);
+        let u = factor.displacement(&problem.f_free, &phase.lambda)?;
         let recovery = clock.elapsed().as_secs_f64();
         let timings = Timings {
             assembly: problem.timings.assembly,
@@ -184,6 +184,7 @@ impl Condensed<'_> {
             gamma0: factor.gamma0,
             gamma0_bound: problem.gamma0_bound.value,
             reused_factorization: self.reused_factorization(),
+            condensation: factor.condensation,
             timings,
         };
         let mut solution = Solution::new(problem, factor, &u, phase.lambda, threshold, settings.qp.tol, report);
@@ -287,6 +288,7 @@ impl Problem {
     ) -> Result<Solution> {
         settings.validate()?;
         friction.validate(self.n_multipliers())?;
-        self.condense(settings.stabilization)?.solve_validated(friction, settings, observer)
+        self.condense_with(settings.stabilization, settings.condensation, settings.memory_budget)?
+            .solve_validated(friction, settings, observer)
     }
 }
