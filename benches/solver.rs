@@ -16,7 +16,12 @@
 //!   Coulomb solve is compared with), also at h_min = 0.04 so that every Coulomb size has its reference;
 //! - `admissible_gamma0`: the admissible bound on γ0 (a 3 × 3 eigenproblem per contact triangle);
 //! - `uniform_103k`: every phase on a uniform 320 × 160 mesh (103k unknowns): `Problem::new`,
-//!   `Problem::condense`, the whole Coulomb solve, and the Cholesky reference.
+//!   `Problem::condense`, the whole Coulomb solve, and the Cholesky reference;
+//! - `qp_method`: the whole Coulomb solve with clarabel for every QP against the default (the warm-started
+//!   active-set method), on a prebuilt condensation;
+//! - `block`: the block scene (`python/tribo/scenes/block.toml`, contact along the whole bottom edge) at
+//!   400 × 100 (80k unknowns) and 800 × 200 (320k): the whole Coulomb solve from a fresh factorization
+//!   (H from the partial factorization) and the Cholesky reference.
 //!
 //! The set-up prints, once per mesh, the numbers of unknowns (n_free) and of multiplier dofs (q), and the
 //! status of the Coulomb solves. `cargo bench --bench solver -- --test` runs every bench once.
@@ -33,10 +38,10 @@ use faer::sparse::SparseColMat;
 use faer::Mat;
 use tribo::mortar::MortarMatrices;
 use tribo::{
-    Friction, Grading, KktSolver, Mesh, MultiplierPoints, MultiplierSpace, Problem, ProblemSpec, Side, SolveStatus,
-    SolverSettings, Stabilization, Threshold,
+    Friction, Grading, KktSolver, Mesh, MultiplierPoints, MultiplierSpace, Problem, ProblemSpec, QpMethod, QpSettings,
+    Side, SolveStatus, SolverSettings, Stabilization, Threshold,
 };
-use tribo_testkit::{hertz_mesh, hertz_scene, hertz_spec};
+use tribo_testkit::{block_problem, hertz_mesh, hertz_scene, hertz_spec};
 
 /// Mesh sizes of the set-up, Tresca and KKT-solver groups.
 const SIZES: [f64; 3] = [0.02, 0.01, 0.005];
@@ -300,6 +305,57 @@ fn bench_uniform_103k(c: &mut Criterion) {
     group.finish();
 }
 
+fn bench_qp_method(c: &mut Criterion) {
+    let mut group = c.benchmark_group("qp_method");
+    configure_slow(&mut group, 5);
+    let friction = Friction::Coulomb { mu: MU };
+    for h_min in COULOMB_SIZES {
+        let s = scene(h_min, COULOMB_SHIFT);
+        let condensed = s.problem.condense(STABILIZATION).unwrap();
+        for method in [QpMethod::Clarabel, QpMethod::Auto] {
+            let settings = SolverSettings { qp: QpSettings { method, ..Default::default() }, ..Default::default() };
+            let sol = condensed.solve(&friction, &settings, None).unwrap();
+            assert_eq!(sol.report.status, SolveStatus::Converged, "{method} at h_min = {h_min}");
+            group.bench_with_input(BenchmarkId::new(method.to_string(), h_min), &condensed, |b, c| {
+                b.iter(|| c.solve(black_box(&friction), &settings, None).unwrap())
+            });
+        }
+    }
+    group.finish();
+}
+
+fn bench_block(c: &mut Criterion) {
+    let mut group = c.benchmark_group("block");
+    configure_slow(&mut group, 20);
+    for nx in [400usize, 800] {
+        let (problem, mu) = block_problem(nx, nx / 4);
+        let friction = Friction::Coulomb { mu };
+        let settings = SolverSettings::default();
+        let check = problem.solve(&friction, &settings, None).expect("solve");
+        eprintln!(
+            "[block {nx} x {}] n_free {} q {} Coulomb {} after {} iterations, H by {}",
+            nx / 4,
+            problem.n_free,
+            problem.n_multipliers(),
+            check.report.status,
+            check.report.iterations,
+            check.report.condensation
+        );
+        assert_eq!(check.report.status, SolveStatus::Converged);
+        group.bench_with_input(BenchmarkId::new("coulomb_solve", nx), &problem, |b, p| {
+            b.iter(|| {
+                p.forget_factorization();
+                p.solve(black_box(&friction), &settings, None).unwrap()
+            })
+        });
+        let k = problem.k_matrix.clone();
+        group.bench_with_input(BenchmarkId::new("cholesky_reference", nx), &k, |b, k| {
+            b.iter(|| cholesky_solve(black_box(k), &problem.f_free))
+        });
+    }
+    group.finish();
+}
+
 fn config() -> Criterion {
     Criterion::default().sample_size(10).warm_up_time(Duration::from_millis(500)).nresamples(20_000)
 }
@@ -308,6 +364,6 @@ criterion_group! {
     name = benches;
     config = config();
     targets = bench_mesh, bench_assembly, bench_condensation, bench_tresca, bench_coulomb, bench_qp_kkt_solver,
-        bench_cholesky_reference, bench_admissible_gamma0, bench_uniform_103k
+        bench_cholesky_reference, bench_admissible_gamma0, bench_uniform_103k, bench_qp_method, bench_block
 }
 criterion_main!(benches);

@@ -1,7 +1,8 @@
 """Study 4 — cost per phase against problem size, from docs/cost.csv.
 
 docs/cost.csv is written by the Rust example `cargo run --release -p tribo --example cost`; this script
-plots time against displacement unknowns (log–log) per phase, for uniform and graded meshes, fits the
+plots time against displacement unknowns (log–log) per phase, for the Hertz scene on uniform and graded
+meshes and the block scene, fits the
 exponent of each phase (least squares over the sizes where the phase takes ≥ 1 ms) and writes
 docs/cost.png and docs/cost.md.
 
@@ -29,7 +30,7 @@ def load(path: Path) -> list[dict[str, Any]]:
         rows = list(csv.DictReader(f))
     for r in rows:
         for k, v in r.items():
-            if k not in ("family", "friction", "status"):
+            if k not in ("family", "friction", "status", "condensation"):
                 r[k] = float(v)
     return rows
 
@@ -47,46 +48,58 @@ def rate_label(rate: float) -> str:
 def run(csv_path: Path, out: Path) -> dict[str, Any]:
     rows = load(csv_path)
     out.mkdir(parents=True, exist_ok=True)
-    groups = [(fam, fr) for fam in ("uniform", "graded") for fr in ("frictionless", "coulomb")
+    groups = [(fam, fr) for fam in ("uniform", "graded", "block") for fr in ("frictionless", "coulomb")
               if any(r["family"] == fam and r["friction"] == fr for r in rows)]
     fits: dict[tuple[str, str, str], float] = {}
     md = ["# Study 4: cost per phase\n\n",
-          "Hertz, P1, H = h, γ0 = 0.5 × bound, Coulomb μ = 0.3, shift 0.004, default settings (working-set QP). "
+          "Hertz (uniform and graded meshes; Coulomb μ = 0.3, shift 0.004) and the block dragged on a flat "
+          "foundation (uniform nx × nx/4; μ = 0.3, shift 0.008), P1, H = h, γ0 = 0.5 × bound, default settings "
+          "(the active-set QP method; H by columns or by the partial factorization, column `condensation`). "
           "Times in seconds on the 2-core development machine (other jobs may have run concurrently). "
           "Regenerate with `cargo run --release -p tribo --example cost && python scripts/plot_cost.py`.\n\n"
           "## Fitted exponents (time ∝ n^p over the sizes where a phase takes ≥ 1 ms)\n\n"]
     table = []
     for fam, fr in groups:
-        rs = [r for r in rows if r["family"] == fam and r["friction"] == fr and r["status"] == "Converged"]
+        rs = [r for r in rows if r["family"] == fam and r["friction"] == fr and r["status"] == "converged"]
         for key, _ in PHASES:
             fits[(fam, fr, key)] = exponent(rs, key)
         table.append([fam, fr] + [rate_label(fits[(fam, fr, k)]).removeprefix("n^") for k, _ in PHASES])
     md.append(sl.markdown_table(["mesh", "friction"] + [name for _, name in PHASES], table))
     md.append("\n## All runs\n\n")
     md.append(sl.markdown_table(
-        ["mesh", "h", "n", "q", "friction", "status", "iterations"] + [k for k, _ in PHASES] + ["total / Cholesky"],
-        [[r["family"], r["h"], int(r["n_free"]), int(r["q"]), r["friction"], r["status"], int(r["iterations"])]
-         + [r[k] for k, _ in PHASES] + [r["ratio"]] for r in rows]))
+        ["mesh", "h", "n", "q", "friction", "status", "iterations", "H by"] + [k for k, _ in PHASES]
+        + ["total / Cholesky"],
+        [[r["family"], r["h"], int(r["n_free"]), int(r["q"]), r["friction"], r["status"], int(r["iterations"]),
+          r["condensation"]] + [r[k] for k, _ in PHASES] + [r["ratio"]] for r in rows]))
     (out / "cost.md").write_text("".join(md))
 
     plt = sl.pyplot()
-    fig, axes = plt.subplots(1, len(groups), figsize=(4.6 * len(groups), 4.8), sharey=True, squeeze=False)
-    for ax, (fam, fr) in zip(axes[0], groups):
+    families = sorted({fam for fam, _ in groups}, key=["uniform", "graded", "block"].index)
+    frictions = sorted({fr for _, fr in groups}, key=["frictionless", "coulomb"].index)
+    fig, axes = plt.subplots(len(frictions), len(families), figsize=(5.2 * len(families), 4.4 * len(frictions)),
+                             sharey=True, squeeze=False)
+    for ax in axes.flat:
+        ax.set_visible(False)
+    for fam, fr in groups:
+        ax = axes[frictions.index(fr), families.index(fam)]
+        ax.set_visible(True)
         rs = [r for r in rows if r["family"] == fam and r["friction"] == fr]
         for (key, name), c in zip(PHASES, ["C0", "C1", "C2", "C3", "k", "C7"]):
             ax.plot([r["n_free"] for r in rs], [max(r[key], 1e-5) for r in rs], "o-" if key != "cholesky" else "s--",
                     color=c, ms=4, lw=2.2 if key == "total" else 1.2, label=f"{name}: {rate_label(fits[(fam, fr, key)])}")
-        bad = [r for r in rs if r["status"] != "Converged"]
+        bad = [r for r in rs if r["status"] != "converged"]
         ax.plot([r["n_free"] for r in bad], [r["total"] for r in bad], "rx", ms=10, mew=2,
                 label="not converged: " + ", ".join(sorted({r["status"] for r in bad})) if bad else None)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("displacement unknowns n")
-        ax.set_title(f"{fam} meshes, {fr}")
+        scene = "block on a foundation" if fam == "block" else f"Hertz, {fam} meshes"
+        ax.set_title(f"{scene}, {fr}")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7, loc="upper left")
-    axes[0, 0].set_ylabel("wall time  [s]")
-    fig.suptitle("Cost per phase, Hertz scene (fitted exponents over runs ≥ 1 ms, converged runs only)")
+    for row in axes:
+        row[0].set_ylabel("wall time  [s]")
+    fig.suptitle("Cost per phase (fitted exponents over runs ≥ 1 ms, converged runs only)")
     fig.tight_layout()
     fig.savefig(out / "cost.png", dpi=85)
     plt.close(fig)

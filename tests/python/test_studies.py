@@ -93,13 +93,14 @@ def test_convergence(tmp_path: Path) -> None:
 
 def test_plot_cost(tmp_path: Path) -> None:
     csv = tmp_path / "cost_in.csv"
-    lines = ["family,h,n_free,q,friction,status,iterations,problem_new,condensed,qp,recovery,total,cholesky,ratio"]
-    for fam in ("uniform", "graded"):
+    lines = ["family,h,n_free,q,friction,status,iterations,condensation,qp_active_set,qp_clarabel,"
+             "problem_new,condensed,qp,recovery,total,cholesky,ratio"]
+    for fam in ("uniform", "graded", "block"):
         for k, n in enumerate([1000, 4000, 16000]):
             for fr, it in (("frictionless", 0), ("coulomb", 6)):
                 t = 1e-3 * (n / 1000) ** 1.2
-                lines.append(f"{fam},{0.1 / 2**k},{n},{40 * 2**k},{fr},Converged,{it},{t},{2 * t},{t / 2},{t / 10},"
-                             f"{3.6 * t},{t},3.6")
+                lines.append(f"{fam},{0.1 / 2**k},{n},{40 * 2**k},{fr},converged,{it},columns,{it + 1},0,{t},{2 * t},"
+                             f"{t / 2},{t / 10},{3.6 * t},{t},3.6")
     csv.write_text("\n".join(lines) + "\n")
     res = study("plot_cost").main(["--csv", str(csv), "--out", str(tmp_path)])
     assert (tmp_path / "cost.png").is_file() and (tmp_path / "cost.md").is_file()

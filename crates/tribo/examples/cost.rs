@@ -1,22 +1,24 @@
-//! Cost per phase of a Coulomb solve on the Hertz scene, against one sparse Cholesky factorization + solve
-//! of K alone (the plain elastic solve a contact solve is compared with).
+//! Cost per phase of a Coulomb solve, against one sparse Cholesky factorization + solve of K alone (the
+//! plain elastic solve a contact solve is compared with).
 //!
-//! Scene: rigid cylinder R = 1 pushed δ = 0.01 into (−2, 2) × (−2, 0), clamped at the bottom, E = 200,
-//! ν = 0.3, Coulomb μ = 0.3 with an obstacle shift s = 0.004, P1 multipliers on T_H = the FE edges,
-//! γ0 = 0.5 × its admissible bound, default solver settings (working-set QP). Two mesh families:
-//! `uniform` (rectangle nx × nx/2, right diagonals) and `graded` (graded toward [−0.3, 0.3] on the top
-//! side, h_max = 0.5, growth 0.3).
+//! Scenes: Hertz (`python/tribo/scenes/hertz.toml`: rigid cylinder R = 1 pushed δ = 0.01 into
+//! (−2, 2) × (−2, 0), clamped at the bottom, E = 200, ν = 0.3, Coulomb μ = 0.3 with an obstacle shift
+//! s = 0.004) on two mesh families, `uniform` (rectangle nx × nx/2, right diagonals) and `graded` (graded
+//! toward [−0.3, 0.3] on the top side, h_max = 0.5, growth 0.3); and `block`
+//! (`python/tribo/scenes/block.toml`: a block (0, 4) × (0, 1) dragged on a flat foundation along its
+//! whole bottom edge, μ = 0.3), uniform nx × nx/4. P1 multipliers on T_H = the FE edges, γ0 = 0.5 × its
+//! admissible bound, default solver settings (the active-set QP method, H by columns or by the partial
+//! factorization as `condensation = auto` chooses; the CSV says which).
 //!
 //! For every mesh and friction law it prints and writes to `docs/cost.csv` the time of each phase (seconds):
 //! `problem_new` = [`Problem::new`] (assembly of K and the loads + Γ_C matrices), `condensed` =
-//! [`Condensed::new`] work (numeric factorization of K − G + condensation onto Γ_C, including the columns
-//! of H formed on demand by the QPs), `qp` (all QPs of the fixed point), `recovery`, the whole solve
+//! [`Problem::condense`] work (numeric factorization of K − G + condensation onto Γ_C, including the
+//! columns of H formed on demand by the QPs), `qp` (all QPs of the fixed point), `recovery`, the whole solve
 //! `total` (wall clock of `Problem::new` + `solve`), the Cholesky reference (symbolic + numeric sparse
 //! Cholesky of K + one solve, best of 3 at small sizes) and the ratio of the two.
 //!
 //! Every mesh is solved frictionless (one QP) and with Coulomb friction; the Coulomb solve is no longer
-//! timed on finer meshes of a family once it did not converge (100 fixed-point iterations: the plain
-//! fixed point stops converging on graded meshes with h_min ≤ 0.00125) or took more than MAX_SECONDS / 2.
+//! timed on finer meshes of a family once it did not converge or took more than MAX_SECONDS / 2.
 //!
 //! `cargo run --release -p tribo --example cost [MAX_SECONDS]`: a family stops growing once one solve
 //! took more than MAX_SECONDS (default 30), so the largest run stays under about a minute.
@@ -26,7 +28,26 @@ use std::time::Instant;
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 use tribo::*;
-use tribo_testkit::{hertz_mesh, hertz_scene, hertz_spec};
+use tribo_testkit::{block_problem, hertz_mesh, hertz_scene, hertz_spec};
+
+/// Builds a problem when called (the largest take seconds).
+type Build = Box<dyn Fn() -> Result<Problem>>;
+
+/// The problems of a family: the size parameter and the problem's builder.
+fn problems(family: &str) -> Vec<(f64, Build)> {
+    if family == "block" {
+        return [100usize, 200, 400, 800]
+            .iter()
+            .map(|&nx| -> (f64, Build) { (4.0 / nx as f64, Box::new(move || Ok(block_problem(nx, nx / 4).0))) })
+            .collect();
+    }
+    meshes(family)
+        .into_iter()
+        .map(|(h, mesh)| -> (f64, Box<dyn Fn() -> Result<Problem>>) {
+            (h, Box::new(move || Problem::new(mesh.clone(), spec())))
+        })
+        .collect()
+}
 
 /// One mesh of a family: its label, the size parameter and the mesh.
 fn meshes(family: &str) -> Vec<(f64, Mesh)> {
@@ -73,7 +94,7 @@ fn main() -> Result<()> {
     let mut csv = std::fs::File::create(&path).expect("docs/cost.csv is writable");
     writeln!(
         csv,
-        "family,h,n_free,q,friction,status,iterations,problem_new,condensed,qp,recovery,total,cholesky,ratio"
+        "family,h,n_free,q,friction,status,iterations,condensation,qp_active_set,qp_clarabel,problem_new,condensed,qp,recovery,total,cholesky,ratio"
     )
     .unwrap();
     println!(
@@ -93,11 +114,11 @@ fn main() -> Result<()> {
         "chol [s]",
         "ratio"
     );
-    for family in ["uniform", "graded"] {
+    for family in ["uniform", "graded", "block"] {
         let mut coulomb_on = true;
-        for (h, mesh) in meshes(family) {
+        for (h, build) in problems(family) {
             let clock = Instant::now();
-            let problem = Problem::new(mesh, spec())?;
+            let problem = build()?;
             let setup = clock.elapsed().as_secs_f64();
             let reps = if problem.n_free < 50_000 { 3 } else { 1 };
             let chol = cholesky_seconds(&problem, reps);
@@ -107,6 +128,7 @@ fn main() -> Result<()> {
             } else {
                 &[("frictionless", Friction::Frictionless)]
             };
+            // (μ = 0.3 in both scene files.)
             for (name, friction) in frictions {
                 // Each solve pays for its own factorization (the problem would reuse the previous one).
                 problem.forget_factorization();
@@ -133,12 +155,16 @@ fn main() -> Result<()> {
                     cols[0], cols[1], cols[2], cols[3], cols[4], cols[5], cols[6]
                 );
                 let cols: Vec<String> = cols.iter().map(|v| format!("{v:.6}")).collect();
+                let by = |m: QpMethod| sol.report.qp_methods.iter().filter(|x| **x == m).count();
                 writeln!(
                     csv,
-                    "{family},{h},{},{},{name},{status},{},{}",
+                    "{family},{h},{},{},{name},{status},{},{},{},{},{}",
                     problem.n_free,
                     problem.n_multipliers(),
                     sol.report.iterations,
+                    sol.report.condensation,
+                    by(QpMethod::ActiveSet),
+                    by(QpMethod::Clarabel),
                     cols.join(",")
                 )
                 .unwrap();

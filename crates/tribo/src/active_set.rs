@@ -10,8 +10,10 @@
 //!
 //! `H_FF x_F = −c_F − H_FB x_B`,
 //!
-//! one Cholesky factorization of the free block. When the prediction is right the answer is exact after
-//! that one step; from the previous fixed-point iterate (only the bounds `μ g` changed) it usually is.
+//! one Cholesky factorization of the free block — updated from the previous one when only a few unknowns
+//! changed sides (a rank-one update per removed unknown, a new row per added one). When the prediction is
+//! right the answer is exact after that one step; from the previous fixed-point iterate (only the bounds
+//! `μ g` changed) it usually is.
 //!
 //! # The safeguard
 //! Plain PDAS may cycle when H is not an M-matrix, as here. A Newton point is accepted only if its
@@ -29,7 +31,6 @@
 //! (every dof is on a bound or free). An answer that is not certified within the step cap is handed to
 //! clarabel by the caller, never returned as solved.
 
-use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 
 use crate::qp::Scaling;
@@ -46,15 +47,20 @@ pub(crate) trait QpOperator {
     fn diagonal(&self) -> &[f64];
 }
 
-/// The dense QP data on a set of unknowns: H (column-major `k × k`) and c.
+/// The dense QP data on a set of unknowns: H (column-major `k × k`) and c, with the Cholesky factor of
+/// the last free block, updated rather than refactored when few unknowns change sides.
 #[derive(Debug)]
 pub(crate) struct DenseBlock {
     k: usize,
     h: Vec<f64>,
     c: Vec<f64>,
     diag: Vec<f64>,
-    /// Cholesky factorizations done.
+    /// The free unknowns in the order of the factor, and the factor L (lower) of `H_FF` in that order.
+    factor: Option<(Vec<usize>, Mat<f64>)>,
+    /// Full Cholesky factorizations of a free block.
     pub factorizations: u32,
+    /// Free blocks obtained by updating the previous factor (unknowns removed or appended).
+    pub updates: u32,
 }
 
 impl DenseBlock {
@@ -62,7 +68,7 @@ impl DenseBlock {
     pub(crate) fn new(h: Vec<f64>, c: Vec<f64>) -> Self {
         let k = c.len();
         let diag = (0..k).map(|i| h[i * k + i]).collect();
-        Self { k, h, c, diag, factorizations: 0 }
+        Self { k, h, c, diag, factor: None, factorizations: 0, updates: 0 }
     }
 
     /// H (column-major).
@@ -73,6 +79,89 @@ impl DenseBlock {
     /// c.
     pub(crate) fn linear_term(&self) -> &[f64] {
         &self.c
+    }
+
+    fn entry(&self, i: usize, j: usize) -> f64 {
+        self.h[j * self.k + i]
+    }
+
+    /// The Cholesky factor of `H_FF` for the free unknowns `free` (ascending), by updating the previous
+    /// factor when at most an eighth of the block changes (each removal a rank-one update of the trailing
+    /// block, each addition a new last row: O(k²) each), else by a new factorization (O(k³/3)).
+    fn free_factor(&mut self, free: &[usize]) -> Option<(Vec<usize>, Mat<f64>)> {
+        if let Some((order, l)) = self.factor.take() {
+            let in_new: std::collections::HashSet<usize> = free.iter().copied().collect();
+            let in_old: std::collections::HashSet<usize> = order.iter().copied().collect();
+            let removed = order.iter().filter(|i| !in_new.contains(i)).count();
+            let added: Vec<usize> = free.iter().copied().filter(|i| !in_old.contains(i)).collect();
+            if removed + added.len() <= (free.len() / 8).max(8) {
+                if let Some(updated) = self.update(order, l, &in_new, &added) {
+                    self.updates += 1;
+                    return Some(updated);
+                }
+            }
+        }
+        self.factorizations += 1;
+        let nf = free.len();
+        let hff = Mat::<f64>::from_fn(nf, nf, |a, b| self.entry(free[a], free[b]));
+        let llt = hff.llt(Side::Lower).ok()?;
+        Some((free.to_vec(), llt.L().to_owned()))
+    }
+
+    /// Removes the unknowns not in `keep` from the factor and appends `added`; `None` if an update loses
+    /// positive definiteness (the caller factorizes anew).
+    fn update(
+        &self,
+        mut order: Vec<usize>,
+        mut l: Mat<f64>,
+        keep: &std::collections::HashSet<usize>,
+        added: &[usize],
+    ) -> Option<(Vec<usize>, Mat<f64>)> {
+        // Removal of position p: the trailing block takes the rank-one update with its column below p.
+        while let Some(p) = order.iter().rposition(|i| !keep.contains(i)) {
+            let k = order.len();
+            if p + 1 < k {
+                let mut w = Mat::<f64>::from_fn(k - p - 1, 1, |a, _| l[(p + 1 + a, p)]);
+                let mut alpha = Mat::<f64>::from_fn(1, 1, |_, _| 1.0);
+                let (_, _, _, trailing) = l.as_mut().split_at_mut(p + 1, p + 1);
+                faer::linalg::cholesky::llt::update::rank_r_update_clobber(
+                    trailing,
+                    w.as_mut(),
+                    alpha.as_mut().col_mut(0).as_diagonal_mut(),
+                )
+                .ok()?;
+            }
+            let kept = Mat::<f64>::from_fn(k - 1, k - 1, |a, b| {
+                let (i, j) = (a + usize::from(a >= p), b + usize::from(b >= p));
+                if i >= j {
+                    l[(i, j)]
+                } else {
+                    0.0
+                }
+            });
+            l = kept;
+            order.remove(p);
+        }
+        // Addition of unknown a as the last row: L y = H[order, a], δ² = H_aa − yᵀy.
+        for &a in added {
+            let k = order.len();
+            let mut y = Mat::<f64>::from_fn(k, 1, |i, _| self.entry(order[i], a));
+            faer::linalg::triangular_solve::solve_lower_triangular_in_place(l.as_ref(), y.as_mut(), faer::Par::Seq);
+            let yy: f64 = (0..k).map(|i| y[(i, 0)] * y[(i, 0)]).sum();
+            let d2 = self.entry(a, a) - yy;
+            if d2.is_nan() || d2 <= 64.0 * f64::EPSILON * self.entry(a, a) {
+                return None;
+            }
+            let grown = Mat::<f64>::from_fn(k + 1, k + 1, |i, j| match (i < k, j < k) {
+                (true, true) => l[(i, j)],
+                (false, true) => y[(j, 0)],
+                (false, false) => d2.sqrt(),
+                (true, false) => 0.0,
+            });
+            l = grown;
+            order.push(a);
+        }
+        Some((order, l))
     }
 }
 
@@ -95,23 +184,26 @@ impl QpOperator for DenseBlock {
         if idx.is_empty() {
             return Some(out);
         }
-        let nf = idx.len();
-        let hff = Mat::<f64>::from_fn(nf, nf, |a, b| self.h[idx[b] * self.k + idx[a]]);
-        let mut rhs = Mat::<f64>::from_fn(nf, 1, |a, _| -self.c[idx[a]]);
+        let (order, l) = self.free_factor(&idx)?;
+        let mut rhs = Mat::<f64>::from_fn(order.len(), 1, |a, _| -self.c[order[a]]);
         for (j, &xj) in x.iter().enumerate() {
             if !free[j] && xj != 0.0 {
                 let col = &self.h[j * self.k..(j + 1) * self.k];
-                for (a, &i) in idx.iter().enumerate() {
+                for (a, &i) in order.iter().enumerate() {
                     rhs[(a, 0)] -= col[i] * xj;
                 }
             }
         }
-        self.factorizations += 1;
-        let llt = hff.llt(Side::Lower).ok()?;
-        let sol = llt.solve(&rhs);
-        for (a, &i) in idx.iter().enumerate() {
-            out[i] = sol[(a, 0)];
+        faer::linalg::triangular_solve::solve_lower_triangular_in_place(l.as_ref(), rhs.as_mut(), faer::Par::Seq);
+        faer::linalg::triangular_solve::solve_upper_triangular_in_place(
+            l.as_ref().transpose(),
+            rhs.as_mut(),
+            faer::Par::Seq,
+        );
+        for (a, &i) in order.iter().enumerate() {
+            out[i] = rhs[(a, 0)];
         }
+        self.factor = Some((order, l));
         out.iter().all(|v| v.is_finite()).then_some(out)
     }
 
@@ -234,8 +326,12 @@ pub(crate) fn solve(
     bounds.project(&mut x);
     let mut g = op.gradient(&x);
     let (mut fx, _) = objective(&x, &g, c);
-    let threshold = threshold(scaling, c, tol);
+    // A scaling that is not a positive finite number certifies nothing (every scaled residual would be 0).
+    let threshold = if scaling.phi.is_finite() && scaling.phi > 0.0 { threshold(scaling, c, tol) } else { -1.0 };
     let mut out = ActiveSetOutcome { x: Vec::new(), certified: false, newton_steps: 0, gradient_steps: 0 };
+    // The PDAS iterate (a Newton point, possibly outside the box) the next prediction starts from, and
+    // its gradient; x is the best feasible point so far.
+    let (mut xk, mut gk) = (x.clone(), g.clone());
     loop {
         let r = residual(&x, &g, bounds, scaling);
         if r <= threshold {
@@ -245,16 +341,17 @@ pub(crate) fn solve(
         if !r.is_finite() || out.newton_steps + out.gradient_steps >= max_steps {
             break;
         }
-        // The active-set prediction and the Newton point of its free set.
+        // The active-set prediction from the PDAS iterate: a free dof outside its box becomes active, an
+        // active dof whose multiplier has the wrong sign becomes free.
         let diag = op.diagonal();
         let mut free = vec![false; k];
-        let mut xb = x.clone();
+        let mut xb = xk.clone();
         for i in 0..k {
             if bounds.fixed(i) {
                 xb[i] = bounds.lo[i];
                 continue;
             }
-            let y = if diag[i] > 0.0 { x[i] - g[i] / diag[i] } else { x[i] };
+            let y = if diag[i] > 0.0 { xk[i] - gk[i] / diag[i] } else { xk[i] };
             if y <= bounds.lo[i] {
                 xb[i] = bounds.lo[i];
             } else if y >= bounds.hi[i] {
@@ -271,11 +368,14 @@ pub(crate) fn solve(
             let gt = op.gradient(&t);
             let (ft, size) = objective(&t, &gt, c);
             if ft <= fx + 64.0 * f64::EPSILON * size {
+                gk = if t == xn { gt.clone() } else { op.gradient(&xn) };
+                xk = xn;
                 (x, g, fx, accepted) = (t, gt, ft, true);
             } else {
                 let d: Vec<f64> = xn.iter().zip(&x).map(|(a, b)| a - b).collect();
                 if let Some((t, gt, ft)) = arc_search(op, c, bounds, &x, &g, fx, &d) {
                     (x, g, fx, accepted) = (t, gt, ft, true);
+                    (xk, gk) = (x.clone(), g.clone());
                 }
             }
         }
@@ -289,6 +389,7 @@ pub(crate) fn solve(
                 // degenerate beyond what this method resolves; the residual decides.
                 None => break,
             }
+            (xk, gk) = (x.clone(), g.clone());
         }
     }
     out.x = x;

@@ -76,7 +76,8 @@ impl Scaling {
         let c_st = c[q..].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let s_t = if h_st > 0.0 { s.max(c_st / h_st) } else { s };
         let w: Vec<f64> = (0..k).map(|i| if i < q { s } else { bounds[i - q].min(s_t) }).collect();
-        let phi = (0..k).map(|i| w[i] * w[i] * h[i * k + i]).fold(0.0, f64::max);
+        // (w √H_ii)² rather than w² H_ii: w is about 1/H, so w² alone can overflow where the product cannot.
+        let phi = (0..k).map(|i| (w[i] * h[i * k + i].max(0.0).sqrt()).powi(2)).fold(0.0, f64::max);
         Self { w, phi }
     }
 

@@ -16,11 +16,10 @@
 //! dofs where the body, without contact forces, would penetrate (`c_n,j < 0`), and their neighbours.
 //!
 //! # Which method solves the QP on S
-//! [`QpMethod::Clarabel`] always uses clarabel; [`QpMethod::ActiveSet`] the active-set method
-//! ([`crate::active_set`]) from the previous answer (or from zero); [`QpMethod::Auto`] clarabel when there
-//! is no previous answer and the active-set method once there is one. An answer the active-set method
-//! cannot certify is solved again by clarabel; under `Auto` a QP clarabel fails on is given to the
-//! active-set method; [`QpOutcome::fallback`] says when the second method answered.
+//! [`QpMethod::Clarabel`] always uses clarabel. [`QpMethod::Auto`] uses the active-set method
+//! ([`crate::active_set`]) from the previous answer (or from zero for the first QP) and clarabel for any QP
+//! it cannot certify ([`QpOutcome::fallback`] says so). [`QpMethod::ActiveSet`] uses the active-set method
+//! alone: a QP it cannot certify fails.
 
 use std::time::Instant;
 
@@ -204,12 +203,15 @@ impl<'a> WorkingSetQp<'a> {
         let scaling = Scaling::new(op.matrix(), &c, s, n_scale, &b);
         let lo: Vec<f64> = (0..c.len()).map(|i| if i < s { 0.0 } else { -b[i - s] }).collect();
         let hi: Vec<f64> = (0..c.len()).map(|i| if i < s { f64::INFINITY } else { b[i - s] }).collect();
+        let (factorizations, updates) = (op.factorizations, op.updates);
         let out = active_set::solve(op, &c, &Bounds { lo, hi }, start, &scaling, tol, max_iter);
         log::debug!(
-            "active set on {} unknowns: certified {}, {} Newton and {} gradient steps",
+            "active set on {} unknowns: certified {}, {} Newton steps ({} factorizations, {} updates), {} gradient steps",
             c.len(),
             out.certified,
             out.newton_steps,
+            op.factorizations - factorizations,
+            op.updates - updates,
             out.gradient_steps
         );
         out.certified.then(|| done(out.x, out.newton_steps + out.gradient_steps))
@@ -233,36 +235,26 @@ impl<'a> WorkingSetQp<'a> {
     /// Solves the QP on the set with the method the settings ask for (see the module documentation).
     fn solve_on_set(&mut self) -> Result<QpOutcome> {
         self.check_budget()?;
-        let active = match self.settings.method {
-            QpMethod::Clarabel => false,
-            QpMethod::ActiveSet => true,
-            QpMethod::Auto => self.last.is_some(),
-        };
+        if self.settings.method == QpMethod::Clarabel {
+            return self.solve_clarabel();
+        }
         let start: Vec<f64> = match &self.last {
             Some(x) => self.unknowns().iter().map(|&i| x[i]).collect(),
             None => vec![0.0; self.unknowns().len()],
         };
-        if !active {
-            let out = self.solve_clarabel()?;
-            // Auto: a QP clarabel cannot solve (a friction bound 1e38 times the multiplier it limits, …)
-            // is given to the active-set method before the solve is declared failed.
-            if self.settings.method == QpMethod::Auto && matches!(out.status, QpStatus::Failed(_)) {
-                log::info!(
-                    "clarabel failed on a QP of {} dofs ({:?}): the active-set method tries",
-                    self.set.len(),
-                    out.status
-                );
-                if let Some(mut again) = self.solve_active_set(&start) {
-                    again.iterations += out.iterations;
-                    again.seconds += out.seconds;
-                    again.fallback = true;
-                    return Ok(again);
-                }
-            }
-            return Ok(out);
-        }
+        let clock = Instant::now();
         if let Some(out) = self.solve_active_set(&start) {
             return Ok(out);
+        }
+        if self.settings.method == QpMethod::ActiveSet {
+            return Ok(QpOutcome {
+                nu: start,
+                status: QpStatus::Failed("the active-set method could not certify its answer"),
+                iterations: self.settings.max_iter,
+                seconds: clock.elapsed().as_secs_f64(),
+                method: QpMethod::ActiveSet,
+                fallback: false,
+            });
         }
         log::info!("the active-set method could not certify a QP on {} dofs: clarabel solves it", self.set.len());
         let mut out = self.solve_clarabel()?;

@@ -293,6 +293,14 @@ fn results_stay_finite_at_the_limits() {
     let v = m.von_mises([1e300, -1e300, 1e300]);
     assert!(v.is_finite() && v > 1e300, "{v:e}");
     assert_eq!(m.von_mises([0.0; 3]), 0.0);
+    // E = 1e300: H ~ 1/E, the normal scale ~ E; the scaling of the QP must not overflow (an overflowed
+    // scaling once certified λ = 0 at once).
+    let obstacle = Obstacle { approach: 0.01, ..Obstacle::default() };
+    let s = ProblemSpec { material: Material { young: 1e300, poisson: 0.3 }, obstacle, ..spec() };
+    let sol = Problem::new(square(), s).unwrap().solve(&Friction::Frictionless, &SolverSettings::default(), None);
+    let sol = sol.unwrap();
+    assert_eq!(sol.report.status, SolveStatus::Converged);
+    assert!(sol.von_mises.iter().all(|v| v.is_finite()) && sol.von_mises.iter().any(|v| *v > 1e290));
     // Nothing in contact: λ = 0, every residual 0 (it was NaN = 0/0).
     let s = ProblemSpec { body_force: [0.0, 0.0], ..spec() };
     let sol = Problem::new(square(), s).unwrap().solve(&Friction::Frictionless, &SolverSettings::default(), None);

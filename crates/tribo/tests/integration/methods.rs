@@ -33,9 +33,16 @@ fn compare(name: &str, problem: &Problem, friction: &Friction, stabilization: St
     assert_eq!(reference.report.status, SolveStatus::Converged, "{name}: clarabel");
     assert!(reference.report.qp_methods.iter().all(|m| *m == QpMethod::Clarabel), "{name}");
     let mut answered = 0;
-    for method in [QpMethod::ActiveSet, QpMethod::Auto] {
+    let mut answered_with_fallback = false;
+    for method in [QpMethod::Auto, QpMethod::ActiveSet] {
         let sol = problem.solve(friction, &settings(method), None).expect("solves");
         let what = format!("{name}, {friction:?}, {stabilization:?}, {method}");
+        if method == QpMethod::ActiveSet && matches!(sol.report.status, SolveStatus::QpFailed { .. }) {
+            // Alone, the active-set method fails where auto needed clarabel (a singular free block: λ
+            // not unique, T_H finer than the FE mesh with γ0 = 0), and only there.
+            assert!(answered_with_fallback, "{what}: failed where auto did not fall back");
+            continue;
+        }
         assert_eq!(sol.report.status, SolveStatus::Converged, "{what}");
         assert_eq!(sol.report.iterations, reference.report.iterations, "{what}: fixed-point iterations");
         let du = sup_diff(&sol.displacement, &reference.displacement) / sup(&reference.displacement);
@@ -58,8 +65,9 @@ fn compare(name: &str, problem: &Problem, friction: &Friction, stabilization: St
         assert!(dl <= tol_l, "{what}: λ differs by {dl:e} relative (allowed {tol_l:e})");
         assert!(k <= k_ref.max(floor), "{what}: KKT residual {k:e} against clarabel's {k_ref:e}");
         let active = sol.report.qp_methods.iter().filter(|m| **m == QpMethod::ActiveSet).count();
-        if method == QpMethod::ActiveSet {
+        if method == QpMethod::Auto {
             assert_eq!(active + sol.report.qp_fallbacks, sol.report.qp_methods.len(), "{what}: every QP tried");
+            answered_with_fallback = sol.report.qp_fallbacks > 0;
             answered += active;
         }
         eprintln!(
