@@ -1,6 +1,7 @@
 //! tribo's integration tests, one binary with one module per layer:
 //!
 //! * `errors`: one rejection test per input rule;
+//! * `fuzz`: hostile input (proptest) ends in a typed error or an honest status;
 //! * `invariants`: property tests of the Γ_C matrices, the multiplier basis and the common refinement;
 //! * `patch`: constant-strain states reproduced exactly, for every multiplier space, γ0 and friction law;
 //! * `kkt`: the discrete problem (3.1) checked by its own quadrature, independent of the assembly;
@@ -11,6 +12,7 @@
 //! Scenes and measures shared with the benches and examples come from the `tribo-testkit` crate.
 
 mod errors;
+mod fuzz;
 mod hertz;
 mod invariants;
 mod kkt;
