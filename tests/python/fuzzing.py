@@ -2,7 +2,7 @@
 
 Budget. Each fuzz test runs a small fixed number of examples (its ``default``), so that all of them take
 about a minute on two cores. ``TRIBO_FUZZ_EXAMPLES=N`` runs N examples per fuzz test instead, for a longer
-campaign (``TRIBO_FUZZ_EXAMPLES=2000 python -m pytest python/tests -k fuzz``).
+campaign (``TRIBO_FUZZ_EXAMPLES=2000 python -m pytest tests/python -k fuzz``).
 
 Reproducible. Examples are derandomized (a function of the test alone) and no example database is kept,
 so CI, a laptop and a rerun see the same inputs; a failure prints the input that caused it.

@@ -208,7 +208,8 @@ def test_working_set_matches_the_full_qp() -> None:
 
     Both determine λ only to the QP tolerance times the condition number κ of the condensed operator
     (measured 6e4 … 2.4e5 on these meshes; the Rust test `working_set_agrees_with_the_full_qp` computes
-    κ): with qp_tol = 1e-10 they must agree to 2 · 1e-10 · 2.4e5 ≈ 5e-5 of the pressure scale. On the
+    κ): at the loosest tolerance a QP may end at (the fallback 1e-10; the default qp_tol is 1e-12) they must
+    agree to 2 · 1e-10 · 2.4e5 ≈ 5e-5 of the pressure scale. On the
     coarsest mesh (h_min = 0.04) λ_n is a 3-dof checkerboard and κ is far larger, so it is not used here.
     """
     assert tribo.solver_defaults()["qp_working_set"] is True
