@@ -2,6 +2,9 @@
 //!
 //! The Hertz scene is read from `python/tribo/scenes/hertz.toml`, the file the Python tests and the
 //! studies read too, so one scene has one definition across the two languages.
+//!
+//! This is test support: a scene file that does not parse, or a scene the core refuses, is a broken test
+//! fixture, so these helpers panic (with a message) instead of returning errors.
 
 use tribo::*;
 
@@ -117,6 +120,16 @@ pub fn block_problem(nx: usize, ny: usize) -> (Problem, f64) {
         multiplier_space: MultiplierSpace::P1,
     };
     (Problem::new(mesh, spec).expect("valid block problem"), n("friction", "mu"))
+}
+
+/// The Hertz cylinder (R = 1) pushed `approach` into the uniform 80 × 40 mesh of the Hertz block (h = 0.05),
+/// shifted `shift`, with P1 multipliers of size `ratio` × h: with `ratio` < 1 and γ0 = 0, the classic
+/// method's checkerboard.
+pub fn checkerboard_problem(ratio: f64, approach: f64, shift: f64) -> Problem {
+    let s = hertz_scene();
+    let mesh = rectangle(s.x, s.y, 80, 40, Diagonal::Right).expect("valid");
+    Problem::new(mesh, hertz_spec(approach, shift, MultiplierPoints::RatioToFe(ratio), MultiplierSpace::P1))
+        .expect("valid checkerboard problem")
 }
 
 /// Plane-strain Hertz pressure for total force `p` (R, E, ν of the Hertz scene) and its half-width.

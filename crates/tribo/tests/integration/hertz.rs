@@ -46,23 +46,8 @@ fn oscillation(sol: &Solution) -> f64 {
 /// checkerboard λ_n; the stabilized method (γ0 = half its admissible bound) damps it several-fold.
 #[test]
 fn stabilization_removes_the_checkerboard() {
-    let mesh = rectangle([-2.0, 2.0], [-2.0, 0.0], 80, 40, Diagonal::Right).expect("valid");
     let solve = |ratio: f64, stab: Stabilization| {
-        let spec = ProblemSpec {
-            material: Material { young: 200.0, poisson: 0.3 },
-            clamped: vec!["bottom".into()],
-            body_force: [0.0, 0.0],
-            tractions: vec![],
-            contact: "top".into(),
-            obstacle: Obstacle {
-                shape: ObstacleShape::Circle { center: 0.0, radius: 1.0 },
-                approach: 0.05,
-                shift: 0.0,
-            },
-            multiplier_points: MultiplierPoints::RatioToFe(ratio),
-            multiplier_space: MultiplierSpace::P1,
-        };
-        let problem = Problem::new(mesh.clone(), spec).expect("valid");
+        let problem = tribo_testkit::checkerboard_problem(ratio, 0.05, 0.0);
         let settings = SolverSettings { stabilization: stab, ..Default::default() };
         let sol = problem.solve(&Friction::Frictionless, &settings, None).expect("solves");
         assert_eq!(sol.report.status, SolveStatus::Converged);

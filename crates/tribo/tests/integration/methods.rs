@@ -123,18 +123,7 @@ fn active_set_and_clarabel_agree_on_the_patch_and_the_checkerboard_mesh() {
         }
     }
     // T_H finer than T_h: λ is unique only with γ0 > 0.
-    let mesh = rectangle([-2.0, 2.0], [-2.0, 0.0], 80, 40, Diagonal::Right).expect("valid");
-    let spec = ProblemSpec {
-        material: Material { young: 200.0, poisson: 0.3 },
-        clamped: vec!["bottom".into()],
-        body_force: [0.0, 0.0],
-        tractions: vec![],
-        contact: "top".into(),
-        obstacle: Obstacle { shape: ObstacleShape::Circle { center: 0.0, radius: 1.0 }, approach: 0.05, shift: 0.01 },
-        multiplier_points: MultiplierPoints::RatioToFe(0.5),
-        multiplier_space: MultiplierSpace::P1,
-    };
-    let fine = Problem::new(mesh, spec).expect("valid");
+    let fine = tribo_testkit::checkerboard_problem(0.5, 0.05, 0.01);
     for friction in [Friction::Frictionless, Friction::Coulomb { mu: 0.3 }] {
         compare("checkerboard mesh H = h/2", &fine, &friction, Stabilization::Fraction(0.5));
     }
