@@ -99,10 +99,12 @@ pub struct Factor {
     pub e_rows: Vec<Vec<(usize, f64)>>,
     /// Columns of H computed so far (2q of them at most, each of length 2q).
     columns: Mutex<Columns>,
-    /// Linear term c (2q).
+    /// Linear term `c = d − E A⁻¹ f` (2q) of the problem's own load case.
     pub c: Vec<f64>,
     /// `d` (2q): the obstacle's gap and shift moments.
     pub d: Vec<f64>,
+    /// `E A⁻¹ f` (2q): the load's part of c, kept so that a scaled load needs no new solve.
+    pub e_ainv_f: Vec<f64>,
     /// Dγ by columns over the 2q unknowns (row, value): the q × q block `Dγ` twice on the diagonal.
     d_cols: Vec<Vec<(usize, f64)>>,
     /// Wall time of forming A and its numeric factorization, in seconds.
@@ -201,10 +203,11 @@ impl Factor {
         };
         let clock = Instant::now();
         let u_f = solve(&direct, f)?;
-        let c = e_rows.iter().zip(&d).map(|(row, di)| di - dot(row, &u_f)).collect();
+        let e_ainv_f: Vec<f64> = e_rows.iter().map(|row| dot(row, &u_f)).collect();
+        let c = d.iter().zip(&e_ainv_f).map(|(di, ei)| di - ei).collect();
         let columns = Mutex::new(Columns { cols, seconds: schur_seconds + clock.elapsed().as_secs_f64() });
         let condensation = if use_schur { Condensation::Schur } else { Condensation::Columns };
-        Ok(Self { gamma0, condensation, direct, a, e_rows, d_cols, c, d, columns, factorization_seconds })
+        Ok(Self { gamma0, condensation, direct, a, e_rows, d_cols, c, d, e_ainv_f, columns, factorization_seconds })
     }
 
     /// Number of multiplier dofs per component.
@@ -212,12 +215,12 @@ impl Factor {
         self.e_rows.len() / 2
     }
 
-    /// A natural size of λ_n for this problem, `|c_j| / H_jj` at the normal dof j where `|c_n|` is
-    /// largest: the multiplier at which the quadratic and linear terms of the QP balance there. It is
-    /// non-zero even when the solution is λ = 0, so it serves as the scale of tolerances on λ.
-    pub fn lambda_scale(&self) -> f64 {
+    /// A natural size of λ_n for the linear term `c` (2q), `|c_j| / H_jj` at the normal dof j where
+    /// `|c_n|` is largest: the multiplier at which the quadratic and linear terms of the QP balance there.
+    /// It is non-zero even when the solution is λ = 0, so it serves as the scale of tolerances on λ.
+    pub fn lambda_scale(&self, c: &[f64]) -> f64 {
         let q = self.q();
-        let Some((j, cj)) = self.c[..q].iter().enumerate().max_by(|a, b| a.1.abs().total_cmp(&b.1.abs())) else {
+        let Some((j, cj)) = c[..q].iter().enumerate().max_by(|a, b| a.1.abs().total_cmp(&b.1.abs())) else {
             return 0.0;
         };
         let hjj = self.with_columns(&[j], |cols| cols[j].as_ref().expect("computed")[j]);

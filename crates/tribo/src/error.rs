@@ -314,6 +314,14 @@ pub enum Error {
         /// What is wrong.
         what: String,
     },
+    /// A step of a loading history is not valid.
+    #[error("load step {step}: {what}")]
+    BadLoadStep {
+        /// The step (0-based).
+        step: usize,
+        /// What is wrong.
+        what: String,
+    },
     /// A name that is not one of the options of a choice.
     #[error("{what} '{got}' is not known (options: {options})")]
     UnknownChoice {
@@ -550,6 +558,9 @@ impl Error {
                 "UnknownSetting",
                 vec![("name", T(name.clone())), ("known", T(known.clone()))],
             ),
+            Self::BadLoadStep { step, what } => {
+                (ErrorCategory::Settings, "BadLoadStep", vec![("step", I(*step)), ("what", T(what.clone()))])
+            }
             Self::BadSettingValue { name, what } => (
                 ErrorCategory::Settings,
                 "BadSettingValue",

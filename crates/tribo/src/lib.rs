@@ -28,12 +28,16 @@
 //!    matrix never changes. [`Problem::solve`] does steps 2 and 3 in one call.
 //! 4. The displacement is recovered with one more solve; [`Solution`] carries every field, the contact
 //!    state per multiplier dof, the discrete KKT residuals and a [`Report`] that says how the solve ended.
+//! 5. [`Condensed::solve_history`] ([`history`]) solves a quasi-static loading history — press, drag,
+//!    unload — step by step on the same factorization: only the QP's linear term ([`loading`]) and the
+//!    Coulomb bounds change from step to step.
 //!
 //! ## Module layout
 //! Mathematics first: [`mesh`], [`generate`], [`elasticity`], [`contact`], [`obstacle`], [`multiplier`],
 //! [`mortar`], [`stabilization`] (the γ0-dependent operators), [`problem`]; then the solver:
 //! [`condensation`] (linear algebra of `A` and `H`), [`qp`] (clarabel), [`working_set`], [`friction`],
-//! [`settings`], [`solve`] (the driver and the fixed point) and [`solution`]. [`choice`] gives every enum
+//! [`settings`], [`loading`] (the load case: the QP's linear term), [`solve`] (the driver and the fixed
+//! point), [`history`] (loading histories) and [`solution`]. [`choice`] gives every enum
 //! of options its names. No module imports one that imports it back (a test reads the `use` lines).
 //!
 //! ## References
@@ -58,6 +62,8 @@ pub mod elasticity;
 pub mod error;
 pub mod friction;
 pub mod generate;
+pub mod history;
+pub mod loading;
 pub mod mesh;
 pub mod mortar;
 pub mod multiplier;
@@ -78,6 +84,8 @@ pub use elasticity::Material;
 pub use error::{Error, Result};
 pub use friction::{Friction, FrictionLaw, Threshold};
 pub use generate::{graded_rectangle, rectangle, Diagonal, Grading, Side};
+pub use history::{History, StepObserver, StepProgress};
+pub use loading::{LoadStep, Loading};
 pub use mesh::Mesh;
 pub use multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace};
 pub use obstacle::{GapFunction, Obstacle, ObstacleShape};

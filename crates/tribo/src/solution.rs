@@ -5,7 +5,8 @@ use crate::choice::named_choice;
 use crate::condensation::Factor;
 use crate::elasticity::{element_stresses, stiffness_triplets};
 use crate::friction::FrictionLaw;
-use crate::problem::Problem;
+use crate::loading::Loading;
+use crate::problem::Condensed;
 use crate::settings::{Condensation, QpMethod};
 
 /// How a solve ended. Not an error: a solve that did not converge still returns its last iterate.
@@ -199,7 +200,7 @@ pub struct Solution {
     pub stress: Vec<[f64; 3]>,
     /// Von Mises stress per triangle (plane strain).
     pub von_mises: Vec<f64>,
-    /// Reaction forces on clamped dofs (2N, zero elsewhere): `K u − f`.
+    /// Reaction forces on clamped dofs (2N, zero elsewhere): `K u − f` (f the load of the load case).
     pub reactions: Vec<f64>,
     /// Abscissae of the multiplier dofs.
     pub multiplier_abscissae: Vec<f64>,
@@ -224,9 +225,10 @@ pub struct Solution {
     pub node_abscissae: Vec<f64>,
     /// u_n at the FE nodes of Γ_C.
     pub u_n: Vec<f64>,
-    /// u_t − s (slip relative to the obstacle) at the FE nodes of Γ_C.
+    /// Slip relative to the obstacle at the FE nodes of Γ_C: `u_t − s` for a static solve, the slip
+    /// increment `u_t^k − u_t^{k−1} − (s_k − s_{k−1})` in step k of a history ([`crate::history`]).
     pub slip: Vec<f64>,
-    /// Gap g = g₀ − δ at the FE nodes of Γ_C.
+    /// Gap g = g₀ − δ at the FE nodes of Γ_C (δ of the load case).
     pub gap: Vec<f64>,
     /// Total normal contact force `∫ λ_n`.
     pub normal_force: f64,
@@ -245,15 +247,15 @@ impl Solution {
     /// with the friction threshold the multipliers were computed for and the QP tolerance (which sets
     /// the threshold between "zero" and "non-zero" multipliers in the contact states).
     pub(crate) fn new(
-        problem: &Problem,
-        factor: &Factor,
+        condensed: &Condensed<'_>,
+        loading: &Loading,
         u_free: &[f64],
         lambda: Vec<f64>,
         friction_threshold: Vec<f64>,
         qp_tol: f64,
         report: Report,
     ) -> Self {
-        let condensed = factor;
+        let (problem, condensed) = (condensed.problem(), condensed.factor());
         let q = condensed.q();
         let mesh = &problem.mesh;
         let material = &problem.spec.material;
@@ -261,7 +263,7 @@ impl Solution {
         let stress = element_stresses(mesh, material, &displacement);
         let von_mises = stress.iter().map(|s| material.von_mises(*s)).collect();
         // Reactions K u − f on all dofs (zero up to round-off on free dofs).
-        let mut reactions: Vec<f64> = problem.f_full.iter().map(|f| -f).collect();
+        let mut reactions: Vec<f64> = loading.f_full.iter().map(|f| -f).collect();
         for t in stiffness_triplets(mesh, material) {
             reactions[t.row] += t.val * displacement[t.col];
         }
@@ -279,22 +281,21 @@ impl Solution {
         let sigma_n = contact.edges.iter().map(|e| sig(&stress[e.triangle], n, n)).collect();
         let sigma_t = contact.edges.iter().map(|e| sig(&stress[e.triangle], t, n)).collect();
         let edge_abscissae = contact.node_xi.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
-        let shift = problem.spec.obstacle.shift;
         let mut u_n = Vec::with_capacity(contact.nodes.len());
         let mut slip = Vec::with_capacity(contact.nodes.len());
-        for &node in &contact.nodes {
+        for (&node, origin) in contact.nodes.iter().zip(&loading.slip_origin) {
             let (ux, uy) = (displacement[2 * node], displacement[2 * node + 1]);
             u_n.push(ux * n[0] + uy * n[1]);
-            slip.push(ux * t[0] + uy * t[1] - shift);
+            slip.push(ux * t[0] + uy * t[1] - origin);
         }
-        let gap = problem.contact_gap.clone();
+        let gap = loading.gap.clone();
         let max_penetration = u_n.iter().zip(&gap).map(|(u, g)| nan_max(u - g, 0.0)).fold(0.0, nan_max);
         let w = &problem.mortar.psi_integrals;
         let normal_force = lambda_n.iter().zip(w).map(|(l, w)| l * w).sum();
         let tangential_force = lambda_t.iter().zip(w).map(|(l, w)| l * w).sum();
 
-        let kkt = kkt_residuals(problem, condensed, u_free, &lambda, &friction_threshold);
-        let lam_scale = lambda_n.iter().fold(condensed.lambda_scale(), |m, v| m.max(v.abs()));
+        let kkt = kkt_residuals(condensed, loading, u_free, &lambda, &friction_threshold);
+        let lam_scale = lambda_n.iter().fold(condensed.lambda_scale(&loading.c), |m, v| m.max(v.abs()));
         let theta = qp_tol.sqrt() * lam_scale;
         let states = (0..q)
             .map(|j| {
@@ -382,22 +383,22 @@ fn ratio(num: f64, den: f64) -> f64 {
     }
 }
 
-fn kkt_residuals(problem: &Problem, c: &Factor, u: &[f64], lambda: &[f64], bound: &[f64]) -> KktResiduals {
+fn kkt_residuals(c: &Factor, loading: &Loading, u: &[f64], lambda: &[f64], bound: &[f64]) -> KktResiduals {
     let q = c.q();
     let au = c.apply_a(u);
     let etl = c.apply_et(lambda);
     let inf = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| nan_max(m, x.abs()));
-    let res: Vec<f64> = au.iter().zip(&etl).zip(&problem.f_free).map(|((a, e), f)| a + e - f).collect();
-    let eq_scale = inf(&problem.f_free).max(inf(&etl));
+    let res: Vec<f64> = au.iter().zip(&etl).zip(&loading.f_free).map(|((a, e), f)| a + e - f).collect();
+    let eq_scale = inf(&loading.f_free).max(inf(&etl));
     let eu = c.apply_e(u);
     // r = E u − d − Dγ λ.
     let dl = c.apply_d(lambda);
-    let r: Vec<f64> = eu.iter().zip(&c.d).zip(&dl).map(|((a, b), dl)| a - b - dl).collect();
+    let r: Vec<f64> = eu.iter().zip(&loading.d).zip(&dl).map(|((a, b), dl)| a - b - dl).collect();
     // The scales: Λ the size of λ_n (never 0 when something pushes), R the size of the terms of r (its
     // round-off is ε R): ‖E‖ ‖u‖ bounds ‖E u‖ and stays positive when the terms cancel.
-    let lam = inf(lambda).max(c.lambda_scale()).max(inf(bound));
+    let lam = inf(lambda).max(c.lambda_scale(&loading.c)).max(inf(bound));
     let e_norm = c.e_rows.iter().map(|row| row.iter().map(|(_, v)| v.abs()).sum::<f64>()).fold(0.0, f64::max);
-    let gap_scale = (e_norm * inf(u)).max(inf(&c.d)).max(inf(&dl));
+    let gap_scale = (e_norm * inf(u)).max(inf(&loading.d)).max(inf(&dl));
     let mut k = KktResiduals { equilibrium: ratio(inf(&res), eq_scale), ..Default::default() };
     // Positive parts and maxima propagate NaN (`f64::max` would drop it); products of two ratios never
     // underflow to 0/0.

@@ -7,6 +7,7 @@ use std::time::Instant;
 
 use crate::error::{Error, Result};
 use crate::friction::Friction;
+use crate::loading::Loading;
 use crate::problem::{Condensed, Problem};
 use crate::qp::{QpOutcome, QpStatus};
 use crate::settings::{QpMethod, SolverSettings};
@@ -102,6 +103,21 @@ impl Condensed<'_> {
         &self,
         friction: &Friction,
         settings: &SolverSettings,
+        observer: Option<Observer<'_>>,
+    ) -> Result<Solution> {
+        let loading = Loading::of_problem(self.problem(), self.factor());
+        self.solve_loading(friction, settings, &loading, None, observer)
+    }
+
+    /// Solves the load case `loading` (validated friction and settings). `start` (2q), if given, is the
+    /// answer of a nearby load case (the previous step of a history): the QPs start from it, and a
+    /// Coulomb fixed point starts from its λ_n instead of the frictionless one.
+    pub(crate) fn solve_loading(
+        &self,
+        friction: &Friction,
+        settings: &SolverSettings,
+        loading: &Loading,
+        start: Option<&[f64]>,
         mut observer: Option<Observer<'_>>,
     ) -> Result<Solution> {
         let (problem, factor) = (self.problem(), self.factor());
@@ -133,30 +149,34 @@ impl Condensed<'_> {
             qp_fallbacks: 0,
             qp_inaccurate: 0,
         };
-        match &friction {
-            Friction::Frictionless | Friction::Coulomb { .. } => {
+        let (c, budget) = (loading.c.as_slice(), settings.memory_budget);
+        match (&friction, start) {
+            (Friction::Coulomb { .. }, Some(start)) => {
+                // A warm start: the fixed point starts from the nearby answer.
+                phase.lambda.copy_from_slice(start);
+            }
+            (Friction::Frictionless | Friction::Coulomb { .. }, _) => {
                 // Coulomb starts from the frictionless λ_n.
-                let out = WorkingSetQp::new(factor, None, &settings.qp, settings.memory_budget, None)?.solve()?;
+                let out = WorkingSetQp::new(factor, c, None, &settings.qp, budget, start)?.solve()?;
                 phase.lambda[..q].copy_from_slice(&out.nu);
                 phase.record_single_qp(&out, &mut notify);
             }
-            Friction::Tresca(_) => {
+            (Friction::Tresca(_), _) => {
                 phase.bound = friction.tresca_bounds(q);
-                let out = WorkingSetQp::new(factor, Some(&phase.bound), &settings.qp, settings.memory_budget, None)?
-                    .solve()?;
+                let out = WorkingSetQp::new(factor, c, Some(&phase.bound), &settings.qp, budget, start)?.solve()?;
                 phase.lambda.copy_from_slice(&out.nu);
                 phase.record_single_qp(&out, &mut notify);
             }
         }
         if let (Friction::Coulomb { mu }, SolveStatus::Converged) = (&friction, phase.status) {
             // (not after an interrupted or failed initial QP)
-            self.fixed_point(*mu, settings, &mut phase, &mut notify)?;
+            self.fixed_point(*mu, settings, c, &mut phase, &mut notify)?;
         }
         // Columns of H computed on demand during the QPs count as condensation, not QP time.
         let condensation_during = factor.condensation_seconds() - condensation_before;
         let qp_total = clock.elapsed().as_secs_f64() - condensation_during;
         let clock = Instant::now();
-        let u = factor.displacement(&problem.f_free, &phase.lambda)?;
+        let u = factor.displacement(&loading.f_free, &phase.lambda)?;
         let recovery = clock.elapsed().as_secs_f64();
         let timings = Timings {
             assembly: problem.timings.assembly,
@@ -187,7 +207,7 @@ impl Condensed<'_> {
             condensation: factor.condensation,
             timings,
         };
-        let mut solution = Solution::new(problem, factor, &u, phase.lambda, threshold, settings.qp.tol, report);
+        let mut solution = Solution::new(self, loading, &u, phase.lambda, threshold, settings.qp.tol, report);
         // The equation of (3.1) is solved directly: a residual that lost half of the digits is a singular
         // stiffness (a mechanism), not a numerical outcome of the contact solve.
         let residual = solution.kkt.equilibrium;
@@ -210,6 +230,7 @@ impl Condensed<'_> {
         &self,
         mu: f64,
         settings: &SolverSettings,
+        c: &[f64],
         phase: &mut QpPhase,
         notify: &mut dyn FnMut(Progress) -> ControlFlow<()>,
     ) -> Result<()> {
@@ -218,8 +239,14 @@ impl Condensed<'_> {
         let mut g: Vec<f64> = phase.lambda[..q].to_vec();
         let bound: Vec<f64> = g.iter().map(|v| mu * v.max(0.0)).collect();
         // Warm start: the frictionless λ_n with λ_t = 0.
-        let mut qp =
-            WorkingSetQp::new(self.factor(), Some(&bound), &settings.qp, settings.memory_budget, Some(&phase.lambda))?;
+        let mut qp = WorkingSetQp::new(
+            self.factor(),
+            c,
+            Some(&bound),
+            &settings.qp,
+            settings.memory_budget,
+            Some(&phase.lambda),
+        )?;
         phase.status = SolveStatus::MaxIterations;
         let (mut best, mut since_best) = (f64::INFINITY, 0);
         for it in 1..=fp.max_iter {
@@ -243,7 +270,7 @@ impl Condensed<'_> {
             // Converged when the relative change is small, or when the change is at the QP's own noise
             // level (tol × the natural size of λ): e.g. λ ≡ 0 without contact, where a relative change
             // compares round-off with round-off.
-            let noise = settings.qp.tol * self.factor().lambda_scale();
+            let noise = settings.qp.tol * self.factor().lambda_scale(c);
             if change <= fp.tol || max_diff <= noise {
                 phase.status = SolveStatus::Converged;
                 break;

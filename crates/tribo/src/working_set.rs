@@ -35,6 +35,8 @@ use crate::settings::{QpMethod, QpSettings};
 #[derive(Debug)]
 pub struct WorkingSetQp<'a> {
     condensed: &'a Factor,
+    /// The linear term c (2q) of the load case.
+    c: &'a [f64],
     q: usize,
     bounds: Option<Vec<f64>>,
     settings: QpSettings,
@@ -50,14 +52,15 @@ pub struct WorkingSetQp<'a> {
 }
 
 impl<'a> WorkingSetQp<'a> {
-    /// Sets up the QP of P(g) on `condensed`: frictionless if `bounds` is `None`, else with the tangential
-    /// bounds g (one per multiplier dof). `start`, if given, is a starting point (q or 2q values, e.g. the
+    /// Sets up the QP of P(g) on `condensed` with the linear term `c` (2q, see [`crate::loading`]):
+    /// frictionless if `bounds` is `None`, else with the tangential bounds g (one per multiplier dof). `start`, if given, is a starting point (q or 2q values, e.g. the
     /// frictionless answer for the first Coulomb QP). The settings are taken as validated.
     ///
     /// # Errors
     /// [`crate::Error::BadThreshold`].
     pub fn new(
         condensed: &'a Factor,
+        c: &'a [f64],
         bounds: Option<&[f64]>,
         settings: &QpSettings,
         budget: usize,
@@ -68,6 +71,7 @@ impl<'a> WorkingSetQp<'a> {
         let last = start.map(|x| (0..k).map(|i| x.get(i).copied().unwrap_or(0.0)).collect());
         let mut ws = Self {
             condensed,
+            c,
             q,
             bounds: None,
             settings: *settings,
@@ -81,7 +85,6 @@ impl<'a> WorkingSetQp<'a> {
             check_thresholds(b, q)?;
             ws.bounds = Some(b.to_vec());
         }
-        let c = &condensed.c;
         let mut initial: Vec<usize> =
             if settings.working_set { (0..q).filter(|&j| c[j] < 0.0).collect() } else { (0..q).collect() };
         if let Some(x) = &ws.last {
@@ -151,7 +154,7 @@ impl<'a> WorkingSetQp<'a> {
     fn block(&self) -> (Vec<f64>, Vec<f64>, Option<Vec<f64>>) {
         let idx = self.unknowns();
         let h = self.condensed.h_block(&idx, &idx);
-        let c: Vec<f64> = idx.iter().map(|&i| self.condensed.c[i]).collect();
+        let c: Vec<f64> = idx.iter().map(|&i| self.c[i]).collect();
         (h, c, self.bounds_on_set())
     }
 
@@ -270,7 +273,7 @@ impl<'a> WorkingSetQp<'a> {
         let q = self.q;
         let frictional = self.bounds.is_some();
         let k = if frictional { 2 * q } else { q };
-        let c = &self.condensed.c;
+        let c = self.c;
         let c_s = c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let threshold = -self.settings.tol.sqrt() * c_s;
         let (mut iterations, mut seconds, mut fallback) = (0, 0.0, false);

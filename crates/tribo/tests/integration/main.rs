@@ -6,6 +6,7 @@
 //! * `patch`: constant-strain states reproduced exactly, for every multiplier space, γ0 and friction law;
 //! * `kkt`: the discrete problem (3.1) checked by its own quadrature, independent of the assembly;
 //! * `hertz`: named scenes (Hertz convergence, the checkerboard of the classic method, Coulomb);
+//! * `history`: loading histories (the incremental problem against the static one, the path, sliding);
 //! * `methods`: the active-set method against clarabel, QP by QP, on every scene above;
 //! * `layout`: the module structure of the crate (no import cycles).
 //!
@@ -14,6 +15,7 @@
 mod errors;
 mod fuzz;
 mod hertz;
+mod history;
 mod invariants;
 mod kkt;
 mod layout;
