@@ -16,6 +16,7 @@ if matplotlib is installed, plots (``tribo.plot``, not imported here).
 from tribo._tribo import (
     STATE_NAMES,
     ContactGeometryError,
+    History,
     Mesh,
     MeshError,
     Obstacle,
@@ -36,6 +37,7 @@ from tribo.scene import SceneError, load_scene
 __all__ = [
     "STATE_NAMES",
     "ContactGeometryError",
+    "History",
     "Mesh",
     "MeshError",
     "Obstacle",

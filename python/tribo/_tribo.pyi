@@ -26,6 +26,7 @@ __all__ = [
     "Problem",
     "Solution",
     "Report",
+    "History",
     "solver_defaults",
     "solver_settings",
     "choices",
@@ -105,6 +106,7 @@ class Obstacle:
     def gap0(self, xi: _ArrayLike) -> _Floats1: ...
 
 _ProgressCallback = Callable[[int, float, int, float], object]
+_StepCallback = Callable[[int, int, str, float], object]
 
 @final
 class Problem:
@@ -147,6 +149,30 @@ class Problem:
         memory_budget: int = ...,
         condensation: Literal["auto", "columns", "schur"] = ...,
     ) -> Solution: ...
+    def solve_history(
+        self,
+        approach: float | _ArrayLike,
+        shift: float | _ArrayLike,
+        load_factor: float | _ArrayLike | None = None,
+        *,
+        friction: Literal["frictionless", "tresca", "coulomb"] | None = None,
+        mu: float | None = None,
+        threshold: float | _ArrayLike | None = None,
+        gamma0: float | None = None,
+        gamma0_fraction: float | None = None,
+        check_gamma0: bool = True,
+        progress: _StepCallback | None = None,
+        qp_tol: float = ...,
+        qp_max_iter: int = ...,
+        qp_kkt_solver: Literal["faer", "qdldl"] = ...,
+        qp_working_set: bool = ...,
+        qp_method: Literal["auto", "clarabel", "active_set"] = ...,
+        fp_tol: float = ...,
+        fp_max_iter: int = ...,
+        fp_relaxation: float = ...,
+        memory_budget: int = ...,
+        condensation: Literal["auto", "columns", "schur"] = ...,
+    ) -> History: ...
     @property
     def mesh(self) -> Mesh: ...
     @property
@@ -284,3 +310,45 @@ class Solution:
     def kkt_max(self) -> float: ...
     @property
     def report(self) -> Report: ...
+
+@final
+class History:
+    @property
+    def status(self) -> str: ...
+    @property
+    def converged(self) -> bool: ...
+    @property
+    def ended_at(self) -> int | None: ...
+    @property
+    def solutions(self) -> list[Solution]: ...
+    @property
+    def failed(self) -> Solution | None: ...
+    @property
+    def approach(self) -> _Floats1: ...
+    @property
+    def shift(self) -> _Floats1: ...
+    @property
+    def load_factor(self) -> _Floats1: ...
+    @property
+    def normal_force(self) -> _Floats1: ...
+    @property
+    def tangential_force(self) -> _Floats1: ...
+    @property
+    def stick_count(self) -> _Ints: ...
+    @property
+    def slip_count(self) -> _Ints: ...
+    @property
+    def separation_count(self) -> _Ints: ...
+    @property
+    def contact_zone(self) -> _Floats2: ...
+    @property
+    def stick_zone(self) -> _Floats2: ...
+    @property
+    def stick_slip_boundaries(self) -> list[_Floats1]: ...
+    @property
+    def step_seconds(self) -> _Floats1: ...
+    @property
+    def factorizations(self) -> int: ...
+    @property
+    def setup_seconds(self) -> float: ...
+    def __len__(self) -> int: ...

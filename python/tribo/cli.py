@@ -30,9 +30,10 @@ from typing import Any
 
 import numpy as np
 
-from tribo._tribo import Problem, Solution, TriboError, __version__
+from tribo._tribo import History, Problem, Solution, TriboError, __version__
+from tribo.history import write_history
 from tribo.io import write_contact_csv, write_vtu
-from tribo.scene import Scene, demo_scene_path, load_scene
+from tribo.scene import Scene, SceneError, demo_scene_path, load_scene
 
 __all__ = ["main", "run_scene"]
 
@@ -87,8 +88,30 @@ def summary(scene: Scene, problem: Problem, solution: Solution, seconds: float) 
     }
 
 
+def run_history(scene: Scene, problem: Problem, out: Path, *, plots: bool = True) -> tuple[History, list[Path]]:
+    """Solves the scene's ``[history]`` with a progress bar over the steps and writes its outputs."""
+    from tqdm import tqdm
+
+    approach, _, _ = scene.history_steps()
+    clock = time.perf_counter()
+    with tqdm(total=len(approach), desc="steps", unit="step", disable=not log.isEnabledFor(logging.INFO)) as bar:
+
+        def progress(step: int, steps: int, status: str, seconds: float) -> None:
+            bar.update(1)
+            bar.set_postfix_str(status)
+
+        problem, history = scene.solve_history(problem, progress=progress)
+    seconds = time.perf_counter() - clock
+    log.info("history ended: %s after %d of %d steps, %.2f s", history.status, len(history), len(approach), seconds)
+    files = write_history(out, problem, history, plots=plots, plot_steps=scene.get("history", "plot_steps"))
+    return history, files
+
+
 def run_scene(scene: Scene, out: Path, *, plots: bool = True) -> tuple[Problem, Solution, list[Path]]:
-    """Solves a scene and writes every output into ``out``; returns the problem, solution and files."""
+    """Solves a scene and writes every output into ``out``; returns the problem, solution and files.
+
+    For a scene with a ``[history]``, the solution is that of the last converged step, and the history's
+    outputs (``tribo.history``) are written beside the summary."""
     out.mkdir(parents=True, exist_ok=True)
     clock = time.perf_counter()
     log.info("scene: %s", scene.title or "(untitled)")
@@ -104,7 +127,16 @@ def run_scene(scene: Scene, out: Path, *, plots: bool = True) -> tuple[Problem, 
     )
     given = ", ".join(f"{k} = {v}" for k, v in scene.sections.get("friction", {}).items())
     log.info("solving (%s)", given or "no friction given: frictionless")
-    problem, solution = scene.solve(problem, progress=_progress)
+    if scene.has_history:
+        history, history_files = run_history(scene, problem, out, plots=plots)
+        # The step that failed if one did (its status then sets the exit code), else the last one.
+        last = history.failed if history.failed is not None else (history.solutions[-1] if len(history) else None)
+        if last is None:
+            raise SceneError(f"the history's first step ended with status '{history.status}'", "history")
+        solution = last
+    else:
+        history_files = []
+        problem, solution = scene.solve(problem, progress=_progress)
     seconds = time.perf_counter() - clock
     log.info("solve ended: %s after %.2f s", solution.report.status, seconds)
     files = []
@@ -115,7 +147,7 @@ def run_scene(scene: Scene, out: Path, *, plots: bool = True) -> tuple[Problem, 
     files += write_vtu(out / "result.vtu", problem, solution)
     if plots:
         files += _plots(out, problem, solution)
-    return problem, solution, files
+    return problem, solution, files + history_files
 
 
 def _plots(out: Path, problem: Problem, solution: Solution) -> list[Path]:

@@ -12,12 +12,13 @@ the contact pressure and, at the discrete solution, λ_n ≈ −σ_n(u_h).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from tribo._tribo import STATE_NAMES, Problem, Solution
+from tribo._tribo import STATE_NAMES, History, Problem, Solution
 
 try:
     import matplotlib.pyplot as plt
@@ -27,7 +28,7 @@ try:
 except ImportError as e:  # pragma: no cover - depends on the environment
     raise ImportError("tribo.plot needs matplotlib: pip install 'tribo[plot]'") from e
 
-__all__ = ["contact_pressure", "tangential", "von_mises", "STATE_COLORS"]
+__all__ = ["contact_pressure", "tangential", "von_mises", "history_loop", "history_tractions", "STATE_COLORS"]
 
 STATE_COLORS = {"separation": "#eeeeee", "stick": "#b9d7f0", "slip": "#f6c89f"}
 
@@ -178,4 +179,46 @@ def von_mises(
     ax.set_title(f"Deformed mesh (displacement × {scale:.3g}), von Mises stress")
     ax.set_xlabel("x")
     ax.set_ylabel("y")
+    return ax
+
+
+def history_loop(history: History, ax: Axes | None = None) -> Axes:
+    """Q = ∫λ_t against the obstacle's tangential position s along a history, with ±μP for reference."""
+    ax = _axes(ax)
+    k = len(history)
+    s, q = history.shift[:k], history.tangential_force
+    ax.plot(s, q, "o-", ms=3, lw=1.2, label="Q = ∫λ_t")
+    mu = history.solutions[0].mu if k else None
+    if mu is not None:
+        ax.plot(s, mu * history.normal_force, "k--", lw=0.8, label="±μP")
+        ax.plot(s, -mu * history.normal_force, "k--", lw=0.8)
+    ax.set_xlabel("obstacle tangential position s (along t)")
+    ax.set_ylabel("tangential force Q (along t)")
+    ax.set_title("Tangential force along the loading path")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    return ax
+
+
+def history_tractions(history: History, steps: Sequence[int], ax: Axes | None = None) -> Axes:
+    """λ_t and ±μλ_n (the Coulomb bounds) along Γ_C at the given steps of a history."""
+    ax = _axes(ax)
+    for i, k in enumerate(steps):
+        sol = history.solutions[k]
+        x = sol.multiplier_abscissae
+        (line,) = ax.plot(x, sol.lambda_t, "-", lw=1.4, label=f"λ_t, step {k} (s = {history.shift[k]:.3g})")
+        ax.plot(x, sol.friction_threshold, ":", color=line.get_color(), lw=1.0,
+                label="±μλ_n" if i == 0 else None)
+        ax.plot(x, -sol.friction_threshold, ":", color=line.get_color(), lw=1.0)
+    zone = history.contact_zone[list(steps)] if len(steps) else np.empty((0, 2))
+    zone = zone[np.isfinite(zone).all(axis=1)]
+    if len(zone):
+        a, b = float(zone[:, 0].min()), float(zone[:, 1].max())
+        pad = 0.3 * (b - a) if b > a else 1.0
+        ax.set_xlim(a - pad, b + pad)
+    ax.set_xlabel("abscissa along Γ_C (along t)")
+    ax.set_ylabel("tangential traction λ_t (along t)")
+    ax.set_title("Tangential traction and the Coulomb bounds ±μλ_n")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
     return ax

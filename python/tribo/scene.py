@@ -29,6 +29,14 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     contact zone; default h / 16), ``growth`` (default 0.3), ``diagonal`` (uniform mesh only).
     For any body: ``multiplier_ratio`` (H/h) or ``multiplier_size`` (H), ``space`` (``"P0"``/``"P1"``),
     ``gamma0`` or ``gamma0_fraction`` (of the admissible bound).
+``[history]``
+    A quasi-static loading history (``tribo run`` then solves it step by step, see ``tribo.history``):
+    piecewise-linear paths through waypoints. ``shift``, ``approach`` and ``load_factor`` are each a
+    number (the same at every waypoint) or a list of waypoint values (lists have one length, at least 2);
+    unset, they take ``obstacle.shift``, ``obstacle.approach`` and 1. ``steps`` (default 10) is the
+    number of steps from one waypoint to the next (one count, or a list with one per segment); the first
+    waypoint is step 0. ``plot_steps``: the steps whose tractions the plots show (default: the first, the
+    middle and the last).
 ``[solver]``
     Any solver setting by the name ``Problem.solve`` takes (``tribo.solver_settings()`` lists them with
     their kinds and defaults): ``qp_tol``, ``qp_max_iter``, ``qp_kkt_solver`` (``"faer"``/``"qdldl"``),
@@ -59,7 +67,7 @@ from typing import Any
 import numpy as np
 
 from tribo._tribo import MAX_CELLS as _MAX_CELLS
-from tribo._tribo import Mesh, Obstacle, Problem, Solution, TriboError, choices, solver_settings
+from tribo._tribo import History, Mesh, Obstacle, Problem, Solution, TriboError, choices, solver_settings
 from tribo.io import read_mesh
 
 __all__ = ["Scene", "SceneError", "load_scene", "parse_scene", "demo_scene_path", "scene_path"]
@@ -149,6 +157,30 @@ def _numbers(key: str, v: Any) -> list[float]:
     return [_number(key, x) for x in v]
 
 
+def _path(key: str, v: Any) -> float | list[float]:
+    """A number, or a list of at least two numbers (waypoints of a history path)."""
+    if isinstance(v, list):
+        if len(v) < 2:
+            raise SceneError(f"scene key '{key}' must be a number or a list of at least two waypoints, got {v!r}", key)
+        return _numbers(key, v)
+    return _number(key, v)
+
+
+def _counts(key: str, v: Any) -> int | list[int]:
+    """A positive step count, or a list of them (one per segment of a history path)."""
+    values = v if isinstance(v, list) else [v]
+    out = [_integer(key, x) for x in values]
+    if not out or any(not 1 <= n <= MAX_HISTORY_STEPS for n in out):
+        raise SceneError(f"scene key '{key}' must hold step counts in [1, {MAX_HISTORY_STEPS}], got {v!r}", key)
+    return out if isinstance(v, list) else out[0]
+
+
+def _steps(key: str, v: Any) -> list[int]:
+    if not isinstance(v, list) or any(isinstance(x, bool) or not isinstance(x, int) or x < 0 for x in v):
+        raise SceneError(f"scene key '{key}' must be a list of step numbers (integers ≥ 0), got {v!r}", key)
+    return list(v)
+
+
 def _names(key: str, v: Any) -> list[str]:
     if isinstance(v, str):
         return [v]
@@ -218,6 +250,7 @@ SCHEMA: dict[str, dict[str, Checker]] = {
         "gamma0": _number,
         "gamma0_fraction": _number,
     },
+    "history": {"shift": _path, "approach": _path, "load_factor": _path, "steps": _counts, "plot_steps": _steps},
     "solver": {name: _setting_checker(spec) for name, spec in solver_settings().items()},
 }
 REQUIRED = {"material": ("young", "poisson"), "supports": ("clamped",), "contact": ("edge_set",)}
@@ -227,6 +260,8 @@ SHAPE_REQUIRED = {"flat": (), "circle": ("radius",), "parabola": ("radius",), "p
 # The most cells (nx · ny) a uniform rectangle may have: the limit of the core's Mesh.rectangle, checked here
 # before nx and ny are rounded to integers (an absurd h would overflow the binding's conversion).
 MAX_CELLS = _MAX_CELLS  # the core's limit (tribo.generate::MAX_CELLS)
+# The most steps a scene's history may have in all (each step writes three VTU files).
+MAX_HISTORY_STEPS = 100_000
 
 
 @dataclass
@@ -381,6 +416,53 @@ class Scene:
         """Builds (unless given) and solves; returns the problem and the solution."""
         problem = problem if problem is not None else self.build()
         return problem, problem.solve(progress=progress, **self.solve_kwargs())
+
+    @property
+    def has_history(self) -> bool:
+        """True when the scene has a ``[history]`` table."""
+        return "history" in self.sections
+
+    def history_steps(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The steps of ``[history]``: approach, shift and load factor per step (the first waypoint is step 0)."""
+        h = self.sections.get("history", {})
+        o = self.sections.get("obstacle", {})
+        given = {
+            "approach": h.get("approach", o.get("approach", 0.0)),
+            "shift": h.get("shift", o.get("shift", 0.0)),
+            "load_factor": h.get("load_factor", 1.0),
+        }
+        lengths = {k: len(v) for k, v in given.items() if isinstance(v, list)}
+        if len(set(lengths.values())) > 1:
+            raise SceneError(f"the waypoint lists of [history] have different lengths: {lengths}", "history")
+        n_points = max(lengths.values(), default=2)
+        counts = h.get("steps", 10)
+        counts = counts if isinstance(counts, list) else [counts] * (n_points - 1)
+        if len(counts) != n_points - 1:
+            raise SceneError(
+                f"scene key 'history.steps' must have one count per segment ({n_points - 1}), got {len(counts)}",
+                "history.steps",
+            )
+        if sum(counts) + 1 > MAX_HISTORY_STEPS:
+            raise SceneError(f"[history] has {sum(counts) + 1} steps, more than {MAX_HISTORY_STEPS}", "history.steps")
+        # Parameter t of each step along the waypoints: 0, then counts[i] equal steps per segment.
+        t = np.concatenate([[0.0], *[i + np.arange(1, c + 1) / c for i, c in enumerate(counts)]])
+        waypoints = np.arange(n_points, dtype=float)
+
+        def sample(v: float | list[float]) -> np.ndarray:
+            values = np.asarray(v if isinstance(v, list) else [v] * n_points, dtype=float)
+            out: np.ndarray = np.interp(t, waypoints, values)
+            return out
+
+        return sample(given["approach"]), sample(given["shift"]), sample(given["load_factor"])
+
+    def solve_history(
+        self, problem: Problem | None = None, progress: Callable[[int, int, str, float], object] | None = None
+    ) -> tuple[Problem, History]:
+        """Builds (unless given) and solves the ``[history]``; returns the problem and the history."""
+        problem = problem if problem is not None else self.build()
+        approach, shift, load_factor = self.history_steps()
+        kw = self.solve_kwargs()
+        return problem, problem.solve_history(approach, shift, load_factor, progress=progress, **kw)
 
     def to_dict(self) -> dict[str, Any]:
         """The scene as plain data (for the JSON summary)."""

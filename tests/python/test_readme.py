@@ -32,3 +32,14 @@ def test_readme_scene_snippet_is_a_valid_scene() -> None:
     scene = parse_scene(tomllib.loads(blocks[0]))
     kw = scene.solve_kwargs()
     assert kw["mu"] == 0.3 and "threshold" not in kw
+
+
+def test_readme_history_snippet_samples_its_path() -> None:
+    blocks = [b for b in _blocks("toml") if "[history]" in b]
+    assert blocks, "README.md has no [history] example"
+    base = tomllib.loads((Path(__file__).resolve().parents[2] / "python/tribo/scenes/fretting.toml").read_text())
+    base["history"] = tomllib.loads(blocks[0])["history"]
+    approach, shift, load_factor = parse_scene(base).history_steps()
+    assert len(shift) == 1 + 8 + 16 + 16
+    assert shift[8] == 0.0045 and shift[24] == -0.0045 and shift[-1] == 0.0045
+    assert (approach == base["obstacle"]["approach"]).all() and (load_factor == 1.0).all()

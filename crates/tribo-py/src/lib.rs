@@ -7,6 +7,7 @@
 
 mod convert;
 mod errors;
+mod history;
 mod mesh;
 mod problem;
 mod solution;
@@ -108,6 +109,7 @@ fn _tribo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<problem::PyProblem>()?;
     m.add_class::<solution::PySolution>()?;
     m.add_class::<solution::PyReport>()?;
+    m.add_class::<history::PyHistory>()?;
     m.add_function(wrap_pyfunction!(solver_defaults, m)?)?;
     m.add_function(wrap_pyfunction!(solver_settings, m)?)?;
     m.add_function(wrap_pyfunction!(choices, m)?)?;

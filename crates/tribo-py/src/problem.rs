@@ -9,12 +9,13 @@ use pyo3::exceptions::{PyException, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat};
 use tribo::{
-    Choice, Friction, FrictionLaw, GapFunction, Material, MultiplierPoints, MultiplierSpace, ObstacleShape,
-    ProblemSpec, Progress, SolverSettings, Stabilization, Threshold,
+    Choice, Friction, FrictionLaw, GapFunction, LoadStep, Material, MultiplierPoints, MultiplierSpace, ObstacleShape,
+    ProblemSpec, Progress, SolverSettings, Stabilization, StepProgress, Threshold,
 };
 
 use crate::convert::{floats, mat, rows, setting_value, vec1};
 use crate::errors::{geometry_error, settings_error, to_pyerr, ToPyResult};
+use crate::history::PyHistory;
 use crate::mesh::PyMesh;
 use crate::solution::PySolution;
 
@@ -182,6 +183,35 @@ fn names(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<String>> {
 fn vec2(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<[f64; 2]> {
     let v = floats(obj, what, &[Some(2)], settings_err)?;
     Ok([v[0], v[1]])
+}
+
+/// Calls the progress callback (if any) with `args` and checks for Ctrl-C: `Break` when the callback
+/// returned False, raised (kept in `error`, re-raised by the caller) or Ctrl-C was pressed.
+fn observe_with<A: for<'py> pyo3::call::PyCallArgs<'py>>(
+    progress: Option<&Py<PyAny>>,
+    args: A,
+    error: &mut Option<PyErr>,
+) -> ControlFlow<()> {
+    Python::attach(|py| {
+        let stop = match progress {
+            Some(f) => match f.call1(py, args) {
+                Ok(r) => r.bind(py).is(pyo3::types::PyBool::new(py, false)),
+                Err(e) => {
+                    *error = Some(e);
+                    true
+                }
+            },
+            None => false,
+        };
+        if let Err(e) = py.check_signals() {
+            error.get_or_insert(e);
+        }
+        if stop || error.is_some() {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    })
 }
 
 /// The solve's keywords as core values: the friction law, γ0 and the settings table.
@@ -368,26 +398,8 @@ impl PyProblem {
             // After every QP: the progress callback (False stops the solve, an exception stops it and is
             // re-raised below) and Ctrl-C.
             let mut observe = |p: &Progress| {
-                Python::attach(|py| {
-                    let stop = match &progress {
-                        Some(f) => match f.call1(py, (p.iteration, p.change, p.qp_iterations, p.qp_seconds)) {
-                            Ok(r) => r.bind(py).is(pyo3::types::PyBool::new(py, false)),
-                            Err(e) => {
-                                callback_error = Some(e);
-                                true
-                            }
-                        },
-                        None => false,
-                    };
-                    if let Err(e) = py.check_signals() {
-                        callback_error.get_or_insert(e);
-                    }
-                    if stop || callback_error.is_some() {
-                        ControlFlow::Break(())
-                    } else {
-                        ControlFlow::Continue(())
-                    }
-                })
+                let args = (p.iteration, p.change, p.qp_iterations, p.qp_seconds);
+                observe_with(progress.as_ref(), args, &mut callback_error)
             };
             problem.solve(&law, &settings, Some(&mut observe))
         });
@@ -396,6 +408,91 @@ impl PyProblem {
             return Err(e);
         }
         PySolution::new(solution)
+    }
+
+    /// Solves a quasi-static loading history from rest on one factorization; returns a History.
+    ///
+    /// Step k moves the obstacle to approach `approach[k]` and tangential position `shift[k]` (totals,
+    /// not increments; a scalar is the same at every step) under `load_factor[k]` × the body force and
+    /// tractions (default 1). Coulomb's law acts on the slip increment relative to the obstacle, so the
+    /// answer depends on the path; a history of one step is the static `solve`. The friction, γ0 and
+    /// settings keywords are those of `solve`. `progress`, if given, is called as
+    /// progress(step, steps, status, seconds) after every step; returning False ends the history there
+    /// (status 'interrupted', the steps done kept), raising ends it and propagates. Ctrl-C is honoured
+    /// between steps. A step that does not converge ends the history with its status; `History.failed`
+    /// holds its last iterate.
+    #[pyo3(signature = (
+        approach, shift, load_factor = None, *, friction = None, mu = None, threshold = None, gamma0 = None,
+        gamma0_fraction = None, check_gamma0 = true, progress = None, **settings,
+    ))]
+    #[allow(clippy::too_many_arguments)]
+    fn solve_history(
+        &self,
+        py: Python<'_>,
+        approach: &Bound<'_, PyAny>,
+        shift: &Bound<'_, PyAny>,
+        load_factor: Option<&Bound<'_, PyAny>>,
+        friction: Option<&str>,
+        mu: Option<f64>,
+        threshold: Option<&Bound<'_, PyAny>>,
+        gamma0: Option<f64>,
+        gamma0_fraction: Option<f64>,
+        check_gamma0: bool,
+        progress: Option<Py<PyAny>>,
+        settings: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<PyHistory> {
+        let (law, settings) =
+            solve_arguments(friction, mu, threshold, (gamma0, gamma0_fraction, check_gamma0), settings)?;
+        let one = |obj: &Bound<'_, PyAny>, what: &str| -> PyResult<Vec<f64>> {
+            match obj.extract::<f64>() {
+                Ok(v) => Ok(vec![v]),
+                Err(_) => floats(obj, what, &[None], settings_err),
+            }
+        };
+        let columns = [
+            one(approach, "approach")?,
+            one(shift, "shift")?,
+            load_factor.map_or(Ok(vec![1.0]), |l| one(l, "load_factor"))?,
+        ];
+        let n = columns.iter().map(Vec::len).max().unwrap_or(0);
+        if let Some(what) = columns.iter().zip(["approach", "shift", "load_factor"]).find(|(c, _)| c.is_empty()) {
+            return Err(settings_error(format!("a history needs at least one step ({} has no value)", what.1)));
+        }
+        for (c, what) in columns.iter().zip(["approach", "shift", "load_factor"]) {
+            if c.len() != 1 && c.len() != n {
+                return Err(settings_error(format!(
+                    "{what} has {} values, but the history has {n} steps (give one value, or one per step)",
+                    c.len()
+                )));
+            }
+        }
+        let at = |c: &Vec<f64>, k: usize| if c.len() == 1 { c[0] } else { c[k] };
+        let steps: Vec<LoadStep> = (0..n)
+            .map(|k| LoadStep {
+                approach: at(&columns[0], k),
+                shift: at(&columns[1], k),
+                load_factor: at(&columns[2], k),
+            })
+            .collect();
+        if let Some(p) = &progress {
+            if !p.bind(py).is_callable() {
+                return Err(settings_error("progress must be a callable (step, steps, status, seconds)"));
+            }
+        }
+        let mut callback_error: Option<PyErr> = None;
+        let problem = &self.inner;
+        let result = py.detach(|| {
+            let mut observe = |p: &StepProgress| {
+                let args = (p.step, p.steps, p.status.name(), p.seconds);
+                observe_with(progress.as_ref(), args, &mut callback_error)
+            };
+            problem.solve_history(&law, &steps, &settings, Some(&mut observe))
+        });
+        let history = result.map_err(to_pyerr)?;
+        if let Some(e) = callback_error {
+            return Err(e);
+        }
+        PyHistory::new(py, history)
     }
 
     /// The mesh.

@@ -1,0 +1,129 @@
+"""Loading histories: what ``tribo run`` writes for a scene with a ``[history]`` table.
+
+``Problem.solve_history`` (the core) solves the quasi-static steps on one factorization; this module
+writes its results:
+
+* ``step_NNNN.vtu`` (+ ``_contact``, ``_multipliers``) per converged step, and ``result.pvd``,
+  ``result_contact.pvd``, ``result_multipliers.pvd``: collections ParaView opens as time series (the
+  "time" is the step number);
+* ``history.csv``: per step, the obstacle's approach and shift, the load factor, the normal and
+  tangential contact forces, the stick/slip/separation counts and the extents of the contact and stick
+  zones;
+* ``history_loop.png``: the tangential force Q against the obstacle's tangential position s (for a
+  fretting cycle, the hysteresis loop), and ``history_tractions.png``: λ_t against ±μλ_n at chosen steps.
+
+Conventions: s is the obstacle's position along the tangent t = (−n₂, n₁) of Γ_C (n the outward normal),
+Q = ∫λ_t is the tangential force along t, and abscissae run along t.
+"""
+
+from __future__ import annotations
+
+import csv
+import logging
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any
+from xml.sax.saxutils import quoteattr
+
+import numpy as np
+
+from tribo._tribo import History, Problem
+from tribo.io import write_vtu
+
+__all__ = ["write_history", "write_pvd", "history_table"]
+
+log = logging.getLogger("tribo")
+
+
+def write_pvd(path: str | Path, files: Sequence[Path], times: Sequence[float]) -> Path:
+    """A ParaView collection (``.pvd``) of ``files`` at ``times`` (paths relative to the collection)."""
+    path = Path(path)
+    rows = "\n".join(
+        f'    <DataSet timestep="{t!r}" part="0" file={quoteattr(f.relative_to(path.parent).as_posix())}/>'
+        for f, t in zip(files, times, strict=True)
+    )
+    path.write_text(
+        '<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n  <Collection>\n'
+        f"{rows}\n  </Collection>\n</VTKFile>\n",
+        encoding="utf-8",
+    )
+    return path
+
+
+def history_table(history: History) -> dict[str, np.ndarray]:
+    """The per-step columns of ``history.csv`` (converged steps only)."""
+    k = len(history)
+    contact, stick = history.contact_zone, history.stick_zone
+    return {
+        "step": np.arange(k),
+        "approach": history.approach[:k],
+        "shift": history.shift[:k],
+        "load_factor": history.load_factor[:k],
+        "normal_force": history.normal_force,
+        "tangential_force": history.tangential_force,
+        "stick": history.stick_count,
+        "slip": history.slip_count,
+        "separation": history.separation_count,
+        "contact_from": contact[:, 0],
+        "contact_to": contact[:, 1],
+        "stick_from": stick[:, 0],
+        "stick_to": stick[:, 1],
+    }
+
+
+def write_history(out: str | Path, problem: Problem, history: History, *, plots: bool = True,
+                  plot_steps: Sequence[int] | None = None) -> list[Path]:
+    """Writes the VTU series with its ``.pvd`` collections, ``history.csv`` and (``plots``) the charts."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    series: list[list[Path]] = [[], [], []]
+    for k, solution in enumerate(history.solutions):
+        for part, p in zip(series, write_vtu(out / f"step_{k:04d}.vtu", problem, solution), strict=True):
+            part.append(p)
+    files = [p for part in series for p in part]
+    steps = list(range(len(history)))
+    for name, part in zip(("result", "result_contact", "result_multipliers"), series, strict=True):
+        files.append(write_pvd(out / f"{name}.pvd", part, steps))
+    table = history_table(history)
+    path = out / "history.csv"
+    with path.open("w", newline="", encoding="utf-8") as f:
+        f.write(
+            "# s (shift): obstacle position along t = (-n2, n1); tangential_force = ∫λ_t along t; "
+            "zones are abscissae along t\n"
+        )
+        w = csv.writer(f)
+        w.writerow(table)
+        w.writerows(zip(*(v.tolist() for v in table.values()), strict=True))
+    files.append(path)
+    if plots:
+        files += _plots(out, history, plot_steps)
+    return files
+
+
+def _plots(out: Path, history: History, plot_steps: Sequence[int] | None) -> list[Path]:
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        log.warning("matplotlib is not installed: no plots (pip install 'tribo[plot]')")
+        return []
+    k = len(history)
+    if k == 0:
+        return []
+    steps = [s for s in (plot_steps if plot_steps is not None else sorted({0, k // 2, k - 1})) if s < k]
+    from tribo import plot
+
+    files = []
+    draws: tuple[tuple[str, Callable[[Any], Any]], ...] = (
+        ("history_loop.png", lambda ax: plot.history_loop(history, ax)),
+        ("history_tractions.png", lambda ax: plot.history_tractions(history, steps, ax)),
+    )
+    for name, draw in draws:
+        fig, ax = plt.subplots(figsize=(7.0, 4.0), layout="constrained")
+        draw(ax)
+        fig.savefig(out / name, dpi=120)
+        plt.close(fig)
+        files.append(out / name)
+    return files

@@ -1,0 +1,110 @@
+"""Loading histories from Python: the API, the scene table and what ``tribo run`` writes."""
+
+from __future__ import annotations
+
+import tomllib
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import meshio
+import numpy as np
+import pytest
+
+import tribo
+from tribo.cli import main
+from tribo.scene import SceneError, parse_scene, scene_path
+
+
+@pytest.fixture(scope="module")
+def problem() -> tribo.Problem:
+    mesh = tribo.Mesh.rectangle((-1.0, 1.0), (-1.0, 0.0), 24, 12)
+    return tribo.Problem(mesh, young=1.0, poisson=0.45, clamped="bottom", contact="top",
+                         obstacle=tribo.Obstacle.circle(radius=2.0), approach=0.01)
+
+
+def test_one_step_is_the_static_solve(problem: tribo.Problem) -> None:
+    h = problem.solve_history(0.01, [0.002], mu=0.3)
+    static = tribo.Problem(problem.mesh, young=1.0, poisson=0.45, clamped="bottom", contact="top",
+                           obstacle=tribo.Obstacle.circle(radius=2.0), approach=0.01, shift=0.002).solve(mu=0.3)
+    assert h.status == "converged" and len(h) == 1
+    np.testing.assert_array_equal(h.solutions[0].lambda_t, static.lambda_t)
+    np.testing.assert_array_equal(h.solutions[0].displacement, static.displacement)
+
+
+def test_arrays_have_one_entry_per_step(problem: tribo.Problem) -> None:
+    s = np.linspace(0.0, 0.004, 6)
+    h = problem.solve_history(0.01, s, mu=0.3)
+    assert h.converged and h.factorizations in (0, 1) and h.ended_at is None and h.failed is None
+    for a in (h.normal_force, h.tangential_force, h.stick_count, h.slip_count, h.separation_count, h.step_seconds):
+        assert a.shape == (6,)
+    assert h.contact_zone.shape == (6, 2) and h.stick_zone.shape == (6, 2)
+    assert len(h.stick_slip_boundaries) == 6
+    np.testing.assert_array_equal(h.shift, s)
+    assert (h.stick_count + h.slip_count + h.separation_count == problem.n_multipliers).all()
+    # The drag loads tangentially and Q stays within μP.
+    assert abs(h.tangential_force[-1]) > 0.0
+    assert (np.abs(h.tangential_force) <= 0.3 * h.normal_force * (1 + 1e-9)).all()
+
+
+def test_progress_can_stop_the_history(problem: tribo.Problem) -> None:
+    seen: list[tuple[int, int, str]] = []
+
+    def progress(step: int, steps: int, status: str, seconds: float) -> bool:
+        seen.append((step, steps, status))
+        return step < 2
+
+    h = problem.solve_history(0.01, np.linspace(0.0, 0.004, 6), mu=0.3, progress=progress)
+    assert h.status == "interrupted" and len(h) == 3 and h.ended_at == 2
+    assert seen == [(0, 6, "converged"), (1, 6, "converged"), (2, 6, "converged")]
+
+
+def test_bad_histories_are_errors(problem: tribo.Problem) -> None:
+    with pytest.raises(tribo.SettingsError, match="load step 1"):
+        problem.solve_history(0.01, [0.0, float("nan")], mu=0.3)
+    with pytest.raises(tribo.SettingsError, match="shift has 2 values, but the history has 3 steps"):
+        problem.solve_history([0.01, 0.01, 0.01], [0.0, 0.001], mu=0.3)
+    with pytest.raises(tribo.SettingsError, match="at least one step"):
+        problem.solve_history(0.01, np.array([]), mu=0.3)
+    with pytest.raises(tribo.SettingsError, match="progress"):
+        problem.solve_history(0.01, [0.0], mu=0.3, progress=3)  # type: ignore[arg-type]
+
+
+def _fretting(**history: object) -> dict[str, object]:
+    data = tomllib.loads(scene_path("fretting").read_text(encoding="utf-8"))
+    data["history"] = history
+    return data
+
+
+def test_scene_history_paths() -> None:
+    approach, shift, factor = parse_scene(_fretting(shift=[0.0, 0.002, 0.0], approach=0.01, steps=[2, 4])).history_steps()
+    np.testing.assert_allclose(shift, [0.0, 0.001, 0.002, 0.0015, 0.001, 0.0005, 0.0])
+    assert (approach == 0.01).all() and (factor == 1.0).all()
+    with pytest.raises(SceneError, match="different lengths"):
+        parse_scene(_fretting(shift=[0.0, 0.1], approach=[0.0, 0.01, 0.02])).history_steps()
+    with pytest.raises(SceneError, match="one count per segment"):
+        parse_scene(_fretting(shift=[0.0, 0.1, 0.0], steps=[3])).history_steps()
+    with pytest.raises(SceneError, match="history.steps"):
+        parse_scene(_fretting(shift=[0.0, 0.1], steps=0))
+    with pytest.raises(SceneError, match="history.shift"):
+        parse_scene(_fretting(shift=[0.0]))
+    with pytest.raises(SceneError, match="history.speed"):
+        parse_scene(_fretting(speed=1.0))
+
+
+def test_run_writes_a_time_series(tmp_path: Path) -> None:
+    text = scene_path("fretting").read_text(encoding="utf-8")
+    text = text.replace("h_min = 0.01", "h_min = 0.04").replace("steps = [8, 16, 16]", "steps = [2, 2, 2]")
+    text = text.replace("plot_steps = [8, 24, 40]", "plot_steps = [2, 4]")
+    scene = tmp_path / "fretting.toml"
+    scene.write_text(text, encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["-q", "run", str(scene), "--out", str(out)]) == 0
+    pvd = ET.parse(out / "result.pvd").getroot()
+    files = [d.get("file") for d in pvd.iter("DataSet")]
+    assert files == [f"step_{k:04d}.vtu" for k in range(7)]
+    for f in files:
+        assert meshio.read(out / str(f)).points.shape[1] == 3
+    rows = (out / "history.csv").read_text(encoding="utf-8").splitlines()
+    assert rows[0].startswith("# s (shift)") and rows[1].startswith("step,approach,shift")
+    assert len(rows) == 2 + 7
+    assert (out / "history_loop.png").is_file() and (out / "history_tractions.png").is_file()
