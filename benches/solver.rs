@@ -22,6 +22,9 @@
 //! - `block`: the block scene (`python/tribo/scenes/block.toml`, contact along the whole bottom edge) at
 //!   400 × 100 (80k unknowns) and 800 × 200 (320k): the whole Coulomb solve from a fresh factorization
 //!   (H from the partial factorization) and the Cholesky reference.
+//! - `history`: a loading history on a prebuilt condensation (Hertz, pressed, then dragged to 0.004 in 10
+//!   steps, μ = 0.3): the whole history (11 steps) against one static Coulomb solve of its last position
+//!   (the target: a step after the first costs no more than the static solve without its factorization).
 //!
 //! The set-up prints, once per mesh, the numbers of unknowns (n_free) and of multiplier dofs (q), and the
 //! status of the Coulomb solves. `cargo bench --bench solver -- --test` runs every bench once.
@@ -38,8 +41,8 @@ use faer::sparse::SparseColMat;
 use faer::Mat;
 use tribo::mortar::MortarMatrices;
 use tribo::{
-    Friction, Grading, KktSolver, Mesh, MultiplierPoints, MultiplierSpace, Problem, ProblemSpec, QpMethod, QpSettings,
-    Side, SolveStatus, SolverSettings, Stabilization, Threshold,
+    Friction, Grading, KktSolver, LoadStep, Mesh, MultiplierPoints, MultiplierSpace, Problem, ProblemSpec, QpMethod,
+    QpSettings, Side, SolveStatus, SolverSettings, Stabilization, Threshold,
 };
 use tribo_testkit::{block_problem, hertz_mesh, hertz_scene, hertz_spec};
 
@@ -196,6 +199,32 @@ fn bench_coulomb(c: &mut Criterion) {
         );
         assert_eq!(sol.report.status, SolveStatus::Converged, "Coulomb at h_min = {h_min}");
         group.bench_with_input(BenchmarkId::from_parameter(h_min), &condensed, |b, c| {
+            b.iter(|| c.solve(black_box(&friction), &settings, None).unwrap())
+        });
+    }
+    group.finish();
+}
+
+fn bench_history(c: &mut Criterion) {
+    let mut group = c.benchmark_group("history");
+    configure_slow(&mut group, 5);
+    let settings = SolverSettings::default();
+    let friction = Friction::Coulomb { mu: MU };
+    let approach = hertz_scene().approach;
+    let steps: Vec<LoadStep> = (0..=10).map(|k| LoadStep::new(approach, COULOMB_SHIFT * k as f64 / 10.0)).collect();
+    for h_min in COULOMB_SIZES {
+        let s = scene(h_min, COULOMB_SHIFT);
+        let condensed = s.problem.condense(STABILIZATION).unwrap();
+        let h = condensed.solve_history(&friction, &steps, &settings, None).unwrap();
+        assert_eq!(h.status, SolveStatus::Converged, "history at h_min = {h_min}");
+        eprintln!(
+            "[history h_min = {h_min}] 11 steps, fixed-point iterations {:?}",
+            h.solutions.iter().map(|s| s.report.iterations).collect::<Vec<_>>()
+        );
+        group.bench_with_input(BenchmarkId::new("11_steps", h_min), &condensed, |b, c| {
+            b.iter(|| c.solve_history(black_box(&friction), &steps, &settings, None).unwrap())
+        });
+        group.bench_with_input(BenchmarkId::new("static", h_min), &condensed, |b, c| {
             b.iter(|| c.solve(black_box(&friction), &settings, None).unwrap())
         });
     }
@@ -364,6 +393,7 @@ criterion_group! {
     name = benches;
     config = config();
     targets = bench_mesh, bench_assembly, bench_condensation, bench_tresca, bench_coulomb, bench_qp_kkt_solver,
-        bench_cholesky_reference, bench_admissible_gamma0, bench_uniform_103k, bench_qp_method, bench_block
+        bench_cholesky_reference, bench_admissible_gamma0, bench_uniform_103k, bench_qp_method, bench_block,
+        bench_history
 }
 criterion_main!(benches);

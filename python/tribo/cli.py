@@ -103,6 +103,9 @@ def run_history(scene: Scene, problem: Problem, out: Path, *, plots: bool = True
         problem, history = scene.solve_history(problem, progress=progress)
     seconds = time.perf_counter() - clock
     log.info("history ended: %s after %d of %d steps, %.2f s", history.status, len(history), len(approach), seconds)
+    sliding = np.flatnonzero(history.gross_sliding)
+    if len(sliding):
+        log.info("gross sliding (every contact dof slips, |Q| = μP) at %d steps, first at step %d", len(sliding), sliding[0])
     files = write_history(out, problem, history, plots=plots, plot_steps=scene.get("history", "plot_steps"))
     return history, files
 

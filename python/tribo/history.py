@@ -68,6 +68,7 @@ def history_table(history: History) -> dict[str, np.ndarray]:
         "contact_to": contact[:, 1],
         "stick_from": stick[:, 0],
         "stick_to": stick[:, 1],
+        "gross_sliding": history.gross_sliding.astype(int),
     }
 
 

@@ -108,3 +108,10 @@ def test_run_writes_a_time_series(tmp_path: Path) -> None:
     assert rows[0].startswith("# s (shift)") and rows[1].startswith("step,approach,shift")
     assert len(rows) == 2 + 7
     assert (out / "history_loop.png").is_file() and (out / "history_tractions.png").is_file()
+
+
+def test_gross_sliding_is_reported(problem: tribo.Problem) -> None:
+    h = problem.solve_history(0.01, np.linspace(0.0, 0.05, 6), mu=0.3)
+    assert h.converged
+    assert not h.gross_sliding[0] and h.gross_sliding[-1]
+    assert abs(abs(h.tangential_force[-1]) / (0.3 * h.normal_force[-1]) - 1.0) < 1e-8

@@ -105,3 +105,20 @@ def test_plot_cost(tmp_path: Path) -> None:
     res = study("plot_cost").main(["--csv", str(csv), "--out", str(tmp_path)])
     assert (tmp_path / "cost.png").is_file() and (tmp_path / "cost.md").is_file()
     assert abs(res["fits"][("uniform", "coulomb", "total")] - 1.2) < 1e-6
+
+
+def test_cattaneo_mindlin(tmp_path: Path) -> None:
+    res = study("study_cattaneo_mindlin").main(["--smoke", "--out", str(tmp_path)])
+    outputs(tmp_path, "cattaneo_mindlin")
+    slips = {(s["nu"], s["h_min"]): s for s in res["slips"]}
+    # The stick zone follows Cattaneo–Mindlin better on the finer mesh (the dof spacing resolves c).
+    assert slips[(0.49, 0.01)]["ca_error"] < slips[(0.49, 0.02)]["ca_error"]
+    # The dissipated energy matches the 2D Mindlin–Deresiewicz-type value within 10 % at 19 contact dofs.
+    for lp in res["loops"]:
+        if lp["h_min"] == 0.01:
+            assert abs(lp["work"] / lp["predicted"] - 1.0) < 0.1, lp["work"] / lp["predicted"]
+    path = res["path"]
+    assert path["slide_status"] == "converged" and path["slide_all_slip"]
+    assert abs(path["slide_ratio"] - 1.0) < 1e-8
+    profiles = list(path["profiles"].values())
+    assert all(float(abs(p - profiles[0]).max()) > 0.1 for p in profiles[1:])

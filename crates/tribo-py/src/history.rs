@@ -24,6 +24,7 @@ pub struct PyHistory {
     contact_zone: Vec<[f64; 2]>,
     stick_zone: Vec<[f64; 2]>,
     boundaries: Vec<Vec<f64>>,
+    sliding: Vec<bool>,
 }
 
 impl PyHistory {
@@ -34,6 +35,7 @@ impl PyHistory {
         let contact_zone = inner.extent(|s| s != ContactState::Separation);
         let stick_zone = inner.extent(|s| s == ContactState::Stick);
         let boundaries = inner.stick_slip_boundaries();
+        let sliding = inner.gross_sliding();
         let solutions = std::mem::take(&mut inner.solutions)
             .into_iter()
             .map(|s| Py::new(py, PySolution::new(s)?))
@@ -49,6 +51,7 @@ impl PyHistory {
             contact_zone,
             stick_zone,
             boundaries,
+            sliding,
         })
     }
 }
@@ -153,6 +156,13 @@ impl PyHistory {
     #[getter]
     fn stick_slip_boundaries<'py>(&self, py: Python<'py>) -> Vec<Bound<'py, PyArray1<f64>>> {
         self.boundaries.iter().map(|b| vec1(py, b)).collect()
+    }
+
+    /// Per converged step, True when the contact slides as a whole (something touches and every dof in
+    /// contact slips: |Q| = μP for Coulomb friction).
+    #[getter]
+    fn gross_sliding<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<bool>> {
+        PyArray1::from_slice(py, &self.sliding)
     }
 
     /// Wall time of each step solved, in seconds.

@@ -130,6 +130,18 @@ impl History {
             .collect()
     }
 
+    /// Per converged step, whether the contact slides as a whole: something touches and every multiplier
+    /// dof in contact slips (then `|Q| = μP` for Coulomb friction).
+    pub fn gross_sliding(&self) -> Vec<bool> {
+        self.solutions
+            .iter()
+            .map(|s| {
+                let touching = s.states.iter().filter(|&&x| x != ContactState::Separation);
+                touching.clone().count() > 0 && touching.into_iter().all(|&x| x == ContactState::Slip)
+            })
+            .collect()
+    }
+
     /// Per converged step, the stick–slip boundaries: the midpoints between neighbouring multiplier dofs
     /// of which one sticks and the other slips.
     pub fn stick_slip_boundaries(&self) -> Vec<Vec<f64>> {

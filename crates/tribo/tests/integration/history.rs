@@ -95,6 +95,8 @@ fn gross_sliding_holds_q_at_mu_p() {
     let slipping = last.states.iter().filter(|&&s| s == ContactState::Slip).count();
     assert!(in_contact > 0);
     assert_eq!(slipping, in_contact, "gross sliding: every contact dof slips ({:?})", last.states);
+    let sliding = history.gross_sliding();
+    assert!(*sliding.last().unwrap() && !sliding[1], "gross sliding reported: {sliding:?}");
     let ratio = last.tangential_force.abs() / (mu * last.normal_force);
     assert!((ratio - 1.0).abs() < 1e-6, "|Q| / μP = {ratio}");
     // Beforehand the drag passed through partial slip.
