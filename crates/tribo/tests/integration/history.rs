@@ -193,3 +193,28 @@ fn fretting_loop_closes() {
     let work: f64 = (n + cycle..n + 2 * cycle).map(|k| -0.5 * (q[k] + q[k + 1]) * (path[k + 1] - path[k])).sum();
     assert!(work > 0.0, "the cycle dissipates: {work:e}");
 }
+
+/// A step that does not converge ends the history with its status; the steps before it are kept, and
+/// its last iterate is there to look at. (On this path the jump to gross sliding needs 7 fixed-point
+/// iterations where the others need 5–6: a cap of 6 stops the history there.)
+#[test]
+fn a_failed_step_ends_the_history_and_keeps_the_others() {
+    let problem = hertz(0.04, 0.0);
+    let approach = hertz_scene().approach;
+    let steps: Vec<LoadStep> = [0.0, 0.0005, 0.001, 0.03].iter().map(|&s| LoadStep::new(approach, s)).collect();
+    let mut settings = SolverSettings::default();
+    let coulomb = Friction::Coulomb { mu: MU };
+    let full = problem.solve_history(&coulomb, &steps, &settings, None).unwrap();
+    assert_eq!(full.status, SolveStatus::Converged);
+    let needed: Vec<usize> = full.solutions.iter().map(|s| s.report.iterations).collect();
+    let last = *needed.last().unwrap();
+    assert!(needed[..3].iter().all(|&n| n < last), "the jump needs the most iterations: {needed:?}");
+    settings.fp.max_iter = last - 1;
+    let capped = problem.solve_history(&coulomb, &steps, &settings, None).unwrap();
+    assert_eq!(capped.status, SolveStatus::MaxIterations);
+    assert_eq!((capped.solutions.len(), capped.ended_at), (3, Some(3)));
+    assert_eq!(capped.failed.as_ref().map(|s| s.report.status), Some(SolveStatus::MaxIterations));
+    for (a, b) in capped.solutions.iter().zip(&full.solutions) {
+        assert_eq!(a.lambda_t, b.lambda_t, "the steps before the failure are those of the full history");
+    }
+}
