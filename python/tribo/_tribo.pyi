@@ -147,7 +147,7 @@ class Problem:
         fp_max_iter: int = ...,
         fp_relaxation: float = ...,
         memory_budget: int = ...,
-        condensation: Literal["auto", "columns", "schur"] = ...,
+        condensation: Literal["auto", "columns", "schur", "saddle"] = ...,
     ) -> Solution: ...
     def solve_history(
         self,
@@ -171,7 +171,7 @@ class Problem:
         fp_max_iter: int = ...,
         fp_relaxation: float = ...,
         memory_budget: int = ...,
-        condensation: Literal["auto", "columns", "schur"] = ...,
+        condensation: Literal["auto", "columns", "schur", "saddle"] = ...,
     ) -> History: ...
     @property
     def mesh(self) -> Mesh: ...
@@ -246,7 +246,7 @@ class Report:
     @property
     def qp_fallbacks(self) -> int: ...
     @property
-    def condensation(self) -> Literal["columns", "schur"]: ...
+    def condensation(self) -> Literal["columns", "schur", "saddle"]: ...
     @property
     def qp_inaccurate(self) -> int: ...
     @property

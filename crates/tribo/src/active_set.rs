@@ -213,9 +213,8 @@ impl QpOperator for DenseBlock {
 }
 
 /// The tolerance on the scaled gradient: `tol · max(1, ‖q̃‖∞)`.
-fn threshold(scaling: &Scaling, c: &[f64], tol: f64) -> f64 {
-    let q = c.iter().zip(&scaling.w).fold(0.0_f64, |m, (ci, wi)| m.max((wi * ci / scaling.phi).abs()));
-    tol * q.max(1.0)
+fn threshold(scaling: &Scaling, tol: f64) -> f64 {
+    tol * scaling.c_max.max(1.0)
 }
 
 /// How an active-set solve ended.
@@ -327,7 +326,7 @@ pub(crate) fn solve(
     let mut g = op.gradient(&x);
     let (mut fx, _) = objective(&x, &g, c);
     // A scaling that is not a positive finite number certifies nothing (every scaled residual would be 0).
-    let threshold = if scaling.phi.is_finite() && scaling.phi > 0.0 { threshold(scaling, c, tol) } else { -1.0 };
+    let threshold = if scaling.phi.is_finite() && scaling.phi > 0.0 { threshold(scaling, tol) } else { -1.0 };
     let mut out = ActiveSetOutcome { x: Vec::new(), certified: false, newton_steps: 0, gradient_steps: 0 };
     // The PDAS iterate (a Newton point, possibly outside the box) the next prediction starts from, and
     // its gradient; x is the best feasible point so far.
@@ -421,7 +420,7 @@ mod tests {
     }
 
     fn unit_scaling(k: usize) -> Scaling {
-        Scaling { w: vec![1.0; k], phi: 1.0 }
+        Scaling { w: vec![1.0; k], phi: 1.0, c_max: 1.0 }
     }
 
     /// The certified answer satisfies the optimality conditions exactly checked here, from a cold and

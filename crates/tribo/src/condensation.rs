@@ -21,6 +21,7 @@ use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, MatMut, Par, Side};
 
 use crate::error::{Error, Result};
+use crate::saddle::{SaddleError, SaddleOptions, SaddleSystem};
 use crate::schur::{self, SchurSymbolic};
 use crate::settings::Condensation;
 
@@ -54,6 +55,19 @@ impl Direct {
     }
 }
 
+/// The saddle-point kernel's errors as the crate's (its inputs come from the core, so only size and
+/// breakdowns can occur; a breakdown is reported by the caller as an uncertified QP).
+pub(crate) fn saddle_error(e: SaddleError) -> Error {
+    match e {
+        SaddleError::TooLarge(what) => Error::MemoryBudget {
+            what: format!("the saddle-point factorization: {what}"),
+            needed: f64::NAN,
+            budget: f64::NAN,
+        },
+        e => Error::Assembly { matrix: "the saddle-point system [[A, Eᵀ], [E, −Dγ]]", what: e.to_string() },
+    }
+}
+
 fn schur_error(e: schur::Error) -> Error {
     match e {
         schur::Error::NotPositiveDefinite { dof } => {
@@ -66,6 +80,51 @@ fn schur_error(e: schur::Error) -> Error {
         },
         schur::Error::InvalidInput(what) => Error::Assembly { matrix: "the Schur complement of A", what },
     }
+}
+
+/// `nnz(L) / nnz(K)` of the Cholesky factor of A on these meshes (measured 5.5–7).
+const CHOLESKY_FILL: usize = 6;
+
+/// The saddle-point system of `A`, `E` and `Dγ` (by columns), refused beyond `max_len` factor values
+/// (and beyond `budget` bytes, as [`Error::MemoryBudget`]).
+fn saddle_system(
+    a: &SparseColMat<usize, f64>,
+    e_rows: &[Vec<(usize, f64)>],
+    d_cols: &[Vec<(usize, f64)>],
+    max_len: usize,
+    budget: usize,
+) -> Result<SaddleSystem> {
+    let d: Vec<(usize, usize, f64)> =
+        d_cols.iter().enumerate().flat_map(|(j, col)| col.iter().map(move |&(i, v)| (i, j, v))).collect();
+    let opts = SaddleOptions { max_factor_len: max_len.min(budget / 8), ..Default::default() };
+    SaddleSystem::with_options(a, e_rows, &d, opts).map_err(|e| match e {
+        SaddleError::FactorTooLarge { values } => Error::MemoryBudget {
+            what: "the sparse factor of the saddle-point system [[A, Eᵀ], [E, −Dγ]]".to_string(),
+            needed: 8.0 * values as f64,
+            budget: budget as f64,
+        },
+        e => saddle_error(e),
+    })
+}
+
+/// Whether doing without H ([`Condensation::Saddle`]) is cheaper than forming its columns, from the
+/// number `w` of normal multipliers the load pushes (`c_j < 0`, the working set's start) and nnz(K). In
+/// units of one sparse solve with A (`≈ 4 nnz(L)` flops, `nnz(L) ≈ 6 nnz(K)` as for [`prefer_schur`]):
+///
+/// * columns: `1.4 w` solves (the Coulomb QPs need normal and tangential columns of about 70 % of the
+///   pushed dofs, measured on the graded Hertz family), plus the dense active-set QPs, about five
+///   Cholesky factorizations of the `2w × 2w` free block (refactorizations and updates, measured):
+///   `5 (2w)³ / 3` flops at 1.5× the rate of a sparse solve;
+/// * saddle: `2.5 √w` Newton steps for a whole Coulomb solve (measured 2.2–2.5 √w from 13.6k to 99k
+///   unknowns), each one sparse LDLᵀ (1.3 × a Cholesky of A ≈ 22 solves, measured) and two solves.
+///
+/// Measured on graded Hertz meshes: columns win at 50k unknowns (3.7 s against 5.4 s), the saddle
+/// system at 99k (14 s against 21 s); the rule puts the switch between the two.
+fn prefer_saddle(nnz_k: usize, w: usize) -> bool {
+    let (w, solve_flops) = (w as f64, 4.0 * 6.0 * nnz_k as f64);
+    let columns = 1.4 * w + 5.0 * (2.0 * w).powi(3) / 3.0 / (1.5 * solve_flops);
+    let saddle = 2.5 * w.sqrt() * (1.3 * 22.0 + 2.0);
+    columns > saddle
 }
 
 /// Whether the partial factorization is the cheaper way to H, and fits the memory budget: it forms all
@@ -109,6 +168,11 @@ pub struct Factor {
     d_cols: Vec<Vec<(usize, f64)>>,
     /// Wall time of forming A and its numeric factorization, in seconds.
     pub factorization_seconds: f64,
+    /// Wall time of one solve with A (the one that formed c), in seconds.
+    pub solve_seconds: f64,
+    /// The sparse saddle-point system of the QPs that do without H ([`Condensation::Saddle`]), analysed
+    /// when first needed.
+    saddle: Mutex<Option<SaddleSystem>>,
 }
 
 impl std::fmt::Debug for Factor {
@@ -162,7 +226,7 @@ impl Factor {
         let a = SparseColMat::new(pattern, values);
         let (auto, bytes) = prefer_schur(k.compute_nnz(), &e_rows, budget);
         let use_schur = match condensation {
-            Condensation::Columns => false,
+            Condensation::Columns | Condensation::Saddle => false,
             Condensation::Schur => true,
             Condensation::Auto => auto,
         };
@@ -203,11 +267,45 @@ impl Factor {
         };
         let clock = Instant::now();
         let u_f = solve(&direct, f)?;
+        let solve_seconds = clock.elapsed().as_secs_f64();
         let e_ainv_f: Vec<f64> = e_rows.iter().map(|row| dot(row, &u_f)).collect();
-        let c = d.iter().zip(&e_ainv_f).map(|(di, ei)| di - ei).collect();
+        let c: Vec<f64> = d.iter().zip(&e_ainv_f).map(|(di, ei)| di - ei).collect();
         let columns = Mutex::new(Columns { cols, seconds: schur_seconds + clock.elapsed().as_secs_f64() });
-        let condensation = if use_schur { Condensation::Schur } else { Condensation::Columns };
-        Ok(Self { gamma0, condensation, direct, a, e_rows, d_cols, c, d, e_ainv_f, columns, factorization_seconds })
+        // The saddle-point system, if asked for or preferred: its symbolic analysis says how large its
+        // factor is before anything of that size is allocated. Asked for, a factor beyond the budget is an
+        // error; preferred, one that fills in much beyond a Cholesky of A (T_H far finer than the FE edges:
+        // the multipliers' block fills) or beyond the budget leaves H to the columns.
+        let pushed = c[..q].iter().filter(|v: &&f64| **v < 0.0).count();
+        let nnz_k = k.compute_nnz();
+        let saddle = match condensation {
+            Condensation::Saddle => Some(saddle_system(&a, &e_rows, &d_cols, budget / 8, budget)?),
+            Condensation::Auto if !use_schur && prefer_saddle(nnz_k, pushed) => {
+                saddle_system(&a, &e_rows, &d_cols, 2 * CHOLESKY_FILL * nnz_k, budget).ok()
+            }
+            _ => None,
+        };
+        let condensation = if use_schur {
+            Condensation::Schur
+        } else if saddle.is_some() {
+            Condensation::Saddle
+        } else {
+            Condensation::Columns
+        };
+        Ok(Self {
+            gamma0,
+            condensation,
+            direct,
+            a,
+            e_rows,
+            d_cols,
+            c,
+            d,
+            e_ainv_f,
+            columns,
+            factorization_seconds,
+            solve_seconds,
+            saddle: Mutex::new(saddle),
+        })
     }
 
     /// Number of multiplier dofs per component.
@@ -301,6 +399,29 @@ impl Factor {
             }
         }
         solve(&self.direct, &rhs)
+    }
+
+    /// The diagonal of A.
+    pub(crate) fn a_diagonal(&self) -> Vec<f64> {
+        let a = self.a.as_ref();
+        (0..a.ncols())
+            .map(|j| a.row_idx_of_col(j).zip(a.val_of_col(j)).find(|(i, _)| *i == j).map_or(0.0, |(_, v)| *v))
+            .collect()
+    }
+
+    /// The diagonal of Dγ (2q).
+    pub(crate) fn d_diagonal(&self) -> Vec<f64> {
+        self.d_cols
+            .iter()
+            .enumerate()
+            .map(|(j, col)| col.iter().filter(|(i, _)| *i == j).map(|(_, v)| v).sum())
+            .collect()
+    }
+
+    /// The saddle-point system `[[A, Eᵀ], [E, −Dγ]]` of the QPs that do without H, locked for the
+    /// caller (`None` unless H is [`Condensation::Saddle`]).
+    pub(crate) fn saddle_system(&self) -> std::sync::MutexGuard<'_, Option<SaddleSystem>> {
+        self.saddle.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
     }
 
     /// `A x` (free dofs).

@@ -70,10 +70,12 @@ pub mod multiplier;
 pub mod obstacle;
 pub mod problem;
 pub mod qp;
+pub(crate) mod saddle;
 pub mod schur;
 pub mod settings;
 pub mod solution;
 pub mod solve;
+pub(crate) mod sparse_qp;
 pub mod stabilization;
 pub mod working_set;
 

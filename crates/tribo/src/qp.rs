@@ -51,6 +51,8 @@ pub(crate) struct Scaling {
     pub w: Vec<f64>,
     /// `φ`.
     pub phi: f64,
+    /// `max_i |w_i c_i| / φ`, the size of the scaled linear term the optimality tolerance is relative to.
+    pub c_max: f64,
 }
 
 impl Scaling {
@@ -58,27 +60,28 @@ impl Scaling {
     /// unknowns; where nothing pushes normally (`c_n = 0`) but the tangential term does (a Tresca
     /// threshold with a shift), the same ratio over all unknowns. `None` only when `c = 0` (or H has no
     /// positive diagonal): λ = 0 solves such a QP.
-    pub(crate) fn normal_scale(h: &[f64], c: &[f64], q: usize) -> Option<f64> {
+    pub(crate) fn normal_scale(diag: &[f64], c: &[f64], q: usize) -> Option<f64> {
         let k = c.len();
         let ratio = |range: std::ops::Range<usize>| {
-            let h_s = range.clone().map(|i| h[i * k + i]).fold(0.0, f64::max);
+            let h_s = range.clone().map(|i| diag[i]).fold(0.0, f64::max);
             let c_s = c[range].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
             (c_s > 0.0 && h_s > 0.0).then(|| c_s / h_s)
         };
         ratio(0..q).or_else(|| ratio(0..k))
     }
 
-    /// The scaling for the normal scale `s`, the linear term `c` and the tangential bounds (empty for a
-    /// frictionless QP).
-    pub(crate) fn new(h: &[f64], c: &[f64], q: usize, s: f64, bounds: &[f64]) -> Self {
+    /// The scaling for the diagonal of H, the normal scale `s`, the linear term `c` and the tangential
+    /// bounds (empty for a frictionless QP).
+    pub(crate) fn new(diag: &[f64], c: &[f64], q: usize, s: f64, bounds: &[f64]) -> Self {
         let k = q + bounds.len();
-        let h_st = (q..k).map(|i| h[i * k + i]).fold(0.0, f64::max);
+        let h_st = (q..k).map(|i| diag[i]).fold(0.0, f64::max);
         let c_st = c[q..].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let s_t = if h_st > 0.0 { s.max(c_st / h_st) } else { s };
         let w: Vec<f64> = (0..k).map(|i| if i < q { s } else { bounds[i - q].min(s_t) }).collect();
         // (w √H_ii)² rather than w² H_ii: w is about 1/H, so w² alone can overflow where the product cannot.
-        let phi = (0..k).map(|i| (w[i] * h[i * k + i].max(0.0).sqrt()).powi(2)).fold(0.0, f64::max);
-        Self { w, phi }
+        let phi = (0..k).map(|i| (w[i] * diag[i].max(0.0).sqrt()).powi(2)).fold(0.0, f64::max);
+        let c_max = c.iter().zip(&w).fold(0.0_f64, |m, (ci, wi)| m.max((wi * ci / phi).abs()));
+        Self { w, phi, c_max }
     }
 
     /// The scaled box of the tangential unknowns: `g_j / w_t,j` (1 where the bound vanishes, so that the
@@ -86,6 +89,11 @@ impl Scaling {
     pub(crate) fn tangential_box(&self, q: usize, bounds: &[f64]) -> Vec<f64> {
         bounds.iter().zip(&self.w[q..]).map(|(b, w)| if *w > 0.0 { b / w } else { 1.0 }).collect()
     }
+}
+
+/// The diagonal of the column-major `k × k` matrix `h`.
+pub(crate) fn diagonal(h: &[f64], k: usize) -> Vec<f64> {
+    (0..k).map(|i| h[i * k + i]).collect()
 }
 
 /// How one QP solve ended.
@@ -205,7 +213,7 @@ impl BoxQp {
         if let Some(g) = bounds {
             check_thresholds(g, q)?;
         }
-        let n_scale = Scaling::normal_scale(h, c, q);
+        let n_scale = Scaling::normal_scale(&diagonal(h, c.len()), c, q);
         let mut qp = Self {
             solver: None,
             settings: *settings,
@@ -265,12 +273,12 @@ impl BoxQp {
     /// Values of the upper triangle of the scaled P (column by column) and the scaled q, for the current
     /// bounds: variables `x = (ν_n / s, τ)`, objective divided by the largest diagonal entry.
     fn scaled_data(&self) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
-        let scaling = Scaling::new(&self.h, &self.c, self.q, self.n_scale, &self.bounds);
+        let scaling = Scaling::new(&diagonal(&self.h, self.c.len()), &self.c, self.q, self.n_scale, &self.bounds);
         // Rows: −x_n ≤ 0, then x_t ≤ box, then −x_t ≤ box.
         let tbox = scaling.tangential_box(self.q, &self.bounds);
         let b: Vec<f64> =
             std::iter::repeat_n(0.0, self.q).chain(tbox.iter().copied()).chain(tbox.iter().copied()).collect();
-        let Scaling { w, phi: f } = scaling;
+        let Scaling { w, phi: f, .. } = scaling;
         let k = w.len();
         let mut p = Vec::with_capacity(k * (k + 1) / 2);
         for j in 0..k {
@@ -342,7 +350,7 @@ impl BoxQp {
             SolverStatus::Solved | SolverStatus::AlmostSolved => QpStatus::Inaccurate,
             s => QpStatus::Failed(status_name(s)),
         };
-        let w = Scaling::new(&self.h, &self.c, q, self.n_scale, &self.bounds).w;
+        let w = Scaling::new(&diagonal(&self.h, self.c.len()), &self.c, q, self.n_scale, &self.bounds).w;
         let nu = (0..k).map(|i| sol.x[i] * w[i]).collect();
         QpOutcome {
             nu,

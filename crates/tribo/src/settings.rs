@@ -57,19 +57,24 @@ named_choice!(QpMethod, "QP method", {
 /// How the multiplier operator H is formed (see [`crate::condensation`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Condensation {
-    /// The partial factorization where it is the cheaper and fits the memory budget, else columns.
+    /// The partial factorization where it is the cheaper and fits the memory budget; else the saddle-point
+    /// system where the contact zone makes the columns of H and the dense QP dearer; else columns.
     #[default]
     Auto,
     /// One sparse solve per column of H, for the columns the QPs need (a fill-reducing ordering).
     Columns,
     /// All of H from a partial factorization with the Γ_C dofs ordered last ([`crate::schur`]).
     Schur,
+    /// H never formed: each active-set step solves the sparse saddle-point system
+    /// `[[A, E_Fᵀ], [E_F, −Dγ_FF]]` ([`crate::sparse_qp`]); columns of H only for a QP it cannot certify.
+    Saddle,
 }
 
 named_choice!(Condensation, "condensation", {
     Condensation::Auto => "auto",
     Condensation::Columns => "columns",
     Condensation::Schur => "schur",
+    Condensation::Saddle => "saddle",
 });
 
 /// Settings of the QP solver.

@@ -149,7 +149,7 @@ impl Condensed<'_> {
             qp_fallbacks: 0,
             qp_inaccurate: 0,
         };
-        let (c, budget) = (loading.c.as_slice(), settings.memory_budget);
+        let budget = settings.memory_budget;
         match (&friction, start) {
             (Friction::Coulomb { .. }, Some(start)) => {
                 // A warm start: the fixed point starts from the nearby answer.
@@ -157,20 +157,21 @@ impl Condensed<'_> {
             }
             (Friction::Frictionless | Friction::Coulomb { .. }, _) => {
                 // Coulomb starts from the frictionless λ_n.
-                let out = WorkingSetQp::new(factor, c, None, &settings.qp, budget, start)?.solve()?;
+                let out = WorkingSetQp::new(factor, loading, None, &settings.qp, budget, start)?.solve()?;
                 phase.lambda[..q].copy_from_slice(&out.nu);
                 phase.record_single_qp(&out, &mut notify);
             }
             (Friction::Tresca(_), _) => {
                 phase.bound = friction.tresca_bounds(q);
-                let out = WorkingSetQp::new(factor, c, Some(&phase.bound), &settings.qp, budget, start)?.solve()?;
+                let out =
+                    WorkingSetQp::new(factor, loading, Some(&phase.bound), &settings.qp, budget, start)?.solve()?;
                 phase.lambda.copy_from_slice(&out.nu);
                 phase.record_single_qp(&out, &mut notify);
             }
         }
         if let (Friction::Coulomb { mu }, SolveStatus::Converged) = (&friction, phase.status) {
             // (not after an interrupted or failed initial QP)
-            self.fixed_point(*mu, settings, c, &mut phase, &mut notify)?;
+            self.fixed_point(*mu, settings, loading, &mut phase, &mut notify)?;
         }
         // Columns of H computed on demand during the QPs count as condensation, not QP time.
         let condensation_during = factor.condensation_seconds() - condensation_before;
@@ -230,7 +231,7 @@ impl Condensed<'_> {
         &self,
         mu: f64,
         settings: &SolverSettings,
-        c: &[f64],
+        loading: &Loading,
         phase: &mut QpPhase,
         notify: &mut dyn FnMut(Progress) -> ControlFlow<()>,
     ) -> Result<()> {
@@ -241,7 +242,7 @@ impl Condensed<'_> {
         // Warm start: the frictionless λ_n with λ_t = 0.
         let mut qp = WorkingSetQp::new(
             self.factor(),
-            c,
+            loading,
             Some(&bound),
             &settings.qp,
             settings.memory_budget,
@@ -270,7 +271,7 @@ impl Condensed<'_> {
             // Converged when the relative change is small, or when the change is at the QP's own noise
             // level (tol × the natural size of λ): e.g. λ ≡ 0 without contact, where a relative change
             // compares round-off with round-off.
-            let noise = settings.qp.tol * self.factor().lambda_scale(c);
+            let noise = settings.qp.tol * self.factor().lambda_scale(&loading.c);
             if change <= fp.tol || max_diff <= noise {
                 phase.status = SolveStatus::Converged;
                 break;

@@ -27,16 +27,18 @@ use crate::active_set::{self, Bounds, DenseBlock};
 use crate::condensation::Factor;
 use crate::error::{Error, Result};
 use crate::friction::check_thresholds;
+use crate::loading::Loading;
 use crate::qp::{BoxQp, QpOutcome, QpStatus, Scaling};
-use crate::settings::{QpMethod, QpSettings};
+use crate::settings::{Condensation, QpMethod, QpSettings};
+use crate::sparse_qp;
 
 /// The Γ_C QP solved over a growing working set; the columns of H come from a [`Factor`], computed when
 /// the set first needs them.
 #[derive(Debug)]
 pub struct WorkingSetQp<'a> {
     condensed: &'a Factor,
-    /// The linear term c (2q) of the load case.
-    c: &'a [f64],
+    /// The load case (f, d and the linear term c).
+    loading: &'a Loading,
     q: usize,
     bounds: Option<Vec<f64>>,
     settings: QpSettings,
@@ -52,7 +54,7 @@ pub struct WorkingSetQp<'a> {
 }
 
 impl<'a> WorkingSetQp<'a> {
-    /// Sets up the QP of P(g) on `condensed` with the linear term `c` (2q, see [`crate::loading`]):
+    /// Sets up the QP of P(g) on `condensed` for the load case `loading` (see [`crate::loading`]):
     /// frictionless if `bounds` is `None`, else with the tangential bounds g (one per multiplier dof). `start`, if given, is a starting point (q or 2q values, e.g. the
     /// frictionless answer for the first Coulomb QP). The settings are taken as validated.
     ///
@@ -60,7 +62,7 @@ impl<'a> WorkingSetQp<'a> {
     /// [`crate::Error::BadThreshold`].
     pub fn new(
         condensed: &'a Factor,
-        c: &'a [f64],
+        loading: &'a Loading,
         bounds: Option<&[f64]>,
         settings: &QpSettings,
         budget: usize,
@@ -69,9 +71,10 @@ impl<'a> WorkingSetQp<'a> {
         let q = condensed.q();
         let k = if bounds.is_some() { 2 * q } else { q };
         let last = start.map(|x| (0..k).map(|i| x.get(i).copied().unwrap_or(0.0)).collect());
+        let c = &loading.c;
         let mut ws = Self {
             condensed,
-            c,
+            loading,
             q,
             bounds: None,
             settings: *settings,
@@ -154,7 +157,7 @@ impl<'a> WorkingSetQp<'a> {
     fn block(&self) -> (Vec<f64>, Vec<f64>, Option<Vec<f64>>) {
         let idx = self.unknowns();
         let h = self.condensed.h_block(&idx, &idx);
-        let c: Vec<f64> = idx.iter().map(|&i| self.c[i]).collect();
+        let c: Vec<f64> = idx.iter().map(|&i| self.loading.c[i]).collect();
         (h, c, self.bounds_on_set())
     }
 
@@ -199,11 +202,12 @@ impl<'a> WorkingSetQp<'a> {
             method: QpMethod::ActiveSet,
             fallback: false,
         };
-        let Some(n_scale) = Scaling::normal_scale(op.matrix(), &c, s) else {
+        let diag = crate::qp::diagonal(op.matrix(), c.len());
+        let Some(n_scale) = Scaling::normal_scale(&diag, &c, s) else {
             // Nothing pushes at all (c = 0): λ = 0 (as on clarabel's path).
             return Some(done(vec![0.0; c.len()], 0));
         };
-        let scaling = Scaling::new(op.matrix(), &c, s, n_scale, &b);
+        let scaling = Scaling::new(&diag, &c, s, n_scale, &b);
         let lo: Vec<f64> = (0..c.len()).map(|i| if i < s { 0.0 } else { -b[i - s] }).collect();
         let hi: Vec<f64> = (0..c.len()).map(|i| if i < s { f64::INFINITY } else { b[i - s] }).collect();
         let (factorizations, updates) = (op.factorizations, op.updates);
@@ -270,10 +274,58 @@ impl<'a> WorkingSetQp<'a> {
     /// # Errors
     /// QP set-up errors.
     pub fn solve(&mut self) -> Result<QpOutcome> {
+        if self.condensed.condensation == Condensation::Saddle && self.settings.method != QpMethod::Clarabel {
+            if let Some(out) = self.solve_sparse()? {
+                return Ok(out);
+            }
+            log::info!("the sparse active-set method could not certify a QP: the dense path solves it");
+            let mut out = self.solve_dense()?;
+            out.fallback = true;
+            return Ok(out);
+        }
+        self.solve_dense()
+    }
+
+    /// Solves the whole QP without H, on the saddle-point system ([`crate::sparse_qp`]); `None` if the
+    /// answer could not be certified.
+    fn solve_sparse(&mut self) -> Result<Option<QpOutcome>> {
+        let clock = Instant::now();
+        let q = self.q;
+        let bounds = self.bounds.clone().unwrap_or_default();
+        let idx: Vec<usize> = (0..q + bounds.len()).collect();
+        let start = self.last.clone().unwrap_or_else(|| vec![0.0; idx.len()]);
+        let mut guard = self.condensed.saddle_system();
+        let Some(saddle) = guard.as_mut() else { return Ok(None) };
+        let data = (self.loading.f_free.as_slice(), self.loading.d.as_slice(), self.loading.c.as_slice());
+        let answer = sparse_qp::solve(
+            self.condensed,
+            saddle,
+            data,
+            &idx,
+            q,
+            &bounds,
+            &start,
+            (self.settings.tol, self.settings.max_iter),
+        );
+        Ok(answer.map(|(nu, steps)| {
+            self.last = Some(nu.clone());
+            QpOutcome {
+                nu,
+                status: QpStatus::Solved,
+                iterations: steps,
+                seconds: clock.elapsed().as_secs_f64(),
+                method: QpMethod::ActiveSet,
+                fallback: false,
+            }
+        }))
+    }
+
+    /// Solves the whole QP on the growing working set with the dense H.
+    fn solve_dense(&mut self) -> Result<QpOutcome> {
         let q = self.q;
         let frictional = self.bounds.is_some();
         let k = if frictional { 2 * q } else { q };
-        let c = self.c;
+        let c = &self.loading.c;
         let c_s = c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let threshold = -self.settings.tol.sqrt() * c_s;
         let (mut iterations, mut seconds, mut fallback) = (0, 0.0, false);

@@ -155,3 +155,56 @@ fn schur_and_columns_agree() {
         }
     }
 }
+
+/// H never formed (each active-set step on the sparse saddle-point system) against H by columns: the same
+/// answers to 1e-8 (u) and 1e-7 (λ) relative, the same fixed-point iterations, KKT residuals no worse,
+/// for frictionless, Tresca and Coulomb, γ0 = 0 and > 0, P0 and P1 — and every QP certified by the
+/// sparse path, none handed to the dense one.
+#[test]
+fn saddle_and_columns_agree() {
+    let (block, mu) = tribo_testkit::block_problem(40, 10);
+    let p1 = hertz_problem(0.02, 0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    let p0 = hertz_problem(0.02, 0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P0);
+    for (name, problem) in [("block", &block), ("hertz P1", &p1), ("hertz P0", &p0)] {
+        for stabilization in [Stabilization::None, Stabilization::Fraction(0.5)] {
+            for friction in
+                [Friction::Frictionless, Friction::Tresca(Threshold::Uniform(0.5)), Friction::Coulomb { mu }]
+            {
+                let solve = |condensation| {
+                    let s = SolverSettings { stabilization, condensation, ..Default::default() };
+                    problem.solve(&friction, &s, None).expect("solves")
+                };
+                let (a, b) = (solve(Condensation::Columns), solve(Condensation::Saddle));
+                let what = format!("{name} {stabilization:?} {friction:?}");
+                assert_eq!(b.report.condensation, Condensation::Saddle, "{what}");
+                assert_eq!(
+                    (a.report.status, b.report.status),
+                    (SolveStatus::Converged, SolveStatus::Converged),
+                    "{what}"
+                );
+                assert_eq!(a.report.iterations, b.report.iterations, "{what}: fixed-point iterations");
+                assert_eq!(b.report.qp_fallbacks, 0, "{what}: every QP certified by the sparse path");
+                let du = sup_diff(&a.displacement, &b.displacement) / sup(&a.displacement);
+                let lam = sup(&a.lambda_n).max(f64::MIN_POSITIVE);
+                let dl = sup_diff(&a.lambda_n, &b.lambda_n).max(sup_diff(&a.lambda_t, &b.lambda_t)) / lam;
+                // As in `compare`: Coulomb's residuals are set by the fixed point's stopping rule.
+                let floor = match friction {
+                    Friction::Coulomb { .. } => FixedPointSettings::default().tol,
+                    _ => 64.0 * f64::EPSILON * (problem.n_free as f64).sqrt(),
+                };
+                eprintln!(
+                    "{what}: columns vs saddle du {du:.1e} dλ {dl:.1e}, KKT {:.1e} vs {:.1e}",
+                    a.kkt.max(),
+                    b.kkt.max()
+                );
+                assert!(du <= 1e-8 && dl <= 1e-7, "{what}: du {du:e} dλ {dl:e}");
+                assert!(
+                    b.kkt.max() <= a.kkt.max().max(floor),
+                    "{what}: KKT {:e} against {:e}",
+                    b.kkt.max(),
+                    a.kkt.max()
+                );
+            }
+        }
+    }
+}

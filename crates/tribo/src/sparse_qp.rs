@@ -1,0 +1,162 @@
+//! The Γ_C QP without H: the active-set method of [`crate::active_set`] on the sparse saddle-point system.
+//!
+//! # Why
+//! On a mesh refined toward a large contact zone, the dofs in contact grow like the unknowns n. Forming
+//! the columns of H they need costs one sparse solve each (~ n² in all) and the dense active-set steps
+//! cost a Cholesky of the free block (~ n³): the dense path loses its advantage exactly where accurate
+//! answers live. Here H is never formed.
+//!
+//! # The operator
+//! The active-set method needs of H only the gradient and the Newton point ([`QpOperator`]):
+//!
+//! * the gradient `H ν + c = −E u(ν) + Dγ ν + d`, with `u(ν) = A⁻¹ (f − Eᵀ ν)` — one solve with the
+//!   Cholesky factor of A (the gradient is minus the stabilized gap and slip `r = E u − d − Dγ ν`);
+//! * the Newton point for a free set F, `H_FF ν_F = −c_F − H_FB ν_B`, which is the sparse saddle-point
+//!   system `A u + E_Fᵀ ν_F = f − E_Bᵀ ν_B`, `E_F u − Dγ_FF ν_F = d_F + Dγ_FB ν_B` ([`crate::saddle`]):
+//!   one sparse LDLᵀ of about the cost of a Cholesky of A, on a pattern analysed once per problem.
+//!
+//! The method also uses diag H (its prediction from a non-Newton start, the projected-gradient safeguard
+//! and the scaling of the optimality test). Its exact value costs a solve per dof, so it is estimated:
+//! `J_i = Σ_k E_ik² / A_kk + Dγ_ii` (the Jacobi approximation of A⁻¹) calibrated by the exact `H_ii` of a
+//! few sampled unknowns (their median ratio). The estimate enters the certification only through the
+//! unit of the test (`φ`, `w`): the test itself — every free unknown's gradient and every active bound's
+//! multiplier checked — is the one of [`crate::active_set`]. What it does not certify, the dense path
+//! solves (the caller's fallback).
+
+use crate::active_set::{self, Bounds, QpOperator};
+use crate::condensation::Factor;
+use crate::qp::Scaling;
+use crate::saddle::SaddleSystem;
+
+/// Unknowns whose exact `H_ii` calibrates the diagonal estimate.
+const SAMPLES: usize = 8;
+
+/// The QP operator of the saddle-point system on the unknowns `idx` (indices into the 2q multipliers).
+pub(crate) struct SaddleOperator<'a> {
+    factor: &'a Factor,
+    saddle: &'a mut SaddleSystem,
+    f: &'a [f64],
+    d: &'a [f64],
+    idx: &'a [usize],
+    diag: Vec<f64>,
+    /// LDLᵀ factorizations done.
+    pub factorizations: u32,
+}
+
+impl<'a> SaddleOperator<'a> {
+    /// The operator of the load case (`f`, `d`) on the unknowns `idx`.
+    pub(crate) fn new(
+        factor: &'a Factor,
+        saddle: &'a mut SaddleSystem,
+        f: &'a [f64],
+        d: &'a [f64],
+        idx: &'a [usize],
+    ) -> Self {
+        let diag = estimated_diagonal(factor, idx);
+        Self { factor, saddle, f, d, idx, diag, factorizations: 0 }
+    }
+
+    /// The multipliers (2q) with `x` on the unknowns and 0 elsewhere.
+    fn expand(&self, x: &[f64]) -> Vec<f64> {
+        let mut nu = vec![0.0; self.factor.e_rows.len()];
+        for (&i, &v) in self.idx.iter().zip(x) {
+            nu[i] = v;
+        }
+        nu
+    }
+}
+
+impl QpOperator for SaddleOperator<'_> {
+    fn gradient(&self, x: &[f64]) -> Vec<f64> {
+        let nu = self.expand(x);
+        let Ok(u) = self.factor.displacement(self.f, &nu) else {
+            return vec![f64::NAN; x.len()];
+        };
+        let (eu, dnu) = (self.factor.apply_e(&u), self.factor.apply_d(&nu));
+        self.idx.iter().map(|&i| dnu[i] + self.d[i] - eu[i]).collect()
+    }
+
+    fn newton_point(&mut self, free: &[bool], x: &[f64]) -> Option<Vec<f64>> {
+        let mut free_all = vec![false; self.factor.e_rows.len()];
+        for (&i, &f) in self.idx.iter().zip(free) {
+            free_all[i] = f;
+        }
+        let fixed = self.expand(x);
+        self.factorizations += 1;
+        self.saddle.factorize(&free_all).ok()?;
+        let sol = self.saddle.solve(self.f, self.d, &fixed).ok()?;
+        Some(self.idx.iter().map(|&i| sol.nu[i]).collect())
+    }
+
+    fn diagonal(&self) -> &[f64] {
+        &self.diag
+    }
+}
+
+/// The estimate of `H_ii` on the unknowns `idx` (see the module documentation).
+fn estimated_diagonal(factor: &Factor, idx: &[usize]) -> Vec<f64> {
+    let (a_diag, d_diag) = (factor.a_diagonal(), factor.d_diagonal());
+    let jacobi: Vec<f64> =
+        idx.iter().map(|&i| factor.e_rows[i].iter().map(|&(k, v)| v * v / a_diag[k]).sum::<f64>()).collect();
+    let step = (idx.len() / SAMPLES).max(1);
+    let sample: Vec<usize> = (0..idx.len()).step_by(step).filter(|&a| jacobi[a] > 0.0).collect();
+    let cols: Vec<usize> = sample.iter().map(|&a| idx[a]).collect();
+    let exact = factor.h_block(&cols, &cols);
+    let s = cols.len();
+    let mut ratios: Vec<f64> =
+        sample.iter().enumerate().map(|(b, &a)| (exact[b * s + b] - d_diag[idx[a]]) / jacobi[a]).collect();
+    ratios.retain(|r| r.is_finite() && *r > 0.0);
+    ratios.sort_by(f64::total_cmp);
+    let kappa = ratios.get(ratios.len() / 2).copied().unwrap_or(1.0);
+    idx.iter().zip(&jacobi).map(|(&i, j)| kappa * j + d_diag[i]).collect()
+}
+
+/// Solves the QP `min ½ νᵀHν + cᵀν` on the unknowns `idx` (normal ones first: the first `q_n` of `idx`
+/// are normal, the rest tangential with the bounds `bounds`) from `start`, with the active-set method on
+/// the saddle-point system. Returns the answer on `idx` and the steps taken, or `None` when it could not
+/// certify it.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn solve(
+    factor: &Factor,
+    saddle: &mut SaddleSystem,
+    (f, d, c): (&[f64], &[f64], &[f64]),
+    idx: &[usize],
+    q_n: usize,
+    bounds: &[f64],
+    start: &[f64],
+    (tol, max_steps): (f64, u32),
+) -> Option<(Vec<f64>, u32)> {
+    let c_idx: Vec<f64> = idx.iter().map(|&i| c[i]).collect();
+    let mut op = SaddleOperator::new(factor, saddle, f, d, idx);
+    let k = idx.len();
+    // The scaling of the optimality test is that of the dense path, whose QP holds the dofs the load
+    // pushes, those of the start and those with a friction bound (and their neighbours): over all of Γ_C,
+    // the coarse dofs far from contact (large H_ii, large positive c) would loosen it.
+    let mut relevant = vec![false; q_n];
+    for j in 0..q_n {
+        let pushed = c_idx[j] < 0.0 || start[j] != 0.0 || bounds.get(j).is_some_and(|b| *b > 0.0);
+        if pushed {
+            for r in &mut relevant[j.saturating_sub(1)..(j + 2).min(q_n)] {
+                *r = true;
+            }
+        }
+    }
+    let keep = |a: usize| relevant[if a < q_n { a } else { a - q_n }];
+    let diag_s: Vec<f64> = (0..k).map(|a| if keep(a) { op.diag[a] } else { 0.0 }).collect();
+    let c_s: Vec<f64> = (0..k).map(|a| if keep(a) { c_idx[a] } else { 0.0 }).collect();
+    let Some(n_scale) = Scaling::normal_scale(&diag_s, &c_s, q_n) else {
+        return Some((vec![0.0; idx.len()], 0));
+    };
+    let scaling = Scaling::new(&diag_s, &c_s, q_n, n_scale, bounds);
+    let lo: Vec<f64> = (0..k).map(|a| if a < q_n { 0.0 } else { -bounds[a - q_n] }).collect();
+    let hi: Vec<f64> = (0..k).map(|a| if a < q_n { f64::INFINITY } else { bounds[a - q_n] }).collect();
+    let out = active_set::solve(&mut op, &c_idx, &Bounds { lo, hi }, start, &scaling, tol, max_steps);
+    log::debug!(
+        "sparse active set on {k} unknowns: certified {}, {} Newton steps ({} LDLᵀ), {} gradient steps",
+        out.certified,
+        out.newton_steps,
+        op.factorizations,
+        out.gradient_steps
+    );
+    out.certified.then_some((out.x, out.newton_steps + out.gradient_steps))
+}
