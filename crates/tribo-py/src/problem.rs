@@ -9,7 +9,7 @@ use pyo3::exceptions::{PyException, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat};
 use tribo::{
-    Choice, Friction, FrictionLaw, GapFunction, Material, MultiplierPoints, MultiplierSpace, ObstacleShape,
+    Choice, Friction, FrictionLaw, GapFunction, Material, MultiplierPoints, MultiplierSpace, ObstacleShape, Phase,
     ProblemSpec, Progress, SolverSettings, Stabilization, Threshold,
 };
 
@@ -335,10 +335,13 @@ impl PyProblem {
     /// qp_working_set, fp_tol, fp_max_iter, fp_relaxation); unset ones take the core's defaults.
     /// `progress`, if given, is called as progress(iteration, change, qp_iterations, qp_seconds) after
     /// every QP; returning False stops the solve (status 'interrupted', with the last iterate), raising
-    /// stops it and propagates. Ctrl-C is honoured between QPs.
+    /// stops it and propagates. `on_phase`, if given, is called as on_phase(phase, seconds) when a phase
+    /// before the QPs ends: 'condensation' (A = K − G factorized or reused, c and possibly all of H
+    /// formed; `seconds` is its wall time so far); False or an exception stops the solve the same way,
+    /// before any QP. Ctrl-C is honoured after the condensation and between QPs.
     #[pyo3(signature = (
         *, friction = None, mu = None, threshold = None, gamma0 = None, gamma0_fraction = None,
-        check_gamma0 = true, progress = None, **settings,
+        check_gamma0 = true, progress = None, on_phase = None, **settings,
     ))]
     #[allow(clippy::too_many_arguments)]
     fn solve(
@@ -351,6 +354,7 @@ impl PyProblem {
         gamma0_fraction: Option<f64>,
         check_gamma0: bool,
         progress: Option<Py<PyAny>>,
+        on_phase: Option<Py<PyAny>>,
         settings: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<PySolution> {
         let (law, settings) =
@@ -362,6 +366,11 @@ impl PyProblem {
                 ));
             }
         }
+        if let Some(p) = &on_phase {
+            if !p.bind(py).is_callable() {
+                return Err(settings_error("on_phase must be a callable (phase, seconds)"));
+            }
+        }
         let mut callback_error: Option<PyErr> = None;
         let problem = &self.inner;
         let result = py.detach(|| {
@@ -369,8 +378,16 @@ impl PyProblem {
             // re-raised below) and Ctrl-C.
             let mut observe = |p: &Progress| {
                 Python::attach(|py| {
-                    let stop = match &progress {
-                        Some(f) => match f.call1(py, (p.iteration, p.change, p.qp_iterations, p.qp_seconds)) {
+                    let call = match p.phase {
+                        Phase::Condensation => {
+                            on_phase.as_ref().map(|f| f.call1(py, ("condensation", p.condensation_seconds)))
+                        }
+                        _ => progress
+                            .as_ref()
+                            .map(|f| f.call1(py, (p.iteration, p.change, p.qp_iterations, p.qp_seconds))),
+                    };
+                    let stop = match call {
+                        Some(r) => match r {
                             Ok(r) => r.bind(py).is(pyo3::types::PyBool::new(py, false)),
                             Err(e) => {
                                 callback_error = Some(e);

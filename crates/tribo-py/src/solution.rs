@@ -192,6 +192,12 @@ impl PySolution {
         mat(py, &self.inner.stress)
     }
 
+    /// Out-of-plane stress σ_zz = ν (σ_xx + σ_yy) of plane strain per triangle, (T,).
+    #[getter]
+    fn stress_zz<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        vec1(py, &self.inner.stress_zz)
+    }
+
     /// Von Mises stress per triangle (plane strain), (T,).
     #[getter]
     fn von_mises<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
@@ -282,13 +288,35 @@ impl PySolution {
         vec1(py, &self.inner.gap)
     }
 
+    /// Current gap g − u_n at the FE nodes of Γ_C: 0 where the body touches the obstacle, < 0 where
+    /// it penetrates.
+    #[getter]
+    fn current_gap<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        vec1(py, &self.inner.current_gap())
+    }
+
+    /// Total force (Fx, Fy) the obstacle exerts on the body in global axes: −(normal_force n +
+    /// tangential_force t).
+    #[getter]
+    fn contact_force(&self) -> (f64, f64) {
+        let [x, y] = self.inner.contact_force;
+        (x, y)
+    }
+
+    /// How the obstacle moved, in global axes: −approach n + shift t.
+    #[getter]
+    fn obstacle_motion(&self) -> (f64, f64) {
+        let [x, y] = self.inner.obstacle_motion;
+        (x, y)
+    }
+
     /// Total normal contact force ∫ λ_n.
     #[getter]
     fn normal_force(&self) -> f64 {
         self.inner.normal_force
     }
 
-    /// Total tangential contact force ∫ λ_t.
+    /// Total tangential contact force ∫ λ_t (the obstacle pulls the body by −tangential_force along t).
     #[getter]
     fn tangential_force(&self) -> f64 {
         self.inner.tangential_force

@@ -20,7 +20,7 @@ use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, MatMut, Par, Side};
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Num, Result};
 use crate::schur::{self, SchurSymbolic};
 use crate::settings::Condensation;
 
@@ -204,6 +204,13 @@ impl Factor {
         let c = e_rows.iter().zip(&d).map(|(row, di)| di - dot(row, &u_f)).collect();
         let columns = Mutex::new(Columns { cols, seconds: schur_seconds + clock.elapsed().as_secs_f64() });
         let condensation = if use_schur { Condensation::Schur } else { Condensation::Columns };
+        log::info!(
+            "factorized A = K − G ({} unknowns) in {} s; {} {m} × {m} H in {} s",
+            a.nrows(),
+            Num(factorization_seconds),
+            if use_schur { "formed all of the" } else { "formed c; columns of the" },
+            Num(columns.lock().map_or(f64::NAN, |c| c.seconds))
+        );
         Ok(Self { gamma0, condensation, direct, a, e_rows, d_cols, c, d, columns, factorization_seconds })
     }
 
@@ -258,7 +265,15 @@ impl Factor {
                     guard.cols[i] = Some(h);
                 }
             }
-            guard.seconds += clock.elapsed().as_secs_f64();
+            let seconds = clock.elapsed().as_secs_f64();
+            guard.seconds += seconds;
+            let formed = guard.cols.iter().filter(|c| c.is_some()).count();
+            log::debug!(
+                "formed {} columns of H in {} s ({formed} of {} so far)",
+                missing.len(),
+                Num(seconds),
+                guard.cols.len()
+            );
         }
         f(&guard.cols)
     }

@@ -75,7 +75,7 @@ pub use choice::Choice;
 pub use condensation::Factor;
 pub use contact::ContactBoundary;
 pub use elasticity::Material;
-pub use error::{Error, Result};
+pub use error::{Error, Num, Result};
 pub use friction::{Friction, FrictionLaw, Threshold};
 pub use generate::{graded_rectangle, rectangle, Diagonal, Grading, Side};
 pub use mesh::Mesh;
@@ -88,7 +88,7 @@ pub use settings::{
     SolverSettings,
 };
 pub use solution::{ContactState, KktResiduals, Report, Solution, SolveStatus, Timings};
-pub use solve::{Observer, Progress};
+pub use solve::{Observer, Phase, Progress};
 pub use stabilization::{Gamma0Bound, Stabilization};
 
 /// The Rust example of README.md, compiled and run as a doctest.
