@@ -120,7 +120,11 @@ def contact_pressure(problem: Problem, solution: Solution, ax: Axes | None = Non
     ax.axhline(0.0, color="k", lw=0.5)
     ax.set_xlabel(_xi_label(problem))
     ax.set_ylabel(rf"contact pressure $\lambda_n = -\sigma_n$, n = {format_vector(problem.contact_normal)}")
-    ax.set_title(rf"Normal contact: $\lambda_n$ and $-\sigma_n(u_h)$, total force {solution.normal_force:.4g}")
+    ax.set_title(
+        rf"Normal contact: $\lambda_n$ and $-\sigma_n(u_h)$, total force {solution.normal_force:.4g}"
+        + f"\nforce of the obstacle on the body (Fx, Fy) = {format_vector(solution.contact_force)}",
+        fontsize="medium",
+    )
     if zoom:
         _zoom(ax, problem, solution)
     lines, _ = ax.get_legend_handles_labels()
@@ -145,8 +149,10 @@ def tangential(problem: Problem, solution: Solution, ax: Axes | None = None, *, 
     ax.set_ylabel(rf"$\lambda_t = -\sigma_t$ along t = {format_vector(problem.contact_tangent)}")
     mu = f", μ = {solution.mu:g}" if solution.mu is not None else ""
     ax.set_title(
-        rf"Friction ({solution.friction}{mu}): $\lambda_t$ against its bound" + "\n" + shift_description(problem),
-        fontsize="medium",
+        rf"Friction ({solution.friction}{mu}): $\lambda_t$ against its bound" + "\n"
+        rf"$\int\lambda_t$ = {solution.tangential_force:.3g}: the obstacle pulls the body by "
+        f"{-solution.tangential_force + 0.0:.3g} along t\n{shift_description(problem)}",
+        fontsize="small",
     )
     if zoom:
         _zoom(ax, problem, solution)

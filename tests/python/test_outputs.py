@@ -155,3 +155,10 @@ def test_tresca_states_are_explained() -> None:
     assert "toward −x" in ax.get_title()
     assert "not slip" in conventions(problem, s)["states"]
     plt.close("all")
+
+
+def test_reprs_format_numbers_for_people(hertz: tribo.Problem) -> None:
+    s = hertz.solve(mu=0.3, gamma0=0.0)
+    assert "gamma0=0," in repr(s.report) and "e0" not in repr(s.report)
+    assert "gamma0_bound=9.29e-4)" in repr(hertz)
+    assert f"normal_force={s.normal_force:.6g}," in repr(s)

@@ -583,12 +583,12 @@ impl PyProblem {
 
     fn __repr__(&self) -> String {
         format!(
-            "Problem(n_free={}, n_multipliers={}, space='{}', contact='{}', gamma0_bound={:e})",
+            "Problem(n_free={}, n_multipliers={}, space='{}', contact='{}', gamma0_bound={})",
             self.inner.n_free,
             self.inner.n_multipliers(),
             self.inner.multipliers.space,
             self.inner.spec.contact,
-            self.inner.gamma0_bound.value
+            tribo::Num(self.inner.gamma0_bound.value)
         )
     }
 }

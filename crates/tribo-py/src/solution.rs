@@ -139,11 +139,11 @@ impl PyReport {
 
     fn __repr__(&self) -> String {
         format!(
-            "Report(status='{}', iterations={}, gamma0={:e}, gamma0_bound={:e})",
+            "Report(status='{}', iterations={}, gamma0={}, gamma0_bound={})",
             self.status(),
             self.inner.iterations,
-            self.inner.gamma0,
-            self.inner.gamma0_bound
+            tribo::Num(self.inner.gamma0),
+            tribo::Num(self.inner.gamma0_bound)
         )
     }
 }
@@ -362,11 +362,11 @@ impl PySolution {
 
     fn __repr__(&self) -> String {
         format!(
-            "Solution(friction='{}', status='{}', normal_force={:.6e}, tangential_force={:.6e})",
+            "Solution(friction='{}', status='{}', normal_force={:.6}, tangential_force={:.6})",
             self.inner.report.friction,
             self.inner.report.status.name(),
-            self.inner.normal_force,
-            self.inner.tangential_force
+            tribo::Num(self.inner.normal_force),
+            tribo::Num(self.inner.tangential_force)
         )
     }
 }
