@@ -47,7 +47,10 @@
 //!
 //! ## Conventions
 //! Dofs are interleaved (x, y) per node; stresses are `(σ_xx, σ_yy, σ_xy)`; n is the outward normal on
-//! Γ_C and `t = (−n₂, n₁)`; abscissae on Γ_C are described in [`contact`].
+//! Γ_C and `t = (−n₂, n₁)`; abscissae on Γ_C are described in [`contact`]. `λ_n = −σ_n ≥ 0` and
+//! `λ_t = −σ_t` (along t); the obstacle moves by `−δ n + s t` ([`Solution::obstacle_motion`]) and exerts
+//! `−(N n + T t)` on the body ([`Solution::contact_force`], global axes). Numbers in messages are
+//! formatted by [`Num`].
 #![warn(missing_docs)]
 
 pub mod active_set;
