@@ -31,6 +31,7 @@ from tribo._tribo import (
     solver_defaults,
     solver_settings,
 )
+from tribo.checks import SceneWarning, check_solution
 from tribo.io import read_mesh, write_vtu
 from tribo.scene import SceneError, load_scene
 
@@ -44,11 +45,13 @@ __all__ = [
     "Problem",
     "Report",
     "SceneError",
+    "SceneWarning",
     "SettingsError",
     "Solution",
     "SolverError",
     "TriboError",
     "__version__",
+    "check_solution",
     "choices",
     "load_scene",
     "read_mesh",

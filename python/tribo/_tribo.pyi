@@ -107,6 +107,7 @@ class Obstacle:
 
 _ProgressCallback = Callable[[int, float, int, float], object]
 _StepCallback = Callable[[int, int, str, float], object]
+_PhaseCallback = Callable[[Literal["condensation"], float], object]
 
 @final
 class Problem:
@@ -138,6 +139,7 @@ class Problem:
         gamma0_fraction: float | None = None,
         check_gamma0: bool = True,
         progress: _ProgressCallback | None = None,
+        on_phase: _PhaseCallback | None = None,
         qp_tol: float = ...,
         qp_max_iter: int = ...,
         qp_kkt_solver: Literal["faer", "qdldl"] = ...,
@@ -269,6 +271,8 @@ class Solution:
     @property
     def stress(self) -> _Floats2: ...
     @property
+    def stress_zz(self) -> _Floats1: ...
+    @property
     def von_mises(self) -> _Floats1: ...
     @property
     def reactions(self) -> _Floats2: ...
@@ -298,6 +302,12 @@ class Solution:
     def slip(self) -> _Floats1: ...
     @property
     def gap(self) -> _Floats1: ...
+    @property
+    def current_gap(self) -> _Floats1: ...
+    @property
+    def contact_force(self) -> tuple[float, float]: ...
+    @property
+    def obstacle_motion(self) -> tuple[float, float]: ...
     @property
     def normal_force(self) -> float: ...
     @property

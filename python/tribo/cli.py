@@ -2,7 +2,9 @@
 
 ``tribo run SCENE.toml --out DIR`` solves a scene and writes into DIR:
 
-* ``summary.json``: the scene, the status, iterations, forces, KKT residuals, timings;
+* ``summary.json``: the scene, the status, iterations, forces (normal and tangential resultants and the
+  global components Fx, Fy), the obstacle's motion in global axes, KKT residuals, timings, warnings, and
+  the conventions (n, t, the direction of ξ, the signs of λ_t, of the shift and of the forces);
 * ``contact.csv`` (per multiplier dof), ``contact_nodes.csv``, ``contact_edges.csv``: the contact fields;
 * ``result.vtu``, ``result_contact.vtu``, ``result_multipliers.vtu``: for ParaView;
 * ``contact_normal.png``, ``contact_tangential.png``, ``von_mises.png``, ``von_mises_contact.png``
@@ -10,7 +12,9 @@
 
 ``tribo demo [--out DIR]`` runs the built-in scene (``tribo/scenes/demo.toml``) into ``tribo-demo-out``.
 
-Progress (fixed-point iteration, change of λ_n, QP iterations and time) is logged to stderr. Exit codes:
+Progress (the condensation's time, then per QP: fixed-point iteration, change of λ_n, QP iterations and
+time) is logged to stderr; a scene that is probably not what was meant (``tribo.checks``) prints a line
+``tribo: warning: …`` per reason. Exit codes:
 0 converged, 1 bad input or unwritable output (one line ``tribo: error: …`` says what and where), 3 the
 solve ended without converging (results are still written), 2 an internal error (a bug: one line
 ``tribo: internal error: …``, please report it), 130 interrupted (Ctrl-C).
@@ -24,6 +28,7 @@ import logging
 import math
 import sys
 import time
+import warnings
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -31,6 +36,7 @@ from typing import Any
 import numpy as np
 
 from tribo._tribo import History, Problem, Solution, TriboError, __version__
+from tribo.checks import SceneWarning, conventions, warn_solution
 from tribo.history import write_history
 from tribo.io import write_contact_csv, write_vtu
 from tribo.scene import Scene, SceneError, demo_scene_path, load_scene
@@ -53,7 +59,13 @@ def _progress(iteration: int, change: float, qp_iterations: int, qp_seconds: flo
         )
 
 
-def summary(scene: Scene, problem: Problem, solution: Solution, seconds: float) -> dict[str, Any]:
+def _phase(phase: str, seconds: float) -> None:
+    log.info("%s: %.3f s (factorization of K − G, and H where formed at once)", phase, seconds)
+
+
+def summary(
+    scene: Scene, problem: Problem, solution: Solution, seconds: float, warned: Sequence[str] = ()
+) -> dict[str, Any]:
     """The JSON summary of a run."""
     r = solution.report
     states = solution.state_names
@@ -79,12 +91,18 @@ def summary(scene: Scene, problem: Problem, solution: Solution, seconds: float) 
         "space": problem.space,
         "normal_force": solution.normal_force,
         "tangential_force": solution.tangential_force,
+        "contact_force": list(solution.contact_force),
+        "obstacle_motion": list(solution.obstacle_motion),
+        "normal": [v + 0.0 for v in problem.contact_normal],
+        "tangent": [v + 0.0 for v in problem.contact_tangent],
         "max_penetration": solution.max_penetration,
         "states": {name: states.count(name) for name in ("separation", "stick", "slip")},
         "kkt": solution.kkt,
         "kkt_max": solution.kkt_max,
         "timings": r.timings,
         "wall_seconds": seconds,
+        "warnings": list(warned),
+        "conventions": conventions(problem, solution),
     }
 
 
@@ -130,21 +148,31 @@ def run_scene(scene: Scene, out: Path, *, plots: bool = True) -> tuple[Problem, 
     )
     given = ", ".join(f"{k} = {v}" for k, v in scene.sections.get("friction", {}).items())
     log.info("solving (%s)", given or "no friction given: frictionless")
-    if scene.has_history:
-        history, history_files = run_history(scene, problem, out, plots=plots)
-        # The step that failed if one did (its status then sets the exit code), else the last one.
-        last = history.failed if history.failed is not None else (history.solutions[-1] if len(history) else None)
-        if last is None:
-            raise SceneError(f"the history's first step ended with status '{history.status}'", "history")
-        solution = last
-    else:
-        history_files = []
-        problem, solution = scene.solve(problem, progress=_progress)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", SceneWarning)
+        if scene.has_history:
+            history, history_files = run_history(scene, problem, out, plots=plots)
+            # The step that failed if one did (its status then sets the exit code), else the last one.
+            last = history.failed if history.failed is not None else (history.solutions[-1] if len(history) else None)
+            if last is None:
+                raise SceneError(f"the history's first step ended with status '{history.status}'", "history")
+            solution = last
+            warn_solution(problem, solution)
+        else:
+            history_files = []
+            problem, solution = scene.solve(problem, progress=_progress, on_phase=_phase)
+    warned = []
+    for w in caught:
+        if issubclass(w.category, SceneWarning):
+            warned.append(str(w.message))
+            print(f"tribo: warning: {w.message}", file=sys.stderr)
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     seconds = time.perf_counter() - clock
     log.info("solve ended: %s after %.2f s", solution.report.status, seconds)
     files = []
     path = out / "summary.json"
-    path.write_text(json.dumps(summary(scene, problem, solution, seconds), indent=2) + "\n", encoding="utf-8")
+    path.write_text(json.dumps(summary(scene, problem, solution, seconds, warned), indent=2) + "\n", encoding="utf-8")
     files.append(path)
     files += write_contact_csv(out, problem, solution)
     files += write_vtu(out / "result.vtu", problem, solution)
@@ -225,6 +253,10 @@ def _run(scene_path: Path, out: Path, plots: bool) -> int:
         f"normal force {solution.normal_force:.6g}, tangential force {solution.tangential_force:.6g}, "
         f"max KKT residual {solution.kkt_max:.2e}"
     )
+    fx, fy = solution.contact_force
+    said = conventions(problem, solution)
+    print(f"  force of the obstacle on the body (Fx, Fy) = ({fx:.6g}, {fy:.6g}) in global axes")
+    print(f"  {said['n']}; {said['t']}; shift: {said['shift']}")
     states = solution.state_names
     print(
         "  multiplier dofs: "

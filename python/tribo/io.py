@@ -7,9 +7,13 @@ dropped), line cells become named edge sets: Gmsh physical groups (``gmsh:physic
 Writing: ``write_vtu("out/result.vtu", problem, solution)`` writes three files, all with z = 0:
 
 * ``result.vtu``: the body, with point data ``displacement`` (3 components) and ``reaction``, and cell
-  data ``stress`` (σ_xx, σ_yy, σ_xy), ``sigma_xx``, ``sigma_yy``, ``sigma_xy`` and ``von_mises``;
+  data ``stress``, the full symmetric 3 × 3 stress tensor of plane strain (9 components, which ParaView
+  reads as a tensor: σ_xz = σ_yz = 0 and σ_zz = ν (σ_xx + σ_yy)), its components ``sigma_xx``,
+  ``sigma_yy``, ``sigma_xy``, ``sigma_zz`` and ``von_mises``;
 * ``result_contact.vtu``: Γ_C as line cells through its FE nodes, with point data ``u_n``, ``slip``,
-  ``gap`` and cell data ``sigma_n``, ``sigma_t``;
+  ``gap`` (g = g0 − δ: where the obstacle is, along n), ``current_gap`` (g − u_n: 0 in contact) and
+  ``obstacle`` (the obstacle's surface point facing the node, 3 components), and cell data ``sigma_n``,
+  ``sigma_t``;
 * ``result_multipliers.vtu``: Γ_C as line cells through the points of T_H, with ``lambda_n``,
   ``lambda_t``, ``friction_threshold`` and ``state`` (0 separation, 1 stick, 2 slip) as point data (P1)
   or cell data (P0).
@@ -27,8 +31,17 @@ import numpy as np
 import numpy.typing as npt
 
 from tribo._tribo import Mesh, MeshError, Problem, Solution
+from tribo.checks import conventions
 
-__all__ = ["mesh_from_meshio", "read_mesh", "write_vtu", "contact_tables", "write_contact_csv"]
+__all__ = [
+    "mesh_from_meshio",
+    "read_mesh",
+    "write_vtu",
+    "contact_tables",
+    "write_contact_csv",
+    "stress_tensor",
+    "obstacle_points",
+]
 
 
 def _mesh_error(message: str, kind: str, **details: Any) -> MeshError:
@@ -256,15 +269,17 @@ def write_vtu(path: str | Path, problem: Problem, solution: Solution) -> list[Pa
     stem = path.with_suffix("")
     mesh = problem.mesh
     stress = solution.stress
+    tensor = stress_tensor(solution)
     body = meshio.Mesh(
         _xyz(mesh.points),
         [("triangle", mesh.triangles)],
         point_data={"displacement": _xyz(solution.displacement), "reaction": _xyz(solution.reactions)},
         cell_data={
-            "stress": [stress],
+            "stress": [tensor.reshape(-1, 9)],
             "sigma_xx": [stress[:, 0]],
             "sigma_yy": [stress[:, 1]],
             "sigma_xy": [stress[:, 2]],
+            "sigma_zz": [solution.stress_zz],
             "von_mises": [solution.von_mises],
         },
     )
@@ -273,7 +288,13 @@ def write_vtu(path: str | Path, problem: Problem, solution: Solution) -> list[Pa
     contact = meshio.Mesh(
         _xyz(problem.contact_points(solution.node_abscissae)),
         [("line", lines)],
-        point_data={"u_n": solution.u_n, "slip": solution.slip, "gap": solution.gap},
+        point_data={
+            "u_n": solution.u_n,
+            "slip": solution.slip,
+            "gap": solution.gap,
+            "current_gap": solution.current_gap,
+            "obstacle": _xyz(obstacle_points(problem, solution)),
+        },
         cell_data={"sigma_n": [solution.sigma_n], "sigma_t": [solution.sigma_t]},
     )
     xi = problem.multiplier_mesh
@@ -298,41 +319,76 @@ def write_vtu(path: str | Path, problem: Problem, solution: Solution) -> list[Pa
     return paths
 
 
+def stress_tensor(solution: Solution) -> npt.NDArray[np.float64]:
+    """The full symmetric stress tensor of plane strain per triangle, (T, 3, 3): the in-plane components,
+    σ_zz = ν (σ_xx + σ_yy) (from the core) and σ_xz = σ_yz = 0."""
+    s = solution.stress
+    t = np.zeros((len(s), 3, 3))
+    t[:, 0, 0], t[:, 1, 1], t[:, 2, 2] = s[:, 0], s[:, 1], solution.stress_zz
+    t[:, 0, 1] = t[:, 1, 0] = s[:, 2]
+    return t
+
+
+def obstacle_points(problem: Problem, solution: Solution) -> npt.NDArray[np.float64]:
+    """Where the obstacle's surface is, facing each FE node of Γ_C: the node moved by the gap g = g0 − δ
+    along n, (n_c, 2)."""
+    p = problem.contact_points(solution.node_abscissae)
+    return np.asarray(p + np.outer(solution.gap, problem.contact_normal))
+
+
 def contact_tables(problem: Problem, solution: Solution) -> dict[str, dict[str, npt.NDArray[Any]]]:
     """The contact fields as three tables (name -> column -> array), one per kind of place on Γ_C:
     ``multipliers`` (dofs of λ), ``nodes`` (FE nodes) and ``edges`` (FE edges)."""
-    xm = solution.multiplier_abscissae
-    pm = problem.contact_points(xm)
-    xn = solution.node_abscissae
-    pn = problem.contact_points(xn)
-    xe = solution.edge_abscissae
-    pe = problem.contact_points(xe)
+
+    def at(xi: npt.NDArray[np.float64]) -> dict[str, npt.NDArray[Any]]:
+        p = problem.contact_points(xi)
+        return {"xi": xi, "x": p[:, 0], "y": p[:, 1]}
+
+    po = obstacle_points(problem, solution)
     return {
-        "multipliers": {
-            "xi": xm,
-            "x": pm[:, 0],
-            "y": pm[:, 1],
+        "multipliers": at(solution.multiplier_abscissae)
+        | {
             "lambda_n": solution.lambda_n,
             "lambda_t": solution.lambda_t,
             "friction_threshold": solution.friction_threshold,
             "state": np.asarray(solution.state_names),
         },
-        "nodes": {"xi": xn, "x": pn[:, 0], "y": pn[:, 1], "u_n": solution.u_n, "slip": solution.slip, "gap": solution.gap},
-        "edges": {"xi": xe, "x": pe[:, 0], "y": pe[:, 1], "sigma_n": solution.sigma_n, "sigma_t": solution.sigma_t},
+        "nodes": at(solution.node_abscissae)
+        | {
+            "u_n": solution.u_n,
+            "slip": solution.slip,
+            "gap": solution.gap,
+            "current_gap": solution.current_gap,
+            "obstacle_x": po[:, 0],
+            "obstacle_y": po[:, 1],
+        },
+        "edges": at(solution.edge_abscissae) | {"sigma_n": solution.sigma_n, "sigma_t": solution.sigma_t},
     }
 
 
 def write_contact_csv(directory: str | Path, problem: Problem, solution: Solution) -> list[Path]:
-    """Writes ``contact.csv`` (per multiplier dof), ``contact_nodes.csv`` and ``contact_edges.csv``."""
+    """Writes ``contact.csv`` (per multiplier dof), ``contact_nodes.csv`` and ``contact_edges.csv``.
+
+    Each file has one header line of column names, then ``#`` lines stating the conventions its columns
+    are read in (n, t, the direction of ξ, the signs; ``numpy.genfromtxt(path, delimiter=",", names=True)``
+    and ``pandas.read_csv(path, comment="#")`` skip them), then the rows."""
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     names = {"multipliers": "contact.csv", "nodes": "contact_nodes.csv", "edges": "contact_edges.csv"}
     paths = []
+    said = conventions(problem, solution)
     for key, table in contact_tables(problem, solution).items():
         path = directory / names[key]
         columns = list(table)
         with path.open("w", encoding="utf-8") as f:
             f.write(",".join(columns) + "\n")
+            stated = ["n", "t", "xi"] + [c for c in columns if c in said and c not in ("xi",)]
+            stated += ["states"] if key == "multipliers" else []
+            if key == "nodes":
+                stated += ["shift"]
+                f.write("# gap: g = g0 − δ along n; obstacle_x, obstacle_y: the obstacle's surface facing the node\n")
+            for c in stated:
+                f.write(f"# {c}: {said[c]}\n")
             for row in zip(*(table[c] for c in columns)):
                 f.write(",".join(v if isinstance(v, str) else repr(float(v)) for v in row) + "\n")
         paths.append(path)

@@ -7,7 +7,10 @@ Every function takes ``ax=None`` (a new figure is made) and returns the Axes it 
 * ``von_mises``: the deformed mesh coloured by the von Mises stress.
 
 Abscissa ξ on Γ_C: x on a horizontal Γ_C, y on a vertical one (see the core's conventions). λ_n ≥ 0 is
-the contact pressure and, at the discrete solution, λ_n ≈ −σ_n(u_h).
+the contact pressure and, at the discrete solution, λ_n ≈ −σ_n(u_h). The axis labels state which way ξ
+increases and the normal n and tangent t the components are taken along, and the tangential plot says
+which way the obstacle was shifted. With a Tresca threshold, λ_t may sit at ±threshold where there is no
+contact: those dofs are shaded "separation" and the legend says why λ_t is at its bound there.
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ import numpy as np
 import numpy.typing as npt
 
 from tribo._tribo import STATE_NAMES, History, Problem, Solution
+from tribo.checks import format_vector, shift_description
 
 try:
     import matplotlib.pyplot as plt
@@ -64,7 +68,18 @@ def _shade(ax: Axes, problem: Problem, solution: Solution) -> list[Patch]:
     for a, b, s in _state_intervals(problem, solution):
         ax.axvspan(a, b, color=STATE_COLORS[STATE_NAMES[s]], lw=0, zorder=0)
         seen.add(s)
-    return [Patch(color=STATE_COLORS[STATE_NAMES[s]], label=STATE_NAMES[s]) for s in sorted(seen)]
+    labels = dict(enumerate(STATE_NAMES))
+    if solution.friction == "tresca":
+        labels[0] = r"separation (Tresca: $\lambda_t$ may sit at $\pm$threshold here)"
+    return [Patch(color=STATE_COLORS[STATE_NAMES[s]], label=labels[s]) for s in sorted(seen)]
+
+
+def _xi_label(problem: Problem) -> str:
+    """The abscissa's label: which way ξ increases."""
+    t = problem.contact_tangent
+    axis = "x" if abs(t[0]) >= abs(t[1]) else "y"
+    along = "+t" if problem.tangent_sign > 0 else "−t"
+    return rf"abscissa $\xi$ on $\Gamma_C$ (increasing with {axis}, along {along})"
 
 
 def _zoom(ax: Axes, problem: Problem, solution: Solution) -> None:
@@ -104,9 +119,13 @@ def contact_pressure(problem: Problem, solution: Solution, ax: Axes | None = Non
     x, y = _multiplier_curve(problem, solution, solution.lambda_n)
     ax.plot(x, y, color="C0", lw=1.8, marker="." if problem.space == "P1" else None, ms=3, label=r"$\lambda_n$")
     ax.axhline(0.0, color="k", lw=0.5)
-    ax.set_xlabel(r"abscissa $\xi$ on $\Gamma_C$")
-    ax.set_ylabel("contact pressure")
-    ax.set_title(rf"Normal contact: $\lambda_n$ and $-\sigma_n(u_h)$, total force {solution.normal_force:.4g}")
+    ax.set_xlabel(_xi_label(problem))
+    ax.set_ylabel(rf"contact pressure $\lambda_n = -\sigma_n$, n = {format_vector(problem.contact_normal)}")
+    ax.set_title(
+        rf"Normal contact: $\lambda_n$ and $-\sigma_n(u_h)$, total force {solution.normal_force:.4g}"
+        + f"\nforce of the obstacle on the body (Fx, Fy) = {format_vector(solution.contact_force)}",
+        fontsize="medium",
+    )
     if zoom:
         _zoom(ax, problem, solution)
     lines, _ = ax.get_legend_handles_labels()
@@ -127,10 +146,15 @@ def tangential(problem: Problem, solution: Solution, ax: Axes | None = None, *, 
     x, y = _edge_steps(solution, -solution.sigma_t)
     ax.plot(x, y, color="0.35", lw=1.0, label=r"$-\sigma_t(u_h)$ (per FE edge)")
     ax.axhline(0.0, color="k", lw=0.5)
-    ax.set_xlabel(r"abscissa $\xi$ on $\Gamma_C$")
-    ax.set_ylabel("tangential traction")
+    ax.set_xlabel(_xi_label(problem))
+    ax.set_ylabel(rf"$\lambda_t = -\sigma_t$ along t = {format_vector(problem.contact_tangent)}")
     mu = f", μ = {solution.mu:g}" if solution.mu is not None else ""
-    ax.set_title(rf"Friction ({solution.friction}{mu}): $\lambda_t$ against its bound")
+    ax.set_title(
+        rf"Friction ({solution.friction}{mu}): $\lambda_t$ against its bound" + "\n"
+        rf"$\int\lambda_t$ = {solution.tangential_force:.3g}: the obstacle pulls the body by "
+        f"{-solution.tangential_force + 0.0:.3g} along t\n{shift_description(problem)}",
+        fontsize="small",
+    )
     if zoom:
         _zoom(ax, problem, solution)
     lines, _ = ax.get_legend_handles_labels()
@@ -169,7 +193,8 @@ def von_mises(
         xi = np.linspace(float(solution.node_abscissae[0]), float(solution.node_abscissae[-1]), 2001)
         g = np.asarray(problem.obstacle.gap0(xi)) - problem.approach
         surface = problem.contact_points(xi) + np.outer(g, problem.contact_normal)
-        ax.plot(surface[:, 0], surface[:, 1], color="C3", lw=1.5, label="obstacle")
+        moved = format_vector(solution.obstacle_motion)
+        ax.plot(surface[:, 0], surface[:, 1], color="C3", lw=1.5, label=f"obstacle (moved by {moved})")
         ax.legend(loc="upper right", fontsize="small")
     ax.figure.colorbar(art, ax=ax, label="von Mises stress")
     ax.set_aspect("equal")

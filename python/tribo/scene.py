@@ -18,10 +18,15 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     ``shape``: ``"flat"`` (default), ``"circle"``, ``"parabola"`` (both with ``radius`` *required* and
     ``center``, an abscissa on Γ_C, default 0) or ``"polyline"`` (``xi`` and ``gap`` lists, *required*);
     a key of another shape is an error; ``approach`` (δ, toward the body) and ``shift`` (s, along the
-    tangent t).
+    tangent t = (−n₂, n₁), n the outward normal of the body: on a top face t = (−1, 0), so a positive
+    shift moves the obstacle toward −x; ``summary.json`` gives the motion in global axes as
+    ``obstacle_motion`` = −δ n + s t).
 ``[friction]``
     ``mu`` (Coulomb; 0 is frictionless) or ``threshold`` (Tresca); neither: frictionless (the core decides,
-    with the same rule as ``Problem.solve``).
+    with the same rule as ``Problem.solve``). Tresca's threshold is given, not μ λ_n: friction acts
+    wherever the body slides against the obstacle's line, so λ_t may sit at ±threshold where there is
+    no contact (those dofs are in the state separation, not slip). That is Tresca's model; use ``mu``
+    for friction that vanishes with the pressure.
 ``[discretization]``
     For a rectangle: ``grading`` = ``"auto"`` (default: refine toward where contact can occur),
     ``"none"`` (a uniform mesh of size ``h``) or ``[a, b]`` (refine toward that segment of Γ_C);
@@ -68,6 +73,7 @@ import numpy as np
 
 from tribo._tribo import MAX_CELLS as _MAX_CELLS
 from tribo._tribo import History, Mesh, Obstacle, Problem, Solution, TriboError, choices, solver_settings
+from tribo.checks import warn_solution
 from tribo.io import read_mesh
 
 __all__ = ["Scene", "SceneError", "load_scene", "parse_scene", "demo_scene_path", "scene_path"]
@@ -411,11 +417,18 @@ class Scene:
             raise
 
     def solve(
-        self, problem: Problem | None = None, progress: Callable[[int, float, int, float], object] | None = None
+        self,
+        problem: Problem | None = None,
+        progress: Callable[[int, float, int, float], object] | None = None,
+        on_phase: Callable[[str, float], object] | None = None,
     ) -> tuple[Problem, Solution]:
-        """Builds (unless given) and solves; returns the problem and the solution."""
+        """Builds (unless given) and solves; returns the problem and the solution. A solution that is
+        probably not what the scene meant (nothing touches, few multiplier dofs in contact, a large
+        approach: ``tribo.checks``) emits a ``SceneWarning``."""
         problem = problem if problem is not None else self.build()
-        return problem, problem.solve(progress=progress, **self.solve_kwargs())
+        solution = problem.solve(progress=progress, on_phase=on_phase, **self.solve_kwargs())
+        warn_solution(problem, solution, stacklevel=2)
+        return problem, solution
 
     @property
     def has_history(self) -> bool:

@@ -106,9 +106,23 @@ def test_vtu_round_trip(tmp_path: Path, space: str) -> None:
     np.testing.assert_array_equal(m.cells_dict["triangle"], problem.mesh.triangles)
     np.testing.assert_allclose(m.point_data["displacement"][:, :2], s.displacement)
     np.testing.assert_allclose(m.cell_data["von_mises"][0], s.von_mises)
-    np.testing.assert_allclose(m.cell_data["stress"][0], s.stress)
+    # The stress is the full symmetric tensor of plane strain, 9 components (a tensor in ParaView).
+    tensor = m.cell_data["stress"][0].reshape(-1, 3, 3)
+    np.testing.assert_allclose(tensor[:, 0, 0], s.stress[:, 0])
+    np.testing.assert_allclose(tensor[:, 1, 1], s.stress[:, 1])
+    np.testing.assert_allclose(tensor[:, [0, 1], [1, 0]], np.column_stack([s.stress[:, 2]] * 2))
+    np.testing.assert_allclose(tensor[:, 2, 2], problem.poisson * (s.stress[:, 0] + s.stress[:, 1]), rtol=1e-12)
+    np.testing.assert_array_equal(tensor[:, [0, 1, 2, 2], [2, 2, 0, 1]], 0.0)
+    np.testing.assert_allclose(m.cell_data["sigma_zz"][0], tensor[:, 2, 2])
+    # The von Mises stress of that tensor is the core's.
+    dev = tensor - np.trace(tensor, axis1=1, axis2=2)[:, None, None] * np.eye(3) / 3
+    np.testing.assert_allclose(np.sqrt(1.5 * (dev**2).sum(axis=(1, 2))), s.von_mises, rtol=1e-10)
     c = meshio.read(contact)
     np.testing.assert_allclose(c.point_data["u_n"], s.u_n)
+    np.testing.assert_allclose(c.point_data["current_gap"], s.gap - s.u_n)
+    # The obstacle's surface facing each node of Γ_C: the node moved by the gap along n.
+    facing = problem.contact_points(s.node_abscissae) + np.outer(s.gap, problem.contact_normal)
+    np.testing.assert_allclose(c.point_data["obstacle"][:, :2], facing)
     np.testing.assert_allclose(c.cell_data["sigma_n"][0], s.sigma_n)
     mm = meshio.read(multipliers)
     data = mm.point_data if space == "P1" else {k: v[0] for k, v in mm.cell_data.items()}
@@ -126,6 +140,16 @@ def test_contact_csv(tmp_path: Path, hertz: tribo.Problem) -> None:
     assert list(table["state"]) == s.state_names
     nodes = np.genfromtxt(paths[1], delimiter=",", names=True)
     np.testing.assert_allclose(nodes["slip"], s.slip)
+    np.testing.assert_allclose(nodes["current_gap"], s.gap - s.u_n)
+    # Its most negative value is the largest pointwise penetration (non-penetration holds weakly).
+    assert -nodes["current_gap"].min() == pytest.approx(s.max_penetration, rel=1e-12)
+    # Below the column names, '#' lines state the conventions: n, t, the direction of ξ, the signs.
+    head = paths[0].read_text(encoding="utf-8").splitlines()
+    said = [line for line in head if line.startswith("# ")]
+    for needle in ("n = (0, 1)", "t = (−n₂, n₁) = (-1, 0)", "increasing with x (along −t)", "λ_t = −σ_t, along t"):
+        assert any(needle in line for line in said), (needle, said)
+    node_lines = paths[1].read_text(encoding="utf-8").splitlines()
+    assert any("the obstacle moved toward −x" in line for line in node_lines), node_lines[:12]
 
 
 def test_unreadable_files_raise_mesh_error(tmp_path: Path, capfd: pytest.CaptureFixture[str]) -> None:

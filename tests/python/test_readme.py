@@ -43,3 +43,35 @@ def test_readme_history_snippet_samples_its_path() -> None:
     assert len(shift) == 1 + 8 + 16 + 16
     assert shift[8] == 0.0045 and shift[24] == -0.0045 and shift[-1] == 0.0045
     assert (approach == base["obstacle"]["approach"]).all() and (load_factor == 1.0).all()
+
+
+def _rows(name: str) -> list[dict[str, str]]:
+    import csv
+
+    with (README.parent / "docs" / name).open(encoding="utf-8") as f:
+        return list(csv.DictReader(f))
+
+
+def test_readme_embeds_the_study_charts_with_true_readings() -> None:
+    """The work-precision, checkerboard and γ0 charts are embedded (and exist), and the numbers their
+    readings quote are those of the studies' CSV files."""
+    text = README.read_text(encoding="utf-8")
+    for name in ("work_precision", "checkerboard", "gamma0_bound"):
+        assert re.search(rf"!\[[^\]]*\]\(docs/{name}\.png\)", text), name
+        assert (README.parent / "docs" / f"{name}.png").stat().st_size > 0
+    fine = [r for r in _rows("checkerboard.csv") if float(r["H/h"]) < 1]
+
+    def span(theta: str, key: str) -> tuple[float, float]:
+        v = [float(r[key]) for r in fine if r["theta"] == theta]
+        return min(v), max(v)
+
+    assert [round(x) for x in span("0", "TV ratio")] == [8, 23] and "total variation 8–23×" in text
+    assert [round(x, 2) for x in span("0", "L2 error")] == [0.66, 2.12] and "L2 error 0.66–2.1 " in text
+    assert [round(x, 1) for x in span("0.9", "TV ratio")] == [1.4, 2.0] and "to 1.4–2.0× and 0.11–0.15" in text
+    assert [round(x, 2) for x in span("0.9", "L2 error")] == [0.11, 0.15]
+    rows = _rows("gamma0_bound.csv")
+    at_bound = [round(float(r["l2"]), 3) for r in rows if r["fraction"] == "1"]
+    assert at_bound == [0.12, 0.056, 0.029] and "(0.12, 0.056, 0.029 at 1 ×)" in text
+    for h in ("0.02", "0.01", "0.005"):
+        l2 = [float(r["l2"]) for r in rows if r["h_min"] == h and r["outcome"] == "converged"]
+        assert 1 - min(l2) / max(l2) < 0.4, h

@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat};
 use tribo::{
     Choice, Friction, FrictionLaw, GapFunction, LoadStep, Material, MultiplierPoints, MultiplierSpace, ObstacleShape,
-    ProblemSpec, Progress, SolverSettings, Stabilization, StepProgress, Threshold,
+    Phase, ProblemSpec, Progress, SolverSettings, Stabilization, StepProgress, Threshold,
 };
 
 use crate::convert::{floats, mat, rows, setting_value, vec1};
@@ -365,10 +365,13 @@ impl PyProblem {
     /// qp_working_set, fp_tol, fp_max_iter, fp_relaxation); unset ones take the core's defaults.
     /// `progress`, if given, is called as progress(iteration, change, qp_iterations, qp_seconds) after
     /// every QP; returning False stops the solve (status 'interrupted', with the last iterate), raising
-    /// stops it and propagates. Ctrl-C is honoured between QPs.
+    /// stops it and propagates. `on_phase`, if given, is called as on_phase(phase, seconds) when a phase
+    /// before the QPs ends: 'condensation' (A = K − G factorized or reused, c and possibly all of H
+    /// formed; `seconds` is its wall time so far); False or an exception stops the solve the same way,
+    /// before any QP. Ctrl-C is honoured after the condensation and between QPs.
     #[pyo3(signature = (
         *, friction = None, mu = None, threshold = None, gamma0 = None, gamma0_fraction = None,
-        check_gamma0 = true, progress = None, **settings,
+        check_gamma0 = true, progress = None, on_phase = None, **settings,
     ))]
     #[allow(clippy::too_many_arguments)]
     fn solve(
@@ -381,6 +384,7 @@ impl PyProblem {
         gamma0_fraction: Option<f64>,
         check_gamma0: bool,
         progress: Option<Py<PyAny>>,
+        on_phase: Option<Py<PyAny>>,
         settings: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<PySolution> {
         let (law, settings) =
@@ -392,14 +396,25 @@ impl PyProblem {
                 ));
             }
         }
+        if let Some(p) = &on_phase {
+            if !p.bind(py).is_callable() {
+                return Err(settings_error("on_phase must be a callable (phase, seconds)"));
+            }
+        }
         let mut callback_error: Option<PyErr> = None;
         let problem = &self.inner;
         let result = py.detach(|| {
             // After every QP: the progress callback (False stops the solve, an exception stops it and is
             // re-raised below) and Ctrl-C.
             let mut observe = |p: &Progress| {
-                let args = (p.iteration, p.change, p.qp_iterations, p.qp_seconds);
-                observe_with(progress.as_ref(), args, &mut callback_error)
+                let call = match p.phase {
+                    Phase::Condensation => (on_phase.as_ref(), None),
+                    _ => (progress.as_ref(), Some((p.iteration, p.change, p.qp_iterations, p.qp_seconds))),
+                };
+                match call {
+                    (f, None) => observe_with(f, ("condensation", p.condensation_seconds), &mut callback_error),
+                    (f, Some(args)) => observe_with(f, args, &mut callback_error),
+                }
             };
             problem.solve(&law, &settings, Some(&mut observe))
         });
@@ -663,12 +678,12 @@ impl PyProblem {
 
     fn __repr__(&self) -> String {
         format!(
-            "Problem(n_free={}, n_multipliers={}, space='{}', contact='{}', gamma0_bound={:e})",
+            "Problem(n_free={}, n_multipliers={}, space='{}', contact='{}', gamma0_bound={})",
             self.inner.n_free,
             self.inner.n_multipliers(),
             self.inner.multipliers.space,
             self.inner.spec.contact,
-            self.inner.gamma0_bound.value
+            tribo::Num(self.inner.gamma0_bound.value)
         )
     }
 }

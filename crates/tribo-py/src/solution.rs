@@ -139,11 +139,11 @@ impl PyReport {
 
     fn __repr__(&self) -> String {
         format!(
-            "Report(status='{}', iterations={}, gamma0={:e}, gamma0_bound={:e})",
+            "Report(status='{}', iterations={}, gamma0={}, gamma0_bound={})",
             self.status(),
             self.inner.iterations,
-            self.inner.gamma0,
-            self.inner.gamma0_bound
+            tribo::Num(self.inner.gamma0),
+            tribo::Num(self.inner.gamma0_bound)
         )
     }
 }
@@ -190,6 +190,12 @@ impl PySolution {
     #[getter]
     fn stress<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         mat(py, &self.inner.stress)
+    }
+
+    /// Out-of-plane stress σ_zz = ν (σ_xx + σ_yy) of plane strain per triangle, (T,).
+    #[getter]
+    fn stress_zz<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        vec1(py, &self.inner.stress_zz)
     }
 
     /// Von Mises stress per triangle (plane strain), (T,).
@@ -282,13 +288,35 @@ impl PySolution {
         vec1(py, &self.inner.gap)
     }
 
+    /// Current gap g − u_n at the FE nodes of Γ_C: 0 where the body touches the obstacle, < 0 where
+    /// it penetrates.
+    #[getter]
+    fn current_gap<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        vec1(py, &self.inner.current_gap())
+    }
+
+    /// Total force (Fx, Fy) the obstacle exerts on the body in global axes: −(normal_force n +
+    /// tangential_force t).
+    #[getter]
+    fn contact_force(&self) -> (f64, f64) {
+        let [x, y] = self.inner.contact_force;
+        (x, y)
+    }
+
+    /// How the obstacle moved, in global axes: −approach n + shift t.
+    #[getter]
+    fn obstacle_motion(&self) -> (f64, f64) {
+        let [x, y] = self.inner.obstacle_motion;
+        (x, y)
+    }
+
     /// Total normal contact force ∫ λ_n.
     #[getter]
     fn normal_force(&self) -> f64 {
         self.inner.normal_force
     }
 
-    /// Total tangential contact force ∫ λ_t.
+    /// Total tangential contact force ∫ λ_t (the obstacle pulls the body by −tangential_force along t).
     #[getter]
     fn tangential_force(&self) -> f64 {
         self.inner.tangential_force
@@ -334,11 +362,11 @@ impl PySolution {
 
     fn __repr__(&self) -> String {
         format!(
-            "Solution(friction='{}', status='{}', normal_force={:.6e}, tangential_force={:.6e})",
+            "Solution(friction='{}', status='{}', normal_force={:.6}, tangential_force={:.6})",
             self.inner.report.friction,
             self.inner.report.status.name(),
-            self.inner.normal_force,
-            self.inner.tangential_force
+            tribo::Num(self.inner.normal_force),
+            tribo::Num(self.inner.tangential_force)
         )
     }
 }

@@ -20,7 +20,7 @@ use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, MatMut, Par, Side};
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Num, Result};
 use crate::saddle::{SaddleError, SaddleOptions, SaddleSystem};
 use crate::schur::{self, SchurSymbolic};
 use crate::settings::Condensation;
@@ -291,6 +291,16 @@ impl Factor {
         } else {
             Condensation::Columns
         };
+        log::info!(
+            "factorized A = K − G ({} unknowns) in {} s; {}",
+            a.nrows(),
+            Num(factorization_seconds),
+            match condensation {
+                Condensation::Schur => format!("formed all of the {m} × {m} H in {} s", Num(schur_seconds)),
+                Condensation::Saddle => "H not formed: the QPs solve the sparse saddle-point system".to_string(),
+                _ => "formed c; columns of H as the QPs need them".to_string(),
+            }
+        );
         Ok(Self {
             gamma0,
             condensation,
@@ -359,7 +369,15 @@ impl Factor {
                     guard.cols[i] = Some(h);
                 }
             }
-            guard.seconds += clock.elapsed().as_secs_f64();
+            let seconds = clock.elapsed().as_secs_f64();
+            guard.seconds += seconds;
+            let formed = guard.cols.iter().filter(|c| c.is_some()).count();
+            log::debug!(
+                "formed {} columns of H in {} s ({formed} of {} so far)",
+                missing.len(),
+                Num(seconds),
+                guard.cols.len()
+            );
         }
         f(&guard.cols)
     }

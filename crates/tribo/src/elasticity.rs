@@ -6,7 +6,7 @@
 use faer::sparse::{SparseColMat, Triplet};
 use nalgebra::{Matrix3, SMatrix, Vector3};
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Num, Result};
 use crate::mesh::Mesh;
 
 /// Strain-displacement matrix of one P1 triangle: `ε = B v_T`, with `v_T` the 6 local dofs.
@@ -34,7 +34,7 @@ impl Material {
     pub fn validate(&self) -> Result<()> {
         let bad = |what: String| Err(Error::BadMaterial { what });
         if !(self.young.is_normal() && self.young > 0.0) {
-            return bad(format!("Young's modulus must be positive, finite and not subnormal, got {:e}", self.young));
+            return bad(format!("Young's modulus must be positive, finite and not subnormal, got {}", Num(self.young)));
         }
         let nu = self.poisson;
         if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
@@ -43,14 +43,15 @@ impl Material {
         let margin = f64::EPSILON.sqrt();
         if 1.0 - 2.0 * nu < margin || 1.0 + nu < margin {
             return bad(format!(
-                "Poisson's ratio {nu} is too close to {}: 1 − 2ν = {:.2e} and 1 + ν = {:.2e} must both be at least √ε = {margin:.2e}, or the stiffness loses all its digits",
+                "Poisson's ratio {nu} is too close to {}: 1 − 2ν = {} and 1 + ν = {} must both be at least √ε = {}, or the stiffness loses all its digits",
                 if nu > 0.0 { "1/2" } else { "−1" },
-                1.0 - 2.0 * nu,
-                1.0 + nu
+                Num(1.0 - 2.0 * nu),
+                Num(1.0 + nu),
+                Num(margin)
             ));
         }
         if !self.elasticity_matrix().iter().all(|c| c.is_finite()) {
-            return bad(format!("Young's modulus {:e} overflows the elasticity matrix", self.young));
+            return bad(format!("Young's modulus {} overflows the elasticity matrix", Num(self.young)));
         }
         Ok(())
     }
@@ -60,6 +61,11 @@ impl Material {
         let (e, nu) = (self.young, self.poisson);
         let f = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
         Matrix3::new(f * (1.0 - nu), f * nu, 0.0, f * nu, f * (1.0 - nu), 0.0, 0.0, 0.0, f * (1.0 - 2.0 * nu) / 2.0)
+    }
+
+    /// The out-of-plane stress of plane strain (ε_zz = 0): `σ_zz = ν (σ_xx + σ_yy)` for `s = (σ_xx, σ_yy, σ_xy)`.
+    pub fn sigma_zz(&self, s: [f64; 3]) -> f64 {
+        self.poisson * (s[0] + s[1])
     }
 
     /// Von Mises stress of a plane-strain stress state (σ_zz = ν (σ_xx + σ_yy)), computed on the stresses

@@ -32,7 +32,9 @@ pub enum Error {
     },
     /// A triangle has zero (or, relative to its size, negligible) area.
     #[error(
-        "triangle {element} is degenerate: area {area:e} is negligible next to its squared diameter {diameter_sq:e}"
+        "triangle {element} is degenerate: area {} is negligible next to its squared diameter {}",
+        Num(*.area),
+        Num(*.diameter_sq)
     )]
     DegenerateTriangle {
         /// Triangle index.
@@ -44,7 +46,8 @@ pub enum Error {
     },
     /// A triangle is ordered clockwise.
     #[error(
-        "triangle {element} is inverted (clockwise node order, signed area {area:e}); list its nodes counter-clockwise"
+        "triangle {element} is inverted (clockwise node order, signed area {}); list its nodes counter-clockwise",
+        Num(*.area)
     )]
     InvertedTriangle {
         /// Triangle index.
@@ -67,7 +70,7 @@ pub enum Error {
         second: usize,
     },
     /// Coordinates so large that a triangle's area or diameter overflows.
-    #[error("triangle {element}: its coordinates are too large for its area ({area:e}) and diameter² ({diameter_sq:e}) to be computed; rescale the mesh")]
+    #[error("triangle {element}: its coordinates are too large for its area ({}) and diameter² ({}) to be computed; rescale the mesh", Num(*.area), Num(*.diameter_sq))]
     CoordinatesTooLarge {
         /// Triangle index.
         element: usize,
@@ -175,7 +178,7 @@ pub enum Error {
         set: String,
     },
     /// The solve's equilibrium residual shows a singular or nearly singular stiffness.
-    #[error("the stiffness is singular or nearly so: the equilibrium residual of the solution is {residual:.2e} (more than √ε); look for a mechanism or a material at its limits")]
+    #[error("the stiffness is singular or nearly so: the equilibrium residual of the solution is {} (more than √ε); look for a mechanism or a material at its limits", Num(*.residual))]
     SingularStiffness {
         /// The relative equilibrium residual.
         residual: f64,
@@ -186,7 +189,7 @@ pub enum Error {
 
     // ----- contact geometry -----
     /// Γ_C is not one straight segment.
-    #[error("contact boundary '{set}' is not straight: node {node} lies {distance:e} off the line of the first edge (edge length {length:e})")]
+    #[error("contact boundary '{set}' is not straight: node {node} lies {} off the line of the first edge (edge length {})", Num(*.distance), Num(*.length))]
     ContactNotStraight {
         /// Edge set name.
         set: String,
@@ -246,7 +249,7 @@ pub enum Error {
         previous: f64,
     },
     /// A multiplier point lies off Γ_C.
-    #[error("multiplier point {index} lies off the contact boundary: distance {distance:e} (Γ_C spans abscissae [{start}, {end}])")]
+    #[error("multiplier point {index} lies off the contact boundary: distance {} (Γ_C spans abscissae [{}, {}])", Num(*.distance), Num(*.start), Num(*.end))]
     MultiplierPointOffContact {
         /// Index of the point.
         index: usize,
@@ -289,7 +292,7 @@ pub enum Error {
         what: String,
     },
     /// γ0 is above the bound that keeps the stabilized stiffness positive definite.
-    #[error("γ0 = {gamma0:e} is not admissible: K − G stays positive definite only for γ0 < {bound:e} (bound set by element {element}); choose γ0 as a fraction of the bound")]
+    #[error("γ0 = {:.4} is not admissible: K − G stays positive definite only for γ0 < {:.4} (bound set by element {element}); choose γ0 as a fraction of the bound", Num(*.gamma0), Num(*.bound))]
     Gamma0TooLarge {
         /// The requested γ0.
         gamma0: f64,
@@ -361,7 +364,7 @@ pub enum Error {
         what: String,
     },
     /// A solve would need more memory for its dense parts than the budget allows.
-    #[error("{what} would need {needed:.3e} bytes, more than the memory budget of {budget:.3e} bytes (setting 'memory_budget')")]
+    #[error("{what} would need {} bytes, more than the memory budget of {} bytes (setting 'memory_budget')", Num(*.needed), Num(*.budget))]
     MemoryBudget {
         /// What would be allocated.
         what: String,
@@ -592,5 +595,46 @@ pub(crate) fn check_setting(name: &'static str, value: f64, ok: bool, what: &str
         Ok(())
     } else {
         Err(Error::BadSetting { name, value, what: what.to_string() })
+    }
+}
+
+/// A number formatted for people, in messages and logs: three significant digits by default (the
+/// formatter's precision if given, `{:.6}`), trailing zeros dropped, plain decimals for
+/// `0.01 ≤ |x| < 10⁴` and `2.63e-3` outside, `0` for zero, `NaN` and `inf` as such. `{:e}` prints
+/// `0e0` and `2.626396615835748e-1`; `{}` prints every digit of a computed value.
+///
+/// ```
+/// use tribo::Num;
+/// assert_eq!(Num(2.626396615835748e-3).to_string(), "2.63e-3");
+/// assert_eq!(Num(0.0).to_string(), "0");
+/// assert_eq!(format!("{:.5}", Num(0.1 + 0.2)), "0.3");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Num(pub f64);
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let x = self.0;
+        if x == 0.0 || !x.is_finite() {
+            return write!(f, "{}", if x == 0.0 { 0.0 } else { x });
+        }
+        let digits = f.precision().unwrap_or(3).clamp(1, 17);
+        // The exponent after rounding to `digits` (9.996e-3 is 1.00e-2).
+        let sci = format!("{:.*e}", digits - 1, x);
+        let (mantissa, exponent) = sci.split_once('e').unwrap_or((&sci, "0"));
+        let exponent: i32 = exponent.parse().unwrap_or(0);
+        let trim = |s: &str| -> String {
+            if s.contains('.') {
+                s.trim_end_matches('0').trim_end_matches('.').to_string()
+            } else {
+                s.to_string()
+            }
+        };
+        if (-2..4).contains(&exponent) {
+            let decimals = usize::try_from(digits as i32 - 1 - exponent).unwrap_or(0);
+            f.write_str(&trim(&format!("{x:.decimals$}")))
+        } else {
+            write!(f, "{}e{exponent}", trim(mantissa))
+        }
     }
 }

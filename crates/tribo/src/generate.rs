@@ -282,7 +282,10 @@ pub fn graded_rectangle(x: [f64; 2], y: [f64; 2], grading: &Grading) -> Result<M
     let diameter = width.hypot(height);
     let estimate = estimate_cells(width * height, diameter, seg_len, g, dx.min(dy) / base);
     if estimate.is_nan() || estimate > MAX_CELLS as f64 {
-        return Err(too_large(format!("about {estimate:.3e} cells estimated, the limit is {MAX_CELLS}")));
+        return Err(too_large(format!(
+            "about {} cells estimated, the limit is {MAX_CELLS}",
+            crate::error::Num(estimate)
+        )));
     }
     let (nx, ny) = (nxf as u64, nyf as u64);
     let mut lmax = 0;

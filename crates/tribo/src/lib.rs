@@ -51,7 +51,10 @@
 //!
 //! ## Conventions
 //! Dofs are interleaved (x, y) per node; stresses are `(σ_xx, σ_yy, σ_xy)`; n is the outward normal on
-//! Γ_C and `t = (−n₂, n₁)`; abscissae on Γ_C are described in [`contact`].
+//! Γ_C and `t = (−n₂, n₁)`; abscissae on Γ_C are described in [`contact`]. `λ_n = −σ_n ≥ 0` and
+//! `λ_t = −σ_t` (along t); the obstacle moves by `−δ n + s t` ([`Solution::obstacle_motion`]) and exerts
+//! `−(N n + T t)` on the body ([`Solution::contact_force`], global axes). Numbers in messages are
+//! formatted by [`Num`].
 #![warn(missing_docs)]
 
 pub mod active_set;
@@ -83,7 +86,7 @@ pub use choice::Choice;
 pub use condensation::Factor;
 pub use contact::ContactBoundary;
 pub use elasticity::Material;
-pub use error::{Error, Result};
+pub use error::{Error, Num, Result};
 pub use friction::{Friction, FrictionLaw, Threshold};
 pub use generate::{graded_rectangle, rectangle, Diagonal, Grading, Side};
 pub use history::{History, StepObserver, StepProgress};
@@ -98,7 +101,7 @@ pub use settings::{
     SolverSettings,
 };
 pub use solution::{ContactState, KktResiduals, Report, Solution, SolveStatus, Timings};
-pub use solve::{Observer, Progress};
+pub use solve::{Observer, Phase, Progress};
 pub use stabilization::{Gamma0Bound, Stabilization};
 
 /// The Rust example of README.md, compiled and run as a doctest.

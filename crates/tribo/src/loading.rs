@@ -24,6 +24,10 @@ pub struct Loading {
     pub c: Vec<f64>,
     /// The gap `g = g₀ − δ` at the FE nodes of Γ_C.
     pub gap: Vec<f64>,
+    /// The obstacle's approach δ and tangential position s.
+    pub approach: f64,
+    /// See `approach`.
+    pub shift: f64,
     /// At the FE nodes of Γ_C, the tangential displacement from which slip is measured: the shift s of a
     /// static solve, `u_t^{k−1} + s_k − s_{k−1}` in step k of a history.
     pub slip_origin: Vec<f64>,
@@ -59,6 +63,8 @@ impl Loading {
             d: factor.d.clone(),
             c: factor.c.clone(),
             gap: problem.contact_gap.clone(),
+            approach: problem.spec.obstacle.approach,
+            shift,
             slip_origin: vec![shift; problem.contact.nodes.len()],
         }
     }
@@ -88,6 +94,8 @@ impl Loading {
             d,
             c,
             gap: problem.contact_gap.iter().map(|g| g + moved).collect(),
+            approach: step.approach,
+            shift: step.shift,
             slip_origin: previous.u_t_nodes.iter().map(|u| u + ds).collect(),
         }
     }

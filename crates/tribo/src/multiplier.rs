@@ -29,7 +29,7 @@ pub const MAX_MULTIPLIER_POINTS: usize = 1_000_000;
 
 fn too_many(count: f64) -> Error {
     Error::BadMultiplierMesh {
-        what: format!("{count:.3e} points asked for, more than the limit of {MAX_MULTIPLIER_POINTS}"),
+        what: format!("{} points asked for, more than the limit of {MAX_MULTIPLIER_POINTS}", crate::error::Num(count)),
     }
 }
 

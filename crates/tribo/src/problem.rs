@@ -324,7 +324,11 @@ impl Problem {
         )
         .map_err(|e| match e {
             Error::NotPositiveDefinite { what } => Error::NotPositiveDefinite {
-                what: format!("{what} (γ0 = {gamma0:e}, admissible bound {:e})", self.gamma0_bound.value),
+                what: format!(
+                    "{what} (γ0 = {}, admissible bound {})",
+                    crate::error::Num(gamma0),
+                    crate::error::Num(self.gamma0_bound.value)
+                ),
             },
             e => e,
         })?;

@@ -317,7 +317,12 @@ impl BoxQp {
         if !matches!(out.status, QpStatus::Failed(_)) || self.settings.tol >= FALLBACK_TOL {
             return out;
         }
-        log::warn!("QP failed ({:?}) at tol {:e}: solving again at {FALLBACK_TOL:e}", out.status, self.settings.tol);
+        log::warn!(
+            "QP failed ({:?}) at tol {}: solving again at {}",
+            out.status,
+            crate::error::Num(self.settings.tol),
+            crate::error::Num(FALLBACK_TOL)
+        );
         self.settings.tol = FALLBACK_TOL;
         match self.setup() {
             Ok(solver) => self.solver = Some(solver),

@@ -198,6 +198,9 @@ pub struct Solution {
     pub displacement: Vec<f64>,
     /// Constant stress (σ_xx, σ_yy, σ_xy) per triangle.
     pub stress: Vec<[f64; 3]>,
+    /// The out-of-plane stress σ_zz = ν (σ_xx + σ_yy) of plane strain per triangle (with
+    /// [`Solution::stress`], the full symmetric stress tensor; σ_xz = σ_yz = 0).
+    pub stress_zz: Vec<f64>,
     /// Von Mises stress per triangle (plane strain).
     pub von_mises: Vec<f64>,
     /// Reaction forces on clamped dofs (2N, zero elsewhere): `K u − f` (f the load of the load case).
@@ -232,8 +235,17 @@ pub struct Solution {
     pub gap: Vec<f64>,
     /// Total normal contact force `∫ λ_n`.
     pub normal_force: f64,
-    /// Total tangential contact force `∫ λ_t`.
+    /// Total tangential contact force `∫ λ_t`. The friction traction the obstacle exerts on the body is
+    /// `−λ_t t`, so a positive `tangential_force` pulls the body toward −t.
     pub tangential_force: f64,
+    /// The total force the obstacle exerts on the body, `(F_x, F_y) = −(N n + T t)` in global axes (n, t
+    /// the normal and tangent of [`crate::ContactBoundary`]), with
+    /// `N` = [`Solution::normal_force`] and `T` = [`Solution::tangential_force`] (the traction on Γ_C is
+    /// `σ(u)·n = −λ_n n − λ_t t`).
+    pub contact_force: [f64; 2],
+    /// How the obstacle moved, in global axes: `−δ n + s t` (the approach δ toward the body, against
+    /// the outward normal, and the shift s along t).
+    pub obstacle_motion: [f64; 2],
     /// Largest pointwise penetration `max(u_n − g)₊` over the FE nodes of Γ_C.
     pub max_penetration: f64,
     /// Discrete KKT residuals.
@@ -262,6 +274,7 @@ impl Solution {
         let displacement = problem.expand(u_free);
         let stress = element_stresses(mesh, material, &displacement);
         let von_mises = stress.iter().map(|s| material.von_mises(*s)).collect();
+        let stress_zz = stress.iter().map(|s| material.sigma_zz(*s)).collect();
         // Reactions K u − f on all dofs (zero up to round-off on free dofs).
         let mut reactions: Vec<f64> = loading.f_full.iter().map(|f| -f).collect();
         for t in stiffness_triplets(mesh, material) {
@@ -291,8 +304,10 @@ impl Solution {
         let gap = loading.gap.clone();
         let max_penetration = u_n.iter().zip(&gap).map(|(u, g)| nan_max(u - g, 0.0)).fold(0.0, nan_max);
         let w = &problem.mortar.psi_integrals;
-        let normal_force = lambda_n.iter().zip(w).map(|(l, w)| l * w).sum();
-        let tangential_force = lambda_t.iter().zip(w).map(|(l, w)| l * w).sum();
+        let normal_force: f64 = lambda_n.iter().zip(w).map(|(l, w)| l * w).sum();
+        let tangential_force: f64 = lambda_t.iter().zip(w).map(|(l, w)| l * w).sum();
+        let contact_force = [0, 1].map(|i| -(normal_force * n[i] + tangential_force * t[i]));
+        let obstacle_motion = [0, 1].map(|i| -loading.approach * n[i] + loading.shift * t[i]);
 
         let kkt = kkt_residuals(condensed, loading, u_free, &lambda, &friction_threshold);
         let lam_scale = lambda_n.iter().fold(condensed.lambda_scale(&loading.c), |m, v| m.max(v.abs()));
@@ -311,6 +326,7 @@ impl Solution {
         Self {
             displacement,
             stress,
+            stress_zz,
             von_mises,
             reactions,
             multiplier_abscissae: problem.multipliers.dof_abscissae(),
@@ -327,6 +343,8 @@ impl Solution {
             gap,
             normal_force,
             tangential_force,
+            contact_force,
+            obstacle_motion,
             max_penetration,
             kkt,
             report,
@@ -365,6 +383,12 @@ impl Solution {
             && [self.normal_force, self.tangential_force, self.max_penetration, self.kkt.max()]
                 .iter()
                 .all(|x| x.is_finite())
+    }
+
+    /// The current gap `g − u_n` at the FE nodes of Γ_C (along n, from the deformed body to the
+    /// obstacle in its final position): 0 where the body touches it, negative where it penetrates.
+    pub fn current_gap(&self) -> Vec<f64> {
+        self.gap.iter().zip(&self.u_n).map(|(g, u)| g - u).collect()
     }
 
     /// Displacement of node `i`.

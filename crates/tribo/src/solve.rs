@@ -5,7 +5,7 @@
 use std::ops::ControlFlow;
 use std::time::Instant;
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Num, Result};
 use crate::friction::Friction;
 use crate::loading::Loading;
 use crate::problem::{Condensed, Problem};
@@ -18,9 +18,25 @@ use crate::working_set::WorkingSetQp;
 /// stagnated: a contraction, however slow, makes a new minimum every iteration.
 pub const STAGNATION_WINDOW: usize = 10;
 
-/// Progress of a solve, reported after every QP.
+/// The phase of a solve a [`Progress`] report comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Phase {
+    /// Reported once, before the first QP: `A = K − G` is factorized (or reused) and `c` formed, and
+    /// with the partial factorization all of H (the column path forms columns of H during the QPs, and
+    /// [`Progress::condensation_seconds`] counts them in every later report).
+    Condensation,
+    /// A QP answered: the initial one (iteration 0) or a fixed-point iteration.
+    Qp,
+}
+
+/// Progress of a solve, reported once after the condensation and after every QP.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Progress {
+    /// The phase reported.
+    pub phase: Phase,
+    /// Wall time spent so far on the factorization of A and on forming `c` and columns of H.
+    pub condensation_seconds: f64,
     /// Fixed-point iteration (0 for the initial frictionless solve).
     pub iteration: usize,
     /// Relative change of λ_n (NaN for the initial solve).
@@ -31,7 +47,21 @@ pub struct Progress {
     pub qp_seconds: f64,
 }
 
-/// A progress observer: called after every QP. Returning `ControlFlow::Break(())` stops the solve,
+impl Progress {
+    /// A report of [`Phase::Qp`].
+    fn qp(factor: &crate::Factor, iteration: usize, change: f64, out: &QpOutcome) -> Self {
+        Self {
+            phase: Phase::Qp,
+            condensation_seconds: factor.factorization_seconds + factor.condensation_seconds(),
+            iteration,
+            change,
+            qp_iterations: out.iterations,
+            qp_seconds: out.seconds,
+        }
+    }
+}
+
+/// A progress observer: called after the condensation and after every QP. Returning `ControlFlow::Break(())` stops the solve,
 /// which then ends with [`SolveStatus::Interrupted`] and its last iterate.
 pub type Observer<'a> = &'a mut dyn FnMut(&Progress) -> ControlFlow<()>;
 
@@ -61,9 +91,13 @@ impl QpPhase {
     }
 
     /// Books a QP solved outside the fixed point (iteration 0): progress, counts, status.
-    fn record_single_qp(&mut self, out: &QpOutcome, notify: &mut dyn FnMut(Progress) -> ControlFlow<()>) {
-        let flow =
-            notify(Progress { iteration: 0, change: f64::NAN, qp_iterations: out.iterations, qp_seconds: out.seconds });
+    fn record_single_qp(
+        &mut self,
+        factor: &crate::Factor,
+        out: &QpOutcome,
+        notify: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+    ) {
+        let flow = notify(Progress::qp(factor, 0, f64::NAN, out));
         if flow.is_break() {
             self.status = SolveStatus::Interrupted { iteration: 0 };
         }
@@ -126,13 +160,18 @@ impl Condensed<'_> {
         let condensation_before = factor.condensation_seconds();
         let q = self.q();
         let mut notify = |p: Progress| {
-            log::debug!(
-                "iteration {} change {:e} qp {} its {:.3} s",
-                p.iteration,
-                p.change,
-                p.qp_iterations,
-                p.qp_seconds
-            );
+            match p.phase {
+                Phase::Condensation => {
+                    log::info!("condensed onto {} multipliers in {} s", 2 * q, Num(p.condensation_seconds))
+                }
+                _ => log::debug!(
+                    "iteration {} change {} qp {} its {} s",
+                    p.iteration,
+                    Num(p.change),
+                    p.qp_iterations,
+                    Num(p.qp_seconds)
+                ),
+            }
             match observer.as_mut() {
                 Some(o) => o(&p),
                 None => ControlFlow::Continue(()),
@@ -150,7 +189,17 @@ impl Condensed<'_> {
             qp_inaccurate: 0,
         };
         let budget = settings.memory_budget;
+        let condensed = Progress {
+            phase: Phase::Condensation,
+            condensation_seconds: factor.factorization_seconds + factor.condensation_seconds(),
+            iteration: 0,
+            change: f64::NAN,
+            qp_iterations: 0,
+            qp_seconds: 0.0,
+        };
+        let stopped = notify(condensed).is_break();
         match (&friction, start) {
+            _ if stopped => phase.status = SolveStatus::Interrupted { iteration: 0 },
             (Friction::Coulomb { .. }, Some(start)) => {
                 // A warm start: the fixed point starts from the nearby answer.
                 phase.lambda.copy_from_slice(start);
@@ -159,14 +208,14 @@ impl Condensed<'_> {
                 // Coulomb starts from the frictionless λ_n.
                 let out = WorkingSetQp::new(factor, loading, None, &settings.qp, budget, start)?.solve()?;
                 phase.lambda[..q].copy_from_slice(&out.nu);
-                phase.record_single_qp(&out, &mut notify);
+                phase.record_single_qp(factor, &out, &mut notify);
             }
             (Friction::Tresca(_), _) => {
                 phase.bound = friction.tresca_bounds(q);
                 let out =
                     WorkingSetQp::new(factor, loading, Some(&phase.bound), &settings.qp, budget, start)?.solve()?;
                 phase.lambda.copy_from_slice(&out.nu);
-                phase.record_single_qp(&out, &mut notify);
+                phase.record_single_qp(factor, &out, &mut notify);
             }
         }
         if let (Friction::Coulomb { mu }, SolveStatus::Converged) = (&friction, phase.status) {
@@ -220,7 +269,11 @@ impl Condensed<'_> {
             if !solution.all_finite() {
                 solution.report.status = SolveStatus::NonFinite;
             } else if solution.kkt.max() > bound {
-                log::warn!("KKT residual {:.2e} above what the tolerances justify ({bound:.2e})", solution.kkt.max());
+                log::warn!(
+                    "KKT residual {} above what the tolerances justify ({})",
+                    Num(solution.kkt.max()),
+                    Num(bound)
+                );
                 solution.report.status = SolveStatus::Inaccurate;
             }
         }
@@ -264,8 +317,7 @@ impl Condensed<'_> {
             let norm: f64 = lam_n.iter().map(|a| a * a).sum::<f64>().sqrt();
             let change = if norm > 0.0 { diff / norm } else { diff };
             phase.history.push(change);
-            let flow =
-                notify(Progress { iteration: it, change, qp_iterations: out.iterations, qp_seconds: out.seconds });
+            let flow = notify(Progress::qp(self.factor(), it, change, &out));
             phase.bound = g.iter().map(|v| mu * v.max(0.0)).collect();
             phase.lambda = out.nu;
             // Converged when the relative change is small, or when the change is at the QP's own noise

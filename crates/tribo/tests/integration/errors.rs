@@ -210,7 +210,7 @@ fn settings_rules() {
     let t = SolverSettings { stabilization: Stabilization::Gamma0(1.5 * bound), ..s };
     let e = bad(&Friction::Frictionless, &t);
     assert!(matches!(e, Error::Gamma0TooLarge { element, .. } if element == problem.gamma0_bound.triangle), "{e}");
-    assert!(e.to_string().contains(&format!("{bound:e}")), "the message states the bound: {e}");
+    assert!(e.to_string().contains(&format!("γ0 < {:.4}", Num(bound))), "the message states the bound: {e}");
 }
 
 /// Far beyond the admissible bound K − G is indefinite: the factorization reports it as an error.

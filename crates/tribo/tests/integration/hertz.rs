@@ -75,7 +75,9 @@ fn coulomb_fixed_point_converges_with_stick_and_slip() {
     let problem = hertz_problem(0.01, 0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
     let mut seen = Vec::new();
     let mut observer = |p: &Progress| {
-        seen.push(p.iteration);
+        if p.phase == Phase::Qp {
+            seen.push(p.iteration);
+        }
         std::ops::ControlFlow::Continue(())
     };
     let sol =

@@ -8,6 +8,8 @@
 //! * `hertz`: named scenes (Hertz convergence, the checkerboard of the classic method, Coulomb);
 //! * `history`: loading histories (the incremental problem against the static one, the path, sliding);
 //! * `methods`: the active-set method against clarabel, QP by QP, on every scene above;
+//! * `outputs`: what a reader gets back (global forces, plane-strain stress, current gap, formatted
+//!   numbers, the condensation's progress);
 //! * `layout`: the module structure of the crate (no import cycles).
 //!
 //! Scenes and measures shared with the benches and examples come from the `tribo-testkit` crate.
@@ -20,4 +22,5 @@ mod invariants;
 mod kkt;
 mod layout;
 mod methods;
+mod outputs;
 mod patch;

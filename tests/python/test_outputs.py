@@ -1,0 +1,164 @@
+"""What a reader gets back: conventions stated, global force components, warnings on doubtful scenes,
+the condensation's progress, and the Tresca states explained."""
+
+from __future__ import annotations
+
+import json
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import tribo
+from conftest import hertz_problem
+from tribo.checks import MAX_APPROACH_FRACTION, MIN_CONTACT_DOFS, check_solution, warn_solution
+from tribo.cli import main
+from tribo.scene import demo_scene_path, load_scene
+
+
+def square(n: int = 8, **kw: object) -> tribo.Problem:
+    """A unit square clamped at the bottom, pressed on top by a flat obstacle (keywords override)."""
+    args: dict[str, object] = dict(
+        young=1.0, poisson=0.3, clamped="bottom", contact="top", obstacle=tribo.Obstacle.flat(), approach=0.01
+    )
+    args.update(kw)
+    return tribo.Problem(tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), n, n), **args)  # type: ignore[arg-type]
+
+
+def test_contact_force_is_global(hertz: tribo.Problem) -> None:
+    s = hertz.solve(mu=0.3)
+    n, t = np.array(hertz.contact_normal), np.array(hertz.contact_tangent)
+    np.testing.assert_allclose(s.contact_force, -(s.normal_force * n + s.tangential_force * t), rtol=1e-15)
+    # The obstacle pushes down (−y) and, shifted toward −x (t = (−1, 0), s > 0), drags the body toward −x.
+    assert s.contact_force[1] < 0 and s.contact_force[0] < 0
+    assert s.obstacle_motion == pytest.approx((-hertz.shift, -hertz.approach))
+    np.testing.assert_allclose(s.stress_zz, hertz.poisson * (s.stress[:, 0] + s.stress[:, 1]))
+    np.testing.assert_array_equal(s.current_gap, s.gap - s.u_n)
+
+
+def test_good_scene_has_no_warnings(hertz: tribo.Problem) -> None:
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        problem, solution = load_scene(demo_scene_path()).solve()
+    assert check_solution(problem, solution) == []
+    # The coarsest Hertz mesh of the tests has 4 dofs in contact, where λ_n is 35 % off the Hertz
+    # pressure (README, "Hertz"): the warning is right there.
+    assert "only 4 multiplier dofs" in check_solution(hertz, hertz.solve(mu=0.3))[0]
+
+
+def test_warning_nothing_touches() -> None:
+    problem = square(approach=-0.01)
+    s = problem.solve()
+    assert s.normal_force == 0
+    with pytest.warns(tribo.SceneWarning, match=r"nothing touches.*smallest gap after the approach 0.01"):
+        reasons = warn_solution(problem, s)
+    assert len(reasons) == 1
+
+
+def test_warning_few_contact_dofs() -> None:
+    # A parabola of radius 1 pushed 0.002 in: half-width ≈ √(2Rδ) ≈ 0.06, a cell or two of a 16 × 16 mesh.
+    problem = square(16, obstacle=tribo.Obstacle.parabola(1.0, 0.5), approach=0.002)
+    s = problem.solve()
+    k = int(np.count_nonzero(s.states != 0))
+    assert 0 < k < MIN_CONTACT_DOFS
+    with pytest.warns(tribo.SceneWarning, match=f"only {k} multiplier dofs? \\(fewer than {MIN_CONTACT_DOFS}\\)"):
+        warn_solution(problem, s)
+    # Pushed further on a finer mesh, the contact zone holds enough dofs.
+    fine = square(64, obstacle=tribo.Obstacle.parabola(1.0, 0.5), approach=0.02)
+    assert check_solution(fine, fine.solve()) == []
+
+
+def test_warning_large_approach() -> None:
+    approach = 2 * MAX_APPROACH_FRACTION  # the body is 1 high along n
+    problem = square(16, approach=approach)
+    with pytest.warns(tribo.SceneWarning, match=r"approach 0.1 is 10 % of the body's extent along n \(1\)"):
+        warn_solution(problem, problem.solve())
+    small = square(16, approach=0.5 * MAX_APPROACH_FRACTION)
+    assert check_solution(small, small.solve()) == []
+
+
+def test_scene_solve_and_cli_warn(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    text = demo_scene_path().read_text(encoding="utf-8").replace("approach = 0.01", "approach = -0.01")
+    path = tmp_path / "apart.toml"
+    path.write_text(text, encoding="utf-8")
+    with pytest.warns(tribo.SceneWarning, match="nothing touches"):
+        load_scene(path).solve()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # the CLI reports them as lines, not as Python warnings
+        assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 0
+    err = capsys.readouterr().err
+    assert [line for line in err.splitlines() if line.startswith("tribo: warning: nothing touches")], err
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text(encoding="utf-8"))
+    assert len(summary["warnings"]) == 1 and summary["warnings"][0].startswith("nothing touches")
+
+
+def test_summary_states_the_conventions(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["-q", "demo", "--out", str(tmp_path), "--no-plots"]) == 0
+    out = capsys.readouterr().out
+    assert "the obstacle moved toward −x" in out and "(Fx, Fy) = (" in out
+    s = json.loads((tmp_path / "summary.json").read_text(encoding="utf-8"))
+    assert s["normal"] == [0.0, 1.0] and s["tangent"] == [-1.0, 0.0]
+    assert s["obstacle_motion"] == pytest.approx([-0.004, -0.01])
+    fx, fy = s["contact_force"]
+    assert fy == pytest.approx(-s["normal_force"]) and fx == pytest.approx(s["tangential_force"])
+    c = s["conventions"]
+    assert c["xi"] == "abscissa ξ along Γ_C, increasing with x (along −t)"
+    assert c["shift"] == "s = 0.004 along t = (-1, 0): the obstacle moved toward −x"
+    for key in ("n", "t", "lambda_n", "lambda_t", "tangential_force", "contact_force", "slip", "current_gap"):
+        assert c[key]
+
+
+def test_on_phase_reports_the_condensation(hertz: tribo.Problem) -> None:
+    events: list[tuple[str, object]] = []
+    s = hertz.solve(
+        mu=0.3,
+        on_phase=lambda phase, seconds: events.append((phase, seconds)),
+        progress=lambda *a: events.append(("qp", a[0])),
+    )
+    assert s.report.status == "converged"
+    assert events[0][0] == "condensation" and isinstance(events[0][1], float) and events[0][1] >= 0
+    assert [e[0] for e in events[1:]] == ["qp"] * (s.report.iterations + 1)
+    stopped = hertz.solve(mu=0.3, on_phase=lambda phase, seconds: False, progress=lambda *a: pytest.fail("a QP ran"))
+    assert stopped.report.status == "interrupted" and stopped.report.interrupted_iteration == 0
+    assert not stopped.lambda_n.any()
+
+    def boom(phase: str, seconds: float) -> None:
+        raise ZeroDivisionError(phase)
+
+    with pytest.raises(ZeroDivisionError, match="condensation"):
+        hertz.solve(on_phase=boom)
+    with pytest.raises(tribo.SettingsError, match="on_phase must be a callable"):
+        hertz.solve(on_phase=3)  # type: ignore[arg-type]
+
+
+def test_tresca_states_are_explained() -> None:
+    """With a given threshold λ_t sits at ±threshold where nothing touches: those dofs are 'separation',
+    and the plot's legend and the conventions say why λ_t is at its bound there."""
+    pytest.importorskip("matplotlib")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from tribo import plot
+    from tribo.checks import conventions
+
+    problem = hertz_problem(shift=0.004)
+    s = problem.solve(threshold=1e-3)
+    apart = s.states == 0
+    at_bound = np.isclose(np.abs(s.lambda_t), s.friction_threshold, rtol=1e-6)
+    assert (apart & at_bound).any(), "Tresca: λ_t at ±threshold without contact"
+    ax = plot.tangential(problem, s)
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert any(label.startswith("separation (Tresca") for label in labels), labels
+    assert "toward −x" in ax.get_title()
+    assert "not slip" in conventions(problem, s)["states"]
+    plt.close("all")
+
+
+def test_reprs_format_numbers_for_people(hertz: tribo.Problem) -> None:
+    s = hertz.solve(mu=0.3, gamma0=0.0)
+    assert "gamma0=0," in repr(s.report) and "e0" not in repr(s.report)
+    assert "gamma0_bound=9.29e-4)" in repr(hertz)
+    assert f"normal_force={s.normal_force:.6g}," in repr(s)
