@@ -264,3 +264,17 @@ def test_progress_callback_returning_false_interrupts(hertz: tribo.Problem) -> N
     assert s.report.iterations == 2 and np.all(np.isfinite(s.lambda_n)) and s.normal_force > 0.0
     # Any other return value (None, True, 0) lets the solve go on.
     assert hertz.solve(mu=0.3, progress=lambda *a: None).report.status == "converged"
+
+
+def test_condensation_paths_agree(hertz: tribo.Problem) -> None:
+    """H by columns, from the partial factorization, or never formed (the sparse saddle-point system):
+    one answer, and the report says which path ran."""
+    ref = hertz.solve(mu=0.3, condensation="columns")
+    for path in ("schur", "saddle"):
+        sol = hertz.solve(mu=0.3, condensation=path)
+        assert sol.report.condensation == path and sol.report.status == "converged"
+        assert sol.report.iterations == ref.report.iterations
+        scale = np.abs(ref.lambda_n).max()
+        assert np.abs(sol.lambda_n - ref.lambda_n).max() <= 1e-7 * scale
+        assert np.abs(sol.lambda_t - ref.lambda_t).max() <= 1e-7 * scale
+        assert np.abs(sol.displacement - ref.displacement).max() <= 1e-8 * np.abs(ref.displacement).max()

@@ -52,7 +52,7 @@ fn problems(family: &str) -> Vec<(f64, Build)> {
 /// One mesh of a family: its label, the size parameter and the mesh.
 fn meshes(family: &str) -> Vec<(f64, Mesh)> {
     match family {
-        "uniform" => [40usize, 80, 160, 240, 320, 400]
+        "uniform" => [40usize, 80, 160, 240, 320, 400, 560, 720]
             .iter()
             .map(|&nx| {
                 let s = hertz_scene();

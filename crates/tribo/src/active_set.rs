@@ -45,6 +45,12 @@ pub(crate) trait QpOperator {
     fn newton_point(&mut self, free: &[bool], x: &[f64]) -> Option<Vec<f64>>;
     /// The diagonal of H.
     fn diagonal(&self) -> &[f64];
+    /// `|H x + c|` at the last Newton point on its free unknowns (0 elsewhere): zero in exact arithmetic,
+    /// so its size is the round-off of the gradient. An operator whose gradient and Newton point share
+    /// their arithmetic (the dense H) has none to report.
+    fn round_off(&self) -> Option<&[f64]> {
+        None
+    }
 }
 
 /// The dense QP data on a set of unknowns: H (column-major `k × k`) and c, with the Cholesky factor of
@@ -326,7 +332,8 @@ pub(crate) fn solve(
     let mut g = op.gradient(&x);
     let (mut fx, _) = objective(&x, &g, c);
     // A scaling that is not a positive finite number certifies nothing (every scaled residual would be 0).
-    let threshold = if scaling.phi.is_finite() && scaling.phi > 0.0 { threshold(scaling, tol) } else { -1.0 };
+    let base = if scaling.phi.is_finite() && scaling.phi > 0.0 { threshold(scaling, tol) } else { -1.0 };
+    let mut threshold = base;
     let mut out = ActiveSetOutcome { x: Vec::new(), certified: false, newton_steps: 0, gradient_steps: 0 };
     // The PDAS iterate (a Newton point, possibly outside the box) the next prediction starts from, and
     // its gradient; x is the best feasible point so far.
@@ -362,6 +369,13 @@ pub(crate) fn solve(
         let mut accepted = false;
         if let Some(xn) = op.newton_point(&free, &xb) {
             out.newton_steps += 1;
+            // Where the gradient is evaluated in other arithmetic than the Newton point (the sparse
+            // operator), the test cannot ask for less than twice the gradient's round-off, measured where
+            // it should vanish.
+            if let Some(noise) = op.round_off() {
+                let scaled = noise.iter().zip(&scaling.w).fold(0.0_f64, |m, (g, w)| m.max(w * g / scaling.phi));
+                threshold = base.max(2.0 * scaled);
+            }
             let mut t = xn.clone();
             bounds.project(&mut t);
             let gt = op.gradient(&t);

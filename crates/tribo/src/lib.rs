@@ -35,7 +35,8 @@
 //! ## Module layout
 //! Mathematics first: [`mesh`], [`generate`], [`elasticity`], [`contact`], [`obstacle`], [`multiplier`],
 //! [`mortar`], [`stabilization`] (the γ0-dependent operators), [`problem`]; then the solver:
-//! [`condensation`] (linear algebra of `A` and `H`), [`qp`] (clarabel), [`working_set`], [`friction`],
+//! [`condensation`] (linear algebra of `A` and `H`), [`qp`] (clarabel), [`working_set`], `sparse_qp` and
+//! `saddle` (the QPs without H, on the sparse saddle-point system), [`friction`],
 //! [`settings`], [`loading`] (the load case: the QP's linear term), [`solve`] (the driver and the fixed
 //! point), [`history`] (loading histories) and [`solution`]. [`choice`] gives every enum
 //! of options its names. No module imports one that imports it back (a test reads the `use` lines).
