@@ -10,6 +10,7 @@ mod errors;
 mod mesh;
 mod problem;
 mod solution;
+mod supports;
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -106,6 +107,7 @@ fn _tribo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<mesh::PyMesh>()?;
     m.add_class::<problem::PyObstacle>()?;
     m.add_class::<problem::PyProblem>()?;
+    m.add_class::<supports::PySupport>()?;
     m.add_class::<solution::PySolution>()?;
     m.add_class::<solution::PyReport>()?;
     m.add_function(wrap_pyfunction!(solver_defaults, m)?)?;

@@ -101,8 +101,11 @@ pub struct Factor {
     columns: Mutex<Columns>,
     /// Linear term c (2q).
     pub c: Vec<f64>,
-    /// `d` (2q): the obstacle's gap and shift moments.
+    /// `d` (2q): the obstacle's gap and shift moments, minus `E ū` for prescribed displacements ū.
     pub d: Vec<f64>,
+    /// The load on the unknowns A was condensed with (`f̃`, with the lifting of prescribed displacements,
+    /// see [`crate::supports`]): the `f` of [`Factor::displacement`] and of the equilibrium residual.
+    pub f: Vec<f64>,
     /// Dγ by columns over the 2q unknowns (row, value): the q × q block `Dγ` twice on the diagonal.
     d_cols: Vec<Vec<(usize, f64)>>,
     /// Wall time of forming A and its numeric factorization, in seconds.
@@ -204,7 +207,19 @@ impl Factor {
         let c = e_rows.iter().zip(&d).map(|(row, di)| di - dot(row, &u_f)).collect();
         let columns = Mutex::new(Columns { cols, seconds: schur_seconds + clock.elapsed().as_secs_f64() });
         let condensation = if use_schur { Condensation::Schur } else { Condensation::Columns };
-        Ok(Self { gamma0, condensation, direct, a, e_rows, d_cols, c, d, columns, factorization_seconds })
+        Ok(Self {
+            gamma0,
+            condensation,
+            direct,
+            a,
+            e_rows,
+            d_cols,
+            c,
+            d,
+            f: f.to_vec(),
+            columns,
+            factorization_seconds,
+        })
     }
 
     /// Number of multiplier dofs per component.

@@ -31,7 +31,8 @@
 //!
 //! ## Module layout
 //! Mathematics first: [`mesh`], [`generate`], [`elasticity`], [`contact`], [`obstacle`], [`multiplier`],
-//! [`mortar`], [`stabilization`] (the γ0-dependent operators), [`problem`]; then the solver:
+//! [`mortar`], [`stabilization`] (the γ0-dependent operators), [`supports`] (Dirichlet conditions and the
+//! lifting of prescribed displacements), [`problem`]; then the solver:
 //! [`condensation`] (linear algebra of `A` and `H`), [`qp`] (clarabel), [`working_set`], [`friction`],
 //! [`settings`], [`solve`] (the driver and the fixed point) and [`solution`]. [`choice`] gives every enum
 //! of options its names. No module imports one that imports it back (a test reads the `use` lines).
@@ -69,6 +70,7 @@ pub mod settings;
 pub mod solution;
 pub mod solve;
 pub mod stabilization;
+pub mod supports;
 pub mod working_set;
 
 pub use choice::Choice;
@@ -90,6 +92,7 @@ pub use settings::{
 pub use solution::{ContactState, KktResiduals, Report, Solution, SolveStatus, Timings};
 pub use solve::{Observer, Progress};
 pub use stabilization::{Gamma0Bound, Stabilization};
+pub use supports::{Dofs, NodeSupport, Support};
 
 /// The Rust example of README.md, compiled and run as a doctest.
 #[cfg(doctest)]

@@ -260,16 +260,12 @@ impl Solution {
         let displacement = problem.expand(u_free);
         let stress = element_stresses(mesh, material, &displacement);
         let von_mises = stress.iter().map(|s| material.von_mises(*s)).collect();
-        // Reactions K u − f on all dofs (zero up to round-off on free dofs).
+        // Reactions K u − f on the constrained dofs (along the condition at a roller's node).
         let mut reactions: Vec<f64> = problem.f_full.iter().map(|f| -f).collect();
         for t in stiffness_triplets(mesh, material) {
             reactions[t.row] += t.val * displacement[t.col];
         }
-        for (r, s) in reactions.iter_mut().zip(&problem.free) {
-            if s.is_some() {
-                *r = 0.0;
-            }
-        }
+        problem.dofs.keep_reactions(&mut reactions);
         let contact = &problem.contact;
         let (n, t) = (contact.normal, contact.tangent);
         let (lambda_n, lambda_t) = (lambda[..q].to_vec(), lambda[q..].to_vec());
@@ -293,7 +289,7 @@ impl Solution {
         let normal_force = lambda_n.iter().zip(w).map(|(l, w)| l * w).sum();
         let tangential_force = lambda_t.iter().zip(w).map(|(l, w)| l * w).sum();
 
-        let kkt = kkt_residuals(problem, condensed, u_free, &lambda, &friction_threshold);
+        let kkt = kkt_residuals(condensed, u_free, &lambda, &friction_threshold);
         let lam_scale = lambda_n.iter().fold(condensed.lambda_scale(), |m, v| m.max(v.abs()));
         let theta = qp_tol.sqrt() * lam_scale;
         let states = (0..q)
@@ -382,13 +378,13 @@ fn ratio(num: f64, den: f64) -> f64 {
     }
 }
 
-fn kkt_residuals(problem: &Problem, c: &Factor, u: &[f64], lambda: &[f64], bound: &[f64]) -> KktResiduals {
+fn kkt_residuals(c: &Factor, u: &[f64], lambda: &[f64], bound: &[f64]) -> KktResiduals {
     let q = c.q();
     let au = c.apply_a(u);
     let etl = c.apply_et(lambda);
     let inf = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| nan_max(m, x.abs()));
-    let res: Vec<f64> = au.iter().zip(&etl).zip(&problem.f_free).map(|((a, e), f)| a + e - f).collect();
-    let eq_scale = inf(&problem.f_free).max(inf(&etl));
+    let res: Vec<f64> = au.iter().zip(&etl).zip(&c.f).map(|((a, e), f)| a + e - f).collect();
+    let eq_scale = inf(&c.f).max(inf(&etl));
     let eu = c.apply_e(u);
     // r = E u − d − Dγ λ.
     let dl = c.apply_d(lambda);

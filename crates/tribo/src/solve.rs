@@ -156,7 +156,7 @@ impl Condensed<'_> {
         let condensation_during = factor.condensation_seconds() - condensation_before;
         let qp_total = clock.elapsed().as_secs_f64() - condensation_during;
         let clock = Instant::now();
-        let u = factor.displacement(&problem.f_free, &phase.lambda)?;
+        let u = factor.displacement(&factor.f, &phase.lambda)?;
         let recovery = clock.elapsed().as_secs_f64();
         let timings = Timings {
             assembly: problem.timings.assembly,

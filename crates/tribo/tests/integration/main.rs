@@ -7,6 +7,7 @@
 //! * `kkt`: the discrete problem (3.1) checked by its own quadrature, independent of the assembly;
 //! * `hertz`: named scenes (Hertz convergence, the checkerboard of the classic method, Coulomb);
 //! * `methods`: the active-set method against clarabel, QP by QP, on every scene above;
+//! * `supports`: rollers and prescribed displacements: patch tests, the half Hertz model against the full one;
 //! * `layout`: the module structure of the crate (no import cycles).
 //!
 //! Scenes and measures shared with the benches and examples come from the `tribo-testkit` crate.
@@ -19,3 +20,4 @@ mod kkt;
 mod layout;
 mod methods;
 mod patch;
+mod supports;
