@@ -175,3 +175,40 @@ def test_scene_without_supports_is_refused() -> None:
     del data["supports"]
     with pytest.raises(SceneError, match="supports"):
         parse_scene(data)
+
+
+def test_scene_with_a_prescribed_displacement() -> None:
+    """A punch in a scene file: the block's top pushed down by [[supports]] kind = "displacement" (y only),
+    a symmetry line on its left, a flat foundation under it, Coulomb friction."""
+    scene = parse_scene(
+        tomllib.loads(
+            """
+            [body]
+            x = [0.0, 1.0]
+            y = [0.0, 0.5]
+            [material]
+            young = 100.0
+            poisson = 0.3
+            [[supports]]
+            kind = "displacement"
+            edge_set = "top"
+            y = -0.002
+            [[supports]]
+            kind = "roller"
+            edge_set = "left"
+            [contact]
+            edge_set = "bottom"
+            [friction]
+            mu = 0.2
+            [discretization]
+            grading = "none"
+            h = 0.125
+            """
+        )
+    )
+    problem, sol = scene.solve()
+    assert [s.kind for s in problem.supports] == ["displacement", "roller"] and problem.clamped == []
+    assert sol.report.status == "converged" and sol.normal_force > 0.0
+    top = np.unique(problem.mesh.edge_sets["top"])
+    assert np.all(sol.displacement[top, 1] == -0.002)
+    assert scene.to_dict()["supports"]["entries"][0] == {"kind": "displacement", "edge_set": "top", "y": -0.002}

@@ -365,6 +365,18 @@ fn support_rules() {
     let e = problem_err(square(), with(vec![Support::roller("top")]));
     assert!(matches!(&e, Error::RigidMotion { .. }), "{e}");
     assert!(Problem::new(square(), with(vec![Support::roller("top"), Support::roller("left")])).is_ok());
+    // A piece held at a single node turns about it: two squares joined at node 2 = (1, 1), the first
+    // clamped on its bottom and its right side, which fixes node 2 but no other node of the second.
+    let pts = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [2.0, 1.0], [2.0, 2.0], [1.0, 2.0]];
+    let tris = vec![[0, 1, 2], [0, 2, 3], [2, 4, 5], [2, 5, 6]];
+    let joined = sets(&[("bottom", vec![[0, 1]]), ("side", vec![[1, 2]]), ("top", vec![[5, 6]])]);
+    let mesh = Mesh::new(pts, tris, joined).unwrap();
+    let s = ProblemSpec { clamped: vec!["bottom".into(), "side".into()], contact: "top".into(), ..spec() };
+    let e = problem_err(mesh, s);
+    assert!(
+        matches!(&e, Error::RigidMotion { node: 2, triangles: 2, pieces: 2, motion, .. } if motion == "a rotation about (1.0000e0, 1.0000e0)"),
+        "{e}"
+    );
     // A support on Γ_C.
     let e = problem_err(square(), with(vec![Support::clamp("top"), Support::roller("bottom")]));
     assert!(matches!(e, Error::ContactOverlapsDirichlet { .. }), "{e}");
