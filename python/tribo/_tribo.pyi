@@ -24,6 +24,7 @@ __all__ = [
     "Mesh",
     "Obstacle",
     "Problem",
+    "Support",
     "Solution",
     "Report",
     "History",
@@ -100,10 +101,29 @@ class Obstacle:
     def function(gap: Callable[[float], float]) -> Obstacle: ...
     @property
     def kind(self) -> Literal["flat", "circle", "parabola", "polyline", "function"]: ...
+    @property
+    def radius(self) -> float | None: ...
+    @property
+    def center(self) -> float | None: ...
     @overload
     def gap0(self, xi: float) -> float: ...
     @overload
     def gap0(self, xi: _ArrayLike) -> _Floats1: ...
+
+@final
+class Support:
+    @staticmethod
+    def clamp(edge_set: str) -> Support: ...
+    @staticmethod
+    def roller(edge_set: str) -> Support: ...
+    @staticmethod
+    def displacement(edge_set: str, *, x: float | None = None, y: float | None = None) -> Support: ...
+    @property
+    def kind(self) -> Literal["clamp", "roller", "displacement"]: ...
+    @property
+    def edge_set(self) -> str: ...
+    @property
+    def value(self) -> tuple[float | None, float | None]: ...
 
 _ProgressCallback = Callable[[int, float, int, float], object]
 _StepCallback = Callable[[int, int, str, float], object]
@@ -117,8 +137,9 @@ class Problem:
         *,
         young: float,
         poisson: float,
-        clamped: str | Sequence[str],
         contact: str,
+        clamped: str | Sequence[str] | None = None,
+        supports: Support | Sequence[Support] | None = None,
         obstacle: Obstacle | Callable[[float], float] | None = None,
         approach: float | None = None,
         shift: float | None = None,
@@ -191,6 +212,8 @@ class Problem:
     def contact(self) -> str: ...
     @property
     def clamped(self) -> list[str]: ...
+    @property
+    def supports(self) -> list[Support]: ...
     @property
     def space(self) -> Literal["P0", "P1"]: ...
     @property

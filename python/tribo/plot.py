@@ -15,6 +15,8 @@ contact: those dofs are shaded "separation" and the legend says why λ_t is at i
 
 from __future__ import annotations
 
+import math
+
 from collections.abc import Sequence
 from typing import Any
 
@@ -32,7 +34,7 @@ try:
 except ImportError as e:  # pragma: no cover - depends on the environment
     raise ImportError("tribo.plot needs matplotlib: pip install 'tribo[plot]'") from e
 
-__all__ = ["contact_pressure", "tangential", "von_mises", "history_loop", "history_tractions", "STATE_COLORS"]
+__all__ = ["contact_pressure", "hertz_pressure", "tangential", "von_mises", "history_loop", "history_tractions", "STATE_COLORS"]
 
 STATE_COLORS = {"separation": "#eeeeee", "stick": "#b9d7f0", "slip": "#f6c89f"}
 
@@ -110,10 +112,31 @@ def _edge_steps(solution: Solution, values: npt.NDArray[np.float64]) -> tuple[An
     return np.repeat(x, 2)[1:-1], np.repeat(values, 2)
 
 
-def contact_pressure(problem: Problem, solution: Solution, ax: Axes | None = None, *, zoom: bool = True) -> Axes:
-    """λ_n (the multiplier) and −σ_n(u_h) (per FE edge) along Γ_C, shaded by contact state."""
+def hertz_pressure(problem: Problem, solution: Solution) -> tuple[np.ndarray, np.ndarray] | None:
+    """The plane-strain Hertz pressure of the computed normal force for a circle or parabola (rigid, on an
+    elastic half-plane: a² = 4PR(1 − ν²)/(πE), p = (2P/(πa)) √(1 − (ξ − c)²/a²)), as (ξ, p) over the
+    contact width; None for other obstacles or without contact."""
+    o = problem.obstacle
+    p_total = solution.normal_force
+    if o.radius is None or o.center is None or not p_total > 0.0:
+        return None
+    e_star = problem.young / (1.0 - problem.poisson**2)
+    a = math.sqrt(4.0 * p_total * o.radius / (math.pi * e_star))
+    xi = o.center + a * np.linspace(-1.0, 1.0, 201)
+    return xi, 2.0 * p_total / (math.pi * a) * np.sqrt(np.clip(1.0 - ((xi - o.center) / a) ** 2, 0.0, None))
+
+
+def contact_pressure(
+    problem: Problem, solution: Solution, ax: Axes | None = None, *, zoom: bool = True, hertz: bool = True
+) -> Axes:
+    """λ_n (the multiplier) and −σ_n(u_h) (per FE edge) along Γ_C, shaded by contact state; for a circle
+    or parabola (``hertz``) also the Hertz pressure of the same force, for comparison (it assumes a
+    half-plane and no friction)."""
     ax = _axes(ax)
     handles = _shade(ax, problem, solution)
+    reference = hertz_pressure(problem, solution) if hertz else None
+    if reference is not None:
+        ax.plot(*reference, color="k", lw=1.0, ls=":", label="Hertz, same force (half-plane)")
     x, y = _edge_steps(solution, -solution.sigma_n)
     ax.plot(x, y, color="0.35", lw=1.0, label=r"$-\sigma_n(u_h)$ (per FE edge)")
     x, y = _multiplier_curve(problem, solution, solution.lambda_n)

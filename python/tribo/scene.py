@@ -8,8 +8,13 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     required. A rectangle has the edge sets ``bottom``, ``right``, ``top``, ``left``.
 ``[material]``
     ``young``, ``poisson`` (*required*): plane strain.
-``[supports]``
-    ``clamped`` (*required*): an edge set name or a list of names (u = 0 there).
+``[supports]`` or ``[[supports]]`` (*required*, one of the two forms)
+    ``[supports]`` with ``clamped``: an edge set name or a list of names (u = 0 there). Or a list of
+    ``[[supports]]`` entries, each with ``kind`` and ``edge_set``: ``kind = "clamp"`` (u = 0),
+    ``"roller"`` (u·n = 0 on a straight set of any direction, tangential component free: a symmetry
+    line) or ``"displacement"`` with ``x`` and/or ``y`` (prescribed components; one left out is free).
+    Conditions meeting at a node combine (a clamp and a roller at a corner clamp it); contradictory ones
+    are an error that names the node.
 ``[loads]``
     ``body_force = [fx, fy]``; ``[loads.tractions]``: ``edge_set = [tx, ty]`` per loaded edge set.
 ``[contact]``
@@ -72,7 +77,7 @@ from typing import Any
 import numpy as np
 
 from tribo._tribo import MAX_CELLS as _MAX_CELLS
-from tribo._tribo import History, Mesh, Obstacle, Problem, Solution, TriboError, choices, solver_settings
+from tribo._tribo import History, Mesh, Obstacle, Problem, Solution, Support, TriboError, choices, solver_settings
 from tribo.checks import warn_solution
 from tribo.io import read_mesh
 
@@ -259,7 +264,9 @@ SCHEMA: dict[str, dict[str, Checker]] = {
     "history": {"shift": _path, "approach": _path, "load_factor": _path, "steps": _counts, "plot_steps": _steps},
     "solver": {name: _setting_checker(spec) for name, spec in solver_settings().items()},
 }
-REQUIRED = {"material": ("young", "poisson"), "supports": ("clamped",), "contact": ("edge_set",)}
+REQUIRED = {"material": ("young", "poisson"), "contact": ("edge_set",)}
+# The keys of one [[supports]] entry, by kind (besides kind and edge_set).
+SUPPORT_KINDS: dict[str, tuple[str, ...]] = {"clamp": (), "roller": (), "displacement": ("x", "y")}
 # The keys of [obstacle] that describe its shape: those each shape takes, and those it requires.
 SHAPE_KEYS = {"flat": (), "circle": ("radius", "center"), "parabola": ("radius", "center"), "polyline": ("xi", "gap")}
 SHAPE_REQUIRED = {"flat": (), "circle": ("radius",), "parabola": ("radius",), "polyline": ("xi", "gap")}
@@ -291,6 +298,19 @@ class Scene:
                 kw[key] = self.get("discretization", key)
         kw.update(self.sections.get("solver", {}))
         return kw
+
+    def supports(self) -> list[Support]:
+        """The ``[[supports]]`` entries as ``tribo.Support`` values (none for the ``clamped`` form)."""
+        out = []
+        for entry in self.get("supports", "entries", []):
+            kind, name = entry["kind"], entry["edge_set"]
+            if kind == "clamp":
+                out.append(Support.clamp(name))
+            elif kind == "roller":
+                out.append(Support.roller(name))
+            else:
+                out.append(Support.displacement(name, x=entry.get("x"), y=entry.get("y")))
+        return out
 
     # ----- geometry -----
     def obstacle(self) -> Obstacle:
@@ -401,6 +421,7 @@ class Scene:
                 young=self.get("material", "young"),
                 poisson=self.get("material", "poisson"),
                 clamped=self.get("supports", "clamped"),
+                supports=self.supports(),
                 contact=self.get("contact", "edge_set"),
                 obstacle=obstacle,
                 approach=o.get("approach"),
@@ -496,6 +517,30 @@ def _check_obstacle(o: Mapping[str, Any]) -> None:
             raise SceneError(f"scene key 'obstacle.{key}' is required for a {shape}", f"obstacle.{key}")
 
 
+def _support_entry(index: int, entry: Any) -> dict[str, Any]:
+    """One ``[[supports]]`` entry: ``kind``, ``edge_set`` and the keys of its kind, checked."""
+    where = f"supports[{index}]"
+    if not isinstance(entry, dict):
+        raise SceneError(f"scene key '{where}' must be a table with kind and edge_set", where)
+    for key in ("kind", "edge_set"):
+        if key not in entry:
+            raise SceneError(f"scene key '{where}.{key}' is required", f"{where}.{key}")
+    kind = _choice(*SUPPORT_KINDS)(f"{where}.kind", entry["kind"])
+    out: dict[str, Any] = {"kind": kind, "edge_set": _string(f"{where}.edge_set", entry["edge_set"])}
+    for key, value in entry.items():
+        if key in ("kind", "edge_set"):
+            continue
+        if key not in SUPPORT_KINDS[kind]:
+            known = ", ".join(("kind", "edge_set", *SUPPORT_KINDS[kind]))
+            raise SceneError(
+                f"scene key '{where}.{key}' is not known for kind = {kind!r} (known keys: {known})", f"{where}.{key}"
+            )
+        out[key] = _number(f"{where}.{key}", value)
+    if kind == "displacement" and "x" not in out and "y" not in out:
+        raise SceneError(f"scene key '{where}' (a displacement) needs x, y or both", f"{where}.x")
+    return out
+
+
 def parse_scene(data: Mapping[str, Any], base_dir: Path | None = None) -> Scene:
     """Checks a scene given as a dict (as tomllib returns it): unknown keys and bad types are errors."""
     sections: dict[str, dict[str, Any]] = {}
@@ -506,6 +551,9 @@ def parse_scene(data: Mapping[str, Any], base_dir: Path | None = None) -> Scene:
             continue
         if name not in SCHEMA:
             raise SceneError(f"scene key '{name}' is not known (known tables: {', '.join(SCHEMA)})", name)
+        if name == "supports" and isinstance(table, list):
+            sections[name] = {"entries": [_support_entry(k, e) for k, e in enumerate(table)]}
+            continue
         if not isinstance(table, dict):
             raise SceneError(f"scene key '{name}' must be a table", name)
         checked: dict[str, Any] = {}
@@ -526,6 +574,8 @@ def parse_scene(data: Mapping[str, Any], base_dir: Path | None = None) -> Scene:
         for key in keys:
             if key not in sections.get(name, {}):
                 raise SceneError(f"scene key '{name}.{key}' is required", f"{name}.{key}")
+    if "supports" not in sections:
+        raise SceneError("scene key 'supports' is required: [supports] clamped = … or [[supports]] entries", "supports")
     body = sections.get("body", {})
     if "mesh" not in body and not ("x" in body and "y" in body):
         raise SceneError("scene key 'body.x' and 'body.y' (a rectangle) or 'body.mesh' is required", "body")

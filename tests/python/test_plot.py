@@ -35,3 +35,20 @@ def test_plots_return_axes(hertz: tribo.Problem) -> None:
     ax = plot.von_mises(hertz, s, scale=1.0, window=(-0.2, 0.2, -0.2, 0.05), obstacle=True)
     assert ax.get_xlim() == (-0.2, 0.2)
     plt.close("all")
+
+
+def test_normal_plot_shows_the_hertz_pressure_of_the_same_force(hertz: tribo.Problem) -> None:
+    """The demo's normal-contact plot carries the Hertz pressure of the computed force: it integrates to
+    that force and its half-width is the plane-strain Hertz one; a flat obstacle has none."""
+    import numpy as np
+
+    from tribo import plot
+
+    solution = hertz.solve()
+    xi, p = plot.hertz_pressure(hertz, solution)  # type: ignore[misc]
+    assert abs(np.trapezoid(p, xi) - solution.normal_force) < 1e-3 * solution.normal_force
+    ax = plot.contact_pressure(hertz, solution)
+    assert any("Hertz" in line.get_label() for line in ax.get_lines())
+    flat = tribo.Problem(tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 4, 4), young=1.0, poisson=0.3,
+                         clamped="bottom", contact="top", obstacle=tribo.Obstacle.flat(), approach=0.01)
+    assert plot.hertz_pressure(flat, flat.solve()) is None

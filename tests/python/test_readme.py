@@ -6,7 +6,7 @@ import re
 import tomllib
 from pathlib import Path
 
-from tribo.scene import parse_scene
+from tribo.scene import load_scene, parse_scene, scene_path
 
 README = Path(__file__).resolve().parents[2] / "README.md"
 
@@ -71,7 +71,18 @@ def test_readme_embeds_the_study_charts_with_true_readings() -> None:
     assert [round(x, 2) for x in span("0.9", "L2 error")] == [0.11, 0.15]
     rows = _rows("gamma0_bound.csv")
     at_bound = [round(float(r["l2"]), 3) for r in rows if r["fraction"] == "1"]
-    assert at_bound == [0.12, 0.056, 0.029] and "(0.12, 0.056, 0.029 at 1 ×)" in text
+    assert at_bound == [0.088, 0.042, 0.027] and "(0.088, 0.042, 0.027 at 1 ×)" in text
     for h in ("0.02", "0.01", "0.005"):
         l2 = [float(r["l2"]) for r in rows if r["h_min"] == h and r["outcome"] == "converged"]
         assert 1 - min(l2) / max(l2) < 0.4, h
+
+
+def test_readme_half_model_scene_is_half_the_hertz_scene() -> None:
+    """The half-model scene of the README (a roller on the symmetry line) solves to half the full Hertz
+    scene's force, to round-off: its graded mesh is the right half of the full one, which is symmetric."""
+    blocks = [b for b in _blocks("toml") if 'kind = "roller"' in b]
+    assert len(blocks) == 1, "README.md has no half-model scene"
+    _, half = parse_scene(tomllib.loads(blocks[0])).solve()
+    _, full = load_scene(scene_path("hertz")).solve()
+    assert half.report.status == full.report.status == "converged"
+    assert abs(2.0 * half.normal_force - full.normal_force) < 1e-10 * full.normal_force

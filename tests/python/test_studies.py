@@ -112,10 +112,10 @@ def test_cattaneo_mindlin(tmp_path: Path) -> None:
     outputs(tmp_path, "cattaneo_mindlin")
     slips = {(s["nu"], s["h_min"]): s for s in res["slips"]}
     # The stick zone follows Cattaneo–Mindlin better on the finer mesh (the dof spacing resolves c).
-    assert slips[(0.49, 0.01)]["ca_error"] < slips[(0.49, 0.02)]["ca_error"]
-    # The dissipated energy matches the 2D Mindlin–Deresiewicz-type value within 10 % at 19 contact dofs.
+    assert slips[(0.45, 0.01)]["ca_error"] < slips[(0.45, 0.02)]["ca_error"]
+    # The dissipated energy matches the 2D Mindlin–Deresiewicz-type value within 10 % at 18 contact dofs.
     for lp in res["loops"]:
-        if lp["h_min"] == 0.01:
+        if lp["h_min"] == 0.01 and lp["nu"] == 0.45:
             assert abs(lp["work"] / lp["predicted"] - 1.0) < 0.1, lp["work"] / lp["predicted"]
     path = res["path"]
     assert path["slide_status"] == "converged" and path["slide_all_slip"]

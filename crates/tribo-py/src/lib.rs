@@ -11,6 +11,7 @@ mod history;
 mod mesh;
 mod problem;
 mod solution;
+mod supports;
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -107,6 +108,7 @@ fn _tribo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<mesh::PyMesh>()?;
     m.add_class::<problem::PyObstacle>()?;
     m.add_class::<problem::PyProblem>()?;
+    m.add_class::<supports::PySupport>()?;
     m.add_class::<solution::PySolution>()?;
     m.add_class::<solution::PyReport>()?;
     m.add_class::<history::PyHistory>()?;

@@ -18,6 +18,7 @@ use crate::errors::{geometry_error, settings_error, to_pyerr, ToPyResult};
 use crate::history::PyHistory;
 use crate::mesh::PyMesh;
 use crate::solution::PySolution;
+use crate::supports::PySupport;
 
 fn geometry_err(msg: String) -> PyErr {
     geometry_error(msg)
@@ -140,6 +141,24 @@ impl PyObstacle {
         self.kind
     }
 
+    /// The radius R of a circle or a parabola (its curvature radius), else None.
+    #[getter]
+    fn radius(&self) -> Option<f64> {
+        match &self.shape {
+            ObstacleShape::Circle { radius, .. } | ObstacleShape::Parabola { radius, .. } => Some(*radius),
+            _ => None,
+        }
+    }
+
+    /// The abscissa of the lowest point of a circle or a parabola, else None.
+    #[getter]
+    fn center(&self) -> Option<f64> {
+        match &self.shape {
+            ObstacleShape::Circle { center, .. } | ObstacleShape::Parabola { center, .. } => Some(*center),
+            _ => None,
+        }
+    }
+
     /// The initial gap g0 at abscissae `xi` (a float or an array of floats).
     fn gap0<'py>(&self, py: Python<'py>, xi: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         let o = tribo::Obstacle { shape: self.shape.clone(), ..Default::default() };
@@ -170,6 +189,24 @@ pub struct PyProblem {
     inner: tribo::Problem,
     mesh: Py<PyMesh>,
     obstacle: Py<PyObstacle>,
+}
+
+/// `supports=`: a Support or a sequence of them.
+fn support_list(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<tribo::Support>> {
+    let Some(obj) = obj else { return Ok(Vec::new()) };
+    if let Ok(s) = obj.cast::<PySupport>() {
+        return Ok(vec![s.get().inner.clone()]);
+    }
+    let bad = || settings_error(format!("supports must be a tribo.Support or a list of them, got {obj}"));
+    if obj.extract::<String>().is_ok() {
+        return Err(bad());
+    }
+    let mut out = Vec::new();
+    for item in obj.try_iter().map_err(|_| bad())? {
+        let item = item?;
+        out.push(item.cast::<PySupport>().map_err(|_| bad())?.get().inner.clone());
+    }
+    Ok(out)
 }
 
 fn names(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<String>> {
@@ -254,7 +291,7 @@ fn solve_arguments(
 impl PyProblem {
     #[new]
     #[pyo3(signature = (
-        mesh, *, young, poisson, clamped, contact, obstacle = None, approach = None, shift = None,
+        mesh, *, young, poisson, contact, clamped = None, supports = None, obstacle = None, approach = None, shift = None,
         tractions = None, body_force = None, multiplier_ratio = None, multiplier_size = None,
         multiplier_points = None, space = None,
     ))]
@@ -264,8 +301,9 @@ impl PyProblem {
         mesh: Py<PyMesh>,
         young: f64,
         poisson: f64,
-        clamped: &Bound<'_, PyAny>,
         contact: String,
+        clamped: Option<&Bound<'_, PyAny>>,
+        supports: Option<&Bound<'_, PyAny>>,
         obstacle: Option<&Bound<'_, PyAny>>,
         approach: Option<f64>,
         shift: Option<f64>,
@@ -339,7 +377,8 @@ impl PyProblem {
         };
         let spec = ProblemSpec {
             material: Material { young, poisson },
-            clamped: names(clamped, "clamped")?,
+            clamped: clamped.map_or(Ok(Vec::new()), |c| names(c, "clamped"))?,
+            supports: support_list(supports)?,
             body_force,
             tractions: trac,
             contact,
@@ -556,6 +595,12 @@ impl PyProblem {
     #[getter]
     fn clamped(&self) -> Vec<String> {
         self.inner.spec.clamped.clone()
+    }
+
+    /// The supports given besides `clamped` (rollers, prescribed displacements, clamps).
+    #[getter]
+    fn supports(&self) -> Vec<PySupport> {
+        self.inner.spec.supports.iter().map(|s| PySupport { inner: s.clone() }).collect()
     }
 
     /// Multiplier space, 'P0' or 'P1'.

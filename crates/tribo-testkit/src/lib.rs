@@ -78,6 +78,7 @@ pub fn hertz_spec(approach: f64, shift: f64, points: MultiplierPoints, space: Mu
     ProblemSpec {
         material: s.material,
         clamped: vec!["bottom".into()],
+        supports: vec![],
         body_force: [0.0, 0.0],
         tractions: vec![],
         contact: "top".into(),
@@ -108,6 +109,7 @@ pub fn block_problem(nx: usize, ny: usize) -> (Problem, f64) {
     let spec = ProblemSpec {
         material: Material { young: n("material", "young"), poisson: n("material", "poisson") },
         clamped: vec![t["supports"]["clamped"].as_str().expect("one set").to_string()],
+        supports: vec![],
         body_force: [0.0, 0.0],
         tractions: vec![],
         contact: t["contact"]["edge_set"].as_str().expect("a set").to_string(),

@@ -160,10 +160,13 @@ pub struct Factor {
     columns: Mutex<Columns>,
     /// Linear term `c = d − E A⁻¹ f` (2q) of the problem's own load case.
     pub c: Vec<f64>,
-    /// `d` (2q): the obstacle's gap and shift moments.
+    /// `d` (2q): the obstacle's gap and shift moments, minus `E ū` for prescribed displacements ū.
     pub d: Vec<f64>,
     /// `E A⁻¹ f` (2q): the load's part of c, kept so that a scaled load needs no new solve.
     pub e_ainv_f: Vec<f64>,
+    /// The load on the unknowns A was condensed with (`f̃`, with the lifting of prescribed displacements,
+    /// see [`crate::supports`]): the `f` of [`Factor::displacement`] and of the equilibrium residual.
+    pub f: Vec<f64>,
     /// Dγ by columns over the 2q unknowns (row, value): the q × q block `Dγ` twice on the diagonal.
     d_cols: Vec<Vec<(usize, f64)>>,
     /// Wall time of forming A and its numeric factorization, in seconds.
@@ -311,6 +314,7 @@ impl Factor {
             c,
             d,
             e_ainv_f,
+            f: f.to_vec(),
             columns,
             factorization_seconds,
             solve_seconds,

@@ -19,6 +19,24 @@ pub fn geometric_tol_rel() -> f64 {
     f64::EPSILON.sqrt()
 }
 
+/// The first node of `edges` that lies off the line of the first edge (unit normal `normal`) by more than
+/// `√ε` times the local edge length (the shorter of its own edge and the first one), as
+/// `(node, distance, length of its edge)`; `None` when the edges are straight. `edges` is not empty.
+pub(crate) fn off_line(mesh: &Mesh, edges: &[[usize; 2]], normal: [f64; 2]) -> Option<(usize, f64, f64)> {
+    let pts = mesh.points();
+    let [a0, b0] = edges[0];
+    let (pa, len0) = (pts[a0], mesh.edge_length(a0, b0));
+    let tol = geometric_tol_rel();
+    edges.iter().find_map(|&[a, b]| {
+        let length = mesh.edge_length(a, b);
+        [a, b].into_iter().find_map(|node| {
+            let p = pts[node];
+            let distance = ((p[0] - pa[0]) * normal[0] + (p[1] - pa[1]) * normal[1]).abs();
+            (distance > tol * length.min(len0)).then_some((node, distance, length))
+        })
+    })
+}
+
 /// One FE edge of Γ_C, oriented by increasing abscissa.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactEdge {
@@ -84,16 +102,12 @@ impl ContactBoundary {
         let origin = [offset * normal[0], offset * normal[1]];
         let xi_of = |p: Point| (p[0] - origin[0]) * direction[0] + (p[1] - origin[1]) * direction[1];
 
+        if let Some((node, distance, length)) = off_line(mesh, raw, normal) {
+            return Err(Error::ContactNotStraight { set: set.to_string(), node, distance, length });
+        }
         let mut edges = Vec::with_capacity(raw.len());
         for &[a, b] in raw {
             let length = mesh.edge_length(a, b);
-            for node in [a, b] {
-                let p = pts[node];
-                let distance = ((p[0] - pa[0]) * normal[0] + (p[1] - pa[1]) * normal[1]).abs();
-                if distance > tol * length.min(len0) {
-                    return Err(Error::ContactNotStraight { set: set.to_string(), node, distance, length });
-                }
-            }
             let (left, right) = if xi_of(pts[a]) < xi_of(pts[b]) { (a, b) } else { (b, a) };
             let triangle = mesh.boundary_triangle(a, b).expect("validated boundary edge");
             edges.push(ContactEdge { left, right, triangle, length });

@@ -159,8 +159,8 @@ pub enum Error {
         /// y component.
         y: f64,
     },
-    /// A piece of the body (triangles joined through edges) touches no clamped edge: it can move freely.
-    #[error("the piece of {triangles} triangles containing triangle {triangle} (node {node}) has no clamped edge: it can move freely, so the stiffness is singular (the mesh has {pieces} pieces joined through edges; pieces joined at a single node count as separate)")]
+    /// A piece of the body (triangles joined through edges) has no support: it can move freely.
+    #[error("the piece of {triangles} triangles containing triangle {triangle} (node {node}) has no support (no clamped, roller or displaced node): it can move freely, so the stiffness is singular (the mesh has {pieces} pieces joined through edges; pieces joined at a single node count as separate)")]
     FloatingPiece {
         /// A triangle of the piece.
         triangle: usize,
@@ -171,8 +171,57 @@ pub enum Error {
         /// Number of pieces of the mesh.
         pieces: usize,
     },
-    /// Every node of Γ_C is clamped: no multiplier can act.
-    #[error("every node of the contact boundary '{set}' is clamped: the contact conditions cannot act on it")]
+    /// A piece of the body is supported, but its supports leave a rigid motion free (rollers all
+    /// parallel, a single held node).
+    #[error("the supports of the piece of {triangles} triangles containing triangle {triangle} (held at node {node}, among others) leave a rigid motion free: {motion}; the stiffness is singular (the mesh has {pieces} pieces joined through edges; pieces joined at a single node count as separate)")]
+    RigidMotion {
+        /// A triangle of the piece.
+        triangle: usize,
+        /// A held node of the piece.
+        node: usize,
+        /// Number of triangles in the piece.
+        triangles: usize,
+        /// Number of pieces of the mesh.
+        pieces: usize,
+        /// The free motion in words (a translation along a direction, or a rotation about a point).
+        motion: String,
+    },
+    /// A roller on an edge set that is not straight (its normal would not be defined).
+    #[error("roller on '{set}': the set is not straight, node {node} lies {distance:e} off the line of its first edge (edge length {length:e}); a roller needs one normal")]
+    SupportNotStraight {
+        /// Edge set name.
+        set: String,
+        /// Offending node.
+        node: usize,
+        /// Its distance to the line.
+        distance: f64,
+        /// Local edge length it is compared with.
+        length: f64,
+    },
+    /// Two supports impose conditions on one node that cannot both hold.
+    #[error("the supports on '{first}' and '{second}' conflict at node {node}: {what}")]
+    ConflictingSupports {
+        /// The node.
+        node: usize,
+        /// The set of the first condition at the node.
+        first: String,
+        /// The set of the condition that disagrees.
+        second: String,
+        /// The two conditions.
+        what: String,
+    },
+    /// A support's data are unusable (a non-finite value, a displacement with no component).
+    #[error("support on '{set}': {what}")]
+    BadSupport {
+        /// Edge set name.
+        set: String,
+        /// What is wrong.
+        what: String,
+    },
+    /// Every node of Γ_C is fixed by the supports: no multiplier can act.
+    #[error(
+        "every node of the contact boundary '{set}' is fixed by the supports: the contact conditions cannot act on it"
+    )]
     ContactFullyClamped {
         /// Edge set name.
         set: String,
@@ -183,8 +232,10 @@ pub enum Error {
         /// The relative equilibrium residual.
         residual: f64,
     },
-    /// No clamped edge: the elastic problem would be singular.
-    #[error("no clamped edge set: the body must be clamped on a part of its boundary (Γ_D) of positive length")]
+    /// No support: the elastic problem would be singular.
+    #[error(
+        "no support: the body must be held on a part of its boundary (Γ_D: clamped, roller or displacement edge sets)"
+    )]
     NoDirichlet,
 
     // ----- contact geometry -----
@@ -208,8 +259,8 @@ pub enum Error {
         /// What is wrong.
         what: String,
     },
-    /// An edge of Γ_C is also clamped (Γ_C and Γ_D must not overlap).
-    #[error("contact boundary '{set}' overlaps the clamped boundary on edge ({a}, {b})")]
+    /// An edge of Γ_C also carries a support (Γ_C and Γ_D must not overlap).
+    #[error("contact boundary '{set}' overlaps the supported boundary (Γ_D) on edge ({a}, {b})")]
     ContactOverlapsDirichlet {
         /// Edge set name.
         set: String,
@@ -358,7 +409,7 @@ pub enum Error {
         what: String,
     },
     /// The (stabilized) stiffness matrix could not be factorized.
-    #[error("the stabilized stiffness matrix K − G is not positive definite (Cholesky failed): {what}")]
+    #[error("the stiffness matrix A = K − G is not positive definite (Cholesky failed): {what}")]
     NotPositiveDefinite {
         /// Details from the factorization.
         what: String,
@@ -545,6 +596,35 @@ impl Error {
                     ("pieces", I(*pieces)),
                 ],
             ),
+            Self::RigidMotion { triangle, node, triangles, pieces, motion } => (
+                ErrorCategory::Settings,
+                "RigidMotion",
+                vec![
+                    ("triangle", I(*triangle)),
+                    ("node", I(*node)),
+                    ("triangles", I(*triangles)),
+                    ("pieces", I(*pieces)),
+                    ("motion", T(motion.clone())),
+                ],
+            ),
+            Self::SupportNotStraight { set, node, distance, length } => (
+                ErrorCategory::Settings,
+                "SupportNotStraight",
+                vec![("set", T(set.clone())), ("node", I(*node)), ("distance", F(*distance)), ("length", F(*length))],
+            ),
+            Self::ConflictingSupports { node, first, second, what } => (
+                ErrorCategory::Settings,
+                "ConflictingSupports",
+                vec![
+                    ("node", I(*node)),
+                    ("first", T(first.clone())),
+                    ("second", T(second.clone())),
+                    ("what", T(what.clone())),
+                ],
+            ),
+            Self::BadSupport { set, what } => {
+                (ErrorCategory::Settings, "BadSupport", vec![("set", T(set.clone())), ("what", T(what.clone()))])
+            }
             Self::ContactFullyClamped { set } => {
                 (ErrorCategory::ContactGeometry, "ContactFullyClamped", vec![("set", T(set.clone()))])
             }

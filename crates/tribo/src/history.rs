@@ -30,7 +30,9 @@
 //! d^k = ( ∫ψ_j (g₀ − δ_k),  ∫ψ_j (s_k − s_{k−1}) + (E_t u^{k−1} − Dγ λ_t^{k−1})_j ),     c^k = d^k − α_k E A⁻¹ f,
 //! ```
 //!
-//! with `E A⁻¹ f` computed once by [`crate::condensation::Factor`]. Both readings of the stabilization —
+//! with `E A⁻¹ f` computed once by [`crate::condensation::Factor`]. Prescribed displacements ū (see
+//! [`crate::supports`]) keep their lifting: the `−E ū` in d, the same at every step, and the lifted load,
+//! of which the load factor scales only the applied part. Both readings of the stabilization —
 //! on the increments, or on the totals (`d_t` with `B_t u^{k−1}` only) — are consistent: the term vanishes
 //! for the exact solution. They differ at finite γ0: stabilizing the totals leaves the discrete slip
 //! measure `γ (λ_t^k + σ_t(u^k))` in a stuck zone, which creeps a little at every step, and a fretting
@@ -186,8 +188,7 @@ impl Condensed<'_> {
             s.validate(k)?;
         }
         let (problem, factor) = (self.problem(), self.factor());
-        let contact = &problem.contact;
-        let mut previous = PreviousStep::rest(self.q(), contact.nodes.len());
+        let mut previous = PreviousStep::rest(problem, factor);
         let mut history = History {
             steps: steps.to_vec(),
             solutions: Vec::with_capacity(steps.len()),
@@ -201,7 +202,7 @@ impl Condensed<'_> {
         let mut start: Option<Vec<f64>> = None;
         for (k, step) in steps.iter().enumerate() {
             let clock = Instant::now();
-            let loading = Loading::step(problem, factor, step, &previous);
+            let loading = Loading::step(problem, factor, step, &previous)?;
             let solution = self.solve_loading(friction, settings, &loading, start.as_deref(), None)?;
             let seconds = clock.elapsed().as_secs_f64();
             history.step_seconds.push(seconds);
@@ -246,12 +247,9 @@ impl Condensed<'_> {
 fn after(condensed: &Condensed<'_>, solution: &Solution, shift: f64) -> PreviousStep {
     let (problem, factor) = (condensed.problem(), condensed.factor());
     let q = condensed.q();
-    let mut u_free = vec![0.0; problem.n_free];
-    for (d, slot) in problem.free.iter().enumerate() {
-        if let Some(i) = slot {
-            u_free[*i] = solution.displacement[d];
-        }
-    }
+    // The unknowns x = Tᵀ (u − ū) (T has orthonormal columns: a node's unknowns are its free directions).
+    let relative: Vec<f64> = solution.displacement.iter().zip(&problem.dofs.lifting).map(|(u, l)| u - l).collect();
+    let u_free = problem.dofs.restrict(&relative);
     let lambda: Vec<f64> = solution.lambda_n.iter().chain(&solution.lambda_t).copied().collect();
     let (eu, dl) = (factor.apply_e(&u_free), factor.apply_d(&lambda));
     let tangential = (q..2 * q).map(|j| eu[j] - dl[j]).collect();

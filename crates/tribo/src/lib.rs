@@ -34,7 +34,8 @@
 //!
 //! ## Module layout
 //! Mathematics first: [`mesh`], [`generate`], [`elasticity`], [`contact`], [`obstacle`], [`multiplier`],
-//! [`mortar`], [`stabilization`] (the γ0-dependent operators), [`problem`]; then the solver:
+//! [`mortar`], [`stabilization`] (the γ0-dependent operators), [`supports`] (Dirichlet conditions and the
+//! lifting of prescribed displacements), [`problem`]; then the solver:
 //! [`condensation`] (linear algebra of `A` and `H`), [`qp`] (clarabel), [`working_set`], `sparse_qp` and
 //! `saddle` (the QPs without H, on the sparse saddle-point system), [`friction`],
 //! [`settings`], [`loading`] (the load case: the QP's linear term), [`solve`] (the driver and the fixed
@@ -81,6 +82,7 @@ pub mod solution;
 pub mod solve;
 pub(crate) mod sparse_qp;
 pub mod stabilization;
+pub mod supports;
 pub mod working_set;
 
 pub use choice::Choice;
@@ -104,6 +106,7 @@ pub use settings::{
 pub use solution::{ContactState, KktResiduals, Report, Solution, SolveStatus, Timings};
 pub use solve::{Observer, Phase, Progress};
 pub use stabilization::{Gamma0Bound, Stabilization};
+pub use supports::{Dofs, NodeSupport, Support};
 
 /// The Rust example of README.md, compiled and run as a doctest.
 #[cfg(doctest)]

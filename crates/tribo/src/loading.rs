@@ -37,8 +37,9 @@ pub struct Loading {
 /// shift 0.
 #[derive(Debug, Clone)]
 pub(crate) struct PreviousStep {
-    /// `(E_t u^{k−1} − Dγ λ_t^{k−1})_j` (q values): the previous step's stabilized tangential
-    /// displacement, `∫ ψ_j u_t^{k−1} − ∫ γ ψ_j (λ_t^{k−1} + σ_t(u^{k−1}))`.
+    /// `(E_t u^{k−1} − Dγ λ_t^{k−1})_j` (q values) on the unknowns: the previous step's stabilized
+    /// tangential displacement, `∫ ψ_j u_t^{k−1} − ∫ γ ψ_j (λ_t^{k−1} + σ_t(u^{k−1}))` without the part of
+    /// the prescribed displacements (the same at every step, it cancels in the increment).
     pub tangential: Vec<f64>,
     /// `u_t^{k−1}` at the FE nodes of Γ_C.
     pub u_t_nodes: Vec<f64>,
@@ -47,9 +48,14 @@ pub(crate) struct PreviousStep {
 }
 
 impl PreviousStep {
-    /// The state at rest: the body undeformed, the obstacle at shift 0.
-    pub fn rest(q: usize, contact_nodes: usize) -> Self {
-        Self { tangential: vec![0.0; q], u_t_nodes: vec![0.0; contact_nodes], shift: 0.0 }
+    /// The state at rest: the body undeformed (u = 0, also where a support prescribes ū: the first step
+    /// moves it there), the obstacle at shift 0. Its tangential data is then `−(E ū)_t`, the tangential
+    /// part of the lifting in the problem's own `d` (exactly 0 without prescribed displacements).
+    pub fn rest(problem: &Problem, factor: &Factor) -> Self {
+        let q = problem.n_multipliers();
+        let shift = problem.spec.obstacle.shift;
+        let tangential = problem.mortar.psi_integrals.iter().zip(&factor.d[q..]).map(|(w, d)| d - w * shift).collect();
+        Self { tangential, u_t_nodes: vec![0.0; problem.contact.nodes.len()], shift: 0.0 }
     }
 }
 
@@ -58,7 +64,7 @@ impl Loading {
     pub fn of_problem(problem: &Problem, factor: &Factor) -> Self {
         let shift = problem.spec.obstacle.shift;
         Self {
-            f_free: problem.f_free.clone(),
+            f_free: factor.f.clone(),
             f_full: problem.f_full.clone(),
             d: factor.d.clone(),
             c: factor.c.clone(),
@@ -69,27 +75,39 @@ impl Loading {
         }
     }
 
-    /// The load case of one step of a history (see [`crate::history`] for the derivation):
-    /// loads `α f`, gap moments `∫ψ_j (g₀ − δ_k)`, tangential data
-    /// `∫ψ_j (s_k − s_{k−1}) + (E_t u^{k−1} − Dγ λ_t^{k−1})_j`.
-    /// From rest with α = 1 and the problem's own approach, this is bit for bit the static load case.
-    pub(crate) fn step(problem: &Problem, factor: &Factor, step: &LoadStep, previous: &PreviousStep) -> Self {
+    /// The load case of one step of a history (see [`crate::history`] for the derivation): loads
+    /// `α f` (the lifting of prescribed displacements is not scaled), gap moments `∫ψ_j (g₀ − δ_k)`,
+    /// tangential data `∫ψ_j (s_k − s_{k−1}) + (E_t u^{k−1} − Dγ λ_t^{k−1})_j`. From rest with α = 1 and
+    /// the problem's own approach, this is bit for bit the static load case.
+    ///
+    /// # Errors
+    /// [`crate::Error::MemoryBudget`] if the solve for a scaled load cannot allocate its workspace.
+    pub(crate) fn step(problem: &Problem, factor: &Factor, step: &LoadStep, previous: &PreviousStep) -> Result<Self> {
         let alpha = step.load_factor;
+        let q = problem.n_multipliers();
         let w = &problem.mortar.psi_integrals;
         // g_k = g₀ − δ_k = (g₀ − δ) + (δ − δ_k): the problem's gap moved by the change of approach.
         let moved = problem.spec.obstacle.approach - step.approach;
         let ds = step.shift - previous.shift;
-        let d: Vec<f64> = problem
-            .mortar
-            .gap_moments
+        let d: Vec<f64> = factor.d[..q]
             .iter()
             .zip(w)
             .map(|(m, w)| m + moved * w)
             .chain(w.iter().zip(&previous.tangential).map(|(w, t)| w * ds + t))
             .collect();
-        let c = d.iter().zip(&factor.e_ainv_f).map(|(d, e)| d - alpha * e).collect();
-        Self {
-            f_free: problem.f_free.iter().map(|f| alpha * f).collect(),
+        let (f_free, c) = if alpha == 1.0 {
+            let c = d.iter().zip(&factor.e_ainv_f).map(|(d, e)| d - e).collect();
+            (factor.f.clone(), c)
+        } else {
+            // f̃ + (α − 1) Tᵀ f: the load scaled, its lifting kept; one more solve for E A⁻¹ f.
+            let load = problem.dofs.restrict(&problem.f_full);
+            let f: Vec<f64> = factor.f.iter().zip(&load).map(|(f, l)| f + (alpha - 1.0) * l).collect();
+            let u = factor.displacement(&f, &vec![0.0; d.len()])?;
+            let c = d.iter().zip(factor.apply_e(&u)).map(|(d, e)| d - e).collect();
+            (f, c)
+        };
+        Ok(Self {
+            f_free,
             f_full: problem.f_full.iter().map(|f| alpha * f).collect(),
             d,
             c,
@@ -97,7 +115,7 @@ impl Loading {
             approach: step.approach,
             shift: step.shift,
             slip_origin: previous.u_t_nodes.iter().map(|u| u + ds).collect(),
-        }
+        })
     }
 }
 

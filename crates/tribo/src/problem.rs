@@ -23,14 +23,18 @@ use crate::multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace};
 use crate::obstacle::Obstacle;
 use crate::settings::{Condensation, SolverSettings};
 use crate::stabilization::{admissible_gamma0, ContactStress, Gamma0Bound, Stabilization};
+use crate::supports::{Dofs, NodeSupport, Support};
 
 /// Everything that defines a contact problem besides the mesh.
 #[derive(Debug, Clone)]
 pub struct ProblemSpec {
     /// Material.
     pub material: Material,
-    /// Names of the clamped edge sets (Γ_D, u = 0).
+    /// Names of the clamped edge sets (u = 0): shorthand for [`Support::Clamp`] entries of `supports`.
     pub clamped: Vec<String>,
+    /// Further Dirichlet conditions: rollers (symmetry lines) and prescribed displacements (see
+    /// [`crate::supports`]). Γ_D is the union of these and `clamped`.
+    pub supports: Vec<Support>,
     /// Constant body force f (per unit area).
     pub body_force: [f64; 2],
     /// Constant tractions (per unit length) on named edge sets (Γ_N).
@@ -67,17 +71,19 @@ pub struct Problem {
     pub multipliers: MultiplierMesh,
     /// The Γ_C matrices.
     pub mortar: MortarMatrices,
-    /// `free[dof]` = index among the unknowns, or `None` for a clamped dof.
-    pub free: Vec<Option<usize>>,
-    /// Number of unknowns (free dofs).
+    /// The supports resolved on the nodes: the unknown each dof follows and the lifting ū
+    /// (`u = T x + ū`, see [`crate::supports`]).
+    pub dofs: Dofs,
+    /// Number of unknowns n.
     pub n_free: usize,
-    /// Stiffness K restricted to the free dofs (CSC, both triangles). Its pattern is also the pattern of
+    /// Stiffness on the unknowns, `Tᵀ K T` (CSC, both triangles). Its pattern is also the pattern of
     /// the stabilized `A = K − G` (G couples the dofs of one triangle only).
     pub k_matrix: SparseColMat<usize, f64>,
     /// Symbolic Cholesky factorization of that pattern (fill-reducing ordering, elimination tree),
     /// computed once and reused for every γ0.
     pub symbolic: SymbolicLlt<usize>,
-    /// Load vector on free dofs.
+    /// Load on the unknowns with the lifting through K, `Tᵀ (f − K ū)`; the part through G, which
+    /// depends on γ0, is added when A is factorized ([`Factor::f`]).
     pub f_free: Vec<f64>,
     /// Full load vector (all 2N dofs), for reactions.
     pub f_full: Vec<f64>,
@@ -165,32 +171,18 @@ impl Problem {
     /// Validates the specification against the mesh and assembles the problem.
     ///
     /// # Errors
-    /// Any input error: material, unknown edge sets, no clamped set, non-finite loads, Γ_C not straight
-    /// or not connected or overlapping Γ_D, bad obstacle, bad multiplier points.
+    /// Any input error: material, unknown edge sets, no support, bad or conflicting supports, a piece the
+    /// supports do not hold, non-finite loads, Γ_C not straight or not connected or overlapping Γ_D, bad
+    /// obstacle, bad multiplier points.
     pub fn new(mesh: Mesh, spec: ProblemSpec) -> Result<Self> {
         let clock = Instant::now();
         spec.material.validate()?;
         spec.obstacle.validate()?;
-        if spec.clamped.is_empty() {
-            return Err(Error::NoDirichlet);
-        }
+        let supports: Vec<Support> =
+            spec.clamped.iter().map(|set| Support::clamp(set.as_str())).chain(spec.supports.iter().cloned()).collect();
+        let dofs = Dofs::new(&mesh, &supports)?;
+        let n_free = dofs.n_free;
         let n_dofs = 2 * mesh.n_nodes();
-        let mut free = vec![Some(0); n_dofs];
-        let mut clamped_edges = std::collections::HashSet::new();
-        for set in &spec.clamped {
-            for &[a, b] in mesh.edge_set(set)? {
-                clamped_edges.insert([a.min(b), a.max(b)]);
-                for node in [a, b] {
-                    free[2 * node] = None;
-                    free[2 * node + 1] = None;
-                }
-            }
-        }
-        let mut n_free = 0;
-        for slot in free.iter_mut().filter(|s| s.is_some()) {
-            *slot = Some(n_free);
-            n_free += 1;
-        }
         for (name, f) in [("body".to_string(), spec.body_force)].iter().chain(&spec.tractions) {
             if !(f[0].is_finite() && f[1].is_finite()) {
                 return Err(Error::NonFiniteLoad { target: name.clone(), x: f[0], y: f[1] });
@@ -208,15 +200,33 @@ impl Problem {
                 y: f64::NAN,
             });
         }
-        check_supported(&mesh, &clamped_edges)?;
-        let f_free = restrict(&free, &f_full, n_free);
-        let k_free: Vec<_> = stiffness_triplets(&mesh, &spec.material)
-            .into_iter()
-            .filter_map(|t| Some(Triplet::new(free[t.row]?, free[t.col]?, t.val)))
-            .collect();
-        if let Some(t) = k_free.iter().find(|t| !t.val.is_finite()) {
-            return Err(Error::Assembly { matrix: "K", what: format!("entry ({}, {}) is {}", t.row, t.col, t.val) });
+        // K over all dofs, then `Tᵀ K T` (faer sums the duplicates a rotated node's two dofs give) and
+        // the lifting `K ū` of the prescribed displacements.
+        let k_full = stiffness_triplets(&mesh, &spec.material);
+        let mut k_lift = vec![0.0; n_dofs];
+        let mut k_free = Vec::with_capacity(k_full.len());
+        for t in &k_full {
+            if !t.val.is_finite() {
+                return Err(Error::Assembly {
+                    matrix: "K",
+                    what: format!("entry ({}, {}) is {}", t.row, t.col, t.val),
+                });
+            }
+            k_lift[t.row] += t.val * dofs.lifting[t.col];
+            if let (Some((i, a)), Some((j, b))) = (dofs.unknown(t.row), dofs.unknown(t.col)) {
+                k_free.push(Triplet::new(i, j, a * b * t.val));
+            }
         }
+        drop(k_full);
+        let f_lifted: Vec<f64> = f_full.iter().zip(&k_lift).map(|(f, k)| f - k).collect();
+        if let Some(d) = f_lifted.iter().position(|v| !v.is_finite()) {
+            return Err(Error::NonFiniteLoad {
+                target: format!("the load with the prescribed displacements lifted, at dof {d}"),
+                x: f_lifted[d],
+                y: f64::NAN,
+            });
+        }
+        let f_free = dofs.restrict(&f_lifted);
         let k_matrix = SparseColMat::try_new_from_triplets(n_free, n_free, &k_free)
             .map_err(|e| Error::Assembly { matrix: "K", what: format!("{e:?}") })?;
         drop(k_free);
@@ -231,7 +241,7 @@ impl Problem {
         let contact_edges: std::collections::HashSet<[usize; 2]> =
             contact.edges.iter().map(|e| [e.left.min(e.right), e.left.max(e.right)]).collect();
         for e in &contact.edges {
-            if clamped_edges.contains(&[e.left.min(e.right), e.left.max(e.right)]) {
+            if dofs.edges.contains(&[e.left.min(e.right), e.left.max(e.right)]) {
                 return Err(Error::ContactOverlapsDirichlet { set: spec.contact.clone(), a: e.left, b: e.right });
             }
         }
@@ -247,13 +257,13 @@ impl Problem {
                 }
             }
         }
-        if contact.nodes.iter().all(|&node| free[2 * node].is_none() && free[2 * node + 1].is_none()) {
+        if contact.nodes.iter().all(|&node| matches!(dofs.nodes[node], NodeSupport::Fixed { .. })) {
             return Err(Error::ContactFullyClamped { set: spec.contact.clone() });
         }
         let multipliers = MultiplierMesh::new(&contact, &spec.multiplier_points, spec.multiplier_space)?;
         let h_t: Vec<f64> = contact.edges.iter().map(|e| mesh.diameter(e.triangle)).collect();
         let mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &spec.obstacle)?;
-        let contact_stress = ContactStress::new(&mesh, &spec.material, &contact, &free);
+        let contact_stress = ContactStress::new(&mesh, &spec.material, &contact);
         let gamma0_bound = admissible_gamma0(&mesh, &spec.material, &contact);
         let contact_matrices = clock.elapsed().as_secs_f64();
         Ok(Self {
@@ -262,7 +272,7 @@ impl Problem {
             contact,
             multipliers,
             mortar,
-            free,
+            dofs,
             n_free,
             k_matrix,
             symbolic,
@@ -303,8 +313,33 @@ impl Problem {
         if let Some(factor) = self.factor_cache.get(gamma0, condensation) {
             return Ok(Condensed { problem: self, factor, reused: true });
         }
-        let minus_g = self.contact_stress.stiffness_triplets(&self.mortar, gamma0);
-        let e_rows = self.contact_stress.coupling_rows(&self.contact, &self.mortar, &self.free, gamma0);
+        // −G and E over all dofs, restricted to the unknowns; their action on the lifting ū gives the
+        // γ0-dependent part of the lifted load and obstacle moments (see [`crate::supports`]).
+        let minus_g_full = self.contact_stress.stiffness_triplets(&self.mortar, gamma0);
+        let e_full = self.contact_stress.coupling_rows(&self.contact, &self.mortar, gamma0);
+        let ubar = &self.dofs.lifting;
+        let mut f = self.f_free.clone();
+        let mut d = self.obstacle_moments();
+        if !self.dofs.homogeneous() {
+            let mut g_lift = vec![0.0; ubar.len()];
+            for t in &minus_g_full {
+                g_lift[t.row] += t.val * ubar[t.col];
+            }
+            for (fi, gi) in f.iter_mut().zip(self.dofs.restrict(&g_lift)) {
+                *fi -= gi;
+            }
+            for (di, row) in d.iter_mut().zip(&e_full) {
+                *di -= row.iter().map(|&(k, v)| v * ubar[k]).sum::<f64>();
+            }
+        }
+        let minus_g: Vec<_> = minus_g_full
+            .iter()
+            .filter_map(|t| {
+                let ((i, a), (j, b)) = (self.dofs.unknown(t.row)?, self.dofs.unknown(t.col)?);
+                Some(Triplet::new(i, j, a * b * t.val))
+            })
+            .collect();
+        let e_rows = self.dofs.restrict_rows(&e_full);
         let d_gamma: Vec<(usize, usize, f64)> = if gamma0 > 0.0 {
             self.mortar.d_h.entries.iter().map(|&(i, j, v)| (i, j, gamma0 * v)).collect()
         } else {
@@ -316,13 +351,20 @@ impl Problem {
             &minus_g,
             e_rows,
             d_gamma,
-            &self.f_free,
-            self.obstacle_moments(),
+            &f,
+            d,
             gamma0,
             condensation,
             memory_budget,
         )
         .map_err(|e| match e {
+            // At γ0 = 0 the matrix is K itself: the supports hold every piece (checked at the door), so only
+            // a material or a mesh at the limits of floating point is left; do not blame the stabilization.
+            Error::NotPositiveDefinite { what } if gamma0 == 0.0 => Error::NotPositiveDefinite {
+                what: format!(
+                    "{what}; γ0 = 0, so this is K itself (a material or mesh at the limits of floating point)"
+                ),
+            },
             Error::NotPositiveDefinite { what } => Error::NotPositiveDefinite {
                 what: format!(
                     "{what} (γ0 = {}, admissible bound {})",
@@ -355,67 +397,8 @@ impl Problem {
         self.multipliers.n_dofs()
     }
 
-    /// Expands a vector of free dofs to all 2N dofs (zeros on clamped dofs).
+    /// The displacement on all 2N dofs from the unknowns: `u = T x + ū` (prescribed values included).
     pub fn expand(&self, x: &[f64]) -> Vec<f64> {
-        self.free.iter().map(|s| s.map_or(0.0, |i| x[i])).collect()
+        self.dofs.expand(x)
     }
-}
-
-/// Every piece of the mesh (triangles joined through edges) must touch a clamped edge: a piece without
-/// support, or joined to the rest at a single node, can move freely and makes K singular.
-fn check_supported(mesh: &Mesh, clamped_edges: &std::collections::HashSet<[usize; 2]>) -> Result<()> {
-    let n = mesh.n_triangles();
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn root(parent: &mut [usize], mut t: usize) -> usize {
-        while parent[t] != t {
-            parent[t] = parent[parent[t]];
-            t = parent[t];
-        }
-        t
-    }
-    let mut owner: std::collections::HashMap<[usize; 2], usize> = std::collections::HashMap::with_capacity(2 * n);
-    for (t, tri) in mesh.triangles().iter().enumerate() {
-        for local in 0..3 {
-            let (a, b) = (tri[local], tri[(local + 1) % 3]);
-            if let Some(&other) = owner.get(&[a.min(b), a.max(b)]) {
-                let (ra, rb) = (root(&mut parent, t), root(&mut parent, other));
-                parent[ra] = rb;
-            } else {
-                owner.insert([a.min(b), a.max(b)], t);
-            }
-        }
-    }
-    let mut supported = vec![false; n];
-    for edge in clamped_edges {
-        if let Some(&t) = owner.get(edge) {
-            let r = root(&mut parent, t);
-            supported[r] = true;
-        }
-    }
-    let mut size = vec![0usize; n];
-    for t in 0..n {
-        let r = root(&mut parent, t);
-        size[r] += 1;
-    }
-    let pieces = (0..n).filter(|&t| parent[t] == t).count();
-    match (0..n).find(|&t| {
-        let r = root(&mut parent, t);
-        !supported[r]
-    }) {
-        Some(t) => {
-            let r = root(&mut parent, t);
-            Err(Error::FloatingPiece { triangle: t, node: mesh.triangles()[t][0], triangles: size[r], pieces })
-        }
-        None => Ok(()),
-    }
-}
-
-fn restrict(free: &[Option<usize>], full: &[f64], n_free: usize) -> Vec<f64> {
-    let mut out = vec![0.0; n_free];
-    for (d, s) in free.iter().enumerate() {
-        if let Some(i) = s {
-            out[*i] = full[d];
-        }
-    }
-    out
 }

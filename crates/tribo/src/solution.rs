@@ -280,11 +280,7 @@ impl Solution {
         for t in stiffness_triplets(mesh, material) {
             reactions[t.row] += t.val * displacement[t.col];
         }
-        for (r, s) in reactions.iter_mut().zip(&problem.free) {
-            if s.is_some() {
-                *r = 0.0;
-            }
-        }
+        problem.dofs.keep_reactions(&mut reactions);
         let contact = &problem.contact;
         let (n, t) = (contact.normal, contact.tangent);
         let (lambda_n, lambda_t) = (lambda[..q].to_vec(), lambda[q..].to_vec());

@@ -115,19 +115,20 @@ pub fn traction_components(contact: &ContactBoundary) -> (Vector3<f64>, Vector3<
 }
 
 /// The contact stresses as linear forms of the displacement, per FE edge of Γ_C: `σ_n(v) = s_n · v_T`,
-/// `σ_t(v) = s_t · v_T` with `v_T` the 6 dofs of the owning triangle (interleaved x, y), and where
-/// those dofs sit among the unknowns.
+/// `σ_t(v) = s_t · v_T` with `v_T` the 6 dofs of the owning triangle (interleaved x, y). Everything
+/// here is over all 2N dofs; [`crate::Problem::condense_with`] restricts it to the unknowns and applies it
+/// to the lifting of prescribed displacements.
 #[derive(Debug, Clone)]
 pub struct ContactStress {
     /// `[s_n, s_t]` per contact edge.
     pub ops: Vec<[SVector<f64, 6>; 2]>,
-    /// The owning triangle's dofs as indices among the unknowns (`None` for a clamped dof).
-    pub dofs: Vec<[Option<usize>; 6]>,
+    /// The owning triangle's dofs (indices among all 2N dofs).
+    pub dofs: Vec<[usize; 6]>,
 }
 
 impl ContactStress {
-    /// The stress operators of every contact edge; `free[dof]` maps a dof to its unknown.
-    pub fn new(mesh: &Mesh, material: &Material, contact: &ContactBoundary, free: &[Option<usize>]) -> Self {
+    /// The stress operators of every contact edge.
+    pub fn new(mesh: &Mesh, material: &Material, contact: &ContactBoundary) -> Self {
         let c = material.elasticity_matrix();
         let (a_n, a_t) = traction_components(contact);
         let ops = contact
@@ -138,11 +139,11 @@ impl ContactStress {
                 [bt * (c * a_n), bt * (c * a_t)]
             })
             .collect();
-        let dofs = contact.edges.iter().map(|e| element_dofs(&mesh.triangles()[e.triangle]).map(|d| free[d])).collect();
+        let dofs = contact.edges.iter().map(|e| element_dofs(&mesh.triangles()[e.triangle])).collect();
         Self { ops, dofs }
     }
 
-    /// Triplets of `−G` (the stabilization part of `A = K − G`) over the unknowns:
+    /// Triplets of `−G` (the stabilization part of `A = K − G`) over all dofs:
     /// `vᵀ G v = γ0 Σ_k h_T |E_k| (σ_n(v)² + σ_t(v)²)`.
     pub fn stiffness_triplets(&self, mortar: &MortarMatrices, gamma0: f64) -> Vec<Triplet<usize, usize, f64>> {
         let mut trip = Vec::new();
@@ -152,11 +153,9 @@ impl ContactStress {
         for ((ops, dofs), g_h) in self.ops.iter().zip(&self.dofs).zip(&mortar.g_h) {
             let w = gamma0 * g_h;
             for s in ops {
-                for (a, da) in dofs.iter().enumerate() {
-                    for (b, db) in dofs.iter().enumerate() {
-                        if let (Some(da), Some(db)) = (da, db) {
-                            trip.push(Triplet::new(*da, *db, -w * s[a] * s[b]));
-                        }
+                for (a, &da) in dofs.iter().enumerate() {
+                    for (b, &db) in dofs.iter().enumerate() {
+                        trip.push(Triplet::new(da, db, -w * s[a] * s[b]));
                     }
                 }
             }
@@ -164,15 +163,14 @@ impl ContactStress {
         trip
     }
 
-    /// Rows of the coupling `E = B − γ0 Cγ S` over the unknowns: `2q` sparse rows (normal then
-    /// tangential), each sorted by unknown with duplicates summed. `B` is the mortar term
+    /// Rows of the coupling `E = B − γ0 Cγ S` over all dofs: `2q` sparse rows (normal then
+    /// tangential), each sorted by dof with duplicates summed. `B` is the mortar term
     /// `∫ ψ_j v_n = Σ_i M2[i, j] (v_i · n)` (and `· t`), `Cγ S` the γ-weighted stress term
     /// `∫ h_T ψ_j σ(v)`.
     pub fn coupling_rows(
         &self,
         contact: &ContactBoundary,
         mortar: &MortarMatrices,
-        free: &[Option<usize>],
         gamma0: f64,
     ) -> Vec<Vec<(usize, f64)>> {
         let q = mortar.psi_integrals.len();
@@ -181,20 +179,16 @@ impl ContactStress {
         for &(i, j, m) in &mortar.m2.entries {
             let node = contact.nodes[i];
             for c in 0..2 {
-                if let Some(d) = free[2 * node + c] {
-                    rows[j].push((d, m * n[c]));
-                    rows[q + j].push((d, m * t[c]));
-                }
+                rows[j].push((2 * node + c, m * n[c]));
+                rows[q + j].push((2 * node + c, m * t[c]));
             }
         }
         if gamma0 > 0.0 {
             for &(j, k, c) in &mortar.c_h.entries {
                 for (comp, row) in [j, q + j].into_iter().enumerate() {
                     let s = &self.ops[k][comp];
-                    for (l, d) in self.dofs[k].iter().enumerate() {
-                        if let Some(d) = *d {
-                            rows[row].push((d, -gamma0 * c * s[l]));
-                        }
+                    for (l, &d) in self.dofs[k].iter().enumerate() {
+                        rows[row].push((d, -gamma0 * c * s[l]));
                     }
                 }
             }

@@ -13,6 +13,7 @@ fn spec() -> ProblemSpec {
     ProblemSpec {
         material: Material { young: 100.0, poisson: 0.3 },
         clamped: vec!["top".into()],
+        supports: vec![],
         body_force: [0.0, -1.0],
         tractions: vec![],
         contact: "bottom".into(),
@@ -322,4 +323,74 @@ fn results_stay_finite_at_the_limits() {
         assert_eq!(sol.report.status, SolveStatus::Converged, "{method}: {:?}", sol.kkt);
         assert!(sol.kkt.max() < 1e-6 && sol.lambda_t.iter().any(|l| *l != 0.0), "{method}: {:?}", sol.kkt);
     }
+}
+
+#[test]
+fn support_rules() {
+    // spec(): clamped on the top, contact on the bottom; here the supports replace the clamp.
+    let with = |supports: Vec<Support>| ProblemSpec { clamped: vec![], supports, ..spec() };
+    // An unknown set.
+    let e = problem_err(square(), with(vec![Support::roller("lft")]));
+    assert!(matches!(&e, Error::UnknownEdgeSet { name, .. } if name == "lft"), "{e}");
+    // A roller on an L-shaped (not straight) set.
+    let mut m = square().edge_sets().clone();
+    let mut l = m["top"].clone();
+    l.extend(m["right"].iter().copied());
+    m.insert("corner".into(), l);
+    let corner = Mesh::new(square().points().to_vec(), square().triangles().to_vec(), m).unwrap();
+    let e = problem_err(corner, with(vec![Support::roller("corner")]));
+    assert!(matches!(&e, Error::SupportNotStraight { set, .. } if set == "corner"), "{e}");
+    // A displacement without a component, or with a non-finite one.
+    for (x, y) in [(None, None), (Some(f64::NAN), None), (None, Some(f64::INFINITY))] {
+        let e = problem_err(square(), with(vec![Support::displacement("top", x, y)]));
+        assert!(matches!(&e, Error::BadSupport { set, .. } if set == "top"), "{e}");
+    }
+    // Conflicting conditions at a corner: the top clamped, the left side pushed down (node 20 is (0, 1)).
+    let s = with(vec![Support::clamp("top"), Support::displacement("left", None, Some(-0.01))]);
+    let e = problem_err(square(), s);
+    assert!(
+        matches!(&e, Error::ConflictingSupports { node: 20, first, second, .. } if first == "top" && second == "left"),
+        "{e}"
+    );
+    // The same with compatible values is accepted: a roller along the left side and the top clamped.
+    let s = with(vec![Support::clamp("top"), Support::roller("left")]);
+    assert!(Problem::new(square(), s).is_ok());
+    // Two parallel rollers leave a translation along them free.
+    let e = problem_err(square(), with(vec![Support::roller("left"), Support::roller("right")]));
+    assert!(
+        matches!(&e, Error::RigidMotion { triangles: 32, pieces: 1, motion, .. } if motion.contains("translation")),
+        "{e}"
+    );
+    // One roller on the top leaves the translation along it free; with a roller on the left it is held.
+    let e = problem_err(square(), with(vec![Support::roller("top")]));
+    assert!(matches!(&e, Error::RigidMotion { .. }), "{e}");
+    assert!(Problem::new(square(), with(vec![Support::roller("top"), Support::roller("left")])).is_ok());
+    // A piece held at a single node turns about it: two squares joined at node 2 = (1, 1), the first
+    // clamped on its bottom and its right side, which fixes node 2 but no other node of the second.
+    let pts = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [2.0, 1.0], [2.0, 2.0], [1.0, 2.0]];
+    let tris = vec![[0, 1, 2], [0, 2, 3], [2, 4, 5], [2, 5, 6]];
+    let joined = sets(&[("bottom", vec![[0, 1]]), ("side", vec![[1, 2]]), ("top", vec![[5, 6]])]);
+    let mesh = Mesh::new(pts, tris, joined).unwrap();
+    let s = ProblemSpec { clamped: vec!["bottom".into(), "side".into()], contact: "top".into(), ..spec() };
+    let e = problem_err(mesh, s);
+    assert!(
+        matches!(&e, Error::RigidMotion { node: 2, triangles: 2, pieces: 2, motion, .. } if motion == "a rotation about (1.0000e0, 1.0000e0)"),
+        "{e}"
+    );
+    // A support on Γ_C.
+    let e = problem_err(square(), with(vec![Support::clamp("top"), Support::roller("bottom")]));
+    assert!(matches!(e, Error::ContactOverlapsDirichlet { .. }), "{e}");
+}
+
+#[test]
+fn a_floating_piece_is_named() {
+    // Two disjoint squares, only the first one supported: refused at the door, naming the second piece
+    // (its first triangle and its size), never as a failed factorization that blames the stabilization.
+    let pts = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [2.0, 0.0], [3.0, 0.0], [3.0, 1.0], [2.0, 1.0]];
+    let tris = vec![[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]];
+    let mesh = Mesh::new(pts, tris, sets(&[("bottom", vec![[0, 1]]), ("top", vec![[3, 2]])])).unwrap();
+    let s = ProblemSpec { clamped: vec!["bottom".into()], contact: "top".into(), ..spec() };
+    let e = problem_err(mesh, s);
+    assert_eq!(e, Error::FloatingPiece { triangle: 2, node: 4, triangles: 2, pieces: 2 });
+    assert!(e.to_string().contains("has no support"), "{e}");
 }

@@ -161,6 +161,7 @@ proptest! {
         let spec = ProblemSpec {
             material: Material { young, poisson },
             clamped: vec![clamped.into()],
+            supports: vec![],
             body_force: [load.0, load.1],
             tractions: vec![],
             contact: contact.into(),
@@ -196,6 +197,7 @@ proptest! {
         let spec = ProblemSpec {
             material: Material { young: 10f64.powi(young_exp), poisson },
             clamped: vec!["bottom".into()],
+            supports: vec![],
             body_force: [0.0, 0.0],
             tractions: vec![],
             contact: "top".into(),

@@ -218,3 +218,41 @@ fn a_failed_step_ends_the_history_and_keeps_the_others() {
         assert_eq!(a.lambda_t, b.lambda_t, "the steps before the failure are those of the full history");
     }
 }
+
+/// With a prescribed displacement (a block pressed down by its top, dragged on a flat foundation), one
+/// step from rest is still the static solve (the lifting enters both alike, to round-off), and a history
+/// that reaches the same position in steps converges with the lifting kept at every step.
+#[test]
+fn histories_keep_the_lifting_of_prescribed_displacements() {
+    let mesh = tribo::rectangle([0.0, 2.0], [0.0, 1.0], 16, 8, tribo::Diagonal::Right).unwrap();
+    let spec = tribo::ProblemSpec {
+        material: tribo::Material { young: 1.0, poisson: 0.3 },
+        clamped: vec![],
+        supports: vec![tribo::Support::displacement("top", Some(0.0), Some(-0.01))],
+        body_force: [0.0, 0.0],
+        tractions: vec![],
+        contact: "bottom".into(),
+        obstacle: tribo::Obstacle { shape: tribo::ObstacleShape::Flat, approach: 0.0, shift: 0.004 },
+        multiplier_points: MultiplierPoints::RatioToFe(1.0),
+        multiplier_space: MultiplierSpace::P1,
+    };
+    let problem = tribo::Problem::new(mesh, spec).unwrap();
+    let settings = SolverSettings::default();
+    let coulomb = Friction::Coulomb { mu: MU };
+    let fixed = problem.solve(&coulomb, &settings, None).unwrap();
+    let one = problem.solve_history(&coulomb, &[LoadStep::new(0.0, 0.004)], &settings, None).unwrap();
+    assert_eq!((fixed.report.status, one.status), (SolveStatus::Converged, SolveStatus::Converged));
+    let step = &one.solutions[0];
+    let sup = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let diff = |a: &[f64], b: &[f64]| a.iter().zip(b).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()));
+    assert!(diff(&step.displacement, &fixed.displacement) <= 1e-12 * sup(&fixed.displacement));
+    assert!(diff(&step.lambda_t, &fixed.lambda_t) <= 1e-10 * sup(&fixed.lambda_n));
+    assert!(fixed.normal_force > 0.0 && fixed.tangential_force != 0.0, "pressed and dragged");
+    let steps: Vec<LoadStep> = (0..=4).map(|k| LoadStep::new(0.0, 0.001 * k as f64)).collect();
+    let h = problem.solve_history(&coulomb, &steps, &settings, None).unwrap();
+    assert_eq!(h.status, SolveStatus::Converged);
+    // The press is held at every step: the normal force stays that of the pressed block.
+    for s in &h.solutions {
+        assert!((s.normal_force - fixed.normal_force).abs() < 1e-2 * fixed.normal_force);
+    }
+}

@@ -43,9 +43,9 @@ fn direct_equation(problem: &Problem, sol: &Solution, gamma0: f64) -> Direct {
     let mut residual = vec![0.0; n_free];
     let mut scale = vec![0.0; n_free];
     let mut add = |dof: usize, v: f64, r: &mut Vec<f64>| {
-        if let Some(i) = problem.free[dof] {
-            r[i] += v;
-            scale[i] += v.abs();
+        if let Some((i, a)) = problem.dofs.unknown(dof) {
+            r[i] += a * v;
+            scale[i] += (a * v).abs();
         }
     };
     // a(u, v) − L(v).
@@ -129,10 +129,15 @@ fn direct_inequality(problem: &Problem, sol: &Solution, gamma0: f64, nu_n: &[f64
 
 fn check(friction: Friction, shift: f64, space: MultiplierSpace, points: MultiplierPoints, stab: Stabilization) {
     let problem = tribo_testkit::hertz_problem(0.02, 0.01, shift, points.clone(), space);
+    check_problem(&problem, friction, stab, format!("{space:?} {points:?}"));
+}
+
+fn check_problem(problem: &Problem, friction: Friction, stab: Stabilization, what: String) {
+    let problem = problem.clone();
     let settings = SolverSettings { stabilization: stab, ..Default::default() };
     let condensed = problem.condense(stab).expect("condenses");
     let sol = condensed.solve(&friction, &settings, None).expect("solves");
-    let what = format!("{friction:?} {space:?} {points:?} {stab:?}");
+    let what = format!("{friction:?} {what} {stab:?}");
     assert_eq!(sol.report.status, SolveStatus::Converged, "{what}");
     let gamma0 = sol.report.gamma0;
     // The equation is met to round-off: the two evaluations differ only in rounding (a backward-stable
@@ -220,4 +225,39 @@ fn coulomb_solutions_satisfy_the_discrete_problem() {
         );
         check(Friction::Coulomb { mu: 0.3 }, 0.004, space, MultiplierPoints::RatioToFe(2.0), Stabilization::None);
     }
+}
+
+/// A thin slab pressed onto a flat foundation by a prescribed displacement of its top, held on one side
+/// by a roller, the whole rotated by 0.3 rad: the contact triangles touch prescribed and rotated dofs, so
+/// the lifting enters E, G and the load. (3.1), evaluated directly with the full displacement, holds.
+#[test]
+fn a_slab_pressed_by_a_prescribed_displacement_satisfies_the_discrete_problem() {
+    let angle = 0.3_f64;
+    let (c, s) = (angle.cos(), angle.sin());
+    let m = rectangle([0.0, 1.0], [0.0, 0.125], 8, 1, Diagonal::Right).unwrap();
+    let pts = m.points().iter().map(|p| [c * p[0] - s * p[1], s * p[0] + c * p[1]]).collect();
+    let mesh = Mesh::new(pts, m.triangles().to_vec(), m.edge_sets().clone()).unwrap();
+    let push = 0.002;
+    let spec = ProblemSpec {
+        material: Material { young: 200.0, poisson: 0.3 },
+        clamped: vec![],
+        supports: vec![Support::roller("left"), Support::displacement("top", Some(push * s), Some(-push * c))],
+        body_force: [0.0, 0.0],
+        tractions: vec![],
+        contact: "bottom".into(),
+        obstacle: Obstacle { shape: ObstacleShape::Flat, approach: 0.0, shift: 0.0005 },
+        multiplier_points: MultiplierPoints::RatioToFe(1.0),
+        multiplier_space: MultiplierSpace::P1,
+    };
+    let problem = Problem::new(mesh, spec).unwrap();
+    // One QP each (the direct checks hold to the QP's accuracy; a Coulomb fixed point adds its own).
+    for friction in [Friction::Frictionless, Friction::Tresca(Threshold::Uniform(1.0))] {
+        for stab in [Stabilization::None, Stabilization::Fraction(0.5)] {
+            check_problem(&problem, friction.clone(), stab, "slab".into());
+        }
+    }
+    // Not a trivial scene: the slab touches, and under Tresca part of it slips.
+    let sol = problem.solve(&Friction::Tresca(Threshold::Uniform(1.0)), &SolverSettings::default(), None).unwrap();
+    eprintln!("slab: F_n = {:.4}, states {:?}", sol.normal_force, sol.states);
+    assert!(sol.normal_force > 0.0 && sol.states.contains(&ContactState::Slip));
 }

@@ -10,6 +10,7 @@
 //! * `methods`: the active-set method against clarabel, QP by QP, on every scene above;
 //! * `outputs`: what a reader gets back (global forces, plane-strain stress, current gap, formatted
 //!   numbers, the condensation's progress);
+//! * `supports`: rollers and prescribed displacements: patch tests, the half Hertz model against the full one;
 //! * `layout`: the module structure of the crate (no import cycles).
 //!
 //! Scenes and measures shared with the benches and examples come from the `tribo-testkit` crate.
@@ -24,3 +25,4 @@ mod layout;
 mod methods;
 mod outputs;
 mod patch;
+mod supports;

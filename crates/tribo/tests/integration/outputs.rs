@@ -13,6 +13,7 @@ fn square(contact: &str, clamped: &str) -> Problem {
     let spec = ProblemSpec {
         material: Material { young: 1.0, poisson: 0.3 },
         clamped: vec![clamped.into()],
+        supports: vec![],
         body_force: [0.0, 0.0],
         tractions: vec![],
         contact: contact.into(),

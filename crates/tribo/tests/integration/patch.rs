@@ -29,6 +29,7 @@ fn patch_problem(
     let spec = ProblemSpec {
         material: Material { young: E, poisson: NU },
         clamped: vec!["top".into()],
+        supports: vec![],
         body_force: [0.0, 0.0],
         tractions,
         contact: "bottom".into(),
@@ -174,6 +175,7 @@ fn constant_strain_without_contact_is_reproduced() {
                 let spec = ProblemSpec {
                     material: Material { young: E, poisson: 0.0 },
                     clamped: vec!["left".into()],
+                    supports: vec![],
                     body_force: [0.0, 0.0],
                     tractions: vec![("right".to_string(), [E * c, 0.0])],
                     contact: "bottom".into(),

@@ -1,0 +1,78 @@
+//! `Support`: a Dirichlet condition on a named edge set (clamp, roller, prescribed displacement).
+
+use pyo3::prelude::*;
+
+use crate::errors::ToPyResult;
+
+/// A Dirichlet condition on a named edge set: `Support.clamp(set)` (u = 0), `Support.roller(set)`
+/// (u·n = 0 on a straight set, any direction: a symmetry line; the tangential component is free) or
+/// `Support.displacement(set, x=…, y=…)` (prescribed components; one left out is free). Give a list of
+/// them to `Problem(supports=…)`; conditions meeting at a node combine (a clamp and a roller at a corner
+/// clamp it), and contradictory ones are a SettingsError.
+#[pyclass(frozen, name = "Support", module = "tribo")]
+#[derive(Clone)]
+pub struct PySupport {
+    pub(crate) inner: tribo::Support,
+}
+
+#[pymethods]
+impl PySupport {
+    /// u = 0 on the edge set.
+    #[staticmethod]
+    fn clamp(edge_set: String) -> Self {
+        Self { inner: tribo::Support::clamp(edge_set) }
+    }
+
+    /// u·n = 0 on a straight edge set (n its normal); the tangential component is free.
+    #[staticmethod]
+    fn roller(edge_set: String) -> Self {
+        Self { inner: tribo::Support::roller(edge_set) }
+    }
+
+    /// u_x = x and/or u_y = y on the edge set; a component left as None is free.
+    #[staticmethod]
+    #[pyo3(signature = (edge_set, *, x = None, y = None))]
+    fn displacement(edge_set: String, x: Option<f64>, y: Option<f64>) -> PyResult<Self> {
+        let inner = tribo::Support::displacement(edge_set, x, y);
+        inner.validate().py_err()?;
+        Ok(Self { inner })
+    }
+
+    /// 'clamp', 'roller' or 'displacement'.
+    #[getter]
+    fn kind(&self) -> &'static str {
+        self.inner.kind()
+    }
+
+    /// The edge set it acts on.
+    #[getter]
+    fn edge_set(&self) -> String {
+        self.inner.set().to_string()
+    }
+
+    /// The prescribed (x, y) components (None where free; (0, 0) for a clamp, (None, None) for a roller,
+    /// whose condition is along the normal).
+    #[getter]
+    fn value(&self) -> (Option<f64>, Option<f64>) {
+        match &self.inner {
+            tribo::Support::Clamp { .. } => (Some(0.0), Some(0.0)),
+            tribo::Support::Roller { .. } => (None, None),
+            tribo::Support::Displacement { x, y, .. } => (*x, *y),
+        }
+    }
+
+    fn __repr__(&self) -> String {
+        let set = self.inner.set();
+        match &self.inner {
+            tribo::Support::Displacement { x, y, .. } => {
+                let f = |v: &Option<f64>| v.map_or("None".to_string(), |v| format!("{v}"));
+                format!("Support.displacement({set:?}, x={}, y={})", f(x), f(y))
+            }
+            s => format!("Support.{}({set:?})", s.kind()),
+        }
+    }
+
+    fn __eq__(&self, other: &Self) -> bool {
+        self.inner == other.inner
+    }
+}
