@@ -171,8 +171,6 @@ pub struct Factor {
     d_cols: Vec<Vec<(usize, f64)>>,
     /// Wall time of forming A and its numeric factorization, in seconds.
     pub factorization_seconds: f64,
-    /// Wall time of one solve with A (the one that formed c), in seconds.
-    pub solve_seconds: f64,
     /// The sparse saddle-point system of the QPs that do without H ([`Condensation::Saddle`]), analysed
     /// when first needed.
     saddle: Mutex<Option<SaddleSystem>>,
@@ -270,7 +268,6 @@ impl Factor {
         };
         let clock = Instant::now();
         let u_f = solve(&direct, f)?;
-        let solve_seconds = clock.elapsed().as_secs_f64();
         let e_ainv_f: Vec<f64> = e_rows.iter().map(|row| dot(row, &u_f)).collect();
         let c: Vec<f64> = d.iter().zip(&e_ainv_f).map(|(di, ei)| di - ei).collect();
         let columns = Mutex::new(Columns { cols, seconds: schur_seconds + clock.elapsed().as_secs_f64() });
@@ -317,7 +314,6 @@ impl Factor {
             f: f.to_vec(),
             columns,
             factorization_seconds,
-            solve_seconds,
             saddle: Mutex::new(saddle),
         })
     }
