@@ -174,6 +174,9 @@ pub struct Factor {
     /// The sparse saddle-point system of the QPs that do without H ([`Condensation::Saddle`]), analysed
     /// when first needed.
     saddle: Mutex<Option<SaddleSystem>>,
+    /// The estimates of diag H the sparse QPs use, by number k of leading unknowns (`0..k`: q for a
+    /// frictionless QP, 2q with friction), formed once rather than for every QP of the fixed point.
+    pub(crate) h_diagonal_estimates: Mutex<Vec<(usize, Vec<f64>)>>,
 }
 
 impl std::fmt::Debug for Factor {
@@ -315,6 +318,7 @@ impl Factor {
             columns,
             factorization_seconds,
             saddle: Mutex::new(saddle),
+            h_diagonal_estimates: Mutex::new(Vec::new()),
         })
     }
 

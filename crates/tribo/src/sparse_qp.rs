@@ -63,7 +63,7 @@ impl<'a> SaddleOperator<'a> {
         d: &'a [f64],
         idx: &'a [usize],
     ) -> Self {
-        let diag = estimated_diagonal(factor, idx);
+        let diag = cached_diagonal(factor, idx);
         let noise = vec![0.0; idx.len()];
         Self { factor, saddle, f, d, idx, diag, noise, factorizations: 0 }
     }
@@ -110,6 +110,21 @@ impl QpOperator for SaddleOperator<'_> {
     fn round_off(&self) -> Option<&[f64]> {
         Some(&self.noise)
     }
+}
+
+/// [`estimated_diagonal`] of the leading unknowns `idx = 0..k`, formed once per factorization.
+fn cached_diagonal(factor: &Factor, idx: &[usize]) -> Vec<f64> {
+    let leading = idx.iter().enumerate().all(|(a, &i)| a == i);
+    if !leading {
+        return estimated_diagonal(factor, idx);
+    }
+    let mut cache = factor.h_diagonal_estimates.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    if let Some((_, d)) = cache.iter().find(|(k, _)| *k == idx.len()) {
+        return d.clone();
+    }
+    let d = estimated_diagonal(factor, idx);
+    cache.push((idx.len(), d.clone()));
+    d
 }
 
 /// The estimate of `H_ii` on the unknowns `idx` (see the module documentation).
