@@ -32,7 +32,7 @@
 //! where it is zero in exact arithmetic: the signs of the active bounds' multipliers are checked to the
 //! accuracy the arithmetic gives, as the dense path's answer is exact only to that accuracy too.
 
-use crate::active_set::{self, Bounds, QpOperator};
+use crate::active_set::{self, Bounds, QpOperator, Start};
 use crate::condensation::Factor;
 use crate::qp::Scaling;
 use crate::saddle::SaddleSystem;
@@ -157,7 +157,7 @@ pub(crate) fn solve(
     idx: &[usize],
     q_n: usize,
     bounds: &[f64],
-    start: &[f64],
+    start: Start<'_>,
     (tol, max_steps): (f64, u32),
 ) -> Option<(Vec<f64>, u32)> {
     let c_idx: Vec<f64> = idx.iter().map(|&i| c[i]).collect();
@@ -168,7 +168,7 @@ pub(crate) fn solve(
     // the coarse dofs far from contact (large H_ii, large positive c) would loosen it.
     let mut relevant = vec![false; q_n];
     for j in 0..q_n {
-        let pushed = c_idx[j] < 0.0 || start[j] != 0.0 || bounds.get(j).is_some_and(|b| *b > 0.0);
+        let pushed = c_idx[j] < 0.0 || start.x[j] != 0.0 || bounds.get(j).is_some_and(|b| *b > 0.0);
         if pushed {
             for r in &mut relevant[j.saturating_sub(1)..(j + 2).min(q_n)] {
                 *r = true;

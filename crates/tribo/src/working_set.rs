@@ -23,7 +23,7 @@
 
 use std::time::Instant;
 
-use crate::active_set::{self, Bounds, DenseBlock};
+use crate::active_set::{self, Bounds, DenseBlock, Place, Start};
 use crate::condensation::Factor;
 use crate::error::{Error, Result};
 use crate::friction::check_thresholds;
@@ -49,6 +49,9 @@ pub struct WorkingSetQp<'a> {
     dense: Option<DenseBlock>,
     /// The previous answer (full size): the active-set method's start.
     last: Option<Vec<f64>>,
+    /// The places of the previous answer's dofs (full size), when the active-set method found it: the
+    /// next QP's first step keeps them ([`Start::places`]).
+    places: Option<Vec<Option<Place>>>,
     /// Bytes the dense parts may take.
     budget: usize,
 }
@@ -82,6 +85,7 @@ impl<'a> WorkingSetQp<'a> {
             qp: None,
             dense: None,
             last,
+            places: None,
             budget,
         };
         if let Some(b) = bounds {
@@ -166,6 +170,20 @@ impl<'a> WorkingSetQp<'a> {
         self.bounds.as_ref().map(|b| self.set.iter().map(|&j| b[j]).collect())
     }
 
+    /// The box of the whole QP (its q or 2q unknowns).
+    fn full_bounds(&self) -> Bounds {
+        let b = self.bounds.as_deref().unwrap_or(&[]);
+        let lo = std::iter::repeat_n(0.0, self.q).chain(b.iter().map(|v| -v)).collect();
+        let hi = std::iter::repeat_n(f64::INFINITY, self.q).chain(b.iter().copied()).collect();
+        Bounds { lo, hi }
+    }
+
+    /// Keeps `nu` (full size) as the next QP's start, with its places when the active-set method found it.
+    fn remember(&mut self, nu: &[f64], by_active_set: bool) {
+        self.places = by_active_set.then(|| active_set::places(nu, &self.full_bounds()));
+        self.last = Some(nu.to_vec());
+    }
+
     /// Solves the QP on the set with clarabel.
     fn solve_clarabel(&mut self) -> Result<QpOutcome> {
         let qp = match self.qp.take() {
@@ -180,7 +198,7 @@ impl<'a> WorkingSetQp<'a> {
 
     /// Solves the QP on the set with the active-set method from `start` (on the set's unknowns); `None`
     /// if it cannot certify its answer.
-    fn solve_active_set(&mut self, start: &[f64]) -> Option<QpOutcome> {
+    fn solve_active_set(&mut self, start: Start<'_>) -> Option<QpOutcome> {
         let clock = Instant::now();
         let s = self.set.len();
         let b = self.bounds_on_set().unwrap_or_default();
@@ -245,12 +263,14 @@ impl<'a> WorkingSetQp<'a> {
         if self.settings.method == QpMethod::Clarabel {
             return self.solve_clarabel();
         }
+        let idx = self.unknowns();
         let start: Vec<f64> = match &self.last {
-            Some(x) => self.unknowns().iter().map(|&i| x[i]).collect(),
-            None => vec![0.0; self.unknowns().len()],
+            Some(x) => idx.iter().map(|&i| x[i]).collect(),
+            None => vec![0.0; idx.len()],
         };
+        let places: Option<Vec<Option<Place>>> = self.places.as_ref().map(|p| idx.iter().map(|&i| p[i]).collect());
         let clock = Instant::now();
-        if let Some(out) = self.solve_active_set(&start) {
+        if let Some(out) = self.solve_active_set(Start { x: &start, places: places.as_deref() }) {
             return Ok(out);
         }
         if self.settings.method == QpMethod::ActiveSet {
@@ -294,6 +314,7 @@ impl<'a> WorkingSetQp<'a> {
         let bounds = self.bounds.clone().unwrap_or_default();
         let idx: Vec<usize> = (0..q + bounds.len()).collect();
         let start = self.last.clone().unwrap_or_else(|| vec![0.0; idx.len()]);
+        let places = self.places.clone();
         let mut guard = self.condensed.saddle_system();
         let Some(saddle) = guard.as_mut() else { return Ok(None) };
         let data = (self.loading.f_free.as_slice(), self.loading.d.as_slice(), self.loading.c.as_slice());
@@ -304,11 +325,11 @@ impl<'a> WorkingSetQp<'a> {
             &idx,
             q,
             &bounds,
-            &start,
+            Start { x: &start, places: places.as_deref() },
             (self.settings.tol, self.settings.max_iter),
         );
         Ok(answer.map(|(nu, steps)| {
-            self.last = Some(nu.clone());
+            self.remember(&nu, true);
             QpOutcome {
                 nu,
                 status: QpStatus::Solved,
@@ -346,7 +367,7 @@ impl<'a> WorkingSetQp<'a> {
             if matches!(out.status, QpStatus::Failed(_)) {
                 return Ok(done(nu));
             }
-            self.last = Some(nu.clone());
+            self.remember(&nu, out.method == QpMethod::ActiveSet && !out.fallback);
             if s == q {
                 return Ok(done(nu));
             }
@@ -370,6 +391,12 @@ impl<'a> WorkingSetQp<'a> {
             }
             log::debug!("working set: {} dofs violate optimality, growing from {s}", violated.len());
             self.grow(&violated);
+            // The dofs that joined are predicted, not kept off contact as in the last answer.
+            if let Some(places) = &mut self.places {
+                for &j in self.set.iter().filter(|&&j| !member[j]) {
+                    places[j] = None;
+                }
+            }
             self.qp = None;
             self.dense = None;
         }
