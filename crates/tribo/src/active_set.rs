@@ -6,7 +6,7 @@
 //! are `x = P(x − σ ∇f(x))` for any `σ > 0`, P the projection onto the box. The primal–dual active-set
 //! method is Newton's method on that (semismooth) equation: from `x`, with `g = H x + c` and the
 //! Jacobi-scaled prediction `y_i = x_i − g_i / H_ii`, the dofs with `y_i ≤ lo_i` (or `≥ hi_i`) are put on
-//! their bound and the others, the free set F, solve (see [`predict`] for the one exception: a dof
+//! their bound and the others, the free set F, solve (see `predict` for the one exception: a dof
 //! leaves a bound only for the free set, never straight for the opposite bound)
 //!
 //! `H_FF x_F = −c_F − H_FB x_B`,
@@ -15,7 +15,7 @@
 //! changed sides (a rank-one update per removed unknown, a new row per added one). When the prediction is
 //! right the answer is exact after that one step. From the previous fixed-point iterate (only the bounds
 //! `μ g` changed) the first step does not predict at all: it keeps the previous answer's places
-//! ([`Start::places`]), each bound dof on its new bound, and is usually right.
+//! (`Start::places`), each bound dof on its new bound, and is usually right.
 //!
 //! # The safeguard
 //! Plain PDAS may cycle when H is not an M-matrix, as here. A Newton point is accepted only if its

@@ -111,19 +111,23 @@ fn saddle_system(
 /// number `w` of normal multipliers the load pushes (`c_j < 0`, the working set's start) and nnz(K). In
 /// units of one sparse solve with A (`≈ 4 nnz(L)` flops, `nnz(L) ≈ 6 nnz(K)` as for [`prefer_schur`]):
 ///
-/// * columns: `1.4 w` solves (the Coulomb QPs need normal and tangential columns of about 70 % of the
-///   pushed dofs, measured on the graded Hertz family), plus the dense active-set QPs, about five
-///   Cholesky factorizations of the `2w × 2w` free block (refactorizations and updates, measured):
-///   `5 (2w)³ / 3` flops at 1.5× the rate of a sparse solve;
-/// * saddle: `2.5 √w` Newton steps for a whole Coulomb solve (measured 2.2–2.5 √w from 13.6k to 99k
-///   unknowns), each one sparse LDLᵀ (1.3 × a Cholesky of A ≈ 22 solves, measured) and two solves.
+/// * columns: `1.4 w` columns (the Coulomb QPs need normal and tangential columns of about 70 % of the
+///   pushed dofs, measured on the graded Hertz family), solved in blocks at about twice the rate of
+///   single solves (`0.7 w`), plus the dense active-set QPs, about five Cholesky factorizations of the
+///   `2w × 2w` free block (refactorizations and updates, measured): `5 (2w)³ / 3` flops at 1.5× the
+///   rate of a sparse solve;
+/// * saddle: about `0.5 √w` Newton steps with a new sparse LDLᵀ (1.3 × a Cholesky of A ≈ 28 solves, and
+///   two solves) and `√w` bordered ones (about 4 solves each: the bordered solve, its new columns
+///   solved together, the gradient) for a whole Coulomb solve (measured: 12, 15 and 21 LDLᵀ with 25, 38
+///   and 31 bordered steps at 28k, 55k and 109k graded unknowns).
 ///
-/// Measured on graded Hertz meshes: columns win at 50k unknowns (3.7 s against 5.4 s), the saddle
-/// system at 99k (14 s against 21 s); the rule puts the switch between the two.
+/// Measured on graded Hertz meshes (the solve alone): columns win at 15k unknowns (0.27 s against
+/// 0.32 s), the saddle system from 28k on (0.65 s against 0.85 s; 1.7 s against 3.7 s at 55k); the rule
+/// puts the switch between 15k and 28k.
 fn prefer_saddle(nnz_k: usize, w: usize) -> bool {
     let (w, solve_flops) = (w as f64, 4.0 * 6.0 * nnz_k as f64);
-    let columns = 1.4 * w + 5.0 * (2.0 * w).powi(3) / 3.0 / (1.5 * solve_flops);
-    let saddle = 2.5 * w.sqrt() * (1.3 * 22.0 + 2.0);
+    let columns = 0.7 * w + 5.0 * (2.0 * w).powi(3) / 3.0 / (1.5 * solve_flops);
+    let saddle = w.sqrt() * (0.5 * (1.3 * 22.0 + 2.0) + 4.0);
     columns > saddle
 }
 

@@ -43,6 +43,9 @@
 //! error `max_blocks ‖r‖∞ / (‖|K̃||x|‖∞ + ‖b‖∞)` is below `tol` (computed
 //! in the scaled variables, which makes the `u` and `ν` equations
 //! comparable).
+//!
+//! A partition that differs from the factorized one in a few multipliers is solved with the same
+//! factorization, bordered by them ([`border`]).
 
 // The kernel indexes several parallel arrays by one loop variable, and `!(x > 0.0)` is its NaN test.
 #![allow(clippy::needless_range_loop, clippy::neg_cmp_op_on_partial_ord)]
@@ -62,8 +65,11 @@ use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
 
+mod border;
 #[cfg(test)]
 mod testgen;
+
+use border::Border;
 
 /// Errors of [`SaddleSystem`].
 #[derive(Clone, Debug, PartialEq)]
@@ -196,6 +202,8 @@ pub struct SaddleSystem {
     free: Vec<bool>,
     factorized: bool,
     regularized: usize,
+    /// Border columns for nearby partitions ([`border`]), valid for the current factorization.
+    border: Border,
 }
 
 fn too_large<E: core::fmt::Debug>(e: E) -> SaddleError {
@@ -415,6 +423,7 @@ impl SaddleSystem {
             free: vec![true; m],
             factorized: false,
             regularized: 0,
+            border: Border::default(),
         })
     }
 
@@ -427,6 +436,20 @@ impl SaddleSystem {
         self.regularized
     }
 
+    /// Writes the values of `K̃` of the partition `free` into `self.k`.
+    fn set_values(&mut self, free: &[bool]) {
+        let vals = self.k.val_mut();
+        for &(idx, r, base) in &self.e_dyn {
+            vals[idx] = if free[r] { base } else { 0.0 };
+        }
+        for (r, &(idx, base)) in self.diag_dyn.iter().enumerate() {
+            vals[idx] = if free[r] { base } else { -1.0 };
+        }
+        for &(idx, i, r, base) in &self.d_dyn {
+            vals[idx] = if free[i] && free[r] { base } else { 0.0 };
+        }
+    }
+
     /// Numeric `LDLᵀ` for the partition `free` (length `m`; `true` = free,
     /// `false` = fixed/prescribed). Same pattern for every partition.
     pub fn factorize(&mut self, free: &[bool]) -> Result<(), SaddleError> {
@@ -434,19 +457,9 @@ impl SaddleSystem {
             return Err(SaddleError::InvalidInput(format!("free has length {}, expected {}", free.len(), self.m)));
         }
         self.factorized = false;
+        self.border = Border::default();
         self.free.copy_from_slice(free);
-        {
-            let vals = self.k.val_mut();
-            for &(idx, r, base) in &self.e_dyn {
-                vals[idx] = if free[r] { base } else { 0.0 };
-            }
-            for (r, &(idx, base)) in self.diag_dyn.iter().enumerate() {
-                vals[idx] = if free[r] { base } else { -1.0 };
-            }
-            for &(idx, i, r, base) in &self.d_dyn {
-                vals[idx] = if free[i] && free[r] { base } else { 0.0 };
-            }
-        }
+        self.set_values(free);
         let reg = LdltRegularization {
             dynamic_regularization_signs: Some(&self.signs),
             dynamic_regularization_delta: self.opts.reg_delta.max(0.0),
@@ -506,22 +519,38 @@ impl SaddleSystem {
     /// `nu_fixed`: length `m` (entries in `F` ignored). Returns `u` and the full
     /// `ν` (`ν_B = nu_fixed_B`), refined to backward error `≤ tol`.
     pub fn solve(&self, f: &[f64], d_rhs: &[f64], nu_fixed: &[f64]) -> Result<SaddleSolution, SaddleError> {
-        let (n, m) = (self.n, self.m);
         if !self.factorized {
             return Err(SaddleError::NotFactorized);
         }
-        if f.len() != n || d_rhs.len() != m || nu_fixed.len() != m {
+        let b = self.rhs(&self.free, f, d_rhs, nu_fixed)?;
+        let ldlt = LdltRef::new(&self.symbolic, &self.l_values);
+        let nk = self.n + self.m;
+        let mut mem =
+            MemBuffer::try_new(self.symbolic.solve_in_place_scratch::<f64>(1, self.opts.par)).map_err(too_large)?;
+        self.refine(&self.free, &b, nu_fixed, |r| {
+            ldlt.solve_in_place_with_conj(
+                Conj::No,
+                MatMut::from_column_major_slice_mut(r, nk, 1),
+                self.opts.par,
+                MemStack::new(&mut mem),
+            );
+            Ok(())
+        })
+    }
+
+    /// The scaled right-hand side `S b` of the partition `free` (see [`Self::solve`] for the arguments).
+    fn rhs(&self, free: &[bool], f: &[f64], d_rhs: &[f64], nu_fixed: &[f64]) -> Result<Vec<f64>, SaddleError> {
+        let (n, m) = (self.n, self.m);
+        if f.len() != n || d_rhs.len() != m || nu_fixed.len() != m || free.len() != m {
             return Err(SaddleError::InvalidInput(format!(
-                "rhs lengths ({}, {}, {}), expected ({n}, {m}, {m})",
+                "rhs lengths ({}, {}, {}, {}), expected ({n}, {m}, {m}, {m})",
                 f.len(),
                 d_rhs.len(),
-                nu_fixed.len()
+                nu_fixed.len(),
+                free.len()
             )));
         }
-        let nk = n + m;
-        let free = &self.free;
-        // right-hand side, then scaled: b̃ = S b
-        let mut b = try_zeroed::<f64>(nk)?;
+        let mut b = try_zeroed::<f64>(n + m)?;
         b[..n].copy_from_slice(f);
         for r in 0..m {
             if !free[r] {
@@ -539,20 +568,31 @@ impl SaddleSystem {
         if b.iter().any(|v| !v.is_finite()) {
             return Err(SaddleError::InvalidInput("non-finite right-hand side".into()));
         }
+        Ok(b)
+    }
 
-        let ldlt = LdltRef::new(&self.symbolic, &self.l_values);
-        let mut mem =
-            MemBuffer::try_new(self.symbolic.solve_in_place_scratch::<f64>(1, self.opts.par)).map_err(too_large)?;
+    /// Iterative refinement of `K̃ x = b` (`K̃` as held in `self.k`, of the partition `free`) with the
+    /// approximate inverse `correct` (in place: residual in, correction out), to backward error `≤ tol`;
+    /// the unscaled `u` and `ν` (`ν_B = nu_fixed_B`).
+    fn refine(
+        &self,
+        free: &[bool],
+        b: &[f64],
+        nu_fixed: &[f64],
+        mut correct: impl FnMut(&mut [f64]) -> Result<(), SaddleError>,
+    ) -> Result<SaddleSolution, SaddleError> {
+        let (n, m) = (self.n, self.m);
+        let nk = n + m;
         let mut x = try_zeroed::<f64>(nk)?;
-        let mut r = b.clone();
+        let mut r = b.to_vec();
         let mut absk = try_zeroed::<f64>(nk)?;
         let mut steps = 0usize;
         let mut eta_prev = f64::INFINITY;
         loop {
             if steps > 0 {
-                self.residual(&b, &x, &mut r, &mut absk);
+                self.residual(b, &x, &mut r, &mut absk);
             }
-            let eta = backward_error(n, &b, &r, &absk);
+            let eta = backward_error(n, b, &r, &absk);
             if eta <= self.opts.tol {
                 let mut u = x[..n].to_vec();
                 for (ui, si) in u.iter_mut().zip(&self.scale[..n]) {
@@ -570,13 +610,7 @@ impl SaddleSystem {
                 });
             }
             eta_prev = eta;
-            // correction: x += K̃_reg⁻¹ r
-            ldlt.solve_in_place_with_conj(
-                Conj::No,
-                MatMut::from_column_major_slice_mut(&mut r, nk, 1),
-                self.opts.par,
-                MemStack::new(&mut mem),
-            );
+            correct(&mut r)?;
             for (xi, di) in x.iter_mut().zip(&r) {
                 *xi += di;
             }
