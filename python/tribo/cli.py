@@ -79,6 +79,7 @@ def summary(
         "iterations": r.iterations,
         "residual_history": r.residual_history.tolist(),
         "qp_iterations": r.qp_iterations.tolist(),
+        "qp_factorizations": r.qp_factorizations.tolist(),
         "qp_methods": {m: r.qp_methods.count(m) for m in ("clarabel", "active_set")},
         "qp_fallbacks": r.qp_fallbacks,
         "condensation": r.condensation,

@@ -278,3 +278,8 @@ def test_condensation_paths_agree(hertz: tribo.Problem) -> None:
         assert np.abs(sol.lambda_n - ref.lambda_n).max() <= 1e-7 * scale
         assert np.abs(sol.lambda_t - ref.lambda_t).max() <= 1e-7 * scale
         assert np.abs(sol.displacement - ref.displacement).max() <= 1e-8 * np.abs(ref.displacement).max()
+        # Factorizations per QP, next to its steps: the others updated (dense) or bordered (sparse) one.
+        steps, factorizations = sol.report.qp_iterations, sol.report.qp_factorizations
+        assert factorizations.shape == steps.shape and np.all(factorizations <= steps)
+        if path == "saddle":
+            assert factorizations.sum() < steps.sum()

@@ -74,14 +74,22 @@ impl PyReport {
         PyArray1::from_vec(py, self.inner.qp_iterations.iter().map(|&i| i64::from(i)).collect())
     }
 
+    /// Factorizations among each QP's active-set steps (dense Cholesky of the free block, or sparse LDLᵀ
+    /// of the saddle-point system): the other steps updated or bordered a factorization. 0 for clarabel.
+    #[getter]
+    fn qp_factorizations<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
+        PyArray1::from_vec(py, self.inner.qp_factorizations.iter().map(|&i| i64::from(i)).collect())
+    }
+
     /// The method that answered each QP: 'clarabel' or 'active_set'.
     #[getter]
     fn qp_methods(&self) -> Vec<&'static str> {
         self.inner.qp_methods.iter().map(|m| m.as_str()).collect()
     }
 
-    /// How H was formed: 'columns' (one solve per column the QPs need) or 'schur' (all of it from a
-    /// partial factorization with the Γ_C dofs last).
+    /// How H was formed: 'columns' (one solve per column the QPs need), 'schur' (all of it from a
+    /// partial factorization with the Γ_C dofs last) or 'saddle' (not at all: the QPs' steps solve the
+    /// sparse saddle-point system).
     #[getter]
     fn condensation(&self) -> &'static str {
         self.inner.condensation.as_str()

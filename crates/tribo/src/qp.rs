@@ -123,6 +123,10 @@ pub struct QpOutcome {
     pub seconds: f64,
     /// The method that produced the answer: [`QpMethod::Clarabel`] or [`QpMethod::ActiveSet`].
     pub method: QpMethod,
+    /// Factorizations the active-set method's steps made: dense Cholesky factorizations of the free block,
+    /// or sparse LDLᵀ of the saddle-point system; its other steps updated the dense factor or bordered the
+    /// sparse one. 0 for clarabel (its KKT factorizations are its iterations).
+    pub factorizations: u32,
     /// True when the first method tried did not answer (the active-set method could not certify, or
     /// clarabel failed under [`QpMethod::Auto`]) and the other one did.
     pub fallback: bool,
@@ -344,6 +348,7 @@ impl BoxQp {
                 iterations: 0,
                 seconds: 0.0,
                 method: QpMethod::Clarabel,
+                factorizations: 0,
                 fallback: false,
             };
         };
@@ -363,6 +368,7 @@ impl BoxQp {
             iterations: sol.iterations,
             seconds: clock.elapsed().as_secs_f64(),
             method: QpMethod::Clarabel,
+            factorizations: 0,
             fallback: false,
         }
     }

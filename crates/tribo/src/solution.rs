@@ -170,6 +170,9 @@ pub struct Report {
     /// Iterations of each QP: interior-point iterations (clarabel) or steps (active set), including a
     /// failed active-set attempt before clarabel.
     pub qp_iterations: Vec<u32>,
+    /// Factorizations among the active-set steps of each QP (see [`crate::QpOutcome::factorizations`]):
+    /// the other steps updated the dense factor or bordered the sparse one. 0 for a clarabel answer.
+    pub qp_factorizations: Vec<u32>,
     /// The method that answered each QP ([`QpMethod::Clarabel`] or [`QpMethod::ActiveSet`]).
     pub qp_methods: Vec<QpMethod>,
     /// How many QPs the first method tried did not answer, so that the other one did (see

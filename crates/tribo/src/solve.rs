@@ -73,6 +73,8 @@ struct QpPhase {
     iterations: usize,
     history: Vec<f64>,
     qp_iterations: Vec<u32>,
+    /// The active-set method's factorizations in each QP.
+    qp_factorizations: Vec<u32>,
     /// The method that answered each QP.
     qp_methods: Vec<QpMethod>,
     /// QPs the active-set method could not certify (clarabel answered them).
@@ -85,6 +87,7 @@ impl QpPhase {
     /// Counts a QP's interior-point iterations, time and accuracy.
     fn book(&mut self, out: &QpOutcome) {
         self.qp_iterations.push(out.iterations);
+        self.qp_factorizations.push(out.factorizations);
         self.qp_methods.push(out.method);
         self.qp_fallbacks += usize::from(out.fallback);
         self.qp_inaccurate += usize::from(out.status == QpStatus::Inaccurate);
@@ -184,6 +187,7 @@ impl Condensed<'_> {
             iterations: 0,
             history: Vec::new(),
             qp_iterations: Vec::new(),
+            qp_factorizations: Vec::new(),
             qp_methods: Vec::new(),
             qp_fallbacks: 0,
             qp_inaccurate: 0,
@@ -248,6 +252,7 @@ impl Condensed<'_> {
             iterations: phase.iterations,
             residual_history: phase.history,
             qp_iterations: phase.qp_iterations,
+            qp_factorizations: phase.qp_factorizations,
             qp_methods: phase.qp_methods,
             qp_fallbacks: phase.qp_fallbacks,
             qp_inaccurate: phase.qp_inaccurate,

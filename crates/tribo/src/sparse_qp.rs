@@ -168,8 +168,8 @@ fn estimated_diagonal(factor: &Factor, idx: &[usize]) -> Vec<f64> {
 
 /// Solves the QP `min ½ νᵀHν + cᵀν` on the unknowns `idx` (normal ones first: the first `q_n` of `idx`
 /// are normal, the rest tangential with the bounds `bounds`) from `start`, with the active-set method on
-/// the saddle-point system. Returns the answer on `idx` and the steps taken, or `None` when it could not
-/// certify it.
+/// the saddle-point system. Returns the answer on `idx`, the steps taken and the LDLᵀ factorizations
+/// among them, or `None` when it could not certify it.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve(
     factor: &Factor,
@@ -180,7 +180,7 @@ pub(crate) fn solve(
     bounds: &[f64],
     start: Start<'_>,
     (tol, max_steps): (f64, u32),
-) -> Option<(Vec<f64>, u32)> {
+) -> Option<(Vec<f64>, u32, u32)> {
     let c_idx: Vec<f64> = idx.iter().map(|&i| c[i]).collect();
     let mut op = SaddleOperator::new(factor, saddle, f, d, idx);
     let k = idx.len();
@@ -200,7 +200,7 @@ pub(crate) fn solve(
     let diag_s: Vec<f64> = (0..k).map(|a| if keep(a) { op.diag[a] } else { 0.0 }).collect();
     let c_s: Vec<f64> = (0..k).map(|a| if keep(a) { c_idx[a] } else { 0.0 }).collect();
     let Some(n_scale) = Scaling::normal_scale(&diag_s, &c_s, q_n) else {
-        return Some((vec![0.0; idx.len()], 0));
+        return Some((vec![0.0; idx.len()], 0, 0));
     };
     let scaling = Scaling::new(&diag_s, &c_s, q_n, n_scale, bounds);
     let lo: Vec<f64> = (0..k).map(|a| if a < q_n { 0.0 } else { -bounds[a - q_n] }).collect();
@@ -214,5 +214,5 @@ pub(crate) fn solve(
         op.bordered,
         out.gradient_steps
     );
-    out.certified.then_some((out.x, out.newton_steps + out.gradient_steps))
+    out.certified.then_some((out.x, out.newton_steps + out.gradient_steps, op.factorizations))
 }

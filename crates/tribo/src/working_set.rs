@@ -212,18 +212,19 @@ impl<'a> WorkingSetQp<'a> {
         };
         let op = self.dense.insert(op);
         let c = op.linear_term().to_vec();
-        let done = |nu: Vec<f64>, iterations: u32| QpOutcome {
+        let done = |nu: Vec<f64>, iterations: u32, factorizations: u32| QpOutcome {
             nu,
             status: QpStatus::Solved,
             iterations,
             seconds: clock.elapsed().as_secs_f64(),
             method: QpMethod::ActiveSet,
+            factorizations,
             fallback: false,
         };
         let diag = crate::qp::diagonal(op.matrix(), c.len());
         let Some(n_scale) = Scaling::normal_scale(&diag, &c, s) else {
             // Nothing pushes at all (c = 0): λ = 0 (as on clarabel's path).
-            return Some(done(vec![0.0; c.len()], 0));
+            return Some(done(vec![0.0; c.len()], 0, 0));
         };
         let scaling = Scaling::new(&diag, &c, s, n_scale, &b);
         let lo: Vec<f64> = (0..c.len()).map(|i| if i < s { 0.0 } else { -b[i - s] }).collect();
@@ -239,7 +240,7 @@ impl<'a> WorkingSetQp<'a> {
             op.updates - updates,
             out.gradient_steps
         );
-        out.certified.then(|| done(out.x, out.newton_steps + out.gradient_steps))
+        out.certified.then(|| done(out.x, out.newton_steps + out.gradient_steps, op.factorizations - factorizations))
     }
 
     /// Refuses a set whose dense parts exceed the budget: its columns of H (each 2q long), the dense QP
@@ -280,6 +281,7 @@ impl<'a> WorkingSetQp<'a> {
                 iterations: self.settings.max_iter,
                 seconds: clock.elapsed().as_secs_f64(),
                 method: QpMethod::ActiveSet,
+                factorizations: 0,
                 fallback: false,
             });
         }
@@ -328,7 +330,7 @@ impl<'a> WorkingSetQp<'a> {
             Start { x: &start, places: places.as_deref() },
             (self.settings.tol, self.settings.max_iter),
         );
-        Ok(answer.map(|(nu, steps)| {
+        Ok(answer.map(|(nu, steps, factorizations)| {
             self.remember(&nu, true);
             QpOutcome {
                 nu,
@@ -336,6 +338,7 @@ impl<'a> WorkingSetQp<'a> {
                 iterations: steps,
                 seconds: clock.elapsed().as_secs_f64(),
                 method: QpMethod::ActiveSet,
+                factorizations,
                 fallback: false,
             }
         }))
@@ -349,11 +352,12 @@ impl<'a> WorkingSetQp<'a> {
         let c = &self.loading.c;
         let c_s = c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let threshold = -self.settings.tol.sqrt() * c_s;
-        let (mut iterations, mut seconds, mut fallback) = (0, 0.0, false);
+        let (mut iterations, mut seconds, mut fallback, mut factorizations) = (0, 0.0, false, 0);
         loop {
             let out = self.solve_on_set()?;
             iterations += out.iterations;
             seconds += out.seconds;
+            factorizations += out.factorizations;
             fallback |= out.fallback;
             let s = self.set.len();
             let mut nu = vec![0.0; k];
@@ -363,7 +367,7 @@ impl<'a> WorkingSetQp<'a> {
                     nu[q + j] = out.nu[s + a];
                 }
             }
-            let done = |nu: Vec<f64>| QpOutcome { nu, iterations, seconds, fallback, ..out.clone() };
+            let done = |nu: Vec<f64>| QpOutcome { nu, iterations, seconds, fallback, factorizations, ..out.clone() };
             if matches!(out.status, QpStatus::Failed(_)) {
                 return Ok(done(nu));
             }
