@@ -116,18 +116,19 @@ fn saddle_system(
 ///   single solves (`0.7 w`), plus the dense active-set QPs, about five Cholesky factorizations of the
 ///   `2w × 2w` free block (refactorizations and updates, measured): `5 (2w)³ / 3` flops at 1.5× the
 ///   rate of a sparse solve;
-/// * saddle: about `0.5 √w` Newton steps with a new sparse LDLᵀ (1.3 × a Cholesky of A ≈ 28 solves, and
-///   two solves) and `√w` bordered ones (about 4 solves each: the bordered solve, its new columns
-///   solved together, the gradient) for a whole Coulomb solve (measured: 12, 15 and 21 LDLᵀ with 25, 38
-///   and 31 bordered steps at 28k, 55k and 109k graded unknowns).
+/// * saddle: about `0.15 √w` Newton steps with a new sparse LDLᵀ (1.3 × a Cholesky of A ≈ 28 solves, and
+///   two solves) and `√w` bordered ones (about 3 solves each: the bordered solve and the gradients) for
+///   a whole Coulomb solve (measured: 5–7 LDLᵀ with 37–45 bordered steps from 28k to 109k graded
+///   unknowns).
 ///
-/// Measured on graded Hertz meshes (the solve alone): columns win at 15k unknowns (0.27 s against
-/// 0.32 s), the saddle system from 28k on (0.65 s against 0.85 s; 1.7 s against 3.7 s at 55k); the rule
-/// puts the switch between 15k and 28k.
+/// Measured on graded Hertz meshes (whole solve): the saddle system wins from 8k unknowns on (0.07 s
+/// against 0.08 s by columns; 0.19 against 0.24 s at 15k, 0.51 against 0.90 s at 28k), where the
+/// partial factorization ([`prefer_schur`], tried first) is not taken; the rule puts the switch at about
+/// w = 120 pushed dofs.
 fn prefer_saddle(nnz_k: usize, w: usize) -> bool {
     let (w, solve_flops) = (w as f64, 4.0 * 6.0 * nnz_k as f64);
     let columns = 0.7 * w + 5.0 * (2.0 * w).powi(3) / 3.0 / (1.5 * solve_flops);
-    let saddle = w.sqrt() * (0.5 * (1.3 * 22.0 + 2.0) + 4.0);
+    let saddle = w.sqrt() * (0.15 * (1.3 * 22.0 + 2.0) + 3.0);
     columns > saddle
 }
 

@@ -457,7 +457,7 @@ impl SaddleSystem {
             return Err(SaddleError::InvalidInput(format!("free has length {}, expected {}", free.len(), self.m)));
         }
         self.factorized = false;
-        self.border = Border::default();
+        self.border.clear();
         self.free.copy_from_slice(free);
         self.set_values(free);
         let reg = LdltRegularization {

@@ -16,9 +16,9 @@
 //!   one sparse LDLᵀ of about the cost of a Cholesky of A, on a pattern analysed once per problem. When
 //!   F differs from the factorized partition in few multipliers (the last steps of a QP, and the first
 //!   step of the next fixed-point QP, which starts from the previous places), the factorization held is
-//!   bordered by them instead ([`SaddleSystem::solve_near`]): one solve, plus one per changed multiplier
-//!   solved together, up to [`SaddleSystem::border_limit`] of them (measured on the graded Hertz
-//!   family: 12–21 LDLᵀ and 25–38 bordered steps per Coulomb solve instead of 49–66 LDLᵀ).
+//!   bordered by them instead ([`SaddleSystem::solve_near`]): one solve, plus a short forward
+//!   substitution per changed multiplier, up to [`SaddleSystem::border_limit`] of them (measured on the
+//!   graded Hertz family: 5–7 LDLᵀ and 40–45 bordered steps per Coulomb solve instead of 49–66 LDLᵀ).
 //!
 //! The method also uses diag H (its prediction from a non-Newton start, the projected-gradient safeguard
 //! and the scaling of the optimality test). Its exact value costs a solve per dof, so it is estimated:
@@ -61,6 +61,9 @@ pub(crate) struct SaddleOperator<'a> {
     pub bordered: u32,
     /// The most changed multipliers a bordered solve takes ([`SaddleSystem::border_limit`]).
     border_limit: usize,
+    /// The last gradient and the point it was taken at: the method asks again for the one at a Newton
+    /// point it accepts, and each costs a solve.
+    last_gradient: std::cell::RefCell<Option<(Vec<f64>, Vec<f64>)>>,
 }
 
 impl<'a> SaddleOperator<'a> {
@@ -75,7 +78,19 @@ impl<'a> SaddleOperator<'a> {
         let diag = cached_diagonal(factor, idx);
         let noise = vec![0.0; idx.len()];
         let border_limit = saddle.border_limit();
-        Self { factor, saddle, f, d, idx, diag, noise, factorizations: 0, bordered: 0, border_limit }
+        Self {
+            factor,
+            saddle,
+            f,
+            d,
+            idx,
+            diag,
+            noise,
+            factorizations: 0,
+            bordered: 0,
+            border_limit,
+            last_gradient: Default::default(),
+        }
     }
 
     /// The multipliers (2q) with `x` on the unknowns and 0 elsewhere.
@@ -90,12 +105,19 @@ impl<'a> SaddleOperator<'a> {
 
 impl QpOperator for SaddleOperator<'_> {
     fn gradient(&self, x: &[f64]) -> Vec<f64> {
+        if let Some((at, g)) = self.last_gradient.borrow().as_ref() {
+            if at == x {
+                return g.clone();
+            }
+        }
         let nu = self.expand(x);
         let Ok(u) = self.factor.displacement(self.f, &nu) else {
             return vec![f64::NAN; x.len()];
         };
         let (eu, dnu) = (self.factor.apply_e(&u), self.factor.apply_d(&nu));
-        self.idx.iter().map(|&i| dnu[i] + self.d[i] - eu[i]).collect()
+        let g: Vec<f64> = self.idx.iter().map(|&i| dnu[i] + self.d[i] - eu[i]).collect();
+        *self.last_gradient.borrow_mut() = Some((x.to_vec(), g.clone()));
+        g
     }
 
     fn newton_point(&mut self, free: &[bool], x: &[f64]) -> Option<Vec<f64>> {

@@ -324,10 +324,10 @@ fn unsorted_a_columns_are_accepted() {
 /// A partition near the factorized one, solved with the bordered factorization, equals the dense
 /// reference; so does a later one that reuses the border columns, and the factorized partition itself
 /// afterwards (the values of K̃ are restored).
-fn check_near(p: &ContactProblem, seed: u64, label: &str) {
+fn check_near(p: &ContactProblem, opts: SaddleOptions, seed: u64, label: &str) {
     let (n, m) = (p.n, p.m);
     let dref = DenseRef::new(p);
-    let mut sys = SaddleSystem::with_options(&p.a, &p.e_rows, &p.d, seq_opts()).unwrap();
+    let mut sys = SaddleSystem::with_options(&p.a, &p.e_rows, &p.d, opts).unwrap();
     let mut rng = Rng(seed);
     let f: Vec<f64> = (0..n).map(|_| rng.sym() * p.h * p.h).collect();
     let d: Vec<f64> = (0..m).map(|_| rng.sym() * p.h * 1e-3).collect();
@@ -335,7 +335,7 @@ fn check_near(p: &ContactProblem, seed: u64, label: &str) {
     let reference: Vec<bool> = (0..m).map(|_| rng.unif() < 0.6).collect();
     sys.factorize(&reference).unwrap();
     let mut near = reference.clone();
-    for (step, flips) in [1usize, 3, 6, 0].into_iter().enumerate() {
+    for (step, flips) in [1usize, 3, 6, 30, 0].into_iter().enumerate() {
         // flip a few more (neighbours included, so that freed multipliers couple through D)
         let start = (rng.unif() * (m - flips) as f64) as usize;
         for j in start..start + flips {
@@ -344,19 +344,23 @@ fn check_near(p: &ContactProblem, seed: u64, label: &str) {
         if flips == 0 {
             near.clone_from(&reference);
         }
-        let needed = sys.border_solves(&near);
+        let before = sys.border.columns_len();
         let sol = sys.solve_near(&near, &f, &d, &nu_b).unwrap_or_else(|e| panic!("{label} step {step}: {e}"));
         let (u_ref, nu_ref) = dref.solve(p, &near, &f, &d, &nu_b);
         let (eu, enu) = (rel_err(&sol.u, &u_ref), rel_err(&sol.nu, &nu_ref));
         let (r1, r2) = block_residuals(p, &near, &f, &d, &sol.u, &sol.nu);
         eprintln!(
-            "{label} step {step}: changed {} new columns {needed} refinement {} err u {eu:.1e} nu {enu:.1e}",
+            "{label} step {step}: changed {} new columns {} refinement {} err u {eu:.1e} nu {enu:.1e}",
             sys.changed(&near).len(),
+            sys.border.columns_len() - before,
             sol.refinement_steps
         );
         assert!(r1 < 1e-10 && r2 < 1e-10, "{label} step {step}: residuals {r1:e} {r2:e}");
         assert!(eu < 1e-8 && enu < 1e-8, "{label} step {step}: errors {eu:e} {enu:e}");
-        assert_eq!(sys.border_solves(&near), 0, "the columns are kept");
+        let held = sys.border.columns_len();
+        let again = sys.solve_near(&near, &f, &d, &nu_b).unwrap();
+        assert_eq!(sys.border.columns_len(), held, "the columns are kept");
+        assert!(rel_err(&again.u, &sol.u) < 1e-12);
     }
     // The factorized partition still solves as before.
     let sol = sys.solve(&f, &d, &nu_b).unwrap();
@@ -366,6 +370,15 @@ fn check_near(p: &ContactProblem, seed: u64, label: &str) {
 
 #[test]
 fn nearby_partitions_solve_with_the_bordered_factorization() {
-    check_near(&contact_problem(20, 10, true), 11, "D>0");
-    check_near(&contact_problem(20, 10, false), 12, "D=0");
+    for (kind, threshold) in
+        [("simplicial", SupernodalThreshold::FORCE_SIMPLICIAL), ("supernodal", SupernodalThreshold::FORCE_SUPERNODAL)]
+    {
+        let opts = SaddleOptions { supernodal_threshold: threshold, ..seq_opts() };
+        let p = contact_problem(20, 10, true);
+        let mut sys = SaddleSystem::with_options(&p.a, &p.e_rows, &p.d, opts).unwrap();
+        sys.factorize(&vec![true; sys.m]).unwrap();
+        assert_eq!(sys.is_supernodal(), kind == "supernodal");
+        check_near(&p, opts, 11, &format!("D>0 {kind}"));
+        check_near(&contact_problem(20, 10, false), opts, 12, &format!("D=0 {kind}"));
+    }
 }
