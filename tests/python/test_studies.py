@@ -105,6 +105,14 @@ def test_plot_cost(tmp_path: Path) -> None:
     res = study("plot_cost").main(["--csv", str(csv), "--out", str(tmp_path)])
     assert (tmp_path / "cost.png").is_file() and (tmp_path / "cost.md").is_file()
     assert abs(res["fits"][("uniform", "coulomb", "total")] - 1.2) < 1e-6
+    # The graded family's fit from 7k unknowns on: the 16000-unknown run alone is above, no fit.
+    assert ("graded", "coulomb", "total_from_7k") not in res["fits"]
+    lines.append("graded,0.01,32000,320,coulomb,converged,6,saddle,7,0,0.1,0.1,0.1,0.1,0.4,0.1,4.0")
+    csv.write_text("\n".join(lines) + "\n")
+    res = study("plot_cost").main(["--csv", str(csv), "--out", str(tmp_path)])
+    expected = math.log(0.4 / (3.6e-3 * 16**1.2)) / math.log(2)
+    assert abs(res["fits"][("graded", "coulomb", "total_from_7k")] - expected) < 1e-9
+    assert "coulomb n^2.00 (16000 to 32000 unknowns)" in (tmp_path / "cost.md").read_text()
 
 
 def test_cattaneo_mindlin(tmp_path: Path) -> None:
