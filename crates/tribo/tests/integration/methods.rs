@@ -216,3 +216,20 @@ fn saddle_and_columns_agree() {
         }
     }
 }
+
+/// `auto` takes the saddle-point system only where its steps can be factorized: on a mesh where it wins
+/// (8k graded unknowns), with T_H twice as fine as the FE edges, it does with γ0 > 0 (Dγ makes the
+/// system quasi-definite) and does not with γ0 = 0 (E_F rank deficient: every LDLᵀ would break down and
+/// the dense path answer after all).
+#[test]
+fn auto_takes_the_saddle_system_only_where_it_factorizes() {
+    let problem = hertz_problem(0.0025, 0.01, 0.0, MultiplierPoints::RatioToFe(0.5), MultiplierSpace::P1);
+    for (stabilization, expected) in
+        [(Stabilization::Fraction(0.5), Condensation::Saddle), (Stabilization::None, Condensation::Columns)]
+    {
+        let s = SolverSettings { stabilization, ..Default::default() };
+        let sol = problem.solve(&Friction::Frictionless, &s, None).expect("solves");
+        assert_eq!(sol.report.condensation, expected, "{stabilization:?}");
+        assert_eq!(sol.report.status, SolveStatus::Converged, "{stabilization:?}");
+    }
+}
