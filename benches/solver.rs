@@ -22,6 +22,9 @@
 //! - `block`: the block scene (`python/tribo/scenes/block.toml`, contact along the whole bottom edge) at
 //!   400 × 100 (80k unknowns) and 800 × 200 (320k): the whole Coulomb solve from a fresh factorization
 //!   (H from the partial factorization) and the Cholesky reference.
+//! - `graded_55k`: the accurate regime: Hertz graded to h_min = 3.125e-4 (55k unknowns, 2539 multiplier
+//!   dofs), the whole Coulomb solve from a fresh factorization as `condensation = auto` chooses (the
+//!   sparse saddle-point system) and with H by columns, and the Cholesky reference;
 //! - `history`: a loading history on a prebuilt condensation (Hertz, pressed, then dragged to 0.004 in 10
 //!   steps, μ = 0.3): the whole history (11 steps) against one static Coulomb solve of its last position
 //!   (the target: a step after the first costs no more than the static solve without its factorization).
@@ -41,8 +44,8 @@ use faer::sparse::SparseColMat;
 use faer::Mat;
 use tribo::mortar::MortarMatrices;
 use tribo::{
-    Friction, Grading, KktSolver, LoadStep, Mesh, MultiplierPoints, MultiplierSpace, Problem, ProblemSpec, QpMethod,
-    QpSettings, Side, SolveStatus, SolverSettings, Stabilization, Threshold,
+    Choice, Condensation, Friction, Grading, KktSolver, LoadStep, Mesh, MultiplierPoints, MultiplierSpace, Problem,
+    ProblemSpec, QpMethod, QpSettings, Side, SolveStatus, SolverSettings, Stabilization, Threshold,
 };
 use tribo_testkit::{block_problem, hertz_mesh, hertz_scene, hertz_spec};
 
@@ -385,6 +388,40 @@ fn bench_block(c: &mut Criterion) {
     group.finish();
 }
 
+fn bench_graded_55k(c: &mut Criterion) {
+    let mut group = c.benchmark_group("graded_55k");
+    configure_slow(&mut group, 30);
+    let h_min = 3.125e-4;
+    let problem = Problem::new(hertz_mesh(h_min), spec(COULOMB_SHIFT)).expect("valid problem");
+    let friction = Friction::Coulomb { mu: MU };
+    for condensation in [Condensation::Auto, Condensation::Columns] {
+        let settings = SolverSettings { stabilization: STABILIZATION, condensation, ..Default::default() };
+        let check = problem.solve(&friction, &settings, None).expect("solve");
+        eprintln!(
+            "[graded h_min = {h_min}] n_free {} q {} Coulomb {} after {} iterations, H by {}, {} LDLᵀ or dense factorizations over {} active-set steps",
+            problem.n_free,
+            problem.n_multipliers(),
+            check.report.status,
+            check.report.iterations,
+            check.report.condensation,
+            check.report.qp_factorizations.iter().sum::<u32>(),
+            check.report.qp_iterations.iter().sum::<u32>()
+        );
+        assert_eq!(check.report.status, SolveStatus::Converged);
+        group.bench_with_input(BenchmarkId::new("coulomb_solve", condensation.as_str()), &problem, |b, p| {
+            b.iter(|| {
+                p.forget_factorization();
+                p.solve(black_box(&friction), &settings, None).unwrap()
+            })
+        });
+    }
+    let k = problem.k_matrix.clone();
+    group.bench_with_input(BenchmarkId::new("cholesky_reference", h_min), &k, |b, k| {
+        b.iter(|| cholesky_solve(black_box(k), &problem.f_free))
+    });
+    group.finish();
+}
+
 fn config() -> Criterion {
     Criterion::default().sample_size(10).warm_up_time(Duration::from_millis(500)).nresamples(20_000)
 }
@@ -394,6 +431,6 @@ criterion_group! {
     config = config();
     targets = bench_mesh, bench_assembly, bench_condensation, bench_tresca, bench_coulomb, bench_qp_kkt_solver,
         bench_cholesky_reference, bench_admissible_gamma0, bench_uniform_103k, bench_qp_method, bench_block,
-        bench_history
+        bench_history, bench_graded_55k
 }
 criterion_main!(benches);
