@@ -12,7 +12,7 @@
 //! Every Tresca QP and every Coulomb fixed-point iteration works with multiplier unknowns only; the
 //! displacement is recovered at the end with one more solve.
 
-use std::sync::Mutex;
+use std::sync::{Mutex, OnceLock};
 use std::time::Instant;
 
 use faer::linalg::solvers::Solve;
@@ -204,7 +204,8 @@ impl std::fmt::Debug for Factor {
 }
 
 impl Factor {
-    /// Factorizes `A = K + minus_g` (on K's pattern, with K's symbolic factorization) and forms `c`.
+    /// Factorizes `A = K + minus_g` (on K's pattern, with K's symbolic factorization, formed into
+    /// `symbolic` if it is still empty and this path needs it) and forms `c`.
     ///
     /// `e_rows` are the 2q rows of E over the unknowns, `d_gamma` the entries `(i, j, v)` of the q × q
     /// block Dγ (the same block acts on the normal and on the tangential multipliers), `f` the load and
@@ -218,7 +219,7 @@ impl Factor {
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         k: &SparseColMat<usize, f64>,
-        symbolic: &SymbolicLlt<usize>,
+        symbolic: &OnceLock<SymbolicLlt<usize>>,
         minus_g: &[Triplet<usize, usize, f64>],
         e_rows: Vec<Vec<(usize, f64)>>,
         d_gamma: Vec<(usize, usize, f64)>,
@@ -283,6 +284,16 @@ impl Factor {
             }
             (Direct::Schur(factor), factorization_seconds, clock.elapsed().as_secs_f64())
         } else {
+            let symbolic = match symbolic.get() {
+                Some(s) => s,
+                None => {
+                    let s = SymbolicLlt::try_new(k.symbolic(), Side::Lower).map_err(|e| Error::Assembly {
+                        matrix: "the symbolic Cholesky factor of K",
+                        what: format!("{e:?}"),
+                    })?;
+                    symbolic.get_or_init(|| s)
+                }
+            };
             let llt = Llt::try_new_with_symbolic(symbolic.clone(), a.as_ref(), Side::Lower)
                 .map_err(|e| Error::NotPositiveDefinite { what: format!("{e:?}") })?;
             (Direct::Columns(llt), clock.elapsed().as_secs_f64(), 0.0)

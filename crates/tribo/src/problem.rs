@@ -6,12 +6,12 @@
 //! solving it again with the same γ0 (another friction law, other solver settings) costs no
 //! factorization: [`crate::Report::reused_factorization`] says when that happened.
 
+use std::sync::OnceLock;
 use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Instant;
 
 use faer::sparse::linalg::solvers::SymbolicLlt;
 use faer::sparse::{SparseColMat, Triplet};
-use faer::Side;
 
 use crate::condensation::Factor;
 use crate::contact::ContactBoundary;
@@ -52,7 +52,8 @@ pub struct ProblemSpec {
 /// Timings of the set-up phases, in seconds.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct SetupTimings {
-    /// Stiffness and load assembly, and the symbolic Cholesky factorization of K's pattern.
+    /// Stiffness and load assembly (the symbolic Cholesky factorization of K's pattern is formed by the
+    /// first condensation that needs it, and timed with it).
     pub assembly: f64,
     /// Contact geometry, multiplier mesh and Γ_C matrices.
     pub contact_matrices: f64,
@@ -80,8 +81,9 @@ pub struct Problem {
     /// the stabilized `A = K − G` (G couples the dofs of one triangle only).
     pub k_matrix: SparseColMat<usize, f64>,
     /// Symbolic Cholesky factorization of that pattern (fill-reducing ordering, elimination tree),
-    /// computed once and reused for every γ0.
-    pub symbolic: SymbolicLlt<usize>,
+    /// computed by the first condensation that factorizes A by it (H by columns, or the saddle-point
+    /// system's gradients; the partial factorization has its own ordering) and reused for every γ0.
+    pub symbolic: OnceLock<SymbolicLlt<usize>>,
     /// Load on the unknowns with the lifting through K, `Tᵀ (f − K ū)`; the part through G, which
     /// depends on γ0, is added when A is factorized ([`Factor::f`]).
     pub f_free: Vec<f64>,
@@ -230,8 +232,6 @@ impl Problem {
         let k_matrix = SparseColMat::try_new_from_triplets(n_free, n_free, &k_free)
             .map_err(|e| Error::Assembly { matrix: "K", what: format!("{e:?}") })?;
         drop(k_free);
-        let symbolic = SymbolicLlt::try_new(k_matrix.symbolic(), Side::Lower)
-            .map_err(|e| Error::Assembly { matrix: "the symbolic Cholesky factor of K", what: format!("{e:?}") })?;
         let assembly = clock.elapsed().as_secs_f64();
 
         let clock = Instant::now();
@@ -275,7 +275,7 @@ impl Problem {
             dofs,
             n_free,
             k_matrix,
-            symbolic,
+            symbolic: OnceLock::new(),
             f_free,
             f_full,
             contact_gap,
