@@ -436,10 +436,13 @@ pub(crate) fn solve(
             }
             let mut t = xn.clone();
             bounds.project(&mut t);
-            let gt = op.gradient(&t);
+            // The gradient at the Newton point first: an operator that formed it with the point (the
+            // sparse one) hands it back without a solve.
+            let gn = op.gradient(&xn);
+            let gt = if t == xn { gn.clone() } else { op.gradient(&t) };
             let (ft, size) = objective(&t, &gt, c);
             if ft <= fx + 64.0 * f64::EPSILON * size {
-                gk = if t == xn { gt.clone() } else { op.gradient(&xn) };
+                gk = gn;
                 xk = xn;
                 (x, g, fx, accepted) = (t, gt, ft, true);
             } else {

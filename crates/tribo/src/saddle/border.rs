@@ -108,38 +108,50 @@ impl<'a> Blocks<'a> {
         }
     }
 
-    /// `x ← L_b⁻¹ x` on block `b`: the unit lower diagonal block, then the rows below it.
-    fn forward(&self, b: usize, x: &mut [f64]) {
+    /// `x ← L_b⁻¹ x` on block `b`: the unit lower diagonal block, then the rows below it (accumulated in
+    /// `tmp`, contiguous, and scattered once).
+    fn forward(&self, b: usize, x: &mut [f64], tmp: &mut Vec<f64>) {
         let cols = self.columns(b);
         let (start, w) = (cols.start, cols.len());
         let (pattern, m) = self.parts(b);
         let nr = w + pattern.len();
+        tmp.clear();
+        tmp.resize(pattern.len(), 0.0);
+        let mut any = false;
         for c in 0..w {
             let col = &m[c * nr..(c + 1) * nr];
             let xc = x[start + c];
             if xc == 0.0 {
                 continue;
             }
+            any = true;
             for r in c + 1..w {
                 x[start + r] -= col[r] * xc;
             }
-            for (&i, l) in pattern.iter().zip(&col[w..]) {
-                x[i] -= l * xc;
+            for (t, l) in tmp.iter_mut().zip(&col[w..]) {
+                *t += l * xc;
+            }
+        }
+        if any {
+            for (&i, t) in pattern.iter().zip(tmp.iter()) {
+                x[i] -= t;
             }
         }
     }
 
-    /// `x ← L_b⁻ᵀ x` on block `b` (the rows below it already final).
-    fn backward(&self, b: usize, x: &mut [f64]) {
+    /// `x ← L_b⁻ᵀ x` on block `b` (the rows below it already final; gathered once into `tmp`).
+    fn backward(&self, b: usize, x: &mut [f64], tmp: &mut Vec<f64>) {
         let cols = self.columns(b);
         let (start, w) = (cols.start, cols.len());
         let (pattern, m) = self.parts(b);
         let nr = w + pattern.len();
+        tmp.clear();
+        tmp.extend(pattern.iter().map(|&i| x[i]));
         for c in (0..w).rev() {
             let col = &m[c * nr..(c + 1) * nr];
-            let below: f64 = pattern.iter().zip(&col[w..]).map(|(&i, l)| l * x[i]).sum();
-            let within: f64 = (c + 1..w).map(|r| col[r] * x[start + r]).sum();
-            x[start + c] -= below + within;
+            let (top, below) = col.split_at(w);
+            let sum = dot(below, tmp) + dot(&top[c + 1..], &x[start + c + 1..start + w]);
+            x[start + c] -= sum;
         }
     }
 
@@ -368,6 +380,7 @@ impl SaddleSystem {
         let inv = self.symbolic.perm().map(|p| p.arrays().1);
         let at = |i: usize| inv.map_or(i, |inv| inv[i]);
         let mut x = try_zeroed::<f64>(nk)?;
+        let mut tmp = Vec::new();
         let mut seen = vec![false; blocks.len()];
         let mut positions = Vec::with_capacity(changed.len());
         for (&j, v) in changed.iter().zip(vectors) {
@@ -380,7 +393,7 @@ impl SaddleSystem {
                 x[at(i)] = val;
             }
             for &k in &reach {
-                blocks.forward(k, &mut x);
+                blocks.forward(k, &mut x, &mut tmp);
             }
             let mut w = Vec::new();
             for &k in &reach {
@@ -432,6 +445,7 @@ impl SaddleSystem {
         };
         let d_inv = &border.d_inv;
         let mut y = vec![0.0; n + self.m];
+        let mut tmp = Vec::new();
         let correct = |x: &mut [f64]| {
             let b1: Vec<f64> = changed.iter().zip(&freed).map(|(&j, &fr)| if fr { x[n + j] } else { 0.0 }).collect();
             for &j in changed {
@@ -442,7 +456,7 @@ impl SaddleSystem {
                 *yi = x[fwd.map_or(i, |f| f[i])];
             }
             for k in 0..blocks.len() {
-                blocks.forward(k, &mut y);
+                blocks.forward(k, &mut y, &mut tmp);
             }
             // w = S⁻¹ (b₁ − Wᵀ D⁻¹ y)
             let mut t = Mat::from_fn(r, 1, |a, _| b1[a] - column_dot(&blocks, d_inv, cols[a], &y));
@@ -462,7 +476,7 @@ impl SaddleSystem {
                 *yi *= di;
             }
             for k in (0..blocks.len()).rev() {
-                blocks.backward(k, &mut y);
+                blocks.backward(k, &mut y, &mut tmp);
             }
             for (i, xi) in x.iter_mut().enumerate() {
                 *xi = y[inv.map_or(i, |v| v[i])];
@@ -478,6 +492,20 @@ impl SaddleSystem {
         };
         self.refine(free, b, nu_fixed, correct)
     }
+}
+
+/// `Σ a_i b_i`, in four independent sums (so that it vectorizes).
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    let mut acc = [0.0; 4];
+    for (x, y) in ca.zip(cb) {
+        for k in 0..4 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
 /// `Σ w_i y_i / d_i` of a border column and a dense (permuted) vector.
