@@ -368,6 +368,9 @@ impl SaddleSystem {
 
     /// The border columns of `changed` for `free`: their positions in `self.border.columns`, the new ones
     /// computed (forward substitutions and products).
+    ///
+    /// # Errors
+    /// [`SaddleError::TooLarge`] when the columns would hold more values than the factor.
     fn border_columns(&mut self, free: &[bool], changed: &[usize]) -> Result<Vec<usize>, SaddleError> {
         let nk = self.n + self.m;
         let vectors: Vec<Vec<(usize, f64)>> = changed.iter().map(|&j| self.border_vector(free, j)).collect();
@@ -401,6 +404,12 @@ impl SaddleSystem {
                     w.push(x[c]);
                     x[c] = 0.0;
                 }
+            }
+            // The columns together may hold no more values than the factor itself: beyond, a new
+            // factorization is the cheaper start (and the memory stays that of the factor).
+            let held: usize = columns.iter().map(|c| c.w.len()).sum::<usize>() + w.len();
+            if held > self.symbolic.len_val() {
+                return Err(SaddleError::TooLarge(format!("border columns holding {held} values")));
             }
             let column = Column { dof: j, v, blocks: reach, w };
             let row: Vec<f64> = columns

@@ -382,3 +382,27 @@ fn nearby_partitions_solve_with_the_bordered_factorization() {
         check_near(&contact_problem(20, 10, false), opts, 12, &format!("D=0 {kind}"));
     }
 }
+
+/// A partition far from the factorized one (every multiplier of a long Γ_C, 80 × 4 elements, changed
+/// sides): the border columns would hold more values than the factor, so the bordered solve declines with a typed error, and the system
+/// still solves its factorized partition (the values of K̃ restored) and, factorized anew, the far one.
+#[test]
+fn a_far_partition_is_declined_not_bordered() {
+    let p = contact_problem(80, 4, true);
+    let (n, m) = (p.n, p.m);
+    let dref = DenseRef::new(&p);
+    let mut sys = SaddleSystem::with_options(&p.a, &p.e_rows, &p.d, seq_opts()).unwrap();
+    let mut rng = Rng(21);
+    let f: Vec<f64> = (0..n).map(|_| rng.sym() * p.h * p.h).collect();
+    let d: Vec<f64> = (0..m).map(|_| rng.sym() * p.h * 1e-3).collect();
+    let nu_b: Vec<f64> = (0..m).map(|_| rng.sym() * p.h * 1e-2).collect();
+    let reference = vec![false; m];
+    sys.factorize(&reference).unwrap();
+    let far = vec![true; m];
+    assert!(matches!(sys.solve_near(&far, &f, &d, &nu_b), Err(SaddleError::TooLarge(_))));
+    let sol = sys.solve(&f, &d, &nu_b).unwrap();
+    assert!(rel_err(&sol.u, &dref.solve(&p, &reference, &f, &d, &nu_b).0) < 1e-8);
+    sys.factorize(&far).unwrap();
+    let sol = sys.solve(&f, &d, &nu_b).unwrap();
+    assert!(rel_err(&sol.u, &dref.solve(&p, &far, &f, &d, &nu_b).0) < 1e-8);
+}
