@@ -529,3 +529,40 @@ fn column_dot(blocks: &Blocks<'_>, d_inv: &[f64], col: &Column, y: &[f64]) -> f6
     }
     sum
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::sparse::linalg::cholesky::supernodal::SupernodalLdltRef;
+
+    /// The block view reads faer's supernodal factor as faer itself does: the same pattern, the same
+    /// number of rows and the same values for every supernode.
+    #[test]
+    fn blocks_read_the_supernodes_as_faer_does() {
+        let p = super::super::testgen::contact_problem(30, 10, true);
+        let opts = SaddleOptions {
+            supernodal_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            par: Par::Seq,
+            ..Default::default()
+        };
+        let mut sys = SaddleSystem::with_options(&p.a, &p.e_rows, &p.d, opts).expect("analysed");
+        sys.factorize(&vec![true; p.m]).expect("factorized");
+        let SymbolicCholeskyRaw::Supernodal(s) = sys.symbolic.raw() else { panic!("supernodal") };
+        let faer = SupernodalLdltRef::new(s, &sys.l_values);
+        let blocks = Blocks::new(&sys.symbolic, &sys.l_values);
+        assert_eq!(blocks.len(), s.n_supernodes());
+        for b in 0..blocks.len() {
+            let node = faer.supernode(b);
+            let (pattern, values) = blocks.parts(b);
+            assert_eq!(pattern, node.pattern(), "supernode {b}");
+            assert_eq!(blocks.columns(b).start, node.start());
+            let m = node.val();
+            assert_eq!((m.nrows(), m.ncols()), (blocks.columns(b).len() + pattern.len(), blocks.columns(b).len()));
+            for c in 0..m.ncols() {
+                for r in 0..m.nrows() {
+                    assert_eq!(values[c * m.nrows() + r], m[(r, c)]);
+                }
+            }
+        }
+    }
+}
