@@ -248,6 +248,14 @@ pub(crate) struct Bounds {
 }
 
 impl Bounds {
+    /// The box of the Γ_C QP on `q_n` normal unknowns (`ν_n ≥ 0`) followed by tangential ones with the
+    /// bounds `b` (`|ν_t| ≤ b`).
+    pub(crate) fn contact(q_n: usize, b: &[f64]) -> Self {
+        let lo = std::iter::repeat_n(0.0, q_n).chain(b.iter().map(|v| -v)).collect();
+        let hi = std::iter::repeat_n(f64::INFINITY, q_n).chain(b.iter().copied()).collect();
+        Self { lo, hi }
+    }
+
     fn project(&self, x: &mut [f64]) {
         for ((xi, lo), hi) in x.iter_mut().zip(&self.lo).zip(&self.hi) {
             *xi = xi.max(*lo).min(*hi);

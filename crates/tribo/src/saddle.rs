@@ -56,7 +56,6 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
 use faer::perm::PermRef;
 use faer::sparse::linalg::amd;
-use faer::sparse::linalg::cholesky::supernodal::SupernodalLdltRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholesky, SymbolicCholeskyRaw,
     SymmetricOrdering,
@@ -69,7 +68,7 @@ mod border;
 #[cfg(test)]
 mod testgen;
 
-use border::Border;
+use border::{Blocks, Border};
 
 /// Errors of [`SaddleSystem`].
 #[derive(Clone, Debug, PartialEq)]
@@ -457,7 +456,7 @@ impl SaddleSystem {
             return Err(SaddleError::InvalidInput(format!("free has length {}, expected {}", free.len(), self.m)));
         }
         self.factorized = false;
-        self.border.clear();
+        self.border.reset(&[]);
         self.free.copy_from_slice(free);
         self.set_values(free);
         let reg = LdltRegularization {
@@ -479,35 +478,15 @@ impl SaddleSystem {
             Err(LdltError::ZeroPivot { index }) => return Err(SaddleError::ZeroPivot { position: index }),
         }
         // count regularized pivots, check finiteness of D
+        // The pivots D: none may be zero or non-finite; those equal to ±δ were regularized.
+        let d = Blocks::new(&self.symbolic, &self.l_values).diagonal();
         let delta = self.opts.reg_delta;
-        let mut count = 0usize;
-        let mut finite = true;
-        let mut visit = |d: f64| {
-            finite &= d.is_finite() && d != 0.0;
-            if delta > 0.0 && d.abs() == delta {
-                count += 1;
-            }
-        };
-        match self.symbolic.raw() {
-            SymbolicCholeskyRaw::Simplicial(s) => {
-                let cp = s.col_ptr();
-                for k in 0..self.n + self.m {
-                    visit(self.l_values[cp[k]]);
-                }
-            }
-            SymbolicCholeskyRaw::Supernodal(s) => {
-                let f = SupernodalLdltRef::<usize, f64>::new(s, &self.l_values);
-                for si in 0..s.n_supernodes() {
-                    let mat = f.supernode(si).val();
-                    for t in 0..mat.ncols() {
-                        visit(mat[(t, t)]);
-                    }
-                }
-            }
-        }
+        let finite = d.iter().all(|v| v.is_finite() && *v != 0.0);
+        let count = if delta > 0.0 { d.iter().filter(|v| v.abs() == delta).count() } else { 0 };
         if !finite {
             return Err(SaddleError::ZeroPivot { position: usize::MAX });
         }
+        self.border.reset(&d);
         self.regularized = count;
         self.factorized = true;
         Ok(())

@@ -225,9 +225,7 @@ pub(crate) fn solve(
         return Some((vec![0.0; idx.len()], 0, 0));
     };
     let scaling = Scaling::new(&diag_s, &c_s, q_n, n_scale, bounds);
-    let lo: Vec<f64> = (0..k).map(|a| if a < q_n { 0.0 } else { -bounds[a - q_n] }).collect();
-    let hi: Vec<f64> = (0..k).map(|a| if a < q_n { f64::INFINITY } else { bounds[a - q_n] }).collect();
-    let out = active_set::solve(&mut op, &c_idx, &Bounds { lo, hi }, start, &scaling, tol, max_steps);
+    let out = active_set::solve(&mut op, &c_idx, &Bounds::contact(q_n, bounds), start, &scaling, tol, max_steps);
     log::debug!(
         "sparse active set on {k} unknowns: certified {}, {} Newton steps ({} LDLᵀ, {} bordered), {} gradient steps",
         out.certified,

@@ -170,17 +170,10 @@ impl<'a> WorkingSetQp<'a> {
         self.bounds.as_ref().map(|b| self.set.iter().map(|&j| b[j]).collect())
     }
 
-    /// The box of the whole QP (its q or 2q unknowns).
-    fn full_bounds(&self) -> Bounds {
-        let b = self.bounds.as_deref().unwrap_or(&[]);
-        let lo = std::iter::repeat_n(0.0, self.q).chain(b.iter().map(|v| -v)).collect();
-        let hi = std::iter::repeat_n(f64::INFINITY, self.q).chain(b.iter().copied()).collect();
-        Bounds { lo, hi }
-    }
-
     /// Keeps `nu` (full size) as the next QP's start, with its places when the active-set method found it.
     fn remember(&mut self, nu: &[f64], by_active_set: bool) {
-        self.places = by_active_set.then(|| active_set::places(nu, &self.full_bounds()));
+        self.places = by_active_set
+            .then(|| active_set::places(nu, &Bounds::contact(self.q, self.bounds.as_deref().unwrap_or(&[]))));
         self.last = Some(nu.to_vec());
     }
 
@@ -227,10 +220,8 @@ impl<'a> WorkingSetQp<'a> {
             return Some(done(vec![0.0; c.len()], 0, 0));
         };
         let scaling = Scaling::new(&diag, &c, s, n_scale, &b);
-        let lo: Vec<f64> = (0..c.len()).map(|i| if i < s { 0.0 } else { -b[i - s] }).collect();
-        let hi: Vec<f64> = (0..c.len()).map(|i| if i < s { f64::INFINITY } else { b[i - s] }).collect();
         let (factorizations, updates) = (op.factorizations, op.updates);
-        let out = active_set::solve(op, &c, &Bounds { lo, hi }, start, &scaling, tol, max_iter);
+        let out = active_set::solve(op, &c, &Bounds::contact(s, &b), start, &scaling, tol, max_iter);
         log::debug!(
             "active set on {} unknowns: certified {}, {} Newton steps ({} factorizations, {} updates), {} gradient steps",
             c.len(),

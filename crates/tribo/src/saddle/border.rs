@@ -47,7 +47,7 @@ use super::*;
 
 /// The factor column block by column block: supernodes, or single columns of a simplicial factor. The
 /// unit lower triangle holds L, the diagonal D.
-enum Blocks<'a> {
+pub(super) enum Blocks<'a> {
     Simplicial {
         col_ptr: &'a [usize],
         row_idx: &'a [usize],
@@ -64,7 +64,7 @@ enum Blocks<'a> {
 }
 
 impl<'a> Blocks<'a> {
-    fn new(symbolic: &'a SymbolicCholesky<usize>, values: &'a [f64]) -> Self {
+    pub(super) fn new(symbolic: &'a SymbolicCholesky<usize>, values: &'a [f64]) -> Self {
         match symbolic.raw() {
             SymbolicCholeskyRaw::Simplicial(s) => {
                 Self::Simplicial { col_ptr: s.col_ptr(), row_idx: s.row_idx(), values }
@@ -156,7 +156,7 @@ impl<'a> Blocks<'a> {
     }
 
     /// D (one value per column).
-    fn diagonal(&self) -> Vec<f64> {
+    pub(super) fn diagonal(&self) -> Vec<f64> {
         let mut d = Vec::new();
         for b in 0..self.len() {
             let w = self.columns(b).len();
@@ -216,7 +216,8 @@ struct Column {
 }
 
 /// The border columns computed since the last factorization, the products `W_aᵀ D⁻¹ W_b` among them
-/// (row a holds b ≤ a) and the tree of the factor (kept across factorizations: the pattern is fixed).
+/// (row a holds b ≤ a), the factorization's `D⁻¹` and the tree of the factor (kept across
+/// factorizations: the pattern is fixed).
 #[derive(Debug, Default)]
 pub(super) struct Border {
     columns: Vec<Column>,
@@ -232,11 +233,11 @@ impl Border {
         self.columns.len()
     }
 
-    /// Forgets the columns (a new factorization).
-    pub(super) fn clear(&mut self) {
+    /// Forgets the columns and takes the pivots `d` of a new factorization (none yet: empty).
+    pub(super) fn reset(&mut self, d: &[f64]) {
         self.columns.clear();
         self.gram.clear();
-        self.d_inv.clear();
+        self.d_inv = d.iter().map(|v| 1.0 / v).collect();
     }
 }
 
@@ -377,9 +378,6 @@ impl SaddleSystem {
         let blocks = Blocks::new(&self.symbolic, &self.l_values);
         let Border { columns, gram, d_inv, tree } = &mut self.border;
         let tree = tree.get_or_insert_with(|| Tree::new(&blocks));
-        if d_inv.is_empty() {
-            *d_inv = blocks.diagonal().iter().map(|d| 1.0 / d).collect();
-        }
         let inv = self.symbolic.perm().map(|p| p.arrays().1);
         let at = |i: usize| inv.map_or(i, |inv| inv[i]);
         let mut x = try_zeroed::<f64>(nk)?;
