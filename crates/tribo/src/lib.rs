@@ -19,7 +19,8 @@
 //! classic mixed method.
 //!
 //! ## How it is solved
-//! 1. [`Problem::new`] validates and assembles K, the loads, Γ_C, T_H and the Γ_C matrices ([`mortar`]).
+//! 1. [`Problem::new`] validates and assembles K, the loads, Γ_C, T_H and the Γ_C matrices
+//!    ([`contact::mortar`]).
 //! 2. [`Problem::condense`] factorizes `A = K − G` (sparse Cholesky, faer) for the chosen γ0 and condenses
 //!    onto the multipliers: `H = E A⁻¹ Eᵀ + Dγ` ([`condensation`]; see [`qp`] for the QP and why its KKT
 //!    conditions are (3.2)). The problem keeps that factorization for the next solve with the same γ0.
@@ -28,19 +29,31 @@
 //!    matrix never changes. [`Problem::solve`] does steps 2 and 3 in one call.
 //! 4. The displacement is recovered with one more solve; [`Solution`] carries every field, the contact
 //!    state per multiplier dof, the discrete KKT residuals and a [`Report`] that says how the solve ended.
-//! 5. [`Condensed::solve_history`] ([`history`]) solves a quasi-static loading history — press, drag,
-//!    unload — step by step on the same factorization: only the QP's linear term ([`loading`]) and the
-//!    Coulomb bounds change from step to step.
+//! 5. [`Condensed::solve_history`] ([`solve::history`]) solves a quasi-static loading history — press,
+//!    drag, unload — step by step on the same factorization: only the QP's linear term (the load case,
+//!    [`problem::load_case`]) and the Coulomb bounds change from step to step.
 //!
-//! ## Module layout
-//! Mathematics first: [`mesh`], [`generate`], [`elasticity`], [`contact`], [`obstacle`], [`multiplier`],
-//! [`mortar`], [`stabilization`] (the γ0-dependent operators), [`supports`] (Dirichlet conditions and the
-//! lifting of prescribed displacements), [`problem`]; then the solver:
-//! [`condensation`] (linear algebra of `A` and `H`), [`qp`] (clarabel), [`working_set`], `sparse_qp` and
-//! `saddle` (the QPs without H, on the sparse saddle-point system), [`friction`],
-//! [`settings`], [`loading`] (the load case: the QP's linear term), [`solve`] (the driver and the fixed
-//! point), [`history`] (loading histories) and [`solution`]. [`choice`] gives every enum
-//! of options its names. No module imports one that imports it back (a test reads the `use` lines).
+//! ## Folders
+//! Folders by job, bottom to top; a folder uses only the folders before it, and the two towers in
+//! brackets never use each other (a test reads the `crate::` paths of every file and checks the table):
+//!
+//! * [`error`] (typed errors, [`Num`]) and [`choice`] (the names of every option);
+//! * [`settings`]: one struct per stage, the flat-name table, the friction law ([`settings::friction`])
+//!   and the γ0 choice ([`Stabilization`]);
+//! * the geometry tower: [`mesh`] (the P1 mesh, its generators, the straight-line test) → [`fem`]
+//!   (elasticity element by element, supports and the unknowns they leave, assembly) → [`contact`] (Γ_C
+//!   and its conventions, the obstacle, T_H, the mortar matrices, the Barbosa–Hughes operators, the γ0
+//!   bound);
+//! * the algebra tower: `linalg` (sparse kernels on faer's factors, no crate imports) →
+//!   [`condensation`] ([`Factor`]: A's factorization and the operator H, and the cost model that picks
+//!   how H is formed) → [`qp`] (the Γ_C QP: clarabel, the active-set method on a dense block or on the
+//!   saddle-point system, and the working set that picks among them);
+//! * [`problem`] (a [`Problem`], its condensed form [`Condensed`], the load case) → [`results`]
+//!   ([`Solution`], [`Report`], the KKT residuals) → [`solve`] (the entry points, the driver, the
+//!   fixed point, histories, progress).
+//!
+//! The module paths of the earlier flat layout (`tribo::mortar`, `tribo::supports`, `tribo::solution`, …)
+//! still resolve, hidden from this documentation.
 //!
 //! ## References
 //! * V. Lleras, *A stabilized Lagrange multiplier method for the finite element approximation of
@@ -59,54 +72,84 @@
 //! formatted by [`Num`].
 #![warn(missing_docs)]
 
-pub mod active_set;
+// The folders, bottom to top; a folder uses only folders before it, and the two towers in brackets never
+// use each other (ARCHITECTURE.md; `tests/integration/layout.rs` checks the table of allowed edges):
+// error, choice → settings → [mesh → fem → contact] and [linalg → condensation → qp] → problem → results
+// → solve.
 pub mod choice;
-pub mod condensation;
-pub mod contact;
-pub mod elasticity;
 pub mod error;
-pub mod friction;
-pub mod generate;
-pub mod history;
-pub mod loading;
-pub mod mesh;
-pub mod mortar;
-pub mod multiplier;
-pub mod obstacle;
-pub mod problem;
-pub mod qp;
-pub(crate) mod saddle;
-pub mod schur;
 pub mod settings;
-pub mod solution;
+
+pub mod contact;
+pub mod fem;
+pub mod mesh;
+
+pub mod condensation;
+pub(crate) mod linalg;
+pub mod qp;
+
+pub mod problem;
+pub mod results;
 pub mod solve;
-pub(crate) mod sparse_qp;
-pub mod stabilization;
-pub mod supports;
-pub mod working_set;
 
 pub use choice::Choice;
 pub use condensation::Factor;
+pub use contact::gamma0::Gamma0Bound;
+pub use contact::multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace};
+pub use contact::obstacle::{GapFunction, Obstacle, ObstacleShape};
 pub use contact::ContactBoundary;
-pub use elasticity::Material;
 pub use error::{Error, Num, Result};
-pub use friction::{Friction, FrictionLaw, Threshold};
-pub use generate::{graded_rectangle, rectangle, Diagonal, Grading, Side};
-pub use history::{History, StepObserver, StepProgress};
-pub use loading::{LoadStep, Loading};
+pub use fem::elasticity::Material;
+pub use fem::supports::{Dofs, NodeSupport, Support};
+pub use mesh::generate::{graded_rectangle, rectangle, Diagonal, Grading, Side};
 pub use mesh::Mesh;
-pub use multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace};
-pub use obstacle::{GapFunction, Obstacle, ObstacleShape};
+pub use problem::load_case::Loading;
 pub use problem::{Condensed, Problem, ProblemSpec};
 pub use qp::{QpOutcome, QpStatus};
+pub use results::{ContactState, KktResiduals, Report, Solution, SolveStatus, Timings};
+pub use settings::friction::{Friction, FrictionLaw, Threshold};
 pub use settings::{
     Condensation, FixedPointSettings, KktSolver, QpMethod, QpSettings, SettingInfo, SettingKind, SettingValue,
-    SolverSettings,
+    SolverSettings, Stabilization,
 };
-pub use solution::{ContactState, KktResiduals, Report, Solution, SolveStatus, Timings};
+pub use solve::history::LoadStep;
+pub use solve::history::{History, StepObserver, StepProgress};
 pub use solve::{Observer, Phase, Progress};
-pub use stabilization::{Gamma0Bound, Stabilization};
-pub use supports::{Dofs, NodeSupport, Support};
+
+// The module paths of the flat layout that the folders replaced: they keep resolving, so that code
+// written against them does not break (hidden from the documentation, which shows the folders).
+#[doc(hidden)]
+pub use contact::{mortar, multiplier, obstacle};
+#[doc(hidden)]
+pub use fem::{elasticity, supports};
+#[doc(hidden)]
+pub use linalg::schur;
+#[doc(hidden)]
+pub use mesh::generate;
+#[doc(hidden)]
+pub use qp::{active_set, working_set};
+#[doc(hidden)]
+pub use settings::friction;
+#[doc(hidden)]
+pub use solve::history;
+/// The old path of [`results`].
+#[doc(hidden)]
+pub mod solution {
+    pub use crate::results::*;
+}
+/// The old path of the γ0 setting, its bound and the Γ_C operators.
+#[doc(hidden)]
+pub mod stabilization {
+    pub use crate::contact::gamma0::*;
+    pub use crate::contact::operators::*;
+    pub use crate::settings::Stabilization;
+}
+/// The old path of [`problem::load_case`].
+#[doc(hidden)]
+pub mod loading {
+    pub use crate::problem::load_case::*;
+    pub use crate::solve::history::LoadStep;
+}
 
 /// The Rust example of README.md, compiled and run as a doctest.
 #[cfg(doctest)]

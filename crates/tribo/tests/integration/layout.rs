@@ -1,102 +1,212 @@
-//! The module structure of the core crate: no module imports (through `use crate::…` or a `crate::…`
-//! path) a module that imports it back, directly or through others. Checked by reading the sources, so
-//! a cycle introduced later fails here with the cycle spelled out.
+//! The house rules of the core crate, checked by reading its sources (`src/**`):
+//!
+//! * **the layer rule**: `error → choice → settings → [mesh → fem → contact] and [linalg →
+//!   condensation → qp] → problem → results → solve`. A folder uses only the folders before it in its
+//!   row of [`LAYERS`]; the two bracketed towers never use each other; `linalg` uses nothing of the crate;
+//! * **files readable in one sitting**: at most [`MAX_LINES`] lines outside a file's `#[cfg(test)]`
+//!   module ([`MAX_LINES_LINALG`] for the sparse kernels in `linalg/`).
+//!
+//! A use is a `crate::x` path in code (doc comments and the unit tests do not count), in a `use` line or
+//! inline, `use crate::{x, y}` groups included.
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-/// Module name → the modules of the crate it refers to.
-fn imports() -> BTreeMap<String, BTreeSet<String>> {
+/// Each folder (or top-level file) of `src/` and the folders it may use.
+const LAYERS: &[(&str, &[&str])] = &[
+    ("error", &[]),
+    ("choice", &["error"]),
+    ("settings", &["error", "choice"]),
+    ("mesh", &["error", "choice", "settings"]),
+    ("fem", &["error", "choice", "settings", "mesh"]),
+    ("contact", &["error", "choice", "settings", "mesh", "fem"]),
+    ("linalg", &[]),
+    ("condensation", &["error", "choice", "settings", "linalg"]),
+    ("qp", &["error", "choice", "settings", "linalg", "condensation"]),
+    ("problem", &["error", "choice", "settings", "mesh", "fem", "contact", "linalg", "condensation", "qp"]),
+    ("results", &["error", "choice", "settings", "mesh", "fem", "contact", "linalg", "condensation", "qp", "problem"]),
+    (
+        "solve",
+        &[
+            "error",
+            "choice",
+            "settings",
+            "mesh",
+            "fem",
+            "contact",
+            "linalg",
+            "condensation",
+            "qp",
+            "problem",
+            "results",
+        ],
+    ),
+];
+
+/// Lines a file may hold outside its unit tests.
+const MAX_LINES: usize = 600;
+/// The same for the sparse kernels of `linalg/`: a supernodal sweep, its symbolic analysis and its
+/// refinement read best in one file.
+const MAX_LINES_LINALG: usize = 800;
+
+/// Every source file under `src/` with its text, except `lib.rs` and files that are test modules
+/// (declared under `#[cfg(test)]` by their parent).
+fn sources() -> Vec<(PathBuf, String)> {
+    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).expect("src/ is readable") {
+            let path = entry.expect("entry").path();
+            if path.is_dir() {
+                walk(&path, out);
+            } else if path.extension().and_then(|e| e.to_str()) == Some("rs") {
+                out.push(path);
+            }
+        }
+    }
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut modules = BTreeMap::new();
-    for entry in std::fs::read_dir(&src).expect("src/ is readable") {
-        let path = entry.expect("entry").path();
-        let name = path.file_stem().and_then(|s| s.to_str()).expect("file name").to_string();
-        if path.extension().and_then(|e| e.to_str()) != Some("rs") || name == "lib" {
+    let mut files = Vec::new();
+    walk(&src, &mut files);
+    files.sort();
+    let texts: Vec<(PathBuf, String)> = files
+        .into_iter()
+        .map(|p| {
+            let text = std::fs::read_to_string(&p).expect("readable source");
+            (p.strip_prefix(&src).expect("under src").to_path_buf(), text)
+        })
+        .collect();
+    // `#[cfg(test)] mod name;` in a parent declares a test-only file `name.rs` beside it (or in its folder).
+    let mut test_only = BTreeSet::new();
+    for (path, text) in &texts {
+        let dir = if path.file_name().is_some_and(|n| n == "mod.rs" || n == "lib.rs") {
+            path.parent().map(Path::to_path_buf).unwrap_or_default()
+        } else {
+            path.with_extension("")
+        };
+        let lines: Vec<&str> = text.lines().map(str::trim).collect();
+        for w in lines.windows(2) {
+            if w[0] == "#[cfg(test)]" {
+                if let Some(name) = w[1].strip_prefix("mod ").and_then(|r| r.strip_suffix(';')) {
+                    test_only.insert(dir.join(format!("{name}.rs")));
+                }
+            }
+        }
+    }
+    texts.into_iter().filter(|(p, _)| p != Path::new("lib.rs") && !test_only.contains(p)).collect()
+}
+
+/// The folder (or top-level file) a source file belongs to: the first component of its path.
+fn folder(path: &Path) -> String {
+    let first = path.components().next().expect("a path").as_os_str().to_string_lossy().to_string();
+    first.strip_suffix(".rs").unwrap_or(&first).to_string()
+}
+
+/// The code of a file above its unit tests, without comment lines.
+fn code(text: &str) -> String {
+    text.split("#[cfg(test)]\nmod tests")
+        .next()
+        .unwrap_or("")
+        .lines()
+        .filter(|l| !l.trim_start().starts_with("//"))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The top-level names a piece of code reaches through `crate::`.
+fn crate_uses(code: &str) -> BTreeSet<String> {
+    let mut deps = BTreeSet::new();
+    for (i, _) in code.match_indices("crate::") {
+        // `$crate::` in a macro is the macro's own crate path, resolved where it is expanded.
+        if code[..i].ends_with('$') {
             continue;
         }
-        let text = std::fs::read_to_string(&path).expect("readable source");
-        // The code above the unit tests, without comments (a doc link is not an import): `crate::x`
-        // paths anywhere in it, `use crate::{x, y}` groups too.
-        let code: String = text
-            .split("#[cfg(test)]")
-            .next()
-            .unwrap_or("")
-            .lines()
-            .filter(|l| !l.trim_start().starts_with("//"))
-            .collect::<Vec<_>>()
-            .join("\n");
-        let mut deps = BTreeSet::new();
-        for (i, _) in code.match_indices("crate::") {
-            let rest = &code[i + "crate::".len()..];
-            if let Some(group) = rest.strip_prefix('{') {
-                let group = &group[..group.find('}').unwrap_or(group.len())];
-                for item in group.split(',') {
-                    let m = item.trim().split("::").next().unwrap_or("").trim();
-                    deps.insert(m.to_string());
-                }
-            } else {
-                let m: String = rest.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
-                deps.insert(m);
+        let rest = &code[i + "crate::".len()..];
+        if let Some(group) = rest.strip_prefix('{') {
+            let group = &group[..group.find('}').unwrap_or(group.len())];
+            for item in group.split(',') {
+                deps.insert(item.trim().split("::").next().unwrap_or("").trim().to_string());
             }
+        } else {
+            deps.insert(rest.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect());
         }
-        modules.insert(name, deps);
     }
-    let known: BTreeSet<String> = modules.keys().cloned().collect();
-    for (name, deps) in modules.iter_mut() {
-        deps.retain(|d| known.contains(d) && d != name);
-    }
-    modules
+    deps
 }
 
-/// A cycle through `start`, if any, as a list of modules.
-fn cycle_from(start: &str, graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> {
-    fn visit(
-        m: &str,
-        start: &str,
-        graph: &BTreeMap<String, BTreeSet<String>>,
-        path: &mut Vec<String>,
-        seen: &mut BTreeSet<String>,
-    ) -> bool {
-        for d in &graph[m] {
-            if d == start {
-                path.push(d.clone());
-                return true;
-            }
-            if seen.insert(d.clone()) {
-                path.push(d.clone());
-                if visit(d, start, graph, path, seen) {
-                    return true;
-                }
-                path.pop();
+/// Folder → the folders it uses, with the file that does it for each edge.
+fn folder_edges() -> BTreeMap<String, BTreeMap<String, String>> {
+    let known: BTreeSet<&str> = LAYERS.iter().map(|(f, _)| *f).collect();
+    let mut edges: BTreeMap<String, BTreeMap<String, String>> = BTreeMap::new();
+    for (path, text) in sources() {
+        let from = folder(&path);
+        let entry = edges.entry(from.clone()).or_default();
+        for to in crate_uses(&code(&text)) {
+            if to != from && known.contains(to.as_str()) {
+                entry.entry(to).or_insert_with(|| path.display().to_string());
             }
         }
-        false
     }
-    let mut path = vec![start.to_string()];
-    visit(start, start, graph, &mut path, &mut BTreeSet::new()).then_some(path)
+    edges
 }
 
 #[test]
-fn core_modules_have_no_import_cycle() {
-    let graph = imports();
-    assert!(graph.len() > 10, "the module list was read: {:?}", graph.keys());
-    assert!(graph["solve"].contains("working_set"), "imports are read: {:?}", graph["solve"]);
-    for m in graph.keys() {
-        if let Some(cycle) = cycle_from(m, &graph) {
-            panic!("import cycle: {}", cycle.join(" -> "));
+fn every_folder_uses_only_the_folders_below_it() {
+    let edges = folder_edges();
+    let allowed: BTreeMap<&str, &[&str]> = LAYERS.iter().copied().collect();
+    for f in edges.keys() {
+        assert!(allowed.contains_key(f.as_str()), "src/{f} is not in the layer table: add it to LAYERS");
+    }
+    assert!(edges["solve"].contains_key("qp"), "the uses are read: {:?}", edges["solve"]);
+    let mut wrong = Vec::new();
+    for (from, to) in &edges {
+        for (t, file) in to {
+            if !allowed[from.as_str()].contains(&t.as_str()) {
+                wrong.push(format!("{from} -> {t} (in src/{file})"));
+            }
         }
     }
+    assert!(wrong.is_empty(), "uses against the layer rule:\n{}", wrong.join("\n"));
 }
 
-/// The test above would see a cycle: a graph with one is reported.
+/// The table itself is a layering: every folder may use only folders listed before it, so no cycle can
+/// pass, and the two towers stay apart.
 #[test]
-fn a_cycle_is_detected() {
-    let mut graph = BTreeMap::new();
-    graph.insert("a".to_string(), BTreeSet::from(["b".to_string()]));
-    graph.insert("b".to_string(), BTreeSet::from(["c".to_string()]));
-    graph.insert("c".to_string(), BTreeSet::from(["a".to_string()]));
-    assert_eq!(cycle_from("a", &graph), Some(vec!["a".into(), "b".into(), "c".into(), "a".into()]));
-    graph.insert("c".to_string(), BTreeSet::new());
-    assert_eq!(cycle_from("a", &graph), None);
+fn the_layer_table_is_a_layering() {
+    for (k, (f, uses)) in LAYERS.iter().enumerate() {
+        let before: Vec<&str> = LAYERS[..k].iter().map(|(g, _)| *g).collect();
+        for u in *uses {
+            assert!(before.contains(u), "{f} may use {u}, which is not below it");
+        }
+    }
+    let allowed: BTreeMap<&str, &[&str]> = LAYERS.iter().copied().collect();
+    let (geometry, algebra) = (["mesh", "fem", "contact"], ["linalg", "condensation", "qp"]);
+    for a in geometry {
+        for b in algebra {
+            assert!(!allowed[a].contains(&b) && !allowed[b].contains(&a), "{a} and {b} are in different towers");
+        }
+    }
+    assert!(allowed["linalg"].is_empty(), "linalg uses nothing of the crate");
+}
+
+/// A use against the rule is seen: the reader finds `crate::` paths in both forms and skips comments.
+#[test]
+fn a_use_against_the_rule_is_seen() {
+    let text = "//! uses crate::solve in a doc\nuse crate::{error::Error, qp::X};\nfn f() { crate::problem::g() }\n";
+    let uses = crate_uses(&code(text));
+    assert_eq!(uses, BTreeSet::from(["error".into(), "qp".into(), "problem".into()]));
+    let allowed: BTreeMap<&str, &[&str]> = LAYERS.iter().copied().collect();
+    assert!(!allowed["qp"].contains(&"problem"), "qp -> problem would be refused");
+}
+
+#[test]
+fn every_file_is_readable_in_one_sitting() {
+    let mut long = Vec::new();
+    let files = sources();
+    assert!(files.len() > 30, "the files were read: {}", files.len());
+    for (path, text) in files {
+        let lines = text.split("#[cfg(test)]\nmod tests").next().unwrap_or("").lines().count();
+        let max = if folder(&path) == "linalg" { MAX_LINES_LINALG } else { MAX_LINES };
+        if lines > max {
+            long.push(format!("src/{}: {lines} lines (at most {max})", path.display()));
+        }
+    }
+    assert!(long.is_empty(), "files too long to read in one sitting:\n{}", long.join("\n"));
 }

@@ -203,3 +203,26 @@ fn constant_strain_without_contact_is_reproduced() {
         }
     }
 }
+
+/// The internal forces computed element by element from the stresses (how a solution gets its reactions)
+/// equal `K u` with K assembled, for a displacement with no structure: two paths to one answer, to
+/// round-off relative to `|K| |u|`.
+#[test]
+fn internal_forces_equal_the_assembled_stiffness_applied() {
+    let mesh = tribo_testkit::distorted_square(6);
+    let material = Material { young: E, poisson: NU };
+    let n = 2 * mesh.n_nodes();
+    let u: Vec<f64> = (0..n).map(|i| ((i * 7919) % 101) as f64 / 101.0 - 0.5).collect();
+    let stresses = elasticity::element_stresses(&mesh, &material, &u);
+    let forces = elasticity::internal_forces(&mesh, &stresses);
+    let mut ku = vec![0.0; n];
+    let mut scale = vec![0.0_f64; n];
+    for t in elasticity::stiffness_triplets(&mesh, &material) {
+        ku[t.row] += t.val * u[t.col];
+        scale[t.row] += (t.val * u[t.col]).abs();
+    }
+    for i in 0..n {
+        let err = (forces[i] - ku[i]).abs();
+        assert!(err <= 64.0 * f64::EPSILON * scale[i], "dof {i}: {} against {} (scale {})", forces[i], ku[i], scale[i]);
+    }
+}

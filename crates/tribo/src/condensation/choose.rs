@@ -1,0 +1,61 @@
+//! How H is formed, chosen from the problem's sizes ([`crate::settings::Condensation::Auto`]): a deterministic cost model
+//! of the three paths — columns of H by solves, all of H by the partial factorization
+//! ([`crate::linalg::schur`]), or no H at all (the saddle-point system, [`crate::linalg::saddle`]) —
+//! calibrated on the measured Hertz families (the numbers are stated with each rule).
+
+/// `nnz(L) / nnz(K)` of the Cholesky factor of A on these meshes (measured 5.5–7).
+pub(super) const CHOLESKY_FILL: usize = 6;
+
+/// Whether doing without H ([`crate::settings::Condensation::Saddle`]) is cheaper than forming its columns, from the
+/// number `w` of normal multipliers the load pushes (`c_j < 0`, the working set's start) and nnz(K). In
+/// units of one sparse solve with A (`≈ 4 nnz(L)` flops, `nnz(L) ≈ 6 nnz(K)` as for [`prefer_schur`]):
+///
+/// * columns: `1.4 w` columns (the Coulomb QPs need normal and tangential columns of about 70 % of the
+///   pushed dofs, measured on the graded Hertz family), solved in blocks at about twice the rate of
+///   single solves (`0.7 w`), plus the dense active-set QPs, about five Cholesky factorizations of the
+///   `2w × 2w` free block (refactorizations and updates, measured): `5 (2w)³ / 3` flops at 1.5× the
+///   rate of a sparse solve;
+/// * saddle: about `0.15 √w` Newton steps with a new sparse LDLᵀ (1.3 × a Cholesky of A ≈ 28 solves, and
+///   two solves) and `√w` bordered ones (about 3 solves each: the bordered solve and the gradients) for
+///   a whole Coulomb solve (measured: 5–7 LDLᵀ with 37–45 bordered steps from 28k to 109k graded
+///   unknowns).
+///
+/// Measured on graded Hertz meshes (whole solve): the saddle system wins from 8k unknowns on (0.07 s
+/// against 0.08 s by columns; 0.19 against 0.24 s at 15k, 0.51 against 0.90 s at 28k), where the
+/// partial factorization ([`prefer_schur`], tried first) is not taken; the rule puts the switch at about
+/// w = 120 pushed dofs.
+pub(super) fn prefer_saddle(nnz_k: usize, w: usize) -> bool {
+    let (w, solve_flops) = (w as f64, 4.0 * 6.0 * nnz_k as f64);
+    let columns = 0.7 * w + 5.0 * (2.0 * w).powi(3) / 3.0 / (1.5 * solve_flops);
+    let saddle = w.sqrt() * (0.15 * (1.3 * 22.0 + 2.0) + 3.0);
+    columns > saddle
+}
+
+/// Whether the saddle-point systems of the active-set steps can be factorized without pivoting: `Dγ`
+/// has a positive diagonal (γ0 > 0: quasi-definite), or `E` has no more rows than the displacement dofs
+/// it touches (γ0 = 0: `E_F` of full row rank, as on matching meshes). Without either (γ0 = 0 with T_H
+/// finer than the FE edges) `E_F` is rank deficient, every step's LDLᵀ breaks down and the dense path
+/// answers after all (measured: 2.1 s against 0.1 s by columns at 8k graded unknowns, H = h/2).
+pub(super) fn quasi_definite(e_rows: &[Vec<(usize, f64)>], d_cols: &[Vec<(usize, f64)>]) -> bool {
+    let d_positive = d_cols.iter().enumerate().all(|(j, col)| col.iter().any(|&(i, v)| i == j && v > 0.0));
+    let mut touched: Vec<usize> = e_rows.iter().flatten().map(|&(d, _)| d).collect();
+    touched.sort_unstable();
+    touched.dedup();
+    d_positive || e_rows.len() <= touched.len()
+}
+
+/// Whether the partial factorization is the cheaper way to H, and fits the memory budget: it forms all
+/// of `E A⁻¹ Eᵀ` (m = 2q rows) for about one factorization with a dense trailing block of `n_c ≈ 2m`
+/// dofs, against `≈ 4 nnz(L) m` flops for m column solves; with `nnz(L) ≈ 6 nnz(K)` on these meshes
+/// (measured 5.5–7) the partial factorization wins when `m² ≲ 3 nnz(L) ≈ 16 nnz(K)` (a square-ish body with
+/// contact along a side: m ~ √n). A long Γ_C with a small contact zone keeps the columns, of which the
+/// working set forms only those it needs.
+pub(super) fn prefer_schur(nnz_k: usize, e_rows: &[Vec<(usize, f64)>], budget: usize) -> (bool, f64) {
+    let m = e_rows.len() as f64;
+    let mut touched: Vec<usize> = e_rows.iter().flatten().map(|&(d, _)| d).collect();
+    touched.sort_unstable();
+    touched.dedup();
+    let nc = touched.len() as f64;
+    let bytes = 8.0 * (nc * nc + nc * m + 2.0 * m * m);
+    (m * m <= 16.0 * nnz_k as f64 && bytes <= budget as f64, bytes)
+}

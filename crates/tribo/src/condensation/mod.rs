@@ -1,0 +1,474 @@
+//! The stabilized system condensed onto Γ_C: one sparse Cholesky factorization of `A = K − G`, then the
+//! multiplier operator `H = E A⁻¹ Eᵀ + Dγ` and the linear term `c = d − E A⁻¹ f` of the QP.
+//!
+//! This module is linear algebra only: it is handed `K`, `−G`, the rows of `E`, `Dγ`, `f` and `d` (built by
+//! [`crate::Problem::condense`] from [`crate::contact::operators`] and [`crate::contact::mortar`]) and knows nothing of
+//! meshes or contact.
+//!
+//! This is the only place that touches all n displacement unknowns. `c` costs one solve; a column of H
+//! costs one solve with the factor (done in blocks of columns) and is computed only when a QP asks for it
+//! and then kept: the working-set QP ([`crate::qp::working_set`]) only needs the columns of the multiplier
+//! dofs that can be in contact, so on a long Γ_C with a small contact zone most of H is never formed.
+//! Every Tresca QP and every Coulomb fixed-point iteration works with multiplier unknowns only; the
+//! displacement is recovered at the end with one more solve.
+
+use std::sync::{Mutex, OnceLock};
+use std::time::Instant;
+
+use faer::linalg::solvers::Solve;
+use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Mat, MatMut, Par, Side};
+
+use crate::error::{Error, Num, Result};
+use crate::linalg::saddle::{SaddleError, SaddleOptions, SaddleSystem};
+use crate::linalg::schur::{self, SchurSymbolic};
+use crate::settings::Condensation;
+
+mod choose;
+mod diagonal;
+
+use choose::{prefer_saddle, prefer_schur, quasi_definite, CHOLESKY_FILL};
+
+/// Number of right-hand sides solved together when forming `A⁻¹ Eᵀ`.
+const BLOCK: usize = 64;
+
+/// Lazily computed columns of H, and the time spent computing them.
+#[derive(Default)]
+struct Columns {
+    cols: Vec<Option<Vec<f64>>>,
+    seconds: f64,
+}
+
+/// The sparse Cholesky factorization of A, in one of two orderings.
+enum Direct {
+    /// Fill-reducing (AMD) ordering, the symbolic factorization of K's pattern: columns of H are solves.
+    Columns(Llt<usize, f64>),
+    /// The dofs E touches ordered last ([`crate::linalg::schur`]): all of `E A⁻¹ Eᵀ` from the trailing block.
+    Schur(schur::SchurFactor),
+}
+
+impl Direct {
+    fn solve_in_place(&self, x: MatMut<'_, f64>) -> Result<()> {
+        match self {
+            Self::Columns(llt) => {
+                llt.solve_in_place(x);
+                Ok(())
+            }
+            Self::Schur(f) => f.solve_in_place(x, Par::rayon(0)).map_err(schur_error),
+        }
+    }
+}
+
+/// The saddle-point kernel's errors as the crate's (its inputs come from the core, so only size and
+/// breakdowns can occur; a breakdown is reported by the caller as an uncertified QP).
+pub(crate) fn saddle_error(e: SaddleError) -> Error {
+    match e {
+        SaddleError::TooLarge(what) => Error::MemoryBudget {
+            what: format!("the saddle-point factorization: {what}"),
+            needed: f64::NAN,
+            budget: f64::NAN,
+        },
+        e => Error::Assembly { matrix: "the saddle-point system [[A, Eᵀ], [E, −Dγ]]", what: e.to_string() },
+    }
+}
+
+fn schur_error(e: schur::Error) -> Error {
+    match e {
+        schur::Error::NotPositiveDefinite { dof } => {
+            Error::NotPositiveDefinite { what: format!("non-positive pivot at unknown {dof}") }
+        }
+        schur::Error::TooLarge { what, bytes } => Error::MemoryBudget {
+            what: format!("the partial factorization's {what}"),
+            needed: bytes as f64,
+            budget: f64::NAN,
+        },
+        schur::Error::InvalidInput(what) => Error::Assembly { matrix: "the Schur complement of A", what },
+    }
+}
+
+/// The saddle-point system of `A`, `E` and `Dγ` (by columns), refused beyond `max_len` factor values
+/// (and beyond `budget` bytes, as [`Error::MemoryBudget`]).
+fn saddle_system(
+    a: &SparseColMat<usize, f64>,
+    e_rows: &[Vec<(usize, f64)>],
+    d_cols: &[Vec<(usize, f64)>],
+    max_len: usize,
+    budget: usize,
+) -> Result<SaddleSystem> {
+    let d: Vec<(usize, usize, f64)> =
+        d_cols.iter().enumerate().flat_map(|(j, col)| col.iter().map(move |&(i, v)| (i, j, v))).collect();
+    let opts = SaddleOptions { max_factor_len: max_len.min(budget / 8), ..Default::default() };
+    SaddleSystem::with_options(a, e_rows, &d, opts).map_err(|e| match e {
+        SaddleError::FactorTooLarge { values } => Error::MemoryBudget {
+            what: "the sparse factor of the saddle-point system [[A, Eᵀ], [E, −Dγ]]".to_string(),
+            needed: 8.0 * values as f64,
+            budget: budget as f64,
+        },
+        e => saddle_error(e),
+    })
+}
+
+/// The factorization of `A = K − G` for one γ0 and the condensed operators it defines: `E`, `Dγ`, `c`,
+/// `d` and the columns of H (computed on demand and kept, or all at once by the partial factorization).
+pub struct Factor {
+    /// The γ0 in use.
+    pub gamma0: f64,
+    /// How H is formed (never [`Condensation::Auto`]: the choice made).
+    pub condensation: Condensation,
+    /// Sparse Cholesky factor of A.
+    direct: Direct,
+    /// A as a sparse matrix (for residuals).
+    a: SparseColMat<usize, f64>,
+    /// Rows of E (2q sparse rows over the unknowns).
+    pub e_rows: Vec<Vec<(usize, f64)>>,
+    /// Columns of H computed so far (2q of them at most, each of length 2q).
+    columns: Mutex<Columns>,
+    /// Linear term `c = d − E A⁻¹ f` (2q) of the problem's own load case.
+    pub c: Vec<f64>,
+    /// `d` (2q): the obstacle's gap and shift moments, minus `E ū` for prescribed displacements ū.
+    pub d: Vec<f64>,
+    /// `E A⁻¹ f` (2q): the load's part of c, kept so that a scaled load needs no new solve.
+    pub e_ainv_f: Vec<f64>,
+    /// The load on the unknowns A was condensed with (`f̃`, with the lifting of prescribed displacements,
+    /// see [`crate::fem::supports`]): the `f` of [`Factor::displacement`] and of the equilibrium residual.
+    pub f: Vec<f64>,
+    /// Dγ by columns over the 2q unknowns (row, value): the q × q block `Dγ` twice on the diagonal.
+    d_cols: Vec<Vec<(usize, f64)>>,
+    /// Wall time of forming A and its numeric factorization, in seconds.
+    pub factorization_seconds: f64,
+    /// The sparse saddle-point system of the QPs that do without H ([`Condensation::Saddle`]), analysed
+    /// when first needed.
+    saddle: Mutex<Option<SaddleSystem>>,
+    /// The estimates of diag H the sparse QPs use, by number k of leading unknowns (`0..k`: q for a
+    /// frictionless QP, 2q with friction), formed once rather than for every QP of the fixed point.
+    h_diagonal_estimates: Mutex<Vec<(usize, Vec<f64>)>>,
+}
+
+impl std::fmt::Debug for Factor {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Factor").field("gamma0", &self.gamma0).field("2q", &self.c.len()).finish()
+    }
+}
+
+impl Factor {
+    /// Factorizes `A = K + minus_g` (on K's pattern, with K's symbolic factorization, formed into
+    /// `symbolic` if it is still empty and this path needs it) and forms `c`.
+    ///
+    /// `e_rows` are the 2q rows of E over the unknowns, `d_gamma` the entries `(i, j, v)` of the q × q
+    /// block Dγ (the same block acts on the normal and on the tangential multipliers), `f` the load and
+    /// `d` the obstacle moments (2q). `condensation` chooses how H is formed ([`Condensation::Auto`]: the
+    /// partial factorization where it is cheaper and fits `budget` bytes, see [`crate::linalg::schur`]).
+    ///
+    /// # Errors
+    /// [`Error::NotPositiveDefinite`] if the Cholesky factorization fails; [`Error::Assembly`] if `−G`
+    /// does not lie in the pattern of K; [`Error::MemoryBudget`] if the partial factorization is asked
+    /// for and its dense parts exceed `budget`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        k: &SparseColMat<usize, f64>,
+        symbolic: &OnceLock<SymbolicLlt<usize>>,
+        minus_g: &[Triplet<usize, usize, f64>],
+        e_rows: Vec<Vec<(usize, f64)>>,
+        d_gamma: Vec<(usize, usize, f64)>,
+        f: &[f64],
+        d: Vec<f64>,
+        gamma0: f64,
+        condensation: Condensation,
+        budget: usize,
+    ) -> Result<Self> {
+        let clock = Instant::now();
+        // A = K − G on K's pattern (G couples the dofs of one triangle, all present in K), factorized
+        // with the symbolic analysis of K: only values change with γ0.
+        let (pattern, k_values) = k.parts();
+        let mut values = k_values.to_vec();
+        let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
+        for t in minus_g {
+            let range = col_ptr[t.col]..col_ptr[t.col + 1];
+            let Ok(pos) = row_idx[range.clone()].binary_search(&t.row) else {
+                return Err(Error::Assembly {
+                    matrix: "K − G",
+                    what: format!("({}, {}) is not in K's pattern", t.row, t.col),
+                });
+            };
+            values[range.start + pos] += t.val;
+        }
+        let pattern = pattern.to_owned().map_err(|e| Error::Assembly { matrix: "K − G", what: format!("{e:?}") })?;
+        let a = SparseColMat::new(pattern, values);
+        let (auto, bytes) = prefer_schur(k.compute_nnz(), &e_rows, budget);
+        let use_schur = match condensation {
+            Condensation::Columns | Condensation::Saddle => false,
+            Condensation::Schur => true,
+            Condensation::Auto => auto,
+        };
+        if condensation == Condensation::Schur && bytes > budget as f64 {
+            return Err(Error::MemoryBudget {
+                what: "the partial factorization's dense trailing block and E A⁻¹ Eᵀ".to_string(),
+                needed: bytes,
+                budget: budget as f64,
+            });
+        }
+        let m = e_rows.len();
+        let q = m / 2;
+        // Dγ by columns: for column j of block b, the rows i of the same block.
+        let mut d_cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); m];
+        for &(i, j, v) in &d_gamma {
+            d_cols[j].push((i, v));
+            d_cols[q + j].push((q + i, v));
+        }
+        let mut cols = vec![None; m];
+        let (direct, factorization_seconds, schur_seconds) = if use_schur {
+            let sym = SchurSymbolic::new(a.symbolic(), &e_rows).map_err(schur_error)?;
+            let factor = sym.factorize(a.as_ref(), Par::rayon(0)).map_err(schur_error)?;
+            let factorization_seconds = clock.elapsed().as_secs_f64();
+            let clock = Instant::now();
+            let s_e = factor.schur(&e_rows, Par::rayon(0)).map_err(schur_error)?;
+            for (j, col) in cols.iter_mut().enumerate() {
+                let mut h: Vec<f64> = (0..m).map(|i| s_e[(i, j)]).collect();
+                for &(r, v) in &d_cols[j] {
+                    h[r] += v;
+                }
+                *col = Some(h);
+            }
+            (Direct::Schur(factor), factorization_seconds, clock.elapsed().as_secs_f64())
+        } else {
+            let symbolic = match symbolic.get() {
+                Some(s) => s,
+                None => {
+                    let s = SymbolicLlt::try_new(k.symbolic(), Side::Lower).map_err(|e| Error::Assembly {
+                        matrix: "the symbolic Cholesky factor of K",
+                        what: format!("{e:?}"),
+                    })?;
+                    symbolic.get_or_init(|| s)
+                }
+            };
+            let llt = Llt::try_new_with_symbolic(symbolic.clone(), a.as_ref(), Side::Lower)
+                .map_err(|e| Error::NotPositiveDefinite { what: format!("{e:?}") })?;
+            (Direct::Columns(llt), clock.elapsed().as_secs_f64(), 0.0)
+        };
+        let clock = Instant::now();
+        let u_f = solve(&direct, f)?;
+        let e_ainv_f: Vec<f64> = e_rows.iter().map(|row| dot(row, &u_f)).collect();
+        let c: Vec<f64> = d.iter().zip(&e_ainv_f).map(|(di, ei)| di - ei).collect();
+        let columns = Mutex::new(Columns { cols, seconds: schur_seconds + clock.elapsed().as_secs_f64() });
+        // The saddle-point system, if asked for or preferred: its symbolic analysis says how large its
+        // factor is before anything of that size is allocated. Asked for, a factor beyond the budget is an
+        // error; preferred, one that fills in much beyond a Cholesky of A (T_H far finer than the FE edges:
+        // the multipliers' block fills) or beyond the budget leaves H to the columns.
+        let pushed = c[..q].iter().filter(|v: &&f64| **v < 0.0).count();
+        let nnz_k = k.compute_nnz();
+        let saddle = match condensation {
+            Condensation::Saddle => Some(saddle_system(&a, &e_rows, &d_cols, budget / 8, budget)?),
+            Condensation::Auto if !use_schur && prefer_saddle(nnz_k, pushed) && quasi_definite(&e_rows, &d_cols) => {
+                saddle_system(&a, &e_rows, &d_cols, 2 * CHOLESKY_FILL * nnz_k, budget).ok()
+            }
+            _ => None,
+        };
+        let condensation = if use_schur {
+            Condensation::Schur
+        } else if saddle.is_some() {
+            Condensation::Saddle
+        } else {
+            Condensation::Columns
+        };
+        log::info!(
+            "factorized A = K − G ({} unknowns) in {} s; {}",
+            a.nrows(),
+            Num(factorization_seconds),
+            match condensation {
+                Condensation::Schur => format!("formed all of the {m} × {m} H in {} s", Num(schur_seconds)),
+                Condensation::Saddle => "H not formed: the QPs solve the sparse saddle-point system".to_string(),
+                _ => "formed c; columns of H as the QPs need them".to_string(),
+            }
+        );
+        Ok(Self {
+            gamma0,
+            condensation,
+            direct,
+            a,
+            e_rows,
+            d_cols,
+            c,
+            d,
+            e_ainv_f,
+            f: f.to_vec(),
+            columns,
+            factorization_seconds,
+            saddle: Mutex::new(saddle),
+            h_diagonal_estimates: Mutex::new(Vec::new()),
+        })
+    }
+
+    /// Number of multiplier dofs per component.
+    pub fn q(&self) -> usize {
+        self.e_rows.len() / 2
+    }
+
+    /// A natural size of λ_n for the linear term `c` (2q), `|c_j| / H_jj` at the normal dof j where
+    /// `|c_n|` is largest: the multiplier at which the quadratic and linear terms of the QP balance there.
+    /// It is non-zero even when the solution is λ = 0, so it serves as the scale of tolerances on λ.
+    pub fn lambda_scale(&self, c: &[f64]) -> f64 {
+        let q = self.q();
+        let Some((j, cj)) = c[..q].iter().enumerate().max_by(|a, b| a.1.abs().total_cmp(&b.1.abs())) else {
+            return 0.0;
+        };
+        let hjj = self.with_columns(&[j], |cols| cols[j].as_ref().expect("computed")[j]);
+        if hjj > 0.0 {
+            cj.abs() / hjj
+        } else {
+            0.0
+        }
+    }
+
+    /// Runs `f` on the column cache after making sure the columns `idx` of H are computed.
+    pub(crate) fn with_columns<R>(&self, idx: &[usize], f: impl FnOnce(&[Option<Vec<f64>>]) -> R) -> R {
+        let mut guard = self.columns.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let missing: Vec<usize> = idx.iter().copied().filter(|&i| guard.cols[i].is_none()).collect();
+        if !missing.is_empty() {
+            let clock = Instant::now();
+            let n = self.a.nrows();
+            let mut x = Mat::<f64>::zeros(n, BLOCK.min(missing.len()));
+            for chunk in missing.chunks(BLOCK) {
+                let mut xb = x.as_mut().subcols_mut(0, chunk.len());
+                xb.fill(0.0);
+                for (col, &i) in chunk.iter().enumerate() {
+                    for &(d, v) in &self.e_rows[i] {
+                        xb[(d, col)] = v;
+                    }
+                }
+                if let Err(e) = self.direct.solve_in_place(xb.as_mut()) {
+                    // Only the partial factorization's solve can fail (its workspace), and it never asks
+                    // for columns: they are all formed with it.
+                    log::error!("column solve failed: {e}");
+                }
+                for (col, &i) in chunk.iter().enumerate() {
+                    let mut h: Vec<f64> =
+                        self.e_rows.iter().map(|row| row.iter().map(|&(d, v)| v * xb[(d, col)]).sum()).collect();
+                    for &(r, v) in &self.d_cols[i] {
+                        h[r] += v;
+                    }
+                    guard.cols[i] = Some(h);
+                }
+            }
+            let seconds = clock.elapsed().as_secs_f64();
+            guard.seconds += seconds;
+            let formed = guard.cols.iter().filter(|c| c.is_some()).count();
+            log::debug!(
+                "formed {} columns of H in {} s ({formed} of {} so far)",
+                missing.len(),
+                Num(seconds),
+                guard.cols.len()
+            );
+        }
+        f(&guard.cols)
+    }
+
+    /// The sub-matrix `H[rows, cols]` (column-major), computing the columns it needs.
+    pub fn h_block(&self, rows: &[usize], cols: &[usize]) -> Vec<f64> {
+        self.with_columns(cols, |all| {
+            cols.iter()
+                .flat_map(|&j| {
+                    let col = all[j].as_ref().expect("computed");
+                    rows.iter().map(move |&i| col[i])
+                })
+                .collect()
+        })
+    }
+
+    /// The whole dense H (column-major 2q × 2q): all 2q columns.
+    pub fn dense_h(&self) -> Vec<f64> {
+        let all: Vec<usize> = (0..self.e_rows.len()).collect();
+        self.h_block(&all, &all)
+    }
+
+    /// Seconds spent so far forming `c` and columns of H.
+    pub fn condensation_seconds(&self) -> f64 {
+        self.columns.lock().unwrap_or_else(std::sync::PoisonError::into_inner).seconds
+    }
+
+    /// The displacement (free dofs) for multipliers λ (2q): `u = A⁻¹ (f − Eᵀ λ)`.
+    ///
+    /// # Errors
+    /// [`Error::MemoryBudget`] if the solve's workspace cannot be allocated.
+    pub fn displacement(&self, f: &[f64], lambda: &[f64]) -> Result<Vec<f64>> {
+        let mut rhs = f.to_vec();
+        for (row, l) in self.e_rows.iter().zip(lambda) {
+            for &(d, v) in row {
+                rhs[d] -= v * l;
+            }
+        }
+        solve(&self.direct, &rhs)
+    }
+
+    /// The diagonal of A.
+    pub(crate) fn a_diagonal(&self) -> Vec<f64> {
+        let a = self.a.as_ref();
+        (0..a.ncols())
+            .map(|j| a.row_idx_of_col(j).zip(a.val_of_col(j)).find(|(i, _)| *i == j).map_or(0.0, |(_, v)| *v))
+            .collect()
+    }
+
+    /// The diagonal of Dγ (2q).
+    pub(crate) fn d_diagonal(&self) -> Vec<f64> {
+        self.d_cols
+            .iter()
+            .enumerate()
+            .map(|(j, col)| col.iter().filter(|(i, _)| *i == j).map(|(_, v)| v).sum())
+            .collect()
+    }
+
+    /// The saddle-point system `[[A, Eᵀ], [E, −Dγ]]` of the QPs that do without H, locked for the
+    /// caller (`None` unless H is [`Condensation::Saddle`]).
+    pub(crate) fn saddle_system(&self) -> std::sync::MutexGuard<'_, Option<SaddleSystem>> {
+        self.saddle.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    /// `A x` (free dofs).
+    pub fn apply_a(&self, x: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; x.len()];
+        let a = self.a.as_ref();
+        for (j, xj) in x.iter().enumerate() {
+            for (i, v) in a.row_idx_of_col(j).zip(a.val_of_col(j)) {
+                y[i] += v * xj;
+            }
+        }
+        y
+    }
+
+    /// `Dγ λ` (2q).
+    pub fn apply_d(&self, lambda: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; lambda.len()];
+        for (col, l) in self.d_cols.iter().zip(lambda) {
+            for &(r, v) in col {
+                y[r] += v * l;
+            }
+        }
+        y
+    }
+
+    /// `E u` (2q).
+    pub fn apply_e(&self, u: &[f64]) -> Vec<f64> {
+        self.e_rows.iter().map(|row| dot(row, u)).collect()
+    }
+
+    /// `Eᵀ λ` (free dofs).
+    pub fn apply_et(&self, lambda: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; self.a.nrows()];
+        for (row, l) in self.e_rows.iter().zip(lambda) {
+            for &(d, v) in row {
+                y[d] += v * l;
+            }
+        }
+        y
+    }
+}
+
+fn dot(row: &[(usize, f64)], x: &[f64]) -> f64 {
+    row.iter().map(|&(d, v)| v * x[d]).sum()
+}
+
+fn solve(direct: &Direct, b: &[f64]) -> Result<Vec<f64>> {
+    let mut x = Mat::<f64>::from_fn(b.len(), 1, |i, _| b[i]);
+    direct.solve_in_place(x.as_mut())?;
+    Ok((0..b.len()).map(|i| x[(i, 0)]).collect())
+}

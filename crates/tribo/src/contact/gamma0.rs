@@ -1,0 +1,81 @@
+//! The admissible bound on γ0: below it, the stabilized stiffness `A = K − G` is positive definite.
+//!
+//! The stabilized stiffness is `A = K − G` with `vᵀ G v = ∫_Γ_C γ (σ_n(v)² + σ_t(v)²)`. For P1, σ = C ε is
+//! constant on T, so on a contact triangle T with edge E
+//!
+//! `vᵀ K_T v − γ0 vᵀ G_T v = |T| εᵀ C ε − γ0 h_T |E| εᵀ C P C ε`,  `P = a_n a_nᵀ + a_t a_tᵀ`,
+//!
+//! where `a_n · σ = σ_n`, `a_t · σ = σ_t`. Writing `C = L Lᵀ`, this is ≥ 0 for all ε iff
+//! `γ0 ≤ γ0_T = |T| / (h_T |E| λ_max(Lᵀ P L))`: a 3 × 3 symmetric eigenproblem per contact triangle.
+//! Since `K ⪰ Σ_{T contact} K_T` (the other elements only add) and Dirichlet conditions make K definite,
+//! `γ0 < min_T γ0_T` guarantees that K − G is positive definite. The bound is sufficient, not necessary:
+//! the global matrix may stay definite somewhat beyond it. γ0 scales like 1/E and like 1/(the shape of
+//! the contact triangles); choosing γ0 as a fraction of the bound makes the choice unit free.
+
+use nalgebra::Matrix3;
+
+use crate::contact::operators::traction_components;
+use crate::contact::ContactBoundary;
+use crate::error::{check_setting, Error, Result};
+use crate::fem::elasticity::Material;
+use crate::mesh::Mesh;
+use crate::settings::Stabilization;
+
+/// The admissible bound on γ0 and the triangle that sets it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Gamma0Bound {
+    /// The bound: `K − G` is positive definite for every γ0 below it.
+    pub value: f64,
+    /// The contact triangle with the smallest bound (an index into the mesh's triangles).
+    pub triangle: usize,
+}
+
+impl Gamma0Bound {
+    /// Resolves a [`Stabilization`] into a value of γ0, checked against the bound.
+    ///
+    /// # Errors
+    /// [`Error::BadSetting`] for a negative or non-finite value or a fraction outside [0, 1);
+    /// [`Error::Gamma0TooLarge`] for γ0 at or above the bound.
+    pub fn resolve(&self, stab: Stabilization) -> Result<f64> {
+        let gamma0 = match stab {
+            Stabilization::None => 0.0,
+            Stabilization::Gamma0(g) | Stabilization::Unchecked(g) => {
+                check_setting("gamma0", g, g >= 0.0, "γ0 must be non-negative")?;
+                g
+            }
+            Stabilization::Fraction(theta) => {
+                let ok = (0.0..1.0).contains(&theta);
+                check_setting("gamma0_fraction", theta, ok, "the fraction must lie in [0, 1)")?;
+                theta * self.value
+            }
+        };
+        if gamma0 > 0.0 && gamma0 >= self.value && !matches!(stab, Stabilization::Unchecked(_)) {
+            return Err(Error::Gamma0TooLarge { gamma0, bound: self.value, element: self.triangle });
+        }
+        Ok(gamma0)
+    }
+}
+
+/// The admissible bound on γ0 (see the module documentation).
+///
+/// The eigenproblem is solved for the material scaled to E = 1 (C is proportional to E), so neither a
+/// huge nor a tiny Young's modulus overflows it; the bound is then divided by E.
+pub fn admissible_gamma0(mesh: &Mesh, material: &Material, contact: &ContactBoundary) -> Gamma0Bound {
+    let unit = Material { young: 1.0, poisson: material.poisson };
+    let (a_n, a_t) = traction_components(contact);
+    let p: Matrix3<f64> = a_n * a_n.transpose() + a_t * a_t.transpose();
+    // C(E = 1) is positive definite for a validated ν; its Cholesky factor exists.
+    let lam = match unit.elasticity_matrix().cholesky() {
+        Some(c) => {
+            let l = c.l();
+            (l.transpose() * p * l).symmetric_eigenvalues().max()
+        }
+        None => f64::NAN,
+    };
+    let (value, triangle) = contact
+        .edges
+        .iter()
+        .map(|e| (mesh.area(e.triangle) / (mesh.diameter(e.triangle) * e.length * lam), e.triangle))
+        .fold((f64::INFINITY, 0), |best, cur| if cur.0 < best.0 { cur } else { best });
+    Gamma0Bound { value: value / material.young, triangle }
+}

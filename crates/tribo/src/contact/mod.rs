@@ -1,0 +1,25 @@
+//! Contact on Γ_C: the boundary segment and its conventions ([`ContactBoundary`]), the rigid obstacle
+//! ([`obstacle`]), the multiplier mesh T_H and its bases ([`multiplier`]), the Γ_C matrices M1–M3 and the
+//! γ-weighted terms, exact on the common refinement ([`mortar`]), the Barbosa–Hughes operators `−G` and
+//! `E` ([`operators`]) and the admissible bound on γ0 ([`gamma0`]).
+//!
+//! # Conventions
+//! * `n` is the unit **outward** normal of the body on Γ_C and `t = (−n₂, n₁)`, as in the paper.
+//!   Normal quantities (`u_n`, `σ_n`, `λ_n`) are components along `n`, tangential ones along `t`.
+//! * Positions on Γ_C are given by an **abscissa** `ξ = (x − o)·d`, where `o` is the foot of the
+//!   perpendicular from the world origin to the line of Γ_C and `d = ±t` is chosen so that it points
+//!   toward increasing x (toward increasing y when Γ_C is vertical). On the top face of a block
+//!   (`n = (0, 1)`, `t = (−1, 0)`) the abscissa is therefore simply `x`, while tangential components are
+//!   along `−x`. [`ContactBoundary::tangent_sign`] is `d · t` (±1).
+//! * Straightness is checked with a tolerance relative to the local edge length: a node may lie at most
+//!   `√ε · h_E` off the line (coordinates rounded to about 8 significant digits still pass).
+
+mod boundary;
+pub mod gamma0;
+pub mod mortar;
+pub mod multiplier;
+pub mod obstacle;
+pub mod operators;
+
+pub use crate::mesh::line::geometric_tol_rel;
+pub use boundary::{ContactBoundary, ContactEdge};

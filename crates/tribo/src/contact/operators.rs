@@ -1,0 +1,120 @@
+//! Barbosa–Hughes stabilization on Γ_C: γ = γ0 h_T on every triangle with an edge on Γ_C, the contact
+//! stresses σ_n(v_h), σ_t(v_h) as linear forms of the element dofs, the stabilization part `−G` of
+//! `A = K − G` and the coupling `E = B − γ0 Cγ S`. How γ0 is chosen is a setting
+//! ([`crate::settings::Stabilization`]); its admissible bound is in [`crate::contact::gamma0`].
+//!
+//! # Where Γ_C is not in contact
+//! The stabilization acts on all of Γ_C: where λ_H = 0 it still adds `−∫γ σ(u_h)·σ(v_h)`. The exact
+//! solution has σ·n = 0 there, so the method stays consistent, but the discrete displacement differs from a
+//! plain elastic solve by a term of order γ0 (measured 3e-4 in energy on a small scene). A traction on
+//! Γ_C itself is rejected ([`crate::Error::TractionOnContact`]): the method takes σ·n = −λ on all of Γ_C.
+
+use faer::sparse::Triplet;
+use nalgebra::{SVector, Vector3};
+
+use crate::contact::mortar::MortarMatrices;
+use crate::contact::ContactBoundary;
+use crate::fem::elasticity::{element_dofs, strain_displacement, Material};
+use crate::mesh::Mesh;
+
+/// Voigt vectors `a` with `a · σ = σ_n` and `a · σ = σ_t` (σ = (σ_xx, σ_yy, σ_xy)).
+pub fn traction_components(contact: &ContactBoundary) -> (Vector3<f64>, Vector3<f64>) {
+    let (n, t) = (contact.normal, contact.tangent);
+    let a_n = Vector3::new(n[0] * n[0], n[1] * n[1], 2.0 * n[0] * n[1]);
+    let a_t = Vector3::new(t[0] * n[0], t[1] * n[1], t[0] * n[1] + t[1] * n[0]);
+    (a_n, a_t)
+}
+
+/// The contact stresses as linear forms of the displacement, per FE edge of Γ_C: `σ_n(v) = s_n · v_T`,
+/// `σ_t(v) = s_t · v_T` with `v_T` the 6 dofs of the owning triangle (interleaved x, y). Everything
+/// here is over all 2N dofs; [`crate::Problem::condense_with`] restricts it to the unknowns and applies it
+/// to the lifting of prescribed displacements.
+#[derive(Debug, Clone)]
+pub struct ContactStress {
+    /// `[s_n, s_t]` per contact edge.
+    pub ops: Vec<[SVector<f64, 6>; 2]>,
+    /// The owning triangle's dofs (indices among all 2N dofs).
+    pub dofs: Vec<[usize; 6]>,
+}
+
+impl ContactStress {
+    /// The stress operators of every contact edge.
+    pub fn new(mesh: &Mesh, material: &Material, contact: &ContactBoundary) -> Self {
+        let c = material.elasticity_matrix();
+        let (a_n, a_t) = traction_components(contact);
+        let ops = contact
+            .edges
+            .iter()
+            .map(|e| {
+                let bt = strain_displacement(mesh, e.triangle).transpose();
+                [bt * (c * a_n), bt * (c * a_t)]
+            })
+            .collect();
+        let dofs = contact.edges.iter().map(|e| element_dofs(&mesh.triangles()[e.triangle])).collect();
+        Self { ops, dofs }
+    }
+
+    /// Triplets of `−G` (the stabilization part of `A = K − G`) over all dofs:
+    /// `vᵀ G v = γ0 Σ_k h_T |E_k| (σ_n(v)² + σ_t(v)²)`.
+    pub fn stiffness_triplets(&self, mortar: &MortarMatrices, gamma0: f64) -> Vec<Triplet<usize, usize, f64>> {
+        let mut trip = Vec::new();
+        if gamma0 == 0.0 {
+            return trip;
+        }
+        for ((ops, dofs), g_h) in self.ops.iter().zip(&self.dofs).zip(&mortar.g_h) {
+            let w = gamma0 * g_h;
+            for s in ops {
+                for (a, &da) in dofs.iter().enumerate() {
+                    for (b, &db) in dofs.iter().enumerate() {
+                        trip.push(Triplet::new(da, db, -w * s[a] * s[b]));
+                    }
+                }
+            }
+        }
+        trip
+    }
+
+    /// Rows of the coupling `E = B − γ0 Cγ S` over all dofs: `2q` sparse rows (normal then
+    /// tangential), each sorted by dof with duplicates summed. `B` is the mortar term
+    /// `∫ ψ_j v_n = Σ_i M2[i, j] (v_i · n)` (and `· t`), `Cγ S` the γ-weighted stress term
+    /// `∫ h_T ψ_j σ(v)`.
+    pub fn coupling_rows(
+        &self,
+        contact: &ContactBoundary,
+        mortar: &MortarMatrices,
+        gamma0: f64,
+    ) -> Vec<Vec<(usize, f64)>> {
+        let q = mortar.psi_integrals.len();
+        let (n, t) = (contact.normal, contact.tangent);
+        let mut rows: Vec<Vec<(usize, f64)>> = vec![Vec::new(); 2 * q];
+        for &(i, j, m) in &mortar.m2.entries {
+            let node = contact.nodes[i];
+            for c in 0..2 {
+                rows[j].push((2 * node + c, m * n[c]));
+                rows[q + j].push((2 * node + c, m * t[c]));
+            }
+        }
+        if gamma0 > 0.0 {
+            for &(j, k, c) in &mortar.c_h.entries {
+                for (comp, row) in [j, q + j].into_iter().enumerate() {
+                    let s = &self.ops[k][comp];
+                    for (l, &d) in self.dofs[k].iter().enumerate() {
+                        rows[row].push((d, -gamma0 * c * s[l]));
+                    }
+                }
+            }
+        }
+        for r in &mut rows {
+            r.sort_by_key(|e| e.0);
+            let mut out: Vec<(usize, f64)> = Vec::with_capacity(r.len());
+            for &(d, v) in r.iter() {
+                match out.last_mut() {
+                    Some(l) if l.0 == d => l.1 += v,
+                    _ => out.push((d, v)),
+                }
+            }
+            *r = out;
+        }
+        rows
+    }
+}

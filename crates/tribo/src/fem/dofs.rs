@@ -1,0 +1,165 @@
+//! The unknowns the supports leave: the map from the 2N nodal dofs to the unknowns and the lifting ū of
+//! the prescribed displacements ([`Dofs`]).
+//!
+//! # Unknowns: a change of basis, then a lifting
+//! Every nodal displacement is written `u_i = T_i x_i + ū_i`:
+//! * free node: `T_i = I` (two unknowns, the x and y components), `ū_i = 0`;
+//! * sliding node: `T_i = t` (one unknown, the tangential component w), `ū_i = v a`;
+//! * fixed node: no unknown, `ū_i` the prescribed displacement.
+//!
+//! So `u = T x + ū` with T (2N × n) having at most one non-zero per row: each global dof follows at most
+//! one unknown, with a coefficient ([`Dofs::unknown`]). For a free node or an axis-aligned roller T is a
+//! selection, as the clamped-only code had; a rotated roller's node has one unknown along its tangent, no
+//! penalty and no extra multiplier. Every operator is assembled over the 2N dofs and restricted with T:
+//! the stiffness `Tᵀ K T` keeps the sparsity of K restricted to the nodes that have unknowns (so its
+//! symbolic Cholesky analysis is done once, as before), `−G` becomes `Tᵀ(−G)T` and the rows of E become
+//! `E T` (a rotated node's two coefficients merge into one).
+//!
+//! # How a prescribed displacement enters the condensed problem
+//! With `A = K − G` and E over all 2N dofs, the stabilized problem in the unknowns x, for test functions
+//! that vanish on Γ_D (`v = T y`), is
+//!
+//! ```text
+//! Tᵀ A T x + Tᵀ Eᵀ λ = Tᵀ f − Tᵀ A ū                       (equilibrium)
+//! H λ + c = d − E (T x + ū) + Dγ λ                         (the complementarity quantities of the QP)
+//! ```
+//!
+//! so with `Ã = Tᵀ A T`, `Ẽ = E T`, the lifted load `f̃ = Tᵀ (f − K ū) + Tᵀ G ū` and the lifted obstacle
+//! moments `d̃ = d − E ū`, the condensation is the clamped one with `(f, d)` replaced by `(f̃, d̃)`:
+//! `x = Ã⁻¹ (f̃ − Ẽᵀ λ)`, `H = Ẽ Ã⁻¹ Ẽᵀ + Dγ`, `c = d̃ − Ẽ Ã⁻¹ f̃`. Both G and E (its stabilization
+//! part `−γ0 Cγ S`, the stress of the contact triangles) depend on γ0 and touch the dofs of a contact
+//! triangle, some of which may be prescribed: so `Tᵀ G ū` and `E ū` are formed per γ0, when A is
+//! factorized ([`crate::Problem::condense_with`]); `Tᵀ K ū` once, in [`crate::Problem::new`]
+//! (`Problem::f_free`). The displacement is `T x + ū` ([`crate::Problem::expand`]) and the reactions
+//! `K u − f` on every constrained dof (their component along a roller's normal at a sliding node).
+//!
+
+use std::collections::HashSet;
+
+use crate::error::{Error, Result};
+use crate::fem::rigid_motions::check_held;
+use crate::fem::supports::{node_supports, NodeSupport, Support};
+use crate::mesh::Mesh;
+
+/// The supports resolved on the nodes: which unknown each dof follows, and the lifting ū.
+#[derive(Debug, Clone)]
+pub struct Dofs {
+    /// Per node, what the supports leave free.
+    pub nodes: Vec<NodeSupport>,
+    /// Per dof (2N, interleaved): the unknown it follows and the coefficient, `u_d = coeff · x_k + ū_d`.
+    map: Vec<Option<(usize, f64)>>,
+    /// Number of unknowns n.
+    pub n_free: usize,
+    /// The lifting ū (2N): the prescribed part of every dof.
+    pub lifting: Vec<f64>,
+    /// Edges (sorted node pairs) that carry a support, for the checks against Γ_C.
+    pub edges: HashSet<[usize; 2]>,
+}
+
+impl Dofs {
+    /// Resolves `supports` on `mesh`.
+    ///
+    /// # Errors
+    /// [`Error::NoDirichlet`] for no support; [`Error::UnknownEdgeSet`]; [`Error::BadSupport`] for a
+    /// non-finite or missing prescribed value; [`Error::SupportNotStraight`] for a roller on a set that is
+    /// not straight; [`Error::ConflictingSupports`]; [`Error::FloatingPiece`] / [`Error::RigidMotion`]
+    /// for a piece that the supports do not hold.
+    pub fn new(mesh: &Mesh, supports: &[Support]) -> Result<Self> {
+        if supports.is_empty() {
+            return Err(Error::NoDirichlet);
+        }
+        let n_nodes = mesh.n_nodes();
+        let (nodes, edges) = node_supports(mesh, supports)?;
+        check_held(mesh, &nodes)?;
+        let mut map = vec![None; 2 * n_nodes];
+        let mut lifting = vec![0.0; 2 * n_nodes];
+        let mut n_free = 0;
+        for (i, ns) in nodes.iter().enumerate() {
+            match *ns {
+                NodeSupport::Free => {
+                    map[2 * i] = Some((n_free, 1.0));
+                    map[2 * i + 1] = Some((n_free + 1, 1.0));
+                    n_free += 2;
+                }
+                NodeSupport::Slide { normal, tangent, value } => {
+                    for c in 0..2 {
+                        // An axis-aligned roller leaves one dof untouched by the unknown: no entry.
+                        map[2 * i + c] = (tangent[c] != 0.0).then_some((n_free, tangent[c]));
+                        lifting[2 * i + c] = value * normal[c];
+                    }
+                    n_free += 1;
+                }
+                NodeSupport::Fixed { value } => {
+                    lifting[2 * i] = value[0];
+                    lifting[2 * i + 1] = value[1];
+                }
+            }
+        }
+        Ok(Self { nodes, map, n_free, lifting, edges })
+    }
+
+    /// The unknown that dof `d` follows and its coefficient (`u_d = coeff · x_k + ū_d`), or `None` for
+    /// a prescribed dof.
+    pub fn unknown(&self, d: usize) -> Option<(usize, f64)> {
+        self.map[d]
+    }
+
+    /// True when no support prescribes a non-zero displacement.
+    pub fn homogeneous(&self) -> bool {
+        self.lifting.iter().all(|v| *v == 0.0)
+    }
+
+    /// `u = T x + ū` (all 2N dofs) from the unknowns x.
+    pub fn expand(&self, x: &[f64]) -> Vec<f64> {
+        self.map.iter().zip(&self.lifting).map(|(m, l)| m.map_or(0.0, |(k, a)| a * x[k]) + l).collect()
+    }
+
+    /// `Tᵀ v` (n) for a vector v over all 2N dofs.
+    pub fn restrict(&self, v: &[f64]) -> Vec<f64> {
+        let mut out = vec![0.0; self.n_free];
+        for (m, vd) in self.map.iter().zip(v) {
+            if let Some((k, a)) = m {
+                out[*k] += a * vd;
+            }
+        }
+        out
+    }
+
+    /// Sparse rows over all 2N dofs as rows over the unknowns (`row · T`), sorted with duplicates summed.
+    pub fn restrict_rows(&self, rows: &[Vec<(usize, f64)>]) -> Vec<Vec<(usize, f64)>> {
+        rows.iter()
+            .map(|row| {
+                let mut r: Vec<(usize, f64)> =
+                    row.iter().filter_map(|&(d, v)| self.map[d].map(|(k, a)| (k, a * v))).collect();
+                r.sort_by_key(|e| e.0);
+                let mut out: Vec<(usize, f64)> = Vec::with_capacity(r.len());
+                for (k, v) in r {
+                    match out.last_mut() {
+                        Some(l) if l.0 == k => l.1 += v,
+                        _ => out.push((k, v)),
+                    }
+                }
+                out
+            })
+            .collect()
+    }
+
+    /// Keeps the part of the nodal forces `r` (2N) that the supports take: all of it at a fixed node, the
+    /// component along the condition at a sliding node, nothing at a free node.
+    pub fn keep_reactions(&self, r: &mut [f64]) {
+        for (i, ns) in self.nodes.iter().enumerate() {
+            match *ns {
+                NodeSupport::Free => {
+                    r[2 * i] = 0.0;
+                    r[2 * i + 1] = 0.0;
+                }
+                NodeSupport::Slide { normal, .. } => {
+                    let rn = r[2 * i] * normal[0] + r[2 * i + 1] * normal[1];
+                    r[2 * i] = rn * normal[0];
+                    r[2 * i + 1] = rn * normal[1];
+                }
+                NodeSupport::Fixed { .. } => {}
+            }
+        }
+    }
+}

@@ -1,0 +1,199 @@
+//! Plane-strain isotropic linear elasticity with P1 triangles.
+//!
+//! Degrees of freedom are interleaved: dof `2 i` is the x displacement of node `i`, dof `2 i + 1` its y
+//! displacement. Stresses use Voigt order `(σ_xx, σ_yy, σ_xy)` and strains `(ε_xx, ε_yy, 2 ε_xy)`.
+
+use faer::sparse::{SparseColMat, Triplet};
+use nalgebra::{Matrix3, SMatrix, Vector3};
+
+use crate::error::{Error, Num, Result};
+use crate::mesh::Mesh;
+
+/// Strain-displacement matrix of one P1 triangle: `ε = B v_T`, with `v_T` the 6 local dofs.
+pub type StrainDisplacement = SMatrix<f64, 3, 6>;
+
+/// Isotropic material in plane strain.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material {
+    /// Young's modulus E > 0.
+    pub young: f64,
+    /// Poisson's ratio ν, −1 < ν < 1/2.
+    pub poisson: f64,
+}
+
+impl Material {
+    /// Checks E > 0 (a normal, not subnormal, float whose elasticity matrix is finite) and
+    /// −1 + √ε ≤ ν ≤ 1/2 − √ε/2.
+    ///
+    /// The margins are derived: with `1 − 2ν < √ε` the volumetric stiffness exceeds the shear stiffness
+    /// by more than 2/√ε ≈ 1.3e8, so the factorization of K loses every digit of the shear part (and the
+    /// method locks long before); `1 + ν < √ε` is the same for the bulk modulus near ν = −1.
+    ///
+    /// # Errors
+    /// [`Error::BadMaterial`] naming the constant.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |what: String| Err(Error::BadMaterial { what });
+        if !(self.young.is_normal() && self.young > 0.0) {
+            return bad(format!("Young's modulus must be positive, finite and not subnormal, got {}", Num(self.young)));
+        }
+        let nu = self.poisson;
+        if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
+            return bad(format!("Poisson's ratio must lie in (-1, 0.5) in plane strain, got {nu}"));
+        }
+        let margin = f64::EPSILON.sqrt();
+        if 1.0 - 2.0 * nu < margin || 1.0 + nu < margin {
+            return bad(format!(
+                "Poisson's ratio {nu} is too close to {}: 1 − 2ν = {} and 1 + ν = {} must both be at least √ε = {}, or the stiffness loses all its digits",
+                if nu > 0.0 { "1/2" } else { "−1" },
+                Num(1.0 - 2.0 * nu),
+                Num(1.0 + nu),
+                Num(margin)
+            ));
+        }
+        if !self.elasticity_matrix().iter().all(|c| c.is_finite()) {
+            return bad(format!("Young's modulus {} overflows the elasticity matrix", Num(self.young)));
+        }
+        Ok(())
+    }
+
+    /// Plane-strain elasticity matrix `C` with `σ = C ε` (Voigt, engineering shear strain).
+    pub fn elasticity_matrix(&self) -> Matrix3<f64> {
+        let (e, nu) = (self.young, self.poisson);
+        let f = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
+        Matrix3::new(f * (1.0 - nu), f * nu, 0.0, f * nu, f * (1.0 - nu), 0.0, 0.0, 0.0, f * (1.0 - 2.0 * nu) / 2.0)
+    }
+
+    /// The out-of-plane stress of plane strain (ε_zz = 0): `σ_zz = ν (σ_xx + σ_yy)` for `s = (σ_xx, σ_yy, σ_xy)`.
+    pub fn sigma_zz(&self, s: [f64; 3]) -> f64 {
+        self.poisson * (s[0] + s[1])
+    }
+
+    /// Von Mises stress of a plane-strain stress state (σ_zz = ν (σ_xx + σ_yy)), computed on the stresses
+    /// divided by the largest of them so that no square overflows.
+    pub fn von_mises(&self, s: [f64; 3]) -> f64 {
+        let m = s.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        if m == 0.0 || !m.is_finite() {
+            return if m == 0.0 { 0.0 } else { f64::NAN };
+        }
+        let [a, b, c] = s.map(|v| v / m);
+        let szz = self.poisson * (a + b);
+        m * (0.5 * ((a - b).powi(2) + (b - szz).powi(2) + (szz - a).powi(2)) + 3.0 * c * c).sqrt()
+    }
+}
+
+/// Local dof indices of triangle `tri` (interleaved x, y per node).
+pub fn element_dofs(tri: &[usize; 3]) -> [usize; 6] {
+    [2 * tri[0], 2 * tri[0] + 1, 2 * tri[1], 2 * tri[1] + 1, 2 * tri[2], 2 * tri[2] + 1]
+}
+
+/// Strain-displacement matrix `B` of triangle `t` (constant over the triangle).
+pub fn strain_displacement(mesh: &Mesh, t: usize) -> StrainDisplacement {
+    let [p0, p1, p2] = mesh.vertices(t);
+    let two_area = 2.0 * mesh.area(t);
+    // Gradients of the barycentric coordinates.
+    let b = [p1[1] - p2[1], p2[1] - p0[1], p0[1] - p1[1]];
+    let c = [p2[0] - p1[0], p0[0] - p2[0], p1[0] - p0[0]];
+    let mut m = StrainDisplacement::zeros();
+    for i in 0..3 {
+        let (dx, dy) = (b[i] / two_area, c[i] / two_area);
+        m[(0, 2 * i)] = dx;
+        m[(1, 2 * i + 1)] = dy;
+        m[(2, 2 * i)] = dy;
+        m[(2, 2 * i + 1)] = dx;
+    }
+    m
+}
+
+/// Element stiffness `|T| Bᵀ C B` (6 × 6).
+pub fn element_stiffness(mesh: &Mesh, t: usize, c: &Matrix3<f64>) -> SMatrix<f64, 6, 6> {
+    let b = strain_displacement(mesh, t);
+    b.transpose() * c * b * mesh.area(t)
+}
+
+/// Triplets of the global stiffness matrix (2N × 2N, duplicates to be summed).
+pub fn stiffness_triplets(mesh: &Mesh, material: &Material) -> Vec<Triplet<usize, usize, f64>> {
+    let c = material.elasticity_matrix();
+    let mut trip = Vec::with_capacity(36 * mesh.n_triangles());
+    for (t, tri) in mesh.triangles().iter().enumerate() {
+        let k = element_stiffness(mesh, t, &c);
+        let dofs = element_dofs(tri);
+        for (j, &dj) in dofs.iter().enumerate() {
+            for (i, &di) in dofs.iter().enumerate() {
+                trip.push(Triplet::new(di, dj, k[(i, j)]));
+            }
+        }
+    }
+    trip
+}
+
+/// Global stiffness matrix K (2N × 2N, all dofs, no support applied).
+///
+/// # Errors
+/// [`Error::Assembly`] if faer cannot build the matrix (index overflow, allocation failure).
+pub fn stiffness(mesh: &Mesh, material: &Material) -> Result<SparseColMat<usize, f64>> {
+    let n = 2 * mesh.n_nodes();
+    SparseColMat::try_new_from_triplets(n, n, &stiffness_triplets(mesh, material))
+        .map_err(|e| Error::Assembly { matrix: "K", what: format!("{e:?}") })
+}
+
+/// Adds the load of a constant body force `f` (per unit area) to `rhs`: each node of T gets `|T| f / 3`.
+pub fn add_body_force(mesh: &Mesh, f: [f64; 2], rhs: &mut [f64]) {
+    for (t, tri) in mesh.triangles().iter().enumerate() {
+        let w = mesh.area(t) / 3.0;
+        for &i in tri {
+            rhs[2 * i] += w * f[0];
+            rhs[2 * i + 1] += w * f[1];
+        }
+    }
+}
+
+/// Adds the load of a constant traction `g` (force per unit length) on a set of boundary edges to `rhs`.
+pub fn add_traction(mesh: &Mesh, edges: &[[usize; 2]], g: [f64; 2], rhs: &mut [f64]) {
+    for &[a, b] in edges {
+        let w = 0.5 * mesh.edge_length(a, b);
+        for i in [a, b] {
+            rhs[2 * i] += w * g[0];
+            rhs[2 * i + 1] += w * g[1];
+        }
+    }
+}
+
+/// Constant stress `(σ_xx, σ_yy, σ_xy)` in every triangle for the nodal displacement `u` (length 2N).
+pub fn element_stresses(mesh: &Mesh, material: &Material, u: &[f64]) -> Vec<[f64; 3]> {
+    let c = material.elasticity_matrix();
+    mesh.triangles()
+        .iter()
+        .enumerate()
+        .map(|(t, tri)| {
+            let ut = nalgebra::SVector::<f64, 6>::from_iterator(element_dofs(tri).iter().map(|&d| u[d]));
+            let s: Vector3<f64> = c * (strain_displacement(mesh, t) * ut);
+            [s[0], s[1], s[2]]
+        })
+        .collect()
+}
+
+/// The internal forces `K u` on all 2N dofs from the element stresses of `u` ([`element_stresses`]),
+/// element by element: `K_T u_T = |T| Bᵀ σ_T`, so no matrix is assembled (the reactions of every solve
+/// and history step come from here).
+pub fn internal_forces(mesh: &Mesh, stresses: &[[f64; 3]]) -> Vec<f64> {
+    let mut out = vec![0.0; 2 * mesh.n_nodes()];
+    for (t, (tri, s)) in mesh.triangles().iter().zip(stresses).enumerate() {
+        let f = strain_displacement(mesh, t).transpose() * Vector3::from(*s) * mesh.area(t);
+        for (&d, fd) in element_dofs(tri).iter().zip(f.iter()) {
+            out[d] += fd;
+        }
+    }
+    out
+}
+
+/// Elastic energy norm `sqrt(uᵀ K u)` of a nodal displacement, element by element.
+pub fn energy_norm(mesh: &Mesh, material: &Material, u: &[f64]) -> f64 {
+    let c = material.elasticity_matrix();
+    let mut e = 0.0;
+    for (t, tri) in mesh.triangles().iter().enumerate() {
+        let ut = nalgebra::SVector::<f64, 6>::from_iterator(element_dofs(tri).iter().map(|&d| u[d]));
+        let eps = strain_displacement(mesh, t) * ut;
+        e += mesh.area(t) * eps.dot(&(c * eps));
+    }
+    e.sqrt()
+}

@@ -1,0 +1,11 @@
+//! The finite element side of the body: P1 plane-strain elasticity element by element ([`elasticity`]:
+//! B, the element stiffness, loads, stresses, internal forces), the global assembly on the unknowns
+//! ([`assemble`]), the Dirichlet conditions ([`supports`]:
+//! clamps, rollers, prescribed displacements, combined per node), the unknowns they leave
+//! (`dofs`: `u = T x + ū`) and the check that they hold every piece (`rigid_motions`).
+
+pub mod assemble;
+mod dofs;
+pub mod elasticity;
+mod rigid_motions;
+pub mod supports;

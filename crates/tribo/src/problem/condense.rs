@@ -1,0 +1,185 @@
+//! A problem condensed onto its multipliers for one γ0 ([`Condensed`]), and the one-entry cache of the
+//! factorization that lets a second solve with the same γ0 skip it.
+//!
+//! The three names around the condensed operator: [`crate::Factor`] is the linear algebra (A's
+//! factorization, E, Dγ, c and the columns of H, knowing nothing of meshes); [`Condensed`] pairs a
+//! `Factor` with the [`Problem`] it came from; [`crate::Condensation`] is the setting that says how H is
+//! formed.
+
+use std::sync::{Arc, Mutex, PoisonError};
+
+use faer::sparse::Triplet;
+
+use crate::condensation::Factor;
+use crate::error::{Error, Result};
+use crate::problem::Problem;
+use crate::settings::{Condensation, SolverSettings, Stabilization};
+
+/// A one-entry cache of the factorization, keyed by γ0 and the condensation asked for. A clone of the
+/// problem shares the entry it had (the factorization depends only on the problem's data and the key).
+#[derive(Default)]
+pub(super) struct FactorCache(Mutex<Option<(Condensation, Arc<Factor>)>>);
+
+impl FactorCache {
+    fn get(&self, gamma0: f64, asked: Condensation) -> Option<Arc<Factor>> {
+        let guard = self.0.lock().unwrap_or_else(PoisonError::into_inner);
+        guard.as_ref().filter(|(c, f)| *c == asked && f.gamma0.to_bits() == gamma0.to_bits()).map(|(_, f)| f.clone())
+    }
+
+    fn set(&self, asked: Condensation, factor: Arc<Factor>) {
+        *self.0.lock().unwrap_or_else(PoisonError::into_inner) = Some((asked, factor));
+    }
+}
+
+impl Clone for FactorCache {
+    fn clone(&self) -> Self {
+        Self(Mutex::new(self.0.lock().unwrap_or_else(PoisonError::into_inner).clone()))
+    }
+}
+
+impl std::fmt::Debug for FactorCache {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let gamma0 = self.0.lock().unwrap_or_else(PoisonError::into_inner).as_ref().map(|(_, f)| f.gamma0);
+        f.debug_tuple("FactorCache").field(&gamma0).finish()
+    }
+}
+
+/// A problem condensed onto its multipliers for one γ0: the problem (borrowed, so a factorization can
+/// never be paired with another problem) and the factorization of `A = K − G` with the multiplier
+/// operator it defines ([`Factor`]). Build it with [`Problem::condense`]; solve with
+/// [`Condensed::solve`].
+#[derive(Debug, Clone)]
+pub struct Condensed<'p> {
+    problem: &'p Problem,
+    factor: Arc<Factor>,
+    reused: bool,
+}
+
+impl<'p> Condensed<'p> {
+    /// The problem this was condensed from.
+    pub fn problem(&self) -> &'p Problem {
+        self.problem
+    }
+
+    /// The factorization and the condensed operators.
+    pub fn factor(&self) -> &Factor {
+        &self.factor
+    }
+
+    /// The γ0 in use.
+    pub fn gamma0(&self) -> f64 {
+        self.factor.gamma0
+    }
+
+    /// Number of multiplier dofs q (per component).
+    pub fn q(&self) -> usize {
+        self.factor.q()
+    }
+
+    /// True when the factorization came from the problem's cache (an earlier condensation with the same
+    /// γ0) rather than being computed now.
+    pub fn reused_factorization(&self) -> bool {
+        self.reused
+    }
+}
+
+impl Problem {
+    /// Factorizes `A = K − G` for the γ0 that `stabilization` asks for and condenses onto the
+    /// multipliers, or takes the factorization of the previous call if it had the same γ0; H is formed
+    /// as the default settings choose ([`Problem::condense_with`] chooses).
+    ///
+    /// # Errors
+    /// [`Error::BadSetting`] / [`Error::Gamma0TooLarge`] for a bad γ0; [`Error::NotPositiveDefinite`] if
+    /// `K − G` is not positive definite (only possible for [`Stabilization::Unchecked`] beyond the bound).
+    pub fn condense(&self, stabilization: Stabilization) -> Result<Condensed<'_>> {
+        let d = SolverSettings::default();
+        self.condense_with(stabilization, d.condensation, d.memory_budget)
+    }
+
+    /// As [`Problem::condense`], with H formed as `condensation` asks within `memory_budget` bytes.
+    ///
+    /// # Errors
+    /// As [`Problem::condense`]; [`Error::MemoryBudget`] when the partial factorization is asked for and
+    /// does not fit.
+    pub fn condense_with(
+        &self,
+        stabilization: Stabilization,
+        condensation: Condensation,
+        memory_budget: usize,
+    ) -> Result<Condensed<'_>> {
+        let gamma0 = self.gamma0_bound.resolve(stabilization)?;
+        if let Some(factor) = self.factor_cache.get(gamma0, condensation) {
+            return Ok(Condensed { problem: self, factor, reused: true });
+        }
+        // −G and E over all dofs, restricted to the unknowns; their action on the lifting ū gives the
+        // γ0-dependent part of the lifted load and obstacle moments (see [`crate::fem::supports`]).
+        let minus_g_full = self.contact_stress.stiffness_triplets(&self.mortar, gamma0);
+        let e_full = self.contact_stress.coupling_rows(&self.contact, &self.mortar, gamma0);
+        let ubar = &self.dofs.lifting;
+        let mut f = self.f_free.clone();
+        let mut d = self.obstacle_moments();
+        if !self.dofs.homogeneous() {
+            let mut g_lift = vec![0.0; ubar.len()];
+            for t in &minus_g_full {
+                g_lift[t.row] += t.val * ubar[t.col];
+            }
+            for (fi, gi) in f.iter_mut().zip(self.dofs.restrict(&g_lift)) {
+                *fi -= gi;
+            }
+            for (di, row) in d.iter_mut().zip(&e_full) {
+                *di -= row.iter().map(|&(k, v)| v * ubar[k]).sum::<f64>();
+            }
+        }
+        let minus_g: Vec<_> = minus_g_full
+            .iter()
+            .filter_map(|t| {
+                let ((i, a), (j, b)) = (self.dofs.unknown(t.row)?, self.dofs.unknown(t.col)?);
+                Some(Triplet::new(i, j, a * b * t.val))
+            })
+            .collect();
+        let e_rows = self.dofs.restrict_rows(&e_full);
+        let d_gamma: Vec<(usize, usize, f64)> = if gamma0 > 0.0 {
+            self.mortar.d_h.entries.iter().map(|&(i, j, v)| (i, j, gamma0 * v)).collect()
+        } else {
+            Vec::new()
+        };
+        let factor = Factor::new(
+            &self.k_matrix,
+            &self.symbolic,
+            &minus_g,
+            e_rows,
+            d_gamma,
+            &f,
+            d,
+            gamma0,
+            condensation,
+            memory_budget,
+        )
+        .map_err(|e| match e {
+            // At γ0 = 0 the matrix is K itself: the supports hold every piece (checked at the door), so only
+            // a material or a mesh at the limits of floating point is left; do not blame the stabilization.
+            Error::NotPositiveDefinite { what } if gamma0 == 0.0 => Error::NotPositiveDefinite {
+                what: format!(
+                    "{what}; γ0 = 0, so this is K itself (a material or mesh at the limits of floating point)"
+                ),
+            },
+            Error::NotPositiveDefinite { what } => Error::NotPositiveDefinite {
+                what: format!(
+                    "{what} (γ0 = {}, admissible bound {})",
+                    crate::error::Num(gamma0),
+                    crate::error::Num(self.gamma0_bound.value)
+                ),
+            },
+            e => e,
+        })?;
+        let factor = Arc::new(factor);
+        self.factor_cache.set(condensation, factor.clone());
+        Ok(Condensed { problem: self, factor, reused: false })
+    }
+
+    /// Drops the cached factorization, so that the next [`Problem::condense`] factorizes again (for
+    /// benchmarks, and to free its memory).
+    pub fn forget_factorization(&self) {
+        *self.factor_cache.0.lock().unwrap_or_else(PoisonError::into_inner) = None;
+    }
+}

@@ -1,0 +1,55 @@
+//! The load case of a solve: everything the QP and the fields depend on besides `A` and `H`.
+//!
+//! For a condensed problem, a load case is the load `f`, the obstacle moments `d` and the QP's linear
+//! term `c = d − E A⁻¹ f` (see [`crate::condensation`]), with the gap and the origin of slip at the FE
+//! nodes of Γ_C for the reported fields. A static solve has one, built from the problem's own data
+//! ([`Loading::of_problem`]). A step of a loading history has its own (derived in [`crate::solve::history`]). Neither changes `A`, `H` or `Dγ`, so every load case of a problem shares one
+//! factorization.
+
+use crate::condensation::Factor;
+use crate::problem::Problem;
+use crate::qp::QpData;
+
+/// One load case of a condensed problem.
+#[derive(Debug, Clone)]
+pub struct Loading {
+    /// Load on the free dofs.
+    pub f_free: Vec<f64>,
+    /// Load on all 2N dofs (for the reactions).
+    pub f_full: Vec<f64>,
+    /// `d` (2q): the gap moments `∫ψ_j g`, then the tangential data the slip is measured from.
+    pub d: Vec<f64>,
+    /// `c = d − E A⁻¹ f` (2q), the QP's linear term.
+    pub c: Vec<f64>,
+    /// The gap `g = g₀ − δ` at the FE nodes of Γ_C.
+    pub gap: Vec<f64>,
+    /// The obstacle's approach δ and tangential position s.
+    pub approach: f64,
+    /// See `approach`.
+    pub shift: f64,
+    /// At the FE nodes of Γ_C, the tangential displacement from which slip is measured: the shift s of a
+    /// static solve, `u_t^{k−1} + s_k − s_{k−1}` in step k of a history.
+    pub slip_origin: Vec<f64>,
+}
+
+impl Loading {
+    /// The data a Γ_C QP needs of this load case.
+    pub fn qp_data(&self) -> QpData<'_> {
+        QpData { f: &self.f_free, d: &self.d, c: &self.c }
+    }
+
+    /// The problem's own load case (the static solve).
+    pub fn of_problem(problem: &Problem, factor: &Factor) -> Self {
+        let shift = problem.spec.obstacle.shift;
+        Self {
+            f_free: factor.f.clone(),
+            f_full: problem.f_full.clone(),
+            d: factor.d.clone(),
+            c: factor.c.clone(),
+            gap: problem.contact_gap.clone(),
+            approach: problem.spec.obstacle.approach,
+            shift,
+            slip_origin: vec![shift; problem.contact.nodes.len()],
+        }
+    }
+}

@@ -1,0 +1,197 @@
+//! A contact problem: mesh, material, supports, loads, contact boundary, obstacle and multiplier mesh,
+//! assembled once into everything that does not depend on γ0 or on friction; and its condensed form for
+//! one γ0 ([`Condensed`]), which borrows the problem it was built from.
+//!
+//! The problem keeps the factorization of its last [`Problem::condense`] (one entry, keyed by γ0), so
+//! solving it again with the same γ0 (another friction law, other solver settings) costs no
+//! factorization: [`crate::Report::reused_factorization`] says when that happened.
+
+pub mod load_case;
+
+mod condense;
+
+pub use condense::Condensed;
+
+use std::sync::OnceLock;
+use std::time::Instant;
+
+use faer::sparse::linalg::solvers::SymbolicLlt;
+use faer::sparse::SparseColMat;
+
+use crate::contact::gamma0::{admissible_gamma0, Gamma0Bound};
+use crate::contact::mortar::MortarMatrices;
+use crate::contact::multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace};
+use crate::contact::obstacle::Obstacle;
+use crate::contact::operators::ContactStress;
+use crate::contact::ContactBoundary;
+use crate::error::{Error, Result};
+use crate::fem::assemble::{assemble, LinearSystem};
+use crate::fem::elasticity::Material;
+use crate::fem::supports::{Dofs, NodeSupport, Support};
+use crate::mesh::Mesh;
+use condense::FactorCache;
+
+/// Everything that defines a contact problem besides the mesh.
+#[derive(Debug, Clone)]
+pub struct ProblemSpec {
+    /// Material.
+    pub material: Material,
+    /// Names of the clamped edge sets (u = 0): shorthand for [`Support::Clamp`] entries of `supports`.
+    pub clamped: Vec<String>,
+    /// Further Dirichlet conditions: rollers (symmetry lines) and prescribed displacements (see
+    /// [`crate::fem::supports`]). Γ_D is the union of these and `clamped`.
+    pub supports: Vec<Support>,
+    /// Constant body force f (per unit area).
+    pub body_force: [f64; 2],
+    /// Constant tractions (per unit length) on named edge sets (Γ_N).
+    pub tractions: Vec<(String, [f64; 2])>,
+    /// Name of the contact edge set Γ_C.
+    pub contact: String,
+    /// The rigid obstacle.
+    pub obstacle: Obstacle,
+    /// Points of the multiplier mesh T_H.
+    pub multiplier_points: MultiplierPoints,
+    /// Multiplier space.
+    pub multiplier_space: MultiplierSpace,
+}
+
+/// Timings of the set-up phases, in seconds.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SetupTimings {
+    /// Stiffness and load assembly (the symbolic Cholesky factorization of K's pattern is formed by the
+    /// first condensation that needs it, and timed with it).
+    pub assembly: f64,
+    /// Contact geometry, multiplier mesh and Γ_C matrices.
+    pub contact_matrices: f64,
+}
+
+/// An assembled contact problem (independent of γ0 and friction).
+#[derive(Debug, Clone)]
+pub struct Problem {
+    /// The mesh.
+    pub mesh: Mesh,
+    /// The specification it was built from.
+    pub spec: ProblemSpec,
+    /// Γ_C.
+    pub contact: ContactBoundary,
+    /// T_H.
+    pub multipliers: MultiplierMesh,
+    /// The Γ_C matrices.
+    pub mortar: MortarMatrices,
+    /// The supports resolved on the nodes: the unknown each dof follows and the lifting ū
+    /// (`u = T x + ū`, see [`crate::fem::supports`]).
+    pub dofs: Dofs,
+    /// Number of unknowns n.
+    pub n_free: usize,
+    /// Stiffness on the unknowns, `Tᵀ K T` (CSC, both triangles). Its pattern is also the pattern of
+    /// the stabilized `A = K − G` (G couples the dofs of one triangle only).
+    pub k_matrix: SparseColMat<usize, f64>,
+    /// Symbolic Cholesky factorization of that pattern (fill-reducing ordering, elimination tree),
+    /// computed by the first condensation that factorizes A by it (H by columns, or the saddle-point
+    /// system's gradients; the partial factorization has its own ordering) and reused for every γ0.
+    pub symbolic: OnceLock<SymbolicLlt<usize>>,
+    /// Load on the unknowns with the lifting through K, `Tᵀ (f − K ū)`; the part through G, which
+    /// depends on γ0, is added when A is factorized ([`crate::Factor::f`]).
+    pub f_free: Vec<f64>,
+    /// Full load vector (all 2N dofs), for reactions.
+    pub f_full: Vec<f64>,
+    /// The gap `g = g₀ − δ` at the FE nodes of Γ_C (in the order of `contact.nodes`).
+    pub contact_gap: Vec<f64>,
+    /// σ_n(v), σ_t(v) on each contact edge as linear forms of the unknowns.
+    pub contact_stress: ContactStress,
+    /// Admissible bound on γ0 and the triangle that sets it.
+    pub gamma0_bound: Gamma0Bound,
+    /// Set-up timings.
+    pub timings: SetupTimings,
+    /// The factorization of the last [`Problem::condense`].
+    factor_cache: FactorCache,
+}
+
+impl Problem {
+    /// Validates the specification against the mesh and assembles the problem.
+    ///
+    /// # Errors
+    /// Any input error: material, unknown edge sets, no support, bad or conflicting supports, a piece the
+    /// supports do not hold, non-finite loads, Γ_C not straight or not connected or overlapping Γ_D, bad
+    /// obstacle, bad multiplier points.
+    pub fn new(mesh: Mesh, spec: ProblemSpec) -> Result<Self> {
+        let clock = Instant::now();
+        spec.material.validate()?;
+        spec.obstacle.validate()?;
+        let supports: Vec<Support> =
+            spec.clamped.iter().map(|set| Support::clamp(set.as_str())).chain(spec.supports.iter().cloned()).collect();
+        let dofs = Dofs::new(&mesh, &supports)?;
+        let n_free = dofs.n_free;
+        let LinearSystem { k_matrix, f_free, f_full } =
+            assemble(&mesh, &spec.material, spec.body_force, &spec.tractions, &dofs)?;
+        let assembly = clock.elapsed().as_secs_f64();
+
+        let clock = Instant::now();
+        let contact = ContactBoundary::new(&mesh, &spec.contact)?;
+        // The gap at the nodes of Γ_C: every value the solver and its results use is checked.
+        let contact_gap = contact.node_xi.iter().map(|&xi| spec.obstacle.gap(xi)).collect::<Result<Vec<f64>>>()?;
+        let contact_edges: std::collections::HashSet<[usize; 2]> =
+            contact.edges.iter().map(|e| [e.left.min(e.right), e.left.max(e.right)]).collect();
+        for e in &contact.edges {
+            if dofs.edges.contains(&[e.left.min(e.right), e.left.max(e.right)]) {
+                return Err(Error::ContactOverlapsDirichlet { set: spec.contact.clone(), a: e.left, b: e.right });
+            }
+        }
+        for (traction_set, _) in &spec.tractions {
+            for &[a, b] in mesh.edge_set(traction_set)? {
+                if contact_edges.contains(&[a.min(b), a.max(b)]) {
+                    return Err(Error::TractionOnContact {
+                        set: spec.contact.clone(),
+                        traction_set: traction_set.clone(),
+                        a,
+                        b,
+                    });
+                }
+            }
+        }
+        if contact.nodes.iter().all(|&node| matches!(dofs.nodes[node], NodeSupport::Fixed { .. })) {
+            return Err(Error::ContactFullyClamped { set: spec.contact.clone() });
+        }
+        let multipliers = MultiplierMesh::new(&contact, &spec.multiplier_points, spec.multiplier_space)?;
+        let h_t: Vec<f64> = contact.edges.iter().map(|e| mesh.diameter(e.triangle)).collect();
+        let mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &spec.obstacle)?;
+        let contact_stress = ContactStress::new(&mesh, &spec.material, &contact);
+        let gamma0_bound = admissible_gamma0(&mesh, &spec.material, &contact);
+        let contact_matrices = clock.elapsed().as_secs_f64();
+        Ok(Self {
+            mesh,
+            spec,
+            contact,
+            multipliers,
+            mortar,
+            dofs,
+            n_free,
+            k_matrix,
+            symbolic: OnceLock::new(),
+            f_free,
+            f_full,
+            contact_gap,
+            contact_stress,
+            gamma0_bound,
+            timings: SetupTimings { assembly, contact_matrices },
+            factor_cache: FactorCache::default(),
+        })
+    }
+
+    /// `d = (∫ψ_j g, ∫ψ_j s)` (2q): the obstacle's gap and tangential shift tested with the multiplier
+    /// basis, the part of the QP's linear term that the obstacle contributes (see [`crate::contact::obstacle`]).
+    pub fn obstacle_moments(&self) -> Vec<f64> {
+        let shift = self.spec.obstacle.shift;
+        self.mortar.gap_moments.iter().copied().chain(self.mortar.psi_integrals.iter().map(|w| w * shift)).collect()
+    }
+
+    /// Number of multiplier dofs q (per component).
+    pub fn n_multipliers(&self) -> usize {
+        self.multipliers.n_dofs()
+    }
+
+    /// The displacement on all 2N dofs from the unknowns: `u = T x + ū` (prescribed values included).
+    pub fn expand(&self, x: &[f64]) -> Vec<f64> {
+        self.dofs.expand(x)
+    }
+}

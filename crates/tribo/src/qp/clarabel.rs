@@ -1,0 +1,306 @@
+//! The Γ_C QP solved by clarabel's interior-point method: the reference every faster method is tested
+//! against, and the fallback of [`QpMethod::Auto`].
+
+use std::time::Instant;
+
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{DefaultSettings, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus};
+
+use crate::error::{Error, Result};
+use crate::qp::{diagonal, QpOutcome, QpStatus, Scaling, FALLBACK_TOL};
+use crate::settings::friction::check_thresholds;
+use crate::settings::{QpMethod, QpSettings};
+
+/// The box-constrained QP of P(g) (frictional) or of the frictionless problem, set up once; the
+/// tangential bounds g can be changed between solves.
+///
+/// A frictional QP is written in the scaled variables `τ = ν_t / w_t` (see the `scaling` module of [`crate::qp`]) with the box
+/// `|τ_j| ≤ g_j / w_t,j`, and `|τ_j| ≤ 1` where `g_j` vanishes (separated dofs, `w_t,j = 0`): the box always
+/// has an interior, which a box `−0 ≤ ν_t ≤ 0` would not have. Changing g then changes the values of P, q
+/// and b but not their pattern, so clarabel's set-up
+/// (symbolic factorization of its KKT matrix) is reused across the whole fixed point.
+pub struct BoxQp {
+    solver: Option<DefaultSolver<f64>>,
+    settings: QpSettings,
+    /// The tolerance asked for (`settings.tol` may have fallen back to [`FALLBACK_TOL`]).
+    requested_tol: f64,
+    h: Vec<f64>,
+    c: Vec<f64>,
+    q: usize,
+    frictional: bool,
+    n_scale: f64,
+    bounds: Vec<f64>,
+}
+
+impl std::fmt::Debug for BoxQp {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("BoxQp").field("q", &self.q).field("frictional", &self.frictional).finish()
+    }
+}
+
+fn status_name(s: SolverStatus) -> &'static str {
+    match s {
+        SolverStatus::Unsolved => "unsolved",
+        SolverStatus::Solved => "solved",
+        SolverStatus::PrimalInfeasible => "primal infeasible",
+        SolverStatus::DualInfeasible => "dual infeasible (the contact problem has no bounded multiplier)",
+        SolverStatus::AlmostSolved => "almost solved",
+        SolverStatus::AlmostPrimalInfeasible => "almost primal infeasible",
+        SolverStatus::AlmostDualInfeasible => "almost dual infeasible",
+        SolverStatus::MaxIterations => "iteration limit",
+        SolverStatus::MaxTime => "time limit",
+        SolverStatus::NumericalError => "numerical error",
+        SolverStatus::InsufficientProgress => "insufficient progress",
+        SolverStatus::CallbackTerminated => "stopped by callback",
+    }
+}
+
+/// clarabel's settings for our tolerances: presolve off (so data updates work), its KKT solver, and
+/// *reduced* tolerances no looser than ours. clarabel stops early ("almost solved") when it cannot make
+/// progress but meets its reduced tolerances, 5e-5 (gap) and 1e-4 (feasibility) by default: far too
+/// loose for λ (a Tresca QP stopped there was 3 % off). We accept only answers that meet the looser of
+/// `tol` and [`FALLBACK_TOL`].
+fn clarabel_settings(settings: &QpSettings) -> DefaultSettings<f64> {
+    let accepted = settings.tol.max(FALLBACK_TOL);
+    DefaultSettings::<f64> {
+        verbose: false,
+        tol_gap_abs: settings.tol,
+        tol_gap_rel: settings.tol,
+        tol_feas: settings.tol,
+        tol_ktratio: settings.tol.sqrt(),
+        reduced_tol_gap_abs: accepted,
+        reduced_tol_gap_rel: accepted,
+        reduced_tol_feas: accepted,
+        reduced_tol_ktratio: accepted.sqrt(),
+        max_iter: settings.max_iter,
+        presolve_enable: false,
+        direct_solve_method: settings.kkt_solver.to_string(),
+        ..DefaultSettings::default()
+    }
+}
+
+impl BoxQp {
+    /// Sets up the QP. `h` is the dense symmetric `H` (column-major, `k × k` with `k = q` for a
+    /// frictionless QP and `k = 2q` otherwise), `c` the linear term, `bounds` the tangential bounds
+    /// (length q) for a frictional QP, `None` for a frictionless one.
+    ///
+    /// The settings are taken as validated ([`QpSettings::validate`]).
+    ///
+    /// # Errors
+    /// [`Error::QpSetup`] if clarabel rejects the data; [`Error::BadThreshold`].
+    pub fn new(h: &[f64], c: &[f64], q: usize, bounds: Option<&[f64]>, settings: &QpSettings) -> Result<Self> {
+        let frictional = bounds.is_some();
+        let k = if frictional { 2 * q } else { q };
+        debug_assert_eq!(h.len(), k * k, "bug: H has the wrong size");
+        debug_assert_eq!(c.len(), k, "bug: c has the wrong size");
+        if let Some(g) = bounds {
+            check_thresholds(g, q)?;
+        }
+        let n_scale = Scaling::normal_scale(&diagonal(h, c.len()), c, q);
+        let mut qp = Self {
+            solver: None,
+            settings: *settings,
+            requested_tol: settings.tol,
+            h: h.to_vec(),
+            c: c.to_vec(),
+            q,
+            frictional,
+            n_scale: n_scale.unwrap_or(0.0),
+            bounds: bounds.map_or_else(Vec::new, <[f64]>::to_vec),
+        };
+        if n_scale.is_none() {
+            // Nothing pushes at all (c = 0): λ = 0 solves P(g).
+            return Ok(qp);
+        }
+        qp.solver = Some(qp.setup()?);
+        Ok(qp)
+    }
+
+    /// Builds clarabel's solver for the current data and settings.
+    fn setup(&self) -> Result<DefaultSolver<f64>> {
+        let (q, frictional, settings) = (self.q, self.frictional, &self.settings);
+        let k = if frictional { 2 * q } else { q };
+        let (p, qv, b) = self.scaled_data();
+        // Upper triangle of P in CSC.
+        let mut colptr = Vec::with_capacity(k + 1);
+        let mut rowval = Vec::with_capacity(k * (k + 1) / 2);
+        colptr.push(0);
+        for j in 0..k {
+            rowval.extend(0..=j);
+            colptr.push(rowval.len());
+        }
+        let p = CscMatrix::new(k, k, colptr, rowval, p);
+        // Constraints A x + s = b, s ≥ 0:  −ν_n ≤ 0;  τ ≤ 1;  −τ ≤ 1.
+        let m = if frictional { 3 * q } else { q };
+        let mut colptr = Vec::with_capacity(k + 1);
+        let (mut rowval, mut nzval) = (Vec::with_capacity(m), Vec::with_capacity(m));
+        colptr.push(0);
+        for j in 0..q {
+            rowval.push(j);
+            nzval.push(-1.0);
+            colptr.push(rowval.len());
+        }
+        if frictional {
+            for j in 0..q {
+                rowval.extend([q + j, 2 * q + j]);
+                nzval.extend([1.0, -1.0]);
+                colptr.push(rowval.len());
+            }
+        }
+        let a = CscMatrix::new(m, k, colptr, rowval, nzval);
+        let cs = clarabel_settings(settings);
+        DefaultSolver::new(&p, &qv, &a, &b, &[NonnegativeConeT(m)], cs)
+            .map_err(|e| Error::QpSetup { what: e.to_string() })
+    }
+
+    /// Values of the upper triangle of the scaled P (column by column) and the scaled q, for the current
+    /// bounds: variables `x = (ν_n / s, τ)`, objective divided by the largest diagonal entry.
+    fn scaled_data(&self) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let scaling = Scaling::new(&diagonal(&self.h, self.c.len()), &self.c, self.q, self.n_scale, &self.bounds);
+        // Rows: −x_n ≤ 0, then x_t ≤ box, then −x_t ≤ box.
+        let tbox = scaling.tangential_box(self.q, &self.bounds);
+        let b: Vec<f64> =
+            std::iter::repeat_n(0.0, self.q).chain(tbox.iter().copied()).chain(tbox.iter().copied()).collect();
+        let Scaling { w, phi: f, .. } = scaling;
+        let k = w.len();
+        let mut p = Vec::with_capacity(k * (k + 1) / 2);
+        for j in 0..k {
+            for i in 0..=j {
+                p.push(w[i] * self.h[j * k + i] * w[j] / f);
+            }
+        }
+        let qv = (0..k).map(|i| w[i] * self.c[i] / f).collect();
+        (p, qv, b)
+    }
+
+    /// Replaces the tangential bounds g (length q) without rebuilding the solver.
+    ///
+    /// # Errors
+    /// [`Error::BadThreshold`] for a wrong length or a negative value; [`Error::QpSetup`] if clarabel
+    /// refuses the update.
+    pub fn set_bounds(&mut self, g: &[f64]) -> Result<()> {
+        debug_assert!(self.frictional, "bug: bounds on a frictionless QP");
+        check_thresholds(g, self.q)?;
+        self.bounds.copy_from_slice(g);
+        let (p, qv, b) = self.scaled_data();
+        if let Some(solver) = self.solver.as_mut() {
+            solver.update_b(&b).map_err(|e| Error::QpSetup { what: format!("{e:?}") })?;
+            solver.update_P(&p).map_err(|e| Error::QpSetup { what: format!("{e:?}") })?;
+            solver.update_q(&qv).map_err(|e| Error::QpSetup { what: format!("{e:?}") })?;
+        }
+        Ok(())
+    }
+
+    /// Solves the QP. If it fails at a tolerance tighter than [`FALLBACK_TOL`], it is solved again at
+    /// that tolerance (and stays there for later solves with new bounds): clarabel cannot always reach
+    /// 1e-12 on a badly conditioned H, and an answer to 1e-10 beats none. Every answer that meets only
+    /// the fallback tolerance is reported as [`QpStatus::Inaccurate`].
+    pub fn solve(&mut self) -> QpOutcome {
+        let out = self.solve_once();
+        if !matches!(out.status, QpStatus::Failed(_)) || self.settings.tol >= FALLBACK_TOL {
+            return out;
+        }
+        log::warn!(
+            "QP failed ({:?}) at tol {}: solving again at {}",
+            out.status,
+            crate::error::Num(self.settings.tol),
+            crate::error::Num(FALLBACK_TOL)
+        );
+        self.settings.tol = FALLBACK_TOL;
+        match self.setup() {
+            Ok(solver) => self.solver = Some(solver),
+            Err(_) => return out,
+        }
+        let mut again = self.solve_once();
+        again.iterations += out.iterations;
+        again.seconds += out.seconds;
+        again
+    }
+
+    fn solve_once(&mut self) -> QpOutcome {
+        let q = self.q;
+        let k = if self.frictional { 2 * q } else { q };
+        let Some(solver) = self.solver.as_mut() else {
+            return QpOutcome {
+                nu: vec![0.0; k],
+                status: QpStatus::Solved,
+                iterations: 0,
+                seconds: 0.0,
+                method: QpMethod::Clarabel,
+                factorizations: 0,
+                fallback: false,
+            };
+        };
+        let clock = Instant::now();
+        solver.solve();
+        let sol = &solver.solution;
+        let status = match sol.status {
+            SolverStatus::Solved if self.settings.tol <= self.requested_tol => QpStatus::Solved,
+            SolverStatus::Solved | SolverStatus::AlmostSolved => QpStatus::Inaccurate,
+            s => QpStatus::Failed(status_name(s)),
+        };
+        let w = Scaling::new(&diagonal(&self.h, self.c.len()), &self.c, q, self.n_scale, &self.bounds).w;
+        let nu = (0..k).map(|i| sol.x[i] * w[i]).collect();
+        QpOutcome {
+            nu,
+            status,
+            iterations: sol.iterations,
+            seconds: clock.elapsed().as_secs_f64(),
+            method: QpMethod::Clarabel,
+            factorizations: 0,
+            fallback: false,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A small frictional QP (q = 2) with both normal multipliers active and one tangential bound hit.
+    fn small_qp(settings: &QpSettings) -> BoxQp {
+        #[rustfmt::skip]
+        let h = [
+            4.0, 1.0, 0.5, 0.0,
+            1.0, 3.0, 0.0, 0.5,
+            0.5, 0.0, 2.0, 0.3,
+            0.0, 0.5, 0.3, 2.0,
+        ];
+        let c = [-2.0, -1.5, 1.0, -0.1];
+        BoxQp::new(&h, &c, 2, Some(&[0.2, 0.2]), settings).expect("valid QP")
+    }
+
+    #[test]
+    fn almost_solved_is_never_looser_than_the_fallback_tolerance() {
+        for tol in [1e-14, 1e-12, FALLBACK_TOL, 1e-8, 1e-6] {
+            let cs = clarabel_settings(&QpSettings { tol, ..Default::default() });
+            let accepted = tol.max(FALLBACK_TOL);
+            for (name, v) in [
+                ("gap_abs", cs.reduced_tol_gap_abs),
+                ("gap_rel", cs.reduced_tol_gap_rel),
+                ("feas", cs.reduced_tol_feas),
+            ] {
+                assert!(v <= accepted, "tol {tol:e}: reduced {name} = {v:e} accepts answers worse than {accepted:e}");
+            }
+            assert!(cs.reduced_tol_ktratio <= accepted.sqrt(), "tol {tol:e}: reduced κ/τ ratio");
+        }
+    }
+
+    /// After a fallback a QP stays at FALLBACK_TOL for later solves (new bounds), and each of those
+    /// answers is reported as Inaccurate, not Solved; the same QP asked for FALLBACK_TOL is Solved.
+    #[test]
+    fn answers_after_a_fallback_are_reported_inaccurate() {
+        let strict = QpSettings { tol: 1e-12, ..Default::default() };
+        let mut qp = small_qp(&strict);
+        assert_eq!(qp.solve().status, QpStatus::Solved, "a well-conditioned QP reaches 1e-12");
+        // What solve() does when clarabel fails at the requested tolerance.
+        qp.settings.tol = FALLBACK_TOL;
+        qp.solver = Some(qp.setup().expect("set up"));
+        for bounds in [[0.2, 0.2], [0.1, 0.3]] {
+            qp.set_bounds(&bounds).expect("valid bounds");
+            assert_eq!(qp.solve().status, QpStatus::Inaccurate, "bounds {bounds:?}");
+        }
+        let mut loose = small_qp(&QpSettings { tol: FALLBACK_TOL, ..Default::default() });
+        assert_eq!(loose.solve().status, QpStatus::Solved);
+    }
+}

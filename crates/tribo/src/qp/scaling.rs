@@ -1,0 +1,65 @@
+//! The scaling of the Γ_C QP.
+//!
+//! clarabel's tolerances are absolute as well as relative, so the QP is non-dimensionalised before it is
+//! handed over. The unknowns are `x = (ν_n / s, ν_t / w_t)` with `s = c_s / h_s` (`h_s = max diag H_nn`,
+//! `c_s = max |c_n|`, the size of λ_n for which the quadratic and linear terms balance) and
+//! `w_t,j = min(g_j, s_t)`, `s_t = max(s, c_st / h_st)` the natural size of λ_t (`c_st`, `h_st` as `c_s`,
+//! `h_s` on the tangential unknowns); the box is then `|x_t,j| ≤ g_j / w_t,j ≥ 1`. The objective is divided
+//! by the largest diagonal entry of the resulting P. The scaled data are O(1) whatever the units of E and
+//! of lengths, and a friction bound far above the multiplier it limits (a Tresca threshold of 1e6 where
+//! |λ_t| ≈ 2) only loosens the box instead of shrinking every tangential entry of P by g².
+
+/// The scaling of the QP clarabel is handed (see the module documentation): `x̃_i = x_i / w_i` (`w_i = s`
+/// on a normal unknown, `min(g_j, s_t)` on a tangential one, 0 where the bound vanishes) and the objective
+/// divided by `φ = max_i w_i² H_ii`. The active-set method certifies its answers in the same scaled units
+/// ([`crate::qp::active_set`]).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Scaling {
+    /// `w_i` per unknown.
+    pub w: Vec<f64>,
+    /// `φ`.
+    pub phi: f64,
+    /// `max_i |w_i c_i| / φ`, the size of the scaled linear term the optimality tolerance is relative to.
+    pub c_max: f64,
+}
+
+impl Scaling {
+    /// The normal scale `s = c_s / h_s` (`h_s = max diag H_nn`, `c_s = max |c_n|`) of a QP with `q` normal
+    /// unknowns; where nothing pushes normally (`c_n = 0`) but the tangential term does (a Tresca
+    /// threshold with a shift), the same ratio over all unknowns. `None` only when `c = 0` (or H has no
+    /// positive diagonal): λ = 0 solves such a QP.
+    pub(crate) fn normal_scale(diag: &[f64], c: &[f64], q: usize) -> Option<f64> {
+        let k = c.len();
+        let ratio = |range: std::ops::Range<usize>| {
+            let h_s = range.clone().map(|i| diag[i]).fold(0.0, f64::max);
+            let c_s = c[range].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            (c_s > 0.0 && h_s > 0.0).then(|| c_s / h_s)
+        };
+        ratio(0..q).or_else(|| ratio(0..k))
+    }
+
+    /// The scaling for the diagonal of H, the normal scale `s`, the linear term `c` and the tangential
+    /// bounds (empty for a frictionless QP).
+    pub(crate) fn new(diag: &[f64], c: &[f64], q: usize, s: f64, bounds: &[f64]) -> Self {
+        let k = q + bounds.len();
+        let h_st = (q..k).map(|i| diag[i]).fold(0.0, f64::max);
+        let c_st = c[q..].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let s_t = if h_st > 0.0 { s.max(c_st / h_st) } else { s };
+        let w: Vec<f64> = (0..k).map(|i| if i < q { s } else { bounds[i - q].min(s_t) }).collect();
+        // (w √H_ii)² rather than w² H_ii: w is about 1/H, so w² alone can overflow where the product cannot.
+        let phi = (0..k).map(|i| (w[i] * diag[i].max(0.0).sqrt()).powi(2)).fold(0.0, f64::max);
+        let c_max = c.iter().zip(&w).fold(0.0_f64, |m, (ci, wi)| m.max((wi * ci / phi).abs()));
+        Self { w, phi, c_max }
+    }
+
+    /// The scaled box of the tangential unknowns: `g_j / w_t,j` (1 where the bound vanishes, so that the
+    /// box keeps an interior).
+    pub(crate) fn tangential_box(&self, q: usize, bounds: &[f64]) -> Vec<f64> {
+        bounds.iter().zip(&self.w[q..]).map(|(b, w)| if *w > 0.0 { b / w } else { 1.0 }).collect()
+    }
+}
+
+/// The diagonal of the column-major `k × k` matrix `h`.
+pub(crate) fn diagonal(h: &[f64], k: usize) -> Vec<f64> {
+    (0..k).map(|i| h[i * k + i]).collect()
+}

@@ -1,0 +1,403 @@
+//! A working set of multiplier dofs for the Γ_C QP: solve over the dofs that can be in contact, check
+//! the optimality conditions of the *whole* QP, grow the set where they fail, repeat.
+//!
+//! The QP `min ½ νᵀ H ν + cᵀ ν` over `ν_n ≥ 0, |ν_t| ≤ b` is dense in the 2q multiplier unknowns of all
+//! of Γ_C, but the contact zone is often a small part of Γ_C. Fixing `ν_n,j = ν_t,j = 0` outside a set S
+//! gives a smaller QP (same H, rows and columns of S) whose solution ν_S, extended by zeros, solves the
+//! whole QP exactly when the dropped dofs satisfy their optimality conditions:
+//!
+//! * `(H ν + c)_n,j ≥ 0` — no pressure would appear there (the discrete gap is open), and
+//! * `b_j = 0` — the friction bound forces `ν_t,j = 0` (so every dof with a positive bound is kept in S).
+//!
+//! A dropped dof with `(H ν + c)_n,j < −√tol c_s` (c_s = max |c_n|) is added, with its neighbours, and the
+//! QP is solved again. The threshold is the one that separates "zero" from "non-zero" multipliers in the
+//! contact states (a dof below it would carry `λ_n ≲ √tol Λ`). S only grows during a solve and across the
+//! Coulomb iterations, so the clarabel set-up is reused whenever S did not change. The initial S holds the
+//! dofs where the body, without contact forces, would penetrate (`c_n,j < 0`), and their neighbours.
+//!
+//! # Which method solves the QP on S
+//! [`QpMethod::Clarabel`] always uses clarabel. [`QpMethod::Auto`] uses the active-set method
+//! ([`crate::qp::active_set`]) from the previous answer (or from zero for the first QP) and clarabel for any QP
+//! it cannot certify ([`QpOutcome::fallback`] says so). [`QpMethod::ActiveSet`] uses the active-set method
+//! alone: a QP it cannot certify fails.
+
+use std::time::Instant;
+
+use crate::condensation::Factor;
+use crate::error::{Error, Result};
+use crate::qp::active_set::{self, Bounds, Place, Start};
+use crate::qp::dense::DenseBlock;
+use crate::qp::sparse;
+use crate::qp::{BoxQp, QpData, QpOutcome, QpStatus, Scaling};
+use crate::settings::friction::check_thresholds;
+use crate::settings::{Condensation, QpMethod, QpSettings};
+
+/// The Γ_C QP solved over a growing working set; the columns of H come from a [`Factor`], computed when
+/// the set first needs them.
+#[derive(Debug)]
+pub struct ContactQp<'a> {
+    condensed: &'a Factor,
+    /// The load case's data (f, d and the linear term c).
+    data: QpData<'a>,
+    q: usize,
+    bounds: Option<Vec<f64>>,
+    settings: QpSettings,
+    set: Vec<usize>,
+    /// clarabel's QP on the set (built when first needed, dropped when the set grows).
+    qp: Option<BoxQp>,
+    /// H and c on the set's unknowns for the active-set method (dropped when the set grows).
+    dense: Option<DenseBlock>,
+    /// The previous answer (full size): the active-set method's start.
+    last: Option<Vec<f64>>,
+    /// The places of the previous answer's dofs (full size), when the active-set method found it: the
+    /// next QP's first step keeps them ([`Start::places`]).
+    places: Option<Vec<Option<Place>>>,
+    /// Bytes the dense parts may take.
+    budget: usize,
+}
+
+impl<'a> ContactQp<'a> {
+    /// Sets up the QP of P(g) on `condensed` for the load case `data`:
+    /// frictionless if `bounds` is `None`, else with the tangential bounds g (one per multiplier dof). `start`, if given, is a starting point (q or 2q values, e.g. the
+    /// frictionless answer for the first Coulomb QP). The settings are taken as validated.
+    ///
+    /// # Errors
+    /// [`crate::Error::BadThreshold`].
+    pub fn new(
+        condensed: &'a Factor,
+        data: QpData<'a>,
+        bounds: Option<&[f64]>,
+        settings: &QpSettings,
+        budget: usize,
+        start: Option<&[f64]>,
+    ) -> Result<Self> {
+        let q = condensed.q();
+        let k = if bounds.is_some() { 2 * q } else { q };
+        let last = start.map(|x| (0..k).map(|i| x.get(i).copied().unwrap_or(0.0)).collect());
+        let c = data.c;
+        let mut ws = Self {
+            condensed,
+            data,
+            q,
+            bounds: None,
+            settings: *settings,
+            set: Vec::new(),
+            qp: None,
+            dense: None,
+            last,
+            places: None,
+            budget,
+        };
+        if let Some(b) = bounds {
+            check_thresholds(b, q)?;
+            ws.bounds = Some(b.to_vec());
+        }
+        let mut initial: Vec<usize> =
+            if settings.working_set { (0..q).filter(|&j| c[j] < 0.0).collect() } else { (0..q).collect() };
+        if let Some(x) = &ws.last {
+            initial.extend((0..q).filter(|&j| x[j] != 0.0));
+        }
+        ws.grow(&initial);
+        Ok(ws)
+    }
+
+    /// Adds dofs (and their neighbours) and the dofs with a positive bound to the set; true if it grew.
+    fn grow(&mut self, dofs: &[usize]) -> bool {
+        let mut member = vec![false; self.q];
+        for &j in &self.set {
+            member[j] = true;
+        }
+        let before = self.set.len();
+        let add = |j: usize, member: &mut Vec<bool>, set: &mut Vec<usize>| {
+            if !member[j] {
+                member[j] = true;
+                set.push(j);
+            }
+        };
+        for &j in dofs {
+            for k in j.saturating_sub(1)..=(j + 1).min(self.q - 1) {
+                add(k, &mut member, &mut self.set);
+            }
+        }
+        if let Some(b) = &self.bounds {
+            for (j, v) in b.iter().enumerate() {
+                if *v > 0.0 {
+                    add(j, &mut member, &mut self.set);
+                }
+            }
+        }
+        self.set.sort_unstable();
+        self.set.len() != before
+    }
+
+    /// Replaces the tangential bounds.
+    ///
+    /// # Errors
+    /// [`crate::Error::BadThreshold`]; QP update errors.
+    pub fn set_bounds(&mut self, b: &[f64]) -> Result<()> {
+        check_thresholds(b, self.q)?;
+        self.bounds = Some(b.to_vec());
+        if self.grow(&[]) {
+            self.qp = None;
+            self.dense = None;
+        } else if let Some(qp) = self.qp.as_mut() {
+            let sub: Vec<f64> = self.set.iter().map(|&j| b[j]).collect();
+            qp.set_bounds(&sub)?;
+        }
+        Ok(())
+    }
+
+    /// Indices into the 2q unknowns (ν_n then ν_t) of the current set.
+    fn unknowns(&self) -> Vec<usize> {
+        let q = self.q;
+        if self.bounds.is_some() {
+            self.set.iter().copied().chain(self.set.iter().map(|j| q + j)).collect()
+        } else {
+            self.set.clone()
+        }
+    }
+
+    /// The dense QP on the set: H and c on its unknowns, the tangential bounds of its dofs.
+    fn block(&self) -> (Vec<f64>, Vec<f64>, Option<Vec<f64>>) {
+        let idx = self.unknowns();
+        let h = self.condensed.h_block(&idx, &idx);
+        let c: Vec<f64> = idx.iter().map(|&i| self.data.c[i]).collect();
+        (h, c, self.bounds_on_set())
+    }
+
+    /// The tangential bounds of the set's dofs (`None` for a frictionless QP).
+    fn bounds_on_set(&self) -> Option<Vec<f64>> {
+        self.bounds.as_ref().map(|b| self.set.iter().map(|&j| b[j]).collect())
+    }
+
+    /// Keeps `nu` (full size) as the next QP's start, with its places when the active-set method found it.
+    fn remember(&mut self, nu: &[f64], by_active_set: bool) {
+        self.places = by_active_set
+            .then(|| active_set::places(nu, &Bounds::contact(self.q, self.bounds.as_deref().unwrap_or(&[]))));
+        self.last = Some(nu.to_vec());
+    }
+
+    /// Solves the QP on the set with clarabel.
+    fn solve_clarabel(&mut self) -> Result<QpOutcome> {
+        let qp = match self.qp.take() {
+            Some(qp) => qp,
+            None => {
+                let (h, c, bounds) = self.block();
+                BoxQp::new(&h, &c, self.set.len(), bounds.as_deref(), &self.settings)?
+            }
+        };
+        Ok(self.qp.insert(qp).solve())
+    }
+
+    /// Solves the QP on the set with the active-set method from `start` (on the set's unknowns); `None`
+    /// if it cannot certify its answer.
+    fn solve_active_set(&mut self, start: Start<'_>) -> Option<QpOutcome> {
+        let clock = Instant::now();
+        let s = self.set.len();
+        let b = self.bounds_on_set().unwrap_or_default();
+        let (tol, max_iter) = (self.settings.tol, self.settings.max_iter);
+        let op = match self.dense.take() {
+            Some(op) => op,
+            None => {
+                let (h, c, _) = self.block();
+                DenseBlock::new(h, c)
+            }
+        };
+        let op = self.dense.insert(op);
+        let c = op.linear_term().to_vec();
+        let done = |nu: Vec<f64>, iterations: u32, factorizations: u32| QpOutcome {
+            nu,
+            status: QpStatus::Solved,
+            iterations,
+            seconds: clock.elapsed().as_secs_f64(),
+            method: QpMethod::ActiveSet,
+            factorizations,
+            fallback: false,
+        };
+        let diag = crate::qp::diagonal(op.matrix(), c.len());
+        let Some(n_scale) = Scaling::normal_scale(&diag, &c, s) else {
+            // Nothing pushes at all (c = 0): λ = 0 (as on clarabel's path).
+            return Some(done(vec![0.0; c.len()], 0, 0));
+        };
+        let scaling = Scaling::new(&diag, &c, s, n_scale, &b);
+        let (factorizations, updates) = (op.factorizations, op.updates);
+        let out = active_set::solve(op, &c, &Bounds::contact(s, &b), start, &scaling, tol, max_iter);
+        log::debug!(
+            "active set on {} unknowns: certified {}, {} Newton steps ({} factorizations, {} updates), {} gradient steps",
+            c.len(),
+            out.certified,
+            out.newton_steps,
+            op.factorizations - factorizations,
+            op.updates - updates,
+            out.gradient_steps
+        );
+        out.certified.then(|| done(out.x, out.newton_steps + out.gradient_steps, op.factorizations - factorizations))
+    }
+
+    /// Refuses a set whose dense parts exceed the budget: its columns of H (each 2q long), the dense QP
+    /// on it and clarabel's or the active-set method's copy and factor of it (about 4 k² values).
+    fn check_budget(&self) -> Result<()> {
+        let k = self.unknowns().len() as f64;
+        let needed = 8.0 * (k * self.condensed.e_rows.len() as f64 + 4.0 * k * k);
+        if needed > self.budget as f64 {
+            return Err(Error::MemoryBudget {
+                what: format!("the dense Γ_C QP over {k} multiplier unknowns (2q = {})", self.condensed.e_rows.len()),
+                needed,
+                budget: self.budget as f64,
+            });
+        }
+        Ok(())
+    }
+
+    /// Solves the QP on the set with the method the settings ask for (see the module documentation).
+    fn solve_on_set(&mut self) -> Result<QpOutcome> {
+        self.check_budget()?;
+        if self.settings.method == QpMethod::Clarabel {
+            return self.solve_clarabel();
+        }
+        let idx = self.unknowns();
+        let start: Vec<f64> = match &self.last {
+            Some(x) => idx.iter().map(|&i| x[i]).collect(),
+            None => vec![0.0; idx.len()],
+        };
+        let places: Option<Vec<Option<Place>>> = self.places.as_ref().map(|p| idx.iter().map(|&i| p[i]).collect());
+        let clock = Instant::now();
+        if let Some(out) = self.solve_active_set(Start { x: &start, places: places.as_deref() }) {
+            return Ok(out);
+        }
+        if self.settings.method == QpMethod::ActiveSet {
+            return Ok(QpOutcome {
+                nu: start,
+                status: QpStatus::Failed("the active-set method could not certify its answer"),
+                iterations: self.settings.max_iter,
+                seconds: clock.elapsed().as_secs_f64(),
+                method: QpMethod::ActiveSet,
+                factorizations: 0,
+                fallback: false,
+            });
+        }
+        log::info!("the active-set method could not certify a QP on {} dofs: clarabel solves it", self.set.len());
+        let mut out = self.solve_clarabel()?;
+        out.fallback = true;
+        Ok(out)
+    }
+
+    /// Solves the whole QP; the returned ν has the full size (q, or 2q with friction).
+    ///
+    /// # Errors
+    /// QP set-up errors.
+    pub fn solve(&mut self) -> Result<QpOutcome> {
+        if self.condensed.condensation == Condensation::Saddle && self.settings.method != QpMethod::Clarabel {
+            if let Some(out) = self.solve_sparse()? {
+                return Ok(out);
+            }
+            log::info!("the sparse active-set method could not certify a QP: the dense path solves it");
+            let mut out = self.solve_dense()?;
+            out.fallback = true;
+            return Ok(out);
+        }
+        self.solve_dense()
+    }
+
+    /// Solves the whole QP without H, on the saddle-point system ([`crate::qp::sparse`]); `None` if the
+    /// answer could not be certified.
+    fn solve_sparse(&mut self) -> Result<Option<QpOutcome>> {
+        let clock = Instant::now();
+        let q = self.q;
+        let bounds = self.bounds.clone().unwrap_or_default();
+        let idx: Vec<usize> = (0..q + bounds.len()).collect();
+        let start = self.last.clone().unwrap_or_else(|| vec![0.0; idx.len()]);
+        let places = self.places.clone();
+        let mut guard = self.condensed.saddle_system();
+        let Some(saddle) = guard.as_mut() else { return Ok(None) };
+        let data = (self.data.f, self.data.d, self.data.c);
+        let answer = sparse::solve(
+            self.condensed,
+            saddle,
+            data,
+            &idx,
+            q,
+            &bounds,
+            Start { x: &start, places: places.as_deref() },
+            (self.settings.tol, self.settings.max_iter),
+        );
+        Ok(answer.map(|(nu, steps, factorizations)| {
+            self.remember(&nu, true);
+            QpOutcome {
+                nu,
+                status: QpStatus::Solved,
+                iterations: steps,
+                seconds: clock.elapsed().as_secs_f64(),
+                method: QpMethod::ActiveSet,
+                factorizations,
+                fallback: false,
+            }
+        }))
+    }
+
+    /// Solves the whole QP on the growing working set with the dense H.
+    fn solve_dense(&mut self) -> Result<QpOutcome> {
+        let q = self.q;
+        let frictional = self.bounds.is_some();
+        let k = if frictional { 2 * q } else { q };
+        let c = self.data.c;
+        let c_s = c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let threshold = -self.settings.tol.sqrt() * c_s;
+        let (mut iterations, mut seconds, mut fallback, mut factorizations) = (0, 0.0, false, 0);
+        loop {
+            let out = self.solve_on_set()?;
+            iterations += out.iterations;
+            seconds += out.seconds;
+            factorizations += out.factorizations;
+            fallback |= out.fallback;
+            let s = self.set.len();
+            let mut nu = vec![0.0; k];
+            for (a, &j) in self.set.iter().enumerate() {
+                nu[j] = out.nu[a];
+                if frictional {
+                    nu[q + j] = out.nu[s + a];
+                }
+            }
+            let done = |nu: Vec<f64>| QpOutcome { nu, iterations, seconds, fallback, factorizations, ..out.clone() };
+            if matches!(out.status, QpStatus::Failed(_)) {
+                return Ok(done(nu));
+            }
+            self.remember(&nu, out.method == QpMethod::ActiveSet && !out.fallback);
+            if s == q {
+                return Ok(done(nu));
+            }
+            // Optimality of the dropped dofs: (H ν + c)_n,j ≥ threshold, with ν supported on the set.
+            let mut member = vec![false; q];
+            for &j in &self.set {
+                member[j] = true;
+            }
+            let support: Vec<usize> = self.unknowns().into_iter().filter(|&i| nu[i] != 0.0).collect();
+            let violated: Vec<usize> = self.condensed.with_columns(&support, |cols| {
+                (0..q)
+                    .filter(|&j| !member[j])
+                    .filter(|&j| {
+                        let hv: f64 = support.iter().filter_map(|&i| cols[i].as_ref().map(|col| col[j] * nu[i])).sum();
+                        hv + c[j] < threshold
+                    })
+                    .collect()
+            });
+            if violated.is_empty() {
+                return Ok(done(nu));
+            }
+            log::debug!("working set: {} dofs violate optimality, growing from {s}", violated.len());
+            self.grow(&violated);
+            // The dofs that joined are predicted, not kept off contact as in the last answer.
+            if let Some(places) = &mut self.places {
+                for &j in self.set.iter().filter(|&&j| !member[j]) {
+                    places[j] = None;
+                }
+            }
+            self.qp = None;
+            self.dense = None;
+        }
+    }
+}
+
+/// The former name of [`ContactQp`].
+#[deprecated(note = "renamed ContactQp: the front door of every Γ_C QP")]
+pub type WorkingSetQp<'a> = ContactQp<'a>;

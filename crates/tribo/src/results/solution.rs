@@ -1,0 +1,211 @@
+//! The solution of a contact problem: every field as a plain vector (displacement, stresses, reactions,
+//! multipliers and Γ_C traces), the contact state per multiplier dof, the resultants, the discrete KKT
+//! residuals and the [`Report`].
+
+use crate::fem::elasticity::{element_stresses, internal_forces};
+use crate::problem::load_case::Loading;
+use crate::problem::Condensed;
+use crate::results::kkt::{kkt_residuals, nan_max};
+use crate::results::{ContactState, KktResiduals, Report};
+
+/// The solution of a contact problem.
+#[derive(Debug, Clone)]
+pub struct Solution {
+    /// Nodal displacements, interleaved (x, y) per node (2N).
+    pub displacement: Vec<f64>,
+    /// Constant stress (σ_xx, σ_yy, σ_xy) per triangle.
+    pub stress: Vec<[f64; 3]>,
+    /// The out-of-plane stress σ_zz = ν (σ_xx + σ_yy) of plane strain per triangle (with
+    /// [`Solution::stress`], the full symmetric stress tensor; σ_xz = σ_yz = 0).
+    pub stress_zz: Vec<f64>,
+    /// Von Mises stress per triangle (plane strain).
+    pub von_mises: Vec<f64>,
+    /// Reaction forces on clamped dofs (2N, zero elsewhere): `K u − f` (f the load of the load case).
+    pub reactions: Vec<f64>,
+    /// Abscissae of the multiplier dofs.
+    pub multiplier_abscissae: Vec<f64>,
+    /// λ_n at multiplier dofs.
+    pub lambda_n: Vec<f64>,
+    /// λ_t at multiplier dofs (zeros if frictionless).
+    pub lambda_t: Vec<f64>,
+    /// Tangential threshold per multiplier dof (μ g at the fixed point, the Tresca threshold, or 0).
+    pub friction_threshold: Vec<f64>,
+    /// Contact state per multiplier dof: separation where `λ_n ≤ √tol Λ`, slip where
+    /// `|λ_t| ≥ threshold − √tol Λ`, stick otherwise (`tol` the QP tolerance, Λ the scale of λ_n: an
+    /// interior-point solution puts inactive bounds at about `tol / (active value)`, so `√tol` is the
+    /// geometric middle between "zero" and "non-zero").
+    pub states: Vec<ContactState>,
+    /// Abscissae of the midpoints of the FE edges of Γ_C.
+    pub edge_abscissae: Vec<f64>,
+    /// σ_n(u_h) on each FE edge of Γ_C.
+    pub sigma_n: Vec<f64>,
+    /// σ_t(u_h) on each FE edge of Γ_C.
+    pub sigma_t: Vec<f64>,
+    /// Abscissae of the FE nodes of Γ_C.
+    pub node_abscissae: Vec<f64>,
+    /// u_n at the FE nodes of Γ_C.
+    pub u_n: Vec<f64>,
+    /// Slip relative to the obstacle at the FE nodes of Γ_C: `u_t − s` for a static solve, the slip
+    /// increment `u_t^k − u_t^{k−1} − (s_k − s_{k−1})` in step k of a history ([`crate::solve::history`]).
+    pub slip: Vec<f64>,
+    /// Gap g = g₀ − δ at the FE nodes of Γ_C (δ of the load case).
+    pub gap: Vec<f64>,
+    /// Total normal contact force `∫ λ_n`.
+    pub normal_force: f64,
+    /// Total tangential contact force `∫ λ_t`. The friction traction the obstacle exerts on the body is
+    /// `−λ_t t`, so a positive `tangential_force` pulls the body toward −t.
+    pub tangential_force: f64,
+    /// The total force the obstacle exerts on the body, `(F_x, F_y) = −(N n + T t)` in global axes (n, t
+    /// the normal and tangent of [`crate::ContactBoundary`]), with
+    /// `N` = [`Solution::normal_force`] and `T` = [`Solution::tangential_force`] (the traction on Γ_C is
+    /// `σ(u)·n = −λ_n n − λ_t t`).
+    pub contact_force: [f64; 2],
+    /// How the obstacle moved, in global axes: `−δ n + s t` (the approach δ toward the body, against
+    /// the outward normal, and the shift s along t).
+    pub obstacle_motion: [f64; 2],
+    /// Largest pointwise penetration `max(u_n − g)₊` over the FE nodes of Γ_C.
+    pub max_penetration: f64,
+    /// Discrete KKT residuals.
+    pub kkt: KktResiduals,
+    /// How the solve went.
+    pub report: Report,
+}
+
+impl Solution {
+    /// Assembles every field from the unknowns `u_free` and the multipliers `lambda` (2q) of a solve,
+    /// with the friction threshold the multipliers were computed for and the QP tolerance (which sets
+    /// the threshold between "zero" and "non-zero" multipliers in the contact states).
+    pub(crate) fn new(
+        condensed: &Condensed<'_>,
+        loading: &Loading,
+        u_free: &[f64],
+        lambda: Vec<f64>,
+        friction_threshold: Vec<f64>,
+        qp_tol: f64,
+        report: Report,
+    ) -> Self {
+        let (problem, condensed) = (condensed.problem(), condensed.factor());
+        let q = condensed.q();
+        let mesh = &problem.mesh;
+        let material = &problem.spec.material;
+        let displacement = problem.expand(u_free);
+        let stress = element_stresses(mesh, material, &displacement);
+        let von_mises = stress.iter().map(|s| material.von_mises(*s)).collect();
+        let stress_zz = stress.iter().map(|s| material.sigma_zz(*s)).collect();
+        // Reactions K u − f on all dofs (zero up to round-off on free dofs), K u from the stresses.
+        let mut reactions = internal_forces(mesh, &stress);
+        for (r, f) in reactions.iter_mut().zip(&loading.f_full) {
+            *r -= f;
+        }
+        problem.dofs.keep_reactions(&mut reactions);
+        let contact = &problem.contact;
+        let (n, t) = (contact.normal, contact.tangent);
+        let (lambda_n, lambda_t) = (lambda[..q].to_vec(), lambda[q..].to_vec());
+        let sig = |s: &[f64; 3], a: [f64; 2], b: [f64; 2]| {
+            a[0] * (s[0] * b[0] + s[2] * b[1]) + a[1] * (s[2] * b[0] + s[1] * b[1])
+        };
+        let sigma_n = contact.edges.iter().map(|e| sig(&stress[e.triangle], n, n)).collect();
+        let sigma_t = contact.edges.iter().map(|e| sig(&stress[e.triangle], t, n)).collect();
+        let edge_abscissae = contact.node_xi.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
+        let mut u_n = Vec::with_capacity(contact.nodes.len());
+        let mut slip = Vec::with_capacity(contact.nodes.len());
+        for (&node, origin) in contact.nodes.iter().zip(&loading.slip_origin) {
+            let (ux, uy) = (displacement[2 * node], displacement[2 * node + 1]);
+            u_n.push(ux * n[0] + uy * n[1]);
+            slip.push(ux * t[0] + uy * t[1] - origin);
+        }
+        let gap = loading.gap.clone();
+        let max_penetration = u_n.iter().zip(&gap).map(|(u, g)| nan_max(u - g, 0.0)).fold(0.0, nan_max);
+        let w = &problem.mortar.psi_integrals;
+        let normal_force: f64 = lambda_n.iter().zip(w).map(|(l, w)| l * w).sum();
+        let tangential_force: f64 = lambda_t.iter().zip(w).map(|(l, w)| l * w).sum();
+        let contact_force = [0, 1].map(|i| -(normal_force * n[i] + tangential_force * t[i]));
+        let obstacle_motion = [0, 1].map(|i| -loading.approach * n[i] + loading.shift * t[i]);
+
+        let kkt = kkt_residuals(condensed, loading, u_free, &lambda, &friction_threshold);
+        let lam_scale = lambda_n.iter().fold(condensed.lambda_scale(&loading.c), |m, v| m.max(v.abs()));
+        let theta = qp_tol.sqrt() * lam_scale;
+        let states = (0..q)
+            .map(|j| {
+                if lambda_n[j] <= theta {
+                    ContactState::Separation
+                } else if lambda_t[j].abs() >= friction_threshold[j] - theta {
+                    ContactState::Slip
+                } else {
+                    ContactState::Stick
+                }
+            })
+            .collect();
+        Self {
+            displacement,
+            stress,
+            stress_zz,
+            von_mises,
+            reactions,
+            multiplier_abscissae: problem.multipliers.dof_abscissae(),
+            lambda_n,
+            lambda_t,
+            friction_threshold,
+            states,
+            edge_abscissae,
+            sigma_n,
+            sigma_t,
+            node_abscissae: contact.node_xi.clone(),
+            u_n,
+            slip,
+            gap,
+            normal_force,
+            tangential_force,
+            contact_force,
+            obstacle_motion,
+            max_penetration,
+            kkt,
+            report,
+        }
+    }
+
+    /// The largest KKT residual a converged solve may report: `max(√tol, fp_tol)`, `tol` the QP tolerance
+    /// the QPs met (`FALLBACK_TOL` if any met only that). An interior-point answer's complementarity is
+    /// about `tol`, and at most `√tol` where the QP is degenerate; Coulomb's law holds at the fixed point
+    /// to its stopping tolerance.
+    pub fn accuracy_bound(qp_tol: f64, qp_inaccurate: usize, fp_tol: f64) -> f64 {
+        let reached = if qp_inaccurate > 0 { qp_tol.max(crate::qp::FALLBACK_TOL) } else { qp_tol };
+        reached.sqrt().max(fp_tol)
+    }
+
+    /// True when every field, total and residual is finite.
+    pub fn all_finite(&self) -> bool {
+        let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
+        [
+            &self.displacement,
+            &self.von_mises,
+            &self.reactions,
+            &self.lambda_n,
+            &self.lambda_t,
+            &self.friction_threshold,
+            &self.sigma_n,
+            &self.sigma_t,
+            &self.u_n,
+            &self.slip,
+            &self.gap,
+            &self.report.residual_history,
+        ]
+        .into_iter()
+        .all(|v| finite(v))
+            && self.stress.iter().all(|s| finite(s))
+            && [self.normal_force, self.tangential_force, self.max_penetration, self.kkt.max()]
+                .iter()
+                .all(|x| x.is_finite())
+    }
+
+    /// The current gap `g − u_n` at the FE nodes of Γ_C (along n, from the deformed body to the
+    /// obstacle in its final position): 0 where the body touches it, negative where it penetrates.
+    pub fn current_gap(&self) -> Vec<f64> {
+        self.gap.iter().zip(&self.u_n).map(|(g, u)| g - u).collect()
+    }
+
+    /// Displacement of node `i`.
+    pub fn node_displacement(&self, i: usize) -> [f64; 2] {
+        [self.displacement[2 * i], self.displacement[2 * i + 1]]
+    }
+}

@@ -1,0 +1,141 @@
+//! How a solve ended: its status (a numerical outcome, never an error), the contact state of each
+//! multiplier dof, the wall time of each phase and the [`Report`] that gathers them.
+
+use crate::choice::named_choice;
+use crate::settings::friction::FrictionLaw;
+use crate::settings::{Condensation, QpMethod};
+
+/// How a solve ended. Not an error: a solve that did not converge still returns its last iterate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum SolveStatus {
+    /// Every QP solved and (Coulomb) the fixed point converged.
+    Converged,
+    /// The fixed point reached its iteration cap.
+    MaxIterations,
+    /// The change of λ_n made no new minimum for [`crate::solve::STAGNATION_WINDOW`] iterations: the
+    /// fixed point cycles, or it has reached the accuracy to which the QP determines λ (see the residual
+    /// history; a tighter `qp.tol` or a finer mesh may help).
+    Stagnated,
+    /// The observer asked to stop after the given fixed-point iteration (0 = the initial QP).
+    Interrupted {
+        /// Fixed-point iteration.
+        iteration: usize,
+    },
+    /// A QP failed at the given fixed-point iteration (0 = the initial QP).
+    QpFailed {
+        /// Fixed-point iteration.
+        iteration: usize,
+        /// clarabel's status.
+        reason: &'static str,
+    },
+    /// The solve ran to its end but a reported field or residual is not finite (an overflow).
+    NonFinite,
+    /// The solve ran to its end but its KKT residuals exceed what the tolerances justify
+    /// ([`crate::Solution::accuracy_bound`]).
+    Inaccurate,
+}
+
+impl SolveStatus {
+    /// The names of the statuses, as [`SolveStatus::name`] gives them.
+    pub const NAMES: [&'static str; 7] =
+        ["converged", "max_iterations", "stagnated", "interrupted", "qp_failed", "non_finite", "inaccurate"];
+
+    /// The status's name (without its data): one of [`SolveStatus::NAMES`].
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Converged => "converged",
+            Self::MaxIterations => "max_iterations",
+            Self::Stagnated => "stagnated",
+            Self::Interrupted { .. } => "interrupted",
+            Self::QpFailed { .. } => "qp_failed",
+            Self::NonFinite => "non_finite",
+            Self::Inaccurate => "inaccurate",
+        }
+    }
+}
+
+impl std::fmt::Display for SolveStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Interrupted { iteration } => write!(f, "interrupted after iteration {iteration}"),
+            Self::QpFailed { iteration, reason } => write!(f, "qp_failed at iteration {iteration} ({reason})"),
+            s => f.write_str(s.name()),
+        }
+    }
+}
+
+/// Contact state of a multiplier dof.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactState {
+    /// λ_n = 0.
+    Separation,
+    /// In contact, |λ_t| below the threshold.
+    Stick,
+    /// In contact, |λ_t| at the threshold (μ λ_n or the Tresca bound); every contact dof of a
+    /// frictionless problem (threshold 0) slips.
+    Slip,
+}
+
+named_choice!(ContactState, "contact state", {
+    ContactState::Separation => "separation",
+    ContactState::Stick => "stick",
+    ContactState::Slip => "slip",
+});
+
+/// Wall times per phase, in seconds.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Timings {
+    /// Stiffness and load assembly.
+    pub assembly: f64,
+    /// Γ_C geometry, T_H and the Γ_C matrices.
+    pub contact_matrices: f64,
+    /// Assembling and factorizing A = K − G.
+    pub factorization: f64,
+    /// Condensing onto the multipliers (H, c).
+    pub condensation: f64,
+    /// All QPs (including the fixed point).
+    pub qp: f64,
+    /// Recovering u.
+    pub recovery: f64,
+}
+
+/// Report of a solve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Report {
+    /// How it ended.
+    pub status: SolveStatus,
+    /// The friction law solved (Coulomb with μ = 0 is solved, and reported, as frictionless).
+    pub friction: FrictionLaw,
+    /// The Coulomb coefficient μ (`None` unless the law is Coulomb).
+    pub mu: Option<f64>,
+    /// Fixed-point iterations (0 for frictionless and Tresca).
+    pub iterations: usize,
+    /// Relative change of λ_n after each fixed-point iteration.
+    pub residual_history: Vec<f64>,
+    /// Iterations of each QP: interior-point iterations (clarabel) or steps (active set), including a
+    /// failed active-set attempt before clarabel.
+    pub qp_iterations: Vec<u32>,
+    /// Factorizations among the active-set steps of each QP (see [`crate::QpOutcome::factorizations`]):
+    /// the other steps updated the dense factor or bordered the sparse one. 0 for a clarabel answer.
+    pub qp_factorizations: Vec<u32>,
+    /// The method that answered each QP ([`QpMethod::Clarabel`] or [`QpMethod::ActiveSet`]).
+    pub qp_methods: Vec<QpMethod>,
+    /// How many QPs the first method tried did not answer, so that the other one did (see
+    /// [`crate::QpOutcome::fallback`]).
+    pub qp_fallbacks: usize,
+    /// How many of those QPs met only [`crate::qp::FALLBACK_TOL`] (1e-10), not `qp.tol`: their λ is
+    /// determined to about `FALLBACK_TOL · κ(H)` instead of `qp.tol · κ(H)`.
+    pub qp_inaccurate: usize,
+    /// γ0 used.
+    pub gamma0: f64,
+    /// Admissible bound on γ0.
+    pub gamma0_bound: f64,
+    /// True when the factorization of `K − G` was reused from an earlier solve of the same problem with
+    /// the same γ0 (the `factorization` timing is then that earlier one).
+    pub reused_factorization: bool,
+    /// How H was formed: [`Condensation::Columns`] or [`Condensation::Schur`].
+    pub condensation: Condensation,
+    /// Timings per phase.
+    pub timings: Timings,
+}

@@ -1,0 +1,205 @@
+//! Solver settings: one struct per stage, each with documented defaults and a range check, validated once
+//! at the public entry points ([`crate::Problem::solve`], [`crate::Condensed::solve`]).
+//!
+//! # One name per setting
+//! Every setting has one flat name, its field path with `.` replaced by `_` (`qp.tol` is `qp_tol`,
+//! `fp.max_iter` is `fp_max_iter`). That name is the Python keyword, the key of a scene's `[solver]`
+//! table and the name an error gives ([`Error::BadSetting`]). [`SolverSettings::set`],
+//! [`SolverSettings::get`] and [`SolverSettings::table`] are generated from one table ([`table`](self) module), so adding
+//! a setting means adding its field (with its default and range check) and one line of that table.
+
+pub mod friction;
+mod stabilization;
+mod table;
+
+pub use stabilization::Stabilization;
+pub use table::{SettingInfo, SettingKind, SettingValue};
+
+use crate::choice::named_choice;
+use crate::error::{check_setting, Error, Result};
+
+/// Which sparse direct solver clarabel uses for its KKT systems.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KktSolver {
+    /// clarabel's built-in QDLDL.
+    Qdldl,
+    /// clarabel's faer-based supernodal solver (cargo feature `faer-qp`, on by default).
+    Faer,
+}
+
+named_choice!(KktSolver, "KKT solver", { KktSolver::Faer => "faer", KktSolver::Qdldl => "qdldl" });
+
+impl Default for KktSolver {
+    /// [`KktSolver::Faer`] when compiled in (the faster on our dense QPs), else [`KktSolver::Qdldl`].
+    fn default() -> Self {
+        if cfg!(feature = "faer-qp") {
+            Self::Faer
+        } else {
+            Self::Qdldl
+        }
+    }
+}
+
+/// Which method solves the Γ_C QPs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum QpMethod {
+    /// The active-set method ([`crate::qp::active_set`]), warm-started from the previous answer (from zero for
+    /// the first QP of a solve), and clarabel for any QP it cannot certify. Measured as robust as clarabel
+    /// on cold QPs (every QP of the test suite, the fuzzing and study 1c), and 4–10× cheaper there.
+    #[default]
+    Auto,
+    /// clarabel's interior-point method for every QP (the reference).
+    Clarabel,
+    /// The active-set method alone: a QP it cannot certify ends the solve with status `qp_failed`.
+    ActiveSet,
+}
+
+named_choice!(QpMethod, "QP method", {
+    QpMethod::Auto => "auto",
+    QpMethod::Clarabel => "clarabel",
+    QpMethod::ActiveSet => "active_set",
+});
+
+/// How the multiplier operator H is formed (see [`crate::condensation`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Condensation {
+    /// The partial factorization where it is the cheaper and fits the memory budget; else the saddle-point
+    /// system where the contact zone makes the columns of H and the dense QP dearer; else columns.
+    #[default]
+    Auto,
+    /// One sparse solve per column of H, for the columns the QPs need (a fill-reducing ordering).
+    Columns,
+    /// All of H from a partial factorization with the Γ_C dofs ordered last ([`crate::linalg::schur`]).
+    Schur,
+    /// H never formed: each active-set step solves the sparse saddle-point system
+    /// `[[A, E_Fᵀ], [E_F, −Dγ_FF]]` (`qp::sparse`); columns of H only for a QP it cannot certify.
+    Saddle,
+}
+
+named_choice!(Condensation, "condensation", {
+    Condensation::Auto => "auto",
+    Condensation::Columns => "columns",
+    Condensation::Schur => "schur",
+    Condensation::Saddle => "saddle",
+});
+
+/// Settings of the QP solver.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct QpSettings {
+    /// Tolerance on the scaled QP (gap, feasibility). Default 1e-12: λ is determined to about
+    /// `tol · κ(H)` (κ ~ 1e5 on contact meshes), and the Coulomb fixed point cannot settle below that;
+    /// a QP that fails at 1e-12 is solved again at [`crate::qp::FALLBACK_TOL`].
+    pub tol: f64,
+    /// Iteration cap of clarabel's interior-point method, and of the active-set method's steps.
+    /// Default 200.
+    pub max_iter: u32,
+    /// KKT solver. Default [`KktSolver::default`].
+    pub kkt_solver: KktSolver,
+    /// Solve over a working set of multiplier dofs grown until the KKT conditions of the whole QP hold
+    /// (see [`crate::qp::working_set`]). Default true; false solves every QP over all of Γ_C.
+    pub working_set: bool,
+    /// The QP method. Default [`QpMethod::Auto`].
+    pub method: QpMethod,
+}
+
+impl Default for QpSettings {
+    fn default() -> Self {
+        Self {
+            tol: 1e-12,
+            max_iter: 200,
+            kkt_solver: KktSolver::default(),
+            working_set: true,
+            method: QpMethod::default(),
+        }
+    }
+}
+
+impl QpSettings {
+    /// Checks the ranges: `0 < tol < 1`, `max_iter ≥ 1`, and that the KKT solver is compiled in.
+    ///
+    /// # Errors
+    /// [`Error::BadSetting`] naming the setting.
+    pub fn validate(&self) -> Result<()> {
+        check_setting("qp_tol", self.tol, self.tol > 0.0 && self.tol < 1.0, "must lie in (0, 1)")?;
+        check_setting("qp_max_iter", f64::from(self.max_iter), self.max_iter >= 1, "must be at least 1")?;
+        if self.kkt_solver == KktSolver::Faer && !cfg!(feature = "faer-qp") {
+            return Err(Error::BadSettingValue {
+                name: "qp_kkt_solver",
+                what: "the faer KKT solver needs tribo built with the cargo feature `faer-qp`".to_string(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Settings of the Coulomb fixed point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FixedPointSettings {
+    /// Stop when `‖λ_n^{k+1} − λ_n^k‖₂ ≤ tol ‖λ_n^{k+1}‖₂` (or when the change is below the QP's noise
+    /// level, `qp.tol` times [`crate::condensation::Factor::lambda_scale`]). Default 1e-8.
+    pub tol: f64,
+    /// Iteration cap. Default 100.
+    pub max_iter: usize,
+    /// Relaxation ω ∈ (0, 1]: `g ← (1 − ω) g + ω Φ_H(g)`. Default 1 (plain fixed point).
+    pub relaxation: f64,
+}
+
+impl Default for FixedPointSettings {
+    fn default() -> Self {
+        Self { tol: 1e-8, max_iter: 100, relaxation: 1.0 }
+    }
+}
+
+impl FixedPointSettings {
+    /// Checks the ranges.
+    ///
+    /// # Errors
+    /// [`Error::BadSetting`] naming the setting.
+    pub fn validate(&self) -> Result<()> {
+        check_setting("fp_tol", self.tol, self.tol > 0.0 && self.tol < 1.0, "must lie in (0, 1)")?;
+        check_setting("fp_max_iter", self.max_iter as f64, self.max_iter >= 1, "must be at least 1")?;
+        let w = self.relaxation;
+        check_setting("fp_relaxation", w, w > 0.0 && w <= 1.0, "must lie in (0, 1]")
+    }
+}
+
+/// All solver settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverSettings {
+    /// γ0. Default: half of the admissible bound.
+    pub stabilization: Stabilization,
+    /// The QP solver.
+    pub qp: QpSettings,
+    /// The Coulomb fixed point.
+    pub fp: FixedPointSettings,
+    /// Bytes the dense parts of a solve (columns of H, the dense QP) may take. A solve that would need
+    /// more is refused with [`Error::MemoryBudget`], which gives the size. Default 4 GiB.
+    pub memory_budget: usize,
+    /// How H is formed. Default [`Condensation::Auto`].
+    pub condensation: Condensation,
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        Self {
+            stabilization: Stabilization::default(),
+            qp: QpSettings::default(),
+            fp: FixedPointSettings::default(),
+            memory_budget: 4 << 30,
+            condensation: Condensation::default(),
+        }
+    }
+}
+
+impl SolverSettings {
+    /// Checks every setting (γ0 is checked against its bound when the problem is condensed).
+    ///
+    /// # Errors
+    /// [`Error::BadSetting`], [`Error::BadSettingValue`].
+    pub fn validate(&self) -> Result<()> {
+        self.qp.validate()?;
+        self.fp.validate()?;
+        let b = self.memory_budget;
+        check_setting("memory_budget", b as f64, b >= 1 << 20, "must be at least 1 MiB (1048576 bytes)")
+    }
+}

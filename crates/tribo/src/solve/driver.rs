@@ -1,0 +1,220 @@
+//! The driver of one solve: the initial QP (frictionless or Tresca), the Coulomb fixed point
+//! ([`super::fixed_point`]) when asked, the displacement by one more solve, the report and the status a
+//! converged answer must earn (finite fields, KKT residuals within what the tolerances justify).
+
+use std::ops::ControlFlow;
+use std::time::Instant;
+
+use crate::error::{Error, Num, Result};
+use crate::problem::load_case::Loading;
+use crate::problem::Condensed;
+use crate::qp::working_set::ContactQp;
+use crate::qp::{QpOutcome, QpStatus};
+use crate::results::{Report, Solution, SolveStatus, Timings};
+use crate::settings::friction::Friction;
+use crate::settings::{QpMethod, SolverSettings};
+use crate::solve::progress::{Observer, Phase, Progress};
+
+/// What the QP phase produced: multipliers (2q), the tangential bound used, status, history.
+pub(super) struct QpPhase {
+    pub(super) lambda: Vec<f64>,
+    pub(super) bound: Vec<f64>,
+    pub(super) status: SolveStatus,
+    pub(super) iterations: usize,
+    pub(super) history: Vec<f64>,
+    pub(super) qp_iterations: Vec<u32>,
+    /// The active-set method's factorizations in each QP.
+    pub(super) qp_factorizations: Vec<u32>,
+    /// The method that answered each QP.
+    pub(super) qp_methods: Vec<QpMethod>,
+    /// QPs the active-set method could not certify (clarabel answered them).
+    pub(super) qp_fallbacks: usize,
+    /// QPs that met only [`crate::qp::FALLBACK_TOL`], not `qp.tol`.
+    pub(super) qp_inaccurate: usize,
+}
+
+impl QpPhase {
+    /// Counts a QP's interior-point iterations, time and accuracy.
+    pub(super) fn book(&mut self, out: &QpOutcome) {
+        self.qp_iterations.push(out.iterations);
+        self.qp_factorizations.push(out.factorizations);
+        self.qp_methods.push(out.method);
+        self.qp_fallbacks += usize::from(out.fallback);
+        self.qp_inaccurate += usize::from(out.status == QpStatus::Inaccurate);
+    }
+
+    /// Books a QP solved outside the fixed point (iteration 0): progress, counts, status.
+    fn record_single_qp(
+        &mut self,
+        factor: &crate::Factor,
+        out: &QpOutcome,
+        notify: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+    ) {
+        let flow = notify(Progress::qp(factor, 0, f64::NAN, out));
+        if flow.is_break() {
+            self.status = SolveStatus::Interrupted { iteration: 0 };
+        }
+        self.book(out);
+        if let Some(s) = qp_failed(0, out.status) {
+            self.status = s;
+        }
+    }
+}
+
+pub(super) fn qp_failed(iteration: usize, s: QpStatus) -> Option<SolveStatus> {
+    match s {
+        QpStatus::Solved | QpStatus::Inaccurate => None,
+        QpStatus::Failed(reason) => Some(SolveStatus::QpFailed { iteration, reason }),
+    }
+}
+
+impl Condensed<'_> {
+    pub(super) fn solve_validated(
+        &self,
+        friction: &Friction,
+        settings: &SolverSettings,
+        observer: Option<Observer<'_>>,
+    ) -> Result<Solution> {
+        let loading = Loading::of_problem(self.problem(), self.factor());
+        self.solve_loading(friction, settings, &loading, None, observer)
+    }
+
+    /// Solves the load case `loading` (validated friction and settings). `start` (2q), if given, is the
+    /// answer of a nearby load case (the previous step of a history): the QPs start from it, and a
+    /// Coulomb fixed point starts from its λ_n instead of the frictionless one.
+    pub(crate) fn solve_loading(
+        &self,
+        friction: &Friction,
+        settings: &SolverSettings,
+        loading: &Loading,
+        start: Option<&[f64]>,
+        mut observer: Option<Observer<'_>>,
+    ) -> Result<Solution> {
+        let (problem, factor) = (self.problem(), self.factor());
+        let friction = friction.normalized();
+        let clock = Instant::now();
+        let condensation_before = factor.condensation_seconds();
+        let q = self.q();
+        let mut notify = |p: Progress| {
+            match p.phase {
+                Phase::Condensation => {
+                    log::info!("condensed onto {} multipliers in {} s", 2 * q, Num(p.condensation_seconds))
+                }
+                _ => log::debug!(
+                    "iteration {} change {} qp {} its {} s",
+                    p.iteration,
+                    Num(p.change),
+                    p.qp_iterations,
+                    Num(p.qp_seconds)
+                ),
+            }
+            match observer.as_mut() {
+                Some(o) => o(&p),
+                None => ControlFlow::Continue(()),
+            }
+        };
+        let mut phase = QpPhase {
+            lambda: vec![0.0; 2 * q],
+            bound: vec![0.0; q],
+            status: SolveStatus::Converged,
+            iterations: 0,
+            history: Vec::new(),
+            qp_iterations: Vec::new(),
+            qp_factorizations: Vec::new(),
+            qp_methods: Vec::new(),
+            qp_fallbacks: 0,
+            qp_inaccurate: 0,
+        };
+        let budget = settings.memory_budget;
+        let condensed = Progress {
+            phase: Phase::Condensation,
+            condensation_seconds: factor.factorization_seconds + factor.condensation_seconds(),
+            iteration: 0,
+            change: f64::NAN,
+            qp_iterations: 0,
+            qp_seconds: 0.0,
+        };
+        let stopped = notify(condensed).is_break();
+        match (&friction, start) {
+            _ if stopped => phase.status = SolveStatus::Interrupted { iteration: 0 },
+            (Friction::Coulomb { .. }, Some(start)) => {
+                // A warm start: the fixed point starts from the nearby answer.
+                phase.lambda.copy_from_slice(start);
+            }
+            (Friction::Frictionless | Friction::Coulomb { .. }, _) => {
+                // Coulomb starts from the frictionless λ_n.
+                let out = ContactQp::new(factor, loading.qp_data(), None, &settings.qp, budget, start)?.solve()?;
+                phase.lambda[..q].copy_from_slice(&out.nu);
+                phase.record_single_qp(factor, &out, &mut notify);
+            }
+            (Friction::Tresca(_), _) => {
+                phase.bound = friction.tresca_bounds(q);
+                let out = ContactQp::new(factor, loading.qp_data(), Some(&phase.bound), &settings.qp, budget, start)?
+                    .solve()?;
+                phase.lambda.copy_from_slice(&out.nu);
+                phase.record_single_qp(factor, &out, &mut notify);
+            }
+        }
+        if let (Friction::Coulomb { mu }, SolveStatus::Converged) = (&friction, phase.status) {
+            // (not after an interrupted or failed initial QP)
+            self.fixed_point(*mu, settings, loading, &mut phase, &mut notify)?;
+        }
+        // Columns of H computed on demand during the QPs count as condensation, not QP time.
+        let condensation_during = factor.condensation_seconds() - condensation_before;
+        let qp_total = clock.elapsed().as_secs_f64() - condensation_during;
+        let clock = Instant::now();
+        let u = factor.displacement(&loading.f_free, &phase.lambda)?;
+        let recovery = clock.elapsed().as_secs_f64();
+        let timings = Timings {
+            assembly: problem.timings.assembly,
+            contact_matrices: problem.timings.contact_matrices,
+            factorization: factor.factorization_seconds,
+            condensation: factor.condensation_seconds(),
+            qp: qp_total,
+            recovery,
+        };
+        let mu = friction.mu();
+        let threshold = match mu {
+            Some(mu) => phase.lambda[..q].iter().map(|l| mu * l.max(0.0)).collect(),
+            None => phase.bound,
+        };
+        let report = Report {
+            status: phase.status,
+            friction: friction.law(),
+            mu,
+            iterations: phase.iterations,
+            residual_history: phase.history,
+            qp_iterations: phase.qp_iterations,
+            qp_factorizations: phase.qp_factorizations,
+            qp_methods: phase.qp_methods,
+            qp_fallbacks: phase.qp_fallbacks,
+            qp_inaccurate: phase.qp_inaccurate,
+            gamma0: factor.gamma0,
+            gamma0_bound: problem.gamma0_bound.value,
+            reused_factorization: self.reused_factorization(),
+            condensation: factor.condensation,
+            timings,
+        };
+        let mut solution = Solution::new(self, loading, &u, phase.lambda, threshold, settings.qp.tol, report);
+        // The equation of (3.1) is solved directly: a residual that lost half of the digits is a singular
+        // stiffness (a mechanism), not a numerical outcome of the contact solve.
+        let residual = solution.kkt.equilibrium;
+        if residual > f64::EPSILON.sqrt() {
+            return Err(Error::SingularStiffness { residual });
+        }
+        if solution.report.status == SolveStatus::Converged {
+            let bound = Solution::accuracy_bound(settings.qp.tol, solution.report.qp_inaccurate, settings.fp.tol);
+            if !solution.all_finite() {
+                solution.report.status = SolveStatus::NonFinite;
+            } else if solution.kkt.max() > bound {
+                log::warn!(
+                    "KKT residual {} above what the tolerances justify ({})",
+                    Num(solution.kkt.max()),
+                    Num(bound)
+                );
+                solution.report.status = SolveStatus::Inaccurate;
+            }
+        }
+        Ok(solution)
+    }
+}

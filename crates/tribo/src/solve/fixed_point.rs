@@ -1,0 +1,94 @@
+//! The Coulomb fixed point `Φ_H : g ↦ λ_Hn(g)` (Definition 1 of the paper): each evaluation a Tresca QP
+//! P(g) whose matrix does not change (only the bounds μ g do), relaxed, stopped when the relative change
+//! of λ_n is below `fp_tol` (or at the QP's noise level), and declared stagnated when it makes no new
+//! minimum for [`STAGNATION_WINDOW`] iterations.
+
+use std::ops::ControlFlow;
+
+use crate::error::Result;
+use crate::problem::load_case::Loading;
+use crate::problem::Condensed;
+use crate::qp::working_set::ContactQp;
+use crate::results::SolveStatus;
+use crate::settings::SolverSettings;
+use crate::solve::driver::{qp_failed, QpPhase};
+use crate::solve::progress::Progress;
+
+/// Fixed-point iterations without a new smallest change after which the fixed point is declared
+/// stagnated: a contraction, however slow, makes a new minimum every iteration.
+pub const STAGNATION_WINDOW: usize = 10;
+
+impl Condensed<'_> {
+    pub(super) fn fixed_point(
+        &self,
+        mu: f64,
+        settings: &SolverSettings,
+        loading: &Loading,
+        phase: &mut QpPhase,
+        notify: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+    ) -> Result<()> {
+        let q = self.q();
+        let fp = settings.fp;
+        let mut g: Vec<f64> = phase.lambda[..q].to_vec();
+        let bound: Vec<f64> = g.iter().map(|v| mu * v.max(0.0)).collect();
+        // Warm start: the frictionless λ_n with λ_t = 0.
+        let mut qp = ContactQp::new(
+            self.factor(),
+            loading.qp_data(),
+            Some(&bound),
+            &settings.qp,
+            settings.memory_budget,
+            Some(&phase.lambda),
+        )?;
+        phase.status = SolveStatus::MaxIterations;
+        let (mut best, mut since_best) = (f64::INFINITY, 0);
+        for it in 1..=fp.max_iter {
+            let out = qp.solve()?;
+            phase.book(&out);
+            phase.iterations = it;
+            if let Some(s) = qp_failed(it, out.status) {
+                phase.status = s;
+                break;
+            }
+            let lam_n = &out.nu[..q];
+            let max_diff = lam_n.iter().zip(&g).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+            let diff: f64 = lam_n.iter().zip(&g).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt();
+            let norm: f64 = lam_n.iter().map(|a| a * a).sum::<f64>().sqrt();
+            let change = if norm > 0.0 { diff / norm } else { diff };
+            phase.history.push(change);
+            let flow = notify(Progress::qp(self.factor(), it, change, &out));
+            phase.bound = g.iter().map(|v| mu * v.max(0.0)).collect();
+            phase.lambda = out.nu;
+            // Converged when the relative change is small, or when the change is at the QP's own noise
+            // level (tol × the natural size of λ): e.g. λ ≡ 0 without contact, where a relative change
+            // compares round-off with round-off.
+            let noise = settings.qp.tol * self.factor().lambda_scale(&loading.c);
+            if change <= fp.tol || max_diff <= noise {
+                phase.status = SolveStatus::Converged;
+                break;
+            }
+            if flow.is_break() {
+                phase.status = SolveStatus::Interrupted { iteration: it };
+                break;
+            }
+            // A converging fixed point keeps making new minima of the change; one that cycles, or that
+            // has reached the accuracy to which the QP determines λ, does not.
+            if change < best {
+                (best, since_best) = (change, 0);
+            } else {
+                since_best += 1;
+                if since_best >= STAGNATION_WINDOW {
+                    phase.status = SolveStatus::Stagnated;
+                    break;
+                }
+            }
+            let w = fp.relaxation;
+            for (gj, lj) in g.iter_mut().zip(&phase.lambda[..q]) {
+                *gj = ((1.0 - w) * *gj + w * lj).max(0.0);
+            }
+            let bound: Vec<f64> = g.iter().map(|v| mu * v).collect();
+            qp.set_bounds(&bound)?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,325 @@
+//! Quasi-static loading histories: the incremental problem, solved step by step on one factorization.
+//!
+//! # The incremental problem
+//! The static Coulomb problem (3.1) is, in the words of the paper (§1), one step of the time-discretized
+//! quasi-static problem from rest. A history is a sequence of such steps `k = 1, 2, …`: step k prescribes
+//! the obstacle's approach δ_k, its tangential position s_k and a load factor α_k (the body force and the
+//! tractions are `α_k f`). Friction depends on the path, so each step starts where the previous one
+//! ended:
+//!
+//! * non-penetration uses the **total** displacement: `u_n^k ≤ g₀ − δ_k`;
+//! * Coulomb's law acts on the **slip increment relative to the obstacle**,
+//!   `u_t^k − u_t^{k−1} − (s_k − s_{k−1})`, with threshold `μ λ_n^k`.
+//!
+//! In (3.1), the pair `w_h = (u_hn − g, u_ht − s)` of the static problem (see [`crate::contact::obstacle`]) becomes
+//! `w_h^k = (u_hn^k − (g₀ − δ_k), u_ht^k − u_ht^{k−1} − (s_k − s_{k−1}))`. The unknowns of step k are the
+//! total `(u_h^k, λ_H^k)`, and the equilibrium line of (3.1) is that of the static problem with the load
+//! `α_k f`. In the inequality line, the Barbosa–Hughes term stabilizes the quantity the law acts on, so in
+//! its tangential part it acts on the increments, `γ (Δλ_Ht + σ_t(Δu_h))` with `Δ· = ·^k − ·^{k−1}`:
+//!
+//! ```text
+//! b(ν_H − λ_H^k, u_h^k) − ∫ (ν_Hn − λ_Hn^k)(g₀ − δ_k) − ∫ γ (ν_Hn − λ_Hn^k)(λ_Hn^k + σ_n(u_h^k))
+//!   − ∫ (ν_Ht − λ_Ht^k)(s_k − s_{k−1} + u_ht^{k−1} − γ (λ_Ht^{k−1} + σ_t(u_h^{k−1})))
+//!   − ∫ γ (ν_Ht − λ_Ht^k)(λ_Ht^k + σ_t(u_h^k)) ≤ 0        for all ν_H ∈ M_H(μ λ_Hn^k).
+//! ```
+//!
+//! The terms of step k − 1 are known data: the dependence on `(u_h^k, λ_H^k)` is the static one, so the
+//! QP keeps its matrix `H = E A⁻¹ Eᵀ + Dγ` and only its linear term changes:
+//!
+//! ```text
+//! d^k = ( ∫ψ_j (g₀ − δ_k),  ∫ψ_j (s_k − s_{k−1}) + (E_t u^{k−1} − Dγ λ_t^{k−1})_j ),     c^k = d^k − α_k E A⁻¹ f,
+//! ```
+//!
+//! with `E A⁻¹ f` computed once by [`crate::condensation::Factor`]. Prescribed displacements ū (see
+//! [`crate::fem::supports`]) keep their lifting: the `−E ū` in d, the same at every step, and the lifted load,
+//! of which the load factor scales only the applied part. Both readings of the stabilization —
+//! on the increments, or on the totals (`d_t` with `B_t u^{k−1}` only) — are consistent: the term vanishes
+//! for the exact solution. They differ at finite γ0: stabilizing the totals leaves the discrete slip
+//! measure `γ (λ_t^k + σ_t(u^k))` in a stuck zone, which creeps a little at every step, and a fretting
+//! loop then drifts (3e-4 μP per cycle on the Hertz scene at half the γ0 bound). Stabilizing the
+//! increments makes a stuck zone stick exactly, and the loop closes to the fixed point's tolerance, as
+//! with γ0 = 0 (the test `fretting_loop_closes` checks the closure).
+//!
+//! So `A`, `H` and `Dγ` never change: one factorization (and one set of H columns, grown as the contact
+//! zone needs) serves the whole path, and each Coulomb fixed point starts from the previous step's
+//! `λ_n`. A history of one step from rest (`u^0 = 0`, `λ^0 = 0`, `s_0 = 0`) with α = 1 is the static
+//! problem: its data are the static ones bit for bit (`step_load_case`), and so is its
+//! answer.
+//!
+//! A frictionless step does not depend on the path; a Tresca step uses the fixed threshold on the slip
+//! increment.
+
+use std::ops::ControlFlow;
+use std::time::Instant;
+
+use crate::condensation::Factor;
+use crate::error::{Error, Result};
+use crate::problem::load_case::Loading;
+use crate::problem::{Condensed, Problem};
+use crate::results::{ContactState, Solution, SolveStatus};
+use crate::settings::friction::Friction;
+use crate::settings::SolverSettings;
+pub use crate::solve::progress::{StepObserver, StepProgress};
+
+/// The result of a loading history.
+#[derive(Debug, Clone)]
+pub struct History {
+    /// The steps asked for.
+    pub steps: Vec<LoadStep>,
+    /// The solutions of the steps that converged, in order.
+    pub solutions: Vec<Solution>,
+    /// [`SolveStatus::Converged`] when every step converged; otherwise the status of the step that ended
+    /// the history ([`SolveStatus::Interrupted`] when the observer stopped it).
+    pub status: SolveStatus,
+    /// The step that ended the history early (0-based), if any.
+    pub ended_at: Option<usize>,
+    /// The last iterate of a step that did not converge (it is not in `solutions`).
+    pub failed: Option<Box<Solution>>,
+    /// Wall time of each step solved (the converged ones, then the failed one), in seconds.
+    pub step_seconds: Vec<f64>,
+    /// Factorizations of `A = K − G` done for the history: 1, or 0 when the problem's cached one served.
+    pub factorizations: usize,
+    /// Wall time of the factorization and condensation set-up, in seconds (0 when reused).
+    pub setup_seconds: f64,
+}
+
+impl History {
+    /// Total normal force `∫ λ_n` per converged step.
+    pub fn normal_force(&self) -> Vec<f64> {
+        self.solutions.iter().map(|s| s.normal_force).collect()
+    }
+
+    /// Total tangential force `∫ λ_t` per converged step.
+    pub fn tangential_force(&self) -> Vec<f64> {
+        self.solutions.iter().map(|s| s.tangential_force).collect()
+    }
+
+    /// Number of multiplier dofs in `state` per converged step.
+    pub fn count(&self, state: ContactState) -> Vec<usize> {
+        self.solutions.iter().map(|s| s.states.iter().filter(|&&x| x == state).count()).collect()
+    }
+
+    /// Per converged step, the smallest interval of abscissae holding the multiplier dofs whose state
+    /// `keep` accepts (NaN, NaN when there are none): e.g. the contact zone or the stick zone.
+    pub fn extent(&self, keep: impl Fn(ContactState) -> bool) -> Vec<[f64; 2]> {
+        self.solutions
+            .iter()
+            .map(|s| {
+                let xs = s.states.iter().zip(&s.multiplier_abscissae).filter(|(st, _)| keep(**st)).map(|(_, x)| *x);
+                xs.fold([f64::NAN, f64::NAN], |[a, b], x| [a.min(x), b.max(x)])
+            })
+            .collect()
+    }
+
+    /// Per converged step, whether the contact slides as a whole: something touches and every multiplier
+    /// dof in contact slips (then `|Q| = μP` for Coulomb friction).
+    pub fn gross_sliding(&self) -> Vec<bool> {
+        self.solutions
+            .iter()
+            .map(|s| {
+                let touching = s.states.iter().filter(|&&x| x != ContactState::Separation);
+                touching.clone().count() > 0 && touching.into_iter().all(|&x| x == ContactState::Slip)
+            })
+            .collect()
+    }
+
+    /// Per converged step, the stick–slip boundaries: the midpoints between neighbouring multiplier dofs
+    /// of which one sticks and the other slips.
+    pub fn stick_slip_boundaries(&self) -> Vec<Vec<f64>> {
+        self.solutions
+            .iter()
+            .map(|s| {
+                let pairs = s.states.windows(2).zip(s.multiplier_abscissae.windows(2));
+                pairs
+                    .filter(|(st, _)| {
+                        matches!(
+                            (st[0], st[1]),
+                            (ContactState::Stick, ContactState::Slip) | (ContactState::Slip, ContactState::Stick)
+                        )
+                    })
+                    .map(|(_, x)| 0.5 * (x[0] + x[1]))
+                    .collect()
+            })
+            .collect()
+    }
+}
+
+impl Condensed<'_> {
+    /// The step loop of [`Condensed::solve_history`], on validated friction, steps and settings.
+    pub(crate) fn run_history(
+        &self,
+        friction: &Friction,
+        steps: &[LoadStep],
+        settings: &SolverSettings,
+        mut observer: Option<StepObserver<'_>>,
+    ) -> Result<History> {
+        let (problem, factor) = (self.problem(), self.factor());
+        let mut previous = PreviousStep::rest(problem, factor);
+        let mut history = History {
+            steps: steps.to_vec(),
+            solutions: Vec::with_capacity(steps.len()),
+            status: SolveStatus::Converged,
+            ended_at: None,
+            failed: None,
+            step_seconds: Vec::with_capacity(steps.len()),
+            factorizations: usize::from(!self.reused_factorization()),
+            setup_seconds: if self.reused_factorization() { 0.0 } else { factor.factorization_seconds },
+        };
+        let mut start: Option<Vec<f64>> = None;
+        for (k, step) in steps.iter().enumerate() {
+            let clock = Instant::now();
+            let loading = step_load_case(problem, factor, step, &previous)?;
+            let solution = self.solve_loading(friction, settings, &loading, start.as_deref(), None)?;
+            let seconds = clock.elapsed().as_secs_f64();
+            history.step_seconds.push(seconds);
+            let status = solution.report.status;
+            log::info!(
+                "step {}/{}: {status}, {} fixed-point iterations, {seconds:.3} s",
+                k + 1,
+                steps.len(),
+                solution.report.iterations
+            );
+            let progress = StepProgress {
+                step: k,
+                steps: steps.len(),
+                status,
+                iterations: solution.report.iterations,
+                seconds,
+                normal_force: solution.normal_force,
+                tangential_force: solution.tangential_force,
+            };
+            if status != SolveStatus::Converged {
+                history.status = status;
+                history.ended_at = Some(k);
+                history.failed = Some(Box::new(solution));
+                break;
+            }
+            previous = after(self, &solution, step.shift);
+            start = Some(solution.lambda_n.iter().chain(&solution.lambda_t).copied().collect());
+            history.solutions.push(solution);
+            let flow = observer.as_mut().map_or(ControlFlow::Continue(()), |o| o(&progress));
+            if flow.is_break() && k + 1 < steps.len() {
+                history.status = SolveStatus::Interrupted { iteration: progress.iterations };
+                history.ended_at = Some(k);
+                break;
+            }
+        }
+        Ok(history)
+    }
+}
+
+/// The state a converged step leaves for the next: `E_t u^k − Dγ λ_t^k`, `u_t^k` at the FE nodes of Γ_C
+/// and s_k.
+fn after(condensed: &Condensed<'_>, solution: &Solution, shift: f64) -> PreviousStep {
+    let (problem, factor) = (condensed.problem(), condensed.factor());
+    let q = condensed.q();
+    // The unknowns x = Tᵀ (u − ū) (T has orthonormal columns: a node's unknowns are its free directions).
+    let relative: Vec<f64> = solution.displacement.iter().zip(&problem.dofs.lifting).map(|(u, l)| u - l).collect();
+    let u_free = problem.dofs.restrict(&relative);
+    let lambda: Vec<f64> = solution.lambda_n.iter().chain(&solution.lambda_t).copied().collect();
+    let (eu, dl) = (factor.apply_e(&u_free), factor.apply_d(&lambda));
+    let tangential = (q..2 * q).map(|j| eu[j] - dl[j]).collect();
+    let t = problem.contact.tangent;
+    let u_t = |node: usize| solution.displacement[2 * node] * t[0] + solution.displacement[2 * node + 1] * t[1];
+    PreviousStep { tangential, u_t_nodes: problem.contact.nodes.iter().map(|&n| u_t(n)).collect(), shift }
+}
+
+/// Where a history stands before a step: the tangential displacement at rest is 0 and the obstacle at
+/// shift 0.
+#[derive(Debug, Clone)]
+struct PreviousStep {
+    /// `(E_t u^{k−1} − Dγ λ_t^{k−1})_j` (q values) on the unknowns: the previous step's stabilized
+    /// tangential displacement, `∫ ψ_j u_t^{k−1} − ∫ γ ψ_j (λ_t^{k−1} + σ_t(u^{k−1}))` without the part of
+    /// the prescribed displacements (the same at every step, it cancels in the increment).
+    pub tangential: Vec<f64>,
+    /// `u_t^{k−1}` at the FE nodes of Γ_C.
+    pub u_t_nodes: Vec<f64>,
+    /// `s_{k−1}`.
+    pub shift: f64,
+}
+
+impl PreviousStep {
+    /// The state at rest: the body undeformed (u = 0, also where a support prescribes ū: the first step
+    /// moves it there), the obstacle at shift 0. Its tangential data is then `−(E ū)_t`, the tangential
+    /// part of the lifting in the problem's own `d` (exactly 0 without prescribed displacements).
+    fn rest(problem: &Problem, factor: &Factor) -> Self {
+        let q = problem.n_multipliers();
+        let shift = problem.spec.obstacle.shift;
+        let tangential = problem.mortar.psi_integrals.iter().zip(&factor.d[q..]).map(|(w, d)| d - w * shift).collect();
+        Self { tangential, u_t_nodes: vec![0.0; problem.contact.nodes.len()], shift: 0.0 }
+    }
+}
+
+/// The load case of one step of a history (see [`crate::solve::history`] for the derivation): loads
+/// `α f` (the lifting of prescribed displacements is not scaled), gap moments `∫ψ_j (g₀ − δ_k)`,
+/// tangential data `∫ψ_j (s_k − s_{k−1}) + (E_t u^{k−1} − Dγ λ_t^{k−1})_j`. From rest with α = 1 and
+/// the problem's own approach, this is bit for bit the static load case.
+///
+/// # Errors
+/// [`crate::Error::MemoryBudget`] if the solve for a scaled load cannot allocate its workspace.
+fn step_load_case(problem: &Problem, factor: &Factor, step: &LoadStep, previous: &PreviousStep) -> Result<Loading> {
+    let alpha = step.load_factor;
+    let q = problem.n_multipliers();
+    let w = &problem.mortar.psi_integrals;
+    // g_k = g₀ − δ_k = (g₀ − δ) + (δ − δ_k): the problem's gap moved by the change of approach.
+    let moved = problem.spec.obstacle.approach - step.approach;
+    let ds = step.shift - previous.shift;
+    let d: Vec<f64> = factor.d[..q]
+        .iter()
+        .zip(w)
+        .map(|(m, w)| m + moved * w)
+        .chain(w.iter().zip(&previous.tangential).map(|(w, t)| w * ds + t))
+        .collect();
+    let (f_free, c) = if alpha == 1.0 {
+        let c = d.iter().zip(&factor.e_ainv_f).map(|(d, e)| d - e).collect();
+        (factor.f.clone(), c)
+    } else {
+        // f̃ + (α − 1) Tᵀ f: the load scaled, its lifting kept; one more solve for E A⁻¹ f.
+        let load = problem.dofs.restrict(&problem.f_full);
+        let f: Vec<f64> = factor.f.iter().zip(&load).map(|(f, l)| f + (alpha - 1.0) * l).collect();
+        let u = factor.displacement(&f, &vec![0.0; d.len()])?;
+        let c = d.iter().zip(factor.apply_e(&u)).map(|(d, e)| d - e).collect();
+        (f, c)
+    };
+    Ok(Loading {
+        f_free,
+        f_full: problem.f_full.iter().map(|f| alpha * f).collect(),
+        d,
+        c,
+        gap: problem.contact_gap.iter().map(|g| g + moved).collect(),
+        approach: step.approach,
+        shift: step.shift,
+        slip_origin: previous.u_t_nodes.iter().map(|u| u + ds).collect(),
+    })
+}
+
+/// One step of a loading history: where the obstacle is and how much of the load acts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LoadStep {
+    /// Normal approach δ_k of the obstacle toward the body (the total, not an increment).
+    pub approach: f64,
+    /// Tangential position s_k of the obstacle along t (the total, not an increment).
+    pub shift: f64,
+    /// Factor α_k on the body force and the tractions.
+    pub load_factor: f64,
+}
+
+impl LoadStep {
+    /// A step to approach δ and shift s under the full load.
+    pub fn new(approach: f64, shift: f64) -> Self {
+        Self { approach, shift, load_factor: 1.0 }
+    }
+
+    /// Checks that every value is finite.
+    ///
+    /// # Errors
+    /// [`Error::BadLoadStep`] naming the step (`index`) and the value.
+    pub fn validate(&self, index: usize) -> Result<()> {
+        for (name, v) in [("approach", self.approach), ("shift", self.shift), ("load_factor", self.load_factor)] {
+            if !v.is_finite() {
+                return Err(Error::BadLoadStep { step: index, what: format!("{name} must be finite, got {v}") });
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,103 @@
+//! The solve driver: frictionless and Tresca problems are one QP each; Coulomb (3.1) is the fixed point
+//! of `Φ_H : g ↦ λ_Hn(g)` (Definition 1 of the paper), each evaluation a Tresca QP P(g) whose matrix
+//! does not change (only the bounds μ g do). The displacement is recovered at the end with one solve.
+//!
+//! The four public entry points are here, each validating its input once: [`Condensed::solve`],
+//! [`Problem::solve`], [`Condensed::solve_history`] and [`Problem::solve_history`]. The driver of one
+//! solve is `driver`, the fixed point `fixed_point`, histories [`history`], and the progress reports
+//! [`Progress`] and [`StepProgress`].
+
+mod driver;
+mod fixed_point;
+pub mod history;
+mod progress;
+
+pub use fixed_point::STAGNATION_WINDOW;
+pub use history::{History, StepObserver, StepProgress};
+pub use progress::{Observer, Phase, Progress};
+
+use crate::error::{Error, Result};
+use crate::problem::{Condensed, Problem};
+use crate::results::Solution;
+use crate::settings::friction::Friction;
+use crate::settings::SolverSettings;
+use history::LoadStep;
+
+impl Condensed<'_> {
+    /// Solves the contact problem with the given friction law on this condensed system.
+    ///
+    /// # Errors
+    /// Bad friction or settings ([`crate::Error::BadSetting`], [`crate::Error::BadThreshold`]); QP set-up
+    /// errors. A QP that fails to converge or a fixed point that does not converge is *not* an error: see
+    /// [`Solution::report`].
+    pub fn solve(
+        &self,
+        friction: &Friction,
+        settings: &SolverSettings,
+        observer: Option<Observer<'_>>,
+    ) -> Result<Solution> {
+        settings.validate()?;
+        friction.validate(self.q())?;
+        self.solve_validated(friction, settings, observer)
+    }
+
+    /// Solves the loading history `steps` from rest with one factorization (this one): step k starts
+    /// from the state of step k − 1 (see [`history`] for the incremental problem).
+    ///
+    /// # Errors
+    /// [`Error::BadLoadStep`] (before any solve), bad friction or settings, QP set-up errors. A step that
+    /// does not converge is not an error: it ends the history with its status (see [`History`]).
+    pub fn solve_history(
+        &self,
+        friction: &Friction,
+        steps: &[LoadStep],
+        settings: &SolverSettings,
+        observer: Option<StepObserver<'_>>,
+    ) -> Result<History> {
+        settings.validate()?;
+        friction.validate(self.q())?;
+        if steps.is_empty() {
+            return Err(Error::BadLoadStep { step: 0, what: "a history needs at least one step".to_string() });
+        }
+        for (k, s) in steps.iter().enumerate() {
+            s.validate(k)?;
+        }
+        self.run_history(friction, steps, settings, observer)
+    }
+}
+
+impl Problem {
+    /// Condenses with `settings.stabilization` (or reuses the factorization of the previous solve with
+    /// the same γ0) and solves: the one-call entry point.
+    ///
+    /// # Errors
+    /// As [`Problem::condense`] and [`Condensed::solve`].
+    pub fn solve(
+        &self,
+        friction: &Friction,
+        settings: &SolverSettings,
+        observer: Option<Observer<'_>>,
+    ) -> Result<Solution> {
+        settings.validate()?;
+        friction.validate(self.n_multipliers())?;
+        self.condense_with(settings.stabilization, settings.condensation, settings.memory_budget)?
+            .solve_validated(friction, settings, observer)
+    }
+
+    /// Condenses with `settings.stabilization` (or reuses the cached factorization) and solves the
+    /// loading history `steps`: the one-call entry point of [`Condensed::solve_history`].
+    ///
+    /// # Errors
+    /// As [`Problem::condense`] and [`Condensed::solve_history`].
+    pub fn solve_history(
+        &self,
+        friction: &Friction,
+        steps: &[LoadStep],
+        settings: &SolverSettings,
+        observer: Option<StepObserver<'_>>,
+    ) -> Result<History> {
+        settings.validate()?;
+        self.condense_with(settings.stabilization, settings.condensation, settings.memory_budget)?
+            .solve_history(friction, steps, settings, observer)
+    }
+}
