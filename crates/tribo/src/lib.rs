@@ -103,6 +103,8 @@ pub use fem::elasticity::Material;
 pub use fem::supports::{Dofs, NodeSupport, Support};
 pub use mesh::generate::{graded_rectangle, rectangle, Diagonal, Grading, Side};
 pub use mesh::Mesh;
+pub use problem::load_case::LoadCase;
+#[allow(deprecated)]
 pub use problem::load_case::Loading;
 pub use problem::{Condensed, Problem, ProblemSpec};
 pub use qp::{QpOutcome, QpStatus};

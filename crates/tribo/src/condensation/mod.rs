@@ -73,17 +73,17 @@ pub(crate) fn saddle_error(e: SaddleError) -> Error {
     }
 }
 
-fn schur_error(e: schur::Error) -> Error {
+fn schur_error(e: schur::SchurError) -> Error {
     match e {
-        schur::Error::NotPositiveDefinite { dof } => {
+        schur::SchurError::NotPositiveDefinite { dof } => {
             Error::NotPositiveDefinite { what: format!("non-positive pivot at unknown {dof}") }
         }
-        schur::Error::TooLarge { what, bytes } => Error::MemoryBudget {
+        schur::SchurError::TooLarge { what, bytes } => Error::MemoryBudget {
             what: format!("the partial factorization's {what}"),
             needed: bytes as f64,
             budget: f64::NAN,
         },
-        schur::Error::InvalidInput(what) => Error::Assembly { matrix: "the Schur complement of A", what },
+        schur::SchurError::InvalidInput(what) => Error::Assembly { matrix: "the Schur complement of A", what },
     }
 }
 

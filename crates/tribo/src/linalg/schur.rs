@@ -57,7 +57,7 @@ use faer::{Accum, Conj, Mat, MatMut, MatRef, Par, Side};
 
 /// Errors of the partial factorization.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Error {
+pub enum SchurError {
     /// The Cholesky factorization met a non-positive pivot at the given dof (index in the caller's
     /// numbering, when it can be mapped back).
     NotPositiveDefinite {
@@ -75,31 +75,35 @@ pub enum Error {
     InvalidInput(String),
 }
 
-impl std::fmt::Display for Error {
+impl std::fmt::Display for SchurError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Error::NotPositiveDefinite { dof } => write!(f, "matrix is not positive definite (pivot at dof {dof})"),
-            Error::TooLarge { what, bytes } => write!(f, "allocation of {what} ({bytes} bytes) failed or is too large"),
-            Error::InvalidInput(s) => write!(f, "invalid input: {s}"),
+            SchurError::NotPositiveDefinite { dof } => {
+                write!(f, "matrix is not positive definite (pivot at dof {dof})")
+            }
+            SchurError::TooLarge { what, bytes } => {
+                write!(f, "allocation of {what} ({bytes} bytes) failed or is too large")
+            }
+            SchurError::InvalidInput(s) => write!(f, "invalid input: {s}"),
         }
     }
 }
 
-impl std::error::Error for Error {}
+impl std::error::Error for SchurError {}
 
 /// Result alias of this module.
-pub type Result<T> = std::result::Result<T, Error>;
+pub type Result<T> = std::result::Result<T, SchurError>;
 
-fn faer_err(what: &'static str, e: FaerError) -> Error {
+fn faer_err(what: &'static str, e: FaerError) -> SchurError {
     match e {
-        FaerError::OutOfMemory => Error::TooLarge { what, bytes: usize::MAX },
-        other => Error::InvalidInput(format!("{what}: {other:?}")),
+        FaerError::OutOfMemory => SchurError::TooLarge { what, bytes: usize::MAX },
+        other => SchurError::InvalidInput(format!("{what}: {other:?}")),
     }
 }
 
 /// Tuning knobs. The defaults are what [`schur_e`] uses.
 #[derive(Debug, Clone, Copy)]
-pub struct Options {
+pub struct SchurOptions {
     /// Largest dense allocation accepted (bytes) for `L_CC`, `W` and `S_E` together.
     pub max_dense_bytes: usize,
     /// Number of columns of `W` per triangular solve (0: automatic, m/16 clamped to 64..=512).
@@ -110,7 +114,7 @@ pub struct Options {
     pub dense_l_cc: bool,
 }
 
-impl Default for Options {
+impl Default for SchurOptions {
     fn default() -> Self {
         Self { max_dense_bytes: 16 << 30, block: 0, panel: 0, dense_l_cc: false }
     }
@@ -132,7 +136,7 @@ pub struct SymbolicOptions {
 
 /// Wall-clock seconds of the phases of [`schur_e_with`].
 #[derive(Debug, Clone, Copy, Default)]
-pub struct Timings {
+pub struct SchurTimings {
     /// AMD on `A_II` plus the symbolic factorization.
     pub symbolic: f64,
     /// Numeric sparse Cholesky factorization.
@@ -145,7 +149,7 @@ pub struct Timings {
     pub syrk: f64,
 }
 
-impl Timings {
+impl SchurTimings {
     /// Sum of all phases.
     pub fn total(&self) -> f64 {
         self.symbolic + self.numeric + self.extract + self.solve + self.syrk
@@ -155,22 +159,22 @@ impl Timings {
 fn try_zeros(nrows: usize, ncols: usize, what: &'static str, limit: usize) -> Result<Mat<f64>> {
     let bytes = nrows.saturating_mul(ncols).saturating_mul(8);
     if bytes > limit {
-        return Err(Error::TooLarge { what, bytes });
+        return Err(SchurError::TooLarge { what, bytes });
     }
     let mut m = Mat::<f64>::new();
-    m.try_reserve(nrows, ncols).map_err(|_| Error::TooLarge { what, bytes })?;
+    m.try_reserve(nrows, ncols).map_err(|_| SchurError::TooLarge { what, bytes })?;
     m.resize_with(nrows, ncols, |_, _| 0.0);
     Ok(m)
 }
 
 fn try_buffer(req: StackReq, what: &'static str) -> Result<MemBuffer> {
-    MemBuffer::try_new(req).map_err(|_| Error::TooLarge { what, bytes: req.size_bytes() })
+    MemBuffer::try_new(req).map_err(|_| SchurError::TooLarge { what, bytes: req.size_bytes() })
 }
 
 fn check_e(n: usize, e_rows: &[Vec<(usize, f64)>]) -> Result<()> {
     for (r, row) in e_rows.iter().enumerate() {
         if let Some(&(c, _)) = row.iter().find(|&&(c, _)| c >= n) {
-            return Err(Error::InvalidInput(format!("row {r} of E has column {c} >= n = {n}")));
+            return Err(SchurError::InvalidInput(format!("row {r} of E has column {c} >= n = {n}")));
         }
     }
     Ok(())
@@ -195,8 +199,8 @@ impl SchurSymbolic {
     /// Analyses the pattern of `A` (n × n, either or both triangles stored) and of the rows of `E`.
     ///
     /// # Errors
-    /// [`Error::InvalidInput`] if `A` is not square or `E` has a column out of range;
-    /// [`Error::TooLarge`] if an allocation fails.
+    /// [`SchurError::InvalidInput`] if `A` is not square or `E` has a column out of range;
+    /// [`SchurError::TooLarge`] if an allocation fails.
     pub fn new(a: SymbolicSparseColMatRef<'_, usize>, e_rows: &[Vec<(usize, f64)>]) -> Result<Arc<Self>> {
         Self::new_with(a, e_rows, SymbolicOptions::default())
     }
@@ -213,7 +217,7 @@ impl SchurSymbolic {
         let (split_contact, chunk) = (opts.split_contact, opts.contact_chunk);
         let n = a.nrows();
         if a.ncols() != n {
-            return Err(Error::InvalidInput(format!("A is {} x {}", n, a.ncols())));
+            return Err(SchurError::InvalidInput(format!("A is {} x {}", n, a.ncols())));
         }
         check_e(n, e_rows)?;
         let contact = contact_order(a, e_rows, split_contact);
@@ -328,13 +332,13 @@ impl SchurSymbolic {
     /// stored, as analysed; the lower triangle is read).
     ///
     /// # Errors
-    /// [`Error::NotPositiveDefinite`], [`Error::TooLarge`], [`Error::InvalidInput`] on a shape mismatch.
+    /// [`SchurError::NotPositiveDefinite`], [`SchurError::TooLarge`], [`SchurError::InvalidInput`] on a shape mismatch.
     pub fn factorize(self: &Arc<Self>, a: SparseColMatRef<'_, usize, f64>, par: Par) -> Result<SchurFactor> {
         if a.nrows() != self.n || a.ncols() != self.n {
-            return Err(Error::InvalidInput(format!("A is {} x {}, analysed {}", a.nrows(), a.ncols(), self.n)));
+            return Err(SchurError::InvalidInput(format!("A is {} x {}, analysed {}", a.nrows(), a.ncols(), self.n)));
         }
         if a.compute_nnz() != self.a_nnz {
-            return Err(Error::InvalidInput(format!(
+            return Err(SchurError::InvalidInput(format!(
                 "A has {} stored entries, the analysed pattern {}",
                 a.compute_nnz(),
                 self.a_nnz
@@ -342,7 +346,7 @@ impl SchurSymbolic {
         }
         let len = self.symbolic.len_val();
         let mut values = Vec::new();
-        values.try_reserve_exact(len).map_err(|_| Error::TooLarge { what: "factor values", bytes: len * 8 })?;
+        values.try_reserve_exact(len).map_err(|_| SchurError::TooLarge { what: "factor values", bytes: len * 8 })?;
         values.resize(len, 0.0);
         let mut mem = try_buffer(
             self.symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
@@ -361,7 +365,7 @@ impl SchurSymbolic {
             Ok(_) => Ok(SchurFactor { symbolic: Arc::clone(self), values }),
             Err(LltError::NonPositivePivot { index }) => {
                 let dof = self.symbolic.perm().map_or(index, |p| p.arrays().0.get(index).copied().unwrap_or(index));
-                Err(Error::NotPositiveDefinite { dof })
+                Err(SchurError::NotPositiveDefinite { dof })
             }
         }
     }
@@ -482,19 +486,19 @@ impl SchurFactor {
     fn supernodal(&self) -> Result<&SymbolicSupernodalCholesky<usize>> {
         match self.symbolic.symbolic.raw() {
             SymbolicCholeskyRaw::Supernodal(s) => Ok(s),
-            SymbolicCholeskyRaw::Simplicial(_) => Err(Error::InvalidInput("a simplicial factor".to_string())),
+            SymbolicCholeskyRaw::Simplicial(_) => Err(SchurError::InvalidInput("a simplicial factor".to_string())),
         }
     }
 
     /// Solves `A X = B` in place for the columns of `rhs` (n × k).
     ///
     /// # Errors
-    /// [`Error::InvalidInput`] if `rhs` does not have n rows; [`Error::TooLarge`] if the workspace cannot
+    /// [`SchurError::InvalidInput`] if `rhs` does not have n rows; [`SchurError::TooLarge`] if the workspace cannot
     /// be allocated.
     pub fn solve_in_place(&self, rhs: MatMut<'_, f64>, par: Par) -> Result<()> {
         let sym = &self.symbolic.symbolic;
         if rhs.nrows() != sym.nrows() {
-            return Err(Error::InvalidInput(format!("rhs has {} rows, expected {}", rhs.nrows(), sym.nrows())));
+            return Err(SchurError::InvalidInput(format!("rhs has {} rows, expected {}", rhs.nrows(), sym.nrows())));
         }
         let mut mem = try_buffer(sym.solve_in_place_scratch::<f64>(rhs.ncols(), par), "solve workspace")?;
         LltRef::new(sym, &self.values).solve_in_place_with_conj(Conj::No, rhs, par, MemStack::new(&mut mem));
@@ -576,7 +580,7 @@ impl SchurFactor {
     /// [`SchurSymbolic::contact_dofs`]. `L_CC L_CCᵀ` is the Schur complement of `A` onto `C`.
     ///
     /// # Errors
-    /// [`Error::TooLarge`] if nc² doubles exceed `max_bytes` or cannot be allocated.
+    /// [`SchurError::TooLarge`] if nc² doubles exceed `max_bytes` or cannot be allocated.
     pub fn l_cc(&self, max_bytes: usize) -> Result<Mat<f64>> {
         let s = self.supernodal()?;
         let n = self.symbolic.n;
@@ -615,9 +619,9 @@ impl SchurFactor {
     /// contact set (the values may differ from those given to [`SchurSymbolic::new`]).
     ///
     /// # Errors
-    /// [`Error::InvalidInput`] if a row of `E` touches a dof outside `C`; [`Error::TooLarge`].
+    /// [`SchurError::InvalidInput`] if a row of `E` touches a dof outside `C`; [`SchurError::TooLarge`].
     pub fn schur(&self, e_rows: &[Vec<(usize, f64)>], par: Par) -> Result<Mat<f64>> {
-        self.schur_with(e_rows, par, &Options::default(), &mut Timings::default())
+        self.schur_with(e_rows, par, &SchurOptions::default(), &mut SchurTimings::default())
     }
 
     /// [`SchurFactor::schur`] with options, accumulating the phase times into `t`.
@@ -628,8 +632,8 @@ impl SchurFactor {
         &self,
         e_rows: &[Vec<(usize, f64)>],
         par: Par,
-        opts: &Options,
-        t: &mut Timings,
+        opts: &SchurOptions,
+        t: &mut SchurTimings,
     ) -> Result<Mat<f64>> {
         let clock = std::time::Instant::now();
         let n = self.symbolic.n;
@@ -643,7 +647,7 @@ impl SchurFactor {
             .saturating_add(m.saturating_mul(m).saturating_mul(2))
             .saturating_mul(8);
         if need > opts.max_dense_bytes {
-            return Err(Error::TooLarge { what: "dense blocks W, S_E (and L_CC)", bytes: need });
+            return Err(SchurError::TooLarge { what: "dense blocks W, S_E (and L_CC)", bytes: need });
         }
         // First non-zero (position in C) of each column of E_Cᵀ; columns processed by increasing p.
         let mut first = Vec::with_capacity(m);
@@ -652,7 +656,9 @@ impl SchurFactor {
             for &(c, _) in row {
                 let k = pos[c];
                 if k == usize::MAX {
-                    return Err(Error::InvalidInput(format!("row {r} of E touches dof {c}, not in the analysed C")));
+                    return Err(SchurError::InvalidInput(format!(
+                        "row {r} of E touches dof {c}, not in the analysed C"
+                    )));
                 }
                 p = p.min(k);
             }
@@ -745,13 +751,13 @@ fn unpermute_lower(h: MatRef<'_, f64>, order: &[usize]) -> Result<Mat<f64>> {
 /// `(column, value)` lists. Returns the factor (which solves `A x = b`) and the dense symmetric `S_E`.
 ///
 /// # Errors
-/// [`Error::NotPositiveDefinite`], [`Error::TooLarge`], [`Error::InvalidInput`].
+/// [`SchurError::NotPositiveDefinite`], [`SchurError::TooLarge`], [`SchurError::InvalidInput`].
 pub fn schur_e(
     a: &SparseColMat<usize, f64>,
     e_rows: &[Vec<(usize, f64)>],
     par: Par,
 ) -> Result<(SchurFactor, Mat<f64>)> {
-    schur_e_with(a, e_rows, par, &Options::default()).map(|(f, s, _)| (f, s))
+    schur_e_with(a, e_rows, par, &SchurOptions::default()).map(|(f, s, _)| (f, s))
 }
 
 /// [`schur_e`] with options, also returning the phase timings.
@@ -762,9 +768,9 @@ pub fn schur_e_with(
     a: &SparseColMat<usize, f64>,
     e_rows: &[Vec<(usize, f64)>],
     par: Par,
-    opts: &Options,
-) -> Result<(SchurFactor, Mat<f64>, Timings)> {
-    let mut t = Timings::default();
+    opts: &SchurOptions,
+) -> Result<(SchurFactor, Mat<f64>, SchurTimings)> {
+    let mut t = SchurTimings::default();
     let clock = std::time::Instant::now();
     let sym = SchurSymbolic::new(a.symbolic(), e_rows)?;
     t.symbolic = clock.elapsed().as_secs_f64();
@@ -774,3 +780,13 @@ pub fn schur_e_with(
     let s = f.schur_with(e_rows, par, opts, &mut t)?;
     Ok((f, s, t))
 }
+
+/// The former names of [`SchurError`], [`SchurOptions`] and [`SchurTimings`].
+#[deprecated(note = "renamed SchurError")]
+pub type Error = SchurError;
+/// See [`SchurOptions`].
+#[deprecated(note = "renamed SchurOptions")]
+pub type Options = SchurOptions;
+/// See [`SchurTimings`].
+#[deprecated(note = "renamed SchurTimings")]
+pub type Timings = SchurTimings;

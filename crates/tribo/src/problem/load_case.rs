@@ -3,7 +3,7 @@
 //! For a condensed problem, a load case is the load `f`, the obstacle moments `d` and the QP's linear
 //! term `c = d − E A⁻¹ f` (see [`crate::condensation`]), with the gap and the origin of slip at the FE
 //! nodes of Γ_C for the reported fields. A static solve has one, built from the problem's own data
-//! ([`Loading::of_problem`]). A step of a loading history has its own (derived in [`crate::solve::history`]). Neither changes `A`, `H` or `Dγ`, so every load case of a problem shares one
+//! ([`LoadCase::of_problem`]). A step of a loading history has its own (derived in [`crate::solve::history`]). Neither changes `A`, `H` or `Dγ`, so every load case of a problem shares one
 //! factorization.
 
 use crate::condensation::Factor;
@@ -12,7 +12,7 @@ use crate::qp::QpData;
 
 /// One load case of a condensed problem.
 #[derive(Debug, Clone)]
-pub struct Loading {
+pub struct LoadCase {
     /// Load on the free dofs.
     pub f_free: Vec<f64>,
     /// Load on all 2N dofs (for the reactions).
@@ -32,7 +32,7 @@ pub struct Loading {
     pub slip_origin: Vec<f64>,
 }
 
-impl Loading {
+impl LoadCase {
     /// The data a Γ_C QP needs of this load case.
     pub fn qp_data(&self) -> QpData<'_> {
         QpData { f: &self.f_free, d: &self.d, c: &self.c }
@@ -53,3 +53,7 @@ impl Loading {
         }
     }
 }
+
+/// The former name of [`LoadCase`].
+#[deprecated(note = "renamed LoadCase: one load case of a condensed problem")]
+pub type Loading = LoadCase;

@@ -40,7 +40,7 @@ pub(crate) use scaling::{diagonal, Scaling};
 use crate::settings::QpMethod;
 
 /// What a Γ_C QP needs of its load case: the load f on the unknowns, the obstacle moments d and the
-/// linear term `c = d − E A⁻¹ f` (all borrowed; see [`crate::Loading`]).
+/// linear term `c = d − E A⁻¹ f` (all borrowed; see [`crate::LoadCase`]).
 #[derive(Debug, Clone, Copy)]
 pub struct QpData<'a> {
     /// The load on the unknowns.

@@ -3,7 +3,7 @@
 //! ([`crate::Solution::accuracy_bound`]).
 
 use crate::condensation::Factor;
-use crate::problem::load_case::Loading;
+use crate::problem::load_case::LoadCase;
 
 /// Discrete KKT residuals of (3.1) at the returned solution, each made dimensionless.
 ///
@@ -65,7 +65,7 @@ fn ratio(num: f64, den: f64) -> f64 {
     }
 }
 
-pub(crate) fn kkt_residuals(c: &Factor, loading: &Loading, u: &[f64], lambda: &[f64], bound: &[f64]) -> KktResiduals {
+pub(crate) fn kkt_residuals(c: &Factor, loading: &LoadCase, u: &[f64], lambda: &[f64], bound: &[f64]) -> KktResiduals {
     let q = c.q();
     let au = c.apply_a(u);
     let etl = c.apply_et(lambda);

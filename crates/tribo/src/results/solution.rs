@@ -3,7 +3,7 @@
 //! residuals and the [`Report`].
 
 use crate::fem::elasticity::{element_stresses, internal_forces};
-use crate::problem::load_case::Loading;
+use crate::problem::load_case::LoadCase;
 use crate::problem::Condensed;
 use crate::results::kkt::{kkt_residuals, nan_max};
 use crate::results::{ContactState, KktResiduals, Report};
@@ -77,7 +77,7 @@ impl Solution {
     /// the threshold between "zero" and "non-zero" multipliers in the contact states).
     pub(crate) fn new(
         condensed: &Condensed<'_>,
-        loading: &Loading,
+        loading: &LoadCase,
         u_free: &[f64],
         lambda: Vec<f64>,
         friction_threshold: Vec<f64>,

@@ -6,7 +6,7 @@ use std::ops::ControlFlow;
 use std::time::Instant;
 
 use crate::error::{Error, Num, Result};
-use crate::problem::load_case::Loading;
+use crate::problem::load_case::LoadCase;
 use crate::problem::Condensed;
 use crate::qp::working_set::ContactQp;
 use crate::qp::{QpOutcome, QpStatus};
@@ -75,7 +75,7 @@ impl Condensed<'_> {
         settings: &SolverSettings,
         observer: Option<Observer<'_>>,
     ) -> Result<Solution> {
-        let loading = Loading::of_problem(self.problem(), self.factor());
+        let loading = LoadCase::of_problem(self.problem(), self.factor());
         self.solve_loading(friction, settings, &loading, None, observer)
     }
 
@@ -86,7 +86,7 @@ impl Condensed<'_> {
         &self,
         friction: &Friction,
         settings: &SolverSettings,
-        loading: &Loading,
+        loading: &LoadCase,
         start: Option<&[f64]>,
         mut observer: Option<Observer<'_>>,
     ) -> Result<Solution> {

@@ -6,7 +6,7 @@
 use std::ops::ControlFlow;
 
 use crate::error::Result;
-use crate::problem::load_case::Loading;
+use crate::problem::load_case::LoadCase;
 use crate::problem::Condensed;
 use crate::qp::working_set::ContactQp;
 use crate::results::SolveStatus;
@@ -23,7 +23,7 @@ impl Condensed<'_> {
         &self,
         mu: f64,
         settings: &SolverSettings,
-        loading: &Loading,
+        loading: &LoadCase,
         phase: &mut QpPhase,
         notify: &mut dyn FnMut(Progress) -> ControlFlow<()>,
     ) -> Result<()> {

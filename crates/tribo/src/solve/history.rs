@@ -54,7 +54,7 @@ use std::time::Instant;
 
 use crate::condensation::Factor;
 use crate::error::{Error, Result};
-use crate::problem::load_case::Loading;
+use crate::problem::load_case::LoadCase;
 use crate::problem::{Condensed, Problem};
 use crate::results::{ContactState, Solution, SolveStatus};
 use crate::settings::friction::Friction;
@@ -257,7 +257,7 @@ impl PreviousStep {
 ///
 /// # Errors
 /// [`crate::Error::MemoryBudget`] if the solve for a scaled load cannot allocate its workspace.
-fn step_load_case(problem: &Problem, factor: &Factor, step: &LoadStep, previous: &PreviousStep) -> Result<Loading> {
+fn step_load_case(problem: &Problem, factor: &Factor, step: &LoadStep, previous: &PreviousStep) -> Result<LoadCase> {
     let alpha = step.load_factor;
     let q = problem.n_multipliers();
     let w = &problem.mortar.psi_integrals;
@@ -281,7 +281,7 @@ fn step_load_case(problem: &Problem, factor: &Factor, step: &LoadStep, previous:
         let c = d.iter().zip(factor.apply_e(&u)).map(|(d, e)| d - e).collect();
         (f, c)
     };
-    Ok(Loading {
+    Ok(LoadCase {
         f_free,
         f_full: problem.f_full.iter().map(|f| alpha * f).collect(),
         d,
