@@ -27,6 +27,8 @@ pub struct LoadCase {
     pub approach: f64,
     /// See `approach`.
     pub shift: f64,
+    /// The factor α on the body force and the tractions (1 for a static solve).
+    pub load_factor: f64,
     /// At the FE nodes of Γ_C, the tangential displacement from which slip is measured: the shift s of a
     /// static solve, `u_t^{k−1} + s_k − s_{k−1}` in step k of a history.
     pub slip_origin: Vec<f64>,
@@ -49,6 +51,7 @@ impl LoadCase {
             gap: problem.contact_gap.clone(),
             approach: problem.spec.obstacle.approach,
             shift,
+            load_factor: 1.0,
             slip_origin: vec![shift; problem.contact.nodes.len()],
         }
     }

@@ -2,10 +2,12 @@
 //! discrete KKT residuals of (3.1) ([`KktResiduals`]) and a report of how the solve ended ([`Report`],
 //! [`SolveStatus`]).
 
+mod estimator;
 mod kkt;
 mod solution;
 mod status;
 
+pub use estimator::{ErrorEstimate, SUBDIVISIONS};
 pub use kkt::KktResiduals;
 pub use solution::Solution;
 pub use status::{ContactState, Report, SolveStatus, Timings};

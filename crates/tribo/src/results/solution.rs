@@ -5,6 +5,7 @@
 use crate::fem::elasticity::{element_stresses, internal_forces};
 use crate::problem::load_case::LoadCase;
 use crate::problem::Condensed;
+use crate::results::estimator::{estimate, EstimatorInput};
 use crate::results::kkt::{kkt_residuals, nan_max};
 use crate::results::{ContactState, KktResiduals, Report};
 
@@ -65,6 +66,9 @@ pub struct Solution {
     pub obstacle_motion: [f64; 2],
     /// Largest pointwise penetration `max(u_n − g)₊` over the FE nodes of Γ_C.
     pub max_penetration: f64,
+    /// The a posteriori error indicator η_K per triangle (its totals and parts are
+    /// [`Report::estimate`]; see [`crate::results::ErrorEstimate`]).
+    pub estimator: Vec<f64>,
     /// Discrete KKT residuals.
     pub kkt: KktResiduals,
     /// How the solve went.
@@ -122,6 +126,34 @@ impl Solution {
         let contact_force = [0, 1].map(|i| -(normal_force * n[i] + tangential_force * t[i]));
         let obstacle_motion = [0, 1].map(|i| -loading.approach * n[i] + loading.shift * t[i]);
 
+        let scaled = |v: [f64; 2]| [loading.load_factor * v[0], loading.load_factor * v[1]];
+        let spec = &problem.spec;
+        let moved = spec.obstacle.approach - loading.approach;
+        let gap_at = |xi: f64| spec.obstacle.initial_gap(xi) - spec.obstacle.approach + moved;
+        let input = EstimatorInput {
+            mesh,
+            material,
+            dofs: &problem.dofs,
+            contact,
+            multipliers: &problem.multipliers,
+            body_force: scaled(spec.body_force),
+            // The sets were checked when the problem was built.
+            tractions: spec
+                .tractions
+                .iter()
+                .filter_map(|(set, g)| Some((mesh.edge_set(set).ok()?, scaled(*g))))
+                .collect(),
+            stress: &stress,
+            displacement: &displacement,
+            lambda_n: &lambda_n,
+            lambda_t: &lambda_t,
+            threshold: &friction_threshold,
+            u_n: &u_n,
+            slip: &slip,
+            gap: &gap_at,
+        };
+        let (estimator, estimate) = estimate(&input);
+        let report = Report { estimate, ..report };
         let kkt = kkt_residuals(condensed, loading, u_free, &lambda, &friction_threshold);
         let lam_scale = lambda_n.iter().fold(condensed.lambda_scale(&loading.c), |m, v| m.max(v.abs()));
         let theta = qp_tol.sqrt() * lam_scale;
@@ -159,6 +191,7 @@ impl Solution {
             contact_force,
             obstacle_motion,
             max_penetration,
+            estimator,
             kkt,
             report,
         }

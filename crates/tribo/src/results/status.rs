@@ -2,6 +2,7 @@
 //! multiplier dof, the wall time of each phase and the [`Report`] that gathers them.
 
 use crate::choice::named_choice;
+use crate::results::ErrorEstimate;
 use crate::settings::friction::FrictionLaw;
 use crate::settings::{Condensation, QpMethod};
 
@@ -138,4 +139,6 @@ pub struct Report {
     pub condensation: Condensation,
     /// Timings per phase.
     pub timings: Timings,
+    /// The a posteriori error estimate of the answer (see [`crate::results::ErrorEstimate`]).
+    pub estimate: ErrorEstimate,
 }

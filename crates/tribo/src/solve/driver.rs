@@ -10,7 +10,7 @@ use crate::problem::load_case::LoadCase;
 use crate::problem::Condensed;
 use crate::qp::working_set::ContactQp;
 use crate::qp::{QpOutcome, QpStatus};
-use crate::results::{Report, Solution, SolveStatus, Timings};
+use crate::results::{ErrorEstimate, Report, Solution, SolveStatus, Timings};
 use crate::settings::friction::Friction;
 use crate::settings::{QpMethod, SolverSettings};
 use crate::solve::progress::{Observer, Phase, Progress};
@@ -194,6 +194,7 @@ impl Condensed<'_> {
             reused_factorization: self.reused_factorization(),
             condensation: factor.condensation,
             timings,
+            estimate: ErrorEstimate::default(),
         };
         let mut solution = Solution::new(self, loading, &u, phase.lambda, threshold, settings.qp.tol, report);
         // The equation of (3.1) is solved directly: a residual that lost half of the digits is a singular

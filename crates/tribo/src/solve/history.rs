@@ -289,6 +289,7 @@ fn step_load_case(problem: &Problem, factor: &Factor, step: &LoadStep, previous:
         gap: problem.contact_gap.iter().map(|g| g + moved).collect(),
         approach: step.approach,
         shift: step.shift,
+        load_factor: alpha,
         slip_origin: previous.u_t_nodes.iter().map(|u| u + ds).collect(),
     })
 }

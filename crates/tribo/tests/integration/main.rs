@@ -11,11 +11,13 @@
 //! * `outputs`: what a reader gets back (global forces, plane-strain stress, current gap, formatted
 //!   numbers, the condensation's progress);
 //! * `supports`: rollers and prescribed displacements: patch tests, the half Hertz model against the full one;
-//! * `layout`: the module structure of the crate (no import cycles).
+//! * `estimator`: the a posteriori estimate (what it sees, and how it tracks the true error of λ_n);
+//! * `layout`: the house rules of the crate (the layer table of its folders, file sizes).
 //!
 //! Scenes and measures shared with the benches and examples come from the `tribo-testkit` crate.
 
 mod errors;
+mod estimator;
 mod fuzz;
 mod hertz;
 mod history;

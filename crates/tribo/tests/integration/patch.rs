@@ -226,3 +226,31 @@ fn internal_forces_equal_the_assembled_stiffness_applied() {
         assert!(err <= 64.0 * f64::EPSILON * scale[i], "dof {i}: {} against {} (scale {})", forces[i], ku[i], scale[i]);
     }
 }
+
+/// The a posteriori estimate vanishes where the discrete solution is exact: every residual of the
+/// estimator (jumps, Neumann, `λ_H + σ_h n`, penetration, complementarity, cone, dissipation) is zero for
+/// the constant-strain states, to what the QP's accuracy leaves. The squared terms are then of the order
+/// `tol λ`; the complementarity and the dissipation enter unsquared (they are energies), `E* |∫ λ (g − u_n)|
+/// ≤ E* λ |Γ_C| tol δ ≈ (tol) λ²` here (E* δ ≈ λ_n, |Γ_C| = 1), so each contributes at most `√tol λ` to η:
+/// the bound is `3 √tol λ` (two such terms and the squared ones, which are smaller).
+#[test]
+fn the_estimate_vanishes_on_constant_strain_states() {
+    for case in cases() {
+        for space in [MultiplierSpace::P0, MultiplierSpace::P1] {
+            for stab in [Stabilization::None, Stabilization::Fraction(0.5)] {
+                let problem =
+                    patch_problem(case.a, case.b, case.approach, case.shift, MultiplierPoints::Size(0.3), space);
+                let settings = SolverSettings { stabilization: stab, ..Default::default() };
+                let condensed = problem.condense(stab).expect("condenses");
+                let sol = condensed.solve(&case.friction, &settings, None).expect("solves");
+                let tol = settings.qp.tol * tribo_testkit::condition_number(&condensed);
+                let lam = sol.lambda_n.iter().chain(&sol.lambda_t).fold(0.0_f64, |m, v| m.max(v.abs()));
+                let est = sol.report.estimate;
+                let what = format!("{} / {space:?} / {stab:?}: {est:?}", case.name);
+                assert!(est.total <= 3.0 * tol.sqrt() * lam, "{what}");
+                assert!(est.bulk + est.gamma_c <= 3.0 * tol * lam, "{what}");
+                assert_eq!(sol.estimator.len(), problem.mesh.n_triangles());
+            }
+        }
+    }
+}

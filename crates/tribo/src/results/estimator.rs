@@ -1,0 +1,270 @@
+//! A posteriori error estimate of a solve: a residual indicator η_K per triangle for the stabilized
+//! method (P1 displacements, P0 or P1 multipliers on their own mesh T_H, any friction law, any load
+//! step), split into its parts, and an estimate of the error of the contact tractions on Γ_C, the
+//! quantity users read.
+//!
+//! # The indicator
+//! With σ_h = σ(u_h) constant on each triangle (so `div σ_h = 0` there), h_K the diameter of K and
+//! h_E = |E| the length of an edge, every term is a residual of one equation of the problem, measured
+//! in the units of `stress² × area` (so that `η² / E*` is an energy, E* = E / (1 − ν²)):
+//!
+//! * **bulk** (the equilibrium (2.1) and the boundary conditions (2.4)):
+//!   `h_K² ‖f‖²_K` (body load), `½ h_E ‖[σ_h n]‖²_E` on each interior edge (half to each side),
+//!   `h_E ‖σ_h n − F‖²_E` on each Neumann edge (F the traction, 0 on a free edge) and, on a roller or a
+//!   component left free by a prescribed displacement, the traction component along the free direction;
+//! * **Γ_C**: `h_E ‖λ_H + σ_h n‖²_E`, normal and tangential: the very residual the Barbosa–Hughes term
+//!   penalizes, integrated exactly on the common refinement of the FE edges and T_H (both factors are
+//!   polynomials on each piece);
+//! * **contact** (the conditions (2.5)): the penetration `E*² h_E⁻¹ ‖(u_n − g)₊‖²_E` with the obstacle's
+//!   own gap g(ξ) between the nodes (composite Gauss, [`SUBDIVISIONS`] × 3 points per edge, so an
+//!   obstacle that dips between two nodes of a coarse mesh is seen), and the complementarity
+//!   `E* |∫_E λ_Hn (g − u_n)|`;
+//! * **friction** (the law (2.6)): the cone violation `h_E ‖(|λ_Ht| − b_H)₊‖²_E` (b_H the threshold μ λ_Hn
+//!   or the Tresca one, in W_H) and the dissipation gap `E* |∫_E (b_H |Δu_t| − λ_Ht Δu_t)|` with Δu_t the
+//!   slip relative to the obstacle (the slip increment in a history step).
+//!
+//! The Γ_C, contact and friction terms of an edge of Γ_C go to the triangle that owns it. The terms
+//! follow the residual estimators of Coorevits, Hild and Hjiaj (2001, the paper's [17]) for contact with
+//! Lagrange multipliers and of Hild and Lleras (2009) for Coulomb friction; Chouly et al. (2018) give the
+//! Nitsche analogue, whose `h_E ‖λ + σ n‖²` term is the stabilized one above. The complementarity and
+//! dissipation terms enter the energy bound unsquared (they are energies), hence the factor E*; the
+//! penetration is a displacement, hence E*² h_E⁻¹ (a trace in H^{1/2} at the scale of the edge).
+//!
+//! # The traction estimate
+//! On an edge E of Γ_C owned by K, `‖λ − λ_H‖_E ≤ ‖λ_H + σ_h n‖_E + ‖(σ − σ_h) n‖_E`. The first term is
+//! computed; the second is the trace of the stress error, which the discrete trace inequality bounds by
+//! `h_E^{-1/2}` times the stress error near K, itself bounded by the residuals of K (local efficiency and
+//! reliability of the residual estimator). Both together give `ζ_E² = η_K² / h_E` (η_K holds
+//! `h_E ‖λ_H + σ_h n‖²_E`), and `ζ² = Σ_E ζ_E²` estimates `‖λ − λ_H‖²_{L²(Γ_C)}` (normal and tangential
+//! together) up to a constant that does not depend on h. [`ErrorEstimate::traction_relative`] is
+//! `ζ / ‖λ_H‖_{L²(Γ_C)}`.
+
+use crate::contact::mortar::common_refinement;
+use crate::contact::multiplier::MultiplierMesh;
+use crate::contact::ContactBoundary;
+use crate::fem::elasticity::Material;
+use crate::fem::supports::{Dofs, NodeSupport};
+use crate::mesh::Mesh;
+
+/// Sub-intervals per FE edge of Γ_C for the terms whose integrand is not a polynomial there (the
+/// positive parts, |Δu_t|, a gap that is not a parabola).
+pub const SUBDIVISIONS: usize = 8;
+
+/// 3-point Gauss–Legendre on [−1, 1].
+const GAUSS3: [(f64, f64); 3] =
+    [(-0.774_596_669_241_483_4, 5.0 / 9.0), (0.0, 8.0 / 9.0), (0.774_596_669_241_483_4, 5.0 / 9.0)];
+
+/// The totals of the estimate (each the square root of a sum of squares over the triangles).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ErrorEstimate {
+    /// `η = (Σ_K η_K²)^{1/2}`.
+    pub total: f64,
+    /// The bulk part: body load, interior jumps, Neumann and free-direction residuals.
+    pub bulk: f64,
+    /// The Γ_C part: `(Σ_E h_E ‖λ_H + σ_h n‖²_E)^{1/2}`.
+    pub gamma_c: f64,
+    /// The contact part: penetration and complementarity.
+    pub contact: f64,
+    /// The friction part: cone violation and dissipation gap.
+    pub friction: f64,
+    /// `η / (E* a(u_h, u_h))^{1/2}`: the relative energy estimate (dimensionless).
+    pub energy_relative: f64,
+    /// `ζ`, the estimate of `‖λ − λ_H‖_{L²(Γ_C)}` (see the module documentation).
+    pub traction: f64,
+    /// `ζ / ‖λ_H‖_{L²(Γ_C)}` (NaN when λ_H = 0: nothing touches).
+    pub traction_relative: f64,
+}
+
+/// What the estimator reads of a problem and its solution.
+pub(crate) struct EstimatorInput<'a> {
+    pub mesh: &'a Mesh,
+    pub material: &'a Material,
+    pub dofs: &'a Dofs,
+    pub contact: &'a ContactBoundary,
+    pub multipliers: &'a MultiplierMesh,
+    /// The body force and the tractions by edge set, as they act in this load case.
+    pub body_force: [f64; 2],
+    pub tractions: Vec<(&'a [[usize; 2]], [f64; 2])>,
+    pub stress: &'a [[f64; 3]],
+    pub displacement: &'a [f64],
+    pub lambda_n: &'a [f64],
+    pub lambda_t: &'a [f64],
+    pub threshold: &'a [f64],
+    /// u_n and the slip at the FE nodes of Γ_C.
+    pub u_n: &'a [f64],
+    pub slip: &'a [f64],
+    /// The gap g(ξ) of this load case, anywhere on Γ_C.
+    pub gap: &'a dyn Fn(f64) -> f64,
+}
+
+/// The four parts of η_K².
+#[derive(Debug, Clone, Copy, Default)]
+struct Parts {
+    bulk: f64,
+    gamma_c: f64,
+    contact: f64,
+    friction: f64,
+}
+
+impl Parts {
+    fn sum(&self) -> f64 {
+        self.bulk + self.gamma_c + self.contact + self.friction
+    }
+}
+
+/// `σ n` for σ = (σ_xx, σ_yy, σ_xy).
+fn traction(s: &[f64; 3], n: [f64; 2]) -> [f64; 2] {
+    [s[0] * n[0] + s[2] * n[1], s[2] * n[0] + s[1] * n[1]]
+}
+
+/// The per-triangle indicator η_K (not squared) and the totals.
+pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, ErrorEstimate) {
+    let mesh = input.mesh;
+    let pts = mesh.points();
+    let e_star = input.material.young / (1.0 - input.material.poisson.powi(2));
+    let mut parts = vec![Parts::default(); mesh.n_triangles()];
+
+    // Body load.
+    let f2 = input.body_force[0].powi(2) + input.body_force[1].powi(2);
+    if f2 > 0.0 {
+        for (t, p) in parts.iter_mut().enumerate() {
+            p.bulk += mesh.diameter(t).powi(2) * mesh.area(t) * f2;
+        }
+    }
+
+    // Every edge with the triangles on its sides (sorted, so the order is deterministic) and, per
+    // triangle, its outward normal there.
+    let mut edges: Vec<([usize; 2], usize, [f64; 2])> = Vec::with_capacity(3 * mesh.n_triangles());
+    for (t, tri) in mesh.triangles().iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            let (pa, pb) = (pts[a], pts[b]);
+            let len = mesh.edge_length(a, b);
+            // CCW: the outward normal of the edge a → b is (dy, −dx) / |E|.
+            let n = [(pb[1] - pa[1]) / len, -(pb[0] - pa[0]) / len];
+            edges.push(([a.min(b), a.max(b)], t, n));
+        }
+    }
+    edges.sort_by_key(|e| (e.0, e.1));
+    let mut neumann: std::collections::HashMap<[usize; 2], [f64; 2]> = std::collections::HashMap::new();
+    for (set, g) in &input.tractions {
+        for &[a, b] in *set {
+            let e = neumann.entry([a.min(b), a.max(b)]).or_insert([0.0, 0.0]);
+            e[0] += g[0];
+            e[1] += g[1];
+        }
+    }
+    let on_contact: std::collections::HashSet<[usize; 2]> =
+        input.contact.edges.iter().map(|e| [e.left.min(e.right), e.left.max(e.right)]).collect();
+    let mut i = 0;
+    while i < edges.len() {
+        let (key, t, n) = edges[i];
+        let len = mesh.edge_length(key[0], key[1]);
+        if i + 1 < edges.len() && edges[i + 1].0 == key {
+            // Interior edge: half of h_E |E| |[σ n]|² to each side.
+            let t2 = edges[i + 1].1;
+            let (s1, s2) = (traction(&input.stress[t], n), traction(&input.stress[t2], n));
+            let jump = (s1[0] - s2[0]).powi(2) + (s1[1] - s2[1]).powi(2);
+            parts[t].bulk += 0.5 * len * len * jump;
+            parts[t2].bulk += 0.5 * len * len * jump;
+            i += 2;
+            continue;
+        }
+        i += 1;
+        if on_contact.contains(&key) {
+            continue;
+        }
+        let s = traction(&input.stress[t], n);
+        let r2 = if input.dofs.edges.contains(&key) {
+            // Γ_D: the traction along a direction the supports leave free must vanish.
+            let free = [key[0], key[1]].into_iter().find_map(|node| match input.dofs.nodes[node] {
+                NodeSupport::Slide { tangent, .. } => Some(tangent),
+                _ => None,
+            });
+            free.map_or(0.0, |d| (s[0] * d[0] + s[1] * d[1]).powi(2))
+        } else {
+            let g = neumann.get(&key).copied().unwrap_or([0.0, 0.0]);
+            (s[0] - g[0]).powi(2) + (s[1] - g[1]).powi(2)
+        };
+        parts[t].bulk += len * len * r2;
+    }
+
+    // Γ_C: the stabilized residual, contact and friction, edge by edge on the common refinement.
+    let contact = input.contact;
+    let (nrm, tng) = (contact.normal, contact.tangent);
+    let mult = input.multipliers;
+    let pieces = common_refinement(&contact.node_xi, &mult.xi);
+    let value = |values: &[f64], cell: usize, xi: f64| -> f64 {
+        let (b, nb) = mult.basis(cell, xi);
+        b[..nb].iter().map(|&(j, v)| v * values[j]).sum()
+    };
+    let mut lambda_l2 = 0.0;
+    let mut zeta2 = 0.0;
+    for piece in &pieces {
+        let e = &contact.edges[piece.edge];
+        let s = &input.stress[e.triangle];
+        let sn = traction(s, nrm);
+        let (sigma_n, sigma_t) = (sn[0] * nrm[0] + sn[1] * nrm[1], sn[0] * tng[0] + sn[1] * tng[1]);
+        let (x0, x1) = (contact.node_xi[piece.edge], contact.node_xi[piece.edge + 1]);
+        let along = |nodal: &[f64], xi: f64| {
+            let w = (xi - x0) / (x1 - x0);
+            (1.0 - w) * nodal[piece.edge] + w * nodal[piece.edge + 1]
+        };
+        let (mut gc, mut comp, mut cone, mut diss, mut lam) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        let half = 0.5 * (piece.b - piece.a);
+        for (x, w) in GAUSS3 {
+            let xi = piece.a + half * (x + 1.0);
+            let wq = w * half;
+            let (ln, lt, b) = (
+                value(input.lambda_n, piece.cell, xi),
+                value(input.lambda_t, piece.cell, xi),
+                value(input.threshold, piece.cell, xi),
+            );
+            gc += wq * ((ln + sigma_n).powi(2) + (lt + sigma_t).powi(2));
+            lam += wq * (ln * ln + lt * lt);
+            comp += wq * ln * ((input.gap)(xi) - along(input.u_n, xi));
+            cone += wq * (lt.abs() - b).max(0.0).powi(2);
+            let du = along(input.slip, xi);
+            diss += wq * (b * du.abs() - lt * du);
+        }
+        let p = &mut parts[e.triangle];
+        p.gamma_c += e.length * gc;
+        p.contact += e_star * comp.abs();
+        p.friction += e.length * cone + e_star * diss.abs();
+        lambda_l2 += lam;
+    }
+    // Penetration, with the obstacle's own gap between the nodes.
+    for (k, e) in contact.edges.iter().enumerate() {
+        let (x0, x1) = (contact.node_xi[k], contact.node_xi[k + 1]);
+        let h = (x1 - x0) / SUBDIVISIONS as f64;
+        let mut pen = 0.0;
+        for m in 0..SUBDIVISIONS {
+            for (x, w) in GAUSS3 {
+                let xi = x0 + h * (m as f64 + 0.5 * (x + 1.0));
+                let s = (xi - x0) / (x1 - x0);
+                let un = (1.0 - s) * input.u_n[k] + s * input.u_n[k + 1];
+                pen += 0.5 * h * w * (un - (input.gap)(xi)).max(0.0).powi(2);
+            }
+        }
+        parts[e.triangle].contact += e_star * e_star * pen / e.length;
+    }
+    for e in &contact.edges {
+        zeta2 += parts[e.triangle].sum() / e.length;
+    }
+
+    let eta: Vec<f64> = parts.iter().map(|p| p.sum().sqrt()).collect();
+    let total = |f: fn(&Parts) -> f64| parts.iter().map(f).sum::<f64>().sqrt();
+    let energy = crate::fem::elasticity::energy_norm(mesh, input.material, input.displacement);
+    let eta_total = total(Parts::sum);
+    let estimate = ErrorEstimate {
+        total: eta_total,
+        bulk: total(|p| p.bulk),
+        gamma_c: total(|p| p.gamma_c),
+        contact: total(|p| p.contact),
+        friction: total(|p| p.friction),
+        energy_relative: if eta_total == 0.0 { 0.0 } else { eta_total / (e_star.sqrt() * energy) },
+        traction: zeta2.sqrt(),
+        traction_relative: if lambda_l2 > 0.0 { (zeta2 / lambda_l2).sqrt() } else { f64::NAN },
+    };
+    (eta, estimate)
+}

@@ -1,0 +1,68 @@
+//! The a posteriori estimate: what it sees, and how it tracks the true error. (That it vanishes where the
+//! discrete solution is exact is a patch test, `patch::the_estimate_vanishes_on_constant_strain_states`.)
+
+use tribo::*;
+
+/// A coarse mesh where no node touches: a narrow obstacle dips between two nodes of Γ_C. The solve sees
+/// no contact at all (λ = 0, no nodal penetration), but the estimate's contact part is positive, and it
+/// sits on the triangle under the dip, so an adaptive loop refines there first.
+#[test]
+fn an_obstacle_penetrating_between_nodes_is_seen() {
+    let mesh = rectangle([0.0, 1.0], [0.0, 1.0], 4, 4, Diagonal::Right).expect("valid");
+    let spec = ProblemSpec {
+        material: Material { young: 1.0, poisson: 0.3 },
+        clamped: vec!["bottom".into()],
+        supports: vec![],
+        body_force: [0.0, 0.0],
+        tractions: vec![],
+        contact: "top".into(),
+        obstacle: Obstacle {
+            shape: ObstacleShape::Parabola { center: 0.375, radius: 0.01 },
+            approach: 1e-3,
+            shift: 0.0,
+        },
+        multiplier_points: MultiplierPoints::RatioToFe(1.0),
+        multiplier_space: MultiplierSpace::P1,
+    };
+    let problem = Problem::new(mesh, spec).expect("valid");
+    let sol = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+    assert!(sol.lambda_n.iter().all(|&l| l == 0.0) && sol.max_penetration == 0.0, "no node touches");
+    let est = sol.report.estimate;
+    assert!(est.contact > 0.0 && est.bulk == 0.0 && est.gamma_c == 0.0, "{est:?}");
+    let worst = (0..problem.mesh.n_triangles()).max_by(|&a, &b| sol.estimator[a].total_cmp(&sol.estimator[b]));
+    let worst = worst.expect("triangles");
+    let xs = problem.mesh.vertices(worst).map(|p| p[0]);
+    let (lo, hi) = (xs.iter().copied().fold(f64::INFINITY, f64::min), xs.iter().copied().fold(0.0, f64::max));
+    assert!(lo <= 0.375 && 0.375 <= hi, "the largest η_K is under the dip: triangle {worst} spans x in [{lo}, {hi}]");
+    // With the obstacle withdrawn, nothing is left to see.
+    let mut far = problem.spec.clone();
+    far.obstacle.approach = -1e-3;
+    let problem = Problem::new(problem.mesh.clone(), far).expect("valid");
+    let sol = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+    assert_eq!(sol.report.estimate.total, 0.0);
+}
+
+/// On the Hertz scene refined by halving h_min, the traction estimate ζ / ‖λ_H‖ tracks the L2 error of
+/// λ_n against the plane-strain Hertz pressure: their ratio (the effectivity index) stays within a band
+/// of width 3 (the bound the adaptive study asks for), while both fall by an order of magnitude.
+#[test]
+fn the_traction_estimate_tracks_the_hertz_error() {
+    let s = tribo_testkit::hertz_scene();
+    let mut ratios = Vec::new();
+    let (mut first, mut last) = (f64::NAN, f64::NAN);
+    for h in [0.04, 0.02, 0.01, 0.005] {
+        let problem =
+            tribo_testkit::hertz_problem(h, s.approach, 0.0, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+        let sol = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+        let est = sol.report.estimate.traction_relative;
+        let truth = tribo_testkit::hertz_l2_error(&problem, &sol);
+        ratios.push(est / truth);
+        if first.is_nan() {
+            first = est;
+        }
+        last = est;
+    }
+    let (lo, hi) = ratios.iter().fold((f64::INFINITY, 0.0_f64), |(a, b), r| (a.min(*r), b.max(*r)));
+    assert!(lo >= 1.0 && hi / lo <= 3.0, "effectivity indices {ratios:?}");
+    assert!(last < first / 4.0, "the estimate falls with h: {first} -> {last}");
+}
