@@ -132,20 +132,26 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, ErrorEstimate) 
         }
     }
 
-    // Every edge with the triangles on its sides (sorted, so the order is deterministic) and, per
-    // triangle, its outward normal there.
-    let mut edges: Vec<([usize; 2], usize, [f64; 2])> = Vec::with_capacity(3 * mesh.n_triangles());
-    for (t, tri) in mesh.triangles().iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            let (pa, pb) = (pts[a], pts[b]);
-            let len = mesh.edge_length(a, b);
-            // CCW: the outward normal of the edge a → b is (dy, −dx) / |E|.
-            let n = [(pb[1] - pa[1]) / len, -(pb[0] - pa[0]) / len];
-            edges.push(([a.min(b), a.max(b)], t, n));
+    // The triangles around each node (CSR), to find the neighbour across each edge without a map of
+    // all the edges.
+    let tris = mesh.triangles();
+    let mut start = vec![0usize; mesh.n_nodes() + 1];
+    for tri in tris {
+        for &v in tri {
+            start[v + 1] += 1;
         }
     }
-    edges.sort_by_key(|e| (e.0, e.1));
+    for v in 0..mesh.n_nodes() {
+        start[v + 1] += start[v];
+    }
+    let mut around = vec![0usize; start[mesh.n_nodes()]];
+    let mut fill = start.clone();
+    for (t, tri) in tris.iter().enumerate() {
+        for &v in tri {
+            around[fill[v]] = t;
+            fill[v] += 1;
+        }
+    }
     let mut neumann: std::collections::HashMap<[usize; 2], [f64; 2]> = std::collections::HashMap::new();
     for (set, g) in &input.tractions {
         for &[a, b] in *set {
@@ -156,37 +162,41 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, ErrorEstimate) 
     }
     let on_contact: std::collections::HashSet<[usize; 2]> =
         input.contact.edges.iter().map(|e| [e.left.min(e.right), e.left.max(e.right)]).collect();
-    let mut i = 0;
-    while i < edges.len() {
-        let (key, t, n) = edges[i];
-        let len = mesh.edge_length(key[0], key[1]);
-        if i + 1 < edges.len() && edges[i + 1].0 == key {
-            // Interior edge: half of h_E |E| |[σ n]|² to each side.
-            let t2 = edges[i + 1].1;
-            let (s1, s2) = (traction(&input.stress[t], n), traction(&input.stress[t2], n));
-            let jump = (s1[0] - s2[0]).powi(2) + (s1[1] - s2[1]).powi(2);
-            parts[t].bulk += 0.5 * len * len * jump;
-            parts[t2].bulk += 0.5 * len * len * jump;
-            i += 2;
-            continue;
+    for (t, tri) in tris.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            let (pa, pb) = (pts[a], pts[b]);
+            let len = mesh.edge_length(a, b);
+            // CCW: the outward normal of the edge a → b is (dy, −dx) / |E|.
+            let n = [(pb[1] - pa[1]) / len, -(pb[0] - pa[0]) / len];
+            let other = around[start[a]..start[a + 1]].iter().copied().find(|&t2| t2 != t && tris[t2].contains(&b));
+            match other {
+                // Interior edge, seen from both sides: half of h_E |E| |[σ n]|² to this side.
+                Some(t2) => {
+                    let (s1, s2) = (traction(&input.stress[t], n), traction(&input.stress[t2], n));
+                    parts[t].bulk += 0.5 * len * len * ((s1[0] - s2[0]).powi(2) + (s1[1] - s2[1]).powi(2));
+                }
+                None => {
+                    let key = [a.min(b), a.max(b)];
+                    if on_contact.contains(&key) {
+                        continue;
+                    }
+                    let s = traction(&input.stress[t], n);
+                    let r2 = if input.dofs.edges.contains(&key) {
+                        // Γ_D: the traction along a direction the supports leave free must vanish.
+                        let free = [a, b].into_iter().find_map(|node| match input.dofs.nodes[node] {
+                            NodeSupport::Slide { tangent, .. } => Some(tangent),
+                            _ => None,
+                        });
+                        free.map_or(0.0, |d| (s[0] * d[0] + s[1] * d[1]).powi(2))
+                    } else {
+                        let g = neumann.get(&key).copied().unwrap_or([0.0, 0.0]);
+                        (s[0] - g[0]).powi(2) + (s[1] - g[1]).powi(2)
+                    };
+                    parts[t].bulk += len * len * r2;
+                }
+            }
         }
-        i += 1;
-        if on_contact.contains(&key) {
-            continue;
-        }
-        let s = traction(&input.stress[t], n);
-        let r2 = if input.dofs.edges.contains(&key) {
-            // Γ_D: the traction along a direction the supports leave free must vanish.
-            let free = [key[0], key[1]].into_iter().find_map(|node| match input.dofs.nodes[node] {
-                NodeSupport::Slide { tangent, .. } => Some(tangent),
-                _ => None,
-            });
-            free.map_or(0.0, |d| (s[0] * d[0] + s[1] * d[1]).powi(2))
-        } else {
-            let g = neumann.get(&key).copied().unwrap_or([0.0, 0.0]);
-            (s[0] - g[0]).powi(2) + (s[1] - g[1]).powi(2)
-        };
-        parts[t].bulk += len * len * r2;
     }
 
     // Γ_C: the stabilized residual, contact and friction, edge by edge on the common refinement.
