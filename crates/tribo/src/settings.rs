@@ -381,6 +381,20 @@ settings_table! {
     "condensation" => condensation: Condensation;
 }
 
+impl SolverSettings {
+    /// The defaults of the solve's keywords, as the Python binding and the scene files name them: how γ0
+    /// is chosen (`gamma0_fraction`, or `gamma0` when the default gives a value) and every setting of
+    /// [`SolverSettings::table`].
+    pub fn keyword_defaults() -> Vec<(&'static str, SettingValue)> {
+        let gamma0 = match Self::default().stabilization {
+            Stabilization::Fraction(f) => ("gamma0_fraction", SettingValue::Float(f)),
+            Stabilization::Gamma0(g) | Stabilization::Unchecked(g) => ("gamma0", SettingValue::Float(g)),
+            Stabilization::None => ("gamma0", SettingValue::Float(0.0)),
+        };
+        std::iter::once(gamma0).chain(Self::table().into_iter().map(|info| (info.name, info.default))).collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -415,5 +429,20 @@ mod tests {
         assert!(matches!(s.set("qp_tol", SettingValue::Bool(true)), Err(Error::BadSettingValue { .. })));
         assert!(matches!(s.set("qp_kkt_solver", SettingValue::Name("mumps".into())), Err(Error::UnknownChoice { .. })));
         assert!(matches!(s.set("fp_tolerance", SettingValue::Float(1e-6)), Err(Error::UnknownSetting { .. })));
+    }
+
+    /// The keyword defaults name γ0's default by the keyword that gives it back, then every setting of
+    /// the table with its default.
+    #[test]
+    fn keyword_defaults_give_back_the_default_settings() {
+        let defaults = SolverSettings::keyword_defaults();
+        let stabilization = match &defaults[0] {
+            ("gamma0_fraction", SettingValue::Float(f)) => Stabilization::from_keywords(None, Some(*f), true),
+            ("gamma0", SettingValue::Float(g)) => Stabilization::from_keywords(Some(*g), None, true),
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(stabilization.expect("the default is valid"), SolverSettings::default().stabilization);
+        let table: Vec<_> = SolverSettings::table().into_iter().map(|i| (i.name, i.default)).collect();
+        assert_eq!(defaults[1..], table[..]);
     }
 }
