@@ -77,9 +77,11 @@ from typing import Any
 import numpy as np
 
 from tribo._tribo import MAX_CELLS as _MAX_CELLS
-from tribo._tribo import History, Mesh, Obstacle, Problem, Solution, Support, TriboError, choices, solver_settings
+from tribo._tribo import Mesh, Obstacle, Support, TriboError, choices, solver_settings
 from tribo.checks import warn_solution
 from tribo.io import read_mesh
+from tribo.problem import Problem
+from tribo.results import History, Solution
 
 __all__ = ["Scene", "SceneError", "load_scene", "parse_scene", "demo_scene_path", "scene_path"]
 
