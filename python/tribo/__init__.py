@@ -1,7 +1,8 @@
 """tribo: 2D frictional contact in linear elasticity with the stabilized Lagrange multiplier method.
 
-The compiled core lives in the private module ``tribo._tribo``; this package re-exports it and adds
-mesh input/output (``tribo.io``), TOML scenes (``tribo.scene``), a command line (``tribo.cli``) and,
+The compiled core lives in the private module ``tribo._tribo``; this package re-exports it, gives its
+solves a typed surface (``tribo.problem.Problem``, whose results are the plain data classes of
+``tribo.results``: ``Solution``, ``Report``, ``History``) and adds mesh input/output (``tribo.io``), TOML scenes (``tribo.scene``), a command line (``tribo.cli``) and,
 if matplotlib is installed, plots (``tribo.plot``, not imported here).
 
 >>> import tribo
@@ -16,14 +17,10 @@ if matplotlib is installed, plots (``tribo.plot``, not imported here).
 from tribo._tribo import (
     STATE_NAMES,
     ContactGeometryError,
-    History,
     Mesh,
     MeshError,
     Obstacle,
-    Problem,
-    Report,
     SettingsError,
-    Solution,
     SolverError,
     Support,
     TriboError,
@@ -34,6 +31,8 @@ from tribo._tribo import (
 )
 from tribo.checks import SceneWarning, check_solution
 from tribo.io import read_mesh, write_vtu
+from tribo.problem import Problem
+from tribo.results import History, Report, Solution
 from tribo.scene import SceneError, load_scene
 
 __all__ = [

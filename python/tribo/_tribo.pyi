@@ -1,10 +1,11 @@
 """Type stub of the compiled module tribo._tribo (checked with `python -m mypy.stubtest tribo._tribo`)."""
 
 from collections.abc import Callable, Mapping, Sequence
-from typing import Any, Literal, final, overload
+from typing import Any, Literal, Self, final, overload
 
 import numpy as np
 import numpy.typing as npt
+from typing_extensions import disjoint_base
 
 _Floats1 = npt.NDArray[np.float64]
 _Floats2 = npt.NDArray[np.float64]
@@ -23,14 +24,13 @@ __all__ = [
     "SolverError",
     "Mesh",
     "Obstacle",
+    "ProblemData",
     "Problem",
     "Support",
-    "Solution",
-    "Report",
-    "History",
     "solver_defaults",
     "solver_settings",
     "choices",
+    "format_number",
 ]
 
 __version__: str
@@ -51,6 +51,7 @@ class SolverError(TriboError): ...
 def solver_defaults() -> dict[str, Any]: ...
 def solver_settings() -> dict[str, dict[str, Any]]: ...
 def choices() -> dict[str, list[str]]: ...
+def format_number(x: float, digits: int = 3) -> str: ...
 @final
 class Mesh:
     def __new__(
@@ -125,77 +126,10 @@ class Support:
     @property
     def value(self) -> tuple[float | None, float | None]: ...
 
-_ProgressCallback = Callable[[int, float, int, float], object]
-_StepCallback = Callable[[int, int, str, float], object]
-_PhaseCallback = Callable[[Literal["condensation"], float], object]
+@disjoint_base
+class ProblemData:
+    """The attributes of a problem, plain data built once with it: the base class of ``Problem``."""
 
-@final
-class Problem:
-    def __new__(
-        cls,
-        mesh: Mesh,
-        *,
-        young: float,
-        poisson: float,
-        contact: str,
-        clamped: str | Sequence[str] | None = None,
-        supports: Support | Sequence[Support] | None = None,
-        obstacle: Obstacle | Callable[[float], float] | None = None,
-        approach: float | None = None,
-        shift: float | None = None,
-        tractions: Mapping[str, _Pair] | None = None,
-        body_force: _Pair | None = None,
-        multiplier_ratio: float | None = None,
-        multiplier_size: float | None = None,
-        multiplier_points: _ArrayLike | None = None,
-        space: Literal["P0", "P1", "p0", "p1"] | None = None,
-    ) -> Problem: ...
-    def solve(
-        self,
-        *,
-        friction: Literal["frictionless", "tresca", "coulomb"] | None = None,
-        mu: float | None = None,
-        threshold: float | _ArrayLike | None = None,
-        gamma0: float | None = None,
-        gamma0_fraction: float | None = None,
-        check_gamma0: bool = True,
-        progress: _ProgressCallback | None = None,
-        on_phase: _PhaseCallback | None = None,
-        qp_tol: float = ...,
-        qp_max_iter: int = ...,
-        qp_kkt_solver: Literal["faer", "qdldl"] = ...,
-        qp_working_set: bool = ...,
-        qp_method: Literal["auto", "clarabel", "active_set"] = ...,
-        fp_tol: float = ...,
-        fp_max_iter: int = ...,
-        fp_relaxation: float = ...,
-        memory_budget: int = ...,
-        condensation: Literal["auto", "columns", "schur", "saddle"] = ...,
-    ) -> Solution: ...
-    def solve_history(
-        self,
-        approach: float | _ArrayLike,
-        shift: float | _ArrayLike,
-        load_factor: float | _ArrayLike | None = None,
-        *,
-        friction: Literal["frictionless", "tresca", "coulomb"] | None = None,
-        mu: float | None = None,
-        threshold: float | _ArrayLike | None = None,
-        gamma0: float | None = None,
-        gamma0_fraction: float | None = None,
-        check_gamma0: bool = True,
-        progress: _StepCallback | None = None,
-        qp_tol: float = ...,
-        qp_max_iter: int = ...,
-        qp_kkt_solver: Literal["faer", "qdldl"] = ...,
-        qp_working_set: bool = ...,
-        qp_method: Literal["auto", "clarabel", "active_set"] = ...,
-        fp_tol: float = ...,
-        fp_max_iter: int = ...,
-        fp_relaxation: float = ...,
-        memory_budget: int = ...,
-        condensation: Literal["auto", "columns", "schur", "saddle"] = ...,
-    ) -> History: ...
     @property
     def mesh(self) -> Mesh: ...
     @property
@@ -238,154 +172,36 @@ class Problem:
     def multiplier_mesh(self) -> _Floats1: ...
     @property
     def multiplier_abscissae(self) -> _Floats1: ...
-    def contact_points(self, xi: _ArrayLike) -> _Floats2: ...
-    def evaluate_multiplier(self, values: _ArrayLike, xi: _ArrayLike) -> _Floats1: ...
-    def energy_norm(self, u: _ArrayLike) -> float: ...
     @property
     def node_abscissae(self) -> _Floats1: ...
     @property
     def setup_timings(self) -> dict[str, float]: ...
 
-@final
-class Report:
-    @property
-    def status(
-        self,
-    ) -> Literal["converged", "max_iterations", "stagnated", "interrupted", "qp_failed", "non_finite", "inaccurate"]: ...
-    @property
-    def converged(self) -> bool: ...
-    @property
-    def interrupted_iteration(self) -> int | None: ...
-    @property
-    def failed_iteration(self) -> int | None: ...
-    @property
-    def failure_reason(self) -> str | None: ...
-    @property
-    def iterations(self) -> int: ...
-    @property
-    def residual_history(self) -> _Floats1: ...
-    @property
-    def qp_iterations(self) -> _Ints: ...
-    @property
-    def qp_factorizations(self) -> _Ints: ...
-    @property
-    def qp_methods(self) -> list[Literal["clarabel", "active_set"]]: ...
-    @property
-    def qp_fallbacks(self) -> int: ...
-    @property
-    def condensation(self) -> Literal["columns", "schur", "saddle"]: ...
-    @property
-    def qp_inaccurate(self) -> int: ...
-    @property
-    def gamma0(self) -> float: ...
-    @property
-    def gamma0_bound(self) -> float: ...
-    @property
-    def reused_factorization(self) -> bool: ...
-    @property
-    def timings(self) -> dict[str, float]: ...
+@disjoint_base
+class Problem(ProblemData):
+    """The compiled problem; ``tribo.Problem`` (``tribo.problem``) is its typed surface."""
 
-@final
-class Solution:
-    @property
-    def friction(self) -> Literal["frictionless", "tresca", "coulomb"]: ...
-    @property
-    def mu(self) -> float | None: ...
-    @property
-    def displacement(self) -> _Floats2: ...
-    @property
-    def stress(self) -> _Floats2: ...
-    @property
-    def stress_zz(self) -> _Floats1: ...
-    @property
-    def von_mises(self) -> _Floats1: ...
-    @property
-    def reactions(self) -> _Floats2: ...
-    @property
-    def multiplier_abscissae(self) -> _Floats1: ...
-    @property
-    def lambda_n(self) -> _Floats1: ...
-    @property
-    def lambda_t(self) -> _Floats1: ...
-    @property
-    def friction_threshold(self) -> _Floats1: ...
-    @property
-    def states(self) -> npt.NDArray[np.int8]: ...
-    @property
-    def state_names(self) -> list[str]: ...
-    @property
-    def edge_abscissae(self) -> _Floats1: ...
-    @property
-    def sigma_n(self) -> _Floats1: ...
-    @property
-    def sigma_t(self) -> _Floats1: ...
-    @property
-    def node_abscissae(self) -> _Floats1: ...
-    @property
-    def u_n(self) -> _Floats1: ...
-    @property
-    def slip(self) -> _Floats1: ...
-    @property
-    def gap(self) -> _Floats1: ...
-    @property
-    def current_gap(self) -> _Floats1: ...
-    @property
-    def contact_force(self) -> tuple[float, float]: ...
-    @property
-    def obstacle_motion(self) -> tuple[float, float]: ...
-    @property
-    def normal_force(self) -> float: ...
-    @property
-    def tangential_force(self) -> float: ...
-    @property
-    def max_penetration(self) -> float: ...
-    @property
-    def kkt(self) -> dict[str, float]: ...
-    @property
-    def kkt_max(self) -> float: ...
-    @property
-    def report(self) -> Report: ...
-
-@final
-class History:
-    @property
-    def status(self) -> str: ...
-    @property
-    def converged(self) -> bool: ...
-    @property
-    def ended_at(self) -> int | None: ...
-    @property
-    def solutions(self) -> list[Solution]: ...
-    @property
-    def failed(self) -> Solution | None: ...
-    @property
-    def approach(self) -> _Floats1: ...
-    @property
-    def shift(self) -> _Floats1: ...
-    @property
-    def load_factor(self) -> _Floats1: ...
-    @property
-    def normal_force(self) -> _Floats1: ...
-    @property
-    def tangential_force(self) -> _Floats1: ...
-    @property
-    def stick_count(self) -> _Ints: ...
-    @property
-    def slip_count(self) -> _Ints: ...
-    @property
-    def separation_count(self) -> _Ints: ...
-    @property
-    def contact_zone(self) -> _Floats2: ...
-    @property
-    def stick_zone(self) -> _Floats2: ...
-    @property
-    def stick_slip_boundaries(self) -> list[_Floats1]: ...
-    @property
-    def gross_sliding(self) -> npt.NDArray[np.bool_]: ...
-    @property
-    def step_seconds(self) -> _Floats1: ...
-    @property
-    def factorizations(self) -> int: ...
-    @property
-    def setup_seconds(self) -> float: ...
-    def __len__(self) -> int: ...
+    def __new__(
+        cls,
+        mesh: Mesh,
+        *,
+        young: float,
+        poisson: float,
+        contact: str,
+        clamped: str | Sequence[str] | None = None,
+        supports: Support | Sequence[Support] | None = None,
+        obstacle: Obstacle | Callable[[float], float] | None = None,
+        approach: float | None = None,
+        shift: float | None = None,
+        tractions: Mapping[str, _Pair] | None = None,
+        body_force: _Pair | None = None,
+        multiplier_ratio: float | None = None,
+        multiplier_size: float | None = None,
+        multiplier_points: _ArrayLike | None = None,
+        space: Literal["P0", "P1", "p0", "p1"] | None = None,
+    ) -> Self: ...
+    def _solve(self, options: Mapping[str, Any]) -> dict[str, Any]: ...
+    def _solve_history(self, steps: _ArrayLike, options: Mapping[str, Any]) -> dict[str, Any]: ...
+    def contact_points(self, xi: _ArrayLike) -> _Floats2: ...
+    def evaluate_multiplier(self, values: _ArrayLike, xi: _ArrayLike) -> _Floats1: ...
+    def energy_norm(self, u: _ArrayLike) -> float: ...

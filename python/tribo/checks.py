@@ -28,7 +28,8 @@ import warnings
 
 import numpy as np
 
-from tribo._tribo import Problem, Solution
+from tribo.problem import Problem
+from tribo.results import Solution
 
 __all__ = [
     "MAX_APPROACH_FRACTION",

@@ -35,10 +35,12 @@ from typing import Any
 
 import numpy as np
 
-from tribo._tribo import History, Problem, Solution, TriboError, __version__
+from tribo._tribo import TriboError, __version__
 from tribo.checks import SceneWarning, conventions, warn_solution
 from tribo.history import write_history
 from tribo.io import write_contact_csv, write_vtu
+from tribo.problem import Problem
+from tribo.results import History, Solution
 from tribo.scene import Scene, SceneError, demo_scene_path, load_scene
 
 __all__ = ["main", "run_scene"]

@@ -27,8 +27,9 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from tribo._tribo import History, Problem
 from tribo.io import write_vtu
+from tribo.problem import Problem
+from tribo.results import History
 
 __all__ = ["write_history", "write_pvd", "history_table"]
 

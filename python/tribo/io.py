@@ -30,8 +30,10 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from tribo._tribo import Mesh, MeshError, Problem, Solution
+from tribo._tribo import Mesh, MeshError
 from tribo.checks import conventions
+from tribo.problem import Problem
+from tribo.results import Solution
 
 __all__ = [
     "mesh_from_meshio",

@@ -23,8 +23,10 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from tribo._tribo import STATE_NAMES, History, Problem, Solution
+from tribo._tribo import STATE_NAMES
 from tribo.checks import format_vector, shift_description
+from tribo.problem import Problem
+from tribo.results import History, Solution
 
 try:
     import matplotlib.pyplot as plt

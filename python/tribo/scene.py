@@ -25,9 +25,11 @@ from typing import Any
 
 import numpy as np
 
-from tribo._tribo import History, Mesh, Obstacle, Problem, Solution, Support, TriboError
+from tribo._tribo import Mesh, Obstacle, Support, TriboError
 from tribo.checks import warn_solution
 from tribo.io import read_mesh
+from tribo.problem import Problem
+from tribo.results import History, Solution
 # The schema's names, importable from here as before the split (``X as X``: re-exported).
 from tribo.scene_schema import CHOICES as CHOICES
 from tribo.scene_schema import MAX_CELLS as MAX_CELLS

@@ -105,7 +105,7 @@ def test_contact_geometry_errors() -> None:
     raises(tribo.ContactGeometryError, "BadInput", lambda: hertz_problem(obstacle="circle"))
     raises(tribo.ContactGeometryError, "BadObstacle", lambda: hertz_problem(approach=float("nan")))
     raises(tribo.ContactGeometryError, "UnknownChoice", lambda: hertz_problem(space="P2"))
-    raises(tribo.ContactGeometryError, "BadInput", lambda: hertz_problem(multiplier_ratio=1.0, multiplier_size=0.1))
+    raises(tribo.ContactGeometryError, "BadMultiplierMesh", lambda: hertz_problem(multiplier_ratio=1.0, multiplier_size=0.1))
 
 
 def test_multiplier_point_errors() -> None:

@@ -48,37 +48,20 @@ create_exception!(
     "The linear algebra refused the problem (factorization or QP set-up failed)."
 );
 
-/// Which exception class a core error becomes.
-#[derive(Clone, Copy)]
-enum Class {
-    Mesh,
-    Geometry,
-    Settings,
-    Solver,
-}
-
-fn new_err(class: Class, msg: String) -> PyErr {
-    match class {
-        Class::Mesh => MeshError::new_err(msg),
-        Class::Geometry => ContactGeometryError::new_err(msg),
-        Class::Settings => SettingsError::new_err(msg),
-        Class::Solver => SolverError::new_err(msg),
+/// The exception of a category, with the message.
+fn new_err(category: ErrorCategory, msg: String) -> PyErr {
+    match category {
+        ErrorCategory::Mesh => MeshError::new_err(msg),
+        ErrorCategory::ContactGeometry => ContactGeometryError::new_err(msg),
+        ErrorCategory::Settings => SettingsError::new_err(msg),
+        ErrorCategory::Solver => SolverError::new_err(msg),
     }
 }
 
-/// A `MeshError` for input the binding rejects before it reaches the core.
-pub fn mesh_error(msg: impl Into<String>) -> PyErr {
-    with_details(new_err(Class::Mesh, msg.into()), "BadInput", Vec::new())
-}
-
-/// A `ContactGeometryError` for input the binding rejects before it reaches the core.
-pub fn geometry_error(msg: impl Into<String>) -> PyErr {
-    with_details(new_err(Class::Geometry, msg.into()), "BadInput", Vec::new())
-}
-
-/// A `SettingsError` for input the binding rejects before it reaches the core.
-pub fn settings_error(msg: impl Into<String>) -> PyErr {
-    with_details(new_err(Class::Settings, msg.into()), "BadInput", Vec::new())
+/// The exception of `category` for input the binding rejects before it reaches the core (kind
+/// 'BadInput'). Array conversions take the category of the argument they read.
+pub fn bad_input(category: ErrorCategory, msg: impl Into<String>) -> PyErr {
+    with_details(new_err(category, msg.into()), "BadInput", Vec::new())
 }
 
 /// Sets `kind` and `details` on a fresh exception.
@@ -103,23 +86,5 @@ fn with_details(err: PyErr, kind: &str, fields: Vec<(&'static str, Detail)>) -> 
 /// Converts a core error into the exception of its category, with `kind` (the variant) and `details`
 /// (its fields) set.
 pub fn to_pyerr(e: Error) -> PyErr {
-    let class = match e.category() {
-        ErrorCategory::Mesh => Class::Mesh,
-        ErrorCategory::ContactGeometry => Class::Geometry,
-        ErrorCategory::Settings => Class::Settings,
-        ErrorCategory::Solver => Class::Solver,
-    };
-    with_details(new_err(class, e.to_string()), e.kind(), e.details())
-}
-
-/// `Result<T, tribo::Error>` → `PyResult<T>`.
-pub trait ToPyResult<T> {
-    /// Maps the error with [`to_pyerr`].
-    fn py_err(self) -> PyResult<T>;
-}
-
-impl<T> ToPyResult<T> for tribo::Result<T> {
-    fn py_err(self) -> PyResult<T> {
-        self.map_err(to_pyerr)
-    }
+    with_details(new_err(e.category(), e.to_string()), e.kind(), e.details())
 }

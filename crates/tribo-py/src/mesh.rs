@@ -2,30 +2,62 @@
 
 use std::collections::BTreeMap;
 
-use numpy::{PyArray1, PyArray2};
+use numpy::PyArray1;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyMapping};
+use pyo3::types::PyMapping;
+use tribo::error::ErrorCategory::Mesh;
 use tribo::{Choice, Diagonal, Grading, Side};
 
-use crate::convert::{floats, indices, mat, rows};
-use crate::errors::{mesh_error, ToPyResult};
+use crate::convert::{floats, indices, mat, pair, rows};
+use crate::errors::{bad_input, to_pyerr};
 
-fn mesh_err(msg: String) -> PyErr {
-    mesh_error(msg)
-}
-
-/// A validated mesh of P1 triangles with named sets of boundary edges.
+/// A validated mesh of P1 triangles with named sets of boundary edges. Its attributes are built once,
+/// when it is (the arrays read-only).
 ///
 /// Mesh(points, triangles, edge_sets=None): points (N, 2) float, triangles (T, 3) int listing nodes
 /// counter-clockwise, edge_sets a dict name -> (E, 2) int array of boundary edges.
 #[pyclass(frozen, name = "Mesh", module = "tribo")]
 pub struct PyMesh {
     pub inner: tribo::Mesh,
+    /// Node coordinates, (N, 2) float64.
+    #[pyo3(get)]
+    points: Py<PyAny>,
+    /// Triangles, (T, 3) int64, counter-clockwise.
+    #[pyo3(get)]
+    triangles: Py<PyAny>,
+    /// Named edge sets: dict name -> (E, 2) int64 (a new dict on every read).
+    #[pyo3(get)]
+    edge_sets: BTreeMap<String, Py<PyAny>>,
+    /// Number of nodes N.
+    #[pyo3(get)]
+    n_nodes: usize,
+    /// Number of triangles T.
+    #[pyo3(get)]
+    n_triangles: usize,
+    /// Largest triangle diameter h.
+    #[pyo3(get)]
+    max_diameter: f64,
+    /// Bounding box (xmin, ymin, xmax, ymax).
+    #[pyo3(get)]
+    bounding_box: (f64, f64, f64, f64),
 }
 
-fn range(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<[f64; 2]> {
-    let v = floats(obj, what, &[Some(2)], mesh_err)?;
-    Ok([v[0], v[1]])
+impl PyMesh {
+    fn from_core(py: Python<'_>, m: tribo::Mesh) -> PyResult<Self> {
+        let ints = |r: &[[usize; 2]]| mat(py, &r.iter().map(|e| e.map(|i| i as i64)).collect::<Vec<_>>());
+        let triangles: Vec<[i64; 3]> = m.triangles().iter().map(|t| t.map(|i| i as i64)).collect();
+        let [x0, y0, x1, y1] = m.bounding_box();
+        Ok(Self {
+            points: mat(py, m.points())?,
+            triangles: mat(py, &triangles)?,
+            edge_sets: m.edge_sets().iter().map(|(name, e)| Ok((name.clone(), ints(e)?))).collect::<PyResult<_>>()?,
+            n_nodes: m.n_nodes(),
+            n_triangles: m.n_triangles(),
+            max_diameter: m.max_diameter(),
+            bounding_box: (x0, y0, x1, y1),
+            inner: m,
+        })
+    }
 }
 
 #[pymethods]
@@ -38,23 +70,19 @@ impl PyMesh {
         triangles: &Bound<'_, PyAny>,
         edge_sets: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        let p = rows::<f64, 2>(&floats(points, "points", &[None, Some(2)], mesh_err)?);
-        let t = rows::<usize, 3>(&indices(triangles, "triangles", &[None, Some(3)], mesh_err)?);
+        let p = rows::<f64, 2>(&floats(points, "points", &[None, Some(2)], Mesh)?);
+        let t = rows::<usize, 3>(&indices(triangles, "triangles", &[None, Some(3)], Mesh)?);
+        let bad = || bad_input(Mesh, "edge_sets must be a dict mapping names to (E, 2) integer arrays");
+        let items: Vec<(String, Bound<'_, PyAny>)> = match edge_sets {
+            None => Vec::new(),
+            Some(obj) => obj.cast::<PyMapping>().ok().and_then(|m| m.items().ok()?.extract().ok()).ok_or_else(bad)?,
+        };
         let mut sets = BTreeMap::new();
-        if let Some(obj) = edge_sets {
-            let map = obj
-                .cast::<PyMapping>()
-                .map_err(|_| mesh_error("edge_sets must be a dict mapping names to (E, 2) integer arrays"))?;
-            for item in map.items()?.iter() {
-                let (name, edges): (Bound<'_, PyAny>, Bound<'_, PyAny>) = item.extract()?;
-                let name: String =
-                    name.extract().map_err(|_| mesh_error(format!("edge set names must be strings, got {name}")))?;
-                let e = indices(&edges, &format!("edge set '{name}'"), &[None, Some(2)], mesh_err)?;
-                sets.insert(name, rows::<usize, 2>(&e));
-            }
+        for (name, edges) in items {
+            let e = indices(&edges, &format!("edge set '{name}'"), &[None, Some(2)], Mesh)?;
+            sets.insert(name, rows(&e));
         }
-        let inner = py.detach(|| tribo::Mesh::new(p, t, sets)).py_err()?;
-        Ok(Self { inner })
+        Self::from_core(py, py.detach(|| tribo::Mesh::new(p, t, sets)).map_err(to_pyerr)?)
     }
 
     /// A uniform mesh of the rectangle x × y with nx × ny cells split along `diagonal` ('right',
@@ -71,14 +99,13 @@ impl PyMesh {
     ) -> PyResult<Self> {
         let count = |v: &Bound<'_, PyAny>, name: &str| -> PyResult<usize> {
             let n: i64 =
-                v.extract().map_err(|_| mesh_error(format!("{name} must be an integer cell count, got {v}")))?;
-            usize::try_from(n).map_err(|_| mesh_error(format!("{name} = {n} must be a positive cell count")))
+                v.extract().map_err(|_| bad_input(Mesh, format!("{name} must be an integer cell count, got {v}")))?;
+            usize::try_from(n).map_err(|_| bad_input(Mesh, format!("{name} = {n} must be a positive cell count")))
         };
         let (nx, ny) = (count(nx, "nx")?, count(ny, "ny")?);
-        let diagonal = diagonal.map_or(Ok(Diagonal::default()), Diagonal::parse).py_err()?;
-        let (x, y) = (range(x, "x")?, range(y, "y")?);
-        let inner = py.detach(|| tribo::rectangle(x, y, nx, ny, diagonal)).py_err()?;
-        Ok(Self { inner })
+        let diagonal = diagonal.map_or(Ok(Diagonal::default()), Diagonal::parse).map_err(to_pyerr)?;
+        let (x, y) = (pair(x, "x", Mesh)?, pair(y, "y", Mesh)?);
+        Self::from_core(py, py.detach(|| tribo::rectangle(x, y, nx, ny, diagonal)).map_err(to_pyerr)?)
     }
 
     /// A mesh of the rectangle x × y graded toward `segment` (a coordinate range along `side`): cell size
@@ -96,60 +123,15 @@ impl PyMesh {
         h_max: f64,
         growth: f64,
     ) -> PyResult<Self> {
-        let (x, y) = (range(x, "x")?, range(y, "y")?);
-        let grading =
-            Grading { side: Side::parse(side).py_err()?, segment: range(segment, "segment")?, h_min, h_max, growth };
-        let inner = py.detach(|| tribo::graded_rectangle(x, y, &grading)).py_err()?;
-        Ok(Self { inner })
-    }
-
-    /// Node coordinates, (N, 2) float64.
-    #[getter]
-    fn points<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        mat(py, self.inner.points())
-    }
-
-    /// Triangles, (T, 3) int64, counter-clockwise.
-    #[getter]
-    fn triangles<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<i64>> {
-        let t: Vec<[i64; 3]> = self.inner.triangles().iter().map(|t| t.map(|i| i as i64)).collect();
-        mat(py, &t)
-    }
-
-    /// Named edge sets: dict name -> (E, 2) int64.
-    #[getter]
-    fn edge_sets<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let d = PyDict::new(py);
-        for (name, edges) in self.inner.edge_sets() {
-            let e: Vec<[i64; 2]> = edges.iter().map(|e| e.map(|i| i as i64)).collect();
-            d.set_item(name, mat(py, &e))?;
-        }
-        Ok(d)
-    }
-
-    /// Number of nodes N.
-    #[getter]
-    fn n_nodes(&self) -> usize {
-        self.inner.n_nodes()
-    }
-
-    /// Number of triangles T.
-    #[getter]
-    fn n_triangles(&self) -> usize {
-        self.inner.n_triangles()
-    }
-
-    /// Largest triangle diameter h.
-    #[getter]
-    fn max_diameter(&self) -> f64 {
-        self.inner.max_diameter()
-    }
-
-    /// Bounding box (xmin, ymin, xmax, ymax).
-    #[getter]
-    fn bounding_box(&self) -> (f64, f64, f64, f64) {
-        let b = self.inner.bounding_box();
-        (b[0], b[1], b[2], b[3])
+        let (x, y) = (pair(x, "x", Mesh)?, pair(y, "y", Mesh)?);
+        let grading = Grading {
+            side: Side::parse(side).map_err(to_pyerr)?,
+            segment: pair(segment, "segment", Mesh)?,
+            h_min,
+            h_max,
+            growth,
+        };
+        Self::from_core(py, py.detach(|| tribo::graded_rectangle(x, y, &grading)).map_err(to_pyerr)?)
     }
 
     /// Diameter h_T of every triangle, (T,) float64.
@@ -159,12 +141,7 @@ impl PyMesh {
     }
 
     fn __repr__(&self) -> String {
-        let names: Vec<&str> = self.inner.edge_set_names().collect();
-        format!(
-            "Mesh(n_nodes={}, n_triangles={}, edge_sets=[{}])",
-            self.inner.n_nodes(),
-            self.inner.n_triangles(),
-            names.iter().map(|n| format!("'{n}'")).collect::<Vec<_>>().join(", ")
-        )
+        let names: Vec<String> = self.edge_sets.keys().map(|n| format!("'{n}'")).collect();
+        format!("Mesh(n_nodes={}, n_triangles={}, edge_sets=[{}])", self.n_nodes, self.n_triangles, names.join(", "))
     }
 }

@@ -2,14 +2,14 @@
 
 use pyo3::prelude::*;
 
-use crate::errors::ToPyResult;
+use crate::errors::to_pyerr;
 
 /// A Dirichlet condition on a named edge set: `Support.clamp(set)` (u = 0), `Support.roller(set)`
 /// (u·n = 0 on a straight set, any direction: a symmetry line; the tangential component is free) or
 /// `Support.displacement(set, x=…, y=…)` (prescribed components; one left out is free). Give a list of
 /// them to `Problem(supports=…)`; conditions meeting at a node combine (a clamp and a roller at a corner
 /// clamp it), and contradictory ones are a SettingsError.
-#[pyclass(frozen, name = "Support", module = "tribo")]
+#[pyclass(frozen, from_py_object, name = "Support", module = "tribo")]
 #[derive(Clone)]
 pub struct PySupport {
     pub(crate) inner: tribo::Support,
@@ -34,7 +34,7 @@ impl PySupport {
     #[pyo3(signature = (edge_set, *, x = None, y = None))]
     fn displacement(edge_set: String, x: Option<f64>, y: Option<f64>) -> PyResult<Self> {
         let inner = tribo::Support::displacement(edge_set, x, y);
-        inner.validate().py_err()?;
+        inner.validate().map_err(to_pyerr)?;
         Ok(Self { inner })
     }
 
@@ -54,22 +54,12 @@ impl PySupport {
     /// whose condition is along the normal).
     #[getter]
     fn value(&self) -> (Option<f64>, Option<f64>) {
-        match &self.inner {
-            tribo::Support::Clamp { .. } => (Some(0.0), Some(0.0)),
-            tribo::Support::Roller { .. } => (None, None),
-            tribo::Support::Displacement { x, y, .. } => (*x, *y),
-        }
+        let [x, y] = self.inner.components();
+        (x, y)
     }
 
     fn __repr__(&self) -> String {
-        let set = self.inner.set();
-        match &self.inner {
-            tribo::Support::Displacement { x, y, .. } => {
-                let f = |v: &Option<f64>| v.map_or("None".to_string(), |v| format!("{v}"));
-                format!("Support.displacement({set:?}, x={}, y={})", f(x), f(y))
-            }
-            s => format!("Support.{}({set:?})", s.kind()),
-        }
+        format!("Support.{}", self.inner)
     }
 
     fn __eq__(&self, other: &Self) -> bool {

@@ -157,3 +157,26 @@ pub mod loading {
 #[cfg(doctest)]
 #[doc = include_str!("../../../README.md")]
 pub struct ReadmeDoctests;
+
+/// Every named choice of the keyword surface (the Python binding, scene files), by the keyword that takes
+/// it: `side`, `diagonal`, `space`, `friction`, `state` (in the order of [`Choice::code`]), `status`
+/// ([`SolveStatus::NAMES`]) and every choice among the solver settings ([`SolverSettings::table`]), each
+/// with its names as [`Choice::parse`] takes them.
+///
+/// It lives here, above every module, because it names the option enums of all of them (`choice` sits
+/// below them all).
+pub fn choice_registry() -> Vec<(&'static str, Vec<&'static str>)> {
+    let mut out = vec![
+        ("side", Side::names()),
+        ("diagonal", Diagonal::names()),
+        ("space", MultiplierSpace::names()),
+        ("friction", FrictionLaw::names()),
+        ("state", ContactState::names()),
+        ("status", SolveStatus::NAMES.to_vec()),
+    ];
+    out.extend(SolverSettings::table().into_iter().filter_map(|info| match info.kind {
+        SettingKind::Choice(names) => Some((info.name, names)),
+        _ => None,
+    }));
+    out
+}

@@ -236,3 +236,24 @@ fn from_ratio(fe: &[f64], r: f64) -> Result<Vec<f64>> {
         Ok(x)
     }
 }
+
+impl MultiplierPoints {
+    /// The points from keywords, as the Python binding and the scene files give them: `ratio` (H/h,
+    /// [`MultiplierPoints::RatioToFe`]), `size` (H, [`MultiplierPoints::Size`]) or explicit `points`
+    /// ([`MultiplierPoints::Abscissae`] or [`MultiplierPoints::Points`]); they exclude each other, and
+    /// none gives the default. The values themselves are checked by [`MultiplierMesh::new`].
+    ///
+    /// # Errors
+    /// [`Error::BadMultiplierMesh`] when more than one is given.
+    pub fn from_keywords(ratio: Option<f64>, size: Option<f64>, points: Option<Self>) -> Result<Self> {
+        match (ratio, size, points) {
+            (None, None, None) => Ok(Self::default()),
+            (Some(r), None, None) => Ok(Self::RatioToFe(r)),
+            (None, Some(h), None) => Ok(Self::Size(h)),
+            (None, None, Some(p)) => Ok(p),
+            _ => Err(Error::BadMultiplierMesh {
+                what: "give at most one of multiplier_ratio (H/h), multiplier_size (H) and multiplier_points".into(),
+            }),
+        }
+    }
+}

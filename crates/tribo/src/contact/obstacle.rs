@@ -162,3 +162,32 @@ impl Obstacle {
         }
     }
 }
+
+impl ObstacleShape {
+    /// The shape's name, as scene files and Python spell it: `flat`, `circle`, `parabola`, `polyline` or
+    /// `function`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Self::Flat => "flat",
+            Self::Circle { .. } => "circle",
+            Self::Parabola { .. } => "parabola",
+            Self::Polyline { .. } => "polyline",
+            Self::Function(_) => "function",
+        }
+    }
+}
+
+/// The shape as the call that builds it in Python: `flat()`, `circle(radius=2, center=0)`,
+/// `parabola(radius=2, center=0)`, `polyline(<5 points>)`, `function(<closure>)`.
+impl fmt::Display for ObstacleShape {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Circle { center, radius } | Self::Parabola { center, radius } => {
+                write!(f, "{}(radius={radius}, center={center})", self.kind())
+            }
+            Self::Polyline { xi, .. } => write!(f, "polyline(<{} points>)", xi.len()),
+            Self::Function(_) => f.write_str("function(<closure>)"),
+            Self::Flat => f.write_str("flat()"),
+        }
+    }
+}

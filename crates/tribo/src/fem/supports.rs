@@ -260,3 +260,30 @@ fn resolve(node: usize, list: &[Condition], supports: &[Support]) -> Result<Node
         }
     }
 }
+
+impl Support {
+    /// The prescribed (x, y) components, `None` where free: `(0, 0)` for a clamp, `(None, None)` for a
+    /// roller (its condition is along the normal, not along an axis), the given ones for a displacement.
+    pub fn components(&self) -> [Option<f64>; 2] {
+        match self {
+            Self::Clamp { .. } => [Some(0.0), Some(0.0)],
+            Self::Roller { .. } => [None, None],
+            Self::Displacement { x, y, .. } => [*x, *y],
+        }
+    }
+}
+
+/// The support as the call that builds it in Python: `clamp("base")`, `roller("axis")`,
+/// `displacement("top", x=None, y=-0.01)`.
+impl std::fmt::Display for Support {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let set = self.set();
+        match self {
+            Self::Displacement { x, y, .. } => {
+                let v = |v: &Option<f64>| v.map_or("None".to_string(), |v| v.to_string());
+                write!(f, "displacement({set:?}, x={}, y={})", v(x), v(y))
+            }
+            s => write!(f, "{}({set:?})", s.kind()),
+        }
+    }
+}

@@ -195,3 +195,20 @@ impl Problem {
         self.dofs.expand(x)
     }
 }
+
+impl ProblemSpec {
+    /// The defaults of the keywords a problem is built from, besides the required ones, as the Python
+    /// binding and the scene files name them: the multiplier points (`multiplier_ratio`, or
+    /// `multiplier_size`; see [`MultiplierPoints::from_keywords`]) and the multiplier `space`.
+    pub fn keyword_defaults() -> Vec<(&'static str, crate::settings::SettingValue)> {
+        use crate::choice::Choice;
+        use crate::settings::SettingValue;
+        let points = match MultiplierPoints::default() {
+            MultiplierPoints::RatioToFe(r) => Some(("multiplier_ratio", SettingValue::Float(r))),
+            MultiplierPoints::Size(h) => Some(("multiplier_size", SettingValue::Float(h))),
+            MultiplierPoints::Abscissae(_) | MultiplierPoints::Points(_) => None,
+        };
+        let space = ("space", SettingValue::Name(MultiplierSpace::default().as_str().to_string()));
+        points.into_iter().chain([space]).collect()
+    }
+}

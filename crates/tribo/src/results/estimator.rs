@@ -75,6 +75,22 @@ pub struct ErrorEstimate {
     pub traction_relative: f64,
 }
 
+impl ErrorEstimate {
+    /// Every total by name, in the order of the fields.
+    pub fn named(&self) -> [(&'static str, f64); 8] {
+        [
+            ("total", self.total),
+            ("bulk", self.bulk),
+            ("gamma_c", self.gamma_c),
+            ("contact", self.contact),
+            ("friction", self.friction),
+            ("energy_relative", self.energy_relative),
+            ("traction", self.traction),
+            ("traction_relative", self.traction_relative),
+        ]
+    }
+}
+
 /// What the estimator reads of a problem and its solution.
 pub(crate) struct EstimatorInput<'a> {
     pub mesh: &'a Mesh,

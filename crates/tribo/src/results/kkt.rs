@@ -30,6 +30,19 @@ pub struct KktResiduals {
 }
 
 impl KktResiduals {
+    /// Every residual by name, in the order of the fields.
+    pub fn named(&self) -> [(&'static str, f64); 7] {
+        [
+            ("equilibrium", self.equilibrium),
+            ("normal_sign", self.normal_sign),
+            ("non_penetration", self.non_penetration),
+            ("normal_complementarity", self.normal_complementarity),
+            ("friction_bound", self.friction_bound),
+            ("stick", self.stick),
+            ("slip_direction", self.slip_direction),
+        ]
+    }
+
     /// Largest residual; NaN if any residual is NaN.
     pub fn max(&self) -> f64 {
         [

@@ -101,6 +101,20 @@ pub struct Timings {
     pub recovery: f64,
 }
 
+impl Timings {
+    /// Every phase by name, in the order of the fields.
+    pub fn named(&self) -> [(&'static str, f64); 6] {
+        [
+            ("assembly", self.assembly),
+            ("contact_matrices", self.contact_matrices),
+            ("factorization", self.factorization),
+            ("condensation", self.condensation),
+            ("qp", self.qp),
+            ("recovery", self.recovery),
+        ]
+    }
+}
+
 /// Report of a solve.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Report {

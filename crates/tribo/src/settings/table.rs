@@ -2,7 +2,7 @@
 //! [`SolverSettings::table`], generated from one declaration (`settings_table!` at the end), and the
 //! value types that cross to Python and scene files ([`SettingValue`], [`SettingKind`], [`SettingInfo`]).
 
-use super::{Condensation, KktSolver, QpMethod, SolverSettings};
+use super::{Condensation, KktSolver, QpMethod, SolverSettings, Stabilization};
 use crate::choice::Choice;
 use crate::error::{Error, Result};
 
@@ -187,6 +187,20 @@ settings_table! {
     "fp_relaxation" => fp.relaxation: f64;
     "memory_budget" => memory_budget: usize;
     "condensation" => condensation: Condensation;
+}
+
+impl SolverSettings {
+    /// The defaults of the solve's keywords, as the Python binding and the scene files name them: how γ0
+    /// is chosen (`gamma0_fraction`, or `gamma0` when the default gives a value) and every setting of
+    /// [`SolverSettings::table`].
+    pub fn keyword_defaults() -> Vec<(&'static str, SettingValue)> {
+        let gamma0 = match Self::default().stabilization {
+            Stabilization::Fraction(f) => ("gamma0_fraction", SettingValue::Float(f)),
+            Stabilization::Gamma0(g) | Stabilization::Unchecked(g) => ("gamma0", SettingValue::Float(g)),
+            Stabilization::None => ("gamma0", SettingValue::Float(0.0)),
+        };
+        std::iter::once(gamma0).chain(Self::table().into_iter().map(|info| (info.name, info.default))).collect()
+    }
 }
 
 #[cfg(test)]

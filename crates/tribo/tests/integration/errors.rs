@@ -394,3 +394,25 @@ fn a_floating_piece_is_named() {
     assert_eq!(e, Error::FloatingPiece { triangle: 2, node: 4, triangles: 2, pieces: 2 });
     assert!(e.to_string().contains("has no support"), "{e}");
 }
+
+/// The multiplier points come from one keyword at most: every pair of `multiplier_ratio`,
+/// `multiplier_size` and `multiplier_points` (and all three) is refused by the core with a typed error,
+/// and one alone (or none) gives its points.
+#[test]
+fn multiplier_keywords_exclude_each_other() {
+    let points = || Some(MultiplierPoints::Abscissae(vec![0.0, 0.5, 1.0]));
+    for (ratio, size, explicit) in [
+        (Some(1.0), Some(0.1), None),
+        (Some(1.0), None, points()),
+        (None, Some(0.1), points()),
+        (Some(1.0), Some(0.1), points()),
+    ] {
+        let e = MultiplierPoints::from_keywords(ratio, size, explicit).expect_err("two keywords");
+        assert!(matches!(&e, Error::BadMultiplierMesh { what } if what.contains("at most one")), "{e}");
+        assert_eq!(e.category(), error::ErrorCategory::ContactGeometry);
+    }
+    assert_eq!(MultiplierPoints::from_keywords(Some(2.0), None, None), Ok(MultiplierPoints::RatioToFe(2.0)));
+    assert_eq!(MultiplierPoints::from_keywords(None, Some(0.1), None), Ok(MultiplierPoints::Size(0.1)));
+    assert_eq!(MultiplierPoints::from_keywords(None, None, points()), Ok(points().unwrap()));
+    assert_eq!(MultiplierPoints::from_keywords(None, None, None), Ok(MultiplierPoints::default()));
+}

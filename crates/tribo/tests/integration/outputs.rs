@@ -161,3 +161,64 @@ fn the_condensation_reports_progress() {
     assert_eq!(sol.report.status, SolveStatus::Interrupted { iteration: 0 });
     assert!(sol.report.qp_iterations.is_empty() && sol.lambda_n.iter().all(|l| *l == 0.0));
 }
+
+/// Obstacles and supports name themselves as the Python calls that build them, and a support gives its
+/// prescribed components per axis.
+#[test]
+fn obstacles_and_supports_name_themselves() {
+    let shapes = [
+        (ObstacleShape::Flat, "flat", "flat()"),
+        (ObstacleShape::Circle { center: 0.5, radius: 2.0 }, "circle", "circle(radius=2, center=0.5)"),
+        (ObstacleShape::Parabola { center: 0.0, radius: 1.5 }, "parabola", "parabola(radius=1.5, center=0)"),
+        (ObstacleShape::Polyline { xi: vec![0.0, 1.0], gap: vec![0.0, 0.1] }, "polyline", "polyline(<2 points>)"),
+        (ObstacleShape::Function(GapFunction(std::sync::Arc::new(|x| x))), "function", "function(<closure>)"),
+    ];
+    for (shape, kind, shown) in shapes {
+        assert_eq!((shape.kind(), shape.to_string().as_str()), (kind, shown));
+    }
+    let supports = [
+        (Support::clamp("base"), r#"clamp("base")"#, [Some(0.0), Some(0.0)]),
+        (Support::roller("axis"), r#"roller("axis")"#, [None, None]),
+        (
+            Support::displacement("top", None, Some(-0.01)),
+            r#"displacement("top", x=None, y=-0.01)"#,
+            [None, Some(-0.01)],
+        ),
+    ];
+    for (support, shown, components) in supports {
+        assert_eq!((support.to_string().as_str(), support.components()), (shown, components));
+    }
+}
+
+/// The registry of choices names every option enum by its keyword, with the names each one parses, the
+/// contact states in the order of their codes, and the solver settings' choices as the table gives them.
+#[test]
+fn the_choice_registry_lists_every_option() {
+    let registry: std::collections::BTreeMap<_, _> = choice_registry().into_iter().collect();
+    let keys: Vec<&str> = registry.keys().copied().collect();
+    let expected =
+        ["condensation", "diagonal", "friction", "qp_kkt_solver", "qp_method", "side", "space", "state", "status"];
+    assert_eq!(keys, expected);
+    assert_eq!(registry["state"], ContactState::ALL.iter().map(|s| s.as_str()).collect::<Vec<_>>());
+    assert_eq!(registry["state"][ContactState::Slip.code()], "slip");
+    assert_eq!(registry["status"], SolveStatus::NAMES);
+    assert_eq!(registry["qp_method"], QpMethod::names());
+    for name in &registry["condensation"] {
+        assert_eq!(Condensation::parse(name).map(Condensation::as_str), Ok(*name));
+    }
+}
+
+/// The defaults of the keywords a problem is built from give back the default multiplier points and
+/// space.
+#[test]
+fn problem_keyword_defaults_give_back_the_defaults() {
+    let defaults = ProblemSpec::keyword_defaults();
+    let ratio = match defaults.as_slice() {
+        [("multiplier_ratio", SettingValue::Float(r)), ("space", SettingValue::Name(space))] => {
+            assert_eq!(MultiplierSpace::parse(space), Ok(MultiplierSpace::default()));
+            *r
+        }
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(MultiplierPoints::from_keywords(Some(ratio), None, None), Ok(MultiplierPoints::default()));
+}

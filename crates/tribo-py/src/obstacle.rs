@@ -1,0 +1,150 @@
+//! `Obstacle`: the shape of a rigid obstacle, and the channel that carries a Python gap function's
+//! exception through the core.
+
+use std::cell::RefCell;
+use std::sync::Arc;
+
+use numpy::PyArray1;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+use pyo3::types::PyFloat;
+use tribo::error::ErrorCategory::ContactGeometry;
+use tribo::{GapFunction, ObstacleShape};
+
+use crate::convert::{callback, floats};
+use crate::errors::to_pyerr;
+
+thread_local! {
+    /// The first exception a Python gap function raised during the current core call on this thread,
+    /// kept until the call returns. Per thread, so that problems sharing one `Obstacle.function` in two
+    /// threads never see each other's exceptions (the core calls the gap function on the caller's thread).
+    static GAP_ERROR: RefCell<Option<PyErr>> = const { RefCell::new(None) };
+}
+
+/// Takes the exception a gap function raised on this thread, if any.
+pub fn take_gap_error() -> Option<PyErr> {
+    GAP_ERROR.with(|slot| slot.borrow_mut().take())
+}
+
+/// The exception to raise for a core error: the gap function's own exception if it was a
+/// KeyboardInterrupt or SystemExit (they must propagate unchanged), else `err` with that exception
+/// chained as its cause.
+pub fn chain_gap_error(py: Python<'_>, err: PyErr) -> PyErr {
+    match take_gap_error() {
+        Some(cause) if !cause.is_instance_of::<PyException>(py) => cause,
+        Some(cause) => {
+            err.set_cause(py, Some(cause));
+            err
+        }
+        None => err,
+    }
+}
+
+/// The shape of a rigid obstacle: the initial gap g0(ξ) ≥ 0 between Γ_C and the obstacle along the
+/// outward normal, ξ the abscissa on Γ_C. Build one with `flat`, `circle`, `parabola`, `polyline` or
+/// `function`; its motion (approach δ, shift s) is given to `Problem`.
+#[pyclass(frozen, name = "Obstacle", module = "tribo")]
+pub struct PyObstacle {
+    pub(crate) shape: ObstacleShape,
+    /// The call that built it (a gap function shows its Python repr).
+    repr: String,
+    /// 'flat', 'circle', 'parabola', 'polyline' or 'function'.
+    #[pyo3(get)]
+    kind: &'static str,
+    /// The radius R of a circle or a parabola (its curvature radius), else None.
+    #[pyo3(get)]
+    radius: Option<f64>,
+    /// The abscissa of the lowest point of a circle or a parabola, else None.
+    #[pyo3(get)]
+    center: Option<f64>,
+}
+
+impl PyObstacle {
+    pub fn checked(shape: ObstacleShape) -> PyResult<Self> {
+        tribo::Obstacle { shape: shape.clone(), ..Default::default() }.validate().map_err(to_pyerr)?;
+        let (radius, center) = match shape {
+            ObstacleShape::Circle { center, radius } | ObstacleShape::Parabola { center, radius } => {
+                (Some(radius), Some(center))
+            }
+            _ => (None, None),
+        };
+        Ok(Self { repr: format!("Obstacle.{shape}"), kind: shape.kind(), radius, center, shape })
+    }
+
+    /// A gap function. The core calls it during the Γ_C integration (with the GIL released): it
+    /// re-attaches for the call. A Python exception or a non-float result becomes NaN, which the core
+    /// rejects as BadObstacle; the exception itself is kept (per thread) and chained to that error, or
+    /// re-raised as it is for KeyboardInterrupt and SystemExit.
+    pub fn from_callable(f: Py<PyAny>) -> PyResult<Self> {
+        let repr = Python::attach(|py| f.bind(py).repr().map(|r| format!("Obstacle.function({r})")))?;
+        let call = move |xi: f64| -> f64 {
+            Python::attach(|py| match f.call1(py, (xi,)).and_then(|v| v.extract::<f64>(py)) {
+                Ok(g) => g,
+                Err(e) => {
+                    GAP_ERROR.with(|slot| {
+                        slot.borrow_mut().get_or_insert(e);
+                    });
+                    f64::NAN
+                }
+            })
+        };
+        Ok(Self { repr, ..Self::checked(ObstacleShape::Function(GapFunction(Arc::new(call))))? })
+    }
+}
+
+#[pymethods]
+impl PyObstacle {
+    /// A flat obstacle touching Γ_C: g0 = 0.
+    #[staticmethod]
+    fn flat() -> PyResult<Self> {
+        Self::checked(ObstacleShape::Flat)
+    }
+
+    /// A rigid cylinder of radius R touching Γ_C at abscissa `center`: g0 = R − √(R² − (ξ − c)²).
+    #[staticmethod]
+    #[pyo3(signature = (radius, center = 0.0))]
+    fn circle(radius: f64, center: f64) -> PyResult<Self> {
+        Self::checked(ObstacleShape::Circle { center, radius })
+    }
+
+    /// The parabolic (Hertz) approximation of a cylinder: g0 = (ξ − c)² / (2R).
+    #[staticmethod]
+    #[pyo3(signature = (radius, center = 0.0))]
+    fn parabola(radius: f64, center: f64) -> PyResult<Self> {
+        Self::checked(ObstacleShape::Parabola { center, radius })
+    }
+
+    /// A polyline through (xi[k], gap[k]) (xi strictly increasing), constant beyond its ends.
+    #[staticmethod]
+    fn polyline(xi: &Bound<'_, PyAny>, gap: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let xi = floats(xi, "polyline abscissae", &[None], ContactGeometry)?;
+        let gap = floats(gap, "polyline gaps", &[None], ContactGeometry)?;
+        Self::checked(ObstacleShape::Polyline { xi, gap })
+    }
+
+    /// Any Python callable gap(xi: float) -> float giving g0 at an abscissa of Γ_C. It is called
+    /// during the set-up (Γ_C integration) and at the FE nodes of Γ_C after a solve.
+    #[staticmethod]
+    fn function(gap: &Bound<'_, PyAny>) -> PyResult<Self> {
+        Self::from_callable(callback(gap, "Obstacle.function", "gap(xi) -> float", ContactGeometry)?)
+    }
+
+    /// The initial gap g0 at abscissae `xi` (a float or an array of floats).
+    fn gap0<'py>(&self, py: Python<'py>, xi: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let o = tribo::Obstacle { shape: self.shape.clone(), ..Default::default() };
+        take_gap_error();
+        let ndim: usize = py.import("numpy")?.call_method1("ndim", (xi,))?.extract()?;
+        let out = if ndim == 0 {
+            let x = floats(xi, "xi", &[], ContactGeometry)?;
+            PyFloat::new(py, o.initial_gap(x[0])).into_any()
+        } else {
+            let x = floats(xi, "xi", &[None], ContactGeometry)?;
+            PyArray1::from_vec(py, x.iter().map(|&x| o.initial_gap(x)).collect()).into_any()
+        };
+        take_gap_error().map_or(Ok(out), Err)
+    }
+
+    fn __repr__(&self) -> String {
+        self.repr.clone()
+    }
+}

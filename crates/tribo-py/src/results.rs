@@ -1,0 +1,102 @@
+//! The core's results as dicts of read-only numpy arrays, numbers and names, handed over once; the typed
+//! classes `Report`, `Solution` and `History` that read them are pure Python (`tribo/results.py`).
+
+use pyo3::prelude::*;
+use pyo3::types::{IntoPyDict, PyDict};
+use tribo::{Choice, ContactState, SolveStatus};
+
+use crate::convert::{mat, pairs, vec1};
+
+/// `Report` as a dict.
+fn report<'py>(py: Python<'py>, r: &tribo::Report) -> PyResult<Bound<'py, PyDict>> {
+    let (interrupted, failed, reason) = match r.status {
+        SolveStatus::Interrupted { iteration } => (Some(iteration), None, None),
+        SolveStatus::QpFailed { iteration, reason } => (None, Some(iteration), Some(reason)),
+        _ => (None, None, None),
+    };
+    let ints = |v: &[u32]| vec1(py, &v.iter().map(|&i| i64::from(i)).collect::<Vec<_>>());
+    let d = PyDict::new(py);
+    d.set_item("status", r.status.name())?;
+    d.set_item("interrupted_iteration", interrupted)?;
+    d.set_item("failed_iteration", failed)?;
+    d.set_item("failure_reason", reason)?;
+    d.set_item("iterations", r.iterations)?;
+    d.set_item("residual_history", vec1(py, &r.residual_history)?)?;
+    d.set_item("qp_iterations", ints(&r.qp_iterations)?)?;
+    d.set_item("qp_factorizations", ints(&r.qp_factorizations)?)?;
+    d.set_item("qp_methods", r.qp_methods.iter().map(|m| m.as_str()).collect::<Vec<_>>())?;
+    d.set_item("qp_fallbacks", r.qp_fallbacks)?;
+    d.set_item("condensation", r.condensation.as_str())?;
+    d.set_item("qp_inaccurate", r.qp_inaccurate)?;
+    d.set_item("gamma0", r.gamma0)?;
+    d.set_item("gamma0_bound", r.gamma0_bound)?;
+    d.set_item("reused_factorization", r.reused_factorization)?;
+    d.set_item("timings", r.timings.named().into_py_dict(py)?)?;
+    d.set_item("estimate", r.estimate.named().into_py_dict(py)?)?;
+    Ok(d)
+}
+
+/// `Solution` as a dict (its report as a dict too).
+pub fn solution<'py>(py: Python<'py>, s: &tribo::Solution) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("friction", s.report.friction.as_str())?;
+    d.set_item("mu", s.report.mu)?;
+    d.set_item("displacement", pairs(py, &s.displacement)?)?;
+    d.set_item("stress", mat(py, &s.stress)?)?;
+    d.set_item("reactions", pairs(py, &s.reactions)?)?;
+    d.set_item("states", vec1(py, &s.states.iter().map(|&s| s.code() as i8).collect::<Vec<_>>())?)?;
+    for (name, v) in [
+        ("stress_zz", &s.stress_zz),
+        ("von_mises", &s.von_mises),
+        ("multiplier_abscissae", &s.multiplier_abscissae),
+        ("lambda_n", &s.lambda_n),
+        ("lambda_t", &s.lambda_t),
+        ("friction_threshold", &s.friction_threshold),
+        ("edge_abscissae", &s.edge_abscissae),
+        ("sigma_n", &s.sigma_n),
+        ("sigma_t", &s.sigma_t),
+        ("node_abscissae", &s.node_abscissae),
+        ("u_n", &s.u_n),
+        ("slip", &s.slip),
+        ("gap", &s.gap),
+        ("estimator", &s.estimator),
+    ] {
+        d.set_item(name, vec1(py, v)?)?;
+    }
+    d.set_item("contact_force", (s.contact_force[0], s.contact_force[1]))?;
+    d.set_item("obstacle_motion", (s.obstacle_motion[0], s.obstacle_motion[1]))?;
+    d.set_item("normal_force", s.normal_force)?;
+    d.set_item("tangential_force", s.tangential_force)?;
+    d.set_item("max_penetration", s.max_penetration)?;
+    d.set_item("kkt", s.kkt.named().into_py_dict(py)?)?;
+    d.set_item("report", report(py, &s.report)?)?;
+    Ok(d)
+}
+
+/// `History` as a dict: its solutions as dicts, and the per-step series the core derives from them.
+pub fn history<'py>(py: Python<'py>, h: &tribo::History) -> PyResult<Bound<'py, PyDict>> {
+    let count = |state| vec1(py, &h.count(state).into_iter().map(|c| c as i64).collect::<Vec<_>>());
+    let step = |f: fn(&tribo::LoadStep) -> f64| vec1(py, &h.steps.iter().map(f).collect::<Vec<_>>());
+    let boundaries = h.stick_slip_boundaries().iter().map(|b| vec1(py, b)).collect::<PyResult<Vec<_>>>()?;
+    let d = PyDict::new(py);
+    d.set_item("status", h.status.name())?;
+    d.set_item("ended_at", h.ended_at)?;
+    d.set_item("solutions", h.solutions.iter().map(|s| solution(py, s)).collect::<PyResult<Vec<_>>>()?)?;
+    d.set_item("failed", h.failed.as_deref().map(|s| solution(py, s)).transpose()?)?;
+    d.set_item("approach", step(|s| s.approach)?)?;
+    d.set_item("shift", step(|s| s.shift)?)?;
+    d.set_item("load_factor", step(|s| s.load_factor)?)?;
+    d.set_item("normal_force", vec1(py, &h.normal_force())?)?;
+    d.set_item("tangential_force", vec1(py, &h.tangential_force())?)?;
+    d.set_item("stick_count", count(ContactState::Stick)?)?;
+    d.set_item("slip_count", count(ContactState::Slip)?)?;
+    d.set_item("separation_count", count(ContactState::Separation)?)?;
+    d.set_item("contact_zone", mat(py, &h.extent(|s| s != ContactState::Separation))?)?;
+    d.set_item("stick_zone", mat(py, &h.extent(|s| s == ContactState::Stick))?)?;
+    d.set_item("stick_slip_boundaries", boundaries)?;
+    d.set_item("gross_sliding", vec1(py, &h.gross_sliding())?)?;
+    d.set_item("step_seconds", vec1(py, &h.step_seconds)?)?;
+    d.set_item("factorizations", h.factorizations)?;
+    d.set_item("setup_seconds", h.setup_seconds)?;
+    Ok(d)
+}

@@ -1,0 +1,147 @@
+"""``Problem``: the compiled problem, whose solves return the typed results of ``tribo.results``.
+
+The compiled ``tribo._tribo.Problem`` validates and assembles the problem and solves it with the GIL
+released; its solves hand back plain dicts. This subclass turns them into ``Solution`` and ``History``
+and spreads a scalar approach, shift or load factor over the steps of a history (numpy broadcasting).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any, Literal
+
+import numpy as np
+import numpy.typing as npt
+
+from tribo import _tribo
+from tribo._tribo import SettingsError, format_number
+from tribo.results import History, Solution
+
+__all__ = ["Problem", "history_steps"]
+
+_Law = Literal["frictionless", "tresca", "coulomb"]
+ProgressCallback = Callable[[int, float, int, float], object]
+PhaseCallback = Callable[[Literal["condensation"], float], object]
+StepCallback = Callable[[int, int, str, float], object]
+
+
+def _settings_error(message: str) -> SettingsError:
+    """A SettingsError for input refused before it reaches the core (``kind`` 'BadInput', as the compiled
+    module's)."""
+    e = SettingsError(message)
+    e.kind, e.details = "BadInput", {}
+    return e
+
+
+def history_steps(approach: Any, shift: Any, load_factor: Any = None) -> npt.NDArray[np.float64]:
+    """The steps of a history as rows (approach, shift, load_factor): each a number (the same at every
+    step) or one value per step; ``load_factor`` defaults to 1."""
+    columns = {"approach": approach, "shift": shift, "load_factor": 1.0 if load_factor is None else load_factor}
+    arrays = {}
+    for name, value in columns.items():
+        try:
+            a = np.asarray(value, dtype=np.float64)
+        except (TypeError, ValueError) as e:
+            raise _settings_error(f"{name} must be a number or a sequence of numbers, got {value!r}") from e
+        if a.ndim > 1:
+            raise _settings_error(f"{name} must be a number or a sequence of numbers, got shape {a.shape}")
+        if a.size == 0:
+            raise _settings_error(f"a history needs at least one step ({name} has no value)")
+        arrays[name] = a
+    n = max(a.size for a in arrays.values())
+    for name, a in arrays.items():
+        if a.size not in (1, n):
+            raise _settings_error(
+                f"{name} has {a.size} values, but the history has {n} steps (give one value, or one per step)"
+            )
+    return np.stack(np.broadcast_arrays(*(a.reshape(-1) for a in arrays.values())), axis=1)
+
+
+class Problem(_tribo.Problem):
+    """A contact problem, validated and assembled once (independent of γ0 and friction). It keeps the
+    factorization of its last solve, reused by the next solve with the same γ0.
+
+    Problem(mesh, *, young, poisson, contact, clamped=None, supports=None, obstacle=None, approach=None,
+    shift=None, tractions=None, body_force=None, multiplier_ratio=None, multiplier_size=None,
+    multiplier_points=None, space=None): the body (a Mesh, Young's modulus and Poisson's ratio, plane
+    strain), its supports (edge sets clamped, or a list of Support), its loads (tractions: a dict edge set ->
+    (tx, ty); body_force (fx, fy)), Γ_C (the edge set `contact`) and the obstacle with its motion (an
+    Obstacle or a callable gap(xi), the approach δ and the tangential shift s), and the multiplier mesh T_H
+    (at most one of multiplier_ratio H/h, multiplier_size H and multiplier_points; space 'P0' or 'P1').
+    """
+
+    def __repr__(self) -> str:
+        return (
+            f"Problem(n_free={self.n_free}, n_multipliers={self.n_multipliers}, space='{self.space}', "
+            f"contact='{self.contact}', gamma0_bound={format_number(self.gamma0_bound)})"
+        )
+
+    def solve(
+        self,
+        *,
+        friction: _Law | None = None,
+        mu: float | None = None,
+        threshold: float | npt.ArrayLike | None = None,
+        gamma0: float | None = None,
+        gamma0_fraction: float | None = None,
+        check_gamma0: bool = True,
+        progress: ProgressCallback | None = None,
+        on_phase: PhaseCallback | None = None,
+        **settings: Any,
+    ) -> Solution:
+        """Solves the problem; returns a Solution whose ``report.status`` says how the solve ended.
+
+        The friction law is ``friction`` ('frictionless', 'tresca' or 'coulomb'), or, when None,
+        inferred: ``mu`` given → Coulomb (mu = 0 is frictionless), ``threshold`` given → Tresca, neither →
+        frictionless. γ0 is ``gamma0``, or ``gamma0_fraction`` × the admissible bound, or the core's
+        default; ``check_gamma0=False`` takes an explicit ``gamma0`` even at or above the admissible bound
+        (for studies of what happens there; the factorization may then fail with SolverError). Every
+        other keyword is a solver setting by its name in ``solver_defaults()`` (qp_tol, qp_max_iter,
+        qp_kkt_solver, qp_working_set, qp_method, fp_tol, fp_max_iter, fp_relaxation, memory_budget,
+        condensation); unset ones take the core's defaults.
+
+        ``progress``, if given, is called as progress(iteration, change, qp_iterations, qp_seconds) after
+        every QP; returning False stops the solve (status 'interrupted', with the last iterate), raising
+        stops it and propagates. ``on_phase``, if given, is called as on_phase(phase, seconds) when a
+        phase before the QPs ends: 'condensation' (A = K − G factorized or reused, c and possibly all of H
+        formed; ``seconds`` is its wall time so far); False or an exception stops the solve the same way,
+        before any QP. Ctrl-C is honoured after the condensation and between QPs.
+        """
+        return Solution.from_dict(self._solve({
+            "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
+            "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress,
+            "on_phase": on_phase, **settings,
+        }))
+
+    def solve_history(
+        self,
+        approach: float | npt.ArrayLike,
+        shift: float | npt.ArrayLike,
+        load_factor: float | npt.ArrayLike | None = None,
+        *,
+        friction: _Law | None = None,
+        mu: float | None = None,
+        threshold: float | npt.ArrayLike | None = None,
+        gamma0: float | None = None,
+        gamma0_fraction: float | None = None,
+        check_gamma0: bool = True,
+        progress: StepCallback | None = None,
+        **settings: Any,
+    ) -> History:
+        """Solves a quasi-static loading history from rest on one factorization; returns a History.
+
+        Step k moves the obstacle to approach ``approach[k]`` and tangential position ``shift[k]``
+        (totals, not increments; a scalar is the same at every step) under ``load_factor[k]`` × the body
+        force and tractions (default 1). Coulomb's law acts on the slip increment relative to the
+        obstacle, so the answer depends on the path; a history of one step is the static ``solve``. The
+        friction, γ0 and settings keywords are those of ``solve``. ``progress``, if given, is called as
+        progress(step, steps, status, seconds) after every step; returning False ends the history there
+        (status 'interrupted', the steps done kept), raising ends it and propagates. Ctrl-C is honoured
+        between steps. A step that does not converge ends the history with its status; ``History.failed``
+        holds its last iterate.
+        """
+        steps = history_steps(approach, shift, load_factor)
+        return History.from_dict(self._solve_history(steps, {
+            "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
+            "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
+        }))

@@ -1,0 +1,315 @@
+"""The results of a solve as plain data: ``Report``, ``Solution`` and ``History``.
+
+The compiled module hands every result over once, as a dict of numpy arrays (read-only), numbers, names
+and lists; these frozen dataclasses give it its types and its documentation. They hold no reference to
+the problem or to the core, so they pickle, compare (arrays element by element, NaN equal to NaN) and can
+be built without a solve:
+
+>>> import numpy as np
+>>> report = Report(status="converged", interrupted_iteration=None, failed_iteration=None,
+...                 failure_reason=None, iterations=0, residual_history=np.zeros(0),
+...                 qp_iterations=np.array([7]), qp_factorizations=np.array([1]), qp_methods=["active_set"],
+...                 qp_fallbacks=0, condensation="columns", qp_inaccurate=0, gamma0=0.0, gamma0_bound=1.0,
+...                 reused_factorization=False, timings={"qp": 0.001})
+>>> report.converged
+True
+
+Contact fields live at three kinds of places along Γ_C: multiplier dofs (``multiplier_abscissae``:
+``lambda_n``, ``lambda_t``, ``friction_threshold``, ``states``), FE edge midpoints (``edge_abscissae``:
+``sigma_n``, ``sigma_t``) and FE nodes (``node_abscissae``: ``u_n``, ``slip``, ``gap``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import numpy as np
+import numpy.typing as npt
+
+from tribo._tribo import STATE_NAMES, format_number
+
+__all__ = ["Report", "Solution", "History"]
+
+_Floats = npt.NDArray[np.float64]
+_Ints = npt.NDArray[np.int64]
+Status = Literal["converged", "max_iterations", "stagnated", "interrupted", "qp_failed", "non_finite", "inaccurate"]
+
+
+def _same(a: object, b: object) -> bool:
+    """Equal data: arrays of one dtype and shape with equal elements (NaN equal to NaN), containers item by
+    item, numbers by value (NaN equal to NaN)."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        x, y = np.asarray(a), np.asarray(b)
+        nan = x.dtype.kind in "fc"
+        return x.dtype == y.dtype and x.shape == y.shape and bool(np.array_equal(x, y, equal_nan=nan))
+    if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
+        return type(a) is type(b) and len(a) == len(b) and all(map(_same, a, b))
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(_same(a[k], b[k]) for k in a)
+    if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
+        return True
+    return type(a) is type(b) and bool(a == b)
+
+
+class _Record:
+    """Equality of frozen records by their fields (see ``_same``); they are not hashable."""
+
+    def __eq__(self, other: object) -> bool:
+        if type(other) is not type(self):
+            return NotImplemented
+        return all(_same(getattr(self, f.name), getattr(other, f.name)) for f in dataclasses.fields(self))  # type: ignore[arg-type]
+
+    __hash__ = None  # type: ignore[assignment]
+
+
+@dataclass(frozen=True, eq=False, repr=False, kw_only=True)
+class Report(_Record):
+    """How a solve went: status, iterations, γ0 and timings.
+
+    Attributes:
+        status: 'converged', 'max_iterations', 'stagnated', 'interrupted' (the progress callback returned
+            False), 'qp_failed', 'non_finite' (a field overflowed) or 'inaccurate' (KKT residuals above
+            what the tolerances justify). Only 'converged' promises finite fields and small residuals.
+        interrupted_iteration: for 'interrupted', the fixed-point iteration after which the solve
+            stopped, else None.
+        failed_iteration: for 'qp_failed', the fixed-point iteration at which a QP failed (0 = the
+            initial QP), else None.
+        failure_reason: for 'qp_failed', the QP solver's status, else None.
+        iterations: fixed-point iterations (0 for frictionless and Tresca).
+        residual_history: relative change of λ_n after each fixed-point iteration.
+        qp_iterations: iterations of each QP: interior-point iterations (clarabel) or steps (active set).
+        qp_factorizations: factorizations among each QP's active-set steps (dense Cholesky of the free
+            block, or sparse LDLᵀ of the saddle-point system): the other steps updated or bordered a
+            factorization. 0 for clarabel.
+        qp_methods: the method that answered each QP: 'clarabel' or 'active_set'.
+        qp_fallbacks: how many QPs the first method tried did not answer, so that the other one did.
+        condensation: how H was formed: 'columns' (one solve per column the QPs need), 'schur' (all of it
+            from a partial factorization with the Γ_C dofs last) or 'saddle' (not at all: the QPs' steps
+            solve the sparse saddle-point system).
+        qp_inaccurate: how many QPs met only the fallback tolerance (1e-10), not ``qp_tol``.
+        gamma0: γ0 used.
+        gamma0_bound: the admissible bound on γ0.
+        reused_factorization: True when this solve reused the factorization of an earlier solve with the
+            same γ0 (the 'factorization' and 'condensation' timings are then those of that earlier solve).
+        timings: wall times per phase in seconds: assembly, contact_matrices, factorization,
+            condensation, qp, recovery.
+        estimate: the a posteriori error estimate (see ``Solution.estimator``): ``total`` η and its parts
+            ``bulk``, ``gamma_c``, ``contact``, ``friction`` (each the root of a sum of squares over the
+            triangles, in stress × length), ``energy_relative`` (η / (E* a(u_h, u_h))^½), ``traction``
+            (ζ, the estimate of ‖λ − λ_H‖ in L²(Γ_C)) and ``traction_relative`` (ζ / ‖λ_H‖, NaN when
+            nothing touches). Empty for a report built without one.
+    """
+
+    status: Status
+    interrupted_iteration: int | None
+    failed_iteration: int | None
+    failure_reason: str | None
+    iterations: int
+    residual_history: _Floats
+    qp_iterations: _Ints
+    qp_factorizations: _Ints
+    qp_methods: list[Literal["clarabel", "active_set"]]
+    qp_fallbacks: int
+    condensation: Literal["columns", "schur", "saddle"]
+    qp_inaccurate: int
+    gamma0: float
+    gamma0_bound: float
+    reused_factorization: bool
+    timings: dict[str, float]
+    estimate: dict[str, float] = dataclasses.field(default_factory=dict)
+
+    @property
+    def converged(self) -> bool:
+        """True when the status is 'converged'."""
+        return self.status == "converged"
+
+    def __repr__(self) -> str:
+        return (
+            f"Report(status='{self.status}', iterations={self.iterations}, gamma0={format_number(self.gamma0)}, "
+            f"gamma0_bound={format_number(self.gamma0_bound)})"
+        )
+
+
+@dataclass(frozen=True, eq=False, repr=False, kw_only=True)
+class Solution(_Record):
+    """The solution of a contact problem: fields as numpy arrays, totals, KKT residuals and the report.
+
+    Contact fields live at multiplier dofs (q of them), FE edge midpoints of Γ_C and FE nodes of Γ_C
+    (n_c of them), each with its abscissae.
+
+    Attributes:
+        friction: friction law solved: 'frictionless', 'tresca' or 'coulomb'.
+        mu: Coulomb coefficient μ, or None.
+        displacement: nodal displacements, (N, 2).
+        stress: constant stress (σ_xx, σ_yy, σ_xy) per triangle, (T, 3).
+        stress_zz: out-of-plane stress σ_zz = ν (σ_xx + σ_yy) of plane strain per triangle, (T,).
+        von_mises: von Mises stress per triangle (plane strain), (T,).
+        reactions: reaction forces K u − f per node, (N, 2) (zero off the supported nodes).
+        multiplier_abscissae: abscissae of the multiplier dofs, (q,).
+        lambda_n: λ_n at the multiplier dofs (a contact pressure: ≥ 0), (q,).
+        lambda_t: λ_t at the multiplier dofs (along t), (q,).
+        friction_threshold: bound on |λ_t| per multiplier dof: μ λ_n (Coulomb), the Tresca threshold,
+            or 0, (q,).
+        states: contact state per multiplier dof as int8: 0 separation, 1 stick, 2 slip (see
+            STATE_NAMES), (q,).
+        edge_abscissae: abscissae of the midpoints of the FE edges of Γ_C, (n_c − 1,).
+        sigma_n: σ_n(u_h) on each FE edge of Γ_C.
+        sigma_t: σ_t(u_h) on each FE edge of Γ_C.
+        node_abscissae: abscissae of the FE nodes of Γ_C, (n_c,).
+        u_n: u_n at the FE nodes of Γ_C.
+        slip: u_t − s (slip relative to the obstacle) at the FE nodes of Γ_C; in a history, the slip
+            increment of the step.
+        gap: gap g = g0 − δ at the FE nodes of Γ_C.
+        contact_force: total force (Fx, Fy) the obstacle exerts on the body in global axes:
+            −(normal_force n + tangential_force t).
+        obstacle_motion: how the obstacle moved, in global axes: −approach n + shift t.
+        normal_force: total normal contact force ∫ λ_n.
+        tangential_force: total tangential contact force ∫ λ_t (the obstacle pulls the body by
+            −tangential_force along t).
+        max_penetration: largest pointwise penetration max(u_n − g)₊ over the FE nodes of Γ_C.
+        kkt: dimensionless discrete KKT residuals of (3.1): equilibrium, normal_sign, non_penetration,
+            normal_complementarity, friction_bound, stick, slip_direction.
+        report: the report of the solve.
+        estimator: the a posteriori error indicator η_K per triangle, (T,): the residuals of equilibrium,
+            of the Barbosa–Hughes term λ_H + σ_h n, of contact and of friction (their totals are
+            ``report.estimate``; the crate documentation of ``tribo::results`` derives them).
+    """
+
+    friction: Literal["frictionless", "tresca", "coulomb"]
+    mu: float | None
+    displacement: _Floats
+    stress: _Floats
+    stress_zz: _Floats
+    von_mises: _Floats
+    reactions: _Floats
+    multiplier_abscissae: _Floats
+    lambda_n: _Floats
+    lambda_t: _Floats
+    friction_threshold: _Floats
+    states: npt.NDArray[np.int8]
+    edge_abscissae: _Floats
+    sigma_n: _Floats
+    sigma_t: _Floats
+    node_abscissae: _Floats
+    u_n: _Floats
+    slip: _Floats
+    gap: _Floats
+    contact_force: tuple[float, float]
+    obstacle_motion: tuple[float, float]
+    normal_force: float
+    tangential_force: float
+    max_penetration: float
+    kkt: dict[str, float]
+    report: Report
+    estimator: _Floats = dataclasses.field(default_factory=lambda: np.zeros(0))
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> Solution:
+        """A solution from the dict of fields the compiled module gives (the report as a dict too)."""
+        return cls(**{**data, "report": Report(**data["report"])})
+
+    @property
+    def state_names(self) -> list[str]:
+        """Contact state per multiplier dof as strings."""
+        return [STATE_NAMES[s] for s in self.states]
+
+    @property
+    def current_gap(self) -> _Floats:
+        """Current gap g − u_n at the FE nodes of Γ_C: 0 where the body touches the obstacle, < 0 where it
+        penetrates."""
+        return self.gap - self.u_n
+
+    @property
+    def kkt_max(self) -> float:
+        """The largest KKT residual (NaN if any is NaN)."""
+        return float(np.max([0.0, *self.kkt.values()]))
+
+    def __repr__(self) -> str:
+        return (
+            f"Solution(friction='{self.friction}', status='{self.report.status}', "
+            f"normal_force={format_number(self.normal_force, 6)}, "
+            f"tangential_force={format_number(self.tangential_force, 6)})"
+        )
+
+
+@dataclass(frozen=True, eq=False, repr=False, kw_only=True)
+class History(_Record):
+    """A quasi-static loading history: the solution of every step that converged, and per-step arrays.
+
+    The arrays have one entry per converged step (``len(history)``); ``approach``, ``shift`` and
+    ``load_factor`` give the steps asked for (all of them).
+
+    Attributes:
+        status: 'converged' when every step converged; otherwise the status of the step that ended the
+            history ('interrupted' when the progress callback returned False).
+        ended_at: the step (0-based) that ended the history early, or None.
+        solutions: the solutions of the steps that converged, in order.
+        failed: the last iterate of a step that did not converge (not in ``solutions``), or None.
+        approach: approach δ_k of every step asked for.
+        shift: tangential position s_k of every step asked for.
+        load_factor: load factor α_k of every step asked for.
+        normal_force: total normal force ∫λ_n per converged step.
+        tangential_force: total tangential force ∫λ_t per converged step.
+        stick_count: multiplier dofs that stick, per converged step.
+        slip_count: multiplier dofs that slip, per converged step.
+        separation_count: multiplier dofs separated from the obstacle, per converged step.
+        contact_zone: (first, last) abscissa of the multiplier dofs in contact, per converged step, (K, 2);
+            NaN when nothing touches.
+        stick_zone: (first, last) abscissa of the multiplier dofs that stick, per converged step, (K, 2);
+            NaN when none sticks.
+        stick_slip_boundaries: per converged step, the abscissae of the stick–slip boundaries (midpoints
+            between a dof that sticks and a neighbour that slips).
+        gross_sliding: per converged step, True when the contact slides as a whole (something touches and
+            every dof in contact slips: |Q| = μP for Coulomb friction).
+        step_seconds: wall time of each step solved (the converged ones, then the failed one), in seconds.
+        factorizations: factorizations of K − G done for the history: 1, or 0 when an earlier solve's was
+            reused.
+        setup_seconds: wall time of the factorization set-up, in seconds (0 when reused).
+    """
+
+    status: Status
+    ended_at: int | None
+    solutions: list[Solution]
+    failed: Solution | None
+    approach: _Floats
+    shift: _Floats
+    load_factor: _Floats
+    normal_force: _Floats
+    tangential_force: _Floats
+    stick_count: _Ints
+    slip_count: _Ints
+    separation_count: _Ints
+    contact_zone: _Floats
+    stick_zone: _Floats
+    stick_slip_boundaries: list[_Floats]
+    gross_sliding: npt.NDArray[np.bool_]
+    step_seconds: _Floats
+    factorizations: int
+    setup_seconds: float
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> History:
+        """A history from the dict the compiled module gives (its solutions as dicts too)."""
+        failed = data["failed"]
+        return cls(**{
+            **data,
+            "solutions": [Solution.from_dict(s) for s in data["solutions"]],
+            "failed": None if failed is None else Solution.from_dict(failed),
+        })
+
+    @property
+    def converged(self) -> bool:
+        """True when every step converged."""
+        return self.status == "converged"
+
+    def __len__(self) -> int:
+        return len(self.solutions)
+
+    def __repr__(self) -> str:
+        return (
+            f"History(status='{self.status}', steps={len(self.solutions)}/{len(self.approach)}, "
+            f"factorizations={self.factorizations})"
+        )
