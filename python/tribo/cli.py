@@ -3,12 +3,15 @@
 ``tribo run SCENE.toml --out DIR`` solves a scene and writes into DIR:
 
 * ``summary.json``: the scene, the status, iterations, forces (normal and tangential resultants and the
-  global components Fx, Fy), the obstacle's motion in global axes, KKT residuals, timings, warnings, and
+  global components Fx, Fy), the obstacle's motion in global axes, KKT residuals, timings, the a posteriori
+  error estimate (``estimate``: η, its parts and the relative traction and energy estimates), warnings, and
   the conventions (n, t, the direction of ξ, the signs of λ_t, of the shift and of the forces);
 * ``contact.csv`` (per multiplier dof), ``contact_nodes.csv``, ``contact_edges.csv``: the contact fields;
 * ``result.vtu``, ``result_contact.vtu``, ``result_multipliers.vtu``: for ParaView;
 * ``contact_normal.png``, ``contact_tangential.png``, ``von_mises.png``, ``von_mises_contact.png``
   (when matplotlib is installed; ``--no-plots`` skips them).
+
+The run prints the status, the forces and the estimated error of the solve.
 
 ``tribo demo [--out DIR]`` runs the built-in scene (``tribo/scenes/demo.toml``) into ``tribo-demo-out``.
 
@@ -103,6 +106,8 @@ def summary(
         "kkt": solution.kkt,
         "kkt_max": solution.kkt_max,
         "timings": r.timings,
+        # The a posteriori estimate; a relative one that has no reference (nothing touches, no energy) is null.
+        "estimate": {k: (v if math.isfinite(v) else None) for k, v in r.estimate.items()},
         "wall_seconds": seconds,
         "warnings": list(warned),
         "conventions": conventions(problem, solution),
@@ -238,6 +243,11 @@ def _error(message: str) -> int:
     return 1
 
 
+def _percent(x: float) -> str:
+    """A relative estimate as people read it ('n/a' where it has no reference)."""
+    return f"{100 * x:.2g} %" if math.isfinite(x) else "n/a"
+
+
 def _run(scene_path: Path, out: Path, plots: bool) -> int:
     if out.exists() and not out.is_dir():
         return _error(f"--out {out} exists and is not a directory")
@@ -255,6 +265,12 @@ def _run(scene_path: Path, out: Path, plots: bool) -> int:
         f"  status {r.status} ({solution.friction}, {r.iterations} fixed-point iterations), "
         f"normal force {solution.normal_force:.6g}, tangential force {solution.tangential_force:.6g}, "
         f"max KKT residual {solution.kkt_max:.2e}"
+    )
+    est = r.estimate
+    print(
+        f"  estimated error: {_percent(est['traction_relative'])} in the contact tractions (L2 of Γ_C), "
+        f"{_percent(est['energy_relative'])} in energy (η = {est['total']:.3g}: bulk {est['bulk']:.3g}, Γ_C "
+        f"{est['gamma_c']:.3g}, contact {est['contact']:.3g}, friction {est['friction']:.3g})"
     )
     fx, fy = solution.contact_force
     said = conventions(problem, solution)

@@ -7,8 +7,8 @@ writes its results:
   ``result_contact.pvd``, ``result_multipliers.pvd``: collections ParaView opens as time series (the
   "time" is the step number);
 * ``history.csv``: per step, the obstacle's approach and shift, the load factor, the normal and
-  tangential contact forces, the stick/slip/separation counts and the extents of the contact and stick
-  zones;
+  tangential contact forces, the stick/slip/separation counts, the extents of the contact and stick
+  zones, and the step's error estimate η and relative traction estimate;
 * ``history_loop.png``: the tangential force Q against the obstacle's tangential position s (for a
   fretting cycle, the hysteresis loop), and ``history_tractions.png``: λ_t against ±μλ_n at chosen steps.
 
@@ -70,6 +70,8 @@ def history_table(history: History) -> dict[str, np.ndarray]:
         "stick_from": stick[:, 0],
         "stick_to": stick[:, 1],
         "gross_sliding": history.gross_sliding.astype(int),
+        "error_estimate": np.array([s.report.estimate.get("total", np.nan) for s in history.solutions]),
+        "traction_error": np.array([s.report.estimate.get("traction_relative", np.nan) for s in history.solutions]),
     }
 
 

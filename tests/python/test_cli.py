@@ -8,6 +8,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import tribo
@@ -321,3 +322,25 @@ def test_cli_internal_errors_give_one_line(
     assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 2
     line = one_error_line(capsys, "tribo: internal error: ")
     assert f"{type(exception).__name__}: boom (please report it)" in line
+
+
+def test_run_reports_the_estimated_error(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """Every run prints its estimated error, and the same numbers are in summary.json (strict JSON: a
+    relative estimate without a reference is null), in the report and as cell data in the VTU."""
+    import meshio
+
+    path = tmp_path / "s.toml"
+    path.write_text(SCENE, encoding="utf-8")
+    assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 0
+    printed = re.search(r"estimated error: ([0-9.e+-]+) % in the contact tractions", capsys.readouterr().out)
+    assert printed, "the run prints the traction estimate"
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text(), parse_constant=lambda c: pytest.fail(c))
+    est = summary["estimate"]
+    assert set(est) == {"total", "bulk", "gamma_c", "contact", "friction", "energy_relative", "traction", "traction_relative"}
+    assert est["total"] ** 2 == pytest.approx(est["bulk"] ** 2 + est["gamma_c"] ** 2 + est["contact"] ** 2 + est["friction"] ** 2)
+    assert float(printed.group(1)) == pytest.approx(100 * est["traction_relative"], rel=0.05)
+    problem, solution = load_scene(path).solve()
+    assert solution.report.estimate["total"] == pytest.approx(est["total"])
+    eta = meshio.read(tmp_path / "o" / "result.vtu").cell_data["error_indicator"][0]
+    assert eta.shape == (problem.mesh.n_triangles,) and np.allclose(eta, solution.estimator)
+    assert np.sqrt(np.sum(eta**2)) == pytest.approx(est["total"])
