@@ -6,7 +6,7 @@ use super::Error;
 /// What an error is about; the Python binding raises one exception class per category.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ErrorCategory {
-    /// The mesh: arrays, coordinates, triangles, edge sets, generator parameters.
+    /// The mesh: arrays, coordinates, triangles, edge sets, generator parameters, refinement marks.
     Mesh,
     /// The contact set-up: Γ_C, the obstacle, the multiplier points and space.
     ContactGeometry,
@@ -79,6 +79,19 @@ impl Error {
             Self::EmptyEdgeSet { name } => (ErrorCategory::Mesh, "EmptyEdgeSet", vec![("name", T(name.clone()))]),
             Self::EmptyMesh => (ErrorCategory::Mesh, "EmptyMesh", vec![]),
             Self::BadGenerator { what } => (ErrorCategory::Mesh, "BadGenerator", vec![("what", T(what.clone()))]),
+            Self::MarkedTriangleOutOfRange { position, triangle, n_triangles } => (
+                ErrorCategory::Mesh,
+                "MarkedTriangleOutOfRange",
+                vec![("position", I(*position)), ("triangle", I(*triangle)), ("n_triangles", I(*n_triangles))],
+            ),
+            Self::RefinementTooLarge { triangles, limit } => {
+                (ErrorCategory::Mesh, "RefinementTooLarge", vec![("triangles", I(*triangles)), ("limit", I(*limit))])
+            }
+            Self::NodalValuesLength { len, n_nodes, components } => (
+                ErrorCategory::Mesh,
+                "NodalValuesLength",
+                vec![("len", I(*len)), ("n_nodes", I(*n_nodes)), ("components", I(*components))],
+            ),
             Self::BadMaterial { what } => (ErrorCategory::Settings, "BadMaterial", vec![("what", T(what.clone()))]),
             Self::NonFiniteLoad { target, x, y } => (
                 ErrorCategory::Settings,

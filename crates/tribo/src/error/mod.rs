@@ -147,6 +147,34 @@ pub enum Error {
         /// What is wrong.
         what: String,
     },
+    /// A triangle marked for refinement does not exist.
+    #[error("marked triangle {triangle} (position {position} of the marks) does not exist: the mesh has {n_triangles} triangles")]
+    MarkedTriangleOutOfRange {
+        /// Position in the list of marks.
+        position: usize,
+        /// The marked index.
+        triangle: usize,
+        /// Number of triangles of the mesh.
+        n_triangles: usize,
+    },
+    /// A refinement would produce more triangles than the limit of the mesh generators.
+    #[error("the refined mesh would have {triangles} triangles, more than the limit of {limit}")]
+    RefinementTooLarge {
+        /// Triangles the refined mesh would have.
+        triangles: usize,
+        /// The limit ([`crate::mesh::generate::MAX_CELLS`]).
+        limit: usize,
+    },
+    /// A nodal vector does not have the length its mesh and number of components ask for.
+    #[error("a nodal vector of {len} values does not match {n_nodes} nodes with {components} components each")]
+    NodalValuesLength {
+        /// Length of the vector given.
+        len: usize,
+        /// Number of nodes.
+        n_nodes: usize,
+        /// Values per node.
+        components: usize,
+    },
 
     // ----- material, loads, supports -----
     /// A material constant is out of range.

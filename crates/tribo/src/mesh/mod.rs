@@ -8,6 +8,7 @@
 
 pub mod generate;
 pub mod line;
+pub mod refine;
 
 use std::collections::{BTreeMap, HashMap};
 
