@@ -75,7 +75,7 @@
 // The folders, bottom to top; a folder uses only folders before it, and the two towers in brackets never
 // use each other (ARCHITECTURE.md; `tests/integration/layout.rs` checks the table of allowed edges):
 // error, choice → settings → [mesh → fem → contact] and [linalg → condensation → qp] → problem → results
-// → solve.
+// → solve → adapt.
 pub mod choice;
 pub mod error;
 pub mod settings;
@@ -92,6 +92,9 @@ pub mod problem;
 pub mod results;
 pub mod solve;
 
+pub mod adapt;
+
+pub use adapt::{AdaptStop, Adaptive, Level, LevelObserver};
 pub use choice::Choice;
 pub use condensation::Factor;
 pub use contact::gamma0::Gamma0Bound;
@@ -111,8 +114,8 @@ pub use qp::{QpOutcome, QpStatus};
 pub use results::{ContactState, KktResiduals, Report, Solution, SolveStatus, Timings};
 pub use settings::friction::{Friction, FrictionLaw, Threshold};
 pub use settings::{
-    Condensation, FixedPointSettings, KktSolver, QpMethod, QpSettings, SettingInfo, SettingKind, SettingValue,
-    SolverSettings, Stabilization,
+    AdaptSettings, Condensation, FixedPointSettings, KktSolver, Marking, QpMethod, QpSettings, SettingInfo,
+    SettingKind, SettingValue, SolverSettings, Stabilization,
 };
 pub use solve::history::LoadStep;
 pub use solve::history::{History, StepObserver, StepProgress};

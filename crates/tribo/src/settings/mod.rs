@@ -8,10 +8,12 @@
 //! [`SolverSettings::get`] and [`SolverSettings::table`] are generated from one table ([`table`](self) module), so adding
 //! a setting means adding its field (with its default and range check) and one line of that table.
 
+pub mod adapt;
 pub mod friction;
 mod stabilization;
 mod table;
 
+pub use adapt::{AdaptSettings, Marking};
 pub use stabilization::Stabilization;
 pub use table::{SettingInfo, SettingKind, SettingValue};
 

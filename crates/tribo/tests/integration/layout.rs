@@ -1,7 +1,7 @@
 //! The house rules of the core crate, checked by reading its sources (`src/**`):
 //!
 //! * **the layer rule**: `error → choice → settings → [mesh → fem → contact] and [linalg →
-//!   condensation → qp] → problem → results → solve`. A folder uses only the folders before it in its
+//!   condensation → qp] → problem → results → solve → adapt`. A folder uses only the folders before it in its
 //!   row of [`LAYERS`]; the two bracketed towers never use each other; `linalg` uses nothing of the crate;
 //! * **files readable in one sitting**: at most [`MAX_LINES`] lines outside a file's `#[cfg(test)]`
 //!   module ([`MAX_LINES_LINALG`] for the sparse kernels in `linalg/`).
@@ -39,6 +39,23 @@ const LAYERS: &[(&str, &[&str])] = &[
             "qp",
             "problem",
             "results",
+        ],
+    ),
+    (
+        "adapt",
+        &[
+            "error",
+            "choice",
+            "settings",
+            "mesh",
+            "fem",
+            "contact",
+            "linalg",
+            "condensation",
+            "qp",
+            "problem",
+            "results",
+            "solve",
         ],
     ),
 ];

@@ -1,5 +1,6 @@
 //! tribo's integration tests, one binary with one module per layer:
 //!
+//! * `adaptive`: the adaptive loop finds an unknown contact zone, stops where it must, refuses bad settings;
 //! * `errors`: one rejection test per input rule;
 //! * `fuzz`: hostile input (proptest) ends in a typed error or an honest status;
 //! * `invariants`: property tests of the Γ_C matrices, the multiplier basis and the common refinement;
@@ -16,6 +17,7 @@
 //!
 //! Scenes and measures shared with the benches and examples come from the `tribo-testkit` crate.
 
+mod adaptive;
 mod errors;
 mod estimator;
 mod fuzz;

@@ -1,0 +1,222 @@
+//! Adaptive refinement: solve, estimate, mark, refine, until the estimated error is below a tolerance
+//! or the next level would be too large ([`crate::Problem::solve_adaptive`]).
+//!
+//! # One level
+//! 1. Solve the problem on the current mesh; its [`crate::results::ErrorEstimate`] comes with the solution.
+//! 2. Stop if the relative estimate is at most `tol`: of the contact tractions when something touches
+//!    ([`crate::results::ErrorEstimate::traction_relative`]), of the energy when nothing does (the first
+//!    levels of a coarse start, where only the penetration term sees the obstacle).
+//! 3. Mark (`marking`): the energy estimate and the traction estimate in equal parts, Dörfler (θ = 0.5)
+//!    or maximum marking.
+//! 4. Refine the marked triangles by newest-vertex bisection ([`crate::mesh::refine`]): conforming,
+//!    nested, shape regular; the edge sets (Γ_C, the supports, the loaded edges) are inherited by the
+//!    halves. The first level's triangles are labelled by their longest edges.
+//! 5. Refine T_H where the FE edges under it were, keeping the first level's ratio H/h, but not where
+//!    the body is surely apart from the obstacle (`multipliers`): a segment whose every node has a
+//!    current gap `g − u_n` larger than the largest displacement on Γ_C stays as it was. T_H is given to
+//!    the next level by its abscissae.
+//! 6. The next level starts its QPs from the multipliers of this one (λ evaluated at the new dofs), so a
+//!    Coulomb fixed point starts near its answer. The displacement needs no start: A is factorized.
+//!
+//! A refinement that would exceed `max_unknowns` is not made; the loop then stops with the last level
+//! and says so ([`AdaptStop::MaxUnknowns`]), as it does at `max_levels` or when a level does not converge.
+
+mod marking;
+mod multipliers;
+
+use std::ops::ControlFlow;
+use std::time::Instant;
+
+use crate::contact::multiplier::MultiplierPoints;
+use crate::error::{Error, Result};
+use crate::mesh::refine::{bisect, label_longest_edge};
+use crate::problem::load_case::LoadCase;
+use crate::problem::Problem;
+use crate::results::{ErrorEstimate, Solution, SolveStatus};
+use crate::settings::friction::Friction;
+use crate::settings::{AdaptSettings, SolverSettings};
+
+/// One level of an adaptive solve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Level {
+    /// Unknowns (displacement dofs after the supports).
+    pub unknowns: usize,
+    /// Multiplier dofs q (per component).
+    pub multipliers: usize,
+    /// Triangles.
+    pub triangles: usize,
+    /// The estimate of this level's solution.
+    pub estimate: ErrorEstimate,
+    /// The relative estimate the stopping test reads (traction, or energy when nothing touches).
+    pub relative: f64,
+    /// Wall time of the level (building the problem, solving, estimating, marking and refining).
+    pub seconds: f64,
+    /// How the level's solve ended.
+    pub status: SolveStatus,
+}
+
+/// Why the adaptive loop stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AdaptStop {
+    /// The relative estimate reached `tol`.
+    Tolerance,
+    /// The next refinement would have exceeded `max_unknowns`.
+    MaxUnknowns,
+    /// `max_levels` levels were solved.
+    MaxLevels,
+    /// A level's solve did not converge (its status is the last level's).
+    NotConverged,
+    /// The estimate is zero: nothing to refine.
+    Exact,
+    /// The observer asked to stop.
+    Interrupted,
+}
+
+crate::choice::named_choice!(AdaptStop, "adaptive stop", {
+    AdaptStop::Tolerance => "tolerance",
+    AdaptStop::MaxUnknowns => "max_unknowns",
+    AdaptStop::MaxLevels => "max_levels",
+    AdaptStop::NotConverged => "not_converged",
+    AdaptStop::Exact => "exact",
+    AdaptStop::Interrupted => "interrupted",
+});
+
+/// The result of an adaptive solve: the problem on the last mesh, its solution, and every level.
+#[derive(Debug, Clone)]
+pub struct Adaptive {
+    /// The problem on the last mesh.
+    pub problem: Problem,
+    /// The last level's solution.
+    pub solution: Solution,
+    /// Every level, the first (the given mesh) included.
+    pub levels: Vec<Level>,
+    /// Why the loop stopped.
+    pub stop: AdaptStop,
+}
+
+/// An observer of the levels: called after each one; `ControlFlow::Break(())` stops the loop there.
+pub type LevelObserver<'a> = &'a mut dyn FnMut(&Level) -> ControlFlow<()>;
+
+/// The relative estimate the stopping test reads.
+fn relative(e: &ErrorEstimate) -> f64 {
+    if e.traction_relative.is_finite() {
+        e.traction_relative
+    } else {
+        e.energy_relative
+    }
+}
+
+impl Problem {
+    /// Solves adaptively from this problem's mesh (see the module documentation).
+    ///
+    /// # Errors
+    /// Bad friction, solver or adaptive settings ([`Error::BadSetting`] names `adapt_tol`,
+    /// `adapt_theta`, `adapt_max_levels`, or `adapt_max_unknowns` when it is below the first level's
+    /// unknowns); errors of a level's problem or solve (as [`Problem::solve`]).
+    pub fn solve_adaptive(
+        &self,
+        friction: &Friction,
+        settings: &SolverSettings,
+        adapt: &AdaptSettings,
+        mut observer: Option<LevelObserver<'_>>,
+    ) -> Result<Adaptive> {
+        settings.validate()?;
+        adapt.validate()?;
+        friction.validate(self.n_multipliers())?;
+        if adapt.max_unknowns < self.n_free {
+            return Err(Error::BadSetting {
+                name: "adapt_max_unknowns",
+                value: adapt.max_unknowns as f64,
+                what: format!("is below the first level's {} unknowns", self.n_free),
+            });
+        }
+        let ratio = multipliers::ratio(&self.multipliers.xi, &self.contact);
+        let mut problem = Problem::new(label_longest_edge(&self.mesh), self.spec.clone())?;
+        let mut start: Option<Vec<f64>> = None;
+        let mut levels = Vec::new();
+        loop {
+            let clock = Instant::now();
+            let condensed =
+                problem.condense_with(settings.stabilization, settings.condensation, settings.memory_budget)?;
+            let load = LoadCase::of_problem(&problem, condensed.factor());
+            let solution = condensed.solve_loading(friction, settings, &load, start.as_deref(), None)?;
+            drop(condensed);
+            let estimate = solution.report.estimate;
+            let mut level = Level {
+                unknowns: problem.n_free,
+                multipliers: problem.n_multipliers(),
+                triangles: problem.mesh.n_triangles(),
+                estimate,
+                relative: relative(&estimate),
+                seconds: 0.0,
+                status: solution.report.status,
+            };
+            let stop = if level.status != SolveStatus::Converged {
+                Some(AdaptStop::NotConverged)
+            } else if level.relative <= adapt.tol {
+                Some(AdaptStop::Tolerance)
+            } else if estimate.total == 0.0 {
+                Some(AdaptStop::Exact)
+            } else if levels.len() + 1 >= adapt.max_levels {
+                Some(AdaptStop::MaxLevels)
+            } else {
+                None
+            };
+            let next = match stop {
+                Some(_) => None,
+                None => {
+                    let marked = marking::mark(&marking::indicators(&problem, &solution), adapt.theta, adapt.marking);
+                    let refined = bisect(&problem.mesh, &marked)?.into_mesh();
+                    if 2 * refined.n_nodes() > adapt.max_unknowns {
+                        None
+                    } else {
+                        Some(next_problem(&problem, &solution, refined, ratio)?)
+                    }
+                }
+            };
+            level.seconds = clock.elapsed().as_secs_f64();
+            log::info!(
+                "level {}: {} unknowns, {} multipliers, estimate {:.3e} (relative {:.3e}), {:.3} s",
+                levels.len(),
+                level.unknowns,
+                level.multipliers,
+                level.estimate.total,
+                level.relative,
+                level.seconds
+            );
+            let flow = observer.as_mut().map_or(ControlFlow::Continue(()), |o| o(&level));
+            levels.push(level);
+            match (stop, next) {
+                (None, Some(p)) if flow.is_continue() => {
+                    let dofs = p.multipliers.dof_abscissae();
+                    let at = |v: &[f64]| dofs.iter().map(|&x| problem.multipliers.evaluate(v, x)).collect::<Vec<_>>();
+                    start = Some([at(&solution.lambda_n), at(&solution.lambda_t)].concat());
+                    problem = p;
+                }
+                (stop, next) => {
+                    let stop =
+                        stop.unwrap_or(if next.is_none() { AdaptStop::MaxUnknowns } else { AdaptStop::Interrupted });
+                    return Ok(Adaptive { problem, solution, levels, stop });
+                }
+            }
+        }
+    }
+}
+
+/// The problem of the next level: the refined mesh, and T_H refined where contact is or may be.
+fn next_problem(problem: &Problem, solution: &Solution, mesh: crate::mesh::Mesh, ratio: f64) -> Result<Problem> {
+    let mut spec = problem.spec.clone();
+    let contact = crate::contact::ContactBoundary::new(&mesh, &spec.contact)?;
+    // Surely apart: every node of the segment has a current gap beyond the largest displacement on Γ_C.
+    let scale = solution.u_n.iter().chain(&solution.slip).fold(0.0_f64, |m, v| m.max(v.abs()));
+    let gap = solution.current_gap();
+    let old = &problem.contact.node_xi;
+    let apart = |a: f64, b: f64| {
+        let lo = old.partition_point(|&x| x < a).saturating_sub(1);
+        let hi = old.partition_point(|&x| x <= b).min(old.len() - 1);
+        (lo..=hi).all(|k| gap[k] > scale) && scale > 0.0
+    };
+    let xi = multipliers::refine(&problem.multipliers.xi, &contact, ratio, apart);
+    spec.multiplier_points = MultiplierPoints::Abscissae(xi);
+    Problem::new(mesh, spec)
+}

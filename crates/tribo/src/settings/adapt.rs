@@ -1,0 +1,54 @@
+//! Settings of the adaptive loop ([`crate::Problem::solve_adaptive`]): when to stop and how much to
+//! refine at each level.
+
+use crate::choice::named_choice;
+use crate::error::{check_setting, Result};
+
+/// How the triangles to refine are chosen from the indicators m_K.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Marking {
+    /// Dörfler (bulk) marking: the fewest triangles whose indicators sum to at least θ of the total.
+    #[default]
+    Dorfler,
+    /// Maximum marking: every triangle whose indicator is at least θ times the largest.
+    Maximum,
+}
+
+named_choice!(Marking, "marking", { Marking::Dorfler => "dorfler", Marking::Maximum => "maximum" });
+
+/// When the adaptive loop stops and how it marks.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AdaptSettings {
+    /// The relative estimated error at which to stop: of the contact tractions
+    /// ([`crate::results::ErrorEstimate::traction_relative`]) when something touches, of the energy
+    /// ([`crate::results::ErrorEstimate::energy_relative`]) when nothing does. Default 0.01.
+    pub tol: f64,
+    /// The most unknowns a level may have: a refinement that would exceed it is not made, and the loop
+    /// stops with the last level. Default 200 000.
+    pub max_unknowns: usize,
+    /// The marking parameter θ ∈ (0, 1]. Default 0.5.
+    pub theta: f64,
+    /// The marking strategy. Default Dörfler.
+    pub marking: Marking,
+    /// The most levels (solves), the first included. Default 40.
+    pub max_levels: usize,
+}
+
+impl Default for AdaptSettings {
+    fn default() -> Self {
+        Self { tol: 0.01, max_unknowns: 200_000, theta: 0.5, marking: Marking::Dorfler, max_levels: 40 }
+    }
+}
+
+impl AdaptSettings {
+    /// Checks every setting (`max_unknowns` is checked against the first level when the loop starts).
+    ///
+    /// # Errors
+    /// [`crate::Error::BadSetting`] naming the setting: `adapt_tol` not positive or not finite,
+    /// `adapt_theta` outside (0, 1], `adapt_max_levels` zero.
+    pub fn validate(&self) -> Result<()> {
+        check_setting("adapt_tol", self.tol, self.tol > 0.0, "must be positive")?;
+        check_setting("adapt_theta", self.theta, self.theta > 0.0 && self.theta <= 1.0, "must lie in (0, 1]")?;
+        check_setting("adapt_max_levels", self.max_levels as f64, self.max_levels >= 1, "must be at least 1")
+    }
+}
