@@ -15,7 +15,7 @@ import numpy.typing as npt
 
 from tribo import _tribo
 from tribo._tribo import SettingsError, format_number
-from tribo.results import History, Solution
+from tribo.results import Adaptive, History, Level, Solution
 
 __all__ = ["Problem", "history_steps"]
 
@@ -69,6 +69,14 @@ class Problem(_tribo.Problem):
     Obstacle or a callable gap(xi), the approach δ and the tangential shift s), and the multiplier mesh T_H
     (at most one of multiplier_ratio H/h, multiplier_size H and multiplier_points; space 'P0' or 'P1').
     """
+
+    _arguments: dict[str, Any]
+
+    def __new__(cls, mesh: _tribo.Mesh, **arguments: Any) -> Problem:
+        problem = super().__new__(cls, mesh, **arguments)
+        # The arguments, so that an adaptive solve can build the problem of its last mesh.
+        problem._arguments = arguments
+        return problem
 
     def __repr__(self) -> str:
         return (
@@ -145,3 +153,52 @@ class Problem(_tribo.Problem):
             "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
             "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
         }))
+
+    def solve_adaptive(
+        self,
+        *,
+        tol: float | None = None,
+        max_unknowns: int | None = None,
+        theta: float | None = None,
+        marking: Literal["dorfler", "maximum"] | None = None,
+        max_levels: int | None = None,
+        friction: _Law | None = None,
+        mu: float | None = None,
+        threshold: float | npt.ArrayLike | None = None,
+        gamma0: float | None = None,
+        gamma0_fraction: float | None = None,
+        check_gamma0: bool = True,
+        progress: Callable[[int, float, float], object] | None = None,
+        **settings: Any,
+    ) -> Adaptive:
+        """Solves adaptively from this problem's mesh: solve, estimate, mark, refine by newest-vertex
+        bisection, until the relative estimated error is at most ``tol`` (default 0.01) or the next level
+        would exceed ``max_unknowns`` (default 200 000) displacement unknowns; returns an Adaptive with the
+        last ``solution``, the ``problem`` on the last mesh, every level and the reason it stopped.
+
+        The relative estimate is that of the contact tractions (λ in L²(Γ_C)) when something touches, of
+        the energy while nothing does. Marking is Dörfler's with ``theta`` (default 0.5), or the maximum
+        strategy (``marking='maximum'``); ``max_levels`` (default 40) bounds the levels. T_H is refined
+        where the FE edges under it are, keeping the ratio H/h of this problem, except where the body is
+        surely apart from the obstacle. The friction, γ0 and settings keywords are those of ``solve``;
+        ``progress``, if given, is called as progress(unknowns, relative, seconds) after every level, and
+        returning False stops the loop there (stop 'interrupted'). Defaults come from the core.
+        """
+        options = {
+            "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
+            "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
+        }
+        solution, levels, stop, mesh, multiplier_mesh = self._solve_adaptive(
+            options, (tol, max_unknowns, theta, marking, max_levels)
+        )
+        arguments = {**self._arguments, "multiplier_ratio": None, "multiplier_size": None}
+        problem = Problem(mesh, **{**arguments, "multiplier_points": multiplier_mesh})
+        return Adaptive(
+            solution=Solution.from_dict(solution),
+            problem=problem,
+            levels=[
+                Level(unknowns=u, multipliers=q, triangles=t, estimate=dict(e), relative=r, seconds=s, status=st)  # type: ignore[arg-type]
+                for ((u, q, t, e, r, s), st) in levels
+            ],
+            stop=stop,  # type: ignore[arg-type]
+        )

@@ -31,7 +31,7 @@ import numpy.typing as npt
 
 from tribo._tribo import STATE_NAMES, format_number
 
-__all__ = ["Report", "Solution", "History"]
+__all__ = ["Report", "Solution", "History", "Level", "Adaptive"]
 
 _Floats = npt.NDArray[np.float64]
 _Ints = npt.NDArray[np.int64]
@@ -312,4 +312,55 @@ class History(_Record):
         return (
             f"History(status='{self.status}', steps={len(self.solutions)}/{len(self.approach)}, "
             f"factorizations={self.factorizations})"
+        )
+
+
+@dataclass(frozen=True, eq=False, kw_only=True)
+class Level(_Record):
+    """One level of an adaptive solve.
+
+    Attributes:
+        unknowns: displacement unknowns (after the supports).
+        multipliers: multiplier dofs q (per component).
+        triangles: triangles of the level's mesh.
+        estimate: the level's a posteriori estimate (the keys of ``Report.estimate``).
+        relative: the relative estimate the stopping test reads: of the contact tractions, or of the
+            energy while nothing touches (inf when the body has not moved yet).
+        seconds: wall time of the level (building the problem, solving, estimating, marking, refining).
+        status: how the level's solve ended.
+    """
+
+    unknowns: int
+    multipliers: int
+    triangles: int
+    estimate: dict[str, float]
+    relative: float
+    seconds: float
+    status: Status
+
+
+@dataclass(frozen=True, eq=False, repr=False, kw_only=True)
+class Adaptive(_Record):
+    """The result of ``Problem.solve_adaptive``.
+
+    Attributes:
+        solution: the last level's Solution.
+        problem: the Problem on the last mesh (``problem.mesh`` the refined mesh, T_H its multiplier mesh).
+        levels: every level, the first (the given mesh) included.
+        stop: why the loop stopped: 'tolerance' (the relative estimate reached ``tol``), 'max_unknowns'
+            (the next refinement would have exceeded it), 'max_levels', 'not_converged' (a level's solve
+            did not converge), 'exact' (the estimate is zero) or 'interrupted' (the progress callback
+            returned False).
+    """
+
+    solution: Solution
+    problem: Any
+    levels: list[Level]
+    stop: Literal["tolerance", "max_unknowns", "max_levels", "not_converged", "exact", "interrupted"]
+
+    def __repr__(self) -> str:
+        last = self.levels[-1]
+        return (
+            f"Adaptive(stop='{self.stop}', levels={len(self.levels)}, unknowns={last.unknowns}, "
+            f"relative={format_number(last.relative)})"
         )

@@ -15,7 +15,7 @@ mod results;
 mod supports;
 
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{IntoPyDict, PyDict};
 use pyo3::IntoPyObjectExt;
 use tribo::{Choice, ContactState, ProblemSpec, SettingKind, SettingValue, SolverSettings};
 
@@ -33,11 +33,8 @@ fn value<'py>(py: Python<'py>, v: &SettingValue) -> PyResult<Bound<'py, PyAny>> 
 /// chosen (gamma0_fraction), every solver setting (see `solver_settings()`), multiplier_ratio and space.
 #[pyfunction]
 fn solver_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
-    let d = PyDict::new(py);
-    for (name, default) in SolverSettings::keyword_defaults().into_iter().chain(ProblemSpec::keyword_defaults()) {
-        d.set_item(name, value(py, &default)?)?;
-    }
-    Ok(d)
+    let defaults = SolverSettings::keyword_defaults().into_iter().chain(ProblemSpec::keyword_defaults());
+    defaults.map(|(name, d)| Ok((name, value(py, &d)?))).collect::<PyResult<Vec<_>>>()?.into_py_dict(py)
 }
 
 /// The solver settings `Problem.solve` takes as keywords (and scene files in `[solver]`): a dict name →
@@ -61,15 +58,11 @@ fn solver_settings(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 }
 
 /// The names of every choice, as the core parses and prints them: side, diagonal, space, friction,
-/// state (in the order of the int8 codes of `Solution.states`), status, qp_kkt_solver, qp_method and
-/// condensation.
+/// state (in the order of the int8 codes of `Solution.states`), status, marking, qp_kkt_solver,
+/// qp_method and condensation.
 #[pyfunction]
 fn choices(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
-    let d = PyDict::new(py);
-    for (name, options) in tribo::choice_registry() {
-        d.set_item(name, options)?;
-    }
-    Ok(d)
+    tribo::choice_registry().into_py_dict(py)
 }
 
 /// A number formatted for people, as the core's messages print it (`tribo::Num`): `digits` significant

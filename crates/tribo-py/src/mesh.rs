@@ -43,7 +43,7 @@ pub struct PyMesh {
 }
 
 impl PyMesh {
-    fn from_core(py: Python<'_>, m: tribo::Mesh) -> PyResult<Self> {
+    pub(crate) fn from_core(py: Python<'_>, m: tribo::Mesh) -> PyResult<Self> {
         let ints = |r: &[[usize; 2]]| mat(py, &r.iter().map(|e| e.map(|i| i as i64)).collect::<Vec<_>>());
         let triangles: Vec<[i64; 3]> = m.triangles().iter().map(|t| t.map(|i| i as i64)).collect();
         let [x0, y0, x1, y1] = m.bounding_box();

@@ -10,11 +10,11 @@ use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::conversion::FromPyObjectOwned;
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict};
+use pyo3::types::{PyBool, PyDict, PyTuple};
 use tribo::error::ErrorCategory::{ContactGeometry, Settings};
 use tribo::{
-    Choice, Friction, FrictionLaw, LoadStep, Material, MultiplierPoints, MultiplierSpace, ObstacleShape, Phase,
-    ProblemSpec, Progress, SolverSettings, Stabilization, StepProgress, Threshold,
+    AdaptSettings, Choice, Friction, FrictionLaw, Level, LoadStep, Material, MultiplierPoints, MultiplierSpace,
+    ObstacleShape, Phase, ProblemSpec, Progress, SolverSettings, Stabilization, StepProgress, Threshold,
 };
 
 use crate::convert::{callback, floats, mat, pair, rows, setting_value, vec1};
@@ -136,6 +136,9 @@ fn observe_with<A: for<'py> pyo3::call::PyCallArgs<'py>>(
         }
     })
 }
+
+/// `solve_adaptive`'s tol, max_unknowns, theta, marking and max_levels (None: the core's default).
+type AdaptKeywords = (Option<f64>, Option<usize>, Option<f64>, Option<String>, Option<usize>);
 
 /// The keywords of a solve as core values: the friction law, the settings (γ0 among them) and the
 /// callbacks. `tribo.Problem.solve` and `solve_history` (Python) spell them out and pass them as one dict.
@@ -290,10 +293,7 @@ impl PyProblem {
             contact_edges: mat(py, &edges)?,
             multiplier_mesh: vec1(py, &p.multipliers.xi)?,
             multiplier_abscissae: vec1(py, &p.multipliers.dof_abscissae())?,
-            setup_timings: BTreeMap::from([
-                ("assembly", p.timings.assembly),
-                ("contact_matrices", p.timings.contact_matrices),
-            ]),
+            setup_timings: BTreeMap::from(p.timings.named()),
         };
         Ok(PyClassInitializer::from(data).add_subclass(Self { inner: p }))
     }
@@ -344,6 +344,31 @@ impl PyProblem {
             self.inner.solve_history(&o.friction, &steps, &o.settings, Some(&mut observe))
         });
         results::history(py, &finish(result, error)?)
+    }
+
+    /// Solves adaptively (`tribo.Problem.solve_adaptive`); returns the last solution's fields, the levels as
+    /// tuples, the stop reason, and the last mesh with its T_H abscissae.
+    #[pyo3(name = "_solve_adaptive")]
+    fn solve_adaptive<'py>(
+        &self,
+        py: Python<'py>,
+        options: &Bound<'_, PyDict>,
+        a: AdaptKeywords,
+    ) -> PyResult<Bound<'py, PyTuple>> {
+        let o = SolveOptions::new(options, "(unknowns, relative, seconds)")?;
+        let adapt = AdaptSettings::from_keywords(a.0, a.1, a.2, a.3.as_deref(), a.4).map_err(to_pyerr)?;
+        let mut error = None;
+        let result = py.detach(|| {
+            let mut observe =
+                |l: &Level| observe_with(o.progress.as_ref(), (l.unknowns, l.relative, l.seconds), &mut error);
+            self.inner.solve_adaptive(&o.friction, &o.settings, &adapt, Some(&mut observe))
+        });
+        let out = finish(result, error)?;
+        let level = |l: &Level| (l.unknowns, l.multipliers, l.triangles, l.estimate.named(), l.relative, l.seconds);
+        let levels: Vec<_> = out.levels.iter().map(|l| (level(l), l.status.name())).collect();
+        let xi = vec1(py, &out.problem.multipliers.xi)?;
+        let mesh = PyMesh::from_core(py, out.problem.mesh)?;
+        (results::solution(py, &out.solution)?, levels, out.stop.as_str(), mesh, xi).into_pyobject(py)
     }
 
     /// Points of Γ_C's line at abscissae `xi`, (M, 2).

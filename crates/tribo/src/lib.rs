@@ -163,7 +163,7 @@ pub struct ReadmeDoctests;
 
 /// Every named choice of the keyword surface (the Python binding, scene files), by the keyword that takes
 /// it: `side`, `diagonal`, `space`, `friction`, `state` (in the order of [`Choice::code`]), `status`
-/// ([`SolveStatus::NAMES`]) and every choice among the solver settings ([`SolverSettings::table`]), each
+/// ([`SolveStatus::NAMES`]), `marking` ([`Marking`]) and every choice among the solver settings ([`SolverSettings::table`]), each
 /// with its names as [`Choice::parse`] takes them.
 ///
 /// It lives here, above every module, because it names the option enums of all of them (`choice` sits
@@ -176,6 +176,7 @@ pub fn choice_registry() -> Vec<(&'static str, Vec<&'static str>)> {
         ("friction", FrictionLaw::names()),
         ("state", ContactState::names()),
         ("status", SolveStatus::NAMES.to_vec()),
+        ("marking", Marking::names()),
     ];
     out.extend(SolverSettings::table().into_iter().filter_map(|info| match info.kind {
         SettingKind::Choice(names) => Some((info.name, names)),

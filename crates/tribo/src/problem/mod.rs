@@ -65,6 +65,13 @@ pub struct SetupTimings {
     pub contact_matrices: f64,
 }
 
+impl SetupTimings {
+    /// Every phase by name, in the order of the fields.
+    pub fn named(&self) -> [(&'static str, f64); 2] {
+        [("assembly", self.assembly), ("contact_matrices", self.contact_matrices)]
+    }
+}
+
 /// An assembled contact problem (independent of γ0 and friction).
 #[derive(Debug, Clone)]
 pub struct Problem {

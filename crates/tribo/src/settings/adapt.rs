@@ -41,6 +41,31 @@ impl Default for AdaptSettings {
 }
 
 impl AdaptSettings {
+    /// The settings from keywords as the Python binding and the scene files give them, each `None` taking
+    /// its default, validated.
+    ///
+    /// # Errors
+    /// [`crate::Error::UnknownChoice`] for a marking that is not `dorfler` or `maximum`; as
+    /// [`AdaptSettings::validate`].
+    pub fn from_keywords(
+        tol: Option<f64>,
+        max_unknowns: Option<usize>,
+        theta: Option<f64>,
+        marking: Option<&str>,
+        max_levels: Option<usize>,
+    ) -> Result<Self> {
+        let d = Self::default();
+        let settings = Self {
+            tol: tol.unwrap_or(d.tol),
+            max_unknowns: max_unknowns.unwrap_or(d.max_unknowns),
+            theta: theta.unwrap_or(d.theta),
+            marking: marking.map_or(Ok(d.marking), crate::choice::Choice::parse)?,
+            max_levels: max_levels.unwrap_or(d.max_levels),
+        };
+        settings.validate()?;
+        Ok(settings)
+    }
+
     /// Checks every setting (`max_unknowns` is checked against the first level when the loop starts).
     ///
     /// # Errors

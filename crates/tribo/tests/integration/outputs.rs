@@ -196,13 +196,24 @@ fn obstacles_and_supports_name_themselves() {
 fn the_choice_registry_lists_every_option() {
     let registry: std::collections::BTreeMap<_, _> = choice_registry().into_iter().collect();
     let keys: Vec<&str> = registry.keys().copied().collect();
-    let expected =
-        ["condensation", "diagonal", "friction", "qp_kkt_solver", "qp_method", "side", "space", "state", "status"];
+    let expected = [
+        "condensation",
+        "diagonal",
+        "friction",
+        "marking",
+        "qp_kkt_solver",
+        "qp_method",
+        "side",
+        "space",
+        "state",
+        "status",
+    ];
     assert_eq!(keys, expected);
     assert_eq!(registry["state"], ContactState::ALL.iter().map(|s| s.as_str()).collect::<Vec<_>>());
     assert_eq!(registry["state"][ContactState::Slip.code()], "slip");
     assert_eq!(registry["status"], SolveStatus::NAMES);
     assert_eq!(registry["qp_method"], QpMethod::names());
+    assert_eq!(registry["marking"], Marking::names());
     for name in &registry["condensation"] {
         assert_eq!(Condensation::parse(name).map(Condensation::as_str), Ok(*name));
     }

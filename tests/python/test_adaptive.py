@@ -1,0 +1,65 @@
+"""Adaptive refinement from Python: the loop finds a contact zone no grading hint knows, stops where it
+must, and refuses bad settings with a SettingsError naming the setting."""
+
+from __future__ import annotations
+
+import pickle
+
+import numpy as np
+import pytest
+
+import tribo
+
+
+def off_centre() -> tribo.Problem:
+    """The Hertz block on an 8 x 4 uniform mesh with the cylinder between two nodes of Γ_C: no node
+    touches at first."""
+    mesh = tribo.Mesh.rectangle((-2.0, 2.0), (-2.0, 0.0), 8, 4)
+    return tribo.Problem(mesh, young=200.0, poisson=0.3, clamped="bottom", contact="top",
+                         obstacle=tribo.Obstacle.circle(1.0, center=0.3), approach=0.01)
+
+
+def test_the_loop_finds_the_contact_zone_and_hands_back_its_problem() -> None:
+    problem = off_centre()
+    assert problem.solve().normal_force == 0.0
+    heard: list[tuple[int, float, float]] = []
+    out = problem.solve_adaptive(tol=0.05, progress=lambda u, r, s: heard.append((u, r, s)))
+    assert out.stop == "tolerance" and out.solution.report.converged
+    assert len(heard) == len(out.levels) and [h[0] for h in heard] == [lv.unknowns for lv in out.levels]
+    assert out.levels[-1].relative <= 0.05 and out.levels[0].relative == np.inf
+    assert all(b.unknowns > a.unknowns for a, b in zip(out.levels, out.levels[1:]))
+    assert out.problem.n_free == out.levels[-1].unknowns
+    assert out.solution.estimator.shape == (out.problem.mesh.n_triangles,)
+    # The problem handed back is the last level's: solving it again gives its solution.
+    again = out.problem.solve()
+    scale = np.max(out.solution.lambda_n)
+    assert np.max(np.abs(again.lambda_n - out.solution.lambda_n)) <= 1e-6 * scale
+    assert pickle.loads(pickle.dumps(out.levels)) == out.levels
+
+
+def test_the_loop_stops_before_max_unknowns_and_when_told() -> None:
+    out = off_centre().solve_adaptive(tol=1e-6, max_unknowns=1500)
+    assert out.stop == "max_unknowns" and all(lv.unknowns <= 1500 for lv in out.levels)
+    out = off_centre().solve_adaptive(tol=1e-6, progress=lambda u, r, s: len(str(u)) < 3)
+    assert out.stop == "interrupted" and out.levels[-1].unknowns >= 100
+
+
+@pytest.mark.parametrize(
+    ("keywords", "name"),
+    [
+        ({"tol": 0.0}, "adapt_tol"),
+        ({"tol": float("nan")}, "adapt_tol"),
+        ({"theta": 0.0}, "adapt_theta"),
+        ({"theta": 1.5}, "adapt_theta"),
+        ({"max_levels": 0}, "adapt_max_levels"),
+        ({"max_unknowns": 10}, "adapt_max_unknowns"),
+    ],
+)
+def test_bad_adaptive_settings_name_the_setting(keywords: dict[str, float], name: str) -> None:
+    with pytest.raises(tribo.SettingsError, match=name):
+        off_centre().solve_adaptive(**keywords)  # type: ignore[arg-type]
+
+
+def test_an_unknown_marking_is_refused() -> None:
+    with pytest.raises(tribo.SettingsError, match="dorfler"):
+        off_centre().solve_adaptive(marking="greedy")  # type: ignore[arg-type]
