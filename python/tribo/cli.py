@@ -6,6 +6,8 @@
   global components Fx, Fy), the obstacle's motion in global axes, KKT residuals, timings, the a posteriori
   error estimate (``estimate``: η, its parts and the relative traction and energy estimates), warnings, and
   the conventions (n, t, the direction of ξ, the signs of λ_t, of the shift and of the forces);
+* ``adapt.csv`` and ``adapt.png`` for a scene with ``[adapt]`` (the outputs above are then the last
+  level's, on its refined mesh; see ``tribo.adaptive``);
 * ``contact.csv`` (per multiplier dof), ``contact_nodes.csv``, ``contact_edges.csv``: the contact fields;
 * ``result.vtu``, ``result_contact.vtu``, ``result_multipliers.vtu``: for ParaView;
 * ``contact_normal.png``, ``contact_tangential.png``, ``von_mises.png``, ``von_mises_contact.png``
@@ -39,11 +41,12 @@ from typing import Any
 import numpy as np
 
 from tribo._tribo import TriboError, __version__
+from tribo.adaptive import write_adaptive
 from tribo.checks import SceneWarning, conventions, warn_solution
 from tribo.history import write_history
 from tribo.io import write_contact_csv, write_vtu
 from tribo.problem import Problem
-from tribo.results import History, Solution
+from tribo.results import Adaptive, History, Solution
 from tribo.scene import Scene, SceneError, demo_scene_path, load_scene
 
 __all__ = ["main", "run_scene"]
@@ -136,11 +139,24 @@ def run_history(scene: Scene, problem: Problem, out: Path, *, plots: bool = True
     return history, files
 
 
+def run_adaptive(scene: Scene, problem: Problem) -> Adaptive:
+    """Solves the scene adaptively (its ``[adapt]`` table), logging one line per level."""
+
+    def progress(unknowns: int, relative: float, seconds: float) -> None:
+        log.info("adaptive level: %d unknowns, relative estimate %.3g, %.3f s", unknowns, relative, seconds)
+
+    adaptive = scene.solve_adaptive(problem, progress=progress)
+    log.info("adaptive solve stopped (%s) after %d levels", adaptive.stop, len(adaptive.levels))
+    return adaptive
+
+
 def run_scene(scene: Scene, out: Path, *, plots: bool = True) -> tuple[Problem, Solution, list[Path]]:
     """Solves a scene and writes every output into ``out``; returns the problem, solution and files.
 
     For a scene with a ``[history]``, the solution is that of the last converged step, and the history's
-    outputs (``tribo.history``) are written beside the summary."""
+    outputs (``tribo.history``) are written beside the summary; for a scene with ``[adapt]``, the problem
+    and solution are those of the last level, and ``adapt.csv``/``adapt.png`` (``tribo.adaptive``) are
+    written beside them."""
     out.mkdir(parents=True, exist_ok=True)
     clock = time.perf_counter()
     log.info("scene: %s", scene.title or "(untitled)")
@@ -165,6 +181,11 @@ def run_scene(scene: Scene, out: Path, *, plots: bool = True) -> tuple[Problem, 
             if last is None:
                 raise SceneError(f"the history's first step ended with status '{history.status}'", "history")
             solution = last
+            warn_solution(problem, solution)
+        elif scene.has_adapt:
+            adaptive = run_adaptive(scene, problem)
+            problem, solution = adaptive.problem, adaptive.solution
+            history_files = write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
             warn_solution(problem, solution)
         else:
             history_files = []

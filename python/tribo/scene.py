@@ -29,7 +29,7 @@ from tribo._tribo import Mesh, Obstacle, Support, TriboError
 from tribo.checks import warn_solution
 from tribo.io import read_mesh
 from tribo.problem import Problem
-from tribo.results import History, Solution
+from tribo.results import Adaptive, History, Solution
 # The schema's names, importable from here as before the split (``X as X``: re-exported).
 from tribo.scene_schema import CHOICES as CHOICES
 from tribo.scene_schema import MAX_CELLS as MAX_CELLS
@@ -221,6 +221,18 @@ class Scene:
         solution = problem.solve(progress=progress, on_phase=on_phase, **self.solve_kwargs())
         warn_solution(problem, solution, stacklevel=2)
         return problem, solution
+
+    @property
+    def has_adapt(self) -> bool:
+        """True when the scene has an ``[adapt]`` table."""
+        return "adapt" in self.sections
+
+    def solve_adaptive(
+        self, problem: Problem | None = None, progress: Callable[[int, float, float], object] | None = None
+    ) -> Adaptive:
+        """Builds (unless given) and solves adaptively with the ``[adapt]`` table's settings."""
+        problem = problem if problem is not None else self.build()
+        return problem.solve_adaptive(progress=progress, **self.sections.get("adapt", {}), **self.solve_kwargs())
 
     @property
     def has_history(self) -> bool:

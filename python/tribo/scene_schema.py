@@ -49,6 +49,12 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     number of steps from one waypoint to the next (one count, or a list with one per segment); the first
     waypoint is step 0. ``plot_steps``: the steps whose tractions the plots show (default: the first, the
     middle and the last).
+``[adapt]``
+    Adaptive refinement (``tribo run`` then calls ``Problem.solve_adaptive`` from the scene's mesh, see
+    ``tribo.adaptive``): ``tol`` (the relative estimated error of the contact tractions at which to stop,
+    default 0.01), ``max_unknowns`` (default 200 000), ``theta`` (Dörfler's θ, default 0.5), ``marking``
+    (``"dorfler"``/``"maximum"``), ``max_levels`` (default 40). The core checks the values. Not together
+    with ``[history]`` yet.
 ``[solver]``
     Any solver setting by the name ``Problem.solve`` takes (``tribo.solver_settings()`` lists them with
     their kinds and defaults): ``qp_tol``, ``qp_max_iter``, ``qp_kkt_solver`` (``"faer"``/``"qdldl"``),
@@ -265,6 +271,13 @@ SCHEMA: dict[str, dict[str, Checker]] = {
         "gamma0_fraction": _number,
     },
     "history": {"shift": _path, "approach": _path, "load_factor": _path, "steps": _counts, "plot_steps": _steps},
+    "adapt": {
+        "tol": _number,
+        "max_unknowns": _count(2**62),
+        "theta": _number,
+        "marking": _choice(*CHOICES["marking"]),
+        "max_levels": _count(2**62),
+    },
     "solver": {name: _setting_checker(spec) for name, spec in solver_settings().items()},
 }
 REQUIRED = {"material": ("young", "poisson"), "contact": ("edge_set",)}
@@ -358,6 +371,8 @@ def check_scene(data: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
     f = sections.get("friction", {})
     if "mu" in f and "threshold" in f:
         raise SceneError("scene keys 'friction.mu' and 'friction.threshold' exclude each other", "friction")
+    if "adapt" in sections and "history" in sections:
+        raise SceneError("scene tables [adapt] and [history] do not go together yet: adapt one solve", "adapt")
     d = sections.get("discretization", {})
     for a, b in (("multiplier_ratio", "multiplier_size"), ("gamma0", "gamma0_fraction")):
         if a in d and b in d:

@@ -344,3 +344,65 @@ def test_run_reports_the_estimated_error(tmp_path: Path, capsys: pytest.CaptureF
     eta = meshio.read(tmp_path / "o" / "result.vtu").cell_data["error_indicator"][0]
     assert eta.shape == (problem.mesh.n_triangles,) and np.allclose(eta, solution.estimator)
     assert np.sqrt(np.sum(eta**2)) == pytest.approx(est["total"])
+
+
+ADAPT_SCENE = """
+title = "off-centre cylinder on a coarse uniform mesh"
+[body]
+x = [-2.0, 2.0]
+y = [-2.0, 0.0]
+[material]
+young = 200.0
+poisson = 0.3
+[supports]
+clamped = ["bottom"]
+[contact]
+edge_set = "top"
+[obstacle]
+shape = "circle"
+radius = 1.0
+center = 0.3
+approach = 0.01
+[discretization]
+grading = "none"
+h = 0.5
+[adapt]
+tol = 0.05
+"""
+
+
+def test_run_adapts_a_scene_with_an_adapt_table(tmp_path: Path) -> None:
+    """``[adapt]``: the outputs are the last level's, on its refined mesh, and adapt.csv lists the levels."""
+    import csv
+
+    import meshio
+
+    path = tmp_path / "a.toml"
+    path.write_text(ADAPT_SCENE, encoding="utf-8")
+    assert main(["run", str(path), "--out", str(tmp_path / "o")]) == 0
+    with (tmp_path / "o" / "adapt.csv").open(encoding="utf-8") as f:
+        assert f.readline().startswith("# stop: tolerance")
+        rows = list(csv.DictReader(f))
+    assert len(rows) > 3 and rows[0]["unknowns"] == "72"
+    assert float(rows[-1]["relative"]) <= 0.05 < float(rows[-2]["relative"])
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert summary["n_free"] == int(rows[-1]["unknowns"]) and summary["status"] == "converged"
+    assert summary["estimate"]["traction_relative"] == pytest.approx(float(rows[-1]["relative"]))
+    vtu = meshio.read(tmp_path / "o" / "result.vtu")
+    assert len(vtu.cells_dict["triangle"]) == int(rows[-1]["triangles"])
+    assert (tmp_path / "o" / "adapt.png").stat().st_size > 0
+
+
+def test_adapt_table_errors_name_the_key(tmp_path: Path) -> None:
+    with pytest.raises(SceneError, match="adapt.marking"):
+        parse_scene(tomllib_loads(ADAPT_SCENE + 'marking = "greedy"\n'))
+    with pytest.raises(SceneError, match=r"\[adapt\] and \[history\]"):
+        parse_scene(tomllib_loads(ADAPT_SCENE + "[history]\nshift = [0.0, 0.01]\n"))
+    with pytest.raises(tribo.SettingsError, match="adapt_theta"):
+        parse_scene(tomllib_loads(ADAPT_SCENE + "theta = 2.0\n")).solve_adaptive()
+
+
+def tomllib_loads(text: str) -> dict[str, object]:
+    import tomllib
+
+    return tomllib.loads(text)

@@ -1,0 +1,85 @@
+"""Adaptive solves: what ``tribo run`` writes for a scene with an ``[adapt]`` table.
+
+``Problem.solve_adaptive`` (the core) solves, estimates, marks and bisects level by level; this module
+writes, beside the last level's usual outputs (``summary.json``, the contact CSVs, ``result.vtu``, whose
+mesh is the refined one):
+
+* ``adapt.csv``: per level, the unknowns, multiplier dofs and triangles, the relative estimate the loop
+  stops on (of the contact tractions, or of the energy while nothing touches), the estimate η with its
+  bulk, Γ_C, contact and friction parts, the level's seconds and status;
+* ``adapt.png``: the relative estimate and η against the unknowns (log-log), with the tolerance.
+"""
+
+from __future__ import annotations
+
+import csv
+import logging
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from tribo.results import Adaptive
+
+__all__ = ["adapt_table", "write_adaptive"]
+
+log = logging.getLogger("tribo")
+
+
+def adapt_table(adaptive: Adaptive) -> dict[str, list[Any]]:
+    """The per-level columns of ``adapt.csv``."""
+    lv = adaptive.levels
+    table: dict[str, list[Any]] = {
+        "level": list(range(len(lv))),
+        "unknowns": [x.unknowns for x in lv],
+        "multipliers": [x.multipliers for x in lv],
+        "triangles": [x.triangles for x in lv],
+        "relative": [x.relative for x in lv],
+    }
+    for key in ("total", "bulk", "gamma_c", "contact", "friction", "traction_relative", "energy_relative"):
+        table[f"estimate_{key}"] = [x.estimate[key] for x in lv]
+    table["seconds"] = [x.seconds for x in lv]
+    table["status"] = [x.status for x in lv]
+    return table
+
+
+def write_adaptive(out: str | Path, adaptive: Adaptive, *, tol: float | None = None, plots: bool = True) -> list[Path]:
+    """Writes ``adapt.csv`` and (``plots``, matplotlib installed) ``adapt.png`` into ``out``."""
+    out = Path(out)
+    table = adapt_table(adaptive)
+    path = out / "adapt.csv"
+    with path.open("w", newline="", encoding="utf-8") as f:
+        f.write(f"# stop: {adaptive.stop}; relative: the traction estimate, or the energy one while nothing touches\n")
+        w = csv.writer(f)
+        w.writerow(table)
+        w.writerows(zip(*table.values(), strict=True))
+    files = [path]
+    if plots:
+        try:
+            import matplotlib
+
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+        except ImportError:
+            return files
+        fig, ax = plt.subplots(figsize=(6, 4))
+        n = np.array(table["unknowns"], dtype=float)
+        rel = np.array(table["relative"], dtype=float)
+        ok = np.isfinite(rel)
+        ax.loglog(n[ok], rel[ok], "o-", label="relative estimate (tractions, or energy)")
+        eta = np.array(table["estimate_total"], dtype=float)
+        if np.any(eta > 0):
+            ax.loglog(n, eta / eta[eta > 0][0] * (rel[ok][0] if np.any(ok) else 1.0), "s--", ms=3,
+                      label="η (scaled to the first)")
+        if tol is not None:
+            ax.axhline(tol, color="k", lw=0.8, ls=":", label=f"tol = {tol:g}")
+        ax.set_xlabel("unknowns")
+        ax.set_ylabel("estimated error")
+        ax.set_title(f"adaptive levels (stop: {adaptive.stop})")
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        path = out / "adapt.png"
+        fig.savefig(path, dpi=120)
+        plt.close(fig)
+        files.append(path)
+    return files
