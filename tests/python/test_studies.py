@@ -130,3 +130,18 @@ def test_cattaneo_mindlin(tmp_path: Path) -> None:
     assert abs(path["slide_ratio"] - 1.0) < 1e-8
     profiles = list(path["profiles"].values())
     assert all(float(abs(p - profiles[0]).max()) > 0.1 for p in profiles[1:])
+
+
+def test_adaptive(tmp_path: Path) -> None:
+    rows = study("study_adaptive").main(["--smoke", "--out", str(tmp_path)])
+    outputs(tmp_path, "adaptive")
+    adaptive = [r for r in rows if r["family"] == "adaptive"]
+    assert {r["center"] for r in adaptive} == {0.0, 0.3}
+    for r in adaptive:
+        # Each run stops on its tolerance, and the estimate it stopped on is within the effectivity the
+        # estimator's tests measure (1-4) of the true error.
+        assert r["stop"] == "tolerance" and r["relative"] <= r["tol"]
+        assert 0.25 <= r["relative"] / r["error"] <= 4.0, r
+    for center in (0.0, 0.3):
+        runs = [r for r in adaptive if r["center"] == center]
+        assert runs[-1]["error"] < runs[0]["error"] and runs[-1]["n_free"] > runs[0]["n_free"]
