@@ -15,6 +15,11 @@ under the cylinder (its finite-block bias is about 0.1 %, measured between 40a a
 The adaptive rows also give the estimate the loop stopped on (`relative`) and its effectivity
 (relative / true error).
 
+Effectivity over levels (centred Hertz): the adaptive loop stopped after 1, 4, 7, … levels, each last level
+against a fine reference (graded h_min = 0.0003125, h_max = 0.025): the relative energy estimate
+η / (E* a(u_h, u_h))^½ against ‖u_ref − I u_h‖_K / ‖u_ref‖_K, and the traction estimate against the L2 error
+of λ_n against the reference's λ_n.
+
     python scripts/study_adaptive.py          # docs/adaptive.{md,csv,png}
     python scripts/study_adaptive.py --smoke --out /tmp/x
 """
@@ -40,6 +45,8 @@ GRADED = [0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125]
 GROWTHS = (0.3, 0.15)
 TOLS = [0.2, 0.1, 0.05, 0.02, 0.01, 0.005, 0.003]
 TARGETS = (0.01, 0.003)
+REFERENCE = dict(h_min=0.0003125, h_max=0.025)
+LEVELS = list(range(4, 41, 3))
 
 
 def problem(mesh: tribo.Mesh, center: float) -> tribo.Problem:
@@ -85,6 +92,17 @@ def run(smoke: bool, out: Path) -> list[dict[str, Any]]:
             rows.append(dict(center=center, family="adaptive", h=math.nan, tol=tol, n_free=a.problem.n_free,
                              q=a.problem.n_multipliers, levels=len(a.levels), seconds=seconds,
                              error=error(a.problem, a.solution, center), relative=a.levels[-1].relative, stop=a.stop))
+    # Effectivity over levels, against a fine reference (centred Hertz).
+    spec = dict(h_min=0.005, h_max=0.1) if smoke else REFERENCE
+    ref = sl.make_reference(problem(sl.graded_mesh(spec["h_min"], h_max=spec["h_max"]), 0.0))
+    for levels in ([2, 5] if smoke else LEVELS):
+        a = problem(tribo.Mesh.rectangle(*sl.BOX, 8, 4), 0.0).solve_adaptive(tol=1e-9, max_levels=levels)
+        est = a.solution.report.estimate
+        rows.append(dict(center=0.0, family="levels", h=math.nan, tol=math.nan, n_free=a.problem.n_free,
+                         q=a.problem.n_multipliers, levels=len(a.levels), seconds=sum(x.seconds for x in a.levels),
+                         error=ref.lambda_n_error(a.problem, a.solution), relative=est["traction_relative"],
+                         stop=a.stop, energy_estimate=est["energy_relative"],
+                         energy_error=ref.energy_error(a.problem, a.solution)))
     write(rows, out)
     return rows
 
@@ -99,6 +117,8 @@ def write(rows: list[dict[str, Any]], out: Path) -> None:
     out.mkdir(parents=True, exist_ok=True)
     keys = ["center", "family", "h", "tol", "n_free", "q", "levels", "seconds", "error", "relative", "stop"]
     sl.write_csv(out / "adaptive.csv", keys, [[r[k] for k in keys] for r in rows])
+    levels = [r for r in rows if r["family"] == "levels"]
+    rows = [r for r in rows if r["family"] != "levels"]
     families = sorted({r["family"] for r in rows})
     md = ["# Study 6: accuracy without a guess\n\n",
           "Regenerate with `python scripts/study_adaptive.py`; every number is in `adaptive.csv`. "
@@ -119,7 +139,20 @@ def write(rows: list[dict[str, Any]], out: Path) -> None:
          "effectivity"],
         [[r["center"], r["tol"], r["stop"], r["levels"], r["n_free"], r["q"], r["seconds"], r["relative"], r["error"],
           r["relative"] / r["error"] if r["error"] > 0 else math.nan] for r in rows if r["family"] == "adaptive"]))
+    md.append("\n## Effectivity over levels (centred Hertz, against the fine reference)\n\n")
+    eff_e = [r["energy_estimate"] / r["energy_error"] for r in levels]
+    eff_t = [r["relative"] / r["error"] for r in levels]
+    md.append(sl.markdown_table(
+        ["levels", "unknowns", "energy estimate", "energy error", "effectivity", "traction estimate",
+         "λ_n error vs reference", "effectivity"],
+        [[r["levels"], r["n_free"], r["energy_estimate"], r["energy_error"], e, r["relative"], r["error"], t]
+         for r, e, t in zip(levels, eff_e, eff_t)]))
+    if levels:
+        md.append(f"\nEnergy effectivity from {min(eff_e):.3g} to {max(eff_e):.3g} (ratio {max(eff_e) / min(eff_e):.3g}); "
+                  f"traction effectivity from {min(eff_t):.3g} to {max(eff_t):.3g} (ratio {max(eff_t) / min(eff_t):.3g}).\n")
     (out / "adaptive.md").write_text("".join(md))
+    keys = ["levels", "n_free", "q", "seconds", "energy_estimate", "energy_error", "relative", "error"]
+    sl.write_csv(out / "adaptive_levels.csv", keys, [[r[k] for k in keys] for r in levels])
 
     plt = sl.pyplot()
     fig, axes = plt.subplots(2, 2, figsize=(12, 9))
