@@ -205,7 +205,7 @@ class Problem(ProblemData):
     def _solve_adaptive(
         self,
         options: Mapping[str, Any],
-        a: tuple[float | None, int | None, float | None, str | None, int | None],
+        a: tuple[float | None, int | None, float | None, str | None, int | None, float | None],
     ) -> tuple[
         dict[str, Any],
         list[tuple[tuple[int, int, int, list[tuple[str, float]], float, float], str]],

@@ -162,6 +162,7 @@ class Problem(_tribo.Problem):
         theta: float | None = None,
         marking: Literal["dorfler", "maximum"] | None = None,
         max_levels: int | None = None,
+        algebraic: float | None = None,
         friction: _Law | None = None,
         mu: float | None = None,
         threshold: float | npt.ArrayLike | None = None,
@@ -178,7 +179,9 @@ class Problem(_tribo.Problem):
 
         The relative estimate is that of the contact tractions (λ in L²(Γ_C)) when something touches, of
         the energy while nothing does. Marking is Dörfler's with ``theta`` (default 0.5), or the maximum
-        strategy (``marking='maximum'``); ``max_levels`` (default 40) bounds the levels. T_H is refined
+        strategy (``marking='maximum'``); ``max_levels`` (default 40) bounds the levels. A level's Coulomb
+        fixed point stops once its change is ``algebraic`` (default 0.1) times the previous level's relative
+        estimate (never below ``fp_tol``); the last level is solved again to ``fp_tol``. T_H is refined
         where the FE edges under it are, keeping the ratio H/h of this problem, except where the body is
         surely apart from the obstacle. The friction, γ0 and settings keywords are those of ``solve``;
         ``progress``, if given, is called as progress(unknowns, relative, seconds) after every level, and
@@ -189,7 +192,7 @@ class Problem(_tribo.Problem):
             "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
         }
         solution, levels, stop, mesh, multiplier_mesh = self._solve_adaptive(
-            options, (tol, max_unknowns, theta, marking, max_levels)
+            options, (tol, max_unknowns, theta, marking, max_levels, algebraic)
         )
         arguments = {**self._arguments, "multiplier_ratio": None, "multiplier_size": None}
         problem = Problem(mesh, **{**arguments, "multiplier_points": multiplier_mesh})

@@ -53,7 +53,8 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     Adaptive refinement (``tribo run`` then calls ``Problem.solve_adaptive`` from the scene's mesh, see
     ``tribo.adaptive``): ``tol`` (the relative estimated error of the contact tractions at which to stop,
     default 0.01), ``max_unknowns`` (default 200 000), ``theta`` (Dörfler's θ, default 0.5), ``marking``
-    (``"dorfler"``/``"maximum"``), ``max_levels`` (default 40). The core checks the values. Not together
+    (``"dorfler"``/``"maximum"``), ``max_levels`` (default 40), ``algebraic`` (default 0.1: a coarse level's
+    fixed point stops at that fraction of the previous level's estimate). The core checks the values. Not together
     with ``[history]`` yet.
 ``[solver]``
     Any solver setting by the name ``Problem.solve`` takes (``tribo.solver_settings()`` lists them with
@@ -277,6 +278,7 @@ SCHEMA: dict[str, dict[str, Checker]] = {
         "theta": _number,
         "marking": _choice(*CHOICES["marking"]),
         "max_levels": _count(2**62),
+        "algebraic": _number,
     },
     "solver": {name: _setting_checker(spec) for name, spec in solver_settings().items()},
 }

@@ -53,6 +53,7 @@ def test_the_loop_stops_before_max_unknowns_and_when_told() -> None:
         ({"theta": 1.5}, "adapt_theta"),
         ({"max_levels": 0}, "adapt_max_levels"),
         ({"max_unknowns": 10}, "adapt_max_unknowns"),
+        ({"algebraic": 1.0}, "adapt_algebraic"),
     ],
 )
 def test_bad_adaptive_settings_name_the_setting(keywords: dict[str, float], name: str) -> None:

@@ -137,8 +137,8 @@ fn observe_with<A: for<'py> pyo3::call::PyCallArgs<'py>>(
     })
 }
 
-/// `solve_adaptive`'s tol, max_unknowns, theta, marking and max_levels (None: the core's default).
-type AdaptKeywords = (Option<f64>, Option<usize>, Option<f64>, Option<String>, Option<usize>);
+/// `solve_adaptive`'s tol, max_unknowns, theta, marking, max_levels, algebraic (None: the core's default).
+type AdaptKeywords = (Option<f64>, Option<usize>, Option<f64>, Option<String>, Option<usize>, Option<f64>);
 
 /// The keywords of a solve as core values: the friction law, the settings (γ0 among them) and the
 /// callbacks. `tribo.Problem.solve` and `solve_history` (Python) spell them out and pass them as one dict.
@@ -356,7 +356,7 @@ impl PyProblem {
         a: AdaptKeywords,
     ) -> PyResult<Bound<'py, PyTuple>> {
         let o = SolveOptions::new(options, "(unknowns, relative, seconds)")?;
-        let adapt = AdaptSettings::from_keywords(a.0, a.1, a.2, a.3.as_deref(), a.4).map_err(to_pyerr)?;
+        let adapt = AdaptSettings::from_keywords(a.0, a.1, a.2, a.3.as_deref(), a.4, a.5).map_err(to_pyerr)?;
         let mut error = None;
         let result = py.detach(|| {
             let mut observe =

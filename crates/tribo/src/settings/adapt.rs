@@ -32,11 +32,16 @@ pub struct AdaptSettings {
     pub marking: Marking,
     /// The most levels (solves), the first included. Default 40.
     pub max_levels: usize,
+    /// The fraction of the previous level's relative estimate to which a level's Coulomb fixed point is
+    /// converged (its stopping change, never below `fp_tol`): the algebraic error of a coarse level need
+    /// not be far below its discretization error. The last level is then solved again to `fp_tol`, so
+    /// the answer handed back is converged as asked. Default 0.1; 0 converges every level to `fp_tol`.
+    pub algebraic: f64,
 }
 
 impl Default for AdaptSettings {
     fn default() -> Self {
-        Self { tol: 0.01, max_unknowns: 200_000, theta: 0.5, marking: Marking::Dorfler, max_levels: 40 }
+        Self { tol: 0.01, max_unknowns: 200_000, theta: 0.5, marking: Marking::Dorfler, max_levels: 40, algebraic: 0.1 }
     }
 }
 
@@ -53,6 +58,7 @@ impl AdaptSettings {
         theta: Option<f64>,
         marking: Option<&str>,
         max_levels: Option<usize>,
+        algebraic: Option<f64>,
     ) -> Result<Self> {
         let d = Self::default();
         let settings = Self {
@@ -61,6 +67,7 @@ impl AdaptSettings {
             theta: theta.unwrap_or(d.theta),
             marking: marking.map_or(Ok(d.marking), crate::choice::Choice::parse)?,
             max_levels: max_levels.unwrap_or(d.max_levels),
+            algebraic: algebraic.unwrap_or(d.algebraic),
         };
         settings.validate()?;
         Ok(settings)
@@ -70,10 +77,12 @@ impl AdaptSettings {
     ///
     /// # Errors
     /// [`crate::Error::BadSetting`] naming the setting: `adapt_tol` not positive or not finite,
-    /// `adapt_theta` outside (0, 1], `adapt_max_levels` zero.
+    /// `adapt_theta` outside (0, 1], `adapt_max_levels` zero, `adapt_algebraic` outside [0, 1).
     pub fn validate(&self) -> Result<()> {
         check_setting("adapt_tol", self.tol, self.tol > 0.0, "must be positive")?;
         check_setting("adapt_theta", self.theta, self.theta > 0.0 && self.theta <= 1.0, "must lie in (0, 1]")?;
-        check_setting("adapt_max_levels", self.max_levels as f64, self.max_levels >= 1, "must be at least 1")
+        check_setting("adapt_max_levels", self.max_levels as f64, self.max_levels >= 1, "must be at least 1")?;
+        let a = self.algebraic;
+        check_setting("adapt_algebraic", a, (0.0..1.0).contains(&a), "must lie in [0, 1)")
     }
 }

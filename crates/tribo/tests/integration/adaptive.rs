@@ -92,6 +92,8 @@ fn bad_adaptive_settings_are_typed_errors() {
         ("adapt_theta", AdaptSettings { theta: 0.0, ..Default::default() }),
         ("adapt_theta", AdaptSettings { theta: 1.5, ..Default::default() }),
         ("adapt_max_levels", AdaptSettings { max_levels: 0, ..Default::default() }),
+        ("adapt_algebraic", AdaptSettings { algebraic: 1.0, ..Default::default() }),
+        ("adapt_algebraic", AdaptSettings { algebraic: -0.1, ..Default::default() }),
         ("adapt_max_unknowns", AdaptSettings { max_unknowns: 10, ..Default::default() }),
     ];
     for (name, adapt) in cases {
@@ -100,4 +102,24 @@ fn bad_adaptive_settings_are_typed_errors() {
             other => panic!("{name}: {other:?}"),
         }
     }
+}
+
+/// Coulomb friction, with coarse fixed points stopped at a tenth of the previous level's estimate and
+/// with every level converged to `fp_tol`: both stop on the tolerance, the answer handed back is
+/// converged to `fp_tol` in both, and their λ_n agree with Hertz alike.
+#[test]
+fn coarse_fixed_points_may_stop_early_and_the_answer_does_not_change() {
+    let problem = off_centre_problem();
+    let friction = Friction::Coulomb { mu: 0.3 };
+    let settings = SolverSettings::default();
+    let mut errors = Vec::new();
+    for algebraic in [0.1, 0.0] {
+        let adapt = AdaptSettings { tol: 0.05, max_unknowns: 60_000, algebraic, ..Default::default() };
+        let out = problem.solve_adaptive(&friction, &settings, &adapt, None).expect("adapts");
+        assert_eq!(out.stop, AdaptStop::Tolerance, "algebraic {algebraic}: {:?}", out.levels);
+        let last = out.solution.report.residual_history.last().copied().unwrap_or(0.0);
+        assert!(last <= settings.fp.tol || out.solution.report.iterations <= 1, "converged to fp_tol: {last}");
+        errors.push(hertz_error(&out.problem, &out.solution));
+    }
+    assert!(errors.iter().all(|&e| e <= 2.0 * 0.05), "λ_n errors {errors:?}");
 }
