@@ -147,9 +147,13 @@ def write(rows: list[dict[str, Any]], out: Path) -> None:
          "λ_n error vs reference", "effectivity"],
         [[r["levels"], r["n_free"], r["energy_estimate"], r["energy_error"], e, r["relative"], r["error"], t]
          for r, e, t in zip(levels, eff_e, eff_t)]))
-    if levels:
-        md.append(f"\nEnergy effectivity from {min(eff_e):.3g} to {max(eff_e):.3g} (ratio {max(eff_e) / min(eff_e):.3g}); "
-                  f"traction effectivity from {min(eff_t):.3g} to {max(eff_t):.3g} (ratio {max(eff_t) / min(eff_t):.3g}).\n")
+    # The levels where something touches (before, the relative estimates have no reference: inf or nan).
+    fe = [e for e, t in zip(eff_e, eff_t) if math.isfinite(e) and math.isfinite(t)]
+    ft = [t for e, t in zip(eff_e, eff_t) if math.isfinite(e) and math.isfinite(t)]
+    if fe:
+        md.append(f"\nOver the {len(fe)} levels where something touches: energy effectivity from {min(fe):.3g} to "
+                  f"{max(fe):.3g} (max/min {max(fe) / min(fe):.3g}, first to last {fe[-1] / fe[0] - 1:+.0%}); "
+                  f"traction effectivity from {min(ft):.3g} to {max(ft):.3g} (max/min {max(ft) / min(ft):.3g}).\n")
     (out / "adaptive.md").write_text("".join(md))
     keys = ["levels", "n_free", "q", "seconds", "energy_estimate", "energy_error", "relative", "error"]
     sl.write_csv(out / "adaptive_levels.csv", keys, [[r[k] for k in keys] for r in levels])
