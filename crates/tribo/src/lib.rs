@@ -28,10 +28,14 @@
 //!    `g ↦ λ_Hn(g)` of Definition 1 (Coulomb), each step a box-constrained QP over 2q unknowns whose
 //!    matrix never changes. [`Problem::solve`] does steps 2 and 3 in one call.
 //! 4. The displacement is recovered with one more solve; [`Solution`] carries every field, the contact
-//!    state per multiplier dof, the discrete KKT residuals and a [`Report`] that says how the solve ended.
+//!    state per multiplier dof, the discrete KKT residuals, the a posteriori error indicator η_K
+//!    ([`results::ErrorEstimate`]: bulk, Γ_C, contact and friction residuals, and the estimated error of
+//!    the contact tractions) and a [`Report`] that says how the solve ended.
 //! 5. [`Condensed::solve_history`] ([`solve::history`]) solves a quasi-static loading history — press,
 //!    drag, unload — step by step on the same factorization: only the QP's linear term (the load case,
 //!    [`problem::load_case`]) and the Coulomb bounds change from step to step.
+//! 6. [`Problem::solve_adaptive`] ([`adapt`]) refines by itself: solve, estimate, mark, newest-vertex
+//!    bisection ([`mesh::refine`]), until the relative estimate meets a tolerance.
 //!
 //! ## Folders
 //! Folders by job, bottom to top; a folder uses only the folders before it, and the two towers in
@@ -40,7 +44,7 @@
 //! * [`error`] (typed errors, [`Num`]) and [`choice`] (the names of every option);
 //! * [`settings`]: one struct per stage, the flat-name table, the friction law ([`settings::friction`])
 //!   and the γ0 choice ([`Stabilization`]);
-//! * the geometry tower: [`mesh`] (the P1 mesh, its generators, the straight-line test) → [`fem`]
+//! * the geometry tower: [`mesh`] (the P1 mesh, its generators, the straight-line test, bisection) → [`fem`]
 //!   (elasticity element by element, supports and the unknowns they leave, assembly) → [`contact`] (Γ_C
 //!   and its conventions, the obstacle, T_H, the mortar matrices, the Barbosa–Hughes operators, the γ0
 //!   bound);
@@ -49,8 +53,8 @@
 //!   how H is formed) → [`qp`] (the Γ_C QP: clarabel, the active-set method on a dense block or on the
 //!   saddle-point system, and the working set that picks among them);
 //! * [`problem`] (a [`Problem`], its condensed form [`Condensed`], the load case) → [`results`]
-//!   ([`Solution`], [`Report`], the KKT residuals) → [`solve`] (the entry points, the driver, the
-//!   fixed point, histories, progress).
+//!   ([`Solution`], [`Report`], the KKT residuals, the error estimate) → [`solve`] (the entry points, the
+//!   driver, the fixed point, histories, progress) → [`adapt`] (adaptive refinement).
 //!
 //! The module paths of the earlier flat layout (`tribo::mortar`, `tribo::supports`, `tribo::solution`, …)
 //! still resolve, hidden from this documentation.
