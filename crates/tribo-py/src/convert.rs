@@ -88,7 +88,7 @@ pub fn indices(
     v.into_iter().enumerate().map(index).collect()
 }
 
-/// Rows of `K` columns from a flat vector.
+/// Rows of `K` columns from a flat vector (`chunks_exact(K)` yields K values each: the `expect` cannot fail).
 pub fn rows<T: Copy, const K: usize>(flat: &[T]) -> Vec<[T; K]> {
     flat.chunks_exact(K).map(|c| c.try_into().expect("chunks of K values")).collect()
 }
@@ -115,7 +115,7 @@ pub fn mat<T: numpy::Element + Copy, const K: usize>(py: Python<'_>, r: &[[T; K]
     frozen(Array2::from(r.to_vec()).into_pyarray(py))
 }
 
-/// A read-only (n, 2) array from an interleaved (x, y) vector.
+/// A read-only (n, 2) array from an interleaved (x, y) vector: the core's 2N-dof vectors, of even length.
 pub fn pairs(py: Python<'_>, v: &[f64]) -> PyResult<Py<PyAny>> {
     frozen(Array2::from_shape_vec((v.len() / 2, 2), v.to_vec()).expect("interleaved pairs").into_pyarray(py))
 }

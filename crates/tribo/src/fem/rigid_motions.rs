@@ -53,6 +53,7 @@ pub(super) fn check_held(mesh: &Mesh, nodes: &[NodeSupport]) -> Result<()> {
     let mut order: Vec<usize> = piece_nodes.keys().copied().collect();
     order.sort_unstable();
     for r in order {
+        // `r` is one of the map's own keys.
         let list = piece_nodes.get_mut(&r).expect("key");
         list.sort_unstable();
         list.dedup();
