@@ -9,7 +9,8 @@ Writing: ``write_vtu("out/result.vtu", problem, solution)`` writes three files, 
 * ``result.vtu``: the body, with point data ``displacement`` (3 components) and ``reaction``, and cell
   data ``stress``, the full symmetric 3 × 3 stress tensor of plane strain (9 components, which ParaView
   reads as a tensor: σ_xz = σ_yz = 0 and σ_zz = ν (σ_xx + σ_yy)), its components ``sigma_xx``,
-  ``sigma_yy``, ``sigma_xy``, ``sigma_zz``, ``von_mises`` and ``error_indicator`` (the a posteriori η_K);
+  ``sigma_yy``, ``sigma_xy``, ``sigma_zz``, ``von_mises``, ``error_indicator`` (the a posteriori η_K) and
+  ``traction_indicator`` (ζ_K, each triangle's part of the estimated error of the contact tractions);
 * ``result_contact.vtu``: Γ_C as line cells through its FE nodes, with point data ``u_n``, ``slip``,
   ``gap`` (g = g0 − δ: where the obstacle is, along n), ``current_gap`` (g − u_n: 0 in contact) and
   ``obstacle`` (the obstacle's surface point facing the node, 3 components), and cell data ``sigma_n``,
@@ -284,6 +285,7 @@ def write_vtu(path: str | Path, problem: Problem, solution: Solution) -> list[Pa
             "sigma_zz": [solution.stress_zz],
             "von_mises": [solution.von_mises],
             "error_indicator": [solution.estimator],
+            "traction_indicator": [solution.traction_estimator],
         },
     )
     n = len(solution.node_abscissae)

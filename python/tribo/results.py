@@ -176,6 +176,10 @@ class Solution(_Record):
         estimator: the a posteriori error indicator η_K per triangle, (T,): the residuals of equilibrium,
             of the Barbosa–Hughes term λ_H + σ_h n, of contact and of friction (their totals are
             ``report.estimate``; the crate documentation of ``tribo::results`` derives them).
+        traction_estimator: the traction indicator ζ_K per triangle, (T,): its part of the estimate of
+            the error of the contact tractions on Γ_C (``report.estimate["traction"]`` is the root of the
+            sum of squares); it weighs η_K by the distance to Γ_C and adds the contact and friction
+            conditions in units of traction.
     """
 
     friction: Literal["frictionless", "tresca", "coulomb"]
@@ -205,6 +209,7 @@ class Solution(_Record):
     kkt: dict[str, float]
     report: Report
     estimator: _Floats = dataclasses.field(default_factory=lambda: np.zeros(0))
+    traction_estimator: _Floats = dataclasses.field(default_factory=lambda: np.zeros(0))
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Solution:

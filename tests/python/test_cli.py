@@ -344,6 +344,8 @@ def test_run_reports_the_estimated_error(tmp_path: Path, capsys: pytest.CaptureF
     eta = meshio.read(tmp_path / "o" / "result.vtu").cell_data["error_indicator"][0]
     assert eta.shape == (problem.mesh.n_triangles,) and np.allclose(eta, solution.estimator)
     assert np.sqrt(np.sum(eta**2)) == pytest.approx(est["total"])
+    zeta = meshio.read(tmp_path / "o" / "result.vtu").cell_data["traction_indicator"][0]
+    assert np.allclose(zeta, solution.traction_estimator) and np.sqrt(np.sum(zeta**2)) == pytest.approx(est["traction"])
 
 
 ADAPT_SCENE = """

@@ -298,8 +298,7 @@ impl PyProblem {
         Ok(PyClassInitializer::from(data).add_subclass(Self { inner: p }))
     }
 
-    /// Solves the problem with the keywords of `tribo.Problem.solve` in `options`; returns the fields of
-    /// a Solution as a dict.
+    /// Solves with the keywords of `tribo.Problem.solve` in `options`; returns a Solution's fields (dict).
     #[pyo3(name = "_solve")]
     fn solve<'py>(&self, py: Python<'py>, options: &Bound<'_, PyDict>) -> PyResult<Bound<'py, PyDict>> {
         let o = SolveOptions::new(options, "(iteration, change, qp_iterations, qp_seconds)")?;

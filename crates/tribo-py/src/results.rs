@@ -60,6 +60,7 @@ pub fn solution<'py>(py: Python<'py>, s: &tribo::Solution) -> PyResult<Bound<'py
         ("slip", &s.slip),
         ("gap", &s.gap),
         ("estimator", &s.estimator),
+        ("traction_estimator", &s.traction_estimator),
     ] {
         d.set_item(name, vec1(py, v)?)?;
     }

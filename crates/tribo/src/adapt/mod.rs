@@ -182,7 +182,7 @@ impl Problem {
             let next = match stop {
                 Some(_) => None,
                 None => {
-                    let marked = marking::mark(&marking::indicators(&problem, &solution), adapt.theta, adapt.marking);
+                    let marked = marking::mark(&marking::indicators(&solution), adapt.theta, adapt.marking);
                     let refined = bisect(&problem.mesh, &marked)?.into_mesh();
                     if 2 * refined.n_nodes() > adapt.max_unknowns {
                         None

@@ -2,7 +2,7 @@
 //! discrete KKT residuals of (3.1) ([`KktResiduals`]) and a report of how the solve ended ([`Report`],
 //! [`SolveStatus`]).
 
-mod estimator;
+pub(crate) mod estimator;
 mod kkt;
 mod solution;
 mod status;

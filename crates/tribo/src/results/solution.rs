@@ -69,6 +69,9 @@ pub struct Solution {
     /// The a posteriori error indicator η_K per triangle (its totals and parts are
     /// [`Report::estimate`]; see [`crate::results::ErrorEstimate`]).
     pub estimator: Vec<f64>,
+    /// The traction indicator ζ_K per triangle: its part of the estimate of the error of the contact
+    /// tractions (`Σ ζ_K² = ζ²`, see [`crate::results::ErrorEstimate`]); it falls with the distance to Γ_C.
+    pub traction_estimator: Vec<f64>,
     /// Discrete KKT residuals.
     pub kkt: KktResiduals,
     /// How the solve went.
@@ -152,7 +155,7 @@ impl Solution {
             slip: &slip,
             gap: &gap_at,
         };
-        let (estimator, estimate) = estimate(&input);
+        let (estimator, traction_estimator, estimate) = estimate(&input);
         let report = Report { estimate, ..report };
         let kkt = kkt_residuals(condensed, loading, u_free, &lambda, &friction_threshold);
         let lam_scale = lambda_n.iter().fold(condensed.lambda_scale(&loading.c), |m, v| m.max(v.abs()));
@@ -192,6 +195,7 @@ impl Solution {
             obstacle_motion,
             max_penetration,
             estimator,
+            traction_estimator,
             kkt,
             report,
         }

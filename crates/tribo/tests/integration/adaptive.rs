@@ -54,13 +54,9 @@ fn the_loop_finds_an_unknown_contact_zone() {
     assert_eq!(out.stop, AdaptStop::Tolerance, "{:?}", out.levels);
     assert!(last.relative <= adapt.tol && out.solution.report.status == SolveStatus::Converged);
     let err = hertz_error(&out.problem, &out.solution);
-    // The estimate bounds the true error (its effectivity on Hertz is 2-4, see the estimator's tests).
-    // The estimate and the true error agree within the effectivity of the traction estimate (measured on
-    // Hertz: 2.0–3.6 on the graded family of the estimator's tests, 0.97 here), so the answer meets the
-    // asked accuracy to within that factor.
-    let effectivity = last.relative / err;
-    assert!((0.5..=4.0).contains(&effectivity), "estimate {} against the true error {err}", last.relative);
-    assert!(err <= 2.0 * adapt.tol, "true error {err} for tol {}", adapt.tol);
+    // The estimate bounds the true error (its effectivity on Hertz is above 1, see the estimator's
+    // tests), so the answer meets the asked accuracy.
+    assert!(err <= last.relative && err <= adapt.tol, "true error {err}, estimate {}", last.relative);
     // The mesh is fine where the contact is and stays coarse far from it.
     let mesh = &out.problem.mesh;
     let (near, far): (Vec<usize>, Vec<usize>) = (0..mesh.n_triangles()).partition(|&t| {
