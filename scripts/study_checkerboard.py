@@ -2,7 +2,9 @@
 
 Uniform mesh 80 × 40 on (−2, 2) × (−2, 0) (h = 0.05), approach 0.05 (Hertz half-width a ≈ 0.18),
 frictionless. For H/h ∈ {1/4, 1/2, 1, 2, 4}, γ0 ∈ {0, 0.1, 0.3, 0.5, 0.9} × the admissible bound and P1 / P0
-multipliers: the oscillation indicator TV(λ_n)/(2 p_max) and the relative L2 error of λ_n against Hertz.
+multipliers: the oscillation indicator TV(λ_n)/(2 p_max), the relative L2 error of λ_n against Hertz, and
+the traction estimate ζ / ‖λ_H‖ the solve reports (`report.estimate["traction_relative"]`): a checkerboard
+must show in the estimate, not hide behind a smooth σ_h n.
 
     python scripts/study_checkerboard.py            # docs/checkerboard.{md,csv,png}
     python scripts/study_checkerboard.py --smoke --out /tmp/x
@@ -19,7 +21,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import studylib as sl  # noqa: E402
 
-HEADERS = ["space", "H/h", "theta", "gamma0", "status", "TV ratio", "L2 error", "force", "q", "seconds"]
+HEADERS = ["space", "H/h", "theta", "gamma0", "status", "TV ratio", "L2 error", "estimate", "force", "q", "seconds"]
 
 
 def run(smoke: bool, out: Path) -> list[dict[str, Any]]:
@@ -43,13 +45,15 @@ def run(smoke: bool, out: Path) -> list[dict[str, Any]]:
                         status=sol.report.status,
                         tv=sl.oscillation(sol),
                         l2=sl.lambda_l2_error(problem, sol),
+                        estimate=sol.report.estimate["traction_relative"],
                         force=sol.normal_force,
                         q=problem.n_multipliers,
                         seconds=sec,
                     )
                 )
                 r = rows[-1]
-                print(f"{space} H/h={ratio:<5} θ={theta:<4} {r['status']:>10} TV {r['tv']:7.2f}  L2 {r['l2']:.3e}")
+                print(f"{space} H/h={ratio:<5} θ={theta:<4} {r['status']:>10} TV {r['tv']:7.2f}  L2 {r['l2']:.3e}"
+                      f"  estimate {r['estimate']:.3e}")
     write(rows, ratios, thetas, spaces, out, nx, approach)
     return rows
 
@@ -57,13 +61,14 @@ def run(smoke: bool, out: Path) -> list[dict[str, Any]]:
 def write(rows: list[dict[str, Any]], ratios: list[float], thetas: list[float], spaces: list[str], out: Path,
           nx: int, approach: float) -> None:
     out.mkdir(parents=True, exist_ok=True)
-    keys = ["space", "ratio", "theta", "gamma0", "status", "tv", "l2", "force", "q", "seconds"]
+    keys = ["space", "ratio", "theta", "gamma0", "status", "tv", "l2", "estimate", "force", "q", "seconds"]
     sl.write_csv(out / "checkerboard.csv", HEADERS, [[r[k] for k in keys] for r in rows])
     get = {(r["space"], r["ratio"], r["theta"]): r for r in rows}
     md = [
         f"# Study 1a: T_H finer than T_h (uniform {nx} × {nx // 2}, h = {4 / nx:g}, approach {approach:g})\n",
         "Oscillation indicator TV(λ_n)/(2 p_max) (1 = smooth single peak) / relative L2 error of λ_n "
-        "against Hertz; θ = γ0 / admissible bound (θ = 0: classic method). Regenerate with "
+        "against Hertz / the traction estimate ζ/‖λ_H‖ the solve reports; θ = γ0 / admissible bound "
+        "(θ = 0: classic method). Regenerate with "
         "`python scripts/study_checkerboard.py`.\n",
     ]
     for space in spaces:
@@ -72,7 +77,8 @@ def write(rows: list[dict[str, Any]], ratios: list[float], thetas: list[float], 
         for ratio in ratios:
             table.append(
                 [f"{ratio:g}"]
-                + [f"{get[(space, ratio, t)]['tv']:.2f} / {get[(space, ratio, t)]['l2']:.3f}" for t in thetas]
+                + [f"{get[(space, ratio, t)]['tv']:.2f} / {get[(space, ratio, t)]['l2']:.3f} / "
+                   f"{get[(space, ratio, t)]['estimate']:.3f}" for t in thetas]
             )
         md.append(sl.markdown_table(["H/h"] + [f"θ = {t:g}" for t in thetas], table))
     failed = [r for r in rows if r["status"] != "converged"]
@@ -89,10 +95,12 @@ def write(rows: list[dict[str, Any]], ratios: list[float], thetas: list[float], 
             label = "γ0 = 0 (classic)" if t == 0 else f"γ0 = {t:g} × bound"
             axes[0, j].plot(ratios, tv, "o-", color=c, label=label)
             axes[1, j].plot(ratios, l2, "o-", color=c, label=label)
+            est = [get[(space, r, t)]["estimate"] for r in ratios]
+            axes[1, j].plot(ratios, est, "s--", color=c, alpha=0.6)
         axes[0, j].axhline(1.0, color="0.6", lw=0.8, ls=":")
         axes[0, j].set_title(f"{space} multipliers")
         axes[0, j].set_ylabel("oscillation TV(λ_n) / (2 p_max)  [–]")
-        axes[1, j].set_ylabel("relative L2 error of λ_n vs Hertz  [–]")
+        axes[1, j].set_ylabel("λ_n: L2 error vs Hertz (solid), estimate (dashed)  [–]")
         axes[1, j].set_xlabel("H / h  (multiplier size / FE size)")
         for ax in axes[:, j]:
             ax.set_xscale("log", base=2)

@@ -138,9 +138,10 @@ def test_adaptive(tmp_path: Path) -> None:
     adaptive = [r for r in rows if r["family"] == "adaptive"]
     assert {r["center"] for r in adaptive} == {0.0, 0.3}
     for r in adaptive:
-        # Each run stops on its tolerance, and the estimate it stopped on bounds the true error (its
-        # effectivity is at least 1, as the estimator's tests measure).
-        assert r["stop"] == "tolerance" and r["error"] <= r["relative"] <= r["tol"], r
+        # Each run stops on its tolerance, and the estimate it stopped on bounds the error against Hertz
+        # (its effectivity is at least 1, as the estimator's tests measure; the smoke reference is too
+        # coarse to measure against).
+        assert r["stop"] == "tolerance" and r["hertz_error"] <= r["relative"] <= r["tol"], r
     for center in (0.0, 0.3):
         runs = [r for r in adaptive if r["center"] == center]
-        assert runs[-1]["error"] < runs[0]["error"] and runs[-1]["n_free"] > runs[0]["n_free"]
+        assert runs[-1]["hertz_error"] < runs[0]["hertz_error"] and runs[-1]["n_free"] > runs[0]["n_free"]
