@@ -41,6 +41,9 @@ def test_checkerboard(tmp_path: Path) -> None:
         # T_H four times finer than T_h: the classic method oscillates, the stabilized one much less.
         assert get[(space, 0.25, 0.0)]["tv"] > 5.0
         assert get[(space, 0.25, 0.5)]["tv"] < get[(space, 0.25, 0.0)]["tv"] / 3.0
+        # The estimate the solve reports flags the checkerboard rather than hiding it.
+        assert get[(space, 0.25, 0.0)]["estimate"] > get[(space, 0.25, 0.5)]["estimate"]
+        assert get[(space, 0.25, 0.0)]["estimate"] > get[(space, 1.0, 0.0)]["estimate"]
         # Matching meshes: a single smooth peak.
         assert get[(space, 1.0, 0.5)]["tv"] < 1.5
         assert 0.0 < get[(space, 1.0, 0.5)]["l2"] < 0.5

@@ -63,3 +63,25 @@ fn the_traction_estimate_bounds_the_hertz_error_and_falls_with_it() {
     let falls = |v: &[f64]| v.windows(2).all(|w| w[1] < w[0]);
     assert!(falls(&estimates) && falls(&errors), "estimates {estimates:?} errors {errors:?}");
 }
+
+/// The classic method (γ0 = 0) with T_H four times finer than the FE edges checkerboards (study 1a). The
+/// estimate must flag it, not hide it: the Γ_C residual λ_H + σ_h n sees the oscillation, and the
+/// relative estimate divides by the smaller of ‖λ_H‖ and ‖σ_h n‖, so the oscillation cannot inflate its
+/// own denominator. On the same mesh, the estimate of the checkerboard bounds its error and is well above
+/// the estimate of the stabilized solve.
+#[test]
+fn the_estimate_flags_the_checkerboard_of_the_classic_method() {
+    let s = tribo_testkit::hertz_scene();
+    let problem =
+        tribo_testkit::hertz_problem(0.01, s.approach, 0.0, MultiplierPoints::RatioToFe(0.25), MultiplierSpace::P1);
+    let mut out = Vec::new();
+    for stabilization in [Stabilization::None, Stabilization::Fraction(0.5)] {
+        let settings = SolverSettings { stabilization, ..Default::default() };
+        let sol = problem.solve(&Friction::Frictionless, &settings, None).expect("solves");
+        out.push((sol.report.estimate.traction_relative, tribo_testkit::hertz_l2_error(&problem, &sol)));
+    }
+    let [(classic, classic_error), (stabilized, stabilized_error)] = out[..] else { unreachable!() };
+    assert!(classic_error > 5.0 * stabilized_error, "the classic method checkerboards: {out:?}");
+    assert!(classic >= classic_error && stabilized >= stabilized_error, "the estimates bound the errors: {out:?}");
+    assert!(classic > 2.0 * stabilized, "the checkerboard shows in the estimate: {out:?}");
+}
