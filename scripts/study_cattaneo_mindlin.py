@@ -86,19 +86,25 @@ def problem_for(h_min: float, nu: float) -> tribo.Problem:
     return sl.hertz_problem(sl.graded_mesh(h_min), approach=APPROACH, poisson=nu)
 
 
+def stick_ratio(h: tribo.History) -> tuple[np.ndarray, np.ndarray, float]:
+    """Per step Q/μP and c/a (half the stick extent over half the contact extent), and the largest error
+    of c/a against √(1 − Q/μP) over the steps with 0.1 ≤ Q/μP ≤ 0.9 (nan if none)."""
+    half = lambda z: 0.5 * (z[:, 1] - z[:, 0])  # noqa: E731
+    with np.errstate(invalid="ignore", divide="ignore"):  # steps where nothing touches: nan
+        r = np.abs(h.tangential_force) / (MU * h.normal_force)
+        ca = half(h.stick_zone) / half(h.contact_zone)
+    keep = (r >= 0.1) & (r <= 0.9) & np.isfinite(ca)
+    return r, ca, float(np.max(np.abs(ca[keep] - np.sqrt(1.0 - r[keep])))) if keep.any() else math.nan
+
+
 def partial_slip(h_min: float, nu: float, steps: int) -> dict[str, Any]:
     """Press, then drag monotonically to S_MAX: c/a and the traction against Cattaneo–Mindlin."""
     problem = problem_for(h_min, nu)
     shift = np.linspace(0.0, S_MAX, steps + 1)
     h = problem.solve_history(APPROACH, shift, mu=MU)
     assert h.converged, h.status
-    q = np.abs(h.tangential_force)
     p = h.normal_force
-    r = q / (MU * p)
-    half = lambda z: 0.5 * (z[:, 1] - z[:, 0])  # noqa: E731
-    ca = half(h.stick_zone) / half(h.contact_zone)
-    keep = (r >= 0.1) & (r <= 0.9) & np.isfinite(ca)
-    err_c = float(np.max(np.abs(ca[keep] - np.sqrt(1.0 - r[keep])))) if keep.any() else math.nan
+    r, ca, err_c = stick_ratio(h)
     k = int(np.argmin(np.abs(r - 0.6)))
     sol = h.solutions[k]
     a, p0 = hertz_values(float(p[k]), nu)

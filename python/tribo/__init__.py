@@ -2,7 +2,7 @@
 
 The compiled core lives in the private module ``tribo._tribo``; this package re-exports it, gives its
 solves a typed surface (``tribo.problem.Problem``, whose results are the plain data classes of
-``tribo.results``: ``Solution``, ``Report``, ``History``, and ``Adaptive`` with its ``Level``s) and adds mesh input/output (``tribo.io``), TOML scenes (``tribo.scene``), a command line (``tribo.cli``) and,
+``tribo.results``: ``Solution``, ``Report``, ``History``, and ``Adaptive`` and ``AdaptiveHistory`` with their ``Level``s) and adds mesh input/output (``tribo.io``), TOML scenes (``tribo.scene``), a command line (``tribo.cli``) and,
 if matplotlib is installed, plots (``tribo.plot``, not imported here).
 
 >>> import tribo
@@ -32,12 +32,13 @@ from tribo._tribo import (
 from tribo.checks import SceneWarning, check_solution
 from tribo.io import read_mesh, write_vtu
 from tribo.problem import Problem
-from tribo.results import Adaptive, History, Level, Report, Solution
+from tribo.results import Adaptive, AdaptiveHistory, History, Level, Report, Solution
 from tribo.scene import SceneError, load_scene
 
 __all__ = [
     "STATE_NAMES",
     "Adaptive",
+    "AdaptiveHistory",
     "ContactGeometryError",
     "History",
     "Level",

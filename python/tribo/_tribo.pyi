@@ -167,8 +167,6 @@ class ProblemData:
     @property
     def contact_nodes(self) -> _Ints: ...
     @property
-    def contact_edges(self) -> _Ints: ...
-    @property
     def multiplier_mesh(self) -> _Floats1: ...
     @property
     def multiplier_abscissae(self) -> _Floats1: ...
@@ -206,6 +204,8 @@ class Problem(ProblemData):
         self,
         options: Mapping[str, Any],
         a: tuple[float | None, int | None, float | None, str | None, int | None, float | None],
+        steps: npt.ArrayLike | None = None,
+        on: list[int] = ...,
     ) -> tuple[
         dict[str, Any],
         list[tuple[tuple[int, int, int, list[tuple[str, float]], float, float], str]],

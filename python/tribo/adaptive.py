@@ -19,14 +19,14 @@ from typing import Any
 
 import numpy as np
 
-from tribo.results import Adaptive
+from tribo.results import Adaptive, AdaptiveHistory
 
 __all__ = ["adapt_table", "write_adaptive"]
 
 log = logging.getLogger("tribo")
 
 
-def adapt_table(adaptive: Adaptive) -> dict[str, list[Any]]:
+def adapt_table(adaptive: Adaptive | AdaptiveHistory) -> dict[str, list[Any]]:
     """The per-level columns of ``adapt.csv``."""
     lv = adaptive.levels
     table: dict[str, list[Any]] = {
@@ -43,7 +43,9 @@ def adapt_table(adaptive: Adaptive) -> dict[str, list[Any]]:
     return table
 
 
-def write_adaptive(out: str | Path, adaptive: Adaptive, *, tol: float | None = None, plots: bool = True) -> list[Path]:
+def write_adaptive(
+    out: str | Path, adaptive: Adaptive | AdaptiveHistory, *, tol: float | None = None, plots: bool = True
+) -> list[Path]:
     """Writes ``adapt.csv`` and (``plots``, matplotlib installed) ``adapt.png`` into ``out``."""
     out = Path(out)
     table = adapt_table(adaptive)

@@ -117,35 +117,46 @@ def summary(
     }
 
 
-def run_history(scene: Scene, problem: Problem, out: Path, *, plots: bool = True) -> tuple[History, list[Path]]:
-    """Solves the scene's ``[history]`` with a progress bar over the steps and writes its outputs."""
+def run_history(
+    scene: Scene, problem: Problem, out: Path, *, plots: bool = True
+) -> tuple[Problem, History, list[Path]]:
+    """Solves the scene's ``[history]`` with a progress bar over the steps and writes its outputs; with an
+    ``[adapt]`` table, adaptively (a log line per level, then the history on the last mesh, and
+    ``adapt.csv``/``adapt.png``). Returns the problem the history was solved on, the history and the files."""
     from tqdm import tqdm
 
     approach, _, _ = scene.history_steps()
     clock = time.perf_counter()
-    with tqdm(total=len(approach), desc="steps", unit="step", disable=not log.isEnabledFor(logging.INFO)) as bar:
+    files: list[Path] = []
+    if scene.has_adapt:
+        adaptive = scene.solve_history_adaptive(problem, progress=_level_progress)
+        log.info("adaptive history stopped (%s) after %d levels", adaptive.stop, len(adaptive.levels))
+        problem, history = adaptive.problem, adaptive.history
+        files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
+    else:
+        with tqdm(total=len(approach), desc="steps", unit="step", disable=not log.isEnabledFor(logging.INFO)) as bar:
 
-        def progress(step: int, steps: int, status: str, seconds: float) -> None:
-            bar.update(1)
-            bar.set_postfix_str(status)
+            def progress(step: int, steps: int, status: str, seconds: float) -> None:
+                bar.update(1)
+                bar.set_postfix_str(status)
 
-        problem, history = scene.solve_history(problem, progress=progress)
+            problem, history = scene.solve_history(problem, progress=progress)
     seconds = time.perf_counter() - clock
     log.info("history ended: %s after %d of %d steps, %.2f s", history.status, len(history), len(approach), seconds)
     sliding = np.flatnonzero(history.gross_sliding)
     if len(sliding):
         log.info("gross sliding (every contact dof slips, |Q| = μP) at %d steps, first at step %d", len(sliding), sliding[0])
-    files = write_history(out, problem, history, plots=plots, plot_steps=scene.get("history", "plot_steps"))
-    return history, files
+    files = write_history(out, problem, history, plots=plots, plot_steps=scene.get("history", "plot_steps")) + files
+    return problem, history, files
+
+
+def _level_progress(unknowns: int, relative: float, seconds: float) -> None:
+    log.info("adaptive level: %d unknowns, relative estimate %.3g, %.3f s", unknowns, relative, seconds)
 
 
 def run_adaptive(scene: Scene, problem: Problem) -> Adaptive:
     """Solves the scene adaptively (its ``[adapt]`` table), logging one line per level."""
-
-    def progress(unknowns: int, relative: float, seconds: float) -> None:
-        log.info("adaptive level: %d unknowns, relative estimate %.3g, %.3f s", unknowns, relative, seconds)
-
-    adaptive = scene.solve_adaptive(problem, progress=progress)
+    adaptive = scene.solve_adaptive(problem, progress=_level_progress)
     log.info("adaptive solve stopped (%s) after %d levels", adaptive.stop, len(adaptive.levels))
     return adaptive
 
@@ -155,8 +166,8 @@ def run_scene(scene: Scene, out: Path, *, plots: bool = True) -> tuple[Problem, 
 
     For a scene with a ``[history]``, the solution is that of the last converged step, and the history's
     outputs (``tribo.history``) are written beside the summary; for a scene with ``[adapt]``, the problem
-    and solution are those of the last level, and ``adapt.csv``/``adapt.png`` (``tribo.adaptive``) are
-    written beside them."""
+    and solution are those of the last level (with a ``[history]`` too: the history on the last mesh), and
+    ``adapt.csv``/``adapt.png`` (``tribo.adaptive``) are written beside them."""
     out.mkdir(parents=True, exist_ok=True)
     clock = time.perf_counter()
     log.info("scene: %s", scene.title or "(untitled)")
@@ -175,7 +186,7 @@ def run_scene(scene: Scene, out: Path, *, plots: bool = True) -> tuple[Problem, 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", SceneWarning)
         if scene.has_history:
-            history, history_files = run_history(scene, problem, out, plots=plots)
+            problem, history, history_files = run_history(scene, problem, out, plots=plots)
             # The step that failed if one did (its status then sets the exit code), else the last one.
             last = history.failed if history.failed is not None else (history.solutions[-1] if len(history) else None)
             if last is None:

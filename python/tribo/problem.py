@@ -7,7 +7,7 @@ and spreads a scalar approach, shift or load factor over the steps of a history 
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any, Literal
 
 import numpy as np
@@ -15,7 +15,7 @@ import numpy.typing as npt
 
 from tribo import _tribo
 from tribo._tribo import SettingsError, format_number
-from tribo.results import Adaptive, History, Level, Solution
+from tribo.results import Adaptive, AdaptiveHistory, History, Level, Solution
 
 __all__ = ["Problem", "history_steps"]
 
@@ -191,17 +191,65 @@ class Problem(_tribo.Problem):
             "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
             "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
         }
-        solution, levels, stop, mesh, multiplier_mesh = self._solve_adaptive(
-            options, (tol, max_unknowns, theta, marking, max_levels, algebraic)
-        )
+        adapt = (tol, max_unknowns, theta, marking, max_levels, algebraic)
+        solution, problem, levels, stop = self._adapt(options, adapt)
+        return Adaptive(solution=Solution.from_dict(solution), problem=problem, levels=levels, stop=stop)  # type: ignore[arg-type]
+
+    def solve_history_adaptive(
+        self,
+        approach: float | npt.ArrayLike,
+        shift: float | npt.ArrayLike,
+        load_factor: float | npt.ArrayLike | None = None,
+        *,
+        on: Sequence[int] | None = None,
+        tol: float | None = None,
+        max_unknowns: int | None = None,
+        theta: float | None = None,
+        marking: Literal["dorfler", "maximum"] | None = None,
+        max_levels: int | None = None,
+        algebraic: float | None = None,
+        friction: _Law | None = None,
+        mu: float | None = None,
+        threshold: float | npt.ArrayLike | None = None,
+        gamma0: float | None = None,
+        gamma0_fraction: float | None = None,
+        check_gamma0: bool = True,
+        progress: Callable[[int, float, float], object] | None = None,
+        **settings: Any,
+    ) -> AdaptiveHistory:
+        """Solves a loading history adaptively: every level solves the whole history (as
+        ``solve_history``, same steps and keywords) and is refined where the largest η_K and ζ_K over the
+        steps ``on`` (0-based indices; default all) are; the loop stops when the largest relative estimate
+        over those steps is at most ``tol``. Returns an AdaptiveHistory with the ``history`` on the last
+        mesh, its ``problem``, every level (each with the estimate of its worst step) and the stop reason.
+        The adaptive keywords are those of ``solve_adaptive``. Levels start their steps from rest, as a
+        history does, not from the previous level.
+        """
+        steps = history_steps(approach, shift, load_factor)
+        options = {
+            "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
+            "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
+        }
+        adapt = (tol, max_unknowns, theta, marking, max_levels, algebraic)
+        history, problem, levels, stop = self._adapt(options, adapt, steps, list(on or []))
+        return AdaptiveHistory(history=History.from_dict(history), problem=problem, levels=levels, stop=stop)  # type: ignore[arg-type]
+
+    def _adapt(
+        self, options: dict[str, Any], adapt: tuple[Any, ...], *history: Any
+    ) -> tuple[Any, Problem, list[Level], str]:
+        """The compiled adaptive loop; the Problem of the last mesh and the levels as Level records."""
+        answer, levels, stop, mesh, multiplier_mesh = self._solve_adaptive(options, adapt, *history)
         arguments = {**self._arguments, "multiplier_ratio": None, "multiplier_size": None}
         problem = Problem(mesh, **{**arguments, "multiplier_points": multiplier_mesh})
-        return Adaptive(
-            solution=Solution.from_dict(solution),
-            problem=problem,
-            levels=[
-                Level(unknowns=u, multipliers=q, triangles=t, estimate=dict(e), relative=r, seconds=s, status=st)  # type: ignore[arg-type]
-                for ((u, q, t, e, r, s), st) in levels
-            ],
-            stop=stop,  # type: ignore[arg-type]
-        )
+        records = [
+            Level(unknowns=u, multipliers=q, triangles=t, estimate=dict(e), relative=r, seconds=s, status=st)  # type: ignore[arg-type]
+            for ((u, q, t, e, r, s), st) in levels
+        ]
+        return answer, problem, records, stop
+
+    @property
+    def contact_edges(self) -> npt.NDArray[np.int64]:
+        """FE edges of Γ_C by increasing abscissa, (n_c − 1, 2) int64 (left, right node): consecutive
+        ``contact_nodes``."""
+        nodes = np.asarray(self.contact_nodes)
+        return np.column_stack([nodes[:-1], nodes[1:]])

@@ -344,8 +344,25 @@ class Level(_Record):
     status: Status
 
 
+AdaptStop = Literal["tolerance", "max_unknowns", "max_levels", "not_converged", "exact", "interrupted"]
+
+
 @dataclass(frozen=True, eq=False, repr=False, kw_only=True)
-class Adaptive(_Record):
+class _Levels(_Record):
+    """What every adaptive result holds besides its answer: the problem on the last mesh, the levels and
+    why the loop stopped."""
+
+    problem: Any
+    levels: list[Level]
+    stop: AdaptStop
+
+    def _summary(self) -> str:
+        last = self.levels[-1]
+        return f"stop='{self.stop}', levels={len(self.levels)}, unknowns={last.unknowns}, relative={format_number(last.relative)}"
+
+
+@dataclass(frozen=True, eq=False, repr=False, kw_only=True)
+class Adaptive(_Levels):
     """The result of ``Problem.solve_adaptive``.
 
     Attributes:
@@ -359,13 +376,24 @@ class Adaptive(_Record):
     """
 
     solution: Solution
-    problem: Any
-    levels: list[Level]
-    stop: Literal["tolerance", "max_unknowns", "max_levels", "not_converged", "exact", "interrupted"]
 
     def __repr__(self) -> str:
-        last = self.levels[-1]
-        return (
-            f"Adaptive(stop='{self.stop}', levels={len(self.levels)}, unknowns={last.unknowns}, "
-            f"relative={format_number(last.relative)})"
-        )
+        return f"Adaptive({self._summary()})"
+
+
+@dataclass(frozen=True, eq=False, repr=False, kw_only=True)
+class AdaptiveHistory(_Levels):
+    """The result of ``Problem.solve_history_adaptive``.
+
+    Attributes:
+        history: the History solved on the last mesh.
+        problem: the Problem on the last mesh.
+        levels: every level, the first (the given mesh) included; a level's estimate is that of its step
+            (among those adapted on) with the largest relative estimate.
+        stop: why the loop stopped, as ``Adaptive.stop``.
+    """
+
+    history: History
+
+    def __repr__(self) -> str:
+        return f"AdaptiveHistory({self._summary()}, steps={len(self.history.solutions)})"

@@ -29,7 +29,7 @@ from tribo._tribo import Mesh, Obstacle, Support, TriboError
 from tribo.checks import warn_solution
 from tribo.io import read_mesh
 from tribo.problem import Problem
-from tribo.results import Adaptive, History, Solution
+from tribo.results import Adaptive, AdaptiveHistory, History, Solution
 # The schema's names, importable from here as before the split (``X as X``: re-exported).
 from tribo.scene_schema import CHOICES as CHOICES
 from tribo.scene_schema import MAX_CELLS as MAX_CELLS
@@ -280,6 +280,15 @@ class Scene:
         approach, shift, load_factor = self.history_steps()
         kw = self.solve_kwargs()
         return problem, problem.solve_history(approach, shift, load_factor, progress=progress, **kw)
+
+    def solve_history_adaptive(
+        self, problem: Problem | None = None, progress: Callable[[int, float, float], object] | None = None
+    ) -> AdaptiveHistory:
+        """Builds (unless given) and solves the ``[history]`` adaptively with the ``[adapt]`` table's settings."""
+        problem = problem if problem is not None else self.build()
+        approach, shift, load_factor = self.history_steps()
+        kw = {**self.sections.get("adapt", {}), **self.solve_kwargs()}
+        return problem.solve_history_adaptive(approach, shift, load_factor, progress=progress, **kw)
 
     def to_dict(self) -> dict[str, Any]:
         """The scene as plain data (for the JSON summary)."""

@@ -54,8 +54,10 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     ``tribo.adaptive``): ``tol`` (the relative estimated error of the contact tractions at which to stop,
     default 0.01), ``max_unknowns`` (default 200 000), ``theta`` (Dörfler's θ, default 0.5), ``marking``
     (``"dorfler"``/``"maximum"``), ``max_levels`` (default 40), ``algebraic`` (default 0.1: a coarse level's
-    fixed point stops at that fraction of the previous level's estimate). The core checks the values. Not together
-    with ``[history]`` yet.
+    fixed point stops at that fraction of the previous level's estimate). The core checks the values. With a
+    ``[history]``, every level solves the whole history (``Problem.solve_history_adaptive``) and is refined on
+    the largest indicators over the steps ``on`` (a list of step numbers; default all of them), and the
+    history's outputs are those of the last mesh.
 ``[solver]``
     Any solver setting by the name ``Problem.solve`` takes (``tribo.solver_settings()`` lists them with
     their kinds and defaults): ``qp_tol``, ``qp_max_iter``, ``qp_kkt_solver`` (``"faer"``/``"qdldl"``),
@@ -279,6 +281,7 @@ SCHEMA: dict[str, dict[str, Checker]] = {
         "marking": _choice(*CHOICES["marking"]),
         "max_levels": _count(2**62),
         "algebraic": _number,
+        "on": _steps,
     },
     "solver": {name: _setting_checker(spec) for name, spec in solver_settings().items()},
 }
@@ -373,8 +376,8 @@ def check_scene(data: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
     f = sections.get("friction", {})
     if "mu" in f and "threshold" in f:
         raise SceneError("scene keys 'friction.mu' and 'friction.threshold' exclude each other", "friction")
-    if "adapt" in sections and "history" in sections:
-        raise SceneError("scene tables [adapt] and [history] do not go together yet: adapt one solve", "adapt")
+    if "on" in sections.get("adapt", {}) and "history" not in sections:
+        raise SceneError("scene key 'adapt.on' names steps of a [history], and the scene has none", "adapt.on")
     d = sections.get("discretization", {})
     for a, b in (("multiplier_ratio", "multiplier_size"), ("gamma0", "gamma0_fraction")):
         if a in d and b in d:

@@ -64,3 +64,28 @@ def test_bad_adaptive_settings_name_the_setting(keywords: dict[str, float], name
 def test_an_unknown_marking_is_refused() -> None:
     with pytest.raises(tribo.SettingsError, match="dorfler"):
         off_centre().solve_adaptive(marking="greedy")  # type: ignore[arg-type]
+
+
+def test_a_history_adapts_and_hands_back_the_history_on_its_last_mesh() -> None:
+    """Pressed, then dragged with Coulomb friction: every level solves the whole history; the history
+    handed back is the one on the last mesh, and solving it again there gives the same answer."""
+    problem = off_centre()
+    shift = np.linspace(0.0, 0.004, 6)
+    heard: list[int] = []
+    out = problem.solve_history_adaptive(0.01, shift, mu=0.3, tol=0.2, progress=lambda u, r, s: heard.append(u))
+    assert isinstance(out, tribo.AdaptiveHistory) and out.stop == "tolerance" and out.history.converged
+    assert heard == [lv.unknowns for lv in out.levels] and out.problem.n_free == out.levels[-1].unknowns
+    worst = max(s.report.estimate["traction_relative"] for s in out.history.solutions)
+    assert out.levels[-1].relative == pytest.approx(worst) and worst <= 0.2
+    again = out.problem.solve_history(0.01, shift, mu=0.3)
+    assert np.allclose(again.tangential_force, out.history.tangential_force, rtol=1e-6, atol=1e-12)
+    with pytest.raises(tribo.SettingsError, match="adapt_steps"):
+        problem.solve_history_adaptive(0.01, shift, mu=0.3, on=[6])
+
+
+def test_contact_edges_join_consecutive_contact_nodes() -> None:
+    problem = off_centre()
+    edges, nodes = problem.contact_edges, problem.contact_nodes
+    assert edges.shape == (len(nodes) - 1, 2) and np.array_equal(edges[:, 0], nodes[:-1])
+    points = problem.mesh.points
+    assert np.all(np.diff(problem.node_abscissae) > 0) and np.all(points[edges[:, 1], 0] > points[edges[:, 0], 0])

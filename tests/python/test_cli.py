@@ -395,11 +395,38 @@ def test_run_adapts_a_scene_with_an_adapt_table(tmp_path: Path) -> None:
     assert (tmp_path / "o" / "adapt.png").stat().st_size > 0
 
 
+def test_run_adapts_a_history(tmp_path: Path) -> None:
+    """``[adapt]`` with ``[history]``: every level solves the history; the history's outputs are those of
+    the last mesh, with adapt.csv beside them."""
+    import csv
+
+    import meshio
+
+    scene = ADAPT_SCENE.replace("tol = 0.05", "tol = 0.2\non = [0, 4]") + (
+        "[friction]\nmu = 0.3\n[history]\nshift = [0.0, 0.004]\nsteps = 4\n"
+    )
+    path = tmp_path / "h.toml"
+    path.write_text(scene, encoding="utf-8")
+    assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 0
+    with (tmp_path / "o" / "adapt.csv").open(encoding="utf-8") as f:
+        assert f.readline().startswith("# stop: tolerance")
+        rows = list(csv.DictReader(f))
+    lines = (tmp_path / "o" / "history.csv").read_text(encoding="utf-8").splitlines()
+    history = list(csv.DictReader(line for line in lines if not line.startswith("#")))
+    assert len(history) == 5 and float(rows[-1]["relative"]) <= 0.2
+    step = meshio.read(tmp_path / "o" / "step_0004.vtu")
+    assert len(step.cells_dict["triangle"]) == int(rows[-1]["triangles"]), "the steps are on the last mesh"
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert summary["n_free"] == int(rows[-1]["unknowns"]) and summary["status"] == "converged"
+
+
 def test_adapt_table_errors_name_the_key(tmp_path: Path) -> None:
     with pytest.raises(SceneError, match="adapt.marking"):
         parse_scene(tomllib_loads(ADAPT_SCENE + 'marking = "greedy"\n'))
-    with pytest.raises(SceneError, match=r"\[adapt\] and \[history\]"):
-        parse_scene(tomllib_loads(ADAPT_SCENE + "[history]\nshift = [0.0, 0.01]\n"))
+    with pytest.raises(SceneError, match="adapt.on"):
+        parse_scene(tomllib_loads(ADAPT_SCENE + "on = [1]\n"))
+    with pytest.raises(SceneError, match="adapt.on"):
+        parse_scene(tomllib_loads(ADAPT_SCENE + "on = [-1]\n[history]\nshift = [0.0, 0.004]\n"))
     with pytest.raises(tribo.SettingsError, match="adapt_theta"):
         parse_scene(tomllib_loads(ADAPT_SCENE + "theta = 2.0\n")).solve_adaptive()
 

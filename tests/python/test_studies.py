@@ -148,3 +148,14 @@ def test_adaptive(tmp_path: Path) -> None:
     for center in (0.0, 0.3):
         runs = [r for r in adaptive if r["center"] == center]
         assert runs[-1]["hertz_error"] < runs[0]["hertz_error"] and runs[-1]["n_free"] > runs[0]["n_free"]
+
+
+def test_adaptive_history(tmp_path: Path) -> None:
+    rows = study("study_adaptive_history").main(["--smoke", "--out", str(tmp_path)])
+    outputs(tmp_path, "adaptive_history")
+    adaptive = [r for r in rows if r["family"] == "adaptive"]
+    assert all(r["status"] == "tolerance" and r["relative"] <= r["tol"] for r in adaptive), adaptive
+    # A tighter tolerance gives more unknowns and a better stick zone.
+    assert adaptive[-1]["n_free"] > adaptive[0]["n_free"] and adaptive[-1]["ca_error"] < adaptive[0]["ca_error"]
+    levels = [r for r in rows if r["family"] == "levels"]
+    assert levels[-1]["energy_estimate"] >= levels[-1]["energy_error"] > 0.0

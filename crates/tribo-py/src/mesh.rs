@@ -124,13 +124,8 @@ impl PyMesh {
         growth: f64,
     ) -> PyResult<Self> {
         let (x, y) = (pair(x, "x", Mesh)?, pair(y, "y", Mesh)?);
-        let grading = Grading {
-            side: Side::parse(side).map_err(to_pyerr)?,
-            segment: pair(segment, "segment", Mesh)?,
-            h_min,
-            h_max,
-            growth,
-        };
+        let (side, segment) = (Side::parse(side).map_err(to_pyerr)?, pair(segment, "segment", Mesh)?);
+        let grading = Grading { side, segment, h_min, h_max, growth };
         Self::from_core(py, py.detach(|| tribo::graded_rectangle(x, y, &grading)).map_err(to_pyerr)?)
     }
 

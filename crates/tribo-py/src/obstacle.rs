@@ -62,12 +62,7 @@ pub struct PyObstacle {
 impl PyObstacle {
     pub fn checked(shape: ObstacleShape) -> PyResult<Self> {
         tribo::Obstacle { shape: shape.clone(), ..Default::default() }.validate().map_err(to_pyerr)?;
-        let (radius, center) = match shape {
-            ObstacleShape::Circle { center, radius } | ObstacleShape::Parabola { center, radius } => {
-                (Some(radius), Some(center))
-            }
-            _ => (None, None),
-        };
+        let (radius, center) = (shape.radius_center().map(|r| r.0), shape.radius_center().map(|r| r.1));
         Ok(Self { repr: format!("Obstacle.{shape}"), kind: shape.kind(), radius, center, shape })
     }
 

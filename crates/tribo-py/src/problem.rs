@@ -13,11 +13,12 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyTuple};
 use tribo::error::ErrorCategory::{ContactGeometry, Settings};
 use tribo::{
-    AdaptSettings, Choice, Friction, FrictionLaw, Level, LoadStep, Material, MultiplierPoints, MultiplierSpace,
-    ObstacleShape, Phase, ProblemSpec, Progress, SolverSettings, Stabilization, StepProgress, Threshold,
+    AdaptSettings, Choice, Friction, FrictionLaw, Level, LevelObserver, LoadStep, Material, MultiplierPoints,
+    MultiplierSpace, ObstacleShape, Phase, ProblemSpec, Progress, SolverSettings, Stabilization, StepProgress,
+    Threshold,
 };
 
-use crate::convert::{callback, floats, mat, pair, rows, setting_value, vec1};
+use crate::convert::{callback, floats, pair, rows, setting_value, vec1};
 use crate::errors::{bad_input, to_pyerr};
 use crate::mesh::PyMesh;
 use crate::obstacle::{chain_gap_error, take_gap_error, PyObstacle};
@@ -65,8 +66,6 @@ pub struct ProblemData {
     contact_nodes: Py<PyAny>,
     /// Abscissae of the FE nodes of Γ_C (in the order of `contact_nodes`).
     node_abscissae: Py<PyAny>,
-    /// FE edges of Γ_C by increasing abscissa, (n_c − 1, 2) int64 (left, right node).
-    contact_edges: Py<PyAny>,
     /// Points x_0 < … < x_N of the multiplier mesh T_H (abscissae).
     multiplier_mesh: Py<PyAny>,
     /// Abscissae of the multiplier dofs (segment midpoints for P0, points for P1).
@@ -135,6 +134,12 @@ fn observe_with<A: for<'py> pyo3::call::PyCallArgs<'py>>(
             ControlFlow::Continue(())
         }
     })
+}
+
+/// The rows (approach, shift, load_factor) of a history as load steps.
+fn load_steps(steps: &Bound<'_, PyAny>) -> PyResult<Vec<LoadStep>> {
+    let rows = rows::<f64, 3>(&floats(steps, "steps", &[None, Some(3)], Settings)?);
+    Ok(rows.into_iter().map(|[approach, shift, load_factor]| LoadStep { approach, shift, load_factor }).collect())
 }
 
 /// `solve_adaptive`'s tol, max_unknowns, theta, marking, max_levels, algebraic (None: the core's default).
@@ -269,7 +274,6 @@ impl PyProblem {
         take_gap_error();
         let p = py.detach(|| tribo::Problem::new(mesh_inner, spec)).map_err(|e| chain_gap_error(py, to_pyerr(e)))?;
         let (c, spec) = (&p.contact, &p.spec);
-        let edges: Vec<[i64; 2]> = c.edges.iter().map(|e| [e.left as i64, e.right as i64]).collect();
         let data = ProblemData {
             mesh,
             obstacle,
@@ -290,7 +294,6 @@ impl PyProblem {
             tangent_sign: c.tangent_sign(),
             contact_nodes: vec1(py, &c.nodes.iter().map(|&n| n as i64).collect::<Vec<_>>())?,
             node_abscissae: vec1(py, &c.node_xi)?,
-            contact_edges: mat(py, &edges)?,
             multiplier_mesh: vec1(py, &p.multipliers.xi)?,
             multiplier_abscissae: vec1(py, &p.multipliers.dof_abscissae())?,
             setup_timings: BTreeMap::from(p.timings.named()),
@@ -304,8 +307,6 @@ impl PyProblem {
         let o = SolveOptions::new(options, "(iteration, change, qp_iterations, qp_seconds)")?;
         let mut error: Option<PyErr> = None;
         let result = py.detach(|| {
-            // After the condensation: on_phase; after every QP: progress. Both stop the solve by
-            // returning False or raising (the exception is re-raised by `finish`), and so does Ctrl-C.
             let mut observe = |p: &Progress| match p.phase {
                 Phase::Condensation => {
                     observe_with(o.on_phase.as_ref(), ("condensation", p.condensation_seconds), &mut error)
@@ -331,10 +332,7 @@ impl PyProblem {
         options: &Bound<'_, PyDict>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let o = SolveOptions::new(options, "(step, steps, status, seconds)")?;
-        let steps: Vec<LoadStep> = rows::<f64, 3>(&floats(steps, "steps", &[None, Some(3)], Settings)?)
-            .into_iter()
-            .map(|[approach, shift, load_factor]| LoadStep { approach, shift, load_factor })
-            .collect();
+        let steps = load_steps(steps)?;
         let mut error: Option<PyErr> = None;
         let result = py.detach(|| {
             let mut observe = |p: &StepProgress| {
@@ -345,29 +343,39 @@ impl PyProblem {
         results::history(py, &finish(result, error)?)
     }
 
-    /// Solves adaptively (`tribo.Problem.solve_adaptive`); returns the last solution's fields, the levels as
-    /// tuples, the stop reason, and the last mesh with its T_H abscissae.
-    #[pyo3(name = "_solve_adaptive")]
+    /// Solves adaptively (`tribo.Problem.solve_adaptive`), or the history of `steps` adaptively on the steps
+    /// `on` (`solve_history_adaptive`); returns the last solution's or the history's fields, the levels
+    /// as tuples, the stop reason, and the last mesh with its T_H abscissae.
+    #[pyo3(name = "_solve_adaptive", signature = (options, a, steps = None, on = Vec::new()))]
     fn solve_adaptive<'py>(
         &self,
         py: Python<'py>,
         options: &Bound<'_, PyDict>,
         a: AdaptKeywords,
+        steps: Option<&Bound<'_, PyAny>>,
+        on: Vec<usize>,
     ) -> PyResult<Bound<'py, PyTuple>> {
         let o = SolveOptions::new(options, "(unknowns, relative, seconds)")?;
         let adapt = AdaptSettings::from_keywords(a.0, a.1, a.2, a.3.as_deref(), a.4, a.5).map_err(to_pyerr)?;
+        let steps = steps.map(load_steps).transpose()?;
         let mut error = None;
         let result = py.detach(|| {
             let mut observe =
                 |l: &Level| observe_with(o.progress.as_ref(), (l.unknowns, l.relative, l.seconds), &mut error);
-            self.inner.solve_adaptive(&o.friction, &o.settings, &adapt, Some(&mut observe))
+            let (p, f, s, ob) = (&self.inner, &o.friction, &o.settings, Some(&mut observe as LevelObserver<'_>));
+            match &steps {
+                None => p.solve_adaptive(f, s, &adapt, ob).map(|a| (a.problem, Err(a.solution), a.levels, a.stop)),
+                Some(t) => p
+                    .solve_history_adaptive(f, t, s, &adapt, &on, ob)
+                    .map(|a| (a.problem, Ok(a.history), a.levels, a.stop)),
+            }
         });
-        let out = finish(result, error)?;
+        let (problem, answer, levels, stop) = finish(result, error)?;
+        let answer = answer.map_or_else(|s| results::solution(py, &s), |h| results::history(py, &h))?;
         let level = |l: &Level| (l.unknowns, l.multipliers, l.triangles, l.estimate.named(), l.relative, l.seconds);
-        let levels: Vec<_> = out.levels.iter().map(|l| (level(l), l.status.name())).collect();
-        let xi = vec1(py, &out.problem.multipliers.xi)?;
-        let mesh = PyMesh::from_core(py, out.problem.mesh)?;
-        (results::solution(py, &out.solution)?, levels, out.stop.as_str(), mesh, xi).into_pyobject(py)
+        let levels: Vec<_> = levels.iter().map(|l| (level(l), l.status.name())).collect();
+        let xi = vec1(py, &problem.multipliers.xi)?;
+        (answer, levels, stop.as_str(), PyMesh::from_core(py, problem.mesh)?, xi).into_pyobject(py)
     }
 
     /// Points of Γ_C's line at abscissae `xi`, (M, 2).

@@ -35,7 +35,8 @@
 //!    drag, unload — step by step on the same factorization: only the QP's linear term (the load case,
 //!    [`problem::load_case`]) and the Coulomb bounds change from step to step.
 //! 6. [`Problem::solve_adaptive`] ([`adapt`]) refines by itself: solve, estimate, mark, newest-vertex
-//!    bisection ([`mesh::refine`]), until the relative estimate meets a tolerance.
+//!    bisection ([`mesh::refine`]), until the relative estimate meets a tolerance;
+//!    [`Problem::solve_history_adaptive`] does so for a whole loading history, marked on its worst steps.
 //!
 //! ## Folders
 //! Folders by job, bottom to top; a folder uses only the folders before it, and the two towers in
@@ -98,7 +99,7 @@ pub mod solve;
 
 pub mod adapt;
 
-pub use adapt::{AdaptStop, Adaptive, Level, LevelObserver};
+pub use adapt::{AdaptStop, Adaptive, AdaptiveHistory, Level, LevelObserver};
 pub use choice::Choice;
 pub use condensation::Factor;
 pub use contact::gamma0::Gamma0Bound;

@@ -4,15 +4,21 @@
 use crate::settings::Marking;
 use crate::Solution;
 
-/// The marking indicator per triangle: `m_K = η_K² / Σ η² + ζ_K² / Σ ζ²`, with ζ_K the triangle's part
+/// The marking indicator per triangle: `m_K = η_K² / Σ η² + ζ_K² / Σ ζ²`, with η_K and ζ_K the largest over
+/// `solutions` (one, or the steps of a history) and ζ_K the triangle's part
 /// of the traction estimate ([`Solution::traction_estimator`], whose weight falls with the distance to
 /// Γ_C, see [`crate::results::ErrorEstimate`]). Each part is a distribution over the triangles summing
 /// to 1, so the energy error and the error of the contact tractions steer the refinement with equal
 /// weight, whatever their units; where ζ = 0 only the energy part is left. Measured (study 6): marking
 /// on ζ alone leaves the far field too coarse and needs more unknowns for 1 % in λ_n than equal parts.
-pub(crate) fn indicators(solution: &Solution) -> Vec<f64> {
-    let eta2: Vec<f64> = solution.estimator.iter().map(|e| e * e).collect();
-    let zeta2: Vec<f64> = solution.traction_estimator.iter().map(|z| z * z).collect();
+pub(crate) fn indicators(solutions: &[&Solution]) -> Vec<f64> {
+    // The largest η_K and ζ_K over the solutions (the steps of a history), squared.
+    let largest = |f: fn(&Solution) -> &[f64]| -> Vec<f64> {
+        let n = solutions.first().map_or(0, |s| f(s).len());
+        (0..n).map(|k| solutions.iter().map(|s| f(s)[k]).fold(0.0, f64::max).powi(2)).collect()
+    };
+    let eta2 = largest(|s| &s.estimator);
+    let zeta2 = largest(|s| &s.traction_estimator);
     let (se, sz) = (eta2.iter().sum::<f64>(), zeta2.iter().sum::<f64>());
     let part = |v: f64, total: f64| if total > 0.0 { v / total } else { 0.0 };
     eta2.iter().zip(&zeta2).map(|(e, z)| part(*e, se) + part(*z, sz)).collect()

@@ -1,5 +1,8 @@
 //! Adaptive refinement: solve, estimate, mark, refine, until the estimated error is below a tolerance
-//! or the next level would be too large ([`crate::Problem::solve_adaptive`]).
+//! or the next level would be too large ([`crate::Problem::solve_adaptive`]; for a loading history,
+//! [`crate::Problem::solve_history_adaptive`], whose level solves the whole history and reads the
+//! estimates of its steps: the level's estimate is its worst step's, each triangle is marked by its
+//! largest indicators over the steps, and T_H is kept coarse only where every step is surely apart).
 //!
 //! # One level
 //! 1. Solve the problem on the current mesh; its [`crate::results::ErrorEstimate`] comes with the solution.
@@ -30,8 +33,11 @@
 //! A refinement that would exceed `max_unknowns` is not made; the loop then stops with the last level
 //! and says so ([`AdaptStop::MaxUnknowns`]), as it does at `max_levels` or when a level does not converge.
 
+mod history;
 mod marking;
 mod multipliers;
+
+pub use history::AdaptiveHistory;
 
 use std::ops::ControlFlow;
 use std::time::Instant;
@@ -127,8 +133,18 @@ impl Problem {
         friction: &Friction,
         settings: &SolverSettings,
         adapt: &AdaptSettings,
-        mut observer: Option<LevelObserver<'_>>,
+        observer: Option<LevelObserver<'_>>,
     ) -> Result<Adaptive> {
+        self.check_adaptive(friction, settings, adapt)?;
+        let solve = |p: &Problem, s: &SolverSettings, start: Option<&[f64]>| solve_level(p, friction, s, start);
+        let read = reader(|s: &Solution| vec![s]);
+        let ended = |s: &Solution| (s.report.status, s.report.iterations);
+        let (problem, solution, levels, stop) = self.adapt_loop(settings, adapt, observer, &solve, &read, &ended)?;
+        Ok(Adaptive { problem, solution, levels, stop })
+    }
+
+    /// The checks every adaptive entry point makes before its first solve.
+    fn check_adaptive(&self, friction: &Friction, settings: &SolverSettings, adapt: &AdaptSettings) -> Result<()> {
         settings.validate()?;
         adapt.validate()?;
         friction.validate(self.n_multipliers())?;
@@ -139,55 +155,64 @@ impl Problem {
                 what: format!("is below the first level's {} unknowns", self.n_free),
             });
         }
+        Ok(())
+    }
+
+    /// The loop of the module documentation, for any answer `T` a level gives: `solve` solves a level
+    /// (from a start of 2q multipliers, which it may ignore), `read` gives the solutions whose estimates
+    /// steer it (one for a static solve, the chosen steps of a history) and `ended` its status and
+    /// fixed-point iterations. The level's estimate is that of the solution with the largest relative
+    /// estimate; each triangle is marked by its largest η_K and ζ_K over the solutions read.
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn adapt_loop<T>(
+        &self,
+        settings: &SolverSettings,
+        adapt: &AdaptSettings,
+        mut observer: Option<LevelObserver<'_>>,
+        solve: &dyn Fn(&Problem, &SolverSettings, Option<&[f64]>) -> Result<T>,
+        read: &dyn Fn(&T) -> Vec<&Solution>,
+        ended: &dyn Fn(&T) -> (SolveStatus, usize),
+    ) -> Result<(Problem, T, Vec<Level>, AdaptStop)> {
         let ratio = multipliers::ratio(&self.multipliers.xi, &self.contact);
         let mut problem = Problem::new(label_longest_edge(&self.mesh), self.spec.clone())?;
         let mut start: Option<Vec<f64>> = None;
         let mut levels = Vec::new();
+        let warm = |s: &Solution| [s.lambda_n.as_slice(), s.lambda_t.as_slice()].concat();
         loop {
             let clock = Instant::now();
             let mut loose = *settings;
             if let Some(r) = levels.last().map(|l: &Level| l.relative).filter(|r| r.is_finite()) {
                 loose.fp.tol = settings.fp.tol.max((adapt.algebraic * r).min(0.1));
             }
-            let mut solution = solve_level(&problem, friction, &loose, start.as_deref())?;
-            let estimate = solution.report.estimate;
-            let mut level = Level {
-                unknowns: problem.n_free,
-                multipliers: problem.n_multipliers(),
-                triangles: problem.mesh.n_triangles(),
-                estimate,
-                relative: relative(&estimate),
-                seconds: 0.0,
-                status: solution.report.status,
-            };
+            let mut answer = solve(&problem, &loose, start.as_deref())?;
+            let mut level = new_level(&problem, read(&answer), ended(&answer).0);
             let stop = if level.status != SolveStatus::Converged {
                 Some(AdaptStop::NotConverged)
             } else if level.relative <= adapt.tol {
                 Some(AdaptStop::Tolerance)
-            } else if estimate.total == 0.0 {
+            } else if level.estimate.total == 0.0 {
                 Some(AdaptStop::Exact)
             } else if levels.len() + 1 >= adapt.max_levels {
                 Some(AdaptStop::MaxLevels)
             } else {
                 None
             };
-            if stop.is_some() && loose.fp.tol > settings.fp.tol && solution.report.iterations > 0 {
+            if stop.is_some() && loose.fp.tol > settings.fp.tol && ended(&answer).1 > 0 {
                 // The answer handed back is converged to fp_tol, from the loose one.
-                let warm = [solution.lambda_n.as_slice(), solution.lambda_t.as_slice()].concat();
-                solution = solve_level(&problem, friction, settings, Some(&warm))?;
-                level.estimate = solution.report.estimate;
-                level.relative = relative(&level.estimate);
-                level.status = solution.report.status;
+                let from = read(&answer).last().map(|s| warm(s));
+                answer = solve(&problem, settings, from.as_deref())?;
+                level = new_level(&problem, read(&answer), ended(&answer).0);
             }
             let next = match stop {
                 Some(_) => None,
                 None => {
-                    let marked = marking::mark(&marking::indicators(&solution), adapt.theta, adapt.marking);
+                    let solutions = read(&answer);
+                    let marked = marking::mark(&marking::indicators(&solutions), adapt.theta, adapt.marking);
                     let refined = bisect(&problem.mesh, &marked)?.into_mesh();
                     if 2 * refined.n_nodes() > adapt.max_unknowns {
                         None
                     } else {
-                        Some(next_problem(&problem, &solution, refined, ratio)?)
+                        Some(next_problem(&problem, &solutions, refined, ratio)?)
                     }
                 }
             };
@@ -207,16 +232,38 @@ impl Problem {
                 (None, Some(p)) if flow.is_continue() => {
                     let dofs = p.multipliers.dof_abscissae();
                     let at = |v: &[f64]| dofs.iter().map(|&x| problem.multipliers.evaluate(v, x)).collect::<Vec<_>>();
-                    start = Some([at(&solution.lambda_n), at(&solution.lambda_t)].concat());
+                    start = read(&answer).last().map(|s| [at(&s.lambda_n), at(&s.lambda_t)].concat());
                     problem = p;
                 }
                 (stop, next) => {
                     let stop =
                         stop.unwrap_or(if next.is_none() { AdaptStop::MaxUnknowns } else { AdaptStop::Interrupted });
-                    return Ok(Adaptive { problem, solution, levels, stop });
+                    return Ok((problem, answer, levels, stop));
                 }
             }
         }
+    }
+}
+
+/// Pins a closure to the higher-ranked signature the loop takes (the solutions borrow from the answer).
+pub(crate) fn reader<T>(f: impl Fn(&T) -> Vec<&Solution>) -> impl Fn(&T) -> Vec<&Solution> {
+    f
+}
+
+/// A level's record: its sizes, and the estimate of the solution (of those read) with the largest
+/// relative estimate.
+fn new_level(problem: &Problem, solutions: Vec<&Solution>, status: SolveStatus) -> Level {
+    let worst =
+        solutions.into_iter().max_by(|a, b| relative(&a.report.estimate).total_cmp(&relative(&b.report.estimate)));
+    let estimate = worst.map_or(ErrorEstimate::default(), |s| s.report.estimate);
+    Level {
+        unknowns: problem.n_free,
+        multipliers: problem.n_multipliers(),
+        triangles: problem.mesh.n_triangles(),
+        estimate,
+        relative: worst.map_or(f64::NAN, |_| relative(&estimate)),
+        seconds: 0.0,
+        status,
     }
 }
 
@@ -232,18 +279,22 @@ fn solve_level(
     condensed.solve_loading(friction, settings, &load, start, None)
 }
 
-/// The problem of the next level: the refined mesh, and T_H refined where contact is or may be.
-fn next_problem(problem: &Problem, solution: &Solution, mesh: crate::mesh::Mesh, ratio: f64) -> Result<Problem> {
+/// The problem of the next level: the refined mesh, and T_H refined where contact is or may be in any
+/// of the solutions.
+fn next_problem(problem: &Problem, solutions: &[&Solution], mesh: crate::mesh::Mesh, ratio: f64) -> Result<Problem> {
     let mut spec = problem.spec.clone();
     let contact = crate::contact::ContactBoundary::new(&mesh, &spec.contact)?;
-    // Surely apart: every node of the segment has a current gap beyond the largest displacement on Γ_C.
-    let scale = solution.u_n.iter().chain(&solution.slip).fold(0.0_f64, |m, v| m.max(v.abs()));
-    let gap = solution.current_gap();
+    // Surely apart: every node of the segment has a current gap beyond the largest displacement on Γ_C,
+    // in every solution.
     let old = &problem.contact.node_xi;
+    let views: Vec<(f64, Vec<f64>)> = solutions
+        .iter()
+        .map(|s| (s.u_n.iter().chain(&s.slip).fold(0.0_f64, |m, v| m.max(v.abs())), s.current_gap()))
+        .collect();
     let apart = |a: f64, b: f64| {
         let lo = old.partition_point(|&x| x < a).saturating_sub(1);
         let hi = old.partition_point(|&x| x <= b).min(old.len() - 1);
-        (lo..=hi).all(|k| gap[k] > scale) && scale > 0.0
+        views.iter().all(|(scale, gap)| (lo..=hi).all(|k| gap[k] > *scale) && *scale > 0.0)
     };
     let xi = multipliers::refine(&problem.multipliers.xi, &contact, ratio, apart);
     spec.multiplier_points = MultiplierPoints::Abscissae(xi);

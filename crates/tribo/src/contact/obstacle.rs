@@ -164,6 +164,14 @@ impl Obstacle {
 }
 
 impl ObstacleShape {
+    /// The radius R and the abscissa of the lowest point of a circle or a parabola, else None.
+    pub fn radius_center(&self) -> Option<(f64, f64)> {
+        match *self {
+            Self::Circle { center, radius } | Self::Parabola { center, radius } => Some((radius, center)),
+            _ => None,
+        }
+    }
+
     /// The shape's name, as scene files and Python spell it: `flat`, `circle`, `parabola`, `polyline` or
     /// `function`.
     pub fn kind(&self) -> &'static str {

@@ -119,3 +119,43 @@ fn coarse_fixed_points_may_stop_early_and_the_answer_does_not_change() {
     }
     assert!(errors.iter().all(|&e| e <= 2.0 * 0.05), "λ_n errors {errors:?}");
 }
+
+/// A loading history adapts on one mesh for all its steps: pressed, then dragged (Coulomb, partial
+/// slip), from the coarse mesh where no node touches. Every level solves the whole history; the loop
+/// stops on the tolerance with the largest relative estimate over the steps, the history on the last
+/// mesh converges at every step, and its stick zone (which shrinks as the drag grows) holds enough
+/// multiplier dofs to be measured at every step.
+#[test]
+fn a_history_adapts_on_its_worst_step() {
+    let problem = off_centre_problem();
+    let friction = Friction::Coulomb { mu: 0.3 };
+    let steps: Vec<LoadStep> = (0..6)
+        .map(|k| LoadStep { approach: problem.spec.obstacle.approach, shift: 0.0008 * k as f64, load_factor: 1.0 })
+        .collect();
+    let adapt = AdaptSettings { tol: 0.2, max_unknowns: 60_000, ..Default::default() };
+    let out = problem
+        .solve_history_adaptive(&friction, &steps, &SolverSettings::default(), &adapt, &[], None)
+        .expect("adapts");
+    assert_eq!(out.stop, AdaptStop::Tolerance, "{:?}", out.levels);
+    assert_eq!(out.history.status, SolveStatus::Converged);
+    assert_eq!(out.history.solutions.len(), steps.len());
+    let worst = out.history.solutions.iter().map(|s| s.report.estimate.traction_relative).fold(0.0, f64::max);
+    let last = out.levels.last().expect("levels");
+    assert_eq!(last.relative, worst, "a level reports its worst step");
+    assert!(worst <= adapt.tol && out.problem.n_free == last.unknowns);
+    let stick = |s: &Solution| s.states.iter().filter(|&&c| c == ContactState::Stick).count();
+    assert!(
+        out.history.solutions[1..].iter().all(|s| stick(s) >= 10),
+        "{:?}",
+        out.history.solutions.iter().map(stick).collect::<Vec<_>>()
+    );
+    // Adapting on the press alone stops earlier: the drag's slip zones need their own refinement.
+    let press = problem
+        .solve_history_adaptive(&friction, &steps, &SolverSettings::default(), &adapt, &[0], None)
+        .expect("adapts");
+    assert!(press.levels.last().map_or(0, |l| l.unknowns) < last.unknowns);
+    match problem.solve_history_adaptive(&friction, &steps, &SolverSettings::default(), &adapt, &[6], None) {
+        Err(Error::BadSetting { name, .. }) => assert_eq!(name, "adapt_steps"),
+        other => panic!("{other:?}"),
+    }
+}
