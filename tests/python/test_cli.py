@@ -49,10 +49,13 @@ def test_demo_scene_runs_in_process(tmp_path: Path, capsys: pytest.CaptureFixtur
     assert main(["demo", "--out", str(tmp_path / "demo")]) == 0
     out = capsys.readouterr()
     assert "status converged" in out.out and str((tmp_path / "demo").resolve()) in out.out
-    assert "fixed point" in out.err and "change of λ_n" in out.err
+    # The demo adapts: a progress line per level, and the stick zone resolved by many multiplier dofs (the
+    # first, graded mesh has 5 there).
+    assert "adaptive level" in out.err and "adaptive solve stopped (tolerance)" in out.err
     summary = json.loads((tmp_path / "demo" / "summary.json").read_text())
     assert summary["status"] == "converged" and summary["friction"] == "coulomb"
-    assert summary["states"]["stick"] > 0 and summary["states"]["slip"] > 0
+    assert summary["states"]["stick"] >= 20 and summary["states"]["slip"] > 0
+    assert summary["estimate"]["traction_relative"] <= 0.1 and (tmp_path / "demo" / "adapt.csv").is_file()
     assert summary["kkt_max"] < 1e-6 and summary["normal_force"] > 0
     for name in ("contact.csv", "result.vtu", "result_contact.vtu", "contact_normal.png", "von_mises.png"):
         assert (tmp_path / "demo" / name).stat().st_size > 0
@@ -64,7 +67,7 @@ def test_demo_scene_is_the_documented_one() -> None:
     assert s.solve_kwargs()["mu"] == 0.3
     assert s.get("obstacle", "radius") == 1.0 and s.get("obstacle", "approach") == 0.01
     assert s.get("obstacle", "shift") == 0.004 and s.get("discretization", "h_min") == 0.01
-    assert s.get("discretization", "gamma0_fraction") == 0.5
+    assert s.get("discretization", "gamma0_fraction") == 0.5 and s.get("adapt", "tol") == 0.1
 
 
 def test_run_scene_subprocess(tmp_path: Path) -> None:
