@@ -6,7 +6,9 @@ dropped), line cells become named edge sets: Gmsh physical groups (``gmsh:physic
 
 Writing: ``write_vtu("out/result.vtu", problem, solution)`` writes three files, all with z = 0:
 
-* ``result.vtu``: the body, with point data ``displacement`` (3 components) and ``reaction``, and cell
+* ``result.vtu``: the body, with point data ``displacement`` (3 components), ``reaction``,
+  ``stress_recovered`` (σ_xx, σ_yy, σ_xy per node: the area-weighted mean of the cell stresses around it,
+  ``Solution.nodal_stress``) and ``von_mises_recovered``, and cell
   data ``stress``, the full symmetric 3 × 3 stress tensor of plane strain (9 components, which ParaView
   reads as a tensor: σ_xz = σ_yz = 0 and σ_zz = ν (σ_xx + σ_yy)), its components ``sigma_xx``,
   ``sigma_yy``, ``sigma_xy``, ``sigma_zz``, ``von_mises``, ``error_indicator`` (the a posteriori η_K) and
@@ -276,7 +278,12 @@ def write_vtu(path: str | Path, problem: Problem, solution: Solution) -> list[Pa
     body = meshio.Mesh(
         _xyz(mesh.points),
         [("triangle", mesh.triangles)],
-        point_data={"displacement": _xyz(solution.displacement), "reaction": _xyz(solution.reactions)},
+        point_data={
+            "displacement": _xyz(solution.displacement),
+            "reaction": _xyz(solution.reactions),
+            "stress_recovered": solution.nodal_stress,
+            "von_mises_recovered": solution.nodal_von_mises,
+        },
         cell_data={
             "stress": [tensor.reshape(-1, 9)],
             "sigma_xx": [stress[:, 0]],

@@ -4,7 +4,7 @@ Every function takes ``ax=None`` (a new figure is made) and returns the Axes it 
 
 * ``contact_pressure``: λ_n and −σ_n(u_h) along Γ_C, the zone shaded by contact state;
 * ``tangential``: λ_t against ±(its bound: μ λ_n for Coulomb, the Tresca threshold);
-* ``von_mises``: the deformed mesh coloured by the von Mises stress.
+* ``von_mises``: the deformed mesh coloured by the von Mises stress (recovered nodal stress by default).
 
 Abscissa ξ on Γ_C: x on a horizontal Γ_C, y on a vertical one (see the core's conventions). λ_n ≥ 0 is
 the contact pressure and, at the discrete solution, λ_n ≈ −σ_n(u_h). The axis labels state which way ξ
@@ -196,9 +196,12 @@ def von_mises(
     window: tuple[float, float, float, float] | None = None,
     edges: bool = True,
     obstacle: bool = False,
+    recovered: bool = True,
 ) -> Axes:
     """The mesh deformed by ``scale`` × u (default: the largest displacement drawn as 5 % of the body's
-    size), coloured by the von Mises stress per triangle. ``window`` = (xmin, xmax, ymin, ymax) zooms.
+    size), coloured by the von Mises stress of the recovered nodal stress (``Solution.nodal_von_mises``,
+    interpolated; ``recovered=False``: the P1 cell stress per triangle, which jumps from cell to cell).
+    ``window`` = (xmin, xmax, ymin, ymax) zooms.
     ``obstacle`` draws the obstacle surface after its approach, g(ξ) = g0(ξ) − δ off Γ_C along n (it is
     where the deformed Γ_C should touch it when ``scale`` is 1)."""
     ax = _axes(ax)
@@ -211,7 +214,10 @@ def von_mises(
         scale = 0.05 * size / umax if umax > 0 else 1.0
     q = p + scale * u
     tri = Triangulation(q[:, 0], q[:, 1], mesh.triangles)
-    art = ax.tripcolor(tri, facecolors=solution.von_mises, cmap="viridis", shading="flat")
+    if recovered:
+        art = ax.tripcolor(tri, solution.nodal_von_mises, cmap="viridis", shading="gouraud")
+    else:
+        art = ax.tripcolor(tri, facecolors=solution.von_mises, cmap="viridis", shading="flat")
     if edges:
         ax.triplot(tri, color="k", lw=0.15, alpha=0.5)
     if obstacle:
@@ -221,7 +227,7 @@ def von_mises(
         moved = format_vector(solution.obstacle_motion)
         ax.plot(surface[:, 0], surface[:, 1], color="C3", lw=1.5, label=f"obstacle (moved by {moved})")
         ax.legend(loc="upper right", fontsize="small")
-    ax.figure.colorbar(art, ax=ax, label="von Mises stress")
+    ax.figure.colorbar(art, ax=ax, label="von Mises stress" + (" (recovered, nodal)" if recovered else " (per cell)"))
     ax.set_aspect("equal")
     if window is not None:
         ax.set_xlim(window[0], window[1])

@@ -180,6 +180,11 @@ class Solution(_Record):
             the error of the contact tractions on Γ_C (``report.estimate["traction"]`` is the root of the
             sum of squares); it weighs η_K by the distance to Γ_C and adds the contact and friction
             conditions in units of traction.
+        nodal_stress: the recovered stress (σ_xx, σ_yy, σ_xy) per node, (N, 3): the area-weighted mean of
+            the cell stresses around each node (the simplest Zienkiewicz–Zhu-type recovery). Exact for a
+            linear stress at the interior nodes of a uniform mesh; it smooths the P1 cell stress's jumps,
+            for plots and files. ``stress`` (per triangle) is the stress of the solve.
+        nodal_von_mises: the von Mises stress of ``nodal_stress`` per node, (N,).
     """
 
     friction: Literal["frictionless", "tresca", "coulomb"]
@@ -210,6 +215,8 @@ class Solution(_Record):
     report: Report
     estimator: _Floats = dataclasses.field(default_factory=lambda: np.zeros(0))
     traction_estimator: _Floats = dataclasses.field(default_factory=lambda: np.zeros(0))
+    nodal_stress: _Floats = dataclasses.field(default_factory=lambda: np.zeros((0, 3)))
+    nodal_von_mises: _Floats = dataclasses.field(default_factory=lambda: np.zeros(0))
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Solution:

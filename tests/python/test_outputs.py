@@ -162,3 +162,28 @@ def test_reprs_format_numbers_for_people(hertz: tribo.Problem) -> None:
     assert "gamma0=0," in repr(s.report) and "e0" not in repr(s.report)
     assert "gamma0_bound=9.29e-4)" in repr(hertz)
     assert f"normal_force={s.normal_force:.6g}," in repr(s)
+
+
+def test_recovered_stress_is_written_and_plotted(hertz: tribo.Problem, tmp_path: Path) -> None:
+    """The recovered nodal stress is a mean of the cell stresses around each node (so within their
+    range), its von Mises is written as VTU point data (read back with meshio), and the von Mises plot
+    shows it by default (the cell stress with recovered=False)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import meshio
+
+    from tribo.io import write_vtu
+    from tribo.plot import von_mises
+
+    s = hertz.solve(mu=0.3)
+    n = hertz.mesh.n_nodes
+    assert s.nodal_stress.shape == (n, 3) and s.nodal_von_mises.shape == (n,)
+    assert np.all(s.nodal_stress.min(axis=0) >= s.stress.min(axis=0) - 1e-12)
+    assert np.all(s.nodal_stress.max(axis=0) <= s.stress.max(axis=0) + 1e-12)
+    write_vtu(tmp_path / "r.vtu", hertz, s)
+    body = meshio.read(tmp_path / "r.vtu")
+    np.testing.assert_allclose(body.point_data["von_mises_recovered"], s.nodal_von_mises)
+    np.testing.assert_allclose(body.point_data["stress_recovered"], s.nodal_stress)
+    assert "recovered" in von_mises(hertz, s).figure.axes[-1].get_ylabel()
+    assert "per cell" in von_mises(hertz, s, recovered=False).figure.axes[-1].get_ylabel()

@@ -43,11 +43,13 @@ pub fn solution<'py>(py: Python<'py>, s: &tribo::Solution) -> PyResult<Bound<'py
     d.set_item("mu", s.report.mu)?;
     d.set_item("displacement", pairs(py, &s.displacement)?)?;
     d.set_item("stress", mat(py, &s.stress)?)?;
+    d.set_item("nodal_stress", mat(py, &s.nodal_stress)?)?;
     d.set_item("reactions", pairs(py, &s.reactions)?)?;
     d.set_item("states", vec1(py, &s.states.iter().map(|&s| s.code() as i8).collect::<Vec<_>>())?)?;
     for (name, v) in [
         ("stress_zz", &s.stress_zz),
         ("von_mises", &s.von_mises),
+        ("nodal_von_mises", &s.nodal_von_mises),
         ("multiplier_abscissae", &s.multiplier_abscissae),
         ("lambda_n", &s.lambda_n),
         ("lambda_t", &s.lambda_t),

@@ -21,6 +21,11 @@ pub struct Solution {
     pub stress_zz: Vec<f64>,
     /// Von Mises stress per triangle (plane strain).
     pub von_mises: Vec<f64>,
+    /// The recovered stress (σ_xx, σ_yy, σ_xy) per node: the area-weighted mean of the cell stresses
+    /// around it ([`crate::fem::elasticity::recovered_stress`]), for plots and files.
+    pub nodal_stress: Vec<[f64; 3]>,
+    /// The von Mises stress of [`Solution::nodal_stress`] per node.
+    pub nodal_von_mises: Vec<f64>,
     /// Reaction forces on clamped dofs (2N, zero elsewhere): `K u − f` (f the load of the load case).
     pub reactions: Vec<f64>,
     /// Abscissae of the multiplier dofs.
@@ -99,6 +104,8 @@ impl Solution {
         let stress = element_stresses(mesh, material, &displacement);
         let von_mises = stress.iter().map(|s| material.von_mises(*s)).collect();
         let stress_zz = stress.iter().map(|s| material.sigma_zz(*s)).collect();
+        let nodal_stress = crate::fem::elasticity::recovered_stress(mesh, &stress);
+        let nodal_von_mises = nodal_stress.iter().map(|s| material.von_mises(*s)).collect();
         // Reactions K u − f on all dofs (zero up to round-off on free dofs), K u from the stresses.
         let mut reactions = internal_forces(mesh, &stress);
         for (r, f) in reactions.iter_mut().zip(&loading.f_full) {
@@ -176,6 +183,8 @@ impl Solution {
             stress,
             stress_zz,
             von_mises,
+            nodal_stress,
+            nodal_von_mises,
             reactions,
             multiplier_abscissae: problem.multipliers.dof_abscissae(),
             lambda_n,
@@ -216,6 +225,7 @@ impl Solution {
         [
             &self.displacement,
             &self.von_mises,
+            &self.nodal_von_mises,
             &self.reactions,
             &self.lambda_n,
             &self.lambda_t,
