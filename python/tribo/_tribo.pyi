@@ -208,10 +208,8 @@ class Problem(ProblemData):
         on: list[int] = ...,
     ) -> tuple[
         dict[str, Any],
-        list[tuple[tuple[int, int, int, list[tuple[str, float]], float, float], str]],
+        list[tuple[tuple[int, int, int, list[tuple[str, float]], float, float], str, Mesh, _Floats1]],
         str,
-        Mesh,
-        _Floats1,
     ]: ...
     def contact_points(self, xi: _ArrayLike) -> _Floats2: ...
     def evaluate_multiplier(self, values: _ArrayLike, xi: _ArrayLike) -> _Floats1: ...

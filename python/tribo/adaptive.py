@@ -7,7 +7,9 @@ mesh is the refined one):
 * ``adapt.csv``: per level, the unknowns, multiplier dofs and triangles, the relative estimate the loop
   stops on (of the contact tractions, or of the energy while nothing touches), the estimate η with its
   bulk, Γ_C, contact and friction parts, the level's seconds and status;
-* ``adapt.png``: the relative estimate and η against the unknowns (log-log), with the tolerance.
+* ``adapt.png``: the relative estimate and η against the unknowns (log-log), with the tolerance;
+* ``levels/level_NNN.vtu`` and ``adapt.pvd`` (``write_levels``, a one-solve scene only): every level's
+  mesh and solution, solved again to full tolerance, a series ParaView steps through.
 """
 
 from __future__ import annotations
@@ -19,9 +21,11 @@ from typing import Any
 
 import numpy as np
 
+from tribo.history import write_pvd
+from tribo.io import write_vtu
 from tribo.results import Adaptive, AdaptiveHistory
 
-__all__ = ["adapt_table", "write_adaptive"]
+__all__ = ["adapt_table", "write_adaptive", "write_levels"]
 
 log = logging.getLogger("tribo")
 
@@ -41,6 +45,26 @@ def adapt_table(adaptive: Adaptive | AdaptiveHistory) -> dict[str, list[Any]]:
     table["seconds"] = [x.seconds for x in lv]
     table["status"] = [x.status for x in lv]
     return table
+
+
+def write_levels(out: str | Path, adaptive: Adaptive, **solve: Any) -> list[Path]:
+    """Solves every level's problem again (``solve`` keywords, to their full tolerances) and writes the
+    series ``levels/level_NNN.vtu`` (+ ``_contact``, ``_multipliers``) with ``adapt.pvd`` (and
+    ``adapt_contact.pvd``, ``adapt_multipliers.pvd``): ParaView steps through the refinement, the level
+    as the time."""
+    out = Path(out)
+    (out / "levels").mkdir(parents=True, exist_ok=True)
+    series: list[list[Path]] = [[], [], []]
+    for k in range(len(adaptive.levels)):
+        problem = adaptive.level_problem(k)
+        solution = problem.solve(**solve)
+        for part, p in zip(series, write_vtu(out / "levels" / f"level_{k:03d}.vtu", problem, solution), strict=True):
+            part.append(p)
+    files = [p for part in series for p in part]
+    levels = list(range(len(adaptive.levels)))
+    for name, part in zip(("adapt", "adapt_contact", "adapt_multipliers"), series, strict=True):
+        files.append(write_pvd(out / f"{name}.pvd", part, levels))
+    return files
 
 
 def write_adaptive(

@@ -6,8 +6,9 @@
   global components Fx, Fy), the obstacle's motion in global axes, KKT residuals, timings, the a posteriori
   error estimate (``estimate``: η, its parts and the relative traction and energy estimates), warnings, and
   the conventions (n, t, the direction of ξ, the signs of λ_t, of the shift and of the forces);
-* ``adapt.csv`` and ``adapt.png`` for a scene with ``[adapt]`` (the outputs above are then the last
-  level's, on its refined mesh; see ``tribo.adaptive``);
+* ``adapt.csv``, ``adapt.png`` and the level series ``levels/level_NNN.vtu`` with ``adapt.pvd`` for a
+  scene with ``[adapt]`` (the outputs above are then the last level's, on its refined mesh; see
+  ``tribo.adaptive``);
 * ``contact.csv`` (per multiplier dof), ``contact_nodes.csv``, ``contact_edges.csv``: the contact fields;
 * ``result.vtu``, ``result_contact.vtu``, ``result_multipliers.vtu``: for ParaView;
 * ``contact_normal.png``, ``contact_tangential.png``, ``von_mises.png``, ``von_mises_contact.png``
@@ -41,7 +42,7 @@ from typing import Any
 import numpy as np
 
 from tribo._tribo import TriboError, __version__
-from tribo.adaptive import write_adaptive
+from tribo.adaptive import write_adaptive, write_levels
 from tribo.checks import SceneWarning, conventions, warn_solution
 from tribo.history import write_history
 from tribo.io import write_contact_csv, write_vtu
@@ -197,6 +198,7 @@ def run_scene(scene: Scene, out: Path, *, plots: bool = True) -> tuple[Problem, 
             adaptive = run_adaptive(scene, problem)
             problem, solution = adaptive.problem, adaptive.solution
             history_files = write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
+            history_files += write_levels(out, adaptive, **scene.solve_kwargs())
             warn_solution(problem, solution)
         else:
             history_files = []

@@ -214,10 +214,11 @@ def von_mises(
         scale = 0.05 * size / umax if umax > 0 else 1.0
     q = p + scale * u
     tri = Triangulation(q[:, 0], q[:, 1], mesh.triangles)
-    if recovered:
-        art = ax.tripcolor(tri, solution.nodal_von_mises, cmap="viridis", shading="gouraud")
-    else:
-        art = ax.tripcolor(tri, facecolors=solution.von_mises, cmap="viridis", shading="flat")
+    art = (
+        ax.tripcolor(tri, solution.nodal_von_mises, cmap="viridis", shading="gouraud")
+        if recovered
+        else ax.tripcolor(tri, facecolors=solution.von_mises, cmap="viridis", shading="flat")
+    )
     if edges:
         ax.triplot(tri, color="k", lw=0.15, alpha=0.5)
     if obstacle:

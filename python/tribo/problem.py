@@ -192,8 +192,8 @@ class Problem(_tribo.Problem):
             "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
         }
         adapt = (tol, max_unknowns, theta, marking, max_levels, algebraic)
-        solution, problem, levels, stop = self._adapt(options, adapt)
-        return Adaptive(solution=Solution.from_dict(solution), problem=problem, levels=levels, stop=stop)  # type: ignore[arg-type]
+        solution, problem, levels, stop, meshes = self._adapt(options, adapt)
+        return Adaptive(solution=Solution.from_dict(solution), problem=problem, levels=levels, stop=stop, meshes=meshes)  # type: ignore[arg-type]
 
     def solve_history_adaptive(
         self,
@@ -231,21 +231,30 @@ class Problem(_tribo.Problem):
             "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
         }
         adapt = (tol, max_unknowns, theta, marking, max_levels, algebraic)
-        history, problem, levels, stop = self._adapt(options, adapt, steps, list(on or []))
-        return AdaptiveHistory(history=History.from_dict(history), problem=problem, levels=levels, stop=stop)  # type: ignore[arg-type]
+        history, problem, levels, stop, meshes = self._adapt(options, adapt, steps, list(on or []))
+        return AdaptiveHistory(
+            history=History.from_dict(history), problem=problem, levels=levels, stop=stop, meshes=meshes  # type: ignore[arg-type]
+        )
 
     def _adapt(
         self, options: dict[str, Any], adapt: tuple[Any, ...], *history: Any
-    ) -> tuple[Any, Problem, list[Level], str]:
-        """The compiled adaptive loop; the Problem of the last mesh and the levels as Level records."""
-        answer, levels, stop, mesh, multiplier_mesh = self._solve_adaptive(options, adapt, *history)
-        arguments = {**self._arguments, "multiplier_ratio": None, "multiplier_size": None}
-        problem = Problem(mesh, **{**arguments, "multiplier_points": multiplier_mesh})
+    ) -> tuple[Any, Problem, list[Level], str, list[tuple[_tribo.Mesh, npt.NDArray[np.float64]]]]:
+        """The compiled adaptive loop: its answer, the Problem of the last mesh, the levels as Level
+        records, the stop, and each level's mesh with its T_H points."""
+        answer, levels, stop = self._solve_adaptive(options, adapt, *history)
         records = [
             Level(unknowns=u, multipliers=q, triangles=t, estimate=dict(e), relative=r, seconds=s, status=st)  # type: ignore[arg-type]
-            for ((u, q, t, e, r, s), st) in levels
+            for ((u, q, t, e, r, s), st, _, _) in levels
         ]
-        return answer, problem, records, stop
+        meshes = [(mesh, xi) for (_, _, mesh, xi) in levels]
+        return answer, self.on_mesh(*meshes[-1]), records, stop, meshes
+
+    def on_mesh(self, mesh: _tribo.Mesh, multiplier_points: npt.ArrayLike) -> Problem:
+        """This problem (material, supports, loads, obstacle, multiplier space) on another mesh with the
+        multiplier mesh T_H through ``multiplier_points`` (abscissae on Γ_C): how an adaptive solve hands
+        back the problem of a level."""
+        arguments = {**self._arguments, "multiplier_ratio": None, "multiplier_size": None}
+        return Problem(mesh, **{**arguments, "multiplier_points": multiplier_points})
 
     @property
     def contact_edges(self) -> npt.NDArray[np.int64]:

@@ -35,6 +35,12 @@ def test_the_loop_finds_the_contact_zone_and_hands_back_its_problem() -> None:
     scale = np.max(out.solution.lambda_n)
     assert np.max(np.abs(again.lambda_n - out.solution.lambda_n)) <= 1e-6 * scale
     assert pickle.loads(pickle.dumps(out.levels)) == out.levels
+    # Every level's mesh and T_H come back; level k's problem is the one the loop solved there.
+    assert len(out.meshes) == len(out.levels)
+    for k in (0, len(out.levels) // 2, len(out.levels) - 1):
+        level = out.level_problem(k)
+        assert level.n_free == out.levels[k].unknowns and level.n_multipliers == out.levels[k].multipliers
+    assert out.level_problem(0).mesh.n_triangles == problem.mesh.n_triangles
 
 
 def test_the_loop_stops_before_max_unknowns_and_when_told() -> None:

@@ -396,6 +396,13 @@ def test_run_adapts_a_scene_with_an_adapt_table(tmp_path: Path) -> None:
     vtu = meshio.read(tmp_path / "o" / "result.vtu")
     assert len(vtu.cells_dict["triangle"]) == int(rows[-1]["triangles"])
     assert (tmp_path / "o" / "adapt.png").stat().st_size > 0
+    # The level series: one VTU per level in adapt.pvd, each on its level's mesh.
+    import xml.etree.ElementTree as ET
+
+    files = [d.get("file") for d in ET.parse(tmp_path / "o" / "adapt.pvd").getroot().iter("DataSet")]
+    assert files == [f"levels/level_{k:03d}.vtu" for k in range(len(rows))]
+    for f, row in zip(files, rows, strict=True):
+        assert len(meshio.read(tmp_path / "o" / str(f)).cells_dict["triangle"]) == int(row["triangles"])
 
 
 def test_run_adapts_a_history(tmp_path: Path) -> None:

@@ -343,9 +343,8 @@ impl PyProblem {
         results::history(py, &finish(result, error)?)
     }
 
-    /// Solves adaptively (`tribo.Problem.solve_adaptive`), or the history of `steps` adaptively on the steps
-    /// `on` (`solve_history_adaptive`); returns the last solution's or the history's fields, the levels
-    /// as tuples, the stop reason, and the last mesh with its T_H abscissae.
+    /// Solves adaptively (`solve_adaptive`), or the history `steps` on the steps `on` (`solve_history_adaptive`);
+    /// returns the solution's or history's fields, the levels (each with its mesh and T_H) and the stop.
     #[pyo3(name = "_solve_adaptive", signature = (options, a, steps = None, on = Vec::new()))]
     fn solve_adaptive<'py>(
         &self,
@@ -364,18 +363,19 @@ impl PyProblem {
                 |l: &Level| observe_with(o.progress.as_ref(), (l.unknowns, l.relative, l.seconds), &mut error);
             let (p, f, s, ob) = (&self.inner, &o.friction, &o.settings, Some(&mut observe as LevelObserver<'_>));
             match &steps {
-                None => p.solve_adaptive(f, s, &adapt, ob).map(|a| (a.problem, Err(a.solution), a.levels, a.stop)),
-                Some(t) => p
-                    .solve_history_adaptive(f, t, s, &adapt, &on, ob)
-                    .map(|a| (a.problem, Ok(a.history), a.levels, a.stop)),
+                None => p.solve_adaptive(f, s, &adapt, ob).map(|a| (Err(a.solution), a.levels, a.stop)),
+                Some(t) => {
+                    p.solve_history_adaptive(f, t, s, &adapt, &on, ob).map(|a| (Ok(a.history), a.levels, a.stop))
+                }
             }
         });
-        let (problem, answer, levels, stop) = finish(result, error)?;
+        let (answer, levels, stop) = finish(result, error)?;
         let answer = answer.map_or_else(|s| results::solution(py, &s), |h| results::history(py, &h))?;
         let level = |l: &Level| (l.unknowns, l.multipliers, l.triangles, l.estimate.named(), l.relative, l.seconds);
-        let levels: Vec<_> = levels.iter().map(|l| (level(l), l.status.name())).collect();
-        let xi = vec1(py, &problem.multipliers.xi)?;
-        (answer, levels, stop.as_str(), PyMesh::from_core(py, problem.mesh)?, xi).into_pyobject(py)
+        let mesh =
+            |l: Level| Ok((level(&l), l.status.name(), PyMesh::from_core(py, l.mesh)?, vec1(py, &l.multiplier_mesh)?));
+        let levels = levels.into_iter().map(mesh).collect::<PyResult<Vec<_>>>()?;
+        (answer, levels, stop.as_str()).into_pyobject(py)
     }
 
     /// Points of Γ_C's line at abscissae `xi`, (M, 2).

@@ -52,7 +52,7 @@ use crate::settings::friction::Friction;
 use crate::settings::{AdaptSettings, SolverSettings};
 
 /// One level of an adaptive solve.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct Level {
     /// Unknowns (displacement dofs after the supports).
     pub unknowns: usize,
@@ -68,6 +68,11 @@ pub struct Level {
     pub seconds: f64,
     /// How the level's solve ended.
     pub status: SolveStatus,
+    /// The level's mesh (the edge sets and the newest-vertex labels with it), so that a level can be
+    /// looked at or solved again.
+    pub mesh: crate::mesh::Mesh,
+    /// The points of the level's multiplier mesh T_H (abscissae on Γ_C).
+    pub multiplier_mesh: Vec<f64>,
 }
 
 /// Why the adaptive loop stopped.
@@ -264,6 +269,8 @@ fn new_level(problem: &Problem, solutions: Vec<&Solution>, status: SolveStatus) 
         relative: worst.map_or(f64::NAN, |_| relative(&estimate)),
         seconds: 0.0,
         status,
+        mesh: problem.mesh.clone(),
+        multiplier_mesh: problem.multipliers.xi.clone(),
     }
 }
 
