@@ -377,3 +377,27 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
     };
     (eta, zeta, estimate)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::generate::{rectangle, Diagonal};
+
+    /// A triangle on Γ_C weighs 1/h_K (the trace inequality at its own scale); one at depth d weighs
+    /// h_K²/(h_K + d)³, so a layer of triangles no larger than its depth counts alike and a far one
+    /// fades as d⁻³.
+    #[test]
+    fn the_traction_weight_falls_with_the_distance_to_gamma_c() {
+        let mesh = rectangle([0.0, 4.0], [0.0, 4.0], 4, 4, Diagonal::Right).expect("valid");
+        let contact = ContactBoundary::new(&mesh, "top").expect("straight");
+        let w = traction_weights(&mesh, &contact);
+        let h = mesh.diameter(0);
+        for t in 0..mesh.n_triangles() {
+            let depth = mesh.vertices(t).iter().map(|p| 4.0 - p[1]).fold(f64::INFINITY, f64::min);
+            let expected = h * h / (h + depth).powi(3);
+            assert!((w[t] - expected).abs() <= 1e-12 * expected, "triangle {t}: {} against {expected}", w[t]);
+        }
+        let on = (0..mesh.n_triangles()).filter(|&t| mesh.vertices(t).iter().any(|p| p[1] == 4.0));
+        assert!(on.into_iter().all(|t| (w[t] - 1.0 / h).abs() <= 1e-12 / h));
+    }
+}
