@@ -392,10 +392,10 @@ mod tests {
         let contact = ContactBoundary::new(&mesh, "top").expect("straight");
         let w = traction_weights(&mesh, &contact);
         let h = mesh.diameter(0);
-        for t in 0..mesh.n_triangles() {
+        for (t, &wt) in w.iter().enumerate() {
             let depth = mesh.vertices(t).iter().map(|p| 4.0 - p[1]).fold(f64::INFINITY, f64::min);
             let expected = h * h / (h + depth).powi(3);
-            assert!((w[t] - expected).abs() <= 1e-12 * expected, "triangle {t}: {} against {expected}", w[t]);
+            assert!((wt - expected).abs() <= 1e-12 * expected, "triangle {t}: {wt} against {expected}");
         }
         let on = (0..mesh.n_triangles()).filter(|&t| mesh.vertices(t).iter().any(|p| p[1] == 4.0));
         assert!(on.into_iter().all(|t| (w[t] - 1.0 / h).abs() <= 1e-12 / h));
