@@ -4,6 +4,7 @@ must, and refuses bad settings with a SettingsError naming the setting."""
 from __future__ import annotations
 
 import pickle
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -95,3 +96,25 @@ def test_contact_edges_join_consecutive_contact_nodes() -> None:
     assert edges.shape == (len(nodes) - 1, 2) and np.array_equal(edges[:, 0], nodes[:-1])
     points = problem.mesh.points
     assert np.all(np.diff(problem.node_abscissae) > 0) and np.all(points[edges[:, 1], 0] > points[edges[:, 0], 0])
+
+
+def test_a_body_read_from_a_gmsh_file_refines(tmp_path: Path) -> None:
+    """A mesh read with meshio (a Gmsh file: four triangles of the unit square, physical lines 'top'
+    and 'bottom') adapts like a generated one: the edge sets are inherited by the halves, and the loop
+    finds a contact zone that falls between the file's nodes."""
+    from test_io import MSH22
+
+    from tribo.io import read_mesh
+
+    path = tmp_path / "square.msh"
+    path.write_text(MSH22)
+    mesh = read_mesh(path)
+    problem = tribo.Problem(mesh, young=200.0, poisson=0.3, clamped="bottom", contact="top",
+                            obstacle=tribo.Obstacle.circle(1.0, center=0.45), approach=0.002)
+    assert problem.solve().normal_force == 0.0, "no node of the file's top edge touches"
+    out = problem.solve_adaptive(tol=0.2)
+    assert out.stop == "tolerance" and out.solution.normal_force > 0.0
+    last = out.problem.mesh
+    top = last.points[np.unique(last.edge_sets["top"])]
+    assert np.allclose(top[:, 1], 1.0) and len(top) > 10, "the top edge set was refined along with the mesh"
+    assert np.allclose(last.points[np.unique(last.edge_sets["bottom"])][:, 1], 0.0)
