@@ -178,7 +178,9 @@ class Problem(_tribo.Problem):
         last ``solution``, the ``problem`` on the last mesh, every level and the reason it stopped.
 
         The relative estimate is that of the contact tractions (λ in L²(Γ_C)) when something touches, of
-        the energy while nothing does. Marking is Dörfler's with ``theta`` (default 0.5), or the maximum
+        the energy while nothing does. It bounds the true error, pessimistically (on Hertz by 3 on coarse
+        meshes and up to 24 on fine ones, docs/STUDIES.md, study 6): ``tol`` is a guarantee, and the
+        answer is usually several times more accurate. Marking is Dörfler's with ``theta`` (default 0.5), or the maximum
         strategy (``marking='maximum'``); ``max_levels`` (default 40) bounds the levels. A level's Coulomb
         fixed point stops once its change is ``algebraic`` (default 0.1) times the previous level's relative
         estimate (never below ``fp_tol``); the last level is solved again to ``fp_tol``. T_H is refined

@@ -79,18 +79,15 @@ pub fn solution<'py>(py: Python<'py>, s: &tribo::Solution) -> PyResult<Bound<'py
 /// `History` as a dict: its solutions as dicts, and the per-step series the core derives from them.
 pub fn history<'py>(py: Python<'py>, h: &tribo::History) -> PyResult<Bound<'py, PyDict>> {
     let count = |state| vec1(py, &h.count(state).into_iter().map(|c| c as i64).collect::<Vec<_>>());
-    let step = |f: fn(&tribo::LoadStep) -> f64| vec1(py, &h.steps.iter().map(f).collect::<Vec<_>>());
     let boundaries = h.stick_slip_boundaries().iter().map(|b| vec1(py, b)).collect::<PyResult<Vec<_>>>()?;
     let d = PyDict::new(py);
     d.set_item("status", h.status.name())?;
     d.set_item("ended_at", h.ended_at)?;
     d.set_item("solutions", h.solutions.iter().map(|s| solution(py, s)).collect::<PyResult<Vec<_>>>()?)?;
     d.set_item("failed", h.failed.as_deref().map(|s| solution(py, s)).transpose()?)?;
-    d.set_item("approach", step(|s| s.approach)?)?;
-    d.set_item("shift", step(|s| s.shift)?)?;
-    d.set_item("load_factor", step(|s| s.load_factor)?)?;
-    d.set_item("normal_force", vec1(py, &h.normal_force())?)?;
-    d.set_item("tangential_force", vec1(py, &h.tangential_force())?)?;
+    for (name, v) in h.series() {
+        d.set_item(name, vec1(py, &v)?)?;
+    }
     d.set_item("stick_count", count(ContactState::Stick)?)?;
     d.set_item("slip_count", count(ContactState::Slip)?)?;
     d.set_item("separation_count", count(ContactState::Separation)?)?;
@@ -98,7 +95,6 @@ pub fn history<'py>(py: Python<'py>, h: &tribo::History) -> PyResult<Bound<'py, 
     d.set_item("stick_zone", mat(py, &h.extent(|s| s == ContactState::Stick))?)?;
     d.set_item("stick_slip_boundaries", boundaries)?;
     d.set_item("gross_sliding", vec1(py, &h.gross_sliding())?)?;
-    d.set_item("step_seconds", vec1(py, &h.step_seconds)?)?;
     d.set_item("factorizations", h.factorizations)?;
     d.set_item("setup_seconds", h.setup_seconds)?;
     Ok(d)

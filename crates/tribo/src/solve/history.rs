@@ -84,6 +84,20 @@ pub struct History {
 }
 
 impl History {
+    /// The per-step series of numbers by name: the approach, shift and load factor of every step asked
+    /// for, the total forces of the converged steps, and the wall time of each step solved.
+    pub fn series(&self) -> [(&'static str, Vec<f64>); 6] {
+        let step = |f: fn(&LoadStep) -> f64| self.steps.iter().map(f).collect();
+        [
+            ("approach", step(|s| s.approach)),
+            ("shift", step(|s| s.shift)),
+            ("load_factor", step(|s| s.load_factor)),
+            ("normal_force", self.normal_force()),
+            ("tangential_force", self.tangential_force()),
+            ("step_seconds", self.step_seconds.clone()),
+        ]
+    }
+
     /// Total normal force `∫ λ_n` per converged step.
     pub fn normal_force(&self) -> Vec<f64> {
         self.solutions.iter().map(|s| s.normal_force).collect()
