@@ -159,3 +159,13 @@ def test_adaptive_history(tmp_path: Path) -> None:
     assert adaptive[-1]["n_free"] > adaptive[0]["n_free"] and adaptive[-1]["ca_error"] < adaptive[0]["ca_error"]
     levels = [r for r in rows if r["family"] == "levels"]
     assert levels[-1]["energy_estimate"] >= levels[-1]["energy_error"] > 0.0
+
+
+def test_adaptive_block(tmp_path: Path) -> None:
+    rows = study("study_adaptive_block").main(["--smoke", "--out", str(tmp_path)])
+    outputs(tmp_path, "adaptive_block")
+    adaptive = [r for r in rows if r["family"] == "adaptive"]
+    assert all(r["stop"] == "tolerance" and r["relative"] <= r["key"] for r in adaptive), adaptive
+    assert adaptive[-1]["error"] < adaptive[0]["error"] and adaptive[-1]["n_free"] > adaptive[0]["n_free"]
+    # The estimate bounds the error (the smoke reference is a uniform 160 x 40 mesh).
+    assert all(r["error"] <= r["relative"] for r in adaptive), adaptive
