@@ -69,7 +69,8 @@ pub struct Level {
     /// How the level's solve ended.
     pub status: SolveStatus,
     /// The level's mesh (the edge sets and the newest-vertex labels with it), so that a level can be
-    /// looked at or solved again.
+    /// looked at or solved again. The levels grow geometrically, so all their meshes together take a few
+    /// times the memory of the last one.
     pub mesh: crate::mesh::Mesh,
     /// The points of the level's multiplier mesh T_H (abscissae on Γ_C).
     pub multiplier_mesh: Vec<f64>,
