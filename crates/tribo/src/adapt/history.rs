@@ -3,7 +3,7 @@
 //! then the one solved on the last mesh. A stick zone that moves, or a contact zone that grows, is
 //! refined for every step it passes through, on one mesh.
 
-use super::{AdaptStop, Adaptive, Level, LevelObserver};
+use super::{AdaptStop, Level, LevelObserver};
 use crate::error::{Error, Result};
 use crate::problem::Problem;
 use crate::settings::friction::Friction;
@@ -63,13 +63,5 @@ impl Problem {
         let ended = |h: &History| (h.status, h.solutions.iter().map(|s| s.report.iterations).sum());
         let (problem, history, levels, stop) = self.adapt_loop(settings, adapt, observer, &solve, &read, &ended)?;
         Ok(AdaptiveHistory { problem, history, levels, stop })
-    }
-}
-
-impl From<AdaptiveHistory> for Option<Adaptive> {
-    /// The last step of an adaptive history as an adaptive solve (None when no step converged).
-    fn from(a: AdaptiveHistory) -> Self {
-        let solution = a.history.solutions.last()?.clone();
-        Some(Adaptive { problem: a.problem, solution, levels: a.levels, stop: a.stop })
     }
 }
