@@ -169,3 +169,17 @@ def test_adaptive_block(tmp_path: Path) -> None:
     assert adaptive[-1]["error"] < adaptive[0]["error"] and adaptive[-1]["n_free"] > adaptive[0]["n_free"]
     # The estimate bounds the error (the smoke reference is a uniform 160 x 40 mesh).
     assert all(r["error"] <= r["relative"] for r in adaptive), adaptive
+
+
+def test_paths(tmp_path: Path) -> None:
+    rows = study("study_paths").main(["--smoke", "--out", str(tmp_path)])
+    outputs(tmp_path, "paths")
+    assert {r["family"] for r in rows} == {"graded 0.3", "uniform", "adaptive", "block"}
+    for r in rows:
+        for law in ("frictionless", "coulomb"):
+            assert r[f"{law}_chosen"] in ("schur", "saddle", "columns")
+            assert r[f"{law}_ratio"] >= 1.0 and all(r[f"{law}_{p}"] > 0.0 for p in ("schur", "saddle", "columns"))
+    # The rule: graded meshes with a small contact zone under a long refined line do without the
+    # partial factorization; the full-contact block (every multiplier pushed) takes it.
+    assert all(r["frictionless_chosen"] != "schur" for r in rows if r["family"] == "graded 0.3")
+    assert all(r["frictionless_chosen"] == "schur" for r in rows if r["family"] == "block")

@@ -44,18 +44,41 @@ pub(super) fn quasi_definite(e_rows: &[Vec<(usize, f64)>], d_cols: &[Vec<(usize,
     d_positive || e_rows.len() <= touched.len()
 }
 
-/// Whether the partial factorization is the cheaper way to H, and fits the memory budget: it forms all
-/// of `E A⁻¹ Eᵀ` (m = 2q rows) for about one factorization with a dense trailing block of `n_c ≈ 2m`
-/// dofs, against `≈ 4 nnz(L) m` flops for m column solves; with `nnz(L) ≈ 6 nnz(K)` on these meshes
-/// (measured 5.5–7) the partial factorization wins when `m² ≲ 3 nnz(L) ≈ 16 nnz(K)` (a square-ish body with
-/// contact along a side: m ~ √n). A long Γ_C with a small contact zone keeps the columns, of which the
-/// working set forms only those it needs.
-pub(super) fn prefer_schur(nnz_k: usize, e_rows: &[Vec<(usize, f64)>], budget: usize) -> (bool, f64) {
+/// The number of normal multipliers the load is expected to push, before anything is factorized: with no
+/// load on the free dofs (`f = 0`: the body is pressed only by the obstacle's approach or shape), `c = d`
+/// and the count of `d_j < 0` is exact; otherwise every one of the `q` may be.
+pub(super) fn pushed_estimate(f: &[f64], d: &[f64], q: usize) -> usize {
+    if f.iter().all(|&v| v == 0.0) {
+        d[..q].iter().filter(|&&v| v < 0.0).count()
+    } else {
+        q
+    }
+}
+
+/// Whether the partial factorization is the cheaper way to H, and fits the memory budget. It forms all
+/// of `E A⁻¹ Eᵀ` (m = 2q rows) with a dense trailing block of the `n_c` dofs E touches, against
+/// `≈ 4 nnz(L)` flops per column for the columns the QPs need (about the `w` pushed ones, each normal and
+/// tangential) or the saddle-point system's few factorizations (`√w`). Two rules, both measured:
+///
+/// * `m² ≤ 16 nnz(K)`: forming all m columns by solves costs `≈ 4 nnz(L) m` flops, with `nnz(L) ≈ 6 nnz(K)`
+///   (measured 5.5–7), against one factorization with its dense trailing block;
+/// * `n_c² q ≤ 20 nnz(K) w`: the trailing block costs about `n_c²` per unit of fill while the other paths
+///   cost about `w` solves. On refined contact lines (graded or adaptive meshes, `n_c²/nnz(K)` from 7 to
+///   140) it is the dense block that dominates; measured on the Hertz families (`scripts/study_paths.py`,
+///   docs/paths.md, frictionless and Coulomb): the partial factorization is the fastest path up to about
+///   `n_c² q / (nnz(K) w) = 20` (uniform meshes 15, the full-contact block 2.3, adaptive meshes 15–19)
+///   and up to 2.3× slower than the best beyond (graded growth 0.3 at 8k–15k unknowns: 48–87; adaptive
+///   at 28k–65k: 32–54).
+///
+/// `w` is [`pushed_estimate`]; no pushed multiplier (`w = 0`) leaves nothing for H to do.
+pub(super) fn prefer_schur(nnz_k: usize, e_rows: &[Vec<(usize, f64)>], w: usize, budget: usize) -> (bool, f64) {
     let m = e_rows.len() as f64;
     let mut touched: Vec<usize> = e_rows.iter().flatten().map(|&(d, _)| d).collect();
     touched.sort_unstable();
     touched.dedup();
     let nc = touched.len() as f64;
     let bytes = 8.0 * (nc * nc + nc * m + 2.0 * m * m);
-    (m * m <= 16.0 * nnz_k as f64 && bytes <= budget as f64, bytes)
+    let nnz = nnz_k as f64;
+    let dense_pays = nc * nc * (m / 2.0) <= 20.0 * nnz * w as f64;
+    (m * m <= 16.0 * nnz && dense_pays && bytes <= budget as f64, bytes)
 }

@@ -28,7 +28,7 @@ use crate::settings::Condensation;
 mod choose;
 mod diagonal;
 
-use choose::{prefer_saddle, prefer_schur, quasi_definite, CHOLESKY_FILL};
+use choose::{prefer_saddle, prefer_schur, pushed_estimate, quasi_definite, CHOLESKY_FILL};
 
 /// Number of right-hand sides solved together when forming `A⁻¹ Eᵀ`.
 const BLOCK: usize = 64;
@@ -195,7 +195,8 @@ impl Factor {
         }
         let pattern = pattern.to_owned().map_err(|e| Error::Assembly { matrix: "K − G", what: format!("{e:?}") })?;
         let a = SparseColMat::new(pattern, values);
-        let (auto, bytes) = prefer_schur(k.compute_nnz(), &e_rows, budget);
+        let q_half = e_rows.len() / 2;
+        let (auto, bytes) = prefer_schur(k.compute_nnz(), &e_rows, pushed_estimate(f, &d, q_half), budget);
         let use_schur = match condensation {
             Condensation::Columns | Condensation::Saddle => false,
             Condensation::Schur => true,

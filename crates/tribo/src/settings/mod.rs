@@ -65,8 +65,10 @@ named_choice!(QpMethod, "QP method", {
 /// How the multiplier operator H is formed (see [`crate::condensation`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Condensation {
-    /// The partial factorization where it is the cheaper and fits the memory budget; else the saddle-point
+    /// The partial factorization where it is the cheaper and fits the memory budget (its dense trailing
+    /// block of the Γ_C dofs weighed against the multipliers the load pushes); else the saddle-point
     /// system where the contact zone makes the columns of H and the dense QP dearer; else columns.
+    /// Measured against every path forced: `scripts/study_paths.py` (docs/paths.md).
     #[default]
     Auto,
     /// One sparse solve per column of H, for the columns the QPs need (a fill-reducing ordering).
