@@ -68,9 +68,9 @@ class Mesh:
         *,
         side: Literal["bottom", "right", "top", "left"],
         segment: _Pair,
-        h_min: float,
         h_max: float,
-        growth: float,
+        h_min: float | None = None,
+        growth: float | None = None,
     ) -> Mesh: ...
     @property
     def points(self) -> _Floats2: ...

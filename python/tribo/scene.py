@@ -175,9 +175,9 @@ class Scene:
             y,
             side=side,
             segment=segment,
-            h_min=d.get("h_min", h / 16.0),
             h_max=h,
-            growth=d.get("growth", 0.3),
+            h_min=d.get("h_min"),
+            growth=d.get("growth"),
         )
 
     def build(self) -> Problem:

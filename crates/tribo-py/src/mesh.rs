@@ -109,9 +109,10 @@ impl PyMesh {
     }
 
     /// A mesh of the rectangle x × y graded toward `segment` (a coordinate range along `side`): cell size
-    /// h(d) = min(h_max, h_min + growth d) at distance d from the segment. Edge sets as `rectangle`.
+    /// h(d) = min(h_max, h_min + growth d) at distance d from the segment (defaults: the core's). Edge sets
+    /// as `rectangle`.
     #[staticmethod]
-    #[pyo3(signature = (x, y, *, side, segment, h_min, h_max, growth))]
+    #[pyo3(signature = (x, y, *, side, segment, h_max, h_min=None, growth=None))]
     #[allow(clippy::too_many_arguments)]
     fn graded_rectangle(
         py: Python<'_>,
@@ -119,13 +120,14 @@ impl PyMesh {
         y: &Bound<'_, PyAny>,
         side: &str,
         segment: &Bound<'_, PyAny>,
-        h_min: f64,
         h_max: f64,
-        growth: f64,
+        h_min: Option<f64>,
+        growth: Option<f64>,
     ) -> PyResult<Self> {
         let (x, y) = (pair(x, "x", Mesh)?, pair(y, "y", Mesh)?);
         let (side, segment) = (Side::parse(side).map_err(to_pyerr)?, pair(segment, "segment", Mesh)?);
-        let grading = Grading { side, segment, h_min, h_max, growth };
+        let d = Grading::new(side, segment, h_max);
+        let grading = Grading { h_min: h_min.unwrap_or(d.h_min), growth: growth.unwrap_or(d.growth), ..d };
         Self::from_core(py, py.detach(|| tribo::graded_rectangle(x, y, &grading)).map_err(to_pyerr)?)
     }
 
