@@ -10,7 +10,7 @@ every assembly included). Families:
   covers both contact zones), h_max = 0.5, h_min halved from 0.04;
 * adaptive: from the 8 × 4 uniform mesh (no node under either contact zone), tol from 0.2 to 0.01.
 
-Error: the relative L2 error of λ_n against a converged reference of the same scene (`REFERENCE`: graded
+Error: the relative L2 error of λ_n against a converged reference of the same scene (`studylib.REFERENCE`: graded
 toward [c − 0.1, c + 0.1] around the cylinder's centre c, h_min 0.0003125, growth 0.03, h_max 0.05; 175k
 unknowns; halving h_min to 0.00015625 at growth 0.02, 466k unknowns, changes its λ_n by 0.05 %). The L2
 error against the plane-strain Hertz pressure of the computed force is given beside it (`hertz_error`):
@@ -47,8 +47,6 @@ GRADED = [0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125]
 GROWTHS = (0.3, 0.15)
 TOLS = [0.2, 0.15, 0.1, 0.08, 0.06, 0.05, 0.04, 0.03, 0.02, 0.01]
 TARGETS = (0.01, 0.003)
-REFERENCE = dict(h_min=0.0003125, h_max=0.05, growth=0.03, half=0.1)
-SMOKE_REFERENCE = dict(h_min=0.005, h_max=0.1, growth=0.3, half=0.1)
 LEVELS = list(range(4, 29, 2))
 
 
@@ -69,16 +67,14 @@ def hertz_error(p: tribo.Problem, sol: tribo.Solution, center: float) -> float:
 
 def reference(center: float, spec: dict[str, float]) -> sl.Reference:
     """The converged reference of the scene with the cylinder at `center`."""
-    mesh = tribo.Mesh.graded_rectangle(*sl.BOX, side="top", segment=(center - spec["half"], center + spec["half"]),
-                                       h_min=spec["h_min"], h_max=spec["h_max"], growth=spec["growth"])
-    return sl.make_reference(problem(mesh, center))
+    return sl.make_reference(problem(sl.reference_mesh(center, spec), center))
 
 
 def run(smoke: bool, out: Path) -> list[dict[str, Any]]:
     uniform = [16, 32] if smoke else UNIFORM
     graded = [0.04, 0.02] if smoke else GRADED
     tols = [0.2, 0.1] if smoke else TOLS
-    spec = SMOKE_REFERENCE if smoke else REFERENCE
+    spec = sl.SMOKE_REFERENCE if smoke else sl.REFERENCE
     rows: list[dict[str, Any]] = []
     refs = {center: reference(center, spec) for center in CENTERS}
     for center in CENTERS:
