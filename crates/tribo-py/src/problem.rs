@@ -399,6 +399,6 @@ impl PyProblem {
     /// The energy norm sqrt(uᵀ K u) of a nodal displacement `u` (N, 2), K of this mesh and material (no supports).
     fn energy_norm(&self, u: &Bound<'_, PyAny>) -> PyResult<f64> {
         let u = floats(u, "u", &[Some(self.inner.mesh.n_nodes()), Some(2)], Settings)?;
-        Ok(tribo::elasticity::energy_norm(&self.inner.mesh, &self.inner.spec.material, &u))
+        Ok(tribo::elasticity::energy_norm(&self.inner.mesh, &self.inner.materials, &u))
     }
 }

@@ -37,6 +37,9 @@
 //! 6. [`Problem::solve_adaptive`] ([`adapt`]) refines by itself: solve, estimate, mark, newest-vertex
 //!    bisection ([`mesh::refine`]), until the relative estimate meets a tolerance;
 //!    [`Problem::solve_history_adaptive`] does so for a whole loading history, marked on its worst steps.
+//! 7. [`Problem::two_bodies`] ([`problem::bodies`]) puts two elastic bodies in contact instead of one against
+//!    the rigid obstacle: the multipliers and the stabilization on one side, the jump `u¹ − u²∘Π` in the
+//!    contact law ([`pair`] derives it); steps 2–5 are unchanged.
 //!
 //! ## Folders
 //! Folders by job, bottom to top; a folder uses only the folders before it, and the two towers in
@@ -107,10 +110,11 @@ pub use contact::multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace}
 pub use contact::obstacle::{GapFunction, Obstacle, ObstacleShape};
 pub use contact::ContactBoundary;
 pub use error::{Error, Num, Result};
-pub use fem::elasticity::Material;
+pub use fem::elasticity::{Material, Materials};
 pub use fem::supports::{Dofs, NodeSupport, Support};
 pub use mesh::generate::{graded_rectangle, rectangle, Diagonal, Grading, Side};
 pub use mesh::Mesh;
+pub use problem::bodies::{Body, BodyPart, ContactPair};
 pub use problem::load_case::LoadCase;
 #[allow(deprecated)]
 pub use problem::load_case::Loading;
@@ -129,7 +133,7 @@ pub use solve::{Observer, Phase, Progress};
 // The module paths of the flat layout that the folders replaced: they keep resolving, so that code
 // written against them does not break (hidden from the documentation, which shows the folders).
 #[doc(hidden)]
-pub use contact::{mortar, multiplier, obstacle};
+pub use contact::{mortar, multiplier, obstacle, pair};
 #[doc(hidden)]
 pub use fem::{elasticity, supports};
 #[doc(hidden)]

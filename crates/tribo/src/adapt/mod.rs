@@ -179,6 +179,13 @@ impl Problem {
         read: &dyn Fn(&T) -> Vec<&Solution>,
         ended: &dyn Fn(&T) -> (SolveStatus, usize),
     ) -> Result<(Problem, T, Vec<Level>, AdaptStop)> {
+        if let Some(p) = &self.primary {
+            return Err(Error::ContactPair {
+                secondary: self.spec.contact.clone(),
+                primary: p.boundary.set.clone(),
+                what: "adaptive refinement of a two-body problem is not available yet".to_string(),
+            });
+        }
         let ratio = multipliers::ratio(&self.multipliers.xi, &self.contact);
         let mut problem = Problem::new(label_longest_edge(&self.mesh), self.spec.clone())?;
         let mut start: Option<Vec<f64>> = None;

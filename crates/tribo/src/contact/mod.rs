@@ -1,7 +1,8 @@
 //! Contact on Γ_C: the boundary segment and its conventions ([`ContactBoundary`]), the rigid obstacle
 //! ([`obstacle`]), the multiplier mesh T_H and its bases ([`multiplier`]), the Γ_C matrices M1–M3 and the
 //! γ-weighted terms, exact on the common refinement ([`mortar`]), the Barbosa–Hughes operators `−G` and
-//! `E` ([`operators`]) and the admissible bound on γ0 ([`gamma0`]).
+//! `E` ([`operators`]), the admissible bound on γ0 ([`gamma0`]) and the primary side of a two-body
+//! pair ([`pair`]).
 //!
 //! # Conventions
 //! * `n` is the unit **outward** normal of the body on Γ_C and `t = (−n₂, n₁)`, as in the paper.
@@ -20,6 +21,7 @@ pub mod mortar;
 pub mod multiplier;
 pub mod obstacle;
 pub mod operators;
+pub mod pair;
 
 pub use crate::mesh::line::geometric_tol_rel;
 pub use boundary::{ContactBoundary, ContactEdge};

@@ -81,11 +81,11 @@ pub struct Coo {
 }
 
 impl Coo {
-    fn new(nrows: usize, ncols: usize) -> Self {
+    pub(crate) fn new(nrows: usize, ncols: usize) -> Self {
         Self { nrows, ncols, entries: Vec::new() }
     }
 
-    fn compress(mut self) -> Self {
+    pub(crate) fn compress(mut self) -> Self {
         self.entries.sort_by_key(|e| (e.0, e.1));
         let mut out: Vec<(usize, usize, f64)> = Vec::with_capacity(self.entries.len());
         for e in self.entries {
@@ -129,7 +129,7 @@ pub struct MortarMatrices {
     pub gap_moments: Vec<f64>,
 }
 
-const GAUSS2: [(f64, f64); 2] = [(-0.577_350_269_189_625_8, 1.0), (0.577_350_269_189_625_8, 1.0)];
+pub(crate) const GAUSS2: [(f64, f64); 2] = [(-0.577_350_269_189_625_8, 1.0), (0.577_350_269_189_625_8, 1.0)];
 const GAUSS4: [(f64, f64); 4] = [
     (-0.861_136_311_594_052_6, 0.347_854_845_137_453_85),
     (-0.339_981_043_584_856_26, 0.652_145_154_862_546_1),

@@ -13,6 +13,7 @@ use faer::sparse::Triplet;
 use nalgebra::{SVector, Vector3};
 
 use crate::contact::mortar::MortarMatrices;
+use crate::contact::pair::PrimarySide;
 use crate::contact::ContactBoundary;
 use crate::fem::elasticity::{element_dofs, strain_displacement, Material};
 use crate::mesh::Mesh;
@@ -77,18 +78,22 @@ impl ContactStress {
     /// Rows of the coupling `E = B − γ0 Cγ S` over all dofs: `2q` sparse rows (normal then
     /// tangential), each sorted by dof with duplicates summed. `B` is the mortar term
     /// `∫ ψ_j v_n = Σ_i M2[i, j] (v_i · n)` (and `· t`), `Cγ S` the γ-weighted stress term
-    /// `∫ h_T ψ_j σ(v)`.
+    /// `∫ h_T ψ_j σ(v)`. With a `primary` side (two bodies), `B` tests the jump: `∫ ψ_j [v]_n`, the primary
+    /// term `−Σ_i M2²[i, j] (v²_i · n)` added ([`crate::contact::pair`]).
     pub fn coupling_rows(
         &self,
         contact: &ContactBoundary,
         mortar: &MortarMatrices,
+        primary: Option<&PrimarySide>,
         gamma0: f64,
     ) -> Vec<Vec<(usize, f64)>> {
         let q = mortar.psi_integrals.len();
         let (n, t) = (contact.normal, contact.tangent);
         let mut rows: Vec<Vec<(usize, f64)>> = vec![Vec::new(); 2 * q];
-        for &(i, j, m) in &mortar.m2.entries {
-            let node = contact.nodes[i];
+        let secondary = mortar.m2.entries.iter().map(|&(i, j, m)| (contact.nodes[i], j, m));
+        let primary =
+            primary.into_iter().flat_map(|p| p.m2.entries.iter().map(|&(i, j, m)| (p.boundary.nodes[i], j, -m)));
+        for (node, j, m) in secondary.chain(primary) {
             for c in 0..2 {
                 rows[j].push((2 * node + c, m * n[c]));
                 rows[q + j].push((2 * node + c, m * t[c]));

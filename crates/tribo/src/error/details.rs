@@ -109,6 +109,11 @@ impl Error {
                 "ContactNotStraight",
                 vec![("set", T(set.clone())), ("node", I(*node)), ("distance", F(*distance)), ("length", F(*length))],
             ),
+            Self::ContactPair { secondary, primary, what } => (
+                ErrorCategory::ContactGeometry,
+                "ContactPair",
+                vec![("secondary", T(secondary.clone())), ("primary", T(primary.clone())), ("what", T(what.clone()))],
+            ),
             Self::ContactNotConnected { set, what } => (
                 ErrorCategory::ContactGeometry,
                 "ContactNotConnected",

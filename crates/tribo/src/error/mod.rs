@@ -303,6 +303,18 @@ pub enum Error {
         /// Second node.
         b: usize,
     },
+    /// The two sides of a contact pair do not form one: bodies or edge sets that do not exist, contact
+    /// lines that are not one line with opposite normals, a primary line that does not cover the secondary
+    /// one, an obstacle motion on a pair, or a capability not yet available for two bodies.
+    #[error("contact pair (secondary '{secondary}', primary '{primary}'): {what}")]
+    ContactPair {
+        /// The secondary side (`body.edge_set`).
+        secondary: String,
+        /// The primary side (`body.edge_set`).
+        primary: String,
+        /// What is wrong.
+        what: String,
+    },
     /// A traction is applied on Γ_C: the method takes σ(u)·n = −λ there, so Γ_N and Γ_C must not overlap.
     #[error("traction set '{traction_set}' shares edge ({a}, {b}) with the contact boundary '{set}': Γ_N and Γ_C must not overlap")]
     TractionOnContact {

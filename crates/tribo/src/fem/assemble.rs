@@ -7,7 +7,7 @@ use faer::sparse::{SparseColMat, Triplet};
 
 use crate::error::{Error, Result};
 use crate::fem::dofs::Dofs;
-use crate::fem::elasticity::{add_body_force, add_traction, stiffness_triplets, Material};
+use crate::fem::elasticity::{add_body_force, add_traction, stiffness_triplets, MaterialField};
 use crate::mesh::Mesh;
 
 /// The assembled linear system of the body before contact.
@@ -28,7 +28,7 @@ pub struct LinearSystem {
 /// for a non-finite stiffness entry or a matrix faer cannot build.
 pub fn assemble(
     mesh: &Mesh,
-    material: &Material,
+    material: &impl MaterialField,
     body_force: [f64; 2],
     tractions: &[(String, [f64; 2])],
     dofs: &Dofs,

@@ -9,6 +9,41 @@ use nalgebra::{Matrix3, SMatrix, Vector3};
 use crate::error::{Error, Num, Result};
 use crate::mesh::Mesh;
 
+/// The material of each triangle: a [`Material`] is the same everywhere, [`Materials`] gives each region
+/// (the bodies of a two-body problem) its own.
+pub trait MaterialField {
+    /// The material of triangle `t`.
+    fn at(&self, t: usize) -> &Material;
+}
+
+impl MaterialField for Material {
+    fn at(&self, _t: usize) -> &Material {
+        self
+    }
+}
+
+/// One material per region, and the region of every triangle.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Materials {
+    /// The materials, by region.
+    pub materials: Vec<Material>,
+    /// The region of every triangle (an index into `materials`).
+    pub region: Vec<usize>,
+}
+
+impl Materials {
+    /// One material on all `n_triangles` triangles.
+    pub fn uniform(material: Material, n_triangles: usize) -> Self {
+        Self { materials: vec![material], region: vec![0; n_triangles] }
+    }
+}
+
+impl MaterialField for Materials {
+    fn at(&self, t: usize) -> &Material {
+        &self.materials[self.region[t]]
+    }
+}
+
 /// Strain-displacement matrix of one P1 triangle: `ε = B v_T`, with `v_T` the 6 local dofs.
 pub type StrainDisplacement = SMatrix<f64, 3, 6>;
 
@@ -111,11 +146,10 @@ pub fn element_stiffness(mesh: &Mesh, t: usize, c: &Matrix3<f64>) -> SMatrix<f64
 }
 
 /// Triplets of the global stiffness matrix (2N × 2N, duplicates to be summed).
-pub fn stiffness_triplets(mesh: &Mesh, material: &Material) -> Vec<Triplet<usize, usize, f64>> {
-    let c = material.elasticity_matrix();
+pub fn stiffness_triplets(mesh: &Mesh, material: &impl MaterialField) -> Vec<Triplet<usize, usize, f64>> {
     let mut trip = Vec::with_capacity(36 * mesh.n_triangles());
     for (t, tri) in mesh.triangles().iter().enumerate() {
-        let k = element_stiffness(mesh, t, &c);
+        let k = element_stiffness(mesh, t, &material.at(t).elasticity_matrix());
         let dofs = element_dofs(tri);
         for (j, &dj) in dofs.iter().enumerate() {
             for (i, &di) in dofs.iter().enumerate() {
@@ -130,7 +164,7 @@ pub fn stiffness_triplets(mesh: &Mesh, material: &Material) -> Vec<Triplet<usize
 ///
 /// # Errors
 /// [`Error::Assembly`] if faer cannot build the matrix (index overflow, allocation failure).
-pub fn stiffness(mesh: &Mesh, material: &Material) -> Result<SparseColMat<usize, f64>> {
+pub fn stiffness(mesh: &Mesh, material: &impl MaterialField) -> Result<SparseColMat<usize, f64>> {
     let n = 2 * mesh.n_nodes();
     SparseColMat::try_new_from_triplets(n, n, &stiffness_triplets(mesh, material))
         .map_err(|e| Error::Assembly { matrix: "K", what: format!("{e:?}") })
@@ -159,14 +193,13 @@ pub fn add_traction(mesh: &Mesh, edges: &[[usize; 2]], g: [f64; 2], rhs: &mut [f
 }
 
 /// Constant stress `(σ_xx, σ_yy, σ_xy)` in every triangle for the nodal displacement `u` (length 2N).
-pub fn element_stresses(mesh: &Mesh, material: &Material, u: &[f64]) -> Vec<[f64; 3]> {
-    let c = material.elasticity_matrix();
+pub fn element_stresses(mesh: &Mesh, material: &impl MaterialField, u: &[f64]) -> Vec<[f64; 3]> {
     mesh.triangles()
         .iter()
         .enumerate()
         .map(|(t, tri)| {
             let ut = nalgebra::SVector::<f64, 6>::from_iterator(element_dofs(tri).iter().map(|&d| u[d]));
-            let s: Vector3<f64> = c * (strain_displacement(mesh, t) * ut);
+            let s: Vector3<f64> = material.at(t).elasticity_matrix() * (strain_displacement(mesh, t) * ut);
             [s[0], s[1], s[2]]
         })
         .collect()
@@ -209,13 +242,12 @@ pub fn internal_forces(mesh: &Mesh, stresses: &[[f64; 3]]) -> Vec<f64> {
 }
 
 /// Elastic energy norm `sqrt(uᵀ K u)` of a nodal displacement, element by element.
-pub fn energy_norm(mesh: &Mesh, material: &Material, u: &[f64]) -> f64 {
-    let c = material.elasticity_matrix();
+pub fn energy_norm(mesh: &Mesh, material: &impl MaterialField, u: &[f64]) -> f64 {
     let mut e = 0.0;
     for (t, tri) in mesh.triangles().iter().enumerate() {
         let ut = nalgebra::SVector::<f64, 6>::from_iterator(element_dofs(tri).iter().map(|&d| u[d]));
         let eps = strain_displacement(mesh, t) * ut;
-        e += mesh.area(t) * eps.dot(&(c * eps));
+        e += mesh.area(t) * eps.dot(&(material.at(t).elasticity_matrix() * eps));
     }
     e.sqrt()
 }

@@ -114,7 +114,7 @@ impl Problem {
         // −G and E over all dofs, restricted to the unknowns; their action on the lifting ū gives the
         // γ0-dependent part of the lifted load and obstacle moments (see [`crate::fem::supports`]).
         let minus_g_full = self.contact_stress.stiffness_triplets(&self.mortar, gamma0);
-        let e_full = self.contact_stress.coupling_rows(&self.contact, &self.mortar, gamma0);
+        let e_full = self.contact_stress.coupling_rows(&self.contact, &self.mortar, self.primary.as_ref(), gamma0);
         let ubar = &self.dofs.lifting;
         let mut f = self.f_free.clone();
         let mut d = self.obstacle_moments();

@@ -6,6 +6,7 @@
 //! solving it again with the same γ0 (another friction law, other solver settings) costs no
 //! factorization: [`crate::Report::reused_factorization`] says when that happened.
 
+pub mod bodies;
 pub mod load_case;
 
 mod condense;
@@ -23,10 +24,11 @@ use crate::contact::mortar::MortarMatrices;
 use crate::contact::multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace};
 use crate::contact::obstacle::Obstacle;
 use crate::contact::operators::ContactStress;
+use crate::contact::pair::PrimarySide;
 use crate::contact::ContactBoundary;
 use crate::error::{Error, Result};
 use crate::fem::assemble::{assemble, LinearSystem};
-use crate::fem::elasticity::Material;
+use crate::fem::elasticity::{Material, Materials};
 use crate::fem::supports::{Dofs, NodeSupport, Support};
 use crate::mesh::Mesh;
 use condense::FactorCache;
@@ -108,6 +110,15 @@ pub struct Problem {
     pub contact_stress: ContactStress,
     /// Admissible bound on γ0 and the triangle that sets it.
     pub gamma0_bound: Gamma0Bound,
+    /// The material of every triangle (`spec.material` everywhere for one body; per body for two, the
+    /// secondary's being `spec.material`).
+    pub materials: Materials,
+    /// The primary side of a two-body contact pair ([`crate::contact::pair`]); `None` against the rigid
+    /// obstacle.
+    pub primary: Option<PrimarySide>,
+    /// The bodies: their names and where their nodes and triangles lie in `mesh` (one body, `"body"`,
+    /// holding everything, for a one-body problem).
+    pub bodies: Vec<bodies::BodyPart>,
     /// Set-up timings.
     pub timings: SetupTimings,
     /// The factorization of the last [`Problem::condense`].
@@ -122,7 +133,23 @@ impl Problem {
     /// supports do not hold, non-finite loads, Γ_C not straight or not connected or overlapping Γ_D, bad
     /// obstacle, bad multiplier points.
     pub fn new(mesh: Mesh, spec: ProblemSpec) -> Result<Self> {
+        let materials = Materials::uniform(spec.material, mesh.n_triangles());
+        let bodies = vec![bodies::BodyPart::whole("body", &mesh)];
+        Self::build(mesh, spec, materials, None, bodies)
+    }
+
+    /// [`Problem::new`] with per-triangle materials and, for two bodies, the primary contact set.
+    fn build(
+        mesh: Mesh,
+        spec: ProblemSpec,
+        materials: Materials,
+        primary: Option<&str>,
+        bodies: Vec<bodies::BodyPart>,
+    ) -> Result<Self> {
         let clock = Instant::now();
+        for m in &materials.materials {
+            m.validate()?;
+        }
         spec.material.validate()?;
         spec.obstacle.validate()?;
         let supports: Vec<Support> =
@@ -130,7 +157,7 @@ impl Problem {
         let dofs = Dofs::new(&mesh, &supports)?;
         let n_free = dofs.n_free;
         let LinearSystem { k_matrix, f_free, f_full } =
-            assemble(&mesh, &spec.material, spec.body_force, &spec.tractions, &dofs)?;
+            assemble(&mesh, &materials, spec.body_force, &spec.tractions, &dofs)?;
         let assembly = clock.elapsed().as_secs_f64();
 
         let clock = Instant::now();
@@ -144,11 +171,20 @@ impl Problem {
                 return Err(Error::ContactOverlapsDirichlet { set: spec.contact.clone(), a: e.left, b: e.right });
             }
         }
+        let primary_edges: std::collections::HashSet<[usize; 2]> = match primary {
+            Some(set) => mesh.edge_set(set)?.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect(),
+            None => Default::default(),
+        };
         for (traction_set, _) in &spec.tractions {
             for &[a, b] in mesh.edge_set(traction_set)? {
-                if contact_edges.contains(&[a.min(b), a.max(b)]) {
+                let key = [a.min(b), a.max(b)];
+                if contact_edges.contains(&key) || primary_edges.contains(&key) {
                     return Err(Error::TractionOnContact {
-                        set: spec.contact.clone(),
+                        set: if contact_edges.contains(&key) {
+                            spec.contact.clone()
+                        } else {
+                            primary.unwrap_or("").to_string()
+                        },
                         traction_set: traction_set.clone(),
                         a,
                         b,
@@ -162,6 +198,7 @@ impl Problem {
         let multipliers = MultiplierMesh::new(&contact, &spec.multiplier_points, spec.multiplier_space)?;
         let h_t: Vec<f64> = contact.edges.iter().map(|e| mesh.diameter(e.triangle)).collect();
         let mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &spec.obstacle)?;
+        let primary = primary.map(|set| PrimarySide::new(&mesh, &contact, set, &multipliers)).transpose()?;
         let contact_stress = ContactStress::new(&mesh, &spec.material, &contact);
         let gamma0_bound = admissible_gamma0(&mesh, &spec.material, &contact);
         let contact_matrices = clock.elapsed().as_secs_f64();
@@ -180,6 +217,9 @@ impl Problem {
             contact_gap,
             contact_stress,
             gamma0_bound,
+            materials,
+            primary,
+            bodies,
             timings: SetupTimings { assembly, contact_matrices },
             factor_cache: FactorCache::default(),
         })
@@ -200,6 +240,21 @@ impl Problem {
     /// The displacement on all 2N dofs from the unknowns: `u = T x + ū` (prescribed values included).
     pub fn expand(&self, x: &[f64]) -> Vec<f64> {
         self.dofs.expand(x)
+    }
+
+    /// The displacement that the contact law reads at the `i`-th FE node of Γ_C, from the nodal
+    /// displacement `u` (all 2N dofs): `u¹` against the rigid obstacle, the jump `u¹ − u²∘Π` between two
+    /// bodies ([`crate::contact::pair`]).
+    pub fn contact_displacement(&self, i: usize, u: &[f64]) -> [f64; 2] {
+        let node = self.contact.nodes[i];
+        let own = [u[2 * node], u[2 * node + 1]];
+        match &self.primary {
+            None => own,
+            Some(p) => {
+                let other = p.displacement_at(self.contact.node_xi[i], u);
+                [own[0] - other[0], own[1] - other[1]]
+            }
+        }
     }
 }
 

@@ -71,10 +71,11 @@
 //! because it lets the layers under the contact stay coarse; without it, as here, the estimate is the
 //! more pessimistic of the two (see `docs/adaptive.md` for its effectivity).
 
-use crate::contact::mortar::common_refinement;
+use crate::contact::mortar::{common_refinement, GAUSS2};
 use crate::contact::multiplier::MultiplierMesh;
+use crate::contact::pair::PrimarySide;
 use crate::contact::ContactBoundary;
-use crate::fem::elasticity::Material;
+use crate::fem::elasticity::{Material, Materials};
 use crate::fem::supports::{Dofs, NodeSupport};
 use crate::mesh::Mesh;
 
@@ -126,7 +127,12 @@ impl ErrorEstimate {
 /// What the estimator reads of a problem and its solution.
 pub(crate) struct EstimatorInput<'a> {
     pub mesh: &'a Mesh,
+    /// The secondary body's material (E* of the contact terms) and every triangle's.
     pub material: &'a Material,
+    pub materials: &'a Materials,
+    /// The primary side of a two-body pair: its contact edges carry the traction `+λ` (action and
+    /// reaction), not a Neumann datum.
+    pub primary: Option<&'a PrimarySide>,
     pub dofs: &'a Dofs,
     pub contact: &'a ContactBoundary,
     pub multipliers: &'a MultiplierMesh,
@@ -192,6 +198,36 @@ pub(crate) fn traction_weights(mesh: &Mesh, contact: &ContactBoundary) -> Vec<f6
         .collect()
 }
 
+/// The mean over a primary contact edge `[xa, xb]` (abscissae on the secondary line) of
+/// `|σ² n² − (λ_n n + λ_t t)|²`, the body's traction `s = σ² n²` against the reaction of the multiplier
+/// (zero beyond Γ_C), by 2-point Gauss on the pieces T_H cuts it into (exact: λ is piecewise linear).
+fn primary_residual(input: &EstimatorInput<'_>, s: [f64; 2], xa: f64, xb: f64) -> f64 {
+    let (n, t, mult) = (input.contact.normal, input.contact.tangent, input.multipliers);
+    let mut breaks = vec![xa];
+    breaks.extend(mult.xi.iter().copied().filter(|&x| x > xa && x < xb));
+    breaks.push(xb);
+    let nc = mult.xi.len() - 1;
+    let mut sum = 0.0;
+    for w in breaks.windows(2) {
+        let (half, mid) = (0.5 * (w[1] - w[0]), 0.5 * (w[0] + w[1]));
+        for &(g, wg) in &GAUSS2 {
+            let x = mid + half * g;
+            let (ln, lt) = if x < mult.xi[0] || x > mult.xi[nc] {
+                (0.0, 0.0)
+            } else {
+                let cell = mult.xi.partition_point(|&y| y <= x).clamp(1, nc) - 1;
+                let (b, nb) = mult.basis(cell, x);
+                b[..nb]
+                    .iter()
+                    .fold((0.0, 0.0), |acc, &(j, v)| (acc.0 + v * input.lambda_n[j], acc.1 + v * input.lambda_t[j]))
+            };
+            let r = [s[0] - ln * n[0] - lt * t[0], s[1] - ln * n[1] - lt * t[1]];
+            sum += wg * half * (r[0] * r[0] + r[1] * r[1]);
+        }
+    }
+    sum / (xb - xa)
+}
+
 /// The per-triangle indicators η_K and ζ_K (not squared) and the totals.
 pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEstimate) {
     let mesh = input.mesh;
@@ -235,6 +271,19 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
             e[1] += g[1];
         }
     }
+    // The primary's contact edges, with the abscissae of their ends on the secondary line.
+    let primary_edges: std::collections::HashMap<[usize; 2], (f64, f64)> =
+        input.primary.map_or_else(Default::default, |p| {
+            let pts = mesh.points();
+            p.boundary
+                .edges
+                .iter()
+                .map(|e| {
+                    let (xa, xb) = (input.contact.abscissa(pts[e.left]), input.contact.abscissa(pts[e.right]));
+                    ([e.left.min(e.right), e.left.max(e.right)], (xa.min(xb), xa.max(xb)))
+                })
+                .collect()
+        });
     let on_contact: std::collections::HashSet<[usize; 2]> =
         input.contact.edges.iter().map(|e| [e.left.min(e.right), e.left.max(e.right)]).collect();
     for (t, tri) in tris.iter().enumerate() {
@@ -257,7 +306,9 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
                         continue;
                     }
                     let s = traction(&input.stress[t], n);
-                    let r2 = if input.dofs.edges.contains(&key) {
+                    let r2 = if let Some(&(xa, xb)) = primary_edges.get(&key) {
+                        primary_residual(input, s, xa, xb)
+                    } else if input.dofs.edges.contains(&key) {
                         // Γ_D: the traction along a direction the supports leave free must vanish.
                         let free = [a, b].into_iter().find_map(|node| match input.dofs.nodes[node] {
                             NodeSupport::Slide { tangent, .. } => Some(tangent),
@@ -361,7 +412,7 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
 
     let eta: Vec<f64> = parts.iter().map(|p| p.sum().sqrt()).collect();
     let total = |f: fn(&Parts) -> f64| parts.iter().map(f).sum::<f64>().sqrt();
-    let energy = crate::fem::elasticity::energy_norm(mesh, input.material, input.displacement);
+    let energy = crate::fem::elasticity::energy_norm(mesh, input.materials, input.displacement);
     let eta_total = total(Parts::sum);
     let estimate = ErrorEstimate {
         total: eta_total,

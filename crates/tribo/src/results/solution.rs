@@ -2,7 +2,7 @@
 //! multipliers and Γ_C traces), the contact state per multiplier dof, the resultants, the discrete KKT
 //! residuals and the [`Report`].
 
-use crate::fem::elasticity::{element_stresses, internal_forces};
+use crate::fem::elasticity::{element_stresses, internal_forces, MaterialField};
 use crate::problem::load_case::LoadCase;
 use crate::problem::Condensed;
 use crate::results::estimator::{estimate, EstimatorInput};
@@ -99,13 +99,22 @@ impl Solution {
         let (problem, condensed) = (condensed.problem(), condensed.factor());
         let q = condensed.q();
         let mesh = &problem.mesh;
-        let material = &problem.spec.material;
+        let (material, materials) = (&problem.spec.material, &problem.materials);
         let displacement = problem.expand(u_free);
-        let stress = element_stresses(mesh, material, &displacement);
-        let von_mises = stress.iter().map(|s| material.von_mises(*s)).collect();
-        let stress_zz = stress.iter().map(|s| material.sigma_zz(*s)).collect();
+        let stress = element_stresses(mesh, materials, &displacement);
+        let von_mises = stress.iter().enumerate().map(|(t, s)| materials.at(t).von_mises(*s)).collect();
+        let stress_zz = stress.iter().enumerate().map(|(t, s)| materials.at(t).sigma_zz(*s)).collect();
         let nodal_stress = crate::fem::elasticity::recovered_stress(mesh, &stress);
-        let nodal_von_mises = nodal_stress.iter().map(|s| material.von_mises(*s)).collect();
+        // The recovered stress is averaged over each node's triangles, all of one body (bodies share no
+        // node), so the node's material is that of any of them.
+        let mut node_material = vec![0usize; mesh.n_nodes()];
+        for (t, tri) in mesh.triangles().iter().enumerate() {
+            for &v in tri {
+                node_material[v] = t;
+            }
+        }
+        let nodal_von_mises =
+            nodal_stress.iter().zip(&node_material).map(|(s, &t)| materials.at(t).von_mises(*s)).collect();
         // Reactions K u − f on all dofs (zero up to round-off on free dofs), K u from the stresses.
         let mut reactions = internal_forces(mesh, &stress);
         for (r, f) in reactions.iter_mut().zip(&loading.f_full) {
@@ -123,8 +132,8 @@ impl Solution {
         let edge_abscissae = contact.node_xi.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
         let mut u_n = Vec::with_capacity(contact.nodes.len());
         let mut slip = Vec::with_capacity(contact.nodes.len());
-        for (&node, origin) in contact.nodes.iter().zip(&loading.slip_origin) {
-            let (ux, uy) = (displacement[2 * node], displacement[2 * node + 1]);
+        for (i, origin) in loading.slip_origin.iter().enumerate() {
+            let [ux, uy] = problem.contact_displacement(i, &displacement);
             u_n.push(ux * n[0] + uy * n[1]);
             slip.push(ux * t[0] + uy * t[1] - origin);
         }
@@ -143,6 +152,8 @@ impl Solution {
         let input = EstimatorInput {
             mesh,
             material,
+            materials,
+            primary: problem.primary.as_ref(),
             dofs: &problem.dofs,
             contact,
             multipliers: &problem.multipliers,

@@ -234,8 +234,11 @@ fn after(condensed: &Condensed<'_>, solution: &Solution, shift: f64) -> Previous
     let (eu, dl) = (factor.apply_e(&u_free), factor.apply_d(&lambda));
     let tangential = (q..2 * q).map(|j| eu[j] - dl[j]).collect();
     let t = problem.contact.tangent;
-    let u_t = |node: usize| solution.displacement[2 * node] * t[0] + solution.displacement[2 * node + 1] * t[1];
-    PreviousStep { tangential, u_t_nodes: problem.contact.nodes.iter().map(|&n| u_t(n)).collect(), shift }
+    let u_t = |i: usize| {
+        let u = problem.contact_displacement(i, &solution.displacement);
+        u[0] * t[0] + u[1] * t[1]
+    };
+    PreviousStep { tangential, u_t_nodes: (0..problem.contact.nodes.len()).map(u_t).collect(), shift }
 }
 
 /// Where a history stands before a step: the tangential displacement at rest is 0 and the obstacle at

@@ -12,6 +12,7 @@
 //! * `outputs`: what a reader gets back (global forces, plane-strain stress, current gap, formatted
 //!   numbers, the condensation's progress);
 //! * `supports`: rollers and prescribed displacements: patch tests, the half Hertz model against the full one;
+//! * `two_bodies`: two elastic bodies in contact (patch test, action and reaction, the rigid limit, Hertz);
 //! * `estimator`: the a posteriori estimate (what it sees, and how it tracks the true error of λ_n);
 //! * `layout`: the house rules of the crate (the layer table of its folders, file sizes).
 //!
@@ -30,3 +31,4 @@ mod methods;
 mod outputs;
 mod patch;
 mod supports;
+mod two_bodies;

@@ -1,0 +1,158 @@
+//! Two elastic bodies in contact: each body is a value (mesh, material, supports, tractions), the pair
+//! names the secondary side (which carries T_H and the stabilization) and the primary side by
+//! `"body.edge_set"`. [`Problem::two_bodies`] joins the two meshes into one (nodes and triangles of the first
+//! body first, edge sets renamed `"body.set"`), gives each triangle its body's material and builds the
+//! problem of [`crate::contact::pair`]: everything downstream (condensation, QP, fixed point, histories)
+//! is that of one body.
+//!
+//! What this first version does not do yet, each refused with [`Error::ContactPair`]: a body held only by
+//! the contact (each body needs its own supports), an obstacle motion on the pair (move the bodies through
+//! prescribed displacements), adaptive refinement of a two-body problem.
+
+use std::collections::BTreeMap;
+use std::ops::Range;
+
+use crate::contact::multiplier::{MultiplierPoints, MultiplierSpace};
+use crate::contact::obstacle::{Obstacle, ObstacleShape};
+use crate::error::{Error, Result};
+use crate::fem::elasticity::{Material, Materials};
+use crate::fem::supports::Support;
+use crate::mesh::Mesh;
+use crate::problem::{Problem, ProblemSpec};
+
+/// One elastic body of a two-body problem. Edge set names are the body's own (`"top"`); the problem
+/// calls them `"name.top"`.
+#[derive(Debug, Clone)]
+pub struct Body {
+    /// Name (non-empty, without '.').
+    pub name: String,
+    /// Mesh.
+    pub mesh: Mesh,
+    /// Material.
+    pub material: Material,
+    /// Clamped edge sets.
+    pub clamped: Vec<String>,
+    /// Further supports.
+    pub supports: Vec<Support>,
+    /// Constant tractions on edge sets.
+    pub tractions: Vec<(String, [f64; 2])>,
+}
+
+/// The contact pair of a two-body problem.
+#[derive(Debug, Clone)]
+pub struct ContactPair {
+    /// The secondary side, `"body.edge_set"`: it carries the multipliers and the stabilization.
+    pub secondary: String,
+    /// The primary side, `"body.edge_set"`, on the same line with the opposite normal.
+    pub primary: String,
+    /// The initial gap g₀(ξ) ≥ 0 between the two lines (abscissa of the secondary line), as the shapes of
+    /// the rigid obstacle: [`ObstacleShape::Flat`] for bodies that touch, a parabola for curved profiles.
+    pub gap: ObstacleShape,
+    /// Points of T_H on the secondary line.
+    pub multiplier_points: MultiplierPoints,
+    /// Multiplier space.
+    pub multiplier_space: MultiplierSpace,
+}
+
+/// Where a body lies in the problem's mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyPart {
+    /// Name.
+    pub name: String,
+    /// Its nodes.
+    pub nodes: Range<usize>,
+    /// Its triangles.
+    pub triangles: Range<usize>,
+}
+
+impl BodyPart {
+    /// The whole mesh as one body.
+    pub fn whole(name: &str, mesh: &Mesh) -> Self {
+        Self { name: name.to_string(), nodes: 0..mesh.n_nodes(), triangles: 0..mesh.n_triangles() }
+    }
+}
+
+fn renamed(support: &Support, body: &str) -> Support {
+    let set = format!("{body}.{}", support.set());
+    match support {
+        Support::Clamp { .. } => Support::Clamp { set },
+        Support::Roller { .. } => Support::Roller { set },
+        Support::Displacement { x, y, .. } => Support::Displacement { set, x: *x, y: *y },
+    }
+}
+
+impl Problem {
+    /// Two elastic bodies in contact along `pair`, each with its own material, supports and tractions, and
+    /// one constant body force on both (see [`crate::contact::pair`] for the formulation).
+    ///
+    /// # Errors
+    /// [`Error::ContactPair`] for body names that are empty, repeated or hold a '.', a pair side that names
+    /// no body or no edge set of it, both sides on one body, lines that are not one line with opposite
+    /// normals, a primary line that does not cover the secondary one; the errors of [`Problem::new`]
+    /// (each body must be held by its own supports: [`Error::FloatingPiece`], [`Error::RigidMotion`]).
+    pub fn two_bodies(bodies: [Body; 2], pair: ContactPair, body_force: [f64; 2]) -> Result<Self> {
+        let bad = |what: String| Error::ContactPair {
+            secondary: pair.secondary.clone(),
+            primary: pair.primary.clone(),
+            what,
+        };
+        for b in &bodies {
+            if b.name.is_empty() || b.name.contains('.') {
+                return Err(bad(format!("body name '{}' must be non-empty and without '.'", b.name)));
+            }
+        }
+        if bodies[0].name == bodies[1].name {
+            return Err(bad(format!("both bodies are named '{}'", bodies[0].name)));
+        }
+        let side = |full: &str| -> Result<usize> {
+            let (body, set) = full.split_once('.').ok_or_else(|| bad(format!("'{full}' is not 'body.edge_set'")))?;
+            let k = bodies.iter().position(|b| b.name == body).ok_or_else(|| {
+                bad(format!("no body named '{body}' (the bodies are '{}' and '{}')", bodies[0].name, bodies[1].name))
+            })?;
+            bodies[k].mesh.edge_set(set)?;
+            Ok(k)
+        };
+        let (s, p) = (side(&pair.secondary)?, side(&pair.primary)?);
+        if s == p {
+            return Err(bad("both sides are on one body".to_string()));
+        }
+        // One mesh: the first body's nodes and triangles, then the second's.
+        let mut points = Vec::new();
+        let mut triangles = Vec::new();
+        let mut edge_sets = BTreeMap::new();
+        let mut parts = Vec::new();
+        let mut region = Vec::new();
+        for (k, b) in bodies.iter().enumerate() {
+            let (n0, t0) = (points.len(), triangles.len());
+            points.extend_from_slice(b.mesh.points());
+            triangles.extend(b.mesh.triangles().iter().map(|t| t.map(|i| i + n0)));
+            for (name, edges) in b.mesh.edge_sets() {
+                edge_sets.insert(format!("{}.{name}", b.name), edges.iter().map(|e| e.map(|i| i + n0)).collect());
+            }
+            region.extend(std::iter::repeat_n(k, b.mesh.n_triangles()));
+            parts.push(BodyPart { name: b.name.clone(), nodes: n0..points.len(), triangles: t0..triangles.len() });
+        }
+        let mesh = Mesh::new(points, triangles, edge_sets)?;
+        let spec = ProblemSpec {
+            material: bodies[s].material,
+            clamped: bodies.iter().flat_map(|b| b.clamped.iter().map(|c| format!("{}.{c}", b.name))).collect(),
+            supports: bodies.iter().flat_map(|b| b.supports.iter().map(|x| renamed(x, &b.name))).collect(),
+            body_force,
+            tractions: bodies
+                .iter()
+                .flat_map(|b| b.tractions.iter().map(|(set, g)| (format!("{}.{set}", b.name), *g)))
+                .collect(),
+            contact: pair.secondary.clone(),
+            obstacle: Obstacle { shape: pair.gap.clone(), approach: 0.0, shift: 0.0 },
+            multiplier_points: pair.multiplier_points.clone(),
+            multiplier_space: pair.multiplier_space,
+        };
+        let materials = Materials { materials: bodies.iter().map(|b| b.material).collect(), region };
+        Self::build(mesh, spec, materials, Some(&pair.primary), parts)
+    }
+
+    /// Whether this problem is two bodies in contact (a primary side) rather than one against the obstacle.
+    pub fn is_two_bodies(&self) -> bool {
+        self.primary.is_some()
+    }
+}
