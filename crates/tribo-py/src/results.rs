@@ -3,34 +3,28 @@
 
 use pyo3::prelude::*;
 use pyo3::types::{IntoPyDict, PyDict};
-use tribo::{Choice, ContactState, SolveStatus};
+use tribo::results::Scalar;
+use tribo::{Choice, ContactState};
 
 use crate::convert::{mat, pairs, vec1};
 
 /// `Report` as a dict.
 fn report<'py>(py: Python<'py>, r: &tribo::Report) -> PyResult<Bound<'py, PyDict>> {
-    let (interrupted, failed, reason) = match r.status {
-        SolveStatus::Interrupted { iteration } => (Some(iteration), None, None),
-        SolveStatus::QpFailed { iteration, reason } => (None, Some(iteration), Some(reason)),
-        _ => (None, None, None),
-    };
     let ints = |v: &[u32]| vec1(py, &v.iter().map(|&i| i64::from(i)).collect::<Vec<_>>());
     let d = PyDict::new(py);
-    d.set_item("status", r.status.name())?;
-    d.set_item("interrupted_iteration", interrupted)?;
-    d.set_item("failed_iteration", failed)?;
-    d.set_item("failure_reason", reason)?;
-    d.set_item("iterations", r.iterations)?;
+    for (name, v) in r.scalars() {
+        match v {
+            Scalar::Missing => d.set_item(name, py.None()),
+            Scalar::Bool(b) => d.set_item(name, b),
+            Scalar::Count(c) => d.set_item(name, c),
+            Scalar::Float(x) => d.set_item(name, x),
+            Scalar::Name(s) => d.set_item(name, s),
+        }?;
+    }
     d.set_item("residual_history", vec1(py, &r.residual_history)?)?;
     d.set_item("qp_iterations", ints(&r.qp_iterations)?)?;
     d.set_item("qp_factorizations", ints(&r.qp_factorizations)?)?;
     d.set_item("qp_methods", r.qp_methods.iter().map(|m| m.as_str()).collect::<Vec<_>>())?;
-    d.set_item("qp_fallbacks", r.qp_fallbacks)?;
-    d.set_item("condensation", r.condensation.as_str())?;
-    d.set_item("qp_inaccurate", r.qp_inaccurate)?;
-    d.set_item("gamma0", r.gamma0)?;
-    d.set_item("gamma0_bound", r.gamma0_bound)?;
-    d.set_item("reused_factorization", r.reused_factorization)?;
     d.set_item("timings", r.timings.named().into_py_dict(py)?)?;
     d.set_item("estimate", r.estimate.named().into_py_dict(py)?)?;
     Ok(d)
@@ -46,24 +40,7 @@ pub fn solution<'py>(py: Python<'py>, s: &tribo::Solution) -> PyResult<Bound<'py
     d.set_item("nodal_stress", mat(py, &s.nodal_stress)?)?;
     d.set_item("reactions", pairs(py, &s.reactions)?)?;
     d.set_item("states", vec1(py, &s.states.iter().map(|&s| s.code() as i8).collect::<Vec<_>>())?)?;
-    for (name, v) in [
-        ("stress_zz", &s.stress_zz),
-        ("von_mises", &s.von_mises),
-        ("nodal_von_mises", &s.nodal_von_mises),
-        ("multiplier_abscissae", &s.multiplier_abscissae),
-        ("lambda_n", &s.lambda_n),
-        ("lambda_t", &s.lambda_t),
-        ("friction_threshold", &s.friction_threshold),
-        ("edge_abscissae", &s.edge_abscissae),
-        ("sigma_n", &s.sigma_n),
-        ("sigma_t", &s.sigma_t),
-        ("node_abscissae", &s.node_abscissae),
-        ("u_n", &s.u_n),
-        ("slip", &s.slip),
-        ("gap", &s.gap),
-        ("estimator", &s.estimator),
-        ("traction_estimator", &s.traction_estimator),
-    ] {
+    for (name, v) in s.vectors() {
         d.set_item(name, vec1(py, v)?)?;
     }
     d.set_item("contact_force", (s.contact_force[0], s.contact_force[1]))?;

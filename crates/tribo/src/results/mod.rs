@@ -10,4 +10,4 @@ mod status;
 pub use estimator::{ErrorEstimate, SUBDIVISIONS};
 pub use kkt::KktResiduals;
 pub use solution::Solution;
-pub use status::{ContactState, Report, SolveStatus, Timings};
+pub use status::{ContactState, Report, Scalar, SolveStatus, Timings};

@@ -262,6 +262,29 @@ impl Solution {
         self.gap.iter().zip(&self.u_n).map(|(g, u)| g - u).collect()
     }
 
+    /// The per-entity vectors of floats by name (per triangle, node, multiplier dof, edge or node of Γ_C),
+    /// as the Python binding and the files name them.
+    pub fn vectors(&self) -> [(&'static str, &[f64]); 16] {
+        [
+            ("stress_zz", &self.stress_zz),
+            ("von_mises", &self.von_mises),
+            ("nodal_von_mises", &self.nodal_von_mises),
+            ("multiplier_abscissae", &self.multiplier_abscissae),
+            ("lambda_n", &self.lambda_n),
+            ("lambda_t", &self.lambda_t),
+            ("friction_threshold", &self.friction_threshold),
+            ("edge_abscissae", &self.edge_abscissae),
+            ("sigma_n", &self.sigma_n),
+            ("sigma_t", &self.sigma_t),
+            ("node_abscissae", &self.node_abscissae),
+            ("u_n", &self.u_n),
+            ("slip", &self.slip),
+            ("gap", &self.gap),
+            ("estimator", &self.estimator),
+            ("traction_estimator", &self.traction_estimator),
+        ]
+    }
+
     /// Displacement of node `i`.
     pub fn node_displacement(&self, i: usize) -> [f64; 2] {
         [self.displacement[2 * i], self.displacement[2 * i + 1]]

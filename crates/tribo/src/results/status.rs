@@ -156,3 +156,44 @@ pub struct Report {
     /// The a posteriori error estimate of the answer (see [`crate::results::ErrorEstimate`]).
     pub estimate: ErrorEstimate,
 }
+
+/// One scalar of a [`Report`], for bindings and files.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Scalar {
+    /// Not applicable (the iteration of an interruption that did not happen).
+    Missing,
+    /// A flag.
+    Bool(bool),
+    /// A count or an index.
+    Count(usize),
+    /// A number.
+    Float(f64),
+    /// A name.
+    Name(&'static str),
+}
+
+impl Report {
+    /// The report's scalars by name, as the Python binding and summary files name them.
+    pub fn scalars(&self) -> [(&'static str, Scalar); 11] {
+        use crate::choice::Choice;
+        use Scalar::{Bool, Count, Float, Missing, Name};
+        let (interrupted, failed, reason) = match self.status {
+            SolveStatus::Interrupted { iteration } => (Count(iteration), Missing, Missing),
+            SolveStatus::QpFailed { iteration, reason } => (Missing, Count(iteration), Name(reason)),
+            _ => (Missing, Missing, Missing),
+        };
+        [
+            ("status", Name(self.status.name())),
+            ("interrupted_iteration", interrupted),
+            ("failed_iteration", failed),
+            ("failure_reason", reason),
+            ("iterations", Count(self.iterations)),
+            ("qp_fallbacks", Count(self.qp_fallbacks)),
+            ("condensation", Name(self.condensation.as_str())),
+            ("qp_inaccurate", Count(self.qp_inaccurate)),
+            ("gamma0", Float(self.gamma0)),
+            ("gamma0_bound", Float(self.gamma0_bound)),
+            ("reused_factorization", Bool(self.reused_factorization)),
+        ]
+    }
+}
