@@ -56,22 +56,38 @@ pub(super) fn pushed_estimate(f: &[f64], d: &[f64], q: usize) -> usize {
 }
 
 /// Whether the partial factorization is the cheaper way to H, and fits the memory budget. It forms all
-/// of `E A⁻¹ Eᵀ` (m = 2q rows) with a dense trailing block of the `n_c` dofs E touches, against
-/// `≈ 4 nnz(L)` flops per column for the columns the QPs need (about the `w` pushed ones, each normal and
-/// tangential) or the saddle-point system's few factorizations (`√w`). Two rules, both measured:
+/// of `E A⁻¹ Eᵀ` (m = 2q rows) with a dense trailing block of the `n_c` dofs E touches: about
+/// `n_c³/3 + n_c² m/2 + n_c m²/2` dense flops (the cost model of [`crate::linalg::schur`]) on top of the
+/// sparse factorization, against about `w` sparse solves of `4 nnz(L) ≈ 24 nnz(K)` flops for the columns
+/// the QPs need (the `w` pushed multipliers) or the saddle-point system's few factorizations (`√w`). Two
+/// rules, both measured:
 ///
 /// * `m² ≤ 16 nnz(K)`: forming all m columns by solves costs `≈ 4 nnz(L) m` flops, with `nnz(L) ≈ 6 nnz(K)`
 ///   (measured 5.5–7), against one factorization with its dense trailing block;
-/// * `n_c² q ≤ 20 nnz(K) w`: the trailing block costs about `n_c²` per unit of fill while the other paths
-///   cost about `w` solves. On refined contact lines (graded or adaptive meshes, `n_c²/nnz(K)` from 7 to
-///   140) it is the dense block that dominates; measured on the Hertz families (`scripts/study_paths.py`,
-///   docs/paths.md, frictionless and Coulomb): the partial factorization is the fastest path up to about
-///   `n_c² q / (nnz(K) w) = 20` (uniform meshes 15, the full-contact block 2.3, adaptive meshes 15–19)
-///   and up to 2.3× slower than the best beyond (graded growth 0.3 at 8k–15k unknowns: 48–87; adaptive
-///   at 28k–65k: 32–54).
+/// * dense flops `≤ margin × 24 nnz(K) w`, with `margin` [`BEFORE_FACTORIZING`] or [`AFTER_FACTORIZING`]: measured on the Hertz families (`scripts/study_paths.py`,
+///   docs/paths.md, frictionless and Coulomb), the partial factorization is the fastest path up to a ratio
+///   of about 2.4 (uniform meshes 1.8–2.0, the full-contact block 0.27, adaptive meshes 1.8–2.4) and 1.5 to
+///   12 times slower than the best from 2.5 on (graded meshes 2.5–35, adaptive ones 4–7). The dense block
+///   grows like n_c³: two bodies, whose contact dofs lie on both sides, reach it sooner.
 ///
-/// `w` is [`pushed_estimate`]; no pushed multiplier (`w = 0`) leaves nothing for H to do.
-pub(super) fn prefer_schur(nnz_k: usize, e_rows: &[Vec<(usize, f64)>], w: usize, budget: usize) -> (bool, f64) {
+/// `w` is [`pushed_estimate`] (exact without a load) or, with a load, the count the factorized c gives;
+/// with `w = q` the rule is as favourable to the partial factorization as it can be.
+pub(super) const BEFORE_FACTORIZING: f64 = 2.5;
+
+/// The margin once A is factorized the plain way (a loaded problem, whose pushed multipliers the
+/// factorization told): the partial factorization then costs a second factorization besides its dense
+/// block, the columns only their solves, so it must be cheaper outright. Measured on two-body Hertz
+/// (`examples/two_bodies.rs`, pressed by a prescribed displacement): at 10k and 16.5k unknowns (dense
+/// ratios 2.1 and 2.4) the partial factorization took 0.15 and 0.40 s, the columns 0.03 and 0.08 s;
+/// on the block pressed by a traction (every multiplier pushed, ratio 0.27) it stays the fastest.
+pub(super) const AFTER_FACTORIZING: f64 = 1.0;
+pub(super) fn prefer_schur(
+    nnz_k: usize,
+    e_rows: &[Vec<(usize, f64)>],
+    w: usize,
+    margin: f64,
+    budget: usize,
+) -> (bool, f64) {
     let m = e_rows.len() as f64;
     let mut touched: Vec<usize> = e_rows.iter().flatten().map(|&(d, _)| d).collect();
     touched.sort_unstable();
@@ -79,6 +95,7 @@ pub(super) fn prefer_schur(nnz_k: usize, e_rows: &[Vec<(usize, f64)>], w: usize,
     let nc = touched.len() as f64;
     let bytes = 8.0 * (nc * nc + nc * m + 2.0 * m * m);
     let nnz = nnz_k as f64;
-    let dense_pays = nc * nc * (m / 2.0) <= 20.0 * nnz * w as f64;
+    let dense = nc.powi(3) / 3.0 + nc * nc * m / 2.0 + nc * m * m / 2.0;
+    let dense_pays = dense <= margin * 4.0 * CHOLESKY_FILL as f64 * nnz * w as f64;
     (m * m <= 16.0 * nnz && dense_pays && bytes <= budget as f64, bytes)
 }

@@ -28,7 +28,9 @@ use crate::settings::Condensation;
 mod choose;
 mod diagonal;
 
-use choose::{prefer_saddle, prefer_schur, pushed_estimate, quasi_definite, CHOLESKY_FILL};
+use choose::{
+    prefer_saddle, prefer_schur, pushed_estimate, quasi_definite, AFTER_FACTORIZING, BEFORE_FACTORIZING, CHOLESKY_FILL,
+};
 
 /// Number of right-hand sides solved together when forming `A⁻¹ Eᵀ`.
 const BLOCK: usize = 64;
@@ -195,13 +197,20 @@ impl Factor {
         }
         let pattern = pattern.to_owned().map_err(|e| Error::Assembly { matrix: "K − G", what: format!("{e:?}") })?;
         let a = SparseColMat::new(pattern, values);
-        let q_half = e_rows.len() / 2;
-        let (auto, bytes) = prefer_schur(k.compute_nnz(), &e_rows, pushed_estimate(f, &d, q_half), budget);
-        let use_schur = match condensation {
+        let nnz_k = k.compute_nnz();
+        let (m, q) = (e_rows.len(), e_rows.len() / 2);
+        let schur_pays = |w: usize, margin: f64| prefer_schur(nnz_k, &e_rows, w, margin, budget);
+        let bytes = schur_pays(q, BEFORE_FACTORIZING).1;
+        // Auto: with no load on the free dofs the pushed multipliers are known now (c = d); with a load
+        // they are known once A is factorized, so a partial factorization that could pay (it does at most
+        // when all q are pushed) is decided after the plain one ([`choose::prefer_schur`]).
+        let loaded = f.iter().any(|&v| v != 0.0);
+        let mut use_schur = match condensation {
             Condensation::Columns | Condensation::Saddle => false,
             Condensation::Schur => true,
-            Condensation::Auto => auto,
+            Condensation::Auto => !loaded && schur_pays(pushed_estimate(f, &d, q), BEFORE_FACTORIZING).0,
         };
+        let undecided = condensation == Condensation::Auto && loaded && schur_pays(q, AFTER_FACTORIZING).0;
         if condensation == Condensation::Schur && bytes > budget as f64 {
             return Err(Error::MemoryBudget {
                 what: "the partial factorization's dense trailing block and E A⁻¹ Eᵀ".to_string(),
@@ -209,8 +218,6 @@ impl Factor {
                 budget: budget as f64,
             });
         }
-        let m = e_rows.len();
-        let q = m / 2;
         // Dγ by columns: for column j of block b, the rows i of the same block.
         let mut d_cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); m];
         for &(i, j, v) in &d_gamma {
@@ -218,7 +225,9 @@ impl Factor {
             d_cols[q + j].push((q + i, v));
         }
         let mut cols = vec![None; m];
-        let (direct, factorization_seconds, schur_seconds) = if use_schur {
+        // The partial factorization and all of H from it: (the factor, its seconds, H's seconds).
+        let partial = |cols: &mut Vec<Option<Vec<f64>>>| -> Result<(Direct, f64, f64)> {
+            let clock = Instant::now();
             let sym = SchurSymbolic::new(a.symbolic(), &e_rows).map_err(schur_error)?;
             let factor = sym.factorize(a.as_ref(), Par::rayon(0)).map_err(schur_error)?;
             let factorization_seconds = clock.elapsed().as_secs_f64();
@@ -231,7 +240,12 @@ impl Factor {
                 }
                 *col = Some(h);
             }
-            (Direct::Schur(factor), factorization_seconds, clock.elapsed().as_secs_f64())
+            Ok((Direct::Schur(factor), factorization_seconds, clock.elapsed().as_secs_f64()))
+        };
+        let (mut direct, mut factorization_seconds, mut schur_seconds) = if use_schur {
+            // The factorization's time counts from the start (A's values included), as for the plain one.
+            let (direct, _, schur_seconds) = partial(&mut cols)?;
+            (direct, clock.elapsed().as_secs_f64() - schur_seconds, schur_seconds)
         } else {
             let symbolic = match symbolic.get() {
                 Some(s) => s,
@@ -251,13 +265,21 @@ impl Factor {
         let u_f = solve(&direct, f)?;
         let e_ainv_f: Vec<f64> = e_rows.iter().map(|row| dot(row, &u_f)).collect();
         let c: Vec<f64> = d.iter().zip(&e_ainv_f).map(|(di, ei)| di - ei).collect();
-        let columns = Mutex::new(Columns { cols, seconds: schur_seconds + clock.elapsed().as_secs_f64() });
+        let pushed = c[..q].iter().filter(|v: &&f64| **v < 0.0).count();
+        let mut c_seconds = clock.elapsed().as_secs_f64();
+        if undecided && schur_pays(pushed, AFTER_FACTORIZING).0 {
+            // The load pushes enough of Γ_C for all of H to pay: factorize again, C last (c stands).
+            let (partial_direct, seconds, h_seconds) = partial(&mut cols)?;
+            (direct, use_schur) = (partial_direct, true);
+            factorization_seconds += seconds;
+            schur_seconds = h_seconds;
+            c_seconds = 0.0;
+        }
+        let columns = Mutex::new(Columns { cols, seconds: schur_seconds + c_seconds });
         // The saddle-point system, if asked for or preferred: its symbolic analysis says how large its
         // factor is before anything of that size is allocated. Asked for, a factor beyond the budget is an
         // error; preferred, one that fills in much beyond a Cholesky of A (T_H far finer than the FE edges:
         // the multipliers' block fills) or beyond the budget leaves H to the columns.
-        let pushed = c[..q].iter().filter(|v: &&f64| **v < 0.0).count();
-        let nnz_k = k.compute_nnz();
         let saddle = match condensation {
             Condensation::Saddle => Some(saddle_system(&a, &e_rows, &d_cols, budget / 8, budget)?),
             Condensation::Auto if !use_schur && prefer_saddle(nnz_k, pushed) && quasi_definite(&e_rows, &d_cols) => {
