@@ -29,6 +29,10 @@
 //!   steps, μ = 0.3): the whole history (11 steps) against one static Coulomb solve of its last position
 //!   (the target: a step after the first costs no more than the static solve without its factorization).
 //!
+//! - `two_bodies`: two-body Hertz (`tribo_testkit::two_body_hertz`, E = 200 under E = 70, graded to h_min =
+//!   0.005 and 0.00125): the whole Coulomb solve from a fresh factorization and the Cholesky reference of
+//!   the two bodies' K (the target: the ratio of one body of as many unknowns).
+//!
 //! The set-up prints, once per mesh, the numbers of unknowns (n_free) and of multiplier dofs (q), and the
 //! status of the Coulomb solves. `cargo bench --bench solver -- --test` runs every bench once.
 
@@ -44,10 +48,10 @@ use faer::sparse::SparseColMat;
 use faer::Mat;
 use tribo::mortar::MortarMatrices;
 use tribo::{
-    Choice, Condensation, Friction, Grading, KktSolver, LoadStep, Mesh, MultiplierPoints, MultiplierSpace, Problem,
-    ProblemSpec, QpMethod, QpSettings, Side, SolveStatus, SolverSettings, Stabilization, Threshold,
+    Choice, Condensation, Friction, Grading, KktSolver, LoadStep, Material, Mesh, MultiplierPoints, MultiplierSpace,
+    Problem, ProblemSpec, QpMethod, QpSettings, Side, SolveStatus, SolverSettings, Stabilization, Threshold,
 };
-use tribo_testkit::{block_problem, hertz_mesh, hertz_scene, hertz_spec};
+use tribo_testkit::{block_problem, hertz_mesh, hertz_scene, hertz_spec, two_body_hertz};
 
 /// Mesh sizes of the set-up, Tresca and KKT-solver groups.
 const SIZES: [f64; 3] = [0.02, 0.01, 0.005];
@@ -363,21 +367,34 @@ fn bench_block(c: &mut Criterion) {
         let (problem, mu) = block_problem(nx, nx / 4);
         let friction = Friction::Coulomb { mu };
         let settings = SolverSettings::default();
-        let check = problem.solve(&friction, &settings, None).expect("solve");
-        eprintln!(
-            "[block {nx} x {}] n_free {} q {} Coulomb {} after {} iterations, H by {}",
-            nx / 4,
-            problem.n_free,
-            problem.n_multipliers(),
-            check.report.status,
-            check.report.iterations,
-            check.report.condensation
-        );
-        assert_eq!(check.report.status, SolveStatus::Converged);
-        bench_fresh_solve(&mut group, BenchmarkId::new("coulomb_solve", nx), &problem, &friction, &settings);
-        bench_cholesky(&mut group, BenchmarkId::new("cholesky_reference", nx), &problem);
+        let label = format!("block {nx} x {}", nx / 4);
+        bench_coulomb_and_cholesky(&mut group, &label, nx as f64, &problem, &friction, &settings);
     }
     group.finish();
+}
+
+/// One checked Coulomb solve (its sizes, status and path printed), then the benches of the whole solve from
+/// a fresh factorization and of the Cholesky reference, both with parameter `id`.
+fn bench_coulomb_and_cholesky(
+    group: &mut BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    label: &str,
+    id: f64,
+    problem: &Problem,
+    friction: &Friction,
+    settings: &SolverSettings,
+) {
+    let check = problem.solve(friction, settings, None).expect("solve");
+    eprintln!(
+        "[{label}] n_free {} q {} Coulomb {} after {} iterations, H by {}",
+        problem.n_free,
+        problem.n_multipliers(),
+        check.report.status,
+        check.report.iterations,
+        check.report.condensation
+    );
+    assert_eq!(check.report.status, SolveStatus::Converged);
+    bench_fresh_solve(group, BenchmarkId::new("coulomb_solve", id), problem, friction, settings);
+    bench_cholesky(group, BenchmarkId::new("cholesky_reference", id), problem);
 }
 
 /// The whole solve of `problem` from a fresh factorization (its cache forgotten at every iteration).
@@ -433,6 +450,21 @@ fn bench_graded_55k(c: &mut Criterion) {
     group.finish();
 }
 
+fn bench_two_bodies(c: &mut Criterion) {
+    let mut group = c.benchmark_group("two_bodies");
+    configure_slow(&mut group, 20);
+    let steel = Material { young: 200.0, poisson: 0.3 };
+    let aluminium = Material { young: 70.0, poisson: 0.33 };
+    let friction = Friction::Coulomb { mu: MU };
+    let settings = SolverSettings::default();
+    for h_min in [0.005, 0.00125] {
+        let problem = two_body_hertz(h_min, steel, aluminium, false, 0.01);
+        let label = format!("two bodies h_min = {h_min}");
+        bench_coulomb_and_cholesky(&mut group, &label, h_min, &problem, &friction, &settings);
+    }
+    group.finish();
+}
+
 fn config() -> Criterion {
     Criterion::default().sample_size(10).warm_up_time(Duration::from_millis(500)).nresamples(20_000)
 }
@@ -442,6 +474,6 @@ criterion_group! {
     config = config();
     targets = bench_mesh, bench_assembly, bench_condensation, bench_tresca, bench_coulomb, bench_qp_kkt_solver,
         bench_cholesky_reference, bench_admissible_gamma0, bench_uniform_103k, bench_qp_method, bench_block,
-        bench_history, bench_graded_55k
+        bench_history, bench_graded_55k, bench_two_bodies
 }
 criterion_main!(benches);

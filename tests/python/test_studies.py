@@ -183,3 +183,20 @@ def test_paths(tmp_path: Path) -> None:
     # partial factorization; the full-contact block (every multiplier pushed) takes it.
     assert all(r["frictionless_chosen"] != "schur" for r in rows if r["family"] == "graded 0.3")
     assert all(r["frictionless_chosen"] == "schur" for r in rows if r["family"] == "block")
+
+
+def test_plot_two_bodies(tmp_path: Path) -> None:
+    csv = tmp_path / "two_in.csv"
+    lines = ["pair,h_min,n_free,q,force,hertz_l2,frictionless_s,coulomb_s,coulomb_status,one_body_n,"
+             "one_body_frictionless_s,one_body_coulomb_s"]
+    for pair in ("equal", "dissimilar"):
+        for h in (0.04, 0.02, 0.01):
+            n = 100 / h
+            lines.append(f"{pair},{h},{2 * n},{n / 10},0.5,{3 * h**1.5},{2e-4 * n},{4e-4 * n},converged,{n},"
+                         f"{1e-4 * n},{2e-4 * n}")
+    csv.write_text("\n".join(lines) + "\n")
+    res = study("plot_two_bodies").main(["--csv", str(csv), "--out", str(tmp_path)])
+    assert (tmp_path / "two_bodies.png").is_file() and "h^1.50" in (tmp_path / "two_bodies.md").read_text()
+    assert all(abs(r - 1.5) < 1e-9 for r in res["rates"].values())
+    # Twice the unknowns in twice the time: the same time per unknown (the 2,500-unknown runs take 0.25 s).
+    assert res["ratio"]["frictionless"] and all(abs(r - 1.0) < 1e-9 for r in res["ratio"]["frictionless"])

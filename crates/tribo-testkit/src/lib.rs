@@ -137,17 +137,34 @@ pub fn checkerboard_problem(ratio: f64, approach: f64, shift: f64) -> Problem {
 /// Plane-strain Hertz pressure for total force `p` (R, E, ν of the Hertz scene) and its half-width.
 pub fn hertz_pressure(p: f64) -> (impl Fn(f64) -> f64, f64) {
     let s = hertz_scene();
-    let (r, e, nu) = (s.radius, s.material.young, s.material.poisson);
-    let a = (4.0 * p * r * (1.0 - nu * nu) / (std::f64::consts::PI * e)).sqrt();
+    hertz_pressure_with(p, s.material.young / (1.0 - s.material.poisson.powi(2)))
+}
+
+/// The plane-strain Hertz pressure of force `p` (per unit depth) and half-width a, for the scene's radius
+/// and the contact modulus `e_star` (E/(1 − ν²) against a rigid cylinder, `combined_modulus` for two bodies).
+pub fn hertz_pressure_with(p: f64, e_star: f64) -> (impl Fn(f64) -> f64, f64) {
+    let r = hertz_scene().radius;
+    let a = (4.0 * p * r / (std::f64::consts::PI * e_star)).sqrt();
     let pmax = 2.0 * p / (std::f64::consts::PI * a);
     (move |x: f64| if x.abs() < a { pmax * (1.0 - (x / a).powi(2)).sqrt() } else { 0.0 }, a)
+}
+
+/// The contact modulus of two bodies, `1/E* = (1 − ν₁²)/E₁ + (1 − ν₂²)/E₂`.
+pub fn combined_modulus(a: &Material, b: &Material) -> f64 {
+    1.0 / ((1.0 - a.poisson.powi(2)) / a.young + (1.0 - b.poisson.powi(2)) / b.young)
 }
 
 /// Relative L2 error of λ_n against the Hertz pressure of the computed force, integrated with 8-point
 /// Gauss on every segment of the union of T_H, the FE nodes and the Hertz edge points ±a (so the square
 /// root singularity sits at a breakpoint).
 pub fn hertz_l2_error(problem: &Problem, sol: &Solution) -> f64 {
-    let (p, a) = hertz_pressure(sol.normal_force);
+    let s = hertz_scene();
+    hertz_l2_error_with(problem, sol, s.material.young / (1.0 - s.material.poisson.powi(2)))
+}
+
+/// [`hertz_l2_error`] for the contact modulus `e_star`.
+pub fn hertz_l2_error_with(problem: &Problem, sol: &Solution, e_star: f64) -> f64 {
+    let (p, a) = hertz_pressure_with(sol.normal_force, e_star);
     let mut breaks: Vec<f64> = problem.multipliers.xi.iter().chain(&problem.contact.node_xi).copied().collect();
     breaks.extend([-a, a]);
     breaks.sort_by(f64::total_cmp);
@@ -164,6 +181,39 @@ pub fn hertz_l2_error(problem: &Problem, sol: &Solution) -> f64 {
         }
     }
     (num / den).sqrt()
+}
+
+/// Two-body Hertz: the scene's block (−2, 2) × (−2, 0) of material `lower`, clamped at the bottom, under a
+/// block (−2, 2) × (0, 1) of material `upper` whose top is pushed down by `delta` (u_x held there too when
+/// `hold_top`, else only on its left side), both graded toward [−0.15, 0.15] at growth 0.15 down to
+/// `h_min`; the gap between them is the parabola of the scene's radius (the sum of the two curvatures),
+/// the lower top is the secondary side, P1 multipliers on its edges.
+pub fn two_body_hertz(h_min: f64, lower: Material, upper: Material, hold_top: bool, delta: f64) -> Problem {
+    let g = |side, y: [f64; 2]| {
+        let grading = Grading { side, segment: [-0.15, 0.15], h_min, h_max: 0.5, growth: 0.15 };
+        graded_rectangle([-2.0, 2.0], y, &grading).expect("valid grading")
+    };
+    let top = Support::displacement("top", hold_top.then_some(0.0), Some(-delta));
+    let body = |name: &str, mesh, material, supports| Body {
+        name: String::from(name),
+        mesh,
+        material,
+        clamped: vec![],
+        supports,
+        tractions: vec![],
+    };
+    let bodies = [
+        body("lower", g(Side::Top, [-2.0, 0.0]), lower, vec![Support::clamp("bottom")]),
+        body("upper", g(Side::Bottom, [0.0, 1.0]), upper, vec![top, Support::displacement("left", Some(0.0), None)]),
+    ];
+    let pair = ContactPair {
+        secondary: "lower.top".into(),
+        primary: "upper.bottom".into(),
+        gap: ObstacleShape::Parabola { center: 0.0, radius: hertz_scene().radius },
+        multiplier_points: MultiplierPoints::RatioToFe(1.0),
+        multiplier_space: MultiplierSpace::P1,
+    };
+    Problem::two_bodies(bodies, pair, [0.0, 0.0]).expect("a valid two-body scene")
 }
 
 /// 8-point Gauss–Legendre rule on [−1, 1].

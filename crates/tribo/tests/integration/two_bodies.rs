@@ -13,7 +13,7 @@
 //! * bad pairs are typed errors naming the pair.
 
 use tribo::*;
-use tribo_testkit::hertz_spec;
+use tribo_testkit::{combined_modulus, hertz_l2_error_with, hertz_spec, two_body_hertz};
 
 fn body(name: &str, mesh: Mesh, material: Material, supports: Vec<Support>) -> Body {
     Body { name: name.into(), mesh, material, clamped: vec![], supports, tractions: vec![] }
@@ -108,26 +108,6 @@ fn the_two_bodies_take_equal_and_opposite_forces() {
     assert!((lower - force).abs() < PATCH_TOL * force && (sol.normal_force - force).abs() < PATCH_TOL * force);
 }
 
-/// The Hertz scene of two bodies: the lower block (−2, 2) × (−2, 0) and an upper block (−2, 2) × (0, 1),
-/// graded toward the contact, a parabolic gap of radius 1, the upper block's top pushed down by δ.
-fn two_body_hertz(h_min: f64, lower: Material, upper: Material, clamp_upper_top: bool, delta: f64) -> Problem {
-    let g = |side, y: [f64; 2]| {
-        let grading = Grading { side, segment: [-0.15, 0.15], h_min, h_max: 0.5, growth: 0.15 };
-        graded_rectangle([-2.0, 2.0], y, &grading).unwrap()
-    };
-    let top = if clamp_upper_top {
-        Support::displacement("top", Some(0.0), Some(-delta))
-    } else {
-        Support::displacement("top", None, Some(-delta))
-    };
-    let bodies = [
-        body("lower", g(Side::Top, [-2.0, 0.0]), lower, vec![Support::clamp("bottom")]),
-        body("upper", g(Side::Bottom, [0.0, 1.0]), upper, vec![top, Support::displacement("left", Some(0.0), None)]),
-    ];
-    let gap = ObstacleShape::Parabola { center: 0.0, radius: 1.0 };
-    Problem::two_bodies(bodies, pair("lower.top", "upper.bottom", gap, MultiplierSpace::P1), [0.0, 0.0]).unwrap()
-}
-
 #[test]
 fn a_stiff_primary_body_approaches_the_rigid_obstacle() {
     let lower = Material { young: 200.0, poisson: 0.3 };
@@ -158,29 +138,6 @@ fn a_stiff_primary_body_approaches_the_rigid_obstacle() {
     assert!(previous < 1e-4);
 }
 
-/// Relative L2 error of λ_n against the plane-strain Hertz pressure of the measured force, with the
-/// combined modulus of the two materials.
-fn hertz_error(problem: &Problem, sol: &Solution, lower: &Material, upper: &Material) -> f64 {
-    let e_star = 1.0 / ((1.0 - lower.poisson.powi(2)) / lower.young + (1.0 - upper.poisson.powi(2)) / upper.young);
-    let force = sol.normal_force;
-    let a = (4.0 * force / (std::f64::consts::PI * e_star)).sqrt();
-    let p0 = 2.0 * force / (std::f64::consts::PI * a);
-    let hertz = |x: f64| if x.abs() < a { p0 * (1.0 - (x / a).powi(2)).sqrt() } else { 0.0 };
-    let xs = problem.multipliers.dof_abscissae();
-    let (mut num, mut den) = (0.0, 0.0);
-    // Midpoint sums on a fine grid over [−2a, 2a] of the P1 interpolant of λ_n.
-    let n = 4000;
-    for k in 0..n {
-        let x = -2.0 * a + 4.0 * a * (k as f64 + 0.5) / n as f64;
-        let j = xs.partition_point(|&y| y <= x).clamp(1, xs.len() - 1) - 1;
-        let s = (x - xs[j]) / (xs[j + 1] - xs[j]);
-        let lam = (1.0 - s) * sol.lambda_n[j] + s * sol.lambda_n[j + 1];
-        num += (lam - hertz(x)).powi(2);
-        den += hertz(x).powi(2);
-    }
-    (num / den).sqrt()
-}
-
 #[test]
 fn two_body_hertz_converges_to_the_combined_modulus() {
     let steel = Material { young: 200.0, poisson: 0.3 };
@@ -190,7 +147,7 @@ fn two_body_hertz_converges_to_the_combined_modulus() {
             let problem = two_body_hertz(h_min, steel, upper, false, 0.01);
             let sol = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).unwrap();
             assert_eq!(sol.report.status, SolveStatus::Converged);
-            errors.push(hertz_error(&problem, &sol, &steel, &upper));
+            errors.push(hertz_l2_error_with(&problem, &sol, combined_modulus(&steel, &upper)));
         }
         eprintln!("two-body Hertz, E2 = {}: L2 errors {errors:?}", upper.young);
         // h_min divided by 4: the error at least halves (rate ≥ 1/2 in h_min; measured 3.4–3.7× for equal
