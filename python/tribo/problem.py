@@ -109,7 +109,8 @@ class Problem(_tribo.Problem):
         condensation); unset ones take the core's defaults.
 
         ``progress``, if given, is called as progress(iteration, change, qp_iterations, qp_seconds) after
-        every QP; returning False stops the solve (status 'interrupted', with the last iterate), raising
+        every QP; returning False (any false value but None: 0, numpy.False_) stops the solve (status
+        'interrupted', with the last iterate), raising
         stops it and propagates. ``on_phase``, if given, is called as on_phase(phase, seconds) when a
         phase before the QPs ends: 'condensation' (A = K − G factorized or reused, c and possibly all of H
         formed; ``seconds`` is its wall time so far); False or an exception stops the solve the same way,

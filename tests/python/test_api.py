@@ -262,8 +262,17 @@ def test_progress_callback_returning_false_interrupts(hertz: tribo.Problem) -> N
     assert s.report.status == "interrupted" and not s.report.converged
     assert s.report.interrupted_iteration == 2 and calls == [0, 1, 2]
     assert s.report.iterations == 2 and np.all(np.isfinite(s.lambda_n)) and s.normal_force > 0.0
-    # Any other return value (None, True, 0) lets the solve go on.
-    assert hertz.solve(mu=0.3, progress=lambda *a: None).report.status == "converged"
+    # Truthiness as Python has it: None (no return) and true values go on; any false value stops, numpy's
+    # too; a return whose truth is ambiguous raises, and that stops the solve and propagates.
+    for goes_on in (None, True, 1, np.True_, "yes"):
+        assert hertz.solve(mu=0.3, progress=lambda *a, r=goes_on: r).report.status == "converged", goes_on
+    for stops in (False, 0, np.False_, np.float64(0.0), []):
+        s = hertz.solve(mu=0.3, progress=lambda *a, r=stops: r)
+        assert s.report.status == "interrupted" and s.report.interrupted_iteration == 0, stops
+    with pytest.raises(ValueError, match="ambiguous"):
+        hertz.solve(mu=0.3, progress=lambda *a: np.array([1.0, 2.0]))
+    h = hertz.solve_history(approach=[0.005, 0.01], shift=0.0, mu=0.3, progress=lambda *a: np.False_)
+    assert h.status == "interrupted" and len(h.solutions) == 1
 
 
 def test_condensation_paths_agree(hertz: tribo.Problem) -> None:

@@ -10,7 +10,7 @@ use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::conversion::FromPyObjectOwned;
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyTuple};
+use pyo3::types::{PyDict, PyTuple};
 use tribo::error::ErrorCategory::{ContactGeometry, Settings};
 use tribo::{
     AdaptSettings, Choice, Friction, FrictionLaw, Level, LevelObserver, LoadStep, Material, MultiplierPoints,
@@ -118,7 +118,15 @@ fn observe_with<A: for<'py> pyo3::call::PyCallArgs<'py>>(
 ) -> ControlFlow<()> {
     Python::attach(|py| {
         let stop = match callback.map(|f| f.call1(py, args)) {
-            Some(Ok(r)) => r.bind(py).is(PyBool::new(py, false)),
+            // False or any other false value (numpy.False_, 0) stops; None (no return) goes on.
+            Some(Ok(r)) if r.is_none(py) => false,
+            Some(Ok(r)) => match r.bind(py).is_truthy() {
+                Ok(truthy) => !truthy,
+                Err(e) => {
+                    *error = Some(e);
+                    true
+                }
+            },
             Some(Err(e)) => {
                 *error = Some(e);
                 true
