@@ -145,15 +145,23 @@ class Problem(_tribo.Problem):
         obstacle, so the answer depends on the path; a history of one step is the static ``solve``. The
         friction, γ0 and settings keywords are those of ``solve``. ``progress``, if given, is called as
         progress(step, steps, status, seconds) after every step; returning False ends the history there
-        (status 'interrupted', the steps done kept), raising ends it and propagates. Ctrl-C is honoured
-        between steps. A step that does not converge ends the history with its status; ``History.failed``
+        (status 'interrupted', the steps done kept), raising ends it and propagates with the steps done as
+        the exception's ``history`` (a History, status 'interrupted'). Ctrl-C is honoured between steps (the
+        KeyboardInterrupt carries ``history`` too). A step that does not converge ends the history with its status; ``History.failed``
         holds its last iterate.
         """
         steps = history_steps(approach, shift, load_factor)
-        return History.from_dict(self._solve_history(steps, {
-            "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
-            "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
-        }))
+        try:
+            return History.from_dict(self._solve_history(steps, {
+                "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
+                "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
+            }))
+        except BaseException as e:
+            # An exception from the callback (or Ctrl-C) keeps the steps done, as ``e.history``.
+            partial = getattr(e, "_partial_history", None)
+            if partial is not None:
+                e.history = History.from_dict(partial)  # type: ignore[attr-defined]
+            raise
 
     def solve_adaptive(
         self,

@@ -58,6 +58,25 @@ def test_progress_can_stop_the_history(problem: tribo.Problem) -> None:
     assert seen == [(0, 6, "converged"), (1, 6, "converged"), (2, 6, "converged")]
 
 
+def test_a_raising_callback_keeps_the_steps_done(problem: tribo.Problem) -> None:
+    """An exception from the callback ends the history and propagates, carrying the converged steps as a
+    History (status 'interrupted'), the same as returning False would have kept."""
+
+    def progress(step: int, steps: int, status: str, seconds: float) -> bool:
+        if step == 2:
+            raise RuntimeError("enough")
+        return True
+
+    shifts = np.linspace(0.0, 0.004, 6)
+    with pytest.raises(RuntimeError, match="enough") as info:
+        problem.solve_history(0.01, shifts, mu=0.3, progress=progress)
+    kept = info.value.history  # type: ignore[attr-defined]
+    assert isinstance(kept, tribo.History) and kept.status == "interrupted" and len(kept) == 3
+    stopped = problem.solve_history(0.01, shifts, mu=0.3, progress=lambda step, *a: step < 2)
+    assert np.array_equal(kept.normal_force, stopped.normal_force)
+    assert np.array_equal(kept.solutions[-1].lambda_t, stopped.solutions[-1].lambda_t)
+
+
 def test_bad_histories_are_errors(problem: tribo.Problem) -> None:
     with pytest.raises(tribo.SettingsError, match="load step 1"):
         problem.solve_history(0.01, [0.0, float("nan")], mu=0.3)

@@ -348,7 +348,15 @@ impl PyProblem {
             };
             self.inner.solve_history(&o.friction, &steps, &o.settings, Some(&mut observe))
         });
-        results::history(py, &finish(result, error)?)
+        // An exception from the callback (or Ctrl-C) ends the history: it carries the steps done.
+        let history = results::history(py, &result.map_err(to_pyerr)?)?;
+        match error {
+            Some(e) => {
+                e.value(py).setattr("_partial_history", history)?;
+                Err(e)
+            }
+            None => Ok(history),
+        }
     }
 
     /// Solves adaptively (`solve_adaptive`), or the history `steps` on the steps `on` (`solve_history_adaptive`);
