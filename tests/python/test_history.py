@@ -77,6 +77,14 @@ def test_a_raising_callback_keeps_the_steps_done(problem: tribo.Problem) -> None
     assert np.array_equal(kept.solutions[-1].lambda_t, stopped.solutions[-1].lambda_t)
 
 
+def test_a_history_beyond_the_memory_budget_is_refused(problem: tribo.Problem) -> None:
+    """Every step's solution is kept, so a million steps are refused before any runs (they aborted the
+    process before), with the bytes they would need."""
+    with pytest.raises(tribo.TriboError, match="a history of 1000000 steps") as info:
+        problem.solve_history(0.01, np.zeros(1_000_000), mu=0.3)
+    assert info.value.kind == "MemoryBudget" and info.value.details["needed"] > 4 * 2**30  # type: ignore[attr-defined]
+
+
 def test_bad_histories_are_errors(problem: tribo.Problem) -> None:
     with pytest.raises(tribo.SettingsError, match="load step 1"):
         problem.solve_history(0.01, [0.0, float("nan")], mu=0.3)

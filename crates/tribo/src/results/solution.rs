@@ -262,6 +262,18 @@ impl Solution {
         self.gap.iter().zip(&self.u_n).map(|(g, u)| g - u).collect()
     }
 
+    /// About how many bytes a solution of `problem` holds: its fields per node, triangle, multiplier dof
+    /// and Γ_C edge and node, and a report (a history keeps one per step; see
+    /// [`crate::Condensed::solve_history`]).
+    pub fn estimated_bytes(problem: &crate::Problem) -> usize {
+        let (n, t) = (problem.mesh.n_nodes(), problem.mesh.n_triangles());
+        let (q, e, c) = (problem.n_multipliers(), problem.contact.n_edges(), problem.contact.nodes.len());
+        // 2N displacements and reactions, 3T + 3N stresses, T σ_zz, von Mises and the two indicators,
+        // N recovered von Mises; 4q on T_H (and q states); 3 per Γ_C edge, 4 per Γ_C node.
+        let floats = (8 * n + 7 * t + 4 * q + 3 * e + 4 * c) as f64;
+        (8.0 * floats) as usize + q + 512
+    }
+
     /// The per-entity vectors of floats by name (per triangle, node, multiplier dof, edge or node of Γ_C),
     /// as the Python binding and the files name them.
     pub fn vectors(&self) -> [(&'static str, &[f64]); 16] {

@@ -62,8 +62,27 @@ impl Condensed<'_> {
         for (k, s) in steps.iter().enumerate() {
             s.validate(k)?;
         }
+        history_fits(self.problem(), steps, settings)?;
         self.run_history(friction, steps, settings, observer)
     }
+}
+
+/// A history keeps every step's solution: their bytes must fit the memory budget before any step runs.
+fn history_fits(problem: &Problem, steps: &[LoadStep], settings: &SolverSettings) -> Result<()> {
+    let per_step = Solution::estimated_bytes(problem);
+    let needed = per_step as f64 * steps.len() as f64;
+    if needed > settings.memory_budget as f64 {
+        return Err(Error::MemoryBudget {
+            what: format!(
+                "a history of {} steps (it keeps every step's solution, about {} bytes each on this mesh)",
+                steps.len(),
+                per_step
+            ),
+            needed,
+            budget: settings.memory_budget as f64,
+        });
+    }
+    Ok(())
 }
 
 impl Problem {
@@ -97,6 +116,7 @@ impl Problem {
         observer: Option<StepObserver<'_>>,
     ) -> Result<History> {
         settings.validate()?;
+        history_fits(self, steps, settings)?;
         self.condense_with(settings.stabilization, settings.condensation, settings.memory_budget)?
             .solve_history(friction, steps, settings, observer)
     }

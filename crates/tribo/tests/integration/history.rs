@@ -4,7 +4,7 @@
 use std::ops::ControlFlow;
 
 use tribo::{
-    ContactState, Error, Friction, LoadStep, MultiplierPoints, MultiplierSpace, SolveStatus, SolverSettings,
+    ContactState, Error, Friction, LoadStep, MultiplierPoints, MultiplierSpace, Solution, SolveStatus, SolverSettings,
     StepProgress, Threshold,
 };
 use tribo_testkit::{block_problem, hertz_mesh, hertz_problem, hertz_scene, hertz_spec};
@@ -150,6 +150,27 @@ fn interrupted_and_refused_histories() {
     assert!(matches!(e, Error::BadLoadStep { step: 3, .. }), "{e}");
     let e = problem.solve_history(&coulomb, &[], &SolverSettings::default(), None).unwrap_err();
     assert!(matches!(e, Error::BadLoadStep { .. }), "{e}");
+    // Every step's solution is kept: a history that cannot fit the memory budget is refused before any
+    // step (a million steps abort the process otherwise), and so is one just over a small budget.
+    let per_step = Solution::estimated_bytes(&problem);
+    let long = vec![LoadStep::new(s.approach, 0.0); 1_000_000];
+    let e = problem.solve_history(&coulomb, &long, &SolverSettings::default(), None).unwrap_err();
+    assert!(matches!(e, Error::MemoryBudget { .. }), "{e}");
+    let budget = SolverSettings { memory_budget: 1 << 20, ..Default::default() };
+    let fit = (1 << 20) / per_step;
+    let many = vec![LoadStep::new(s.approach, 0.0); fit + 1];
+    let e = problem.solve_history(&coulomb, &many, &budget, None).unwrap_err();
+    assert!(matches!(e, Error::MemoryBudget { needed, .. } if needed == ((fit + 1) * per_step) as f64), "{e}");
+    assert!(problem.solve_history(&coulomb, &many[..fit], &budget, None).is_ok());
+    // The estimate is the size of a solution's fields (a step's report adds a few hundred bytes).
+    let h = problem.solve_history(&coulomb, &steps[..1], &SolverSettings::default(), None).unwrap();
+    let sol = &h.solutions[0];
+    let floats = sol.displacement.len()
+        + 3 * sol.stress.len()
+        + 3 * sol.nodal_stress.len()
+        + sol.reactions.len()
+        + sol.vectors().iter().map(|(_, v)| v.len()).sum::<usize>();
+    assert!((8 * floats + 512..8 * floats + 4096).contains(&per_step), "{per_step} for {floats} floats");
 }
 
 /// A fretting cycle — drag to +s, then three times back to −s and again to +s — settles on a closed
