@@ -8,8 +8,9 @@ mesh is the refined one):
   stops on (of the contact tractions, or of the energy while nothing touches), the estimate η with its
   bulk, Γ_C, contact and friction parts, the level's seconds and status;
 * ``adapt.png``: the relative estimate and η against the unknowns (log-log), with the tolerance;
-* ``levels/level_NNN.vtu`` and ``adapt.pvd`` (``write_levels``, a one-solve scene only): every level's
-  mesh and solution, solved again to full tolerance, a series ParaView steps through.
+* ``levels/level_NNN.vtu`` and ``adapt.pvd`` (``write_levels``): every level's mesh and solution, solved
+  again to full tolerance (for a history: the whole history, its last step written), a series ParaView
+  steps through.
 """
 
 from __future__ import annotations
@@ -47,21 +48,32 @@ def adapt_table(adaptive: Adaptive | AdaptiveHistory) -> dict[str, list[Any]]:
     return table
 
 
-def write_levels(out: str | Path, adaptive: Adaptive, **solve: Any) -> list[Path]:
+def write_levels(out: str | Path, adaptive: Adaptive | AdaptiveHistory, **solve: Any) -> list[Path]:
     """Solves every level's problem again (``solve`` keywords, to their full tolerances) and writes the
     series ``levels/level_NNN.vtu`` (+ ``_contact``, ``_multipliers``) with ``adapt.pvd`` (and
     ``adapt_contact.pvd``, ``adapt_multipliers.pvd``): ParaView steps through the refinement, the level
-    as the time."""
+    as the time. For an adaptive history, each level solves the whole history again (its steps are
+    ``adaptive.history``'s) and writes its last converged step (the failed one if none converged; a level
+    with neither is left out of the series, with a log line)."""
     out = Path(out)
     (out / "levels").mkdir(parents=True, exist_ok=True)
     series: list[list[Path]] = [[], [], []]
+    levels: list[int] = []
     for k in range(len(adaptive.levels)):
         problem = adaptive.level_problem(k)
-        solution = problem.solve(**solve)
+        if isinstance(adaptive, AdaptiveHistory):
+            h = adaptive.history
+            history = problem.solve_history(h.approach, h.shift, h.load_factor, **solve)
+            solution = history.solutions[-1] if len(history) else history.failed
+            if solution is None:
+                log.info("level %d: the history's first step ended with status '%s'; not written", k, history.status)
+                continue
+        else:
+            solution = problem.solve(**solve)
         for part, p in zip(series, write_vtu(out / "levels" / f"level_{k:03d}.vtu", problem, solution), strict=True):
             part.append(p)
+        levels.append(k)
     files = [p for part in series for p in part]
-    levels = list(range(len(adaptive.levels)))
     for name, part in zip(("adapt", "adapt_contact", "adapt_multipliers"), series, strict=True):
         files.append(write_pvd(out / f"{name}.pvd", part, levels))
     return files

@@ -134,6 +134,7 @@ def run_history(
         log.info("adaptive history stopped (%s) after %d levels", adaptive.stop, len(adaptive.levels))
         problem, history = adaptive.problem, adaptive.history
         files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
+        files += write_levels(out, adaptive, **scene.solve_kwargs())
     else:
         with tqdm(total=len(approach), desc="steps", unit="step", disable=not log.isEnabledFor(logging.INFO)) as bar:
 

@@ -428,6 +428,16 @@ def test_run_adapts_a_history(tmp_path: Path) -> None:
     assert len(step.cells_dict["triangle"]) == int(rows[-1]["triangles"]), "the steps are on the last mesh"
     summary = json.loads((tmp_path / "o" / "summary.json").read_text())
     assert summary["n_free"] == int(rows[-1]["unknowns"]) and summary["status"] == "converged"
+    # The level series: each level's history solved again, its last step on the level's mesh; the last
+    # level's equals the history's own last step.
+    import xml.etree.ElementTree as ET
+
+    files = [d.get("file") for d in ET.parse(tmp_path / "o" / "adapt.pvd").getroot().iter("DataSet")]
+    assert files == [f"levels/level_{k:03d}.vtu" for k in range(len(rows))]
+    for f, row in zip(files, rows, strict=True):
+        assert len(meshio.read(tmp_path / "o" / str(f)).cells_dict["triangle"]) == int(row["triangles"])
+    last = meshio.read(tmp_path / "o" / str(files[-1]))
+    np.testing.assert_allclose(last.point_data["displacement"], step.point_data["displacement"], rtol=0, atol=1e-12)
 
 
 def test_adapt_table_errors_name_the_key(tmp_path: Path) -> None:
