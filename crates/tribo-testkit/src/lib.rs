@@ -189,6 +189,19 @@ pub fn hertz_l2_error_with(problem: &Problem, sol: &Solution, e_star: f64) -> f6
 /// `h_min`; the gap between them is the parabola of the scene's radius (the sum of the two curvatures),
 /// the lower top is the secondary side, P1 multipliers on its edges.
 pub fn two_body_hertz(h_min: f64, lower: Material, upper: Material, hold_top: bool, delta: f64) -> Problem {
+    two_body_hertz_sides(h_min, lower, upper, hold_top, delta, true)
+}
+
+/// [`two_body_hertz`] with the secondary side (T_H and the stabilization) on the lower block's top
+/// (`lower_secondary`) or on the upper block's bottom.
+pub fn two_body_hertz_sides(
+    h_min: f64,
+    lower: Material,
+    upper: Material,
+    hold_top: bool,
+    delta: f64,
+    lower_secondary: bool,
+) -> Problem {
     let g = |side, y: [f64; 2]| {
         let grading = Grading { side, segment: [-0.15, 0.15], h_min, h_max: 0.5, growth: 0.15 };
         graded_rectangle([-2.0, 2.0], y, &grading).expect("valid grading")
@@ -206,9 +219,11 @@ pub fn two_body_hertz(h_min: f64, lower: Material, upper: Material, hold_top: bo
         body("lower", g(Side::Top, [-2.0, 0.0]), lower, vec![Support::clamp("bottom")]),
         body("upper", g(Side::Bottom, [0.0, 1.0]), upper, vec![top, Support::displacement("left", Some(0.0), None)]),
     ];
+    let (secondary, primary) =
+        if lower_secondary { ("lower.top", "upper.bottom") } else { ("upper.bottom", "lower.top") };
     let pair = ContactPair {
-        secondary: "lower.top".into(),
-        primary: "upper.bottom".into(),
+        secondary: secondary.into(),
+        primary: primary.into(),
         gap: ObstacleShape::Parabola { center: 0.0, radius: hertz_scene().radius },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
