@@ -31,7 +31,7 @@ from tribo._tribo import (
 )
 from tribo.checks import SceneWarning, check_solution
 from tribo.io import read_mesh, write_vtu
-from tribo.problem import Problem
+from tribo.problem import Body, Problem
 from tribo.results import Adaptive, AdaptiveHistory, History, Level, Report, Solution
 from tribo.scene import SceneError, load_scene
 
@@ -39,6 +39,7 @@ __all__ = [
     "STATE_NAMES",
     "Adaptive",
     "AdaptiveHistory",
+    "Body",
     "ContactGeometryError",
     "History",
     "Level",

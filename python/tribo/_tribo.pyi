@@ -173,6 +173,10 @@ class ProblemData:
     @property
     def node_abscissae(self) -> _Floats1: ...
     @property
+    def primary(self) -> str | None: ...
+    @property
+    def bodies(self) -> list[tuple[str, list[int]]]: ...
+    @property
     def setup_timings(self) -> dict[str, float]: ...
 
 @disjoint_base
@@ -181,22 +185,23 @@ class Problem(ProblemData):
 
     def __new__(
         cls,
-        mesh: Mesh,
+        mesh: Mesh | Sequence[tuple[str, Mesh, float, float, list[str], list[Support], list[tuple[str, tuple[float, float]]]]],
         *,
-        young: float,
-        poisson: float,
+        young: float | None = None,
+        poisson: float | None = None,
         contact: str,
-        clamped: str | Sequence[str] | None = None,
-        supports: Support | Sequence[Support] | None = None,
-        obstacle: Obstacle | Callable[[float], float] | None = None,
+        clamped: Sequence[str] | None = None,
+        supports: Sequence[Support] | None = None,
+        obstacle: Obstacle | None = None,
         approach: float | None = None,
         shift: float | None = None,
-        tractions: Mapping[str, _Pair] | None = None,
+        tractions: Sequence[tuple[str, tuple[float, float]]] | None = None,
         body_force: _Pair | None = None,
         multiplier_ratio: float | None = None,
         multiplier_size: float | None = None,
         multiplier_points: _ArrayLike | None = None,
         space: Literal["P0", "P1", "p0", "p1"] | None = None,
+        primary: str | None = None,
     ) -> Self: ...
     def _solve(self, options: Mapping[str, Any]) -> dict[str, Any]: ...
     def _solve_history(self, steps: _ArrayLike, options: Mapping[str, Any]) -> dict[str, Any]: ...

@@ -7,7 +7,8 @@ and spreads a scalar approach, shift or load factor over the steps of a history 
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any, Literal
 
 import numpy as np
@@ -17,7 +18,7 @@ from tribo import _tribo
 from tribo._tribo import SettingsError, format_number
 from tribo.results import Adaptive, AdaptiveHistory, History, Level, Solution
 
-__all__ = ["Problem", "history_steps"]
+__all__ = ["Body", "Problem", "history_steps"]
 
 _Law = Literal["frictionless", "tresca", "coulomb"]
 ProgressCallback = Callable[[int, float, int, float], object]
@@ -31,6 +32,76 @@ def _settings_error(message: str) -> SettingsError:
     e = SettingsError(message)
     e.kind, e.details = "BadInput", {}
     return e
+
+
+def _contact_error(message: str) -> _tribo.ContactGeometryError:
+    """A ContactGeometryError for input refused before it reaches the core (``kind`` 'BadInput')."""
+    e = _tribo.ContactGeometryError(message)
+    e.kind, e.details = "BadInput", {}
+    return e
+
+
+def _pair(value: Any, what: str) -> tuple[float, float]:
+    try:
+        a = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise _settings_error(f"{what} must be a pair of real numbers, got {value!r}") from e
+    if a.shape != (2,):
+        raise _settings_error(f"{what} must have shape (2,), got shape {a.shape}")
+    return float(a[0]), float(a[1])
+
+
+def _loads(clamped: Any, supports: Any, tractions: Any) -> dict[str, Any]:
+    """``clamped`` (a name or names), ``supports`` (a Support or several) and ``tractions`` (a dict edge
+    set name → (tx, ty)) as the lists the compiled constructor takes (None stays None)."""
+    out: dict[str, Any] = {}
+    if clamped is not None:
+        names = [clamped] if isinstance(clamped, str) else clamped
+        if not (isinstance(names, Sequence) and all(isinstance(n, str) for n in names)):
+            raise _settings_error(f"clamped must be an edge set name or a list of names, got {clamped!r}")
+        out["clamped"] = list(names)
+    if supports is not None:
+        listed = [supports] if isinstance(supports, _tribo.Support) else supports
+        if not (isinstance(listed, Sequence) and all(isinstance(x, _tribo.Support) for x in listed)):
+            raise _settings_error(f"supports must be a tribo.Support or a list of them, got {supports!r}")
+        out["supports"] = list(listed)
+    if tractions is not None:
+        if not isinstance(tractions, Mapping) or not all(isinstance(k, str) for k in tractions):
+            raise _settings_error(f"tractions must be a dict edge set name -> (tx, ty), got {tractions!r}")
+        out["tractions"] = [(name, _pair(g, f"traction on '{name}'")) for name, g in tractions.items()]
+    return out
+
+
+def _compiled_arguments(arguments: dict[str, Any]) -> dict[str, Any]:
+    """The keywords of ``Problem`` as the compiled constructor takes them: the loads as lists
+    (``_loads``) and a callable gap as ``Obstacle.function``."""
+    out = {**arguments, **_loads(arguments.get("clamped"), arguments.get("supports"), arguments.get("tractions"))}
+    obstacle = arguments.get("obstacle")
+    if obstacle is not None and not isinstance(obstacle, _tribo.Obstacle):
+        if not callable(obstacle):
+            raise _contact_error(f"obstacle must be a tribo.Obstacle or a callable gap(xi) -> float, got {obstacle!r}")
+        out["obstacle"] = _tribo.Obstacle.function(obstacle)
+    return out
+
+
+@dataclass(frozen=True)
+class Body:
+    """One elastic body of a two-body problem (``Problem.two_bodies``): its mesh, material (plane strain)
+    and supports and loads, with the edge set names of its own mesh (the problem calls them
+    ``'name.set'``)."""
+
+    name: str
+    mesh: _tribo.Mesh
+    young: float
+    poisson: float
+    clamped: str | Sequence[str] | None = None
+    supports: _tribo.Support | Sequence[_tribo.Support] | None = None
+    tractions: Mapping[str, Any] | None = None
+
+    def _compiled(self) -> tuple[Any, ...]:
+        loads = _loads(self.clamped, self.supports, self.tractions)
+        return (self.name, self.mesh, self.young, self.poisson, loads.get("clamped", []), loads.get("supports", []),
+                loads.get("tractions", []))
 
 
 def history_steps(approach: Any, shift: Any, load_factor: Any = None) -> npt.NDArray[np.float64]:
@@ -72,11 +143,42 @@ class Problem(_tribo.Problem):
 
     _arguments: dict[str, Any]
 
-    def __new__(cls, mesh: _tribo.Mesh, **arguments: Any) -> Problem:
-        problem = super().__new__(cls, mesh, **arguments)
+    def __new__(cls, mesh: _tribo.Mesh | Sequence[tuple[Any, ...]], **arguments: Any) -> Problem:
+        problem = super().__new__(cls, mesh, **_compiled_arguments(arguments))
         # The arguments, so that an adaptive solve can build the problem of its last mesh.
         problem._arguments = arguments
         return problem
+
+    @classmethod
+    def two_bodies(
+        cls,
+        first: Body,
+        second: Body,
+        *,
+        secondary: str,
+        primary: str,
+        gap: _tribo.Obstacle | Callable[[float], float] | None = None,
+        body_force: Any = None,
+        multiplier_ratio: float | None = None,
+        multiplier_size: float | None = None,
+        multiplier_points: npt.ArrayLike | None = None,
+        space: Literal["P0", "P1", "p0", "p1"] | None = None,
+    ) -> Problem:
+        """Two elastic bodies in contact along one straight line: ``secondary`` ('body.edge_set') carries
+        the multipliers T_H and the stabilization, ``primary`` meets it with the opposite normal; ``gap``
+        is the initial gap between them as an obstacle shape (flat: touching; a parabola for two curved
+        profiles). Each body has its own material, supports and tractions (``Body``), and moves only
+        through its supports; ``body_force`` acts on both. The problem solves, solves histories and plots
+        as a one-body problem; ``bodies`` says where each body lies in ``mesh`` (the two joined, edge sets
+        renamed 'body.set'). Adaptive refinement of two bodies is not available yet."""
+        if not (isinstance(first, Body) and isinstance(second, Body)):
+            raise TypeError(f"two_bodies takes two tribo.Body, got {type(first).__name__} and {type(second).__name__}")
+        return cls(
+            [first._compiled(), second._compiled()],
+            contact=secondary, primary=primary, obstacle=gap, body_force=body_force,
+            multiplier_ratio=multiplier_ratio, multiplier_size=multiplier_size, multiplier_points=multiplier_points,
+            space=space,
+        )
 
     def __repr__(self) -> str:
         return (
@@ -264,6 +366,8 @@ class Problem(_tribo.Problem):
         """This problem (material, supports, loads, obstacle, multiplier space) on another mesh with the
         multiplier mesh T_H through ``multiplier_points`` (abscissae on Γ_C): how an adaptive solve hands
         back the problem of a level."""
+        if self.primary is not None:
+            raise _contact_error("a two-body problem cannot be moved to another mesh yet (no adaptive refinement)")
         arguments = {**self._arguments, "multiplier_ratio": None, "multiplier_size": None}
         return Problem(mesh, **{**arguments, "multiplier_points": multiplier_points})
 

@@ -19,7 +19,7 @@ use tribo::{
 };
 
 use crate::convert::{callback, floats, pair, rows, setting_value, vec1};
-use crate::errors::{bad_input, to_pyerr};
+use crate::errors::to_pyerr;
 use crate::mesh::PyMesh;
 use crate::obstacle::{chain_gap_error, take_gap_error, PyObstacle};
 use crate::results;
@@ -72,6 +72,10 @@ pub struct ProblemData {
     multiplier_abscissae: Py<PyAny>,
     /// Set-up wall times in seconds: {'assembly', 'contact_matrices'}.
     setup_timings: BTreeMap<&'static str, f64>,
+    /// The primary contact set of two bodies ('body.set'), or None against the rigid obstacle.
+    primary: Option<String>,
+    /// The bodies: (name, [first node, end, first triangle, end]) in `mesh` (one, 'body', for one body).
+    bodies: Vec<(String, [usize; 4])>,
 }
 
 /// A contact problem, validated and assembled once (independent of γ0 and friction). It keeps the
@@ -81,32 +85,21 @@ pub struct PyProblem {
     inner: tribo::Problem,
 }
 
-/// `supports=`: a Support or a sequence of them.
-fn support_list(obj: &Bound<'_, PyAny>) -> PyResult<Vec<tribo::Support>> {
-    let list = obj.extract::<PySupport>().map(|s| vec![s]).or_else(|_| obj.extract::<Vec<PySupport>>());
-    let bad = |_| bad_input(Settings, format!("supports must be a tribo.Support or a list of them, got {obj}"));
-    Ok(list.map_err(bad)?.into_iter().map(|s| s.inner).collect())
+/// Supports and tractions as `tribo.Problem` hands them over (lists; see `tribo.problem`).
+type Loads = (Vec<PySupport>, Vec<(String, (f64, f64))>);
+
+fn loads(l: Loads) -> (Vec<tribo::Support>, Vec<(String, [f64; 2])>) {
+    (l.0.into_iter().map(|s| s.inner).collect(), l.1.into_iter().map(|(set, (x, y))| (set, [x, y])).collect())
 }
 
-/// `clamped=`: an edge set name or a list of names.
-fn names(obj: &Bound<'_, PyAny>) -> PyResult<Vec<String>> {
-    let list = obj.extract::<String>().map(|s| vec![s]).or_else(|_| obj.extract::<Vec<String>>());
-    list.map_err(|_| bad_input(Settings, format!("clamped must be an edge set name or a list of names, got {obj}")))
-}
+/// A body of `tribo.Body`: (name, mesh, young, poisson, clamped, supports, tractions).
+type BodyArgs = (String, Py<PyMesh>, f64, f64, Vec<String>, Vec<PySupport>, Vec<(String, (f64, f64))>);
 
-/// `obstacle=`: an Obstacle or a callable gap(xi) (flat when None).
-fn obstacle_arg(py: Python<'_>, obj: Option<&Bound<'_, PyAny>>) -> PyResult<Py<PyObstacle>> {
-    match obj {
-        None => Py::new(py, PyObstacle::checked(ObstacleShape::Flat)?),
-        Some(o) => match o.cast::<PyObstacle>() {
-            Ok(o) => Ok(o.clone().unbind()),
-            Err(_) if o.is_callable() => Py::new(py, PyObstacle::from_callable(o.clone().unbind())?),
-            Err(_) => Err(bad_input(
-                ContactGeometry,
-                format!("obstacle must be a tribo.Obstacle or a callable gap(xi) -> float, got {o}"),
-            )),
-        },
-    }
+fn body(b: BodyArgs) -> tribo::Body {
+    let (name, mesh, young, poisson, clamped, supports, tractions) = b;
+    let (supports, tractions) = loads((supports, tractions));
+    let material = Material { young, poisson };
+    tribo::Body { name, mesh: mesh.get().inner.clone(), material, clamped, supports, tractions }
 }
 
 /// Calls the callback (if any) with `args` and checks for Ctrl-C: `Break` when the callback returned
@@ -220,42 +213,32 @@ fn finish<T>(result: tribo::Result<T>, error: Option<PyErr>) -> PyResult<T> {
 impl PyProblem {
     #[new]
     #[pyo3(signature = (
-        mesh, *, young, poisson, contact, clamped = None, supports = None, obstacle = None, approach = None, shift = None,
-        tractions = None, body_force = None, multiplier_ratio = None, multiplier_size = None,
-        multiplier_points = None, space = None,
+        mesh, *, young = None, poisson = None, contact, clamped = None, supports = None, obstacle = None, approach = None,
+        shift = None, tractions = None, body_force = None, multiplier_ratio = None, multiplier_size = None,
+        multiplier_points = None, space = None, primary = None,
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
-        mesh: Py<PyMesh>,
-        young: f64,
-        poisson: f64,
+        mesh: &Bound<'_, PyAny>,
+        young: Option<f64>,
+        poisson: Option<f64>,
         contact: String,
-        clamped: Option<&Bound<'_, PyAny>>,
-        supports: Option<&Bound<'_, PyAny>>,
-        obstacle: Option<&Bound<'_, PyAny>>,
+        clamped: Option<Vec<String>>,
+        supports: Option<Vec<PySupport>>,
+        obstacle: Option<Py<PyObstacle>>,
         approach: Option<f64>,
         shift: Option<f64>,
-        tractions: Option<&Bound<'_, PyAny>>,
+        tractions: Option<Vec<(String, (f64, f64))>>,
         body_force: Option<&Bound<'_, PyAny>>,
         multiplier_ratio: Option<f64>,
         multiplier_size: Option<f64>,
         multiplier_points: Option<&Bound<'_, PyAny>>,
         space: Option<&str>,
+        primary: Option<String>,
     ) -> PyResult<PyClassInitializer<Self>> {
-        let obstacle = obstacle_arg(py, obstacle)?;
-        let defaults = tribo::Obstacle::default();
-        let spec_obstacle = tribo::Obstacle {
-            shape: obstacle.get().shape.clone(),
-            approach: approach.unwrap_or(defaults.approach),
-            shift: shift.unwrap_or(defaults.shift),
-        };
-        let tractions: Vec<(String, Bound<'_, PyAny>)> = match tractions {
-            None => Vec::new(),
-            Some(t) => (t.cast::<PyDict>().ok().and_then(|d| d.items().extract().ok())).ok_or_else(|| {
-                bad_input(Settings, format!("tractions must be a dict edge set name -> (tx, ty), got {t}"))
-            })?,
-        };
+        let obstacle = obstacle.map_or_else(|| Py::new(py, PyObstacle::checked(ObstacleShape::Flat)?), Ok)?;
+        let shape = obstacle.get().shape.clone();
         let points = match multiplier_points {
             None => None,
             Some(p) if py.import("numpy")?.call_method1("ndim", (p,))?.extract::<usize>()? == 2 => Some(
@@ -263,27 +246,51 @@ impl PyProblem {
             ),
             Some(p) => Some(MultiplierPoints::Abscissae(floats(p, "multiplier_points", &[None], ContactGeometry)?)),
         };
-        let spec = ProblemSpec {
-            material: Material { young, poisson },
-            clamped: clamped.map_or(Ok(Vec::new()), names)?,
-            supports: supports.map_or(Ok(Vec::new()), support_list)?,
-            body_force: body_force.map_or(Ok([0.0, 0.0]), |b| pair(b, "body_force", Settings))?,
-            tractions: tractions
-                .iter()
-                .map(|(n, v)| Ok((n.clone(), pair(v, &format!("traction on '{n}'"), Settings)?)))
-                .collect::<PyResult<_>>()?,
-            contact,
-            obstacle: spec_obstacle,
-            multiplier_points: MultiplierPoints::from_keywords(multiplier_ratio, multiplier_size, points)
-                .map_err(to_pyerr)?,
-            multiplier_space: space.map_or(Ok(MultiplierSpace::default()), MultiplierSpace::parse).map_err(to_pyerr)?,
-        };
-        let mesh_inner = mesh.get().inner.clone();
+        let points = MultiplierPoints::from_keywords(multiplier_ratio, multiplier_size, points).map_err(to_pyerr)?;
+        let space = space.map_or(Ok(MultiplierSpace::default()), MultiplierSpace::parse).map_err(to_pyerr)?;
+        let body_force = body_force.map_or(Ok([0.0, 0.0]), |b| pair(b, "body_force", Settings))?;
         take_gap_error();
-        let p = py.detach(|| tribo::Problem::new(mesh_inner, spec)).map_err(|e| chain_gap_error(py, to_pyerr(e)))?;
+        let p = if let Some(primary) = &primary {
+            // Two bodies (`tribo.Problem.two_bodies`): `mesh` is their list, each with its own material,
+            // supports and tractions; they move through their supports.
+            let given = [young.is_some(), poisson.is_some(), clamped.is_some(), supports.is_some()];
+            if given.into_iter().chain([tractions.is_some(), approach.is_some(), shift.is_some()]).any(|g| g) {
+                return Err(PyTypeError::new_err("with primary=, material, supports and tractions are per body"));
+            }
+            let [first, second]: [BodyArgs; 2] = mesh.extract()?;
+            let (secondary, primary, gap, multiplier_points) = (contact.clone(), primary.clone(), shape, points);
+            let pair = tribo::ContactPair { secondary, primary, gap, multiplier_points, multiplier_space: space };
+            py.detach(|| tribo::Problem::two_bodies([body(first), body(second)], pair, body_force))
+        } else {
+            let missing = |k: &str| PyTypeError::new_err(format!("Problem() missing required keyword argument: '{k}'"));
+            let (young, poisson) = (young.ok_or_else(|| missing("young"))?, poisson.ok_or_else(|| missing("poisson"))?);
+            let (supports, tractions) = loads((supports.unwrap_or_default(), tractions.unwrap_or_default()));
+            let defaults = tribo::Obstacle::default();
+            let spec = ProblemSpec {
+                material: Material { young, poisson },
+                clamped: clamped.unwrap_or_default(),
+                supports,
+                body_force,
+                tractions,
+                contact,
+                obstacle: tribo::Obstacle {
+                    shape,
+                    approach: approach.unwrap_or(defaults.approach),
+                    shift: shift.unwrap_or(defaults.shift),
+                },
+                multiplier_points: points,
+                multiplier_space: space,
+            };
+            let mesh_inner = mesh.cast::<PyMesh>()?.get().inner.clone();
+            py.detach(|| tribo::Problem::new(mesh_inner, spec))
+        }
+        .map_err(|e| chain_gap_error(py, to_pyerr(e)))?;
         let (c, spec) = (&p.contact, &p.spec);
         let data = ProblemData {
-            mesh,
+            mesh: match mesh.cast::<PyMesh>() {
+                Ok(m) => m.clone().unbind(),
+                Err(_) => Py::new(py, PyMesh::from_core(py, p.mesh.clone())?)?,
+            },
             obstacle,
             approach: spec.obstacle.approach,
             shift: spec.obstacle.shift,
@@ -305,6 +312,8 @@ impl PyProblem {
             multiplier_mesh: vec1(py, &p.multipliers.xi)?,
             multiplier_abscissae: vec1(py, &p.multipliers.dof_abscissae())?,
             setup_timings: BTreeMap::from(p.timings.named()),
+            primary,
+            bodies: p.bodies.iter().map(|b| (b.name.clone(), b.spans())).collect(),
         };
         Ok(PyClassInitializer::from(data).add_subclass(Self { inner: p }))
     }

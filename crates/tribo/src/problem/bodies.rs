@@ -70,6 +70,11 @@ impl BodyPart {
     pub fn whole(name: &str, mesh: &Mesh) -> Self {
         Self { name: name.to_string(), nodes: 0..mesh.n_nodes(), triangles: 0..mesh.n_triangles() }
     }
+
+    /// `[first node, end, first triangle, end]`.
+    pub fn spans(&self) -> [usize; 4] {
+        [self.nodes.start, self.nodes.end, self.triangles.start, self.triangles.end]
+    }
 }
 
 fn renamed(support: &Support, body: &str) -> Support {

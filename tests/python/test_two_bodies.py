@@ -1,0 +1,90 @@
+"""Two elastic bodies from Python: ``tribo.Body`` and ``Problem.two_bodies`` (the core's ``tribo::pair``).
+
+The Rust tests (``crates/tribo/tests/integration/two_bodies.rs``) hold the method's checks (patch test,
+action and reaction, the rigid limit, two-body Hertz); these check what Python hands over and back.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import tribo
+
+
+def stacked(lower_secondary: bool = True, space: str = "P1") -> tuple[tribo.Problem, float]:
+    """Two blocks of different materials on non-matching meshes, pressed 0.01 in uniaxial strain (rollers
+    on the sides): the pressure is 0.01 / (h1/M1 + h2/M2), M the plane-strain P-wave modulus."""
+    rollers = [tribo.Support.roller("left"), tribo.Support.roller("right")]
+    lower = tribo.Body("lower", tribo.Mesh.rectangle((0.0, 2.0), (-1.0, 0.0), 5, 3, diagonal="alternating"),
+                       young=100.0, poisson=0.3, supports=[*rollers, tribo.Support.roller("bottom")])
+    upper = tribo.Body("upper", tribo.Mesh.rectangle((0.0, 2.0), (0.0, 0.5), 7, 2), young=300.0, poisson=0.2,
+                       supports=[*rollers, tribo.Support.displacement("top", y=-0.01)])
+    sides = ("lower.top", "upper.bottom") if lower_secondary else ("upper.bottom", "lower.top")
+    problem = tribo.Problem.two_bodies(lower, upper, secondary=sides[0], primary=sides[1], space=space)  # type: ignore[arg-type]
+
+    def modulus(e: float, nu: float) -> float:
+        return e * (1 - nu) / ((1 + nu) * (1 - 2 * nu))
+
+    return problem, 0.01 / (1.0 / modulus(100.0, 0.3) + 0.5 / modulus(300.0, 0.2))
+
+
+@pytest.mark.parametrize("lower_secondary", [True, False])
+@pytest.mark.parametrize("space", ["P0", "P1"])
+def test_stacked_blocks_pass_the_patch_test(lower_secondary: bool, space: str) -> None:
+    problem, p = stacked(lower_secondary, space)
+    assert problem.primary == ("upper.bottom" if lower_secondary else "lower.top")
+    assert [name for name, _ in problem.bodies] == ["lower", "upper"]
+    (_, lo), (_, up) = problem.bodies
+    assert lo[0] == 0 and lo[1] == up[0] and up[1] == problem.mesh.n_nodes
+    assert lo[2] == 0 and lo[3] == up[2] and up[3] == problem.mesh.n_triangles
+    assert {"lower.top", "upper.bottom", "lower.left", "upper.top"} <= set(problem.mesh.edge_sets)
+    for friction in ({}, {"mu": 0.3}):
+        sol = problem.solve(**friction)  # type: ignore[arg-type]
+        assert sol.report.status == "converged"
+        np.testing.assert_allclose(sol.lambda_n, p, rtol=1e-10)
+        np.testing.assert_allclose(sol.stress[:, 1], -p, rtol=1e-10)
+        assert np.abs(sol.u_n).max() < 1e-12 and sol.normal_force == pytest.approx(2.0 * p, rel=1e-10)
+    # Action and reaction: the supports of the two bodies carry equal and opposite forces.
+    sol = problem.solve(mu=0.3)
+    ry = sol.reactions[:, 1]
+    assert ry[lo[0]:lo[1]].sum() == pytest.approx(-ry[up[0]:up[1]].sum(), rel=1e-12)
+
+
+def test_a_two_body_solution_is_written_and_read_back(tmp_path: Path) -> None:
+    import meshio
+
+    problem, _ = stacked()
+    sol = problem.solve(mu=0.3)
+    files = tribo.write_vtu(tmp_path / "two.vtu", problem, sol)
+    back = meshio.read(files[0])
+    assert len(back.points) == problem.mesh.n_nodes and len(back.cells_dict["triangle"]) == problem.mesh.n_triangles
+    np.testing.assert_allclose(back.point_data["displacement"][:, :2], sol.displacement, atol=1e-15)
+
+
+def test_bad_pairs_are_errors() -> None:
+    problem, _ = stacked()
+    mesh = tribo.Mesh.rectangle((0.0, 2.0), (0.0, 1.0), 4, 2)
+    a = tribo.Body("a", tribo.Mesh.rectangle((0.0, 2.0), (-1.0, 0.0), 4, 2), young=1.0, poisson=0.3, clamped="bottom")
+    b = tribo.Body("b", mesh, young=1.0, poisson=0.3, clamped="top")
+    with pytest.raises(tribo.ContactGeometryError, match="no body named 'c'") as info:
+        tribo.Problem.two_bodies(a, b, secondary="c.top", primary="b.bottom")
+    assert info.value.kind == "ContactPair"
+    with pytest.raises(tribo.ContactGeometryError, match="does not cover"):
+        short = tribo.Body("b", tribo.Mesh.rectangle((0.5, 2.0), (0.0, 1.0), 4, 2), young=1.0, poisson=0.3, clamped="top")
+        tribo.Problem.two_bodies(a, short, secondary="a.top", primary="b.bottom")
+    with pytest.raises(tribo.MeshError, match="side"):
+        tribo.Problem.two_bodies(a, b, secondary="a.top", primary="b.side")
+    with pytest.raises(tribo.SettingsError, match="traction on 'top'"):
+        tribo.Body("b", mesh, young=1.0, poisson=0.3, clamped="top", tractions={"top": (1.0, 2.0, 3.0)})._compiled()
+    with pytest.raises(TypeError, match="per body"):
+        tribo.Problem([a._compiled(), b._compiled()], contact="a.top", primary="b.bottom", young=1.0)
+    with pytest.raises(TypeError, match="two tribo.Body"):
+        tribo.Problem.two_bodies(a, mesh, secondary="a.top", primary="b.bottom")  # type: ignore[arg-type]
+    # Not yet for two bodies, and said so: adaptive refinement (and so another mesh).
+    with pytest.raises(tribo.ContactGeometryError, match="two-body"):
+        problem.solve_adaptive(tol=0.1)
+    with pytest.raises(tribo.ContactGeometryError, match="two-body"):
+        problem.on_mesh(problem.mesh, problem.multiplier_mesh)
