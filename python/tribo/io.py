@@ -11,8 +11,10 @@ Writing: ``write_vtu("out/result.vtu", problem, solution)`` writes three files, 
   ``Solution.nodal_stress``) and ``von_mises_recovered``, and cell
   data ``stress``, the full symmetric 3 × 3 stress tensor of plane strain (9 components, which ParaView
   reads as a tensor: σ_xz = σ_yz = 0 and σ_zz = ν (σ_xx + σ_yy)), its components ``sigma_xx``,
-  ``sigma_yy``, ``sigma_xy``, ``sigma_zz``, ``von_mises``, ``error_indicator`` (the a posteriori η_K) and
-  ``traction_indicator`` (ζ_K, each triangle's part of the estimated error of the contact tractions);
+  ``sigma_yy``, ``sigma_xy``, ``sigma_zz``, ``von_mises``, ``error_indicator`` (the a posteriori η_K),
+  ``traction_indicator`` (ζ_K, each triangle's part of the estimated error of the contact tractions) and
+  ``body`` (0, or for two bodies the body's index in ``problem.bodies``); for two bodies, ``u_n`` and
+  ``slip`` below are the jump between them and the gap is the initial one between the two lines;
 * ``result_contact.vtu``: Γ_C as line cells through its FE nodes, with point data ``u_n``, ``slip``,
   ``gap`` (g = g0 − δ: where the obstacle is, along n), ``current_gap`` (g − u_n: 0 in contact) and
   ``obstacle`` (the obstacle's surface point facing the node, 3 components), and cell data ``sigma_n``,
@@ -293,6 +295,8 @@ def write_vtu(path: str | Path, problem: Problem, solution: Solution) -> list[Pa
             "von_mises": [solution.von_mises],
             "error_indicator": [solution.estimator],
             "traction_indicator": [solution.traction_estimator],
+            # Which body each triangle belongs to (0 for one body; two bodies in the order given).
+            "body": [np.repeat(np.arange(len(problem.bodies)), [s[3] - s[2] for _, s in problem.bodies])],
         },
     )
     n = len(solution.node_abscissae)

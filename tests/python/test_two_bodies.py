@@ -62,6 +62,10 @@ def test_a_two_body_solution_is_written_and_read_back(tmp_path: Path) -> None:
     back = meshio.read(files[0])
     assert len(back.points) == problem.mesh.n_nodes and len(back.cells_dict["triangle"]) == problem.mesh.n_triangles
     np.testing.assert_allclose(back.point_data["displacement"][:, :2], sol.displacement, atol=1e-15)
+    # Cell data 'body' tells the bodies apart (ParaView's Threshold on it shows one body).
+    body = back.cell_data["body"][0]
+    (_, lo), (_, up) = problem.bodies
+    assert (body[lo[2]:lo[3]] == 0).all() and (body[up[2]:up[3]] == 1).all()
 
 
 def test_bad_pairs_are_errors() -> None:
