@@ -86,3 +86,16 @@ def test_readme_half_model_scene_is_half_the_hertz_scene() -> None:
     _, full = load_scene(scene_path("hertz")).solve()
     assert half.report.status == full.report.status == "converged"
     assert abs(2.0 * half.normal_force - full.normal_force) < 1e-10 * full.normal_force
+
+
+def test_readme_quotes_the_two_body_and_path_studies_as_measured() -> None:
+    """The two-body and path-choice readings of the README are those of docs/two_bodies.csv and paths.csv."""
+    text = README.read_text(encoding="utf-8")
+    assert re.search(r"!\[[^\]]*\]\(docs/two_bodies\.png\)", text)
+    rows = _rows("two_bodies.csv")
+    finest = max(float(r["n_free"]) for r in rows)
+    at = {r["pair"]: float(r["hertz_l2"]) for r in rows if float(r["n_free"]) == finest}
+    assert f"{at['equal']:.2%}".replace("%", " %") in text and f"{at['dissimilar']:.2%}".replace("%", " %") in text
+    assert f"{finest / 1000:.1f}k unknowns" in text
+    worst = max(float(r["minimax"]) for r in _rows("paths.csv"))
+    assert f"at most {worst:.2f}× the fastest" in text
