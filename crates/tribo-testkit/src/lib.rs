@@ -188,12 +188,19 @@ pub fn hertz_l2_error_with(problem: &Problem, sol: &Solution, e_star: f64) -> f6
 /// `hold_top`, else only on its left side), both graded toward [−0.15, 0.15] at growth 0.15 down to
 /// `h_min`; the gap between them is the parabola of the scene's radius (the sum of the two curvatures),
 /// the lower top is the secondary side, P1 multipliers on its edges.
+///
+/// # Panics
+/// If `h_min` or a material is not valid (a test's own parameters: this dev-only scene has no user input;
+/// the fixed geometry — two blocks on one line, each held by its supports — is always a valid pair).
 pub fn two_body_hertz(h_min: f64, lower: Material, upper: Material, hold_top: bool, delta: f64) -> Problem {
     two_body_hertz_sides(h_min, lower, upper, hold_top, delta, true)
 }
 
 /// [`two_body_hertz`] with the secondary side (T_H and the stabilization) on the lower block's top
 /// (`lower_secondary`) or on the upper block's bottom.
+///
+/// # Panics
+/// As [`two_body_hertz`].
 pub fn two_body_hertz_sides(
     h_min: f64,
     lower: Material,
@@ -204,6 +211,7 @@ pub fn two_body_hertz_sides(
 ) -> Problem {
     let g = |side, y: [f64; 2]| {
         let grading = Grading { side, segment: [-0.15, 0.15], h_min, h_max: 0.5, growth: 0.15 };
+        // Fixed ranges and h_max; only h_min comes from the caller (see # Panics).
         graded_rectangle([-2.0, 2.0], y, &grading).expect("valid grading")
     };
     let top = Support::displacement("top", hold_top.then_some(0.0), Some(-delta));
@@ -228,6 +236,7 @@ pub fn two_body_hertz_sides(
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
     };
+    // The pair is valid by construction (see # Panics); a bad material is the caller's test parameter.
     Problem::two_bodies(bodies, pair, [0.0, 0.0]).expect("a valid two-body scene")
 }
 

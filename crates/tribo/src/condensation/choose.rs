@@ -36,12 +36,18 @@ pub(super) fn prefer_saddle(nnz_k: usize, w: usize) -> bool {
 /// it touches (γ0 = 0: `E_F` of full row rank, as on matching meshes). Without either (γ0 = 0 with T_H
 /// finer than the FE edges) `E_F` is rank deficient, every step's LDLᵀ breaks down and the dense path
 /// answers after all (measured: 2.1 s against 0.1 s by columns at 8k graded unknowns, H = h/2).
-pub(super) fn quasi_definite(e_rows: &[Vec<(usize, f64)>], d_cols: &[Vec<(usize, f64)>]) -> bool {
+/// `n_c` is [`touched_dofs`] of `e_rows`.
+pub(super) fn quasi_definite(e_rows: &[Vec<(usize, f64)>], n_c: usize, d_cols: &[Vec<(usize, f64)>]) -> bool {
     let d_positive = d_cols.iter().enumerate().all(|(j, col)| col.iter().any(|&(i, v)| i == j && v > 0.0));
+    d_positive || e_rows.len() <= n_c
+}
+
+/// The number `n_c` of displacement dofs the rows of E touch (the Γ_C dofs, of both sides for two bodies).
+pub(super) fn touched_dofs(e_rows: &[Vec<(usize, f64)>]) -> usize {
     let mut touched: Vec<usize> = e_rows.iter().flatten().map(|&(d, _)| d).collect();
     touched.sort_unstable();
     touched.dedup();
-    d_positive || e_rows.len() <= touched.len()
+    touched.len()
 }
 
 /// The number of normal multipliers the load is expected to push, before anything is factorized: with no
@@ -81,18 +87,10 @@ pub(super) const BEFORE_FACTORIZING: f64 = 2.5;
 /// ratios 2.1 and 2.4) the partial factorization took 0.15 and 0.40 s, the columns 0.03 and 0.08 s;
 /// on the block pressed by a traction (every multiplier pushed, ratio 0.27) it stays the fastest.
 pub(super) const AFTER_FACTORIZING: f64 = 1.0;
-pub(super) fn prefer_schur(
-    nnz_k: usize,
-    e_rows: &[Vec<(usize, f64)>],
-    w: usize,
-    margin: f64,
-    budget: usize,
-) -> (bool, f64) {
-    let m = e_rows.len() as f64;
-    let mut touched: Vec<usize> = e_rows.iter().flatten().map(|&(d, _)| d).collect();
-    touched.sort_unstable();
-    touched.dedup();
-    let nc = touched.len() as f64;
+///
+/// `m` is the number of rows of E and `n_c` the dofs they touch ([`touched_dofs`]).
+pub(super) fn prefer_schur(nnz_k: usize, m: usize, n_c: usize, w: usize, margin: f64, budget: usize) -> (bool, f64) {
+    let (m, nc) = (m as f64, n_c as f64);
     let bytes = 8.0 * (nc * nc + nc * m + 2.0 * m * m);
     let nnz = nnz_k as f64;
     let dense = nc.powi(3) / 3.0 + nc * nc * m / 2.0 + nc * m * m / 2.0;

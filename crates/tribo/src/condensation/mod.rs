@@ -29,7 +29,8 @@ mod choose;
 mod diagonal;
 
 use choose::{
-    prefer_saddle, prefer_schur, pushed_estimate, quasi_definite, AFTER_FACTORIZING, BEFORE_FACTORIZING, CHOLESKY_FILL,
+    prefer_saddle, prefer_schur, pushed_estimate, quasi_definite, touched_dofs, AFTER_FACTORIZING, BEFORE_FACTORIZING,
+    CHOLESKY_FILL,
 };
 
 /// Number of right-hand sides solved together when forming `A⁻¹ Eᵀ`.
@@ -199,7 +200,8 @@ impl Factor {
         let a = SparseColMat::new(pattern, values);
         let nnz_k = k.compute_nnz();
         let (m, q) = (e_rows.len(), e_rows.len() / 2);
-        let schur_pays = |w: usize, margin: f64| prefer_schur(nnz_k, &e_rows, w, margin, budget);
+        let n_c = touched_dofs(&e_rows);
+        let schur_pays = |w: usize, margin: f64| prefer_schur(nnz_k, m, n_c, w, margin, budget);
         let bytes = schur_pays(q, BEFORE_FACTORIZING).1;
         // Auto: with no load on the free dofs the pushed multipliers are known now (c = d); with a load
         // they are known once A is factorized, so a partial factorization that could pay (it does at most
@@ -282,7 +284,9 @@ impl Factor {
         // the multipliers' block fills) or beyond the budget leaves H to the columns.
         let saddle = match condensation {
             Condensation::Saddle => Some(saddle_system(&a, &e_rows, &d_cols, budget / 8, budget)?),
-            Condensation::Auto if !use_schur && prefer_saddle(nnz_k, pushed) && quasi_definite(&e_rows, &d_cols) => {
+            Condensation::Auto
+                if !use_schur && prefer_saddle(nnz_k, pushed) && quasi_definite(&e_rows, n_c, &d_cols) =>
+            {
                 saddle_system(&a, &e_rows, &d_cols, 2 * CHOLESKY_FILL * nnz_k, budget).ok()
             }
             _ => None,
