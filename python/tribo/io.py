@@ -296,7 +296,7 @@ def write_vtu(path: str | Path, problem: Problem, solution: Solution) -> list[Pa
             "error_indicator": [solution.estimator],
             "traction_indicator": [solution.traction_estimator],
             # Which body each triangle belongs to (0 for one body; two bodies in the order given).
-            "body": [np.repeat(np.arange(len(problem.bodies)), [s[3] - s[2] for _, s in problem.bodies])],
+            "body": [np.repeat(np.arange(len(problem.bodies)), [s[3] - s[2] for _, s, _ in problem.bodies])],
         },
     )
     n = len(solution.node_abscissae)

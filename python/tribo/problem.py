@@ -104,10 +104,28 @@ class Body:
                 loads.get("tractions", []))
 
 
-def history_steps(approach: Any, shift: Any, load_factor: Any = None) -> npt.NDArray[np.float64]:
-    """The steps of a history as rows (approach, shift, load_factor): each a number (the same at every
-    step) or one value per step; ``load_factor`` defaults to 1."""
+def history_steps(
+    approach: Any,
+    shift: Any,
+    load_factor: Any = None,
+    displacements: Mapping[str, Any] | None = None,
+    prescribed: Sequence[tuple[str, float]] = (),
+) -> npt.NDArray[np.float64]:
+    """The steps of a history as rows (approach, shift, load_factor, then the prescribed displacement
+    components): each a number (the same at every step) or one value per step; ``load_factor`` defaults
+    to 1. ``displacements`` maps components of ``prescribed`` (the problem's ``prescribed``: names
+    'set.x'/'set.y' and values) to their values; a component left out keeps its value. Without
+    ``displacements`` the rows have three columns (every prescribed displacement as the problem has it)."""
     columns = {"approach": approach, "shift": shift, "load_factor": 1.0 if load_factor is None else load_factor}
+    if displacements is not None:
+        known = dict(prescribed)
+        if not isinstance(displacements, Mapping):
+            raise _settings_error(f"displacements must be a dict 'set.x'/'set.y' -> values, got {displacements!r}")
+        unknown = sorted(set(displacements) - set(known))
+        if unknown:
+            names = ", ".join(known) if known else "none: the problem has no prescribed displacement"
+            raise _settings_error(f"displacements: no prescribed component {unknown[0]!r} (the components: {names})")
+        columns.update({name: displacements.get(name, value) for name, value in known.items()})
     arrays = {}
     for name, value in columns.items():
         try:
@@ -226,10 +244,11 @@ class Problem(_tribo.Problem):
 
     def solve_history(
         self,
-        approach: float | npt.ArrayLike,
-        shift: float | npt.ArrayLike,
+        approach: float | npt.ArrayLike | None = None,
+        shift: float | npt.ArrayLike | None = None,
         load_factor: float | npt.ArrayLike | None = None,
         *,
+        displacements: Mapping[str, Any] | None = None,
         friction: _Law | None = None,
         mu: float | None = None,
         threshold: float | npt.ArrayLike | None = None,
@@ -242,8 +261,10 @@ class Problem(_tribo.Problem):
         """Solves a quasi-static loading history from rest on one factorization; returns a History.
 
         Step k moves the obstacle to approach ``approach[k]`` and tangential position ``shift[k]``
-        (totals, not increments; a scalar is the same at every step) under ``load_factor[k]`` × the body
-        force and tractions (default 1). Coulomb's law acts on the slip increment relative to the
+        (totals, not increments; a scalar is the same at every step; default the problem's) under
+        ``load_factor[k]`` × the body force and tractions (default 1), and the prescribed displacements to
+        ``displacements`` (a dict from the components of ``prescribed``, 'set.x' or 'set.y', to a value or
+        one per step; a component left out keeps its value): two bodies move only this way. Coulomb's law acts on the slip increment relative to the
         obstacle, so the answer depends on the path; a history of one step is the static ``solve``. The
         friction, γ0 and settings keywords are those of ``solve``. ``progress``, if given, is called as
         progress(step, steps, status, seconds) after every step; returning False ends the history there
@@ -252,9 +273,9 @@ class Problem(_tribo.Problem):
         KeyboardInterrupt carries ``history`` too). A step that does not converge ends the history with its status; ``History.failed``
         holds its last iterate.
         """
-        steps = history_steps(approach, shift, load_factor)
+        steps = self._steps(approach, shift, load_factor, displacements)
         try:
-            return History.from_dict(self._solve_history(steps, {
+            return self._history(steps, self._solve_history(steps, {
                 "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
                 "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
             }))
@@ -262,7 +283,7 @@ class Problem(_tribo.Problem):
             # An exception from the callback (or Ctrl-C) keeps the steps done, as ``e.history``.
             partial = getattr(e, "_partial_history", None)
             if partial is not None:
-                e.history = History.from_dict(partial)  # type: ignore[attr-defined]
+                e.history = self._history(steps, partial)  # type: ignore[attr-defined]
             raise
 
     def solve_adaptive(
@@ -310,10 +331,11 @@ class Problem(_tribo.Problem):
 
     def solve_history_adaptive(
         self,
-        approach: float | npt.ArrayLike,
-        shift: float | npt.ArrayLike,
+        approach: float | npt.ArrayLike | None = None,
+        shift: float | npt.ArrayLike | None = None,
         load_factor: float | npt.ArrayLike | None = None,
         *,
+        displacements: Mapping[str, Any] | None = None,
         on: Sequence[int] | None = None,
         tol: float | None = None,
         max_unknowns: int | None = None,
@@ -338,7 +360,7 @@ class Problem(_tribo.Problem):
         The adaptive keywords are those of ``solve_adaptive``. Levels start their steps from rest, as a
         history does, not from the previous level.
         """
-        steps = history_steps(approach, shift, load_factor)
+        steps = self._steps(approach, shift, load_factor, displacements)
         options = {
             "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
             "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
@@ -346,8 +368,24 @@ class Problem(_tribo.Problem):
         adapt = (tol, max_unknowns, theta, marking, max_levels, algebraic)
         history, problem, levels, stop, meshes = self._adapt(options, adapt, steps, list(on or []))
         return AdaptiveHistory(
-            history=History.from_dict(history), problem=problem, levels=levels, stop=stop, meshes=meshes  # type: ignore[arg-type]
+            history=self._history(steps, history), problem=problem, levels=levels, stop=stop, meshes=meshes  # type: ignore[arg-type]
         )
+
+    def _steps(
+        self, approach: Any, shift: Any, load_factor: Any, displacements: Mapping[str, Any] | None
+    ) -> npt.NDArray[np.float64]:
+        """The rows of a history: the problem's approach and shift where none is given."""
+        approach = self.approach if approach is None else approach
+        shift = self.shift if shift is None else shift
+        return history_steps(approach, shift, load_factor, displacements, self.prescribed)
+
+    def _history(self, steps: npt.NDArray[np.float64], data: dict[str, Any]) -> History:
+        """The History of the compiled dict, with the prescribed displacements its rows moved."""
+        names = [name for name, _ in self.prescribed] if steps.shape[1] > 3 else []
+        columns = {n: np.array(steps[:, 3 + i]) for i, n in enumerate(names)}
+        for c in columns.values():
+            c.flags.writeable = False  # read-only, as every array of a result
+        return History.from_dict({**data, "displacements": columns})
 
     def _adapt(
         self, options: dict[str, Any], adapt: tuple[Any, ...], *history: Any

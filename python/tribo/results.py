@@ -263,6 +263,9 @@ class History(_Record):
         approach: approach δ_k of every step asked for.
         shift: tangential position s_k of every step asked for.
         load_factor: load factor α_k of every step asked for.
+        displacements: the prescribed displacement components the steps moved ('set.x'/'set.y' of the
+            problem's ``prescribed``), each with its value at every step asked for; empty when the history
+            kept them as the problem has them.
         normal_force: total normal force ∫λ_n per converged step.
         tangential_force: total tangential force ∫λ_t per converged step.
         stick_count: multiplier dofs that stick, per converged step.
@@ -289,6 +292,7 @@ class History(_Record):
     approach: _Floats
     shift: _Floats
     load_factor: _Floats
+    displacements: dict[str, _Floats] = dataclasses.field(default_factory=dict)
     normal_force: _Floats
     tangential_force: _Floats
     stick_count: _Ints

@@ -200,3 +200,18 @@ def test_plot_two_bodies(tmp_path: Path) -> None:
     assert all(abs(r - 1.5) < 1e-9 for r in res["rates"].values())
     # Twice the unknowns in twice the time: the same time per unknown (the 2,500-unknown runs take 0.25 s).
     assert res["ratio"]["frictionless"] and all(abs(r - 1.0) < 1e-9 for r in res["ratio"]["frictionless"])
+
+
+def test_two_body_mindlin(tmp_path: Path) -> None:
+    rows = study("study_two_body_mindlin").main(["--smoke", "--out", str(tmp_path)])
+    outputs(tmp_path, "two_body_mindlin")
+    by = {(r["pair"], r["h_min"]): r for r in rows}
+    for pair in ("equal", "beta0"):
+        # β = 0: the stick zone follows √(1 − Q/μP) within the resolution of the extents, better on the
+        # finer mesh, and shearing leaves the normal force where the press put it.
+        assert by[(pair, 0.01)]["ca_error"] < min(by[(pair, 0.02)]["ca_error"], by[(pair, 0.01)]["resolution"])
+        assert by[(pair, 0.01)]["p_change"] < 1e-3
+        assert abs(by[(pair, 0.01)]["beta"]) < 1e-12
+    # β = −0.23: shearing moves the normal force, and the stick zone is further off the theory.
+    stiff = by[("stiff", 0.01)]
+    assert stiff["beta"] < -0.2 and stiff["p_change"] > 1e-3 and stiff["ca_error"] > 2 * by[("equal", 0.01)]["ca_error"]

@@ -36,8 +36,8 @@ def stacked(lower_secondary: bool = True, space: str = "P1") -> tuple[tribo.Prob
 def test_stacked_blocks_pass_the_patch_test(lower_secondary: bool, space: str) -> None:
     problem, p = stacked(lower_secondary, space)
     assert problem.primary == ("upper.bottom" if lower_secondary else "lower.top")
-    assert [name for name, _ in problem.bodies] == ["lower", "upper"]
-    (_, lo), (_, up) = problem.bodies
+    assert [name for name, _, _ in problem.bodies] == ["lower", "upper"]
+    (_, lo, _), (_, up, _) = problem.bodies
     assert lo[0] == 0 and lo[1] == up[0] and up[1] == problem.mesh.n_nodes
     assert lo[2] == 0 and lo[3] == up[2] and up[3] == problem.mesh.n_triangles
     assert {"lower.top", "upper.bottom", "lower.left", "upper.top"} <= set(problem.mesh.edge_sets)
@@ -64,7 +64,7 @@ def test_a_two_body_solution_is_written_and_read_back(tmp_path: Path) -> None:
     np.testing.assert_allclose(back.point_data["displacement"][:, :2], sol.displacement, atol=1e-15)
     # Cell data 'body' tells the bodies apart (ParaView's Threshold on it shows one body).
     body = back.cell_data["body"][0]
-    (_, lo), (_, up) = problem.bodies
+    (_, lo, _), (_, up, _) = problem.bodies
     assert (body[lo[2]:lo[3]] == 0).all() and (body[up[2]:up[3]] == 1).all()
 
 
@@ -92,3 +92,62 @@ def test_bad_pairs_are_errors() -> None:
         problem.solve_adaptive(tol=0.1)
     with pytest.raises(tribo.ContactGeometryError, match="two-body"):
         problem.on_mesh(problem.mesh, problem.multiplier_mesh)
+
+
+def shear_pair(h_min: float = 0.01) -> tribo.Problem:
+    """The two-body Hertz blocks of study 9: the upper block held by its top only, through a prescribed
+    displacement that a history moves."""
+    def mesh(y: tuple[float, float], side: str) -> tribo.Mesh:
+        return tribo.Mesh.graded_rectangle((-2.0, 2.0), y, side=side, segment=(-0.15, 0.15), h_max=0.5, h_min=h_min)
+
+    lower = tribo.Body("lower", mesh((-2.0, 0.0), "top"), young=200.0, poisson=0.3, clamped="bottom")
+    upper = tribo.Body("upper", mesh((0.0, 1.0), "bottom"), young=200.0, poisson=0.3,
+                       supports=tribo.Support.displacement("top", x=0.0, y=0.0))
+    return tribo.Problem.two_bodies(lower, upper, secondary="lower.top", primary="upper.bottom",
+                                    gap=tribo.Obstacle.parabola(1.0))
+
+
+def test_a_history_moves_the_bodies_through_their_supports() -> None:
+    problem = shear_pair()
+    assert problem.prescribed == [("upper.top.x", 0.0), ("upper.top.y", 0.0)]
+    (_, lo, n_lo), (_, up, n_up) = problem.bodies
+    assert n_lo + n_up == problem.n_free and n_lo > n_up > 0
+    x = np.r_[0.0, 0.0, np.linspace(0.001, 0.004, 4)]
+    h = problem.solve_history(displacements={"upper.top.x": x, "upper.top.y": np.r_[-0.005, -0.01, [-0.01] * 4]},
+                              mu=0.3)
+    assert h.converged and len(h) == 6
+    assert list(h.displacements) == ["upper.top.x", "upper.top.y"]
+    np.testing.assert_array_equal(h.displacements["upper.top.x"], x)
+    with pytest.raises(ValueError):
+        h.displacements["upper.top.x"][0] = 1.0  # read-only, as every array of a result
+    # The top of the upper block is where the step put it; the stick zone shrinks as the shear grows.
+    top = np.flatnonzero(problem.mesh.points[:, 1] == 1.0)
+    for k, sol in enumerate(h.solutions):
+        np.testing.assert_allclose(sol.displacement[top], [[x[k], h.displacements["upper.top.y"][k]]] * len(top))
+    stick = h.stick_zone[2:, 1] - h.stick_zone[2:, 0]
+    assert np.all(np.diff(stick) < 0) and 0 < h.tangential_force[-1] < 0.3 * h.normal_force[-1]
+    # A component left out keeps its value: pressing only, the tangential force stays 0.
+    pressed = problem.solve_history(displacements={"upper.top.y": [-0.005, -0.01]}, mu=0.3)
+    assert np.allclose(pressed.tangential_force, 0.0, atol=1e-12) and pressed.normal_force[-1] > 0
+
+
+def test_bad_moves_are_errors() -> None:
+    problem = shear_pair(0.04)
+    with pytest.raises(tribo.SettingsError, match="no prescribed component 'upper.top.z'.*upper.top.x, upper.top.y"):
+        problem.solve_history(displacements={"upper.top.z": 0.1})
+    with pytest.raises(tribo.SettingsError, match="upper.top.y has 2 values, but the history has 3 steps"):
+        problem.solve_history(displacements={"upper.top.x": [0, 1, 2], "upper.top.y": [0, 1]})
+    # Two bodies move only through their supports: an obstacle motion is refused by the core, naming the step.
+    with pytest.raises(tribo.TriboError, match="step 1.*prescribed displacements") as info:
+        problem.solve_history(approach=[0.0, 0.01])
+    assert info.value.kind == "BadLoadStep"
+    # A value that contradicts another support where they meet.
+    one = tribo.Problem(tribo.Mesh.rectangle((0.0, 2.0), (0.0, 1.0), 8, 4), young=1.0, poisson=0.3, contact="top",
+                        clamped="left", supports=tribo.Support.displacement("bottom", x=0.0, y=0.0))
+    with pytest.raises(tribo.TriboError, match="step 0") as info:
+        one.solve_history(displacements={"bottom.y": 0.01})
+    assert info.value.kind == "BadLoadStep"
+    no = tribo.Problem(tribo.Mesh.rectangle((0.0, 2.0), (0.0, 1.0), 8, 4), young=1.0, poisson=0.3, contact="top",
+                       clamped="bottom")
+    with pytest.raises(tribo.SettingsError, match="none: the problem has no prescribed displacement"):
+        no.solve_history(0.0, 0.0, displacements={"bottom.y": 0.01})

@@ -74,8 +74,10 @@ pub struct ProblemData {
     setup_timings: BTreeMap<&'static str, f64>,
     /// The primary contact set of two bodies ('body.set'), or None against the rigid obstacle.
     primary: Option<String>,
-    /// The bodies: (name, [first node, end, first triangle, end]) in `mesh` (one, 'body', for one body).
-    bodies: Vec<(String, [usize; 4])>,
+    /// The bodies: (name, [first node, end, first triangle, end] in `mesh`, unknowns); one, 'body', for one body.
+    bodies: Vec<(String, [usize; 4], usize)>,
+    /// The prescribed displacement components a history may move, ('set.x' or 'set.y', value), in order.
+    prescribed: Vec<(String, f64)>,
 }
 
 /// A contact problem, validated and assembled once (independent of γ0 and friction). It keeps the
@@ -137,10 +139,11 @@ fn observe_with<A: for<'py> pyo3::call::PyCallArgs<'py>>(
     })
 }
 
-/// The rows (approach, shift, load_factor) of a history as load steps.
+/// The rows (approach, shift, load_factor, prescribed displacements…) of a history as load steps.
 fn load_steps(steps: &Bound<'_, PyAny>) -> PyResult<Vec<LoadStep>> {
-    let rows = rows::<f64, 3>(&floats(steps, "steps", &[None, Some(3)], Settings)?);
-    Ok(rows.into_iter().map(|[approach, shift, load_factor]| LoadStep { approach, shift, load_factor }).collect())
+    let width: usize = steps.getattr("shape")?.get_item(1)?.extract()?;
+    let flat = floats(steps, "steps", &[None, Some(width)], Settings)?;
+    flat.chunks(width.max(1)).enumerate().map(|(k, row)| LoadStep::from_row(k, row).map_err(to_pyerr)).collect()
 }
 
 /// `solve_adaptive`'s tol, max_unknowns, theta, marking, max_levels, algebraic (None: the core's default).
@@ -265,7 +268,6 @@ impl PyProblem {
             let missing = |k: &str| PyTypeError::new_err(format!("Problem() missing required keyword argument: '{k}'"));
             let (young, poisson) = (young.ok_or_else(|| missing("young"))?, poisson.ok_or_else(|| missing("poisson"))?);
             let (supports, tractions) = loads((supports.unwrap_or_default(), tractions.unwrap_or_default()));
-            let defaults = tribo::Obstacle::default();
             let spec = ProblemSpec {
                 material: Material { young, poisson },
                 clamped: clamped.unwrap_or_default(),
@@ -273,11 +275,7 @@ impl PyProblem {
                 body_force,
                 tractions,
                 contact,
-                obstacle: tribo::Obstacle {
-                    shape,
-                    approach: approach.unwrap_or(defaults.approach),
-                    shift: shift.unwrap_or(defaults.shift),
-                },
+                obstacle: tribo::Obstacle::from_keywords(shape, approach, shift),
                 multiplier_points: points,
                 multiplier_space: space,
             };
@@ -313,7 +311,8 @@ impl PyProblem {
             multiplier_abscissae: vec1(py, &p.multipliers.dof_abscissae())?,
             setup_timings: BTreeMap::from(p.timings.named()),
             primary,
-            bodies: p.bodies.iter().map(|b| (b.name.clone(), b.spans())).collect(),
+            bodies: p.bodies.iter().map(|b| (b.name.clone(), b.spans(), b.unknowns)).collect(),
+            prescribed: spec.prescribed_components(),
         };
         Ok(PyClassInitializer::from(data).add_subclass(Self { inner: p }))
     }
@@ -339,7 +338,7 @@ impl PyProblem {
         results::solution(py, &finish(result, error)?)
     }
 
-    /// Solves the loading history of `steps`, rows (approach, shift, load_factor), with the keywords of
+    /// Solves the loading history of `steps`, rows (approach, shift, load_factor, displacements…), with the keywords of
     /// `tribo.Problem.solve_history` in `options`; returns the fields of a History as a dict.
     #[pyo3(name = "_solve_history")]
     fn solve_history<'py>(

@@ -240,6 +240,44 @@ pub fn two_body_hertz_sides(
     Problem::two_bodies(bodies, pair, [0.0, 0.0]).expect("a valid two-body scene")
 }
 
+/// Two-body Hertz set up for shearing (Cattaneo–Mindlin between two bodies): the blocks of
+/// [`two_body_hertz`], the lower top secondary, but the upper block held only by its top, through a
+/// prescribed displacement `(0, 0)` that a history moves (components `"upper.top.x"`, `"upper.top.y"`).
+///
+/// # Panics
+/// As [`two_body_hertz`].
+pub fn two_body_shear(h_min: f64, lower: Material, upper: Material) -> Problem {
+    let body = |name: &str, upper_block: bool, material, supports| Body {
+        name: String::from(name),
+        mesh: graded_half(h_min, upper_block),
+        material,
+        clamped: vec![],
+        supports,
+        tractions: vec![],
+    };
+    let bodies = [
+        body("lower", false, lower, vec![Support::clamp("bottom")]),
+        body("upper", true, upper, vec![Support::displacement("top", Some(0.0), Some(0.0))]),
+    ];
+    let pair = ContactPair {
+        secondary: "lower.top".into(),
+        primary: "upper.bottom".into(),
+        gap: ObstacleShape::Parabola { center: 0.0, radius: hertz_scene().radius },
+        multiplier_points: MultiplierPoints::RatioToFe(1.0),
+        multiplier_space: MultiplierSpace::P1,
+    };
+    // The pair is valid by construction (see # Panics); a bad material is the caller's test parameter.
+    Problem::two_bodies(bodies, pair, [0.0, 0.0]).expect("a valid two-body scene")
+}
+
+/// The lower (−2, 2) × (−2, 0) or upper (−2, 2) × (0, 1) block of [`two_body_hertz`], graded toward
+/// [−0.15, 0.15] of its contact side.
+fn graded_half(h_min: f64, upper: bool) -> Mesh {
+    let (side, y) = if upper { (Side::Bottom, [0.0, 1.0]) } else { (Side::Top, [-2.0, 0.0]) };
+    let grading = Grading { side, segment: [-0.15, 0.15], h_min, h_max: 0.5, growth: 0.15 };
+    graded_rectangle([-2.0, 2.0], y, &grading).expect("valid grading")
+}
+
 /// 8-point Gauss–Legendre rule on [−1, 1].
 pub fn gauss8() -> ([f64; 8], [f64; 8]) {
     let x = [0.183_434_642_495_649_8, 0.525_532_409_916_329, 0.796_666_477_413_626_7, 0.960_289_856_497_536_3];

@@ -71,6 +71,13 @@ pub struct Obstacle {
 }
 
 impl Obstacle {
+    /// The obstacle of `shape` moved by the keywords given (approach δ, shift s), the others at their
+    /// defaults (0: touching, not shifted).
+    pub fn from_keywords(shape: ObstacleShape, approach: Option<f64>, shift: Option<f64>) -> Self {
+        let d = Self::default();
+        Self { shape, approach: approach.unwrap_or(d.approach), shift: shift.unwrap_or(d.shift) }
+    }
+
     /// Checks the shape's parameters and the motion.
     ///
     /// # Errors

@@ -72,7 +72,6 @@ impl Dofs {
         let (nodes, edges) = node_supports(mesh, supports)?;
         check_held(mesh, &nodes)?;
         let mut map = vec![None; 2 * n_nodes];
-        let mut lifting = vec![0.0; 2 * n_nodes];
         let mut n_free = 0;
         for (i, ns) in nodes.iter().enumerate() {
             match *ns {
@@ -81,21 +80,41 @@ impl Dofs {
                     map[2 * i + 1] = Some((n_free + 1, 1.0));
                     n_free += 2;
                 }
-                NodeSupport::Slide { normal, tangent, value } => {
+                NodeSupport::Slide { tangent, .. } => {
                     for c in 0..2 {
                         // An axis-aligned roller leaves one dof untouched by the unknown: no entry.
                         map[2 * i + c] = (tangent[c] != 0.0).then_some((n_free, tangent[c]));
-                        lifting[2 * i + c] = value * normal[c];
                     }
                     n_free += 1;
                 }
-                NodeSupport::Fixed { value } => {
-                    lifting[2 * i] = value[0];
-                    lifting[2 * i + 1] = value[1];
-                }
+                NodeSupport::Fixed { .. } => {}
             }
         }
+        let lifting = lifting(&nodes);
         Ok(Self { nodes, map, n_free, lifting, edges })
+    }
+
+    /// The lifting ū (2N) of `supports`, the supports these dofs were resolved from with other prescribed
+    /// values (a step of a loading history that moves them).
+    ///
+    /// # Errors
+    /// [`Error::BadSupport`] for a non-finite value; [`Error::ConflictingSupports`] where the new values
+    /// disagree at a node that several supports reach; [`Error::BadSupport`] if the supports do not leave
+    /// the same unknowns as these dofs (they must differ only in their values).
+    pub fn lifting_of(&self, mesh: &Mesh, supports: &[Support]) -> Result<Vec<f64>> {
+        let (nodes, _) = node_supports(mesh, supports)?;
+        let same_kind = |a: &NodeSupport, b: &NodeSupport| match (a, b) {
+            (NodeSupport::Slide { normal: n, .. }, NodeSupport::Slide { normal: m, .. }) => n == m,
+            _ => std::mem::discriminant(a) == std::mem::discriminant(b),
+        };
+        if let Some(node) = nodes.iter().zip(&self.nodes).position(|(a, b)| !same_kind(a, b)) {
+            let set = supports.first().map_or("", |s| s.set()).to_string();
+            return Err(Error::BadSupport {
+                set,
+                what: format!("the supports leave other unknowns at node {node} than those the problem was built with"),
+            });
+        }
+        Ok(lifting(&nodes))
     }
 
     /// The unknown that dof `d` follows and its coefficient (`u_d = coeff · x_k + ū_d`), or `None` for
@@ -111,7 +130,12 @@ impl Dofs {
 
     /// `u = T x + ū` (all 2N dofs) from the unknowns x.
     pub fn expand(&self, x: &[f64]) -> Vec<f64> {
-        self.map.iter().zip(&self.lifting).map(|(m, l)| m.map_or(0.0, |(k, a)| a * x[k]) + l).collect()
+        self.expand_with(x, &self.lifting)
+    }
+
+    /// `u = T x + ū` (all 2N dofs) from the unknowns x and another lifting ū (of [`Dofs::lifting_of`]).
+    pub fn expand_with(&self, x: &[f64], lifting: &[f64]) -> Vec<f64> {
+        self.map.iter().zip(lifting).map(|(m, l)| m.map_or(0.0, |(k, a)| a * x[k]) + l).collect()
     }
 
     /// `Tᵀ v` (n) for a vector v over all 2N dofs.
@@ -162,4 +186,20 @@ impl Dofs {
             }
         }
     }
+}
+
+/// The lifting ū (2N) of resolved node supports: the prescribed part of every dof.
+fn lifting(nodes: &[NodeSupport]) -> Vec<f64> {
+    let mut lifting = vec![0.0; 2 * nodes.len()];
+    for (i, ns) in nodes.iter().enumerate() {
+        match *ns {
+            NodeSupport::Free => {}
+            NodeSupport::Slide { normal, value, .. } => {
+                lifting[2 * i] = value * normal[0];
+                lifting[2 * i + 1] = value * normal[1];
+            }
+            NodeSupport::Fixed { value } => lifting[2 * i..2 * i + 2].copy_from_slice(&value),
+        }
+    }
+    lifting
 }

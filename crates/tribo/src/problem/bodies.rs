@@ -5,9 +5,13 @@
 //! problem of [`crate::contact::pair`]: everything downstream (condensation, QP, fixed point, histories)
 //! is that of one body.
 //!
-//! What this first version does not do yet, each refused with [`Error::ContactPair`]: a body held only by
-//! the contact (each body needs its own supports), an obstacle motion on the pair (move the bodies through
-//! prescribed displacements), adaptive refinement of a two-body problem.
+//! The bodies move through their prescribed displacements: a loading history moves them step by step
+//! ([`crate::LoadStep::displacements`]); an obstacle motion (approach, shift) has no meaning for the pair
+//! and a history step that asks for one is refused ([`Error::BadLoadStep`]).
+//!
+//! What this first version does not do yet: a body held only by the contact (each body needs its own
+//! supports: [`Error::FloatingPiece`], [`Error::RigidMotion`]) and adaptive refinement of a two-body
+//! problem ([`Error::ContactPair`]).
 
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -63,12 +67,14 @@ pub struct BodyPart {
     pub nodes: Range<usize>,
     /// Its triangles.
     pub triangles: Range<usize>,
+    /// Its displacement unknowns (what its supports leave free of its nodes' dofs).
+    pub unknowns: usize,
 }
 
 impl BodyPart {
-    /// The whole mesh as one body.
+    /// The whole mesh as one body (its unknowns are counted when the problem is built).
     pub fn whole(name: &str, mesh: &Mesh) -> Self {
-        Self { name: name.to_string(), nodes: 0..mesh.n_nodes(), triangles: 0..mesh.n_triangles() }
+        Self { name: name.to_string(), nodes: 0..mesh.n_nodes(), triangles: 0..mesh.n_triangles(), unknowns: 0 }
     }
 
     /// `[first node, end, first triangle, end]`.
@@ -135,7 +141,8 @@ impl Problem {
                 edge_sets.insert(format!("{}.{name}", b.name), edges.iter().map(|e| e.map(|i| i + n0)).collect());
             }
             region.extend(std::iter::repeat_n(k, b.mesh.n_triangles()));
-            parts.push(BodyPart { name: b.name.clone(), nodes: n0..points.len(), triangles: t0..triangles.len() });
+            let (nodes, triangles) = (n0..points.len(), t0..triangles.len());
+            parts.push(BodyPart { name: b.name.clone(), nodes, triangles, unknowns: 0 });
         }
         let mesh = Mesh::new(points, triangles, edge_sets)?;
         let spec = ProblemSpec {

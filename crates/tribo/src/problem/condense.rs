@@ -115,19 +115,15 @@ impl Problem {
         // γ0-dependent part of the lifted load and obstacle moments (see [`crate::fem::supports`]).
         let minus_g_full = self.contact_stress.stiffness_triplets(&self.mortar, gamma0);
         let e_full = self.contact_stress.coupling_rows(&self.contact, &self.mortar, self.primary.as_ref(), gamma0);
-        let ubar = &self.dofs.lifting;
         let mut f = self.f_free.clone();
         let mut d = self.obstacle_moments();
         if !self.dofs.homogeneous() {
-            let mut g_lift = vec![0.0; ubar.len()];
-            for t in &minus_g_full {
-                g_lift[t.row] += t.val * ubar[t.col];
-            }
-            for (fi, gi) in f.iter_mut().zip(self.dofs.restrict(&g_lift)) {
+            let (g_lift, e_lift) = self.lifting_action(&minus_g_full, &e_full, &self.dofs.lifting, false);
+            for (fi, gi) in f.iter_mut().zip(g_lift) {
                 *fi -= gi;
             }
-            for (di, row) in d.iter_mut().zip(&e_full) {
-                *di -= row.iter().map(|&(k, v)| v * ubar[k]).sum::<f64>();
+            for (di, ei) in d.iter_mut().zip(e_lift) {
+                *di -= ei;
             }
         }
         let minus_g: Vec<_> = minus_g_full
@@ -175,6 +171,38 @@ impl Problem {
         let factor = Arc::new(factor);
         self.factor_cache.set(condensation, factor.clone());
         Ok(Condensed { problem: self, factor, reused: false })
+    }
+
+    /// What a lifting ū (2N) adds to the equations, for the γ0 of a factorization: `(Tᵀ A ū, E ū)`
+    /// (n and 2q values) with `A = K − G`, the lifted load being `Tᵀ f − Tᵀ A ū` and the lifted obstacle
+    /// moments `d − E ū` (see [`crate::fem::supports`]). A loading history that moves the prescribed
+    /// displacements applies it to the change of ū ([`crate::solve::history`]).
+    pub(crate) fn lifting_terms(&self, gamma0: f64, ubar: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let minus_g_full = self.contact_stress.stiffness_triplets(&self.mortar, gamma0);
+        let e_full = self.contact_stress.coupling_rows(&self.contact, &self.mortar, self.primary.as_ref(), gamma0);
+        self.lifting_action(&minus_g_full, &e_full, ubar, true)
+    }
+
+    /// `(Tᵀ(K − G) ū, E ū)` from the triplets of −G and the rows of E over all dofs, without K's part unless
+    /// `with_stiffness` (the problem's own lifting has it in `f_free` already).
+    fn lifting_action(
+        &self,
+        minus_g_full: &[Triplet<usize, usize, f64>],
+        e_full: &[Vec<(usize, f64)>],
+        ubar: &[f64],
+        with_stiffness: bool,
+    ) -> (Vec<f64>, Vec<f64>) {
+        use crate::fem::elasticity::{element_stresses, internal_forces};
+        let mut a_lift = if with_stiffness {
+            internal_forces(&self.mesh, &element_stresses(&self.mesh, &self.materials, ubar))
+        } else {
+            vec![0.0; ubar.len()]
+        };
+        for t in minus_g_full {
+            a_lift[t.row] += t.val * ubar[t.col];
+        }
+        let e_lift = e_full.iter().map(|row| row.iter().map(|&(k, v)| v * ubar[k]).sum()).collect();
+        (self.dofs.restrict(&a_lift), e_lift)
     }
 
     /// Drops the cached factorization, so that the next [`Problem::condense`] factorizes again (for

@@ -32,6 +32,20 @@ pub struct LoadCase {
     /// At the FE nodes of Γ_C, the tangential displacement from which slip is measured: the shift s of a
     /// static solve, `u_t^{k−1} + s_k − s_{k−1}` in step k of a history.
     pub slip_origin: Vec<f64>,
+    /// Where a step of a history moves the prescribed displacements away from the problem's values.
+    pub moved_supports: Option<MovedSupports>,
+}
+
+/// Prescribed displacements moved by a step of a history to a lifting ū_k: the change `Δū = ū_k − ū`
+/// from the problem's lifting ū enters the load as `− Tᵀ A Δū` and the moments as `− E Δū`.
+#[derive(Debug, Clone)]
+pub struct MovedSupports {
+    /// ū_k (2N).
+    pub lifting: Vec<f64>,
+    /// `Tᵀ A Δū` (n).
+    pub a_change: Vec<f64>,
+    /// `E Δū` (2q).
+    pub e_change: Vec<f64>,
 }
 
 impl LoadCase {
@@ -53,7 +67,13 @@ impl LoadCase {
             shift,
             load_factor: 1.0,
             slip_origin: vec![shift; problem.contact.nodes.len()],
+            moved_supports: None,
         }
+    }
+
+    /// The lifting ū of this load case: the moved one, or the problem's.
+    pub fn lifting<'a>(&'a self, problem: &'a Problem) -> &'a [f64] {
+        self.moved_supports.as_ref().map_or(&problem.dofs.lifting, |m| &m.lifting)
     }
 }
 

@@ -152,10 +152,17 @@ impl Problem {
         }
         spec.material.validate()?;
         spec.obstacle.validate()?;
-        let supports: Vec<Support> =
-            spec.clamped.iter().map(|set| Support::clamp(set.as_str())).chain(spec.supports.iter().cloned()).collect();
-        let dofs = Dofs::new(&mesh, &supports)?;
+        let dofs = Dofs::new(&mesh, &spec.all_supports(None))?;
         let n_free = dofs.n_free;
+        let mut bodies = bodies;
+        for part in &mut bodies {
+            let count = |n: &NodeSupport| match n {
+                NodeSupport::Free => 2,
+                NodeSupport::Slide { .. } => 1,
+                NodeSupport::Fixed { .. } => 0,
+            };
+            part.unknowns = dofs.nodes[part.nodes.clone()].iter().map(count).sum();
+        }
         let LinearSystem { k_matrix, f_free, f_full } =
             assemble(&mesh, &materials, spec.body_force, &spec.tractions, &dofs)?;
         let assembly = clock.elapsed().as_secs_f64();
@@ -259,6 +266,36 @@ impl Problem {
 }
 
 impl ProblemSpec {
+    /// Every support: the clamped sets, then `supports`, with the prescribed values replaced by `values`
+    /// (in the order of [`ProblemSpec::prescribed_components`]) when given.
+    pub fn all_supports(&self, values: Option<&[f64]>) -> Vec<Support> {
+        let mut values = values.map(|v| v.iter());
+        let mut next = |v: Option<f64>| v.map(|v| values.as_mut().and_then(Iterator::next).copied().unwrap_or(v));
+        let clamps = self.clamped.iter().map(|set| Support::clamp(set.as_str()));
+        let others = self.supports.iter().map(|s| match s {
+            Support::Displacement { set, x, y } => {
+                let x = next(*x);
+                Support::Displacement { set: set.clone(), x, y: next(*y) }
+            }
+            other => other.clone(),
+        });
+        clamps.chain(others.collect::<Vec<_>>()).collect()
+    }
+
+    /// The prescribed displacement components a loading history may move ([`crate::LoadStep::displacements`]):
+    /// `"set.x"` and `"set.y"` of every [`Support::Displacement`] that gives them, in order, with their
+    /// values in this specification.
+    pub fn prescribed_components(&self) -> Vec<(String, f64)> {
+        let mut out = Vec::new();
+        for s in &self.supports {
+            if let Support::Displacement { set, x, y } = s {
+                out.extend(x.map(|v| (format!("{set}.x"), v)));
+                out.extend(y.map(|v| (format!("{set}.y"), v)));
+            }
+        }
+        out
+    }
+
     /// The defaults of the keywords a problem is built from, besides the required ones, as the Python
     /// binding and the scene files name them: the multiplier points (`multiplier_ratio`, or
     /// `multiplier_size`; see [`MultiplierPoints::from_keywords`]) and the multiplier `space`.

@@ -100,7 +100,7 @@ impl Solution {
         let q = condensed.q();
         let mesh = &problem.mesh;
         let (material, materials) = (&problem.spec.material, &problem.materials);
-        let displacement = problem.expand(u_free);
+        let displacement = problem.dofs.expand_with(u_free, loading.lifting(problem));
         let stress = element_stresses(mesh, materials, &displacement);
         let von_mises = stress.iter().enumerate().map(|(t, s)| materials.at(t).von_mises(*s)).collect();
         let stress_zz = stress.iter().enumerate().map(|(t, s)| materials.at(t).sigma_zz(*s)).collect();

@@ -31,8 +31,19 @@
 //! ```
 //!
 //! with `E A⁻¹ f` computed once by [`crate::condensation::Factor`]. Prescribed displacements ū (see
-//! [`crate::fem::supports`]) keep their lifting: the `−E ū` in d, the same at every step, and the lifted load,
-//! of which the load factor scales only the applied part. Both readings of the stabilization —
+//! [`crate::fem::supports`]) enter through their lifting: `f̃ = Tᵀ f − Tᵀ A ū` and `d̃ = d − E ū`. A
+//! step may move them ([`LoadStep::displacements`], the values of the components `"set.x"`, `"set.y"`
+//! of every prescribed displacement): its lifting ū_k differs from the problem's ū by `Δū`, which the
+//! step lifts like a load, `f̃_k = f̃ + (α_k − 1) Tᵀ f − Tᵀ A Δū` and `d^k − E Δū`, with one solve for
+//! `E A⁻¹ f̃_k`; A, H and Dγ do not change (the supports hold the same dofs, only their values move). The
+//! previous step's tangential data is kept as `E_t (u^{k−1} − ū) − Dγ λ_t^{k−1}`, on the problem's ū,
+//! so that the data of step k holds `−E_t Δū_k` once, whatever the previous steps did. Moving a body's
+//! clamp by a rigid motion is moving the obstacle the other way: the two give one answer, to round-off
+//! (the test `moving_the_body_is_moving_the_obstacle`); between two bodies it is how they are pressed
+//! together and made to slide. The load factor scales only the applied part of the load, never the
+//! lifting.
+//!
+//! Both readings of the stabilization —
 //! on the increments, or on the totals (`d_t` with `B_t u^{k−1}` only) — are consistent: the term vanishes
 //! for the exact solution. They differ at finite γ0: stabilizing the totals leaves the discrete slip
 //! measure `γ (λ_t^k + σ_t(u^k))` in a stuck zone, which creeps a little at every step, and a fretting
@@ -54,7 +65,7 @@ use std::time::Instant;
 
 use crate::condensation::Factor;
 use crate::error::{Error, Result};
-use crate::problem::load_case::LoadCase;
+use crate::problem::load_case::{LoadCase, MovedSupports};
 use crate::problem::{Condensed, Problem};
 use crate::results::{ContactState, Solution, SolveStatus};
 use crate::settings::friction::Friction;
@@ -208,7 +219,7 @@ impl Condensed<'_> {
                 history.failed = Some(Box::new(solution));
                 break;
             }
-            previous = after(self, &solution, step.shift);
+            previous = after(self, &solution, &loading);
             start = Some(solution.lambda_n.iter().chain(&solution.lambda_t).copied().collect());
             history.solutions.push(solution);
             let flow = observer.as_mut().map_or(ControlFlow::Continue(()), |o| o(&progress));
@@ -222,17 +233,20 @@ impl Condensed<'_> {
     }
 }
 
-/// The state a converged step leaves for the next: `E_t u^k − Dγ λ_t^k`, `u_t^k` at the FE nodes of Γ_C
-/// and s_k.
-fn after(condensed: &Condensed<'_>, solution: &Solution, shift: f64) -> PreviousStep {
+/// The state a converged step leaves for the next: `E_t (u^k − ū) − Dγ λ_t^k` (ū the problem's own
+/// lifting), `u_t^k` at the FE nodes of Γ_C and s_k.
+fn after(condensed: &Condensed<'_>, solution: &Solution, loading: &LoadCase) -> PreviousStep {
     let (problem, factor) = (condensed.problem(), condensed.factor());
     let q = condensed.q();
-    // The unknowns x = Tᵀ (u − ū) (T has orthonormal columns: a node's unknowns are its free directions).
-    let relative: Vec<f64> = solution.displacement.iter().zip(&problem.dofs.lifting).map(|(u, l)| u - l).collect();
+    // The unknowns x = Tᵀ (u − ū_k) (T has orthonormal columns: a node's unknowns are its free
+    // directions); `E (u − ū) = E T x + E (ū_k − ū)`.
+    let relative: Vec<f64> = solution.displacement.iter().zip(loading.lifting(problem)).map(|(u, l)| u - l).collect();
     let u_free = problem.dofs.restrict(&relative);
     let lambda: Vec<f64> = solution.lambda_n.iter().chain(&solution.lambda_t).copied().collect();
     let (eu, dl) = (factor.apply_e(&u_free), factor.apply_d(&lambda));
-    let tangential = (q..2 * q).map(|j| eu[j] - dl[j]).collect();
+    let moved = |j: usize| loading.moved_supports.as_ref().map_or(0.0, |m| m.e_change[j]);
+    let tangential = (q..2 * q).map(|j| eu[j] + moved(j) - dl[j]).collect();
+    let shift = loading.shift;
     let t = problem.contact.tangent;
     let u_t = |i: usize| {
         let u = problem.contact_displacement(i, &solution.displacement);
@@ -245,9 +259,9 @@ fn after(condensed: &Condensed<'_>, solution: &Solution, shift: f64) -> Previous
 /// shift 0.
 #[derive(Debug, Clone)]
 struct PreviousStep {
-    /// `(E_t u^{k−1} − Dγ λ_t^{k−1})_j` (q values) on the unknowns: the previous step's stabilized
-    /// tangential displacement, `∫ ψ_j u_t^{k−1} − ∫ γ ψ_j (λ_t^{k−1} + σ_t(u^{k−1}))` without the part of
-    /// the prescribed displacements (the same at every step, it cancels in the increment).
+    /// `(E_t (u^{k−1} − ū) − Dγ λ_t^{k−1})_j` (q values), ū the problem's own lifting: the previous step's
+    /// stabilized tangential displacement, `∫ ψ_j u_t^{k−1} − ∫ γ ψ_j (λ_t^{k−1} + σ_t(u^{k−1}))`, without
+    /// the part of the problem's prescribed displacements (the lifted moments `d` hold it).
     pub tangential: Vec<f64>,
     /// `u_t^{k−1}` at the FE nodes of Γ_C.
     pub u_t_nodes: Vec<f64>,
@@ -269,11 +283,14 @@ impl PreviousStep {
 
 /// The load case of one step of a history (see [`crate::solve::history`] for the derivation): loads
 /// `α f` (the lifting of prescribed displacements is not scaled), gap moments `∫ψ_j (g₀ − δ_k)`,
-/// tangential data `∫ψ_j (s_k − s_{k−1}) + (E_t u^{k−1} − Dγ λ_t^{k−1})_j`. From rest with α = 1 and
-/// the problem's own approach, this is bit for bit the static load case.
+/// tangential data `∫ψ_j (s_k − s_{k−1}) + (E_t u^{k−1} − Dγ λ_t^{k−1})_j`, and where the step moves the
+/// prescribed displacements to ū_k, the change `Δū = ū_k − ū` lifted: `− Tᵀ A Δū` in the load, `− E Δū`
+/// in the moments. From rest with α = 1, the problem's own approach and its own prescribed values, this
+/// is bit for bit the static load case.
 ///
 /// # Errors
-/// [`crate::Error::MemoryBudget`] if the solve for a scaled load cannot allocate its workspace.
+/// [`crate::Error::MemoryBudget`] if the solve for a changed load cannot allocate its workspace;
+/// [`Error::BadLoadStep`] if the step's prescribed values conflict (checked before the history too).
 fn step_load_case(problem: &Problem, factor: &Factor, step: &LoadStep, previous: &PreviousStep) -> Result<LoadCase> {
     let alpha = step.load_factor;
     let q = problem.n_multipliers();
@@ -281,19 +298,24 @@ fn step_load_case(problem: &Problem, factor: &Factor, step: &LoadStep, previous:
     // g_k = g₀ − δ_k = (g₀ − δ) + (δ − δ_k): the problem's gap moved by the change of approach.
     let moved = problem.spec.obstacle.approach - step.approach;
     let ds = step.shift - previous.shift;
-    let d: Vec<f64> = factor.d[..q]
+    let mut d: Vec<f64> = factor.d[..q]
         .iter()
         .zip(w)
         .map(|(m, w)| m + moved * w)
         .chain(w.iter().zip(&previous.tangential).map(|(w, t)| w * ds + t))
         .collect();
-    let (f_free, c) = if alpha == 1.0 {
+    let moved_supports = moved_supports(problem, factor, step)?;
+    let (f_free, c) = if alpha == 1.0 && moved_supports.is_none() {
         let c = d.iter().zip(&factor.e_ainv_f).map(|(d, e)| d - e).collect();
         (factor.f.clone(), c)
     } else {
-        // f̃ + (α − 1) Tᵀ f: the load scaled, its lifting kept; one more solve for E A⁻¹ f.
+        // f̃ + (α − 1) Tᵀ f − Tᵀ A Δū: the load scaled, its lifting moved; one more solve for E A⁻¹ f.
         let load = problem.dofs.restrict(&problem.f_full);
-        let f: Vec<f64> = factor.f.iter().zip(&load).map(|(f, l)| f + (alpha - 1.0) * l).collect();
+        let mut f: Vec<f64> = factor.f.iter().zip(&load).map(|(f, l)| f + (alpha - 1.0) * l).collect();
+        if let Some(m) = &moved_supports {
+            f.iter_mut().zip(&m.a_change).for_each(|(f, a)| *f -= a);
+            d.iter_mut().zip(&m.e_change).for_each(|(d, e)| *d -= e);
+        }
         let u = factor.displacement(&f, &vec![0.0; d.len()])?;
         let c = d.iter().zip(factor.apply_e(&u)).map(|(d, e)| d - e).collect();
         (f, c)
@@ -308,11 +330,69 @@ fn step_load_case(problem: &Problem, factor: &Factor, step: &LoadStep, previous:
         shift: step.shift,
         load_factor: alpha,
         slip_origin: previous.u_t_nodes.iter().map(|u| u + ds).collect(),
+        moved_supports,
     })
 }
 
-/// One step of a loading history: where the obstacle is and how much of the load acts.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The step's prescribed displacements, where they differ from the problem's: the lifting ū_k and the
+/// change `Δū = ū_k − ū` lifted (`Tᵀ A Δū`, `E Δū`).
+fn moved_supports(problem: &Problem, factor: &Factor, step: &LoadStep) -> Result<Option<MovedSupports>> {
+    let own: Vec<f64> = problem.spec.prescribed_components().into_iter().map(|(_, v)| v).collect();
+    if step.displacements.is_empty() || step.displacements == own {
+        return Ok(None);
+    }
+    let supports = problem.spec.all_supports(Some(&step.displacements));
+    let lifting = problem.dofs.lifting_of(&problem.mesh, &supports)?;
+    let change: Vec<f64> = lifting.iter().zip(&problem.dofs.lifting).map(|(a, b)| a - b).collect();
+    let (a_change, e_change) = problem.lifting_terms(factor.gamma0, &change);
+    Ok(Some(MovedSupports { lifting, a_change, e_change }))
+}
+
+/// Checks the steps against the problem before a history runs: two bodies move through their prescribed
+/// displacements only (no obstacle motion); as many prescribed values as the problem has components (or
+/// none: the problem's own), and values that agree where supports meet.
+///
+/// # Errors
+/// [`Error::BadLoadStep`] naming the step.
+pub(crate) fn check_steps(problem: &Problem, steps: &[LoadStep]) -> Result<()> {
+    let components = problem.spec.prescribed_components();
+    let mut last: Option<&[f64]> = None;
+    for (k, step) in steps.iter().enumerate() {
+        if problem.is_two_bodies() && (step.approach != 0.0 || step.shift != 0.0) {
+            return Err(Error::BadLoadStep {
+                step: k,
+                what: format!(
+                    "two bodies move through their prescribed displacements, not by an approach ({}) or a shift ({})",
+                    step.approach, step.shift
+                ),
+            });
+        }
+        let values = step.displacements.as_slice();
+        if values.is_empty() || last == Some(values) {
+            continue;
+        }
+        let bad = |what: String| Error::BadLoadStep { step: k, what };
+        if values.len() != components.len() {
+            let names: Vec<&str> = components.iter().map(|(n, _)| n.as_str()).collect();
+            return Err(bad(format!(
+                "{} prescribed displacement values for {} components ({})",
+                values.len(),
+                names.len(),
+                if names.is_empty() { "the problem prescribes none".to_string() } else { names.join(", ") }
+            )));
+        }
+        problem
+            .dofs
+            .lifting_of(&problem.mesh, &problem.spec.all_supports(Some(values)))
+            .map_err(|e| bad(e.to_string()))?;
+        last = Some(values);
+    }
+    Ok(())
+}
+
+/// One step of a loading history: where the obstacle is, how much of the load acts and where the
+/// prescribed displacements are.
+#[derive(Debug, Clone, PartialEq)]
 pub struct LoadStep {
     /// Normal approach δ_k of the obstacle toward the body (the total, not an increment).
     pub approach: f64,
@@ -320,12 +400,43 @@ pub struct LoadStep {
     pub shift: f64,
     /// Factor α_k on the body force and the tractions.
     pub load_factor: f64,
+    /// The values of the prescribed displacement components at this step, in the order of
+    /// [`crate::ProblemSpec::prescribed_components`] (`"set.x"`, `"set.y"` of each
+    /// [`crate::Support::Displacement`]); empty for the problem's own values.
+    pub displacements: Vec<f64>,
 }
 
 impl LoadStep {
-    /// A step to approach δ and shift s under the full load.
+    /// A step to approach δ and shift s under the full load, the prescribed displacements as the problem
+    /// has them.
     pub fn new(approach: f64, shift: f64) -> Self {
-        Self { approach, shift, load_factor: 1.0 }
+        Self { approach, shift, load_factor: 1.0, displacements: Vec::new() }
+    }
+
+    /// This step with the prescribed displacement components at `values` (see [`LoadStep::displacements`]).
+    #[must_use]
+    pub fn with_displacements(self, values: Vec<f64>) -> Self {
+        Self { displacements: values, ..self }
+    }
+
+    /// A step from one row of numbers: approach, shift, load factor, then the prescribed displacement
+    /// components (the rows of a history as the Python binding and tables give them).
+    ///
+    /// # Errors
+    /// [`Error::BadLoadStep`] for a row of fewer than three values.
+    pub fn from_row(index: usize, row: &[f64]) -> Result<Self> {
+        match row {
+            [approach, shift, load_factor, displacements @ ..] => Ok(Self {
+                approach: *approach,
+                shift: *shift,
+                load_factor: *load_factor,
+                displacements: displacements.to_vec(),
+            }),
+            _ => Err(Error::BadLoadStep {
+                step: index,
+                what: format!("a step needs approach, shift and load_factor, got {} values", row.len()),
+            }),
+        }
     }
 
     /// Checks that every value is finite.
@@ -333,7 +444,9 @@ impl LoadStep {
     /// # Errors
     /// [`Error::BadLoadStep`] naming the step (`index`) and the value.
     pub fn validate(&self, index: usize) -> Result<()> {
-        for (name, v) in [("approach", self.approach), ("shift", self.shift), ("load_factor", self.load_factor)] {
+        let named = [("approach", self.approach), ("shift", self.shift), ("load_factor", self.load_factor)];
+        let values = named.into_iter().chain(self.displacements.iter().map(|&v| ("a prescribed displacement", v)));
+        for (name, v) in values {
             if !v.is_finite() {
                 return Err(Error::BadLoadStep { step: index, what: format!("{name} must be finite, got {v}") });
             }

@@ -62,6 +62,7 @@ impl Condensed<'_> {
         for (k, s) in steps.iter().enumerate() {
             s.validate(k)?;
         }
+        history::check_steps(self.problem(), steps)?;
         history_fits(self.problem(), steps, settings)?;
         self.run_history(friction, steps, settings, observer)
     }

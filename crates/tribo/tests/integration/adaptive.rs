@@ -129,9 +129,8 @@ fn coarse_fixed_points_may_stop_early_and_the_answer_does_not_change() {
 fn a_history_adapts_on_its_worst_step() {
     let problem = off_centre_problem();
     let friction = Friction::Coulomb { mu: 0.3 };
-    let steps: Vec<LoadStep> = (0..6)
-        .map(|k| LoadStep { approach: problem.spec.obstacle.approach, shift: 0.0008 * k as f64, load_factor: 1.0 })
-        .collect();
+    let steps: Vec<LoadStep> =
+        (0..6).map(|k| LoadStep::new(problem.spec.obstacle.approach, 0.0008 * k as f64)).collect();
     let adapt = AdaptSettings { tol: 0.2, max_unknowns: 60_000, ..Default::default() };
     let out = problem
         .solve_history_adaptive(&friction, &steps, &SolverSettings::default(), &adapt, &[], None)

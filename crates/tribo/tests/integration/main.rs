@@ -8,6 +8,7 @@
 //! * `kkt`: the discrete problem (3.1) checked by its own quadrature, independent of the assembly;
 //! * `hertz`: named scenes (Hertz convergence, the checkerboard of the classic method, Coulomb);
 //! * `history`: loading histories (the incremental problem against the static one, the path, sliding);
+//! * `moved_supports`: histories that move prescribed displacements (moving the body is moving the obstacle);
 //! * `methods`: the active-set method against clarabel, QP by QP, on every scene above;
 //! * `outputs`: what a reader gets back (global forces, plane-strain stress, current gap, formatted
 //!   numbers, the condensation's progress);
@@ -28,6 +29,7 @@ mod invariants;
 mod kkt;
 mod layout;
 mod methods;
+mod moved_supports;
 mod outputs;
 mod patch;
 mod supports;

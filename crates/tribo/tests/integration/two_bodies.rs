@@ -15,7 +15,9 @@
 //! * bad pairs are typed errors naming the pair.
 
 use tribo::*;
-use tribo_testkit::{combined_modulus, hertz_l2_error_with, hertz_spec, two_body_hertz, two_body_hertz_sides};
+use tribo_testkit::{
+    combined_modulus, hertz_l2_error_with, hertz_pressure_with, hertz_spec, two_body_hertz, two_body_hertz_sides,
+};
 
 fn body(name: &str, mesh: Mesh, material: Material, supports: Vec<Support>) -> Body {
     Body { name: name.into(), mesh, material, clamped: vec![], supports, tractions: vec![] }
@@ -228,4 +230,58 @@ fn bad_pairs_are_typed_errors() {
     let r =
         problem.solve_adaptive(&Friction::Frictionless, &SolverSettings::default(), &AdaptSettings::default(), None);
     assert!(matches!(r, Err(Error::ContactPair { .. })), "{:?}", r.map(|a| a.levels.len()));
+}
+
+/// Cattaneo–Mindlin between two bodies: the upper block's top pressed down δ = 0.01, then moved along x
+/// (Coulomb, μ = 0.3) through partial slip toward gross sliding. For Dundurs' β = 0 (equal materials, and
+/// the unequal pair E 200, ν 0.3 under E 1400/13, ν 0.4, for which μ₂(1 − 2ν₁) = μ₁(1 − 2ν₂)), normal and
+/// tangential responses uncouple: the normal force does not move while the bodies are sheared (the
+/// finite blocks leave 1e-5–1e-4 of it), and the stick zone follows c/a = √(1 − Q/μP) within the
+/// resolution of the extents, which are read on the multiplier dofs (each half-width off by up to one
+/// spacing h_min: 2 h_min/a). A pair with β = −0.23 (a primary ten times stiffer) couples them: shearing
+/// changes the normal force by more than 1e-3 of itself, and the stick zone departs from the theory by
+/// more than that resolution (study 9, `scripts/study_two_body_mindlin.py`, measures both against the mesh).
+#[test]
+fn cattaneo_mindlin_between_two_bodies() {
+    let steel = Material { young: 200.0, poisson: 0.3 };
+    let (h_min, mu, delta) = (0.005, 0.3, 0.01);
+    let press: Vec<(f64, f64)> = (1..=4).map(|k| (0.0, -delta * k as f64 / 4.0)).collect();
+    let shear: Vec<(f64, f64)> = (1..=16).map(|k| (0.004 * k as f64 / 16.0, -delta)).collect();
+    let steps: Vec<LoadStep> =
+        press.iter().chain(&shear).map(|&(x, y)| LoadStep::new(0.0, 0.0).with_displacements(vec![x, y])).collect();
+    let pairs = [
+        (steel, true),
+        (Material { young: 1400.0 / 13.0, poisson: 0.4 }, true),
+        (Material { young: 2000.0, poisson: 0.3 }, false),
+    ];
+    for (upper, uncoupled) in pairs {
+        let problem = tribo_testkit::two_body_shear(h_min, steel, upper);
+        let names: Vec<String> = problem.spec.prescribed_components().into_iter().map(|(n, _)| n).collect();
+        assert_eq!(names, ["upper.top.x", "upper.top.y"]);
+        let h = problem.solve_history(&Friction::Coulomb { mu }, &steps, &SolverSettings::default(), None).unwrap();
+        assert_eq!(h.status, SolveStatus::Converged, "E2 = {}", upper.young);
+        let (p, q) = (h.normal_force(), h.tangential_force());
+        let pressed = p[3];
+        let p_change = p[4..].iter().fold(0.0_f64, |m, v| m.max((v - pressed).abs())) / pressed;
+        let half = |z: [f64; 2]| 0.5 * (z[1] - z[0]);
+        let (stick, contact) = (h.extent(|s| s == ContactState::Stick), h.extent(|s| s != ContactState::Separation));
+        let (_, a) = hertz_pressure_with(pressed, combined_modulus(&steel, &upper));
+        let mut worst: f64 = 0.0;
+        for k in 4..steps.len() {
+            let r = q[k].abs() / (mu * p[k]);
+            if (0.1..=0.9).contains(&r) {
+                worst = worst.max((half(stick[k]) / half(contact[k]) - (1.0 - r).sqrt()).abs());
+            }
+        }
+        let resolution = 2.0 * h_min / a;
+        let r_last = q.last().unwrap().abs() / (mu * p.last().unwrap());
+        assert!(r_last > 0.8 && r_last < 1.0, "sheared far into partial slip: Q/μP = {r_last}");
+        if uncoupled {
+            assert!(p_change < 1e-3, "β = 0: P moves by {p_change:e} while sheared");
+            assert!(worst < resolution, "β = 0: c/a off √(1 − Q/μP) by {worst} (resolution {resolution})");
+        } else {
+            assert!(p_change > 1e-3, "β ≠ 0: P moves by {p_change:e} while sheared");
+            assert!(worst > resolution, "β ≠ 0: c/a off √(1 − Q/μP) by {worst} (resolution {resolution})");
+        }
+    }
 }
