@@ -134,6 +134,19 @@ def conventions(problem: Problem, solution: Solution) -> dict[str, str]:
         "current_gap": "g − u_n along n: 0 in contact, negative where the body penetrates",
         "states": "separation λ_n = 0; stick |λ_t| below the bound; slip |λ_t| at the bound",
     }
+    if problem.primary is not None:
+        secondary, primary = problem.contact, problem.primary
+        out.update({
+            "n": f"outward unit normal of the secondary body on its contact side '{secondary}', n = {format_vector(n)}",
+            "lambda_t": f"λ_t = −σ_t, along t: the friction traction of '{primary}' on the secondary side is −λ_t t",
+            "tangential_force": f"∫ λ_t: '{primary}' pulls the secondary body by −tangential_force along t",
+            "contact_force": f"(Fx, Fy) = −(normal_force n + tangential_force t): the force '{primary}' exerts on the "
+            "secondary body (the primary body takes the opposite), global axes",
+            "shift": "none: two bodies move through their prescribed displacements",
+            "obstacle_motion": "none: two bodies move through their prescribed displacements",
+            "slip": "the jump [u]_t = (u¹ − u²∘Π)·t of the two sides, along t (in a history: since the previous step)",
+            "current_gap": "g₀ − [u]_n: the gap between the two sides, 0 in contact",
+        })
     if solution.friction == "tresca":
         out["states"] += (
             "; Tresca's threshold is given, not μ λ_n, so λ_t may sit at ±threshold where there is no "

@@ -4,13 +4,16 @@
 
 * ``summary.json``: the scene, the status, iterations, forces (normal and tangential resultants and the
   global components Fx, Fy), the obstacle's motion in global axes, KKT residuals, timings, the a posteriori
-  error estimate (``estimate``: η, its parts and the relative traction and energy estimates), warnings, and
-  the conventions (n, t, the direction of ξ, the signs of λ_t, of the shift and of the forces);
+  error estimate (``estimate``: η, its parts and the relative traction and energy estimates), ``bodies``
+  (per body: name, nodes, triangles, unknowns and the total reaction of its supports), warnings, and the
+  conventions (n, t, the direction of ξ, the signs of λ_t, of the shift and of the forces);
 * ``adapt.csv``, ``adapt.png`` and the level series ``levels/level_NNN.vtu`` with ``adapt.pvd`` for a
   scene with ``[adapt]`` (the outputs above are then the last level's, on its refined mesh; see
   ``tribo.adaptive``);
 * ``contact.csv`` (per multiplier dof), ``contact_nodes.csv``, ``contact_edges.csv``: the contact fields;
-* ``result.vtu``, ``result_contact.vtu``, ``result_multipliers.vtu``: for ParaView;
+* ``result.vtu``, ``result_contact.vtu``, ``result_multipliers.vtu``: for ParaView; for two bodies also
+  ``result.vtm``, a multiblock of one file per body (``result_<name>.vtu``), the contact fields on the
+  secondary side;
 * ``contact_normal.png``, ``contact_tangential.png``, ``von_mises.png``, ``von_mises_contact.png``
   (when matplotlib is installed; ``--no-plots`` skips them).
 
@@ -23,7 +26,8 @@ time) is logged to stderr; a scene that is probably not what was meant (``tribo.
 ``tribo: warning: …`` per reason. Exit codes:
 0 converged, 1 bad input or unwritable output (one line ``tribo: error: …`` says what and where), 3 the
 solve ended without converging (results are still written), 2 an internal error (a bug: one line
-``tribo: internal error: …``, please report it), 130 interrupted (Ctrl-C).
+``tribo: internal error: …``, please report it), 130 interrupted (Ctrl-C), 141 the reader of the
+printed report went away (``tribo run … | head``; the results are written).
 """
 
 from __future__ import annotations
@@ -32,6 +36,7 @@ import argparse
 import json
 import logging
 import math
+import os
 import sys
 import time
 import warnings
@@ -112,10 +117,21 @@ def summary(
         "timings": r.timings,
         # The a posteriori estimate; a relative one that has no reference (nothing touches, no energy) is null.
         "estimate": {k: (v if math.isfinite(v) else None) for k, v in r.estimate.items()},
+        "bodies": bodies(problem, solution),
         "wall_seconds": seconds,
         "warnings": list(warned),
         "conventions": conventions(problem, solution),
     }
+
+
+def bodies(problem: Problem, solution: Solution) -> list[dict[str, Any]]:
+    """Per body: its name, nodes, triangles and unknowns, and the total reaction of its supports (Rx, Ry),
+    which balances the contact force it takes and its loads."""
+    out = []
+    for name, (n0, n1, t0, t1), unknowns in problem.bodies:
+        rx, ry = (float(v) for v in solution.reactions[n0:n1].sum(axis=0))
+        out.append({"name": name, "nodes": n1 - n0, "triangles": t1 - t0, "unknowns": unknowns, "reaction": [rx, ry]})
+    return out
 
 
 def run_history(
@@ -126,7 +142,7 @@ def run_history(
     ``adapt.csv``/``adapt.png``). Returns the problem the history was solved on, the history and the files."""
     from tqdm import tqdm
 
-    approach, _, _ = scene.history_steps()
+    n_steps = len(scene.history_steps()[0])
     clock = time.perf_counter()
     files: list[Path] = []
     if scene.has_adapt:
@@ -136,7 +152,7 @@ def run_history(
         files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
         files += write_levels(out, adaptive, **scene.solve_kwargs())
     else:
-        with tqdm(total=len(approach), desc="steps", unit="step", disable=not log.isEnabledFor(logging.INFO)) as bar:
+        with tqdm(total=n_steps, desc="steps", unit="step", disable=not log.isEnabledFor(logging.INFO)) as bar:
 
             def progress(step: int, steps: int, status: str, seconds: float) -> None:
                 bar.update(1)
@@ -144,7 +160,7 @@ def run_history(
 
             problem, history = scene.solve_history(problem, progress=progress)
     seconds = time.perf_counter() - clock
-    log.info("history ended: %s after %d of %d steps, %.2f s", history.status, len(history), len(approach), seconds)
+    log.info("history ended: %s after %d of %d steps, %.2f s", history.status, len(history), n_steps, seconds)
     sliding = np.flatnonzero(history.gross_sliding)
     if len(sliding):
         log.info("gross sliding (every contact dof slips, |Q| = μP) at %d steps, first at step %d", len(sliding), sliding[0])
@@ -254,9 +270,11 @@ def _plots(out: Path, problem: Problem, solution: Solution) -> list[Path]:
         w = max(b - a, problem.mesh.max_diameter * 1e-3)
         p = problem.contact_points([a - w, b + w])
         half = max(float(abs(p[1] - p[0]).max()), w) / 2.0
-        # Centre the window a little inside the body (against the outward normal n).
+        # Centre the window a little inside the body (against the outward normal n); on the interface of
+        # two bodies, to show both.
         n = problem.contact_normal
-        cx, cy = p.mean(axis=0) - 0.5 * half * np.asarray(n)
+        inside = 0.0 if problem.primary is not None else 0.5
+        cx, cy = p.mean(axis=0) - inside * half * np.asarray(n)
         hx, hy = (half, 0.6 * half) if abs(n[1]) >= abs(n[0]) else (0.6 * half, half)
         fig, ax = plt.subplots(figsize=(8.0, 4.5), layout="constrained")
         plot.von_mises(
@@ -309,7 +327,8 @@ def _run(scene_path: Path, out: Path, plots: bool) -> int:
     )
     fx, fy = solution.contact_force
     said = conventions(problem, solution)
-    print(f"  force of the obstacle on the body (Fx, Fy) = ({fx:.6g}, {fy:.6g}) in global axes")
+    on = "the obstacle on the body" if problem.primary is None else f"'{problem.primary}' on the secondary body"
+    print(f"  force of {on} (Fx, Fy) = ({fx:.6g}, {fy:.6g}) in global axes")
     print(f"  {said['n']}; {said['t']}; shift: {said['shift']}")
     states = solution.state_names
     print(
@@ -350,6 +369,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("tribo: interrupted", file=sys.stderr)
         return 130
+    except BrokenPipeError:
+        # The reader of stdout went away (``tribo run … | head``): stop quietly, as a shell tool does.
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141
     except (SystemExit, GeneratorExit):
         raise
     except BaseException as e:  # noqa: BLE001 - pyo3's PanicException is not an Exception: a bug either way

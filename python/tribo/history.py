@@ -6,7 +6,8 @@ writes its results:
 * ``step_NNNN.vtu`` (+ ``_contact``, ``_multipliers``) per converged step, and ``result.pvd``,
   ``result_contact.pvd``, ``result_multipliers.pvd``: collections ParaView opens as time series (the
   "time" is the step number);
-* ``history.csv``: per step, the obstacle's approach and shift, the load factor, the normal and
+* ``history.csv``: per step, the obstacle's approach and shift, the load factor, the prescribed
+  displacement components the history moves (one column each, named 'set.x'/'set.y'), the normal and
   tangential contact forces, the stick/slip/separation counts, the extents of the contact and stick
   zones, and the step's error estimate η and relative traction estimate;
 * ``history_loop.png``: the tangential force Q against the obstacle's tangential position s (for a
@@ -60,6 +61,7 @@ def history_table(history: History) -> dict[str, np.ndarray]:
         "approach": history.approach[:k],
         "shift": history.shift[:k],
         "load_factor": history.load_factor[:k],
+        **{name: values[:k] for name, values in history.displacements.items()},
         "normal_force": history.normal_force,
         "tangential_force": history.tangential_force,
         "stick": history.stick_count,
@@ -82,7 +84,8 @@ def write_history(out: str | Path, problem: Problem, history: History, *, plots:
     out.mkdir(parents=True, exist_ok=True)
     series: list[list[Path]] = [[], [], []]
     for k, solution in enumerate(history.solutions):
-        for part, p in zip(series, write_vtu(out / f"step_{k:04d}.vtu", problem, solution), strict=True):
+        for part, p in zip(series, write_vtu(out / f"step_{k:04d}.vtu", problem, solution, per_body=False),
+                           strict=True):
             part.append(p)
     files = [p for part in series for p in part]
     steps = list(range(len(history)))

@@ -21,16 +21,20 @@ Writing: ``write_vtu("out/result.vtu", problem, solution)`` writes three files, 
   ``sigma_t``;
 * ``result_multipliers.vtu``: Γ_C as line cells through the points of T_H, with ``lambda_n``,
   ``lambda_t``, ``friction_threshold`` and ``state`` (0 separation, 1 stick, 2 slip) as point data (P1)
-  or cell data (P0).
+  or cell data (P0);
+* for two bodies, also ``result_<name>.vtu`` per body (its nodes and triangles with the fields above) and
+  ``result.vtm``, the ParaView multiblock of them (``per_body=False`` skips these: the history series
+  keep the joined mesh, whose cell data ``body`` tells the bodies apart).
 """
 
 from __future__ import annotations
 
 import contextlib
 import io
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
+from xml.sax.saxutils import quoteattr
 
 import numpy as np
 import numpy.typing as npt
@@ -268,8 +272,10 @@ def _xyz(p: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
     return np.column_stack([p, np.zeros(len(p))])
 
 
-def write_vtu(path: str | Path, problem: Problem, solution: Solution) -> list[Path]:
-    """Writes the body, Γ_C and the multiplier fields as three VTU files; returns their paths."""
+def write_vtu(path: str | Path, problem: Problem, solution: Solution, *, per_body: bool = True) -> list[Path]:
+    """Writes the body, Γ_C and the multiplier fields as three VTU files; returns their paths. For two
+    bodies (and ``per_body``), also one VTU file per body (``<stem>_<name>.vtu``, its own nodes and
+    triangles with their fields) and a ParaView multiblock ``<stem>.vtm`` of them."""
     import meshio
 
     path = Path(path)
@@ -329,10 +335,44 @@ def write_vtu(path: str | Path, problem: Problem, solution: Solution) -> list[Pa
             _xyz(problem.contact_points(xi)), [("line", mlines)], cell_data={k: [v] for k, v in fields.items()}
         )
     paths = [path, Path(f"{stem}_contact.vtu"), Path(f"{stem}_multipliers.vtu")]
-    for p, m in zip(paths, [body, contact, multipliers]):
+    meshes = [body, contact, multipliers]
+    if per_body and len(problem.bodies) > 1:
+        parts = [Path(f"{stem}_{name}.vtu") for name, _, _ in problem.bodies]
+        meshes += [_part(meshio, body, spans) for _, spans, _ in problem.bodies]
+        paths += parts
+    for p, m in zip(paths, meshes, strict=True):
         p.parent.mkdir(parents=True, exist_ok=True)
         meshio.write(str(p), m, file_format="vtu")
+    if per_body and len(problem.bodies) > 1:
+        paths.append(_write_vtm(Path(f"{stem}.vtm"), [name for name, _, _ in problem.bodies], parts))
     return paths
+
+
+def _part(meshio: Any, whole: Any, spans: Sequence[int]) -> Any:
+    """The nodes ``spans[0]:spans[1]`` and triangles ``spans[2]:spans[3]`` of a meshio mesh, with their data
+    (a body of a two-body problem: its nodes and triangles are contiguous)."""
+    n0, n1, t0, t1 = spans
+    triangles = whole.cells_dict["triangle"][t0:t1] - n0
+    return meshio.Mesh(
+        whole.points[n0:n1],
+        [("triangle", triangles)],
+        point_data={k: v[n0:n1] for k, v in whole.point_data.items()},
+        cell_data={k: [v[0][t0:t1]] for k, v in whole.cell_data.items()},
+    )
+
+
+def _write_vtm(path: Path, names: Sequence[str], files: Sequence[Path]) -> Path:
+    """A ParaView multiblock (``.vtm``) of one VTU file per named block (paths relative to it)."""
+    rows = "\n".join(
+        f'    <DataSet index="{k}" name={quoteattr(name)} file={quoteattr(f.relative_to(path.parent).as_posix())}/>'
+        for k, (name, f) in enumerate(zip(names, files, strict=True))
+    )
+    path.write_text(
+        '<?xml version="1.0"?>\n<VTKFile type="vtkMultiBlockDataSet" version="1.0">\n  <vtkMultiBlockDataSet>\n'
+        f"{rows}\n  </vtkMultiBlockDataSet>\n</VTKFile>\n",
+        encoding="utf-8",
+    )
+    return path
 
 
 def stress_tensor(solution: Solution) -> npt.NDArray[np.float64]:

@@ -203,7 +203,7 @@ def von_mises(
     interpolated; ``recovered=False``: the P1 cell stress per triangle, which jumps from cell to cell).
     ``window`` = (xmin, xmax, ymin, ymax) zooms.
     ``obstacle`` draws the obstacle surface after its approach, g(ξ) = g0(ξ) − δ off Γ_C along n (it is
-    where the deformed Γ_C should touch it when ``scale`` is 1)."""
+    where the deformed Γ_C should touch it when ``scale`` is 1); two bodies have no rigid obstacle to draw."""
     ax = _axes(ax)
     mesh = problem.mesh
     p, u = mesh.points, solution.displacement
@@ -221,7 +221,7 @@ def von_mises(
     )
     if edges:
         ax.triplot(tri, color="k", lw=0.15, alpha=0.5)
-    if obstacle:
+    if obstacle and problem.primary is None:  # between two bodies, the other body is drawn
         xi = np.linspace(float(solution.node_abscissae[0]), float(solution.node_abscissae[-1]), 2001)
         g = np.asarray(problem.obstacle.gap0(xi)) - problem.approach
         surface = problem.contact_points(xi) + np.outer(g, problem.contact_normal)
@@ -240,16 +240,24 @@ def von_mises(
 
 
 def history_loop(history: History, ax: Axes | None = None) -> Axes:
-    """Q = ∫λ_t against the obstacle's tangential position s along a history, with ±μP for reference."""
+    """Q = ∫λ_t against the obstacle's tangential position s along a history, with ±μP for reference; when
+    the obstacle does not move tangentially and the history moves prescribed displacements (two bodies),
+    against the component that travels the most (the one a fretting cycle moves back and forth)."""
     ax = _axes(ax)
     k = len(history)
     s, q = history.shift[:k], history.tangential_force
+    label = "obstacle tangential position s (along t)"
+    spans = {name: float(np.abs(np.diff(v[:k])).sum()) for name, v in history.displacements.items() if k}
+    if k and np.ptp(s) == 0.0 and spans and max(spans.values()) > 0.0:
+        label = max(spans, key=spans.__getitem__)
+        s = history.displacements[label][:k]
+        label = f"prescribed displacement {label}"
     ax.plot(s, q, "o-", ms=3, lw=1.2, label="Q = ∫λ_t")
     mu = history.solutions[0].mu if k else None
     if mu is not None:
         ax.plot(s, mu * history.normal_force, "k--", lw=0.8, label="±μP")
         ax.plot(s, -mu * history.normal_force, "k--", lw=0.8)
-    ax.set_xlabel("obstacle tangential position s (along t)")
+    ax.set_xlabel(label)
     ax.set_ylabel("tangential force Q (along t)")
     ax.set_title("Tangential force along the loading path")
     ax.grid(alpha=0.3)

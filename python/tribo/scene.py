@@ -28,7 +28,7 @@ import numpy as np
 from tribo._tribo import Mesh, Obstacle, Support, TriboError
 from tribo.checks import warn_solution
 from tribo.io import read_mesh
-from tribo.problem import Problem
+from tribo.problem import Body, Problem
 from tribo.results import Adaptive, AdaptiveHistory, History, Solution
 # The schema's names, importable from here as before the split (``X as X``: re-exported).
 from tribo.scene_schema import CHOICES as CHOICES
@@ -72,21 +72,13 @@ class Scene:
 
     def supports(self) -> list[Support]:
         """The ``[[supports]]`` entries as ``tribo.Support`` values (none for the ``clamped`` form)."""
-        out = []
-        for entry in self.get("supports", "entries", []):
-            kind, name = entry["kind"], entry["edge_set"]
-            if kind == "clamp":
-                out.append(Support.clamp(name))
-            elif kind == "roller":
-                out.append(Support.roller(name))
-            else:
-                out.append(Support.displacement(name, x=entry.get("x"), y=entry.get("y")))
-        return out
+        return [_support(entry) for entry in self.get("supports", "entries", [])]
 
     # ----- geometry -----
     def obstacle(self) -> Obstacle:
-        """The obstacle (its keys were checked by ``parse_scene``; the core checks their values)."""
-        o = self.sections.get("obstacle", {})
+        """The obstacle (its keys were checked by ``parse_scene``; the core checks their values); between two
+        bodies, the initial gap ``contact.gap``."""
+        o = self.get("contact", "gap", {}) if self.is_two_bodies else self.sections.get("obstacle", {})
         shape = o.get("shape", "flat")
         if shape in ("circle", "parabola"):
             make = Obstacle.circle if shape == "circle" else Obstacle.parabola
@@ -95,16 +87,30 @@ class Scene:
             return Obstacle.polyline(o["xi"], o["gap"])
         return Obstacle.flat()
 
-    def contact_segment(self, side_range: tuple[float, float]) -> tuple[float, float]:
-        """The segment of Γ_C (coordinate range along its side) that the mesh is refined toward."""
-        grading = self.get("discretization", "grading", "auto")
+    def _approach(self) -> float:
+        """How far contact reaches into the gap: the obstacle's approach; between two bodies, the largest
+        prescribed displacement of the scene (its supports and its history's waypoints)."""
+        if not self.is_two_bodies:
+            return float(max(self.get("obstacle", "approach", 0.0), 0.0))
+        values = [abs(e.get(c, 0.0)) for b in self.sections["bodies"]["entries"] for e in b["supports"] for c in "xy"]
+        for path in self.get("history", "displacements", {}).values():
+            values += [abs(v) for v in (path if isinstance(path, list) else [path])]
+        return max(values, default=0.0)
+
+    def contact_segment(
+        self, side_range: tuple[float, float], d: Mapping[str, Any] | None = None
+    ) -> tuple[float, float]:
+        """The segment of Γ_C (coordinate range along its side) that the mesh is refined toward (``d``: the
+        discretization table, the scene's or a body's)."""
+        d = self.sections.get("discretization", {}) if d is None else d
+        grading = d.get("grading", "auto")
         lo, hi = side_range
         if isinstance(grading, tuple):
             return grading
         obstacle = self.obstacle()  # first: the core refuses a bad radius before it is used here
-        o = self.sections.get("obstacle", {})
+        o = self.get("contact", "gap", {}) if self.is_two_bodies else self.sections.get("obstacle", {})
         shape = o.get("shape", "flat")
-        delta = max(o.get("approach", 0.0), 0.0)
+        delta = self._approach()
         if shape in ("circle", "parabola"):
             c = o.get("center", 0.0)
             a = math.sqrt(2.0 * o["radius"] * delta)
@@ -124,61 +130,85 @@ class Scene:
 
     def mesh(self) -> Mesh:
         """The mesh: read from the file, or generated on the rectangle (graded unless asked not to)."""
-        body = self.sections.get("body", {})
-        d = self.sections.get("discretization", {})
+        return self._mesh(self.sections.get("body", {}), self.sections.get("discretization", {}),
+                          self.get("contact", "edge_set"), "body", "discretization", "contact.edge_set")
+
+    def _mesh(self, body: Mapping[str, Any], d: Mapping[str, Any], side: Any, body_key: str, d_key: str,
+              side_key: str) -> Mesh:
+        """The mesh of ``body`` (``[body]`` or a ``[[bodies]]`` entry) with the discretization ``d``, graded
+        toward its contact ``side``; the keys name the tables in errors."""
         if "mesh" in body:
             if "x" in body or "y" in body:
-                raise SceneError("give either body.mesh or body.x/body.y, not both", "body.mesh")
+                raise SceneError(f"give either {body_key}.mesh or {body_key}.x/{body_key}.y, not both",
+                                 f"{body_key}.mesh")
             rect_keys = sorted(set(d) & {"grading", "h", "h_min", "growth", "diagonal"})
             if rect_keys:
                 raise SceneError(
-                    f"scene key 'discretization.{rect_keys[0]}' applies to a rectangle body, not a mesh file",
-                    f"discretization.{rect_keys[0]}",
+                    f"scene key '{d_key}.{rect_keys[0]}' applies to a rectangle body, not a mesh file",
+                    f"{d_key}.{rect_keys[0]}",
                 )
             return read_mesh(self.base_dir / body["mesh"])
         for k in ("x", "y"):
             if k not in body:
-                raise SceneError(f"scene key 'body.{k}' is required (or give body.mesh)", f"body.{k}")
+                raise SceneError(f"scene key '{body_key}.{k}' is required (or give {body_key}.mesh)", f"{body_key}.{k}")
         x, y = body["x"], body["y"]
         h = d.get("h", 0.25 * min(x[1] - x[0], y[1] - y[0]))
         if not h > 0.0:
-            raise SceneError(f"scene key 'discretization.h' must be positive, got {h}", "discretization.h")
+            raise SceneError(f"scene key '{d_key}.h' must be positive, got {h}", f"{d_key}.h")
         grading = d.get("grading", "auto")
         if grading == "none":
             extra = sorted(set(d) & {"h_min", "growth"})
             if extra:
                 raise SceneError(
-                    f"scene key 'discretization.{extra[0]}' needs a graded mesh (grading is 'none')",
-                    f"discretization.{extra[0]}",
+                    f"scene key '{d_key}.{extra[0]}' needs a graded mesh (grading is 'none')", f"{d_key}.{extra[0]}"
                 )
             fx, fy = (x[1] - x[0]) / h, (y[1] - y[0]) / h
             if fx * fy > MAX_CELLS:
                 raise SceneError(
-                    f"scene key 'discretization.h' = {h:g} makes a grid of about {fx:.3g} x {fy:.3g} cells,"
+                    f"scene key '{d_key}.h' = {h:g} makes a grid of about {fx:.3g} x {fy:.3g} cells,"
                     f" more than the limit of {MAX_CELLS}",
-                    "discretization.h",
+                    f"{d_key}.h",
                 )
             nx, ny = max(1, math.ceil(fx - 1e-9)), max(1, math.ceil(fy - 1e-9))
             return Mesh.rectangle(x, y, nx, ny, diagonal=d.get("diagonal"))
         if "diagonal" in d:
-            raise SceneError("scene key 'discretization.diagonal' applies to grading = 'none'", "discretization.diagonal")
-        side = self.get("contact", "edge_set")
+            raise SceneError(f"scene key '{d_key}.diagonal' applies to grading = 'none'", f"{d_key}.diagonal")
         if side not in SIDES:
             raise SceneError(
-                f"scene key 'contact.edge_set' = {side!r}: a rectangle's edge sets are {', '.join(SIDES)}",
-                "contact.edge_set",
+                f"scene key '{side_key}' = {side!r}: a rectangle's edge sets are {', '.join(SIDES)}", side_key
             )
         along = x if side in ("bottom", "top") else y
-        segment = self.contact_segment((min(along), max(along)))
-        return Mesh.graded_rectangle(
-            x,
-            y,
-            side=side,
-            segment=segment,
-            h_max=h,
-            h_min=d.get("h_min"),
-            growth=d.get("growth"),
-        )
+        segment = self.contact_segment((min(along), max(along)), d)
+        return Mesh.graded_rectangle(x, y, side=side, segment=segment, h_max=h, h_min=d.get("h_min"),
+                                     growth=d.get("growth"))
+
+    @property
+    def is_two_bodies(self) -> bool:
+        """True when the scene has ``[[bodies]]``: two elastic bodies in contact."""
+        return "bodies" in self.sections
+
+    def bodies(self) -> list[Body]:
+        """The two ``[[bodies]]`` as ``tribo.Body`` values, each graded toward its side of the contact."""
+        sides = {}
+        for key in ("secondary", "primary"):
+            name, _, edge_set = str(self.get("contact", key)).partition(".")
+            sides[name] = (edge_set, f"contact.{key}")
+        out = []
+        for k, entry in enumerate(self.sections["bodies"]["entries"]):
+            where = f"bodies[{k}]"
+            side, side_key = sides.get(entry["name"], (None, "contact.secondary"))
+            if side is None and "mesh" not in entry and entry.get("discretization", {}).get("grading") != "none":
+                pair = f"secondary = {self.get('contact', 'secondary')!r}, primary = {self.get('contact', 'primary')!r}"
+                raise SceneError(
+                    f"body {entry['name']!r} is on neither side of the contact ({pair}), so its mesh cannot be "
+                    "graded toward it", "contact.secondary"
+                )
+            mesh = self._mesh(entry, entry.get("discretization", {}), side, where, f"{where}.discretization", side_key)
+            material = entry["material"]
+            out.append(Body(entry["name"], mesh, material["young"], material["poisson"],
+                            supports=[_support(e) for e in entry["supports"]],
+                            tractions=entry.get("loads", {}).get("tractions")))
+        return out
 
     def build(self) -> Problem:
         """The mesh and the problem the scene describes."""
@@ -187,6 +217,13 @@ class Scene:
         loads = self.sections.get("loads", {})
         try:
             obstacle = self.obstacle()  # before the mesh, whose grading uses the obstacle's values
+            if self.is_two_bodies:
+                first, second = self.bodies()
+                return Problem.two_bodies(
+                    first, second, secondary=self.get("contact", "secondary"), primary=self.get("contact", "primary"),
+                    gap=obstacle, body_force=loads.get("body_force"), multiplier_ratio=d.get("multiplier_ratio"),
+                    multiplier_size=d.get("multiplier_size"), space=d.get("space"),
+                )
             return Problem(
                 self.mesh(),
                 young=self.get("material", "young"),
@@ -241,6 +278,13 @@ class Scene:
 
     def history_steps(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The steps of ``[history]``: approach, shift and load factor per step (the first waypoint is step 0)."""
+        columns = self.history_columns()
+        return columns["approach"], columns["shift"], columns["load_factor"]
+
+    def history_columns(self) -> dict[str, Any]:
+        """The steps of ``[history]`` per column: ``approach``, ``shift``, ``load_factor`` and
+        ``displacements`` (a dict of the prescribed components the history moves), sampled from the
+        waypoints (the first waypoint is step 0)."""
         h = self.sections.get("history", {})
         o = self.sections.get("obstacle", {})
         given = {
@@ -248,7 +292,8 @@ class Scene:
             "shift": h.get("shift", o.get("shift", 0.0)),
             "load_factor": h.get("load_factor", 1.0),
         }
-        lengths = {k: len(v) for k, v in given.items() if isinstance(v, list)}
+        moved = h.get("displacements", {})
+        lengths = {k: len(v) for k, v in {**given, **moved}.items() if isinstance(v, list)}
         if len(set(lengths.values())) > 1:
             raise SceneError(f"the waypoint lists of [history] have different lengths: {lengths}", "history")
         n_points = max(lengths.values(), default=2)
@@ -270,25 +315,29 @@ class Scene:
             out: np.ndarray = np.interp(t, waypoints, values)
             return out
 
-        return sample(given["approach"]), sample(given["shift"]), sample(given["load_factor"])
+        columns: dict[str, Any] = {name: sample(v) for name, v in given.items()}
+        columns["displacements"] = {name: sample(v) for name, v in moved.items()}
+        return columns
 
     def solve_history(
         self, problem: Problem | None = None, progress: Callable[[int, int, str, float], object] | None = None
     ) -> tuple[Problem, History]:
         """Builds (unless given) and solves the ``[history]``; returns the problem and the history."""
         problem = problem if problem is not None else self.build()
-        approach, shift, load_factor = self.history_steps()
+        c = self.history_columns()
         kw = self.solve_kwargs()
-        return problem, problem.solve_history(approach, shift, load_factor, progress=progress, **kw)
+        return problem, problem.solve_history(c["approach"], c["shift"], c["load_factor"],
+                                              displacements=c["displacements"] or None, progress=progress, **kw)
 
     def solve_history_adaptive(
         self, problem: Problem | None = None, progress: Callable[[int, float, float], object] | None = None
     ) -> AdaptiveHistory:
         """Builds (unless given) and solves the ``[history]`` adaptively with the ``[adapt]`` table's settings."""
         problem = problem if problem is not None else self.build()
-        approach, shift, load_factor = self.history_steps()
+        c = self.history_columns()
         kw = {**self.sections.get("adapt", {}), **self.solve_kwargs()}
-        return problem.solve_history_adaptive(approach, shift, load_factor, progress=progress, **kw)
+        return problem.solve_history_adaptive(c["approach"], c["shift"], c["load_factor"],
+                                              displacements=c["displacements"] or None, progress=progress, **kw)
 
     def to_dict(self) -> dict[str, Any]:
         """The scene as plain data (for the JSON summary)."""
@@ -296,6 +345,16 @@ class Scene:
         for section, values in self.sections.items():
             out[section] = {k: list(v) if isinstance(v, tuple) else v for k, v in values.items()}
         return out
+
+
+def _support(entry: Mapping[str, Any]) -> Support:
+    """One checked support entry as a ``tribo.Support``."""
+    kind, name = entry["kind"], entry["edge_set"]
+    if kind == "clamp":
+        return Support.clamp(name)
+    if kind == "roller":
+        return Support.roller(name)
+    return Support.displacement(name, x=entry.get("x"), y=entry.get("y"))
 
 
 def parse_scene(data: Mapping[str, Any], base_dir: Path | None = None) -> Scene:

@@ -49,7 +49,9 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     unset, they take ``obstacle.shift``, ``obstacle.approach`` and 1. ``steps`` (default 10) is the
     number of steps from one waypoint to the next (one count, or a list with one per segment); the first
     waypoint is step 0. ``plot_steps``: the steps whose tractions the plots show (default: the first, the
-    middle and the last).
+    middle and the last). ``displacements``: a table of prescribed displacement components
+    (``"set.x"``/``"set.y"`` of a ``displacement`` support; ``"body.set.x"`` between two bodies), each a
+    path of waypoints like ``shift``; a component left out keeps its value.
 ``[adapt]``
     Adaptive refinement (``tribo run`` then calls ``Problem.solve_adaptive`` from the scene's mesh, see
     ``tribo.adaptive``): ``tol`` (the relative estimated error of the contact tractions at which to stop,
@@ -64,6 +66,20 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     their kinds and defaults): ``qp_tol``, ``qp_max_iter``, ``qp_kkt_solver`` (``"faer"``/``"qdldl"``),
     ``qp_working_set`` (true/false), ``fp_tol``, ``fp_max_iter``, ``fp_relaxation``. Unset keys take the
     core's defaults. The table of keys is built from the core's, so it cannot drift from it.
+
+``[[bodies]]`` (two elastic bodies in contact, instead of ``[body]``, ``[material]``, ``[supports]`` and
+``[obstacle]``)
+    Exactly two entries, each with ``name`` (*required*), ``x``/``y`` or ``mesh`` as ``[body]``,
+    ``material = { young, poisson }`` (*required*), ``supports`` (*required*: a list of tables as the
+    ``[[supports]]`` entries), ``loads = { tractions = { edge_set = [tx, ty] } }`` and ``discretization``
+    with the rectangle's keys (``grading``, ``h``, ``h_min``, ``growth``, ``diagonal``; ``grading = "auto"``
+    refines toward the contact: the whole side for a flat gap, ``[c − 2a, c + 2a]`` with ``a = √(2Rδ)`` for a
+    curved one, δ the largest prescribed displacement of the scene). ``[contact]`` then names the sides as
+    ``secondary = "body.edge_set"`` (it carries the multipliers and the stabilization) and ``primary``, and
+    ``gap`` the initial gap between them as an obstacle shape (``{ shape = "parabola", radius = 1.0 }``;
+    default flat: touching). ``[loads]`` keeps ``body_force`` (both bodies); ``[discretization]`` keeps the
+    multiplier and γ0 keys. The bodies move through their prescribed displacements: a ``[history]`` moves
+    them with ``displacements`` (``approach`` and ``shift`` do not apply).
 
 Top-level ``title`` and ``description`` are free text. An unknown key or a value of the wrong type is a
 ``SceneError`` that names the key (``scene key 'obstacle.radus' is not known``). Numbers must be finite
@@ -81,6 +97,8 @@ from tribo._tribo import MAX_CELLS as _MAX_CELLS
 from tribo._tribo import TriboError, choices, solver_settings
 
 __all__ = [
+    "BODY_KEYS",
+    "BODY_TABLES",
     "CHOICES",
     "MAX_CELLS",
     "MAX_HISTORY_STEPS",
@@ -234,6 +252,29 @@ def _pairs(key: str, v: Any) -> dict[str, tuple[float, float]]:
     return {name: _pair(f"{key}.{name}", t) for name, t in v.items()}
 
 
+def _paths(key: str, v: Any) -> dict[str, float | list[float]]:
+    """A table of waypoint paths: prescribed displacement component → number or waypoints."""
+    if not isinstance(v, dict):
+        raise SceneError(f"scene key '{key}' must be a table \"set.x\" = waypoints", key)
+    return {name: _path(f"{key}.{name}", path) for name, path in v.items()}
+
+
+def _shape(key: str, v: Any) -> dict[str, Any]:
+    """An obstacle shape as a table (the initial gap between two bodies): the keys of ``[obstacle]`` that
+    describe a shape, checked as there."""
+    if not isinstance(v, dict):
+        raise SceneError(f"scene key '{key}' must be a table with shape and its keys", key)
+    out: dict[str, Any] = {}
+    for name, value in v.items():
+        check = SCHEMA["obstacle"].get(name) if name not in ("approach", "shift") else None
+        if check is None:
+            known = ", ".join(k for k in SCHEMA["obstacle"] if k not in ("approach", "shift"))
+            raise SceneError(f"scene key '{key}.{name}' is not known (known keys: {known})", f"{key}.{name}")
+        out[name] = check(f"{key}.{name}", value)
+    _check_obstacle(out, key)
+    return out
+
+
 def _setting_checker(spec: dict[str, Any]) -> Checker:
     """The checker of one solver setting, from its kind in the core's table."""
     kind = spec["kind"]
@@ -251,7 +292,7 @@ SCHEMA: dict[str, dict[str, Checker]] = {
     "material": {"young": _number, "poisson": _number},
     "supports": {"clamped": _names},
     "loads": {"body_force": _pair, "tractions": _pairs},
-    "contact": {"edge_set": _string},
+    "contact": {"edge_set": _string, "secondary": _string, "primary": _string, "gap": lambda k, v: _shape(k, v)},
     "obstacle": {
         "shape": _choice("flat", "circle", "parabola", "polyline"),
         "radius": _number,
@@ -274,7 +315,14 @@ SCHEMA: dict[str, dict[str, Checker]] = {
         "gamma0": _number,
         "gamma0_fraction": _number,
     },
-    "history": {"shift": _path, "approach": _path, "load_factor": _path, "steps": _counts, "plot_steps": _steps},
+    "history": {
+        "shift": _path,
+        "approach": _path,
+        "load_factor": _path,
+        "displacements": _paths,
+        "steps": _counts,
+        "plot_steps": _steps,
+    },
     "adapt": {
         "tol": _number,
         "max_unknowns": _count(2**62),
@@ -287,6 +335,21 @@ SCHEMA: dict[str, dict[str, Checker]] = {
     "solver": {name: _setting_checker(spec) for name, spec in solver_settings().items()},
 }
 REQUIRED = {"material": ("young", "poisson"), "contact": ("edge_set",)}
+# The keys of one [[bodies]] entry: plain values, and the sub-tables with their keys.
+BODY_KEYS: dict[str, Checker] = {"name": _string, "x": _range, "y": _range, "mesh": _string}
+BODY_TABLES: dict[str, dict[str, Checker]] = {
+    "material": {"young": _number, "poisson": _number},
+    "loads": {"tractions": _pairs},
+    "discretization": {k: SCHEMA["discretization"][k] for k in ("grading", "h", "h_min", "growth", "diagonal")},
+}
+# What [[bodies]] replaces, and the keys of the other tables that are per body or do not apply to two bodies.
+ONE_BODY_TABLES = ("body", "material", "supports", "obstacle")
+NOT_FOR_TWO_BODIES = {
+    "contact": ("edge_set",),
+    "loads": ("tractions",),
+    "discretization": tuple(BODY_TABLES["discretization"]),
+    "history": ("approach", "shift"),
+}
 # The keys of one [[supports]] entry, by kind (besides kind and edge_set).
 SUPPORT_KINDS: dict[str, tuple[str, ...]] = {"clamp": (), "roller": (), "displacement": ("x", "y")}
 # The keys of [obstacle] that describe its shape: those each shape takes, and those it requires.
@@ -299,20 +362,81 @@ MAX_CELLS = _MAX_CELLS  # the core's limit (tribo.generate::MAX_CELLS)
 MAX_HISTORY_STEPS = 100_000
 
 
-def _check_obstacle(o: Mapping[str, Any]) -> None:
-    """The shape keys of [obstacle]: each one the shape requires is given, and none it does not take."""
+def _check_obstacle(o: Mapping[str, Any], table: str = "obstacle") -> None:
+    """The shape keys of [obstacle] (or of a gap ``table``): each one the shape requires is given, and none
+    it does not take."""
     shape = o.get("shape", "flat")
     for key in sorted(set(o) & {k for keys in SHAPE_KEYS.values() for k in keys}):
         if key not in SHAPE_KEYS[shape]:
-            raise SceneError(f"scene key 'obstacle.{key}' does not apply to a {shape} obstacle", f"obstacle.{key}")
+            raise SceneError(f"scene key '{table}.{key}' does not apply to a {shape} obstacle", f"{table}.{key}")
     for key in SHAPE_REQUIRED[shape]:
         if key not in o:
-            raise SceneError(f"scene key 'obstacle.{key}' is required for a {shape}", f"obstacle.{key}")
+            raise SceneError(f"scene key '{table}.{key}' is required for a {shape}", f"{table}.{key}")
 
 
-def _support_entry(index: int, entry: Any) -> dict[str, Any]:
-    """One ``[[supports]]`` entry: ``kind``, ``edge_set`` and the keys of its kind, checked."""
-    where = f"supports[{index}]"
+def _body_entry(index: int, entry: Any) -> dict[str, Any]:
+    """One ``[[bodies]]`` entry, every key checked: the values of ``BODY_KEYS``, the sub-tables of
+    ``BODY_TABLES`` and the list ``supports``."""
+    where = f"bodies[{index}]"
+    if not isinstance(entry, dict):
+        raise SceneError(f"scene key '{where}' must be a table with name, material and supports", where)
+    out: dict[str, Any] = {}
+    for key, value in entry.items():
+        at = f"{where}.{key}"
+        if key in BODY_KEYS:
+            out[key] = BODY_KEYS[key](at, value)
+        elif key in BODY_TABLES:
+            if not isinstance(value, dict):
+                raise SceneError(f"scene key '{at}' must be a table", at)
+            known = BODY_TABLES[key]
+            for k in value:
+                if k not in known:
+                    raise SceneError(f"scene key '{at}.{k}' is not known (known keys: {', '.join(known)})", f"{at}.{k}")
+            out[key] = {k: known[k](f"{at}.{k}", v) for k, v in value.items()}
+        elif key == "supports":
+            if not isinstance(value, list) or not value:
+                raise SceneError(f"scene key '{at}' must be a non-empty list of support tables", at)
+            out[key] = [_support_entry(k, e, at) for k, e in enumerate(value)]
+        else:
+            known_keys = ", ".join([*BODY_KEYS, *BODY_TABLES, "supports"])
+            raise SceneError(f"scene key '{at}' is not known (known keys of a body: {known_keys})", at)
+    for key in ("name", "material", "supports"):
+        if key not in out:
+            raise SceneError(f"scene key '{where}.{key}' is required", f"{where}.{key}")
+    for key in ("young", "poisson"):
+        if key not in out["material"]:
+            raise SceneError(f"scene key '{where}.material.{key}' is required", f"{where}.material.{key}")
+    if "mesh" not in out and not ("x" in out and "y" in out):
+        raise SceneError(f"scene key '{where}.x' and '{where}.y' (a rectangle) or '{where}.mesh' is required", where)
+    return out
+
+
+def _check_two_bodies(data: Mapping[str, Any], sections: dict[str, dict[str, Any]]) -> None:
+    """The tables of a two-body scene: two named bodies, the pair named, nothing of one body."""
+    bodies = sections["bodies"]["entries"]
+    if len(bodies) != 2:
+        raise SceneError(f"scene key 'bodies' must hold two bodies, got {len(bodies)}", "bodies")
+    if bodies[0]["name"] == bodies[1]["name"]:
+        raise SceneError(f"scene key 'bodies': both bodies are named {bodies[0]['name']!r}", "bodies[1].name")
+    for name in ONE_BODY_TABLES:
+        if name in data:
+            raise SceneError(f"scene key '{name}' is for one body: with [[bodies]], each body has its own", name)
+    for table, keys in NOT_FOR_TWO_BODIES.items():
+        for key in keys:
+            if key in sections.get(table, {}):
+                raise SceneError(
+                    f"scene key '{table}.{key}' does not apply to two bodies (see [[bodies]] in the scene format)",
+                    f"{table}.{key}",
+                )
+    for key in ("secondary", "primary"):
+        if key not in sections.get("contact", {}):
+            raise SceneError(f"scene key 'contact.{key}' is required with [[bodies]] ('body.edge_set')", f"contact.{key}")
+
+
+def _support_entry(index: int, entry: Any, table: str = "supports") -> dict[str, Any]:
+    """One ``[[supports]]`` entry (or one of a body's ``supports``): ``kind``, ``edge_set`` and the keys of
+    its kind, checked."""
+    where = f"{table}[{index}]"
     if not isinstance(entry, dict):
         raise SceneError(f"scene key '{where}' must be a table with kind and edge_set", where)
     for key in ("kind", "edge_set"):
@@ -334,6 +458,23 @@ def _support_entry(index: int, entry: Any) -> dict[str, Any]:
     return out
 
 
+def _check_one_body(sections: dict[str, dict[str, Any]]) -> None:
+    """The tables a one-body scene needs, and no key of the two-body form."""
+    for name, keys in REQUIRED.items():
+        for key in keys:
+            if key not in sections.get(name, {}):
+                raise SceneError(f"scene key '{name}.{key}' is required", f"{name}.{key}")
+    if "supports" not in sections:
+        raise SceneError("scene key 'supports' is required: [supports] clamped = … or [[supports]] entries", "supports")
+    body = sections.get("body", {})
+    if "mesh" not in body and not ("x" in body and "y" in body):
+        raise SceneError("scene key 'body.x' and 'body.y' (a rectangle) or 'body.mesh' is required", "body")
+    for key in ("secondary", "primary", "gap"):
+        if key in sections.get("contact", {}):
+            raise SceneError(f"scene key 'contact.{key}' names a side of two bodies: it needs [[bodies]]", f"contact.{key}")
+    _check_obstacle(sections.get("obstacle", {}))
+
+
 def check_scene(data: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
     """The tables of a scene given as a dict (as tomllib returns it), each key checked and converted:
     unknown keys and bad types are errors. ``title`` and ``description`` are checked, not returned."""
@@ -343,8 +484,13 @@ def check_scene(data: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
             if not isinstance(table, str):
                 raise SceneError(f"scene key '{name}' must be a string", name)
             continue
+        if name == "bodies":
+            if not isinstance(table, list):
+                raise SceneError("scene key 'bodies' must be a list of tables: [[bodies]]", name)
+            sections[name] = {"entries": [_body_entry(k, e) for k, e in enumerate(table)]}
+            continue
         if name not in SCHEMA:
-            raise SceneError(f"scene key '{name}' is not known (known tables: {', '.join(SCHEMA)})", name)
+            raise SceneError(f"scene key '{name}' is not known (known tables: {', '.join([*SCHEMA, 'bodies'])})", name)
         if name == "supports" and isinstance(table, list):
             sections[name] = {"entries": [_support_entry(k, e) for k, e in enumerate(table)]}
             continue
@@ -364,16 +510,10 @@ def check_scene(data: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
                 )
             checked[key] = check(f"{name}.{key}", value)
         sections[name] = checked
-    for name, keys in REQUIRED.items():
-        for key in keys:
-            if key not in sections.get(name, {}):
-                raise SceneError(f"scene key '{name}.{key}' is required", f"{name}.{key}")
-    if "supports" not in sections:
-        raise SceneError("scene key 'supports' is required: [supports] clamped = … or [[supports]] entries", "supports")
-    body = sections.get("body", {})
-    if "mesh" not in body and not ("x" in body and "y" in body):
-        raise SceneError("scene key 'body.x' and 'body.y' (a rectangle) or 'body.mesh' is required", "body")
-    _check_obstacle(sections.get("obstacle", {}))
+    if "bodies" in sections:
+        _check_two_bodies(data, sections)
+    else:
+        _check_one_body(sections)
     f = sections.get("friction", {})
     if "mu" in f and "threshold" in f:
         raise SceneError("scene keys 'friction.mu' and 'friction.threshold' exclude each other", "friction")

@@ -455,3 +455,20 @@ def tomllib_loads(text: str) -> dict[str, object]:
     import tomllib
 
     return tomllib.loads(text)
+
+
+def test_a_closed_pipe_stops_quietly(tmp_path: Path) -> None:
+    """``tribo run … | head``: the reader of the printed report is gone before it is printed; the results
+    are written, the exit code is a shell's for SIGPIPE (141) and nothing calls it an internal error."""
+    from tribo.scene import scene_path
+
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "tribo.cli", "-q", "run", str(scene_path("block")), "--out", str(tmp_path / "o"),
+         "--no-plots"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+    )
+    assert proc.stdout is not None
+    proc.stdout.close()
+    _, err = proc.communicate()
+    assert proc.returncode == 141 and "internal error" not in err.decode() and not err.strip(), err.decode()
+    assert (tmp_path / "o" / "summary.json").is_file()

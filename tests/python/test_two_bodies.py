@@ -87,6 +87,11 @@ def test_bad_pairs_are_errors() -> None:
         tribo.Problem([a._compiled(), b._compiled()], contact="a.top", primary="b.bottom", young=1.0)
     with pytest.raises(TypeError, match="two tribo.Body"):
         tribo.Problem.two_bodies(a, mesh, secondary="a.top", primary="b.bottom")  # type: ignore[arg-type]
+    # A body its own supports do not hold (a punch held only by the contact): named, with the free motion.
+    punch = tribo.Body("punch", mesh, young=1.0, poisson=0.3, supports=tribo.Support.roller("left"))
+    with pytest.raises(tribo.ContactGeometryError, match="body 'punch' is not held.*translation") as info:
+        tribo.Problem.two_bodies(a, punch, secondary="a.top", primary="punch.bottom")
+    assert info.value.kind == "ContactPair"
     # Not yet for two bodies, and said so: adaptive refinement (and so another mesh).
     with pytest.raises(tribo.ContactGeometryError, match="two-body"):
         problem.solve_adaptive(tol=0.1)

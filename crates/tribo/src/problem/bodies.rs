@@ -9,9 +9,9 @@
 //! ([`crate::LoadStep::displacements`]); an obstacle motion (approach, shift) has no meaning for the pair
 //! and a history step that asks for one is refused ([`Error::BadLoadStep`]).
 //!
-//! What this first version does not do yet: a body held only by the contact (each body needs its own
-//! supports: [`Error::FloatingPiece`], [`Error::RigidMotion`]) and adaptive refinement of a two-body
-//! problem ([`Error::ContactPair`]).
+//! What this first version does not do yet, each refused with [`Error::ContactPair`]: a body held only by
+//! the contact (each body needs its own supports; the error names the body and the motion they leave
+//! free) and adaptive refinement of a two-body problem.
 
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -99,8 +99,8 @@ impl Problem {
     /// # Errors
     /// [`Error::ContactPair`] for body names that are empty, repeated or hold a '.', a pair side that names
     /// no body or no edge set of it, both sides on one body, lines that are not one line with opposite
-    /// normals, a primary line that does not cover the secondary one; the errors of [`Problem::new`]
-    /// (each body must be held by its own supports: [`Error::FloatingPiece`], [`Error::RigidMotion`]).
+    /// normals, a primary line that does not cover the secondary one, a body that its own supports do not
+    /// hold (naming the body and the free motion); the other errors of [`Problem::new`].
     pub fn two_bodies(bodies: [Body; 2], pair: ContactPair, body_force: [f64; 2]) -> Result<Self> {
         let bad = |what: String| Error::ContactPair {
             secondary: pair.secondary.clone(),
@@ -160,7 +160,20 @@ impl Problem {
             multiplier_space: pair.multiplier_space,
         };
         let materials = Materials { materials: bodies.iter().map(|b| b.material).collect(), region };
-        Self::build(mesh, spec, materials, Some(&pair.primary), parts)
+        let spans: Vec<(String, Range<usize>)> = parts.iter().map(|p| (p.name.clone(), p.triangles.clone())).collect();
+        Self::build(mesh, spec, materials, Some(&pair.primary), parts).map_err(|e| {
+            // A body its own supports do not hold: name the body and the free motion.
+            let (triangle, motion) = match &e {
+                Error::RigidMotion { triangle, motion, .. } => (*triangle, motion.clone()),
+                Error::FloatingPiece { triangle, .. } => (*triangle, "every rigid motion (it has no support)".into()),
+                _ => return e,
+            };
+            let Some((name, _)) = spans.iter().find(|(_, r)| r.contains(&triangle)) else { return e };
+            bad(format!(
+                "body '{name}' is not held by its own supports, which leave free {motion}; a body held only by the \
+                 contact is not supported yet: hold that motion with a support ({e})"
+            ))
+        })
     }
 
     /// Whether this problem is two bodies in contact (a primary side) rather than one against the obstacle.
