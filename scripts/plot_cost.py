@@ -21,6 +21,7 @@ from typing import Any
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import studylib as sl  # noqa: E402
 
+FAMILIES = ("uniform", "graded", "block", "two_bodies")
 # The graded family's accurate regime starts here (unknowns).
 FROM = 7000
 
@@ -51,7 +52,7 @@ def rate_label(rate: float) -> str:
 def run(csv_path: Path, out: Path) -> dict[str, Any]:
     rows = load(csv_path)
     out.mkdir(parents=True, exist_ok=True)
-    groups = [(fam, fr) for fam in ("uniform", "graded", "block") for fr in ("frictionless", "coulomb")
+    groups = [(fam, fr) for fam in FAMILIES for fr in ("frictionless", "coulomb")
               if any(r["family"] == fam and r["friction"] == fr for r in rows)]
     fits: dict[tuple[str, str, str], float] = {}
     md = ["# Study 4: cost per phase\n\n",
@@ -78,16 +79,26 @@ def run(csv_path: Path, out: Path) -> dict[str, Any]:
                   + "; ".join(f"{fr} n^{exponent(rs, 'total'):.2f} ({int(rs[0]['n_free'])} to "
                               f"{int(rs[-1]['n_free'])} unknowns)" for fr, rs in graded) + ".\n")
         fits.update({("graded", fr, "total_from_7k"): exponent(rs, "total") for fr, rs in graded})
+    memory = [r for r in rows if math.isfinite(r.get("peak_mb", math.nan)) and r["n_free"] >= 10_000]
+    if memory:
+        md.append("\n## Peak memory\n\nPeak resident memory of a solve (the problem included), per unknown, on the runs "
+                  "from 10k unknowns: " + "; ".join(
+                      f"{fam} {fr} {min(kb):.2f}–{max(kb):.2f} kB (largest: {int(big['n_free'])} unknowns, "
+                      f"{big['peak_mb']:.0f} MB)"
+                      for fam, fr in groups
+                      for rs in [[r for r in memory if r["family"] == fam and r["friction"] == fr]] if rs
+                      for kb in [[1024.0 * r["peak_mb"] / r["n_free"] for r in rs]]
+                      for big in [max(rs, key=lambda r: r["n_free"])]) + ".\n")
     md.append("\n## All runs\n\n")
     md.append(sl.markdown_table(
         ["mesh", "h", "n", "q", "friction", "status", "iterations", "H by"] + [k for k, _ in PHASES]
-        + ["total / Cholesky"],
+        + ["total / Cholesky", "peak MB"],
         [[r["family"], r["h"], int(r["n_free"]), int(r["q"]), r["friction"], r["status"], int(r["iterations"]),
-          r["condensation"]] + [r[k] for k, _ in PHASES] + [r["ratio"]] for r in rows]))
+          r["condensation"]] + [r[k] for k, _ in PHASES] + [r["ratio"], r.get("peak_mb", math.nan)] for r in rows]))
     (out / "cost.md").write_text("".join(md))
 
     plt = sl.pyplot()
-    families = sorted({fam for fam, _ in groups}, key=["uniform", "graded", "block"].index)
+    families = sorted({fam for fam, _ in groups}, key=FAMILIES.index)
     frictions = sorted({fr for _, fr in groups}, key=["frictionless", "coulomb"].index)
     fig, axes = plt.subplots(len(frictions), len(families), figsize=(5.2 * len(families), 4.4 * len(frictions)),
                              sharey=True, squeeze=False)
@@ -106,7 +117,7 @@ def run(csv_path: Path, out: Path) -> dict[str, Any]:
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("displacement unknowns n")
-        scene = "block on a foundation" if fam == "block" else f"Hertz, {fam} meshes"
+        scene = {"block": "block on a foundation", "two_bodies": "two-body Hertz, graded"}.get(fam, f"Hertz, {fam} meshes")
         ax.set_title(f"{scene}, {fr}")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7, loc="upper left")
@@ -114,7 +125,7 @@ def run(csv_path: Path, out: Path) -> dict[str, Any]:
         row[0].set_ylabel("wall time  [s]")
     fig.suptitle("Cost per phase (fitted exponents over runs ≥ 1 ms, converged runs only)")
     fig.tight_layout()
-    fig.savefig(out / "cost.png", dpi=85)
+    fig.savefig(out / "cost.png", dpi=70)
     plt.close(fig)
     return dict(rows=rows, fits=fits)
 

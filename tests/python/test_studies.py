@@ -116,6 +116,15 @@ def test_plot_cost(tmp_path: Path) -> None:
     expected = math.log(0.4 / (3.6e-3 * 16**1.2)) / math.log(2)
     assert abs(res["fits"][("graded", "coulomb", "total_from_7k")] - expected) < 1e-9
     assert "coulomb n^2.00 (16000 to 32000 unknowns)" in (tmp_path / "cost.md").read_text()
+    # Peak memory per unknown, from the columns the cost example writes (MB; 1024 kB each), two bodies included.
+    header = lines[0] + ",setup_mb,peak_mb"
+    rows = [line.replace("uniform,", "two_bodies,", 1) + ",10.0," + str(n / 1000) for line, n in
+            zip(lines[1:7], [1000, 1000, 4000, 4000, 16000, 16000])]
+    csv.write_text("\n".join([header, *rows]) + "\n")
+    study("plot_cost").main(["--csv", str(csv), "--out", str(tmp_path)])
+    md = (tmp_path / "cost.md").read_text()
+    assert "## Peak memory" in md and "two_bodies coulomb 1.02–1.02 kB (largest: 16000 unknowns, 16 MB)" in md, md
+    assert (tmp_path / "cost.png").is_file()
 
 
 def test_cattaneo_mindlin(tmp_path: Path) -> None:

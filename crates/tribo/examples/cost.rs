@@ -17,8 +17,18 @@
 //! `total` (wall clock of `Problem::new` + `solve`), the Cholesky reference (symbolic + numeric sparse
 //! Cholesky of K + one solve, best of 3 at small sizes) and the ratio of the two.
 //!
-//! Every mesh is solved frictionless (one QP) and with Coulomb friction; the Coulomb solve is no longer
-//! timed on finer meshes of a family once it did not converge or took more than MAX_SECONDS / 2.
+//! `two_bodies`: study 8's two-body Hertz with equal materials (`tribo_testkit::two_body_hertz`: the Hertz
+//! block under an elastic block (−2, 2) × (0, 1) pushed down 0.01, a parabolic gap, both graded at growth
+//! 0.15), no shift (two bodies move through their supports).
+//!
+//! Memory: every case (family, mesh, friction law) runs in a fresh process (the example runs itself with
+//! `--case FAMILY INDEX FRICTION`), so its peak resident memory (Linux's VmHWM; NaN elsewhere) is its own:
+//! `setup_mb` after the problem is built, `peak_mb` after the solve (the problem included, the Cholesky
+//! reference after it): what a run needs at most.
+//!
+//! Every mesh is solved frictionless (one QP) and with Coulomb friction, each in its own process (so each
+//! pays for its own assembly and factorization); the Coulomb solve is no longer timed on finer meshes of a
+//! family once it did not converge or took more than MAX_SECONDS / 2.
 //!
 //! `cargo run --release -p tribo --example cost [MAX_SECONDS]`: a family stops growing once one solve
 //! took more than MAX_SECONDS (default 30), so the largest run stays under about a minute.
@@ -28,47 +38,55 @@ use std::time::Instant;
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 use tribo::*;
-use tribo_testkit::{block_problem, hertz_mesh, hertz_scene, hertz_spec};
+use tribo_testkit::{block_problem, hertz_mesh, hertz_scene, hertz_spec, two_body_hertz};
 
 /// Builds a problem when called (the largest take seconds).
 type Build = Box<dyn Fn() -> Result<Problem>>;
 
 /// The problems of a family: the size parameter and the problem's builder.
 fn problems(family: &str) -> Vec<(f64, Build)> {
+    if family == "two_bodies" {
+        let steel = Material { young: 200.0, poisson: 0.3 };
+        return [0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125, 0.000625, 0.0003125]
+            .iter()
+            .map(|&h: &f64| -> (f64, Build) { (h, Box::new(move || Ok(two_body_hertz(h, steel, steel, false, 0.01)))) })
+            .collect();
+    }
     if family == "block" {
         return [100usize, 200, 400, 800]
             .iter()
             .map(|&nx| -> (f64, Build) { (4.0 / nx as f64, Box::new(move || Ok(block_problem(nx, nx / 4).0))) })
             .collect();
     }
-    meshes(family)
-        .into_iter()
-        .map(|(h, mesh)| -> (f64, Box<dyn Fn() -> Result<Problem>>) {
-            (h, Box::new(move || Problem::new(mesh.clone(), spec())))
-        })
-        .collect()
-}
-
-/// One mesh of a family: its label, the size parameter and the mesh.
-fn meshes(family: &str) -> Vec<(f64, Mesh)> {
-    match family {
-        "uniform" => [40usize, 80, 160, 240, 320, 400, 560, 720]
+    // The meshes are made when a case builds its problem (a case runs in its own process and must not
+    // hold the family's other meshes: they would count in its peak memory).
+    if family == "uniform" {
+        return [40usize, 80, 160, 240, 320, 400, 560, 720]
             .iter()
-            .map(|&nx| {
-                let s = hertz_scene();
-                let mesh = rectangle(s.x, s.y, nx, nx / 2, Diagonal::Right).expect("valid");
-                (4.0 / nx as f64, mesh)
+            .map(|&nx| -> (f64, Build) {
+                let build = move || {
+                    let s = hertz_scene();
+                    Problem::new(rectangle(s.x, s.y, nx, nx / 2, Diagonal::Right)?, spec())
+                };
+                (4.0 / nx as f64, Box::new(build))
             })
-            .collect(),
-        _ => [0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125, 0.000625, 0.0003125, 0.00015625]
-            .iter()
-            .map(|&h_min| (h_min, hertz_mesh(h_min)))
-            .collect(),
+            .collect();
     }
+    [0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125, 0.000625, 0.0003125, 0.00015625]
+        .iter()
+        .map(|&h_min: &f64| -> (f64, Build) { (h_min, Box::new(move || Problem::new(hertz_mesh(h_min), spec()))) })
+        .collect()
 }
 
 fn spec() -> ProblemSpec {
     hertz_spec(hertz_scene().approach, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1)
+}
+
+/// The peak resident memory of this process so far, in MB (Linux's VmHWM; NaN where there is none).
+fn peak_mb() -> f64 {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    let kb = status.lines().find_map(|l| l.strip_prefix("VmHWM:")?.split_whitespace().next()?.parse::<f64>().ok());
+    kb.map_or(f64::NAN, |kb| kb / 1024.0)
 }
 
 /// Symbolic + numeric sparse Cholesky of K and one solve; returns the time in seconds (best of `reps`).
@@ -87,18 +105,62 @@ fn cholesky_seconds(problem: &Problem, reps: usize) -> f64 {
     best
 }
 
+/// One case in this process (`--case FAMILY INDEX FRICTION`): builds the problem, solves it, reads the
+/// peak memory, then times the Cholesky reference; prints the CSV row after `ROW ` and the readable line.
+fn case(family: &str, index: usize, friction: &str) -> Result<()> {
+    let Some((h, build)) = problems(family).into_iter().nth(index) else { return Ok(()) };
+    let clock = Instant::now();
+    let problem = build()?;
+    let setup = clock.elapsed().as_secs_f64();
+    let setup_mb = peak_mb();
+    let law = if friction == "coulomb" { Friction::Coulomb { mu: 0.3 } } else { Friction::Frictionless };
+    let clock = Instant::now();
+    let sol = problem.solve(&law, &SolverSettings::default(), None)?;
+    let total = setup + clock.elapsed().as_secs_f64();
+    let solve_mb = peak_mb();
+    let chol = cholesky_seconds(&problem, if problem.n_free < 50_000 { 3 } else { 1 });
+    let t = &sol.report.timings;
+    let status = sol.report.status.name();
+    let cols = [t.assembly + t.contact_matrices, t.factorization + t.condensation, t.qp, t.recovery, total, chol];
+    println!(
+        "{family:<10} {h:>9.6} {:>7} {:>5} {friction:>12} {status:>13} {:>4} {:>8.4} {:>8.4} {:>8.4} {:>8.4} {:>8.4} {:>8.4} {:>6.1} {solve_mb:>7.0}",
+        problem.n_free,
+        problem.n_multipliers(),
+        sol.report.iterations,
+        cols[0], cols[1], cols[2], cols[3], cols[4], cols[5], total / chol
+    );
+    let by = |m: QpMethod| sol.report.qp_methods.iter().filter(|x| **x == m).count();
+    let cols: Vec<String> = cols.iter().chain([&(total / chol)]).map(|v| format!("{v:.6}")).collect();
+    println!(
+        "ROW {family},{h},{},{},{friction},{status},{},{},{},{},{},{setup_mb:.1},{solve_mb:.1}",
+        problem.n_free,
+        problem.n_multipliers(),
+        sol.report.iterations,
+        sol.report.condensation,
+        by(QpMethod::ActiveSet),
+        by(QpMethod::Clarabel),
+        cols.join(",")
+    );
+    Ok(())
+}
+
 fn main() -> Result<()> {
-    let max_seconds: f64 = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(30.0);
+    let args: Vec<String> = std::env::args().collect();
+    if args.get(1).map(String::as_str) == Some("--case") {
+        let index = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(usize::MAX);
+        return case(&args[2], index, args.get(4).map_or("frictionless", String::as_str));
+    }
+    let max_seconds: f64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(30.0);
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/cost.csv");
     std::fs::create_dir_all(path.parent().unwrap()).expect("docs/ is writable");
     let mut csv = std::fs::File::create(&path).expect("docs/cost.csv is writable");
     writeln!(
         csv,
-        "family,h,n_free,q,friction,status,iterations,condensation,qp_active_set,qp_clarabel,problem_new,condensed,qp,recovery,total,cholesky,ratio"
+        "family,h,n_free,q,friction,status,iterations,condensation,qp_active_set,qp_clarabel,problem_new,condensed,qp,recovery,total,cholesky,ratio,setup_mb,peak_mb"
     )
     .unwrap();
     println!(
-        "{:<8} {:>9} {:>7} {:>5} {:>12} {:>13} {:>4} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6}",
+        "{:<10} {:>9} {:>7} {:>5} {:>12} {:>13} {:>4} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>7}",
         "family",
         "h",
         "n_free",
@@ -112,65 +174,35 @@ fn main() -> Result<()> {
         "rec [s]",
         "total[s]",
         "chol [s]",
-        "ratio"
+        "ratio",
+        "peak MB"
     );
-    for family in ["uniform", "graded", "block"] {
+    let me = std::env::current_exe().expect("the running example has a path");
+    for family in ["uniform", "graded", "block", "two_bodies"] {
         let mut coulomb_on = true;
-        for (h, build) in problems(family) {
-            let clock = Instant::now();
-            let problem = build()?;
-            let setup = clock.elapsed().as_secs_f64();
-            let reps = if problem.n_free < 50_000 { 3 } else { 1 };
-            let chol = cholesky_seconds(&problem, reps);
+        for index in 0..problems(family).len() {
             let mut slowest: f64 = 0.0;
-            let frictions: &[(&str, Friction)] = if coulomb_on {
-                &[("frictionless", Friction::Frictionless), ("coulomb", Friction::Coulomb { mu: 0.3 })]
-            } else {
-                &[("frictionless", Friction::Frictionless)]
-            };
-            // (μ = 0.3 in both scene files.)
-            for (name, friction) in frictions {
-                // Each solve pays for its own factorization (the problem would reuse the previous one).
-                problem.forget_factorization();
-                let clock = Instant::now();
-                let sol = problem.solve(friction, &SolverSettings::default(), None)?;
-                let total = setup + clock.elapsed().as_secs_f64();
-                slowest = slowest.max(total);
-                let t = &sol.report.timings;
-                let status = sol.report.status.name();
-                let cols = [
-                    t.assembly + t.contact_matrices,
-                    t.factorization + t.condensation,
-                    t.qp,
-                    t.recovery,
-                    total,
-                    chol,
-                    total / chol,
-                ];
-                println!(
-                    "{family:<8} {h:>9.6} {:>7} {:>5} {name:>12} {status:>13} {:>4} {:>8.4} {:>8.4} {:>8.4} {:>8.4} {:>8.4} {:>8.4} {:>6.1}",
-                    problem.n_free,
-                    problem.n_multipliers(),
-                    sol.report.iterations,
-                    cols[0], cols[1], cols[2], cols[3], cols[4], cols[5], cols[6]
-                );
-                let cols: Vec<String> = cols.iter().map(|v| format!("{v:.6}")).collect();
-                let by = |m: QpMethod| sol.report.qp_methods.iter().filter(|x| **x == m).count();
-                writeln!(
-                    csv,
-                    "{family},{h},{},{},{name},{status},{},{},{},{},{}",
-                    problem.n_free,
-                    problem.n_multipliers(),
-                    sol.report.iterations,
-                    sol.report.condensation,
-                    by(QpMethod::ActiveSet),
-                    by(QpMethod::Clarabel),
-                    cols.join(",")
-                )
-                .unwrap();
+            let frictions: &[&str] = if coulomb_on { &["frictionless", "coulomb"] } else { &["frictionless"] };
+            for friction in frictions {
+                // Each case in a fresh process: its own factorization, and a peak memory of its own.
+                let out = std::process::Command::new(&me)
+                    .args(["--case", family, &index.to_string(), friction])
+                    .output()
+                    .expect("the example runs itself");
+                let text = String::from_utf8_lossy(&out.stdout);
+                let Some(row) = text.lines().find_map(|l| l.strip_prefix("ROW ")) else {
+                    println!("{family} {index} {friction}: failed ({})", String::from_utf8_lossy(&out.stderr));
+                    coulomb_on = false;
+                    continue;
+                };
+                text.lines().filter(|l| !l.starts_with("ROW ")).for_each(|l| println!("{l}"));
+                writeln!(csv, "{row}").unwrap();
                 csv.flush().unwrap();
-                if *name == "coulomb" && (sol.report.status != SolveStatus::Converged || total > max_seconds / 2.0) {
-                    println!("{family}: the Coulomb solve is not timed on finer meshes ({status}, {total:.1} s)");
+                let fields: Vec<&str> = row.split(',').collect();
+                let total: f64 = fields[14].parse().unwrap_or(f64::INFINITY);
+                slowest = slowest.max(total);
+                if *friction == "coulomb" && (fields[5] != "converged" || total > max_seconds / 2.0) {
+                    println!("{family}: the Coulomb solve is not timed on finer meshes ({}, {total:.1} s)", fields[5]);
                     coulomb_on = false;
                 }
             }
