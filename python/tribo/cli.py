@@ -164,7 +164,8 @@ def run_history(
     sliding = np.flatnonzero(history.gross_sliding)
     if len(sliding):
         log.info("gross sliding (every contact dof slips, |Q| = μP) at %d steps, first at step %d", len(sliding), sliding[0])
-    files = write_history(out, problem, history, plots=plots, plot_steps=scene.get("history", "plot_steps")) + files
+    files = write_history(out, problem, history, plots=plots, plot_steps=scene.get("history", "plot_steps"),
+                          every=scene.get("history", "write_every")) + files
     return problem, history, files
 
 

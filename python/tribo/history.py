@@ -3,9 +3,10 @@
 ``Problem.solve_history`` (the core) solves the quasi-static steps on one factorization; this module
 writes its results:
 
-* ``step_NNNN.vtu`` (+ ``_contact``, ``_multipliers``) per converged step, and ``result.pvd``,
-  ``result_contact.pvd``, ``result_multipliers.pvd``: collections ParaView opens as time series (the
-  "time" is the step number);
+* ``step_NNNN.vtu`` (+ ``_contact``, ``_multipliers``) per converged step (beyond ``MAX_VTU_STEPS`` = 200
+  steps, every k-th step and the last, k the smallest that keeps them within 200; ``[history]
+  write_every`` chooses k), and ``result.pvd``, ``result_contact.pvd``, ``result_multipliers.pvd``:
+  collections ParaView opens as time series (the "time" is the step number);
 * ``history.csv``: per step, the obstacle's approach and shift, the load factor, the prescribed
   displacement components the history moves (one column each, named 'set.x'/'set.y'), the normal and
   tangential contact forces, the stick/slip/separation counts, the extents of the contact and stick
@@ -21,6 +22,7 @@ from __future__ import annotations
 
 import csv
 import logging
+import math
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
@@ -32,7 +34,10 @@ from tribo.io import write_vtu
 from tribo.problem import Problem
 from tribo.results import History
 
-__all__ = ["write_history", "write_pvd", "history_table"]
+__all__ = ["MAX_VTU_STEPS", "history_table", "vtu_steps", "write_history", "write_pvd"]
+
+# The most steps whose VTU files a history writes unless told otherwise (three files per step).
+MAX_VTU_STEPS = 200
 
 log = logging.getLogger("tribo")
 
@@ -77,18 +82,32 @@ def history_table(history: History) -> dict[str, np.ndarray]:
     }
 
 
+def vtu_steps(n: int, every: int | None = None) -> list[int]:
+    """The steps of a history of ``n`` converged steps whose VTU files are written: every ``every``-th step
+    and the last one; by default all of them up to ``MAX_VTU_STEPS``, beyond that every k-th step with the
+    smallest k that keeps the count within it (each step writes three files)."""
+    if n == 0:
+        return []
+    k = every if every is not None else max(1, math.ceil(n / MAX_VTU_STEPS))
+    return sorted(set(range(0, n, k)) | {n - 1})
+
+
 def write_history(out: str | Path, problem: Problem, history: History, *, plots: bool = True,
-                  plot_steps: Sequence[int] | None = None) -> list[Path]:
-    """Writes the VTU series with its ``.pvd`` collections, ``history.csv`` and (``plots``) the charts."""
+                  plot_steps: Sequence[int] | None = None, every: int | None = None) -> list[Path]:
+    """Writes the VTU series of the steps ``vtu_steps`` chooses (``every``: every k-th step and the last)
+    with its ``.pvd`` collections, ``history.csv`` (every step) and (``plots``) the charts."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     series: list[list[Path]] = [[], [], []]
-    for k, solution in enumerate(history.solutions):
-        for part, p in zip(series, write_vtu(out / f"step_{k:04d}.vtu", problem, solution, per_body=False),
-                           strict=True):
+    steps = vtu_steps(len(history), every)
+    if len(steps) < len(history):
+        log.info("writing the VTU files of %d of the %d steps (every %s-th and the last)", len(steps), len(history),
+                 every if every is not None else math.ceil(len(history) / MAX_VTU_STEPS))
+    for k in steps:
+        vtu = write_vtu(out / f"step_{k:04d}.vtu", problem, history.solutions[k], per_body=False)
+        for part, p in zip(series, vtu, strict=True):
             part.append(p)
     files = [p for part in series for p in part]
-    steps = list(range(len(history)))
     for name, part in zip(("result", "result_contact", "result_multipliers"), series, strict=True):
         files.append(write_pvd(out / f"{name}.pvd", part, steps))
     table = history_table(history)

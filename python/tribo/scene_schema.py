@@ -51,7 +51,9 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     waypoint is step 0. ``plot_steps``: the steps whose tractions the plots show (default: the first, the
     middle and the last). ``displacements``: a table of prescribed displacement components
     (``"set.x"``/``"set.y"`` of a ``displacement`` support; ``"body.set.x"`` between two bodies), each a
-    path of waypoints like ``shift``; a component left out keeps its value.
+    path of waypoints like ``shift``; a component left out keeps its value. ``write_every``: ``tribo run``
+    writes the VTU files of every k-th step and the last (default: every step up to 200 steps, beyond that
+    the smallest k that keeps them within 200; ``history.csv`` has every step).
 ``[adapt]``
     Adaptive refinement (``tribo run`` then calls ``Problem.solve_adaptive`` from the scene's mesh, see
     ``tribo.adaptive``): ``tol`` (the relative estimated error of the contact tractions at which to stop,
@@ -217,6 +219,14 @@ def _counts(key: str, v: Any) -> int | list[int]:
     return out if isinstance(v, list) else out[0]
 
 
+def _every(key: str, v: Any) -> int:
+    """A positive integer: write every k-th step."""
+    n = _integer(key, v)
+    if n < 1:
+        raise SceneError(f"scene key '{key}' must be a positive integer (every k-th step), got {n}", key)
+    return n
+
+
 def _steps(key: str, v: Any) -> list[int]:
     if not isinstance(v, list) or any(isinstance(x, bool) or not isinstance(x, int) or x < 0 for x in v):
         raise SceneError(f"scene key '{key}' must be a list of step numbers (integers ≥ 0), got {v!r}", key)
@@ -322,6 +332,7 @@ SCHEMA: dict[str, dict[str, Checker]] = {
         "displacements": _paths,
         "steps": _counts,
         "plot_steps": _steps,
+        "write_every": _every,
     },
     "adapt": {
         "tol": _number,
@@ -358,7 +369,8 @@ SHAPE_REQUIRED = {"flat": (), "circle": ("radius",), "parabola": ("radius",), "p
 # The most cells (nx · ny) a uniform rectangle may have: the limit of the core's Mesh.rectangle, checked here
 # before nx and ny are rounded to integers (an absurd h would overflow the binding's conversion).
 MAX_CELLS = _MAX_CELLS  # the core's limit (tribo.generate::MAX_CELLS)
-# The most steps a scene's history may have in all (each step writes three VTU files).
+# The most steps a scene's history may have in all (each step keeps its solution in memory; the VTU files are
+# written for at most 200 of them unless write_every says otherwise).
 MAX_HISTORY_STEPS = 100_000
 
 

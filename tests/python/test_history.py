@@ -118,14 +118,20 @@ def test_scene_history_paths() -> None:
         parse_scene(_fretting(speed=1.0))
 
 
-def test_run_writes_a_time_series(tmp_path: Path) -> None:
+def _small_fretting(tmp_path: Path, extra: str = "") -> str:
+    """The fretting scene on a coarse mesh in 1 + 2 + 2 + 2 steps (plus ``extra`` lines of [history]),
+    written to ``tmp_path``; returns its text."""
     text = scene_path("fretting").read_text(encoding="utf-8")
-    text = text.replace("h_min = 0.01", "h_min = 0.04").replace("steps = [8, 16, 16]", "steps = [2, 2, 2]")
+    text = text.replace("h_min = 0.01", "h_min = 0.04").replace("steps = [8, 16, 16]", "steps = [2, 2, 2]" + extra)
     text = text.replace("plot_steps = [8, 24, 40]", "plot_steps = [2, 4]")
-    scene = tmp_path / "fretting.toml"
-    scene.write_text(text, encoding="utf-8")
+    (tmp_path / "fretting.toml").write_text(text, encoding="utf-8")
+    return text
+
+
+def test_run_writes_a_time_series(tmp_path: Path) -> None:
+    _small_fretting(tmp_path)
     out = tmp_path / "out"
-    assert main(["-q", "run", str(scene), "--out", str(out)]) == 0
+    assert main(["-q", "run", str(tmp_path / "fretting.toml"), "--out", str(out)]) == 0
     pvd = ET.parse(out / "result.pvd").getroot()
     files = [d.get("file") for d in pvd.iter("DataSet")]
     assert files == [f"step_{k:04d}.vtu" for k in range(7)]
@@ -142,3 +148,24 @@ def test_gross_sliding_is_reported(problem: tribo.Problem) -> None:
     assert h.converged
     assert not h.gross_sliding[0] and h.gross_sliding[-1]
     assert abs(abs(h.tangential_force[-1]) / (0.3 * h.normal_force[-1]) - 1.0) < 1e-8
+
+
+def test_long_histories_write_a_bounded_series(tmp_path: Path) -> None:
+    """A history writes the VTU files of at most MAX_VTU_STEPS steps unless told otherwise (every k-th step
+    and the last); history.csv keeps every step."""
+    from tribo.history import MAX_VTU_STEPS, vtu_steps
+
+    assert vtu_steps(0) == [] and vtu_steps(5) == [0, 1, 2, 3, 4] and vtu_steps(5, 2) == [0, 2, 4]
+    assert vtu_steps(6, 4) == [0, 4, 5]
+    long = vtu_steps(1001)
+    assert len(long) <= MAX_VTU_STEPS + 1 and long[-1] == 1000 and long[1] - long[0] == 6
+    assert vtu_steps(MAX_VTU_STEPS) == list(range(MAX_VTU_STEPS))
+    text = _small_fretting(tmp_path, "\nwrite_every = 3")
+    out = tmp_path / "out"
+    assert main(["-q", "run", str(tmp_path / "fretting.toml"), "--out", str(out), "--no-plots"]) == 0
+    files = [d.get("file") for d in ET.parse(out / "result.pvd").getroot().iter("DataSet")]
+    assert files == ["step_0000.vtu", "step_0003.vtu", "step_0006.vtu"]
+    assert len((out / "history.csv").read_text(encoding="utf-8").splitlines()) == 2 + 7
+    bad = text.replace("write_every = 3", "write_every = 0")
+    with pytest.raises(SceneError, match="write_every"):
+        parse_scene(tomllib.loads(bad))

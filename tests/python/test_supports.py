@@ -212,3 +212,23 @@ def test_scene_with_a_prescribed_displacement() -> None:
     top = np.unique(problem.mesh.edge_sets["top"])
     assert np.all(sol.displacement[top, 1] == -0.002)
     assert scene.to_dict()["supports"]["entries"][0] == {"kind": "displacement", "edge_set": "top", "y": -0.002}
+
+
+def test_supports_that_push_gamma_c_into_the_obstacle_are_refused() -> None:
+    """Clamped sides hold the corners of Γ_C at 0 while the foundation moves 0.01 into them: the contact
+    condition cannot hold there. Refused before the solve, naming the node (before, the solve said
+    'converged' with the corners inside the obstacle)."""
+    mesh = tribo.Mesh.rectangle((0.0, 2.0), (0.0, 1.0), 8, 4)
+    problem = tribo.Problem(mesh, young=1.0, poisson=0.3, contact="bottom", clamped=["left", "right"],
+                            obstacle=tribo.Obstacle.flat(), approach=0.01)
+    with pytest.raises(tribo.ContactGeometryError, match="into the obstacle") as info:
+        problem.solve()
+    assert info.value.kind == "PrescribedPenetration"
+    d = info.value.details
+    assert d["node"] == int(problem.contact_nodes[0]) and d["u_n"] == 0.0 and d["gap"] == pytest.approx(-0.01)
+    assert d["step"] == "static"
+    with pytest.raises(tribo.ContactGeometryError, match="at step 1"):
+        problem.solve_history([0.0, 0.01], 0.0)
+    touching = tribo.Problem(mesh, young=1.0, poisson=0.3, contact="bottom", clamped=["left", "right"],
+                             obstacle=tribo.Obstacle.flat())
+    assert touching.solve().report.status == "converged"

@@ -154,6 +154,7 @@ impl Problem {
         settings.validate()?;
         adapt.validate()?;
         friction.validate(self.n_multipliers())?;
+        self.check_prescribed_contact(&self.contact_gap, &self.dofs.lifting, None)?;
         if adapt.max_unknowns < self.n_free {
             return Err(Error::BadSetting {
                 name: "adapt_max_unknowns",

@@ -217,6 +217,17 @@ impl Error {
             Self::ContactFullyClamped { set } => {
                 (ErrorCategory::ContactGeometry, "ContactFullyClamped", vec![("set", T(set.clone()))])
             }
+            Self::PrescribedPenetration { node, u_n, gap, step } => (
+                ErrorCategory::ContactGeometry,
+                "PrescribedPenetration",
+                vec![
+                    ("node", I(*node)),
+                    ("u_n", F(*u_n)),
+                    ("gap", F(*gap)),
+                    // A static solve has no step: the field says so with −1 … as a Text.
+                    ("step", step.map_or(T("static".into()), I)),
+                ],
+            ),
             Self::SingularStiffness { residual } => {
                 (ErrorCategory::Solver, "SingularStiffness", vec![("residual", F(*residual))])
             }

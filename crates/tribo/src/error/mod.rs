@@ -260,6 +260,18 @@ pub enum Error {
         /// Edge set name.
         set: String,
     },
+    /// The supports prescribe a node of Γ_C into the obstacle: no solution can satisfy the contact condition.
+    #[error("the supports prescribe node {node} of the contact boundary into the obstacle{}: its normal displacement is {} against the gap {}, {} beyond it; the contact condition cannot hold there (free that node's normal displacement, or move the obstacle)", .step.map_or(String::new(), |k| format!(" at step {k}")), Num(*.u_n), Num(*.gap), Num(*.u_n - *.gap))]
+    PrescribedPenetration {
+        /// The node (a node of Γ_C whose normal displacement a support prescribes).
+        node: usize,
+        /// Its prescribed normal displacement `u · n`.
+        u_n: f64,
+        /// The gap `g₀ − δ` there.
+        gap: f64,
+        /// The step of a history (0-based), or `None` for a static solve.
+        step: Option<usize>,
+    },
     /// The solve's equilibrium residual shows a singular or nearly singular stiffness.
     #[error("the stiffness is singular or nearly so: the equilibrium residual of the solution is {} (more than √ε); look for a mechanism or a material at its limits", Num(*.residual))]
     SingularStiffness {

@@ -80,3 +80,37 @@ impl LoadCase {
 /// The former name of [`LoadCase`].
 #[deprecated(note = "renamed LoadCase: one load case of a condensed problem")]
 pub type Loading = LoadCase;
+
+impl Problem {
+    /// Checks that the supports do not prescribe a node of Γ_C into the obstacle: at every FE node of Γ_C
+    /// whose normal displacement a support fixes (a fixed node, or a sliding one whose condition is along
+    /// n), that displacement `u · n` from the lifting `lifting` (2N) is at most the gap `gap` (at the nodes
+    /// of Γ_C), to `√ε` of the larger of the two. Two bodies are not checked (the jump needs both sides).
+    ///
+    /// # Errors
+    /// [`crate::Error::PrescribedPenetration`] naming the node (and `step`, of a history).
+    pub fn check_prescribed_contact(&self, gap: &[f64], lifting: &[f64], step: Option<usize>) -> crate::Result<()> {
+        use crate::fem::supports::NodeSupport;
+        if self.primary.is_some() {
+            return Ok(());
+        }
+        let n = self.contact.normal;
+        let tol = crate::mesh::line::geometric_tol_rel();
+        for (&node, &g) in self.contact.nodes.iter().zip(gap) {
+            let prescribed = match self.dofs.nodes[node] {
+                NodeSupport::Fixed { .. } => true,
+                // Along n: the condition's unit vector is ±n (to the straightness tolerance).
+                NodeSupport::Slide { normal, .. } => (normal[0] * n[1] - normal[1] * n[0]).abs() <= 4.0 * tol,
+                NodeSupport::Free => false,
+            };
+            if !prescribed {
+                continue;
+            }
+            let u_n = lifting[2 * node] * n[0] + lifting[2 * node + 1] * n[1];
+            if u_n - g > tol * u_n.abs().max(g.abs()) {
+                return Err(crate::Error::PrescribedPenetration { node, u_n, gap: g, step });
+            }
+        }
+        Ok(())
+    }
+}

@@ -350,13 +350,15 @@ fn moved_supports(problem: &Problem, factor: &Factor, step: &LoadStep) -> Result
 
 /// Checks the steps against the problem before a history runs: two bodies move through their prescribed
 /// displacements only (no obstacle motion); as many prescribed values as the problem has components (or
-/// none: the problem's own), and values that agree where supports meet.
+/// none: the problem's own), values that agree where supports meet, and no node of Γ_C prescribed into
+/// the obstacle.
 ///
 /// # Errors
-/// [`Error::BadLoadStep`] naming the step.
+/// [`Error::BadLoadStep`] naming the step; [`Error::PrescribedPenetration`] naming the node and the step.
 pub(crate) fn check_steps(problem: &Problem, steps: &[LoadStep]) -> Result<()> {
     let components = problem.spec.prescribed_components();
     let mut last: Option<&[f64]> = None;
+    let mut lifting: Option<Vec<f64>> = None;
     for (k, step) in steps.iter().enumerate() {
         if problem.is_two_bodies() && (step.approach != 0.0 || step.shift != 0.0) {
             return Err(Error::BadLoadStep {
@@ -368,7 +370,11 @@ pub(crate) fn check_steps(problem: &Problem, steps: &[LoadStep]) -> Result<()> {
             });
         }
         let values = step.displacements.as_slice();
+        let moved = problem.spec.obstacle.approach - step.approach;
+        let gap: Vec<f64> = problem.contact_gap.iter().map(|g| g + moved).collect();
         if values.is_empty() || last == Some(values) {
+            let own = if values.is_empty() { None } else { lifting.as_deref() };
+            problem.check_prescribed_contact(&gap, own.unwrap_or(&problem.dofs.lifting), Some(k))?;
             continue;
         }
         let bad = |what: String| Error::BadLoadStep { step: k, what };
@@ -381,10 +387,12 @@ pub(crate) fn check_steps(problem: &Problem, steps: &[LoadStep]) -> Result<()> {
                 if names.is_empty() { "the problem prescribes none".to_string() } else { names.join(", ") }
             )));
         }
-        problem
+        let moved_lifting = problem
             .dofs
             .lifting_of(&problem.mesh, &problem.spec.all_supports(Some(values)))
             .map_err(|e| bad(e.to_string()))?;
+        problem.check_prescribed_contact(&gap, &moved_lifting, Some(k))?;
+        lifting = Some(moved_lifting);
         last = Some(values);
     }
     Ok(())

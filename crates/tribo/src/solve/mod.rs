@@ -38,6 +38,8 @@ impl Condensed<'_> {
     ) -> Result<Solution> {
         settings.validate()?;
         friction.validate(self.q())?;
+        let problem = self.problem();
+        problem.check_prescribed_contact(&problem.contact_gap, &problem.dofs.lifting, None)?;
         self.solve_validated(friction, settings, observer)
     }
 
@@ -100,6 +102,7 @@ impl Problem {
     ) -> Result<Solution> {
         settings.validate()?;
         friction.validate(self.n_multipliers())?;
+        self.check_prescribed_contact(&self.contact_gap, &self.dofs.lifting, None)?;
         self.condense_with(settings.stabilization, settings.condensation, settings.memory_budget)?
             .solve_validated(friction, settings, observer)
     }

@@ -140,3 +140,54 @@ fn bad_moved_steps_are_refused() {
     let e = two.solve_history(&law, &[LoadStep::new(0.001, 0.0)], &settings, None).unwrap_err();
     assert!(matches!(&e, Error::BadLoadStep { step: 0, what } if what.contains("prescribed displacements")), "{e}");
 }
+
+/// Supports that prescribe a node of Γ_C into the obstacle make the contact condition impossible there:
+/// refused before any work, naming the node (and the step of a history), where before the solve said
+/// `converged` with the node inside the obstacle. Touching exactly is allowed.
+#[test]
+fn supports_that_push_gamma_c_into_the_obstacle_are_refused() {
+    // A flat foundation pushed 0.01 into the bottom of a block whose sides are clamped: the bottom
+    // corners are held at u = 0, 0.01 inside the obstacle.
+    let mesh = tribo::rectangle([0.0, 2.0], [0.0, 1.0], 8, 4, tribo::Diagonal::Right).unwrap();
+    let spec = |approach: f64| tribo::ProblemSpec {
+        material: tribo::Material { young: 1.0, poisson: 0.3 },
+        clamped: vec!["left".into(), "right".into()],
+        supports: vec![],
+        body_force: [0.0, 0.0],
+        tractions: vec![],
+        contact: "bottom".into(),
+        obstacle: tribo::Obstacle { shape: tribo::ObstacleShape::Flat, approach, shift: 0.0 },
+        multiplier_points: MultiplierPoints::RatioToFe(1.0),
+        multiplier_space: MultiplierSpace::P1,
+    };
+    let pushed = Problem::new(mesh.clone(), spec(0.01)).unwrap();
+    let settings = SolverSettings::default();
+    let corner = |e: &Error| {
+        matches!(e, Error::PrescribedPenetration { node, u_n, gap, .. }
+        if pushed.contact.nodes.first() == Some(node) && *u_n == 0.0 && (*gap + 0.01).abs() < 1e-15)
+    };
+    let e = pushed.solve(&Friction::Frictionless, &settings, None).unwrap_err();
+    assert!(corner(&e) && matches!(e, Error::PrescribedPenetration { step: None, .. }), "{e}");
+    assert!(e.to_string().contains("into the obstacle"), "{e}");
+    let e = pushed.condense(settings.stabilization).unwrap().solve(&Friction::Frictionless, &settings, None);
+    assert!(matches!(e, Err(Error::PrescribedPenetration { .. })), "{e:?}");
+    // Touching (approach 0) is fine; a history that pushes the obstacle in at step 2 is refused up front.
+    let touching = Problem::new(mesh, spec(0.0)).unwrap();
+    assert!(touching.solve(&Friction::Frictionless, &settings, None).is_ok());
+    let steps: Vec<LoadStep> = [0.0, 0.0, 0.01].iter().map(|&d| LoadStep::new(d, 0.0)).collect();
+    let e = touching.solve_history(&Friction::Frictionless, &steps, &settings, None).unwrap_err();
+    assert!(matches!(e, Error::PrescribedPenetration { step: Some(2), .. }), "{e}");
+    // A moved support that lifts a corner of Γ_C into a touching obstacle: the right side of a block whose
+    // top touches a flat obstacle (its left side on a roller), moved up 0.01 at step 1 (the top-right corner
+    // is on both).
+    let mesh = tribo::rectangle([0.0, 2.0], [0.0, 1.0], 8, 4, tribo::Diagonal::Right).unwrap();
+    let mut side = spec(0.0);
+    side.clamped = vec![];
+    side.contact = "top".into();
+    side.supports = vec![Support::roller("left"), Support::displacement("right", Some(0.0), Some(0.0))];
+    let lifted = Problem::new(mesh, side).unwrap();
+    let rest = LoadStep::new(0.0, 0.0);
+    let up = rest.clone().with_displacements(vec![0.0, 0.01]);
+    let e = lifted.solve_history(&Friction::Frictionless, &[rest, up], &settings, None).unwrap_err();
+    assert!(matches!(e, Error::PrescribedPenetration { step: Some(1), u_n, .. } if (u_n - 0.01).abs() < 1e-15), "{e}");
+}
