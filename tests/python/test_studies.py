@@ -224,3 +224,14 @@ def test_two_body_mindlin(tmp_path: Path) -> None:
     # β = −0.23: shearing moves the normal force, and the stick zone is further off the theory.
     stiff = by[("stiff", 0.01)]
     assert stiff["beta"] < -0.2 and stiff["p_change"] > 1e-3 and stiff["ca_error"] > 2 * by[("equal", 0.01)]["ca_error"]
+
+
+def test_two_body_reference(tmp_path: Path) -> None:
+    rows = study("study_two_body_reference").main(["--smoke", "--out", str(tmp_path)])
+    assert (tmp_path / "two_body_reference.md").is_file() and (tmp_path / "two_body_reference.csv").is_file()
+    for pair in ("equal", "dissimilar"):
+        ref = next(r for r in rows if r["pair"] == pair and r["reference"])
+        rs = [r for r in rows if r["pair"] == pair and not r["reference"]]
+        # The finer mesh is closer to the reference, and the reference carries the same force within its error.
+        assert rs[1]["reference_l2"] < rs[0]["reference_l2"]
+        assert abs(rs[-1]["force"] / ref["force"] - 1.0) < rs[-1]["reference_l2"]
