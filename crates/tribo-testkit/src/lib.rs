@@ -209,35 +209,8 @@ pub fn two_body_hertz_sides(
     delta: f64,
     lower_secondary: bool,
 ) -> Problem {
-    let g = |side, y: [f64; 2]| {
-        let grading = Grading { side, segment: [-0.15, 0.15], h_min, h_max: 0.5, growth: 0.15 };
-        // Fixed ranges and h_max; only h_min comes from the caller (see # Panics).
-        graded_rectangle([-2.0, 2.0], y, &grading).expect("valid grading")
-    };
     let top = Support::displacement("top", hold_top.then_some(0.0), Some(-delta));
-    let body = |name: &str, mesh, material, supports| Body {
-        name: String::from(name),
-        mesh,
-        material,
-        clamped: vec![],
-        supports,
-        tractions: vec![],
-    };
-    let bodies = [
-        body("lower", g(Side::Top, [-2.0, 0.0]), lower, vec![Support::clamp("bottom")]),
-        body("upper", g(Side::Bottom, [0.0, 1.0]), upper, vec![top, Support::displacement("left", Some(0.0), None)]),
-    ];
-    let (secondary, primary) =
-        if lower_secondary { ("lower.top", "upper.bottom") } else { ("upper.bottom", "lower.top") };
-    let pair = ContactPair {
-        secondary: secondary.into(),
-        primary: primary.into(),
-        gap: ObstacleShape::Parabola { center: 0.0, radius: hertz_scene().radius },
-        multiplier_points: MultiplierPoints::RatioToFe(1.0),
-        multiplier_space: MultiplierSpace::P1,
-    };
-    // The pair is valid by construction (see # Panics); a bad material is the caller's test parameter.
-    Problem::two_bodies(bodies, pair, [0.0, 0.0]).expect("a valid two-body scene")
+    two_blocks(h_min, lower, upper, vec![top, Support::displacement("left", Some(0.0), None)], lower_secondary)
 }
 
 /// Two-body Hertz set up for shearing (Cattaneo–Mindlin between two bodies): the blocks of
@@ -247,6 +220,21 @@ pub fn two_body_hertz_sides(
 /// # Panics
 /// As [`two_body_hertz`].
 pub fn two_body_shear(h_min: f64, lower: Material, upper: Material) -> Problem {
+    two_blocks(h_min, lower, upper, vec![Support::displacement("top", Some(0.0), Some(0.0))], true)
+}
+
+/// The two blocks of [`two_body_hertz`]: the lower one clamped at its bottom, the upper one held by
+/// `upper_supports`, the parabolic gap of the scene's radius, P1 multipliers on the secondary side's edges.
+///
+/// # Panics
+/// As [`two_body_hertz`]: only `h_min` and the materials come from the caller, a test's own parameters.
+fn two_blocks(
+    h_min: f64,
+    lower: Material,
+    upper: Material,
+    upper_supports: Vec<Support>,
+    lower_secondary: bool,
+) -> Problem {
     let body = |name: &str, upper_block: bool, material, supports| Body {
         name: String::from(name),
         mesh: graded_half(h_min, upper_block),
@@ -255,27 +243,32 @@ pub fn two_body_shear(h_min: f64, lower: Material, upper: Material) -> Problem {
         supports,
         tractions: vec![],
     };
-    let bodies = [
-        body("lower", false, lower, vec![Support::clamp("bottom")]),
-        body("upper", true, upper, vec![Support::displacement("top", Some(0.0), Some(0.0))]),
-    ];
+    let bodies =
+        [body("lower", false, lower, vec![Support::clamp("bottom")]), body("upper", true, upper, upper_supports)];
+    let (secondary, primary) =
+        if lower_secondary { ("lower.top", "upper.bottom") } else { ("upper.bottom", "lower.top") };
     let pair = ContactPair {
-        secondary: "lower.top".into(),
-        primary: "upper.bottom".into(),
+        secondary: secondary.into(),
+        primary: primary.into(),
         gap: ObstacleShape::Parabola { center: 0.0, radius: hertz_scene().radius },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
     };
-    // The pair is valid by construction (see # Panics); a bad material is the caller's test parameter.
+    // Dev-only scene, no user input: two blocks on one line with opposite normals, each held by its own
+    // supports, are a valid pair by construction; a bad material is the calling test's own parameter.
     Problem::two_bodies(bodies, pair, [0.0, 0.0]).expect("a valid two-body scene")
 }
 
 /// The lower (−2, 2) × (−2, 0) or upper (−2, 2) × (0, 1) block of [`two_body_hertz`], graded toward
 /// [−0.15, 0.15] of its contact side.
+///
+/// # Panics
+/// If `h_min` is not a valid grading size: the calling test's own parameter (ranges, h_max and growth are
+/// fixed and valid; this dev-only kit sees no user input).
 fn graded_half(h_min: f64, upper: bool) -> Mesh {
     let (side, y) = if upper { (Side::Bottom, [0.0, 1.0]) } else { (Side::Top, [-2.0, 0.0]) };
     let grading = Grading { side, segment: [-0.15, 0.15], h_min, h_max: 0.5, growth: 0.15 };
-    graded_rectangle([-2.0, 2.0], y, &grading).expect("valid grading")
+    graded_rectangle([-2.0, 2.0], y, &grading).expect("h_min is the calling test's own valid parameter")
 }
 
 /// 8-point Gauss–Legendre rule on [−1, 1].
