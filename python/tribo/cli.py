@@ -19,6 +19,10 @@
 
 The run prints the status, the forces and the estimated error of the solve.
 
+``tribo sweep SCENE.toml --set KEY=V1,V2,… [--zip KEY=…] --out DIR`` runs the scene over axes of values on
+Dask (``tribo.sweep``): ``DIR/results.parquet``, ``DIR/results.csv``, ``DIR/cases/<hash>/`` per case and,
+with ``--plot COLUMN``, ``DIR/sweep_COLUMN.png``; exit 0 when every case converged, 3 when one did not.
+
 ``tribo demo [--out DIR]`` runs the built-in scene (``tribo/scenes/demo.toml``) into ``tribo-demo-out``.
 
 Progress (the condensation's time, then per QP: fixed-point iteration, change of λ_n, QP iterations and
@@ -135,7 +139,7 @@ def bodies(problem: Problem, solution: Solution) -> list[dict[str, Any]]:
 
 
 def run_history(
-    scene: Scene, problem: Problem, out: Path, *, plots: bool = True
+    scene: Scene, problem: Problem, out: Path, *, plots: bool = True, fields: bool = True
 ) -> tuple[Problem, History, list[Path]]:
     """Solves the scene's ``[history]`` with a progress bar over the steps and writes its outputs; with an
     ``[adapt]`` table, adaptively (a log line per level, then the history on the last mesh, and
@@ -149,8 +153,9 @@ def run_history(
         adaptive = scene.solve_history_adaptive(problem, progress=_level_progress)
         log.info("adaptive history stopped (%s) after %d levels", adaptive.stop, len(adaptive.levels))
         problem, history = adaptive.problem, adaptive.history
-        files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
-        files += write_levels(out, adaptive, **scene.solve_kwargs())
+        if fields:
+            files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
+            files += write_levels(out, adaptive, **scene.solve_kwargs())
     else:
         with tqdm(total=n_steps, desc="steps", unit="step", disable=not log.isEnabledFor(logging.INFO)) as bar:
 
@@ -164,8 +169,9 @@ def run_history(
     sliding = np.flatnonzero(history.gross_sliding)
     if len(sliding):
         log.info("gross sliding (every contact dof slips, |Q| = μP) at %d steps, first at step %d", len(sliding), sliding[0])
-    files = write_history(out, problem, history, plots=plots, plot_steps=scene.get("history", "plot_steps"),
-                          every=scene.get("history", "write_every")) + files
+    if fields:
+        files = write_history(out, problem, history, plots=plots, plot_steps=scene.get("history", "plot_steps"),
+                              every=scene.get("history", "write_every")) + files
     return problem, history, files
 
 
@@ -180,8 +186,11 @@ def run_adaptive(scene: Scene, problem: Problem) -> Adaptive:
     return adaptive
 
 
-def run_scene(scene: Scene, out: Path, *, plots: bool = True) -> tuple[Problem, Solution, list[Path]]:
+def run_scene(
+    scene: Scene, out: Path, *, plots: bool = True, fields: bool = True
+) -> tuple[Problem, Solution, list[Path]]:
     """Solves a scene and writes every output into ``out``; returns the problem, solution and files.
+    ``fields=False`` writes ``summary.json`` only (no CSV, VTU, history or level files, no plots).
 
     For a scene with a ``[history]``, the solution is that of the last converged step, and the history's
     outputs (``tribo.history``) are written beside the summary; for a scene with ``[adapt]``, the problem
@@ -205,7 +214,7 @@ def run_scene(scene: Scene, out: Path, *, plots: bool = True) -> tuple[Problem, 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", SceneWarning)
         if scene.has_history:
-            problem, history, history_files = run_history(scene, problem, out, plots=plots)
+            problem, history, history_files = run_history(scene, problem, out, plots=plots, fields=fields)
             # The step that failed if one did (its status then sets the exit code), else the last one.
             last = history.failed if history.failed is not None else (history.solutions[-1] if len(history) else None)
             if last is None:
@@ -215,8 +224,10 @@ def run_scene(scene: Scene, out: Path, *, plots: bool = True) -> tuple[Problem, 
         elif scene.has_adapt:
             adaptive = run_adaptive(scene, problem)
             problem, solution = adaptive.problem, adaptive.solution
-            history_files = write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
-            history_files += write_levels(out, adaptive, **scene.solve_kwargs())
+            history_files = []
+            if fields:
+                history_files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
+                history_files += write_levels(out, adaptive, **scene.solve_kwargs())
             warn_solution(problem, solution)
         else:
             history_files = []
@@ -234,6 +245,8 @@ def run_scene(scene: Scene, out: Path, *, plots: bool = True) -> tuple[Problem, 
     path = out / "summary.json"
     path.write_text(json.dumps(summary(scene, problem, solution, seconds, warned), indent=2) + "\n", encoding="utf-8")
     files.append(path)
+    if not fields:
+        return problem, solution, files
     files += write_contact_csv(out, problem, solution)
     files += write_vtu(out / "result.vtu", problem, solution)
     if plots:
@@ -345,6 +358,70 @@ def _run(scene_path: Path, out: Path, plots: bool) -> int:
     return 0
 
 
+def _axes(specs: Sequence[str]) -> dict[str, list[Any]]:
+    from tribo.sweep import SweepError, parse_axis
+
+    out: dict[str, list[Any]] = {}
+    for spec in specs:
+        key, values = parse_axis(spec)
+        if key in out:
+            raise SweepError(f"axis {key!r} is given twice", key)
+        out[key] = values
+    return out
+
+
+def _sweep(args: argparse.Namespace) -> int:
+    """``tribo sweep``: runs the cases, prints the table and draws the asked charts; exit 3 when a case did
+    not converge."""
+    from tribo import sweep as sweeping
+
+    if args.out.exists() and not args.out.is_dir():
+        return _error(f"--out {args.out} exists and is not a directory")
+    try:
+        axes, zipped = _axes(args.axes), _axes(args.zipped)
+        if not axes and not zipped:
+            return _error("a sweep needs at least one axis: --set KEY=V1,V2,… or --zip KEY=V1,V2,…")
+        df = sweeping.sweep(args.scene, axes, zipped=zipped, out=args.out, client=args.scheduler,
+                            workers=args.workers, threads=args.threads, files=args.files, plots=args.plots,
+                            progress=not args.quiet)
+    except TriboError as e:
+        context = "; ".join([type(e).__name__, *getattr(e, "__notes__", [])])
+        return _error(f"{e} ({context})")
+    except OSError as e:
+        return _error(f"cannot write the sweep into {args.out}: {e.strerror or e} ({e.filename or args.out})")
+    names = [*axes, *zipped]
+    shown = [*names, "status", "iterations", "normal_force", "tangential_force", "contact_extent", "stick_extent",
+             "kkt_max", "seconds"]
+    print(df[shown].to_string(index=False))
+    counts = df["status"].value_counts()
+    print(f"{len(df)} cases: " + ", ".join(f"{n} {status}" for status, n in counts.items()))
+    files = [args.out / "results.parquet", args.out / "results.csv"]
+    for column in args.plot:
+        if column not in df.columns or column in names:
+            return _error(f"--plot {column}: not an output column (columns: {', '.join(sweeping.COLUMNS)})")
+        files += _sweep_plot(df, names, column, args.out)
+    print(f"wrote {', '.join(str(f) for f in files)} and the cases under {args.out / 'cases'}")
+    return 0 if bool((df["status"] == "converged").all()) else 3
+
+
+def _sweep_plot(df: Any, names: Sequence[str], column: str, out: Path) -> list[Path]:
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        from tribo import plot
+    except ImportError:
+        log.warning("matplotlib is not installed: no plots (pip install 'tribo[plot]')")
+        return []
+    fig = plot.sweep_figure(df, names, column)
+    path = out / f"sweep_{column}.png"
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return [path]
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``tribo`` script; returns the exit code."""
     parser = argparse.ArgumentParser(prog="tribo", description="2D frictional contact, stabilized multipliers.")
@@ -355,6 +432,20 @@ def main(argv: Sequence[str] | None = None) -> int:
     run.add_argument("scene", type=Path, help="scene file (TOML)")
     run.add_argument("--out", type=Path, required=True, help="output directory")
     run.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
+    sw = sub.add_parser("sweep", help="run a scene over axes of parameters on Dask (pip install 'tribo[sweep]')")
+    sw.add_argument("scene", type=Path, help="scene file (TOML)")
+    sw.add_argument("--set", dest="axes", action="append", default=[], metavar="KEY=V1,V2,…",
+                    help="an axis: a scene key and its values (repeat; the cases are the product of the axes)")
+    sw.add_argument("--zip", dest="zipped", action="append", default=[], metavar="KEY=V1,V2,…",
+                    help="an axis that moves together with the other --zip axes (equal lengths)")
+    sw.add_argument("--out", type=Path, required=True, help="output directory (results.parquet/csv, cases/)")
+    sw.add_argument("--scheduler", metavar="ADDRESS", help="a running Dask scheduler (tcp://host:port)")
+    sw.add_argument("--workers", type=int, help="workers of the local cluster (default: cores // --threads)")
+    sw.add_argument("--threads", type=int, default=1, help="threads per solve (default 1)")
+    sw.add_argument("--files", action="store_true", help="write each case's CSV and VTU files")
+    sw.add_argument("--plots", action="store_true", help="with --files, each case's plots too")
+    sw.add_argument("--plot", action="append", default=[], metavar="COLUMN",
+                    help="draw COLUMN over the axes into sweep_COLUMN.png (repeat)")
     demo = sub.add_parser("demo", help="run the built-in demo scene")
     demo.add_argument("--out", type=Path, default=Path("tribo-demo-out"), help="output directory (tribo-demo-out)")
     demo.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
@@ -366,6 +457,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     log.propagate = False
     scene = demo_scene_path() if args.command == "demo" else args.scene
     try:
+        if args.command == "sweep":
+            return _sweep(args)
         return _run(scene, args.out, not args.no_plots)
     except KeyboardInterrupt:
         print("tribo: interrupted", file=sys.stderr)

@@ -4,7 +4,8 @@ Every function takes ``ax=None`` (a new figure is made) and returns the Axes it 
 
 * ``contact_pressure``: λ_n and −σ_n(u_h) along Γ_C, the zone shaded by contact state;
 * ``tangential``: λ_t against ±(its bound: μ λ_n for Coulomb, the Tresca threshold);
-* ``von_mises``: the deformed mesh coloured by the von Mises stress (recovered nodal stress by default).
+* ``von_mises``: the deformed mesh coloured by the von Mises stress (recovered nodal stress by default);
+* ``sweep_map``, ``sweep_lines``, ``sweep_figure``: an output of a ``tribo.sweep`` table over its axes.
 
 Abscissa ξ on Γ_C: x on a horizontal Γ_C, y on a vertical one (see the core's conventions). λ_n ≥ 0 is
 the contact pressure and, at the discrete solution, λ_n ≈ −σ_n(u_h). The axis labels state which way ξ
@@ -36,7 +37,10 @@ try:
 except ImportError as e:  # pragma: no cover - depends on the environment
     raise ImportError("tribo.plot needs matplotlib: pip install 'tribo[plot]'") from e
 
-__all__ = ["contact_pressure", "hertz_pressure", "tangential", "von_mises", "history_loop", "history_tractions", "STATE_COLORS"]
+__all__ = [
+    "contact_pressure", "hertz_pressure", "tangential", "von_mises", "history_loop", "history_tractions",
+    "sweep_map", "sweep_lines", "sweep_figure", "STATE_COLORS",
+]
 
 STATE_COLORS = {"separation": "#eeeeee", "stick": "#b9d7f0", "slip": "#f6c89f"}
 
@@ -287,3 +291,86 @@ def history_tractions(history: History, steps: Sequence[int], ax: Axes | None = 
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     return ax
+
+
+def _ticks(values: Sequence[Any]) -> list[str]:
+    return [format(v, ".4g") if isinstance(v, float) else str(v) for v in values]
+
+
+def sweep_map(df: Any, x: str, y: str, value: str, ax: Axes | None = None) -> Axes:
+    """A sweep's output ``value`` over two of its axes ``x`` and ``y`` (a ``tribo.sweep`` table, one case
+    per cell), as coloured cells labelled with their values; cells of cases that did not converge are
+    crossed. Other axes must have one value in ``df`` (select them first)."""
+    ax = _axes(ax)
+    xs, ys = sorted(df[x].unique()), sorted(df[y].unique())
+    if len(df) != len(df.drop_duplicates([x, y])):
+        raise ValueError(f"several cases share each ({x}, {y}): select one value of the other axes first")
+    grid = np.full((len(ys), len(xs)), np.nan)
+    failed = []
+    for _, row in df.iterrows():
+        i, j = ys.index(row[y]), xs.index(row[x])
+        grid[i, j] = float(row[value]) if row[value] is not None else np.nan
+        if row["status"] != "converged":
+            failed.append((j, i))
+    image = ax.imshow(grid, origin="lower", aspect="auto", cmap="viridis")
+    plt.colorbar(image, ax=ax, label=value)
+    if grid.size <= 144:
+        finite = grid[np.isfinite(grid)]
+        middle = float(finite.mean()) if len(finite) else 0.0
+        for (i, j), v in np.ndenumerate(grid):
+            if np.isfinite(v):
+                ax.text(j, i, f"{v:.3g}", ha="center", va="center", fontsize=8,
+                        color="white" if v < middle else "black")
+    for j, i in failed:
+        ax.plot(j, i, "rx", ms=14, mew=2)
+    ax.set_xticks(range(len(xs)), _ticks(xs))
+    ax.set_yticks(range(len(ys)), _ticks(ys))
+    ax.set_xlabel(x)
+    ax.set_ylabel(y)
+    ax.set_title(f"{value} over {x} × {y}" + (" (×: not converged)" if failed else ""))
+    return ax
+
+
+def sweep_lines(df: Any, x: str, value: str, hue: str | None = None, ax: Axes | None = None) -> Axes:
+    """A sweep's output ``value`` against its axis ``x``, one line per value of the axis ``hue``; cases
+    that did not converge are circled in red."""
+    ax = _axes(ax)
+    groups = [(None, df)] if hue is None else list(df.groupby(hue, sort=True))
+    for name, part in groups:
+        part = part.sort_values(x)
+        ax.plot(part[x], part[value].astype(float), "o-", ms=4, label=None if hue is None else f"{hue} = {name}")
+        bad = part[part["status"] != "converged"]
+        if len(bad):
+            ax.plot(bad[x], bad[value].astype(float), "o", ms=10, mfc="none", mec="red")
+    ax.set_xlabel(x)
+    ax.set_ylabel(value)
+    ax.set_title(f"{value} against {x}")
+    ax.grid(alpha=0.3)
+    if hue is not None:
+        ax.legend(fontsize=8)
+    return ax
+
+
+def sweep_figure(df: Any, axes: Sequence[str], value: str) -> Any:
+    """The chart ``tribo sweep --plot`` draws: lines over one axis; a map over two; for more, one map of the
+    first two per combination of the others (at most 12)."""
+    axes = list(axes)
+    if len(axes) == 1:
+        fig, ax = plt.subplots(figsize=(7.0, 4.5), layout="constrained")
+        sweep_lines(df, axes[0], value, ax=ax)
+        return fig
+    rest = axes[2:]
+    panels = [((), df)] if not rest else list(df.groupby(rest, sort=True))
+    if len(panels) > 12:
+        raise ValueError(f"{len(panels)} combinations of {', '.join(rest)}: more than 12 maps; plot a selection")
+    cols = min(3, len(panels))
+    rows = -(-len(panels) // cols)
+    fig, grid = plt.subplots(rows, cols, figsize=(6.0 * cols, 4.5 * rows), layout="constrained", squeeze=False)
+    for ax, (name, part) in zip(grid.flat, panels):
+        sweep_map(part, axes[0], axes[1], value, ax=ax)
+        if rest:
+            names = name if isinstance(name, tuple) else (name,)
+            ax.set_title(", ".join(f"{k} = {v}" for k, v in zip(rest, names)), fontsize=9)
+    for ax in list(grid.flat)[len(panels):]:
+        ax.set_visible(False)
+    return fig

@@ -370,6 +370,11 @@ def parse_scene(data: Mapping[str, Any], base_dir: Path | None = None) -> Scene:
 def load_scene(path: str | Path) -> Scene:
     """Reads and checks a TOML scene file."""
     path = Path(path)
+    return parse_scene(read_scene_data(path), base_dir=path.resolve().parent)
+
+
+def read_scene_data(path: Path) -> dict[str, Any]:
+    """The TOML data of a scene file, unchecked (``parse_scene`` checks it)."""
     try:
         with path.open("rb") as f:
             data = tomllib.load(f)
@@ -379,7 +384,7 @@ def load_scene(path: str | Path) -> Scene:
         raise SceneError(f"scene file {path} is not UTF-8 text: {e.reason} at byte {e.start}") from e
     except tomllib.TOMLDecodeError as e:
         raise SceneError(f"scene file {path} is not valid TOML: {e}") from e
-    return parse_scene(data, base_dir=path.resolve().parent)
+    return data
 
 
 def scene_path(name: str) -> Path:

@@ -235,3 +235,17 @@ def test_two_body_reference(tmp_path: Path) -> None:
         # The finer mesh is closer to the reference, and the reference carries the same force within its error.
         assert rs[1]["reference_l2"] < rs[0]["reference_l2"]
         assert abs(rs[-1]["force"] / ref["force"] - 1.0) < rs[-1]["reference_l2"]
+
+
+def test_sweeps(tmp_path: Path) -> None:
+    res = study("study_sweeps").main(["--smoke", "--out", str(tmp_path)])
+    for name in ("sweep.md", "sweep.csv", "sweep_coulomb_map.png", "sweep_checkerboard.png"):
+        assert (tmp_path / name).is_file(), name
+    # The sweeps run the commands written in the scene files, and agree case by case with the studies'
+    # own CSVs (which keep 6 digits).
+    for key in ("compare_coulomb", "compare_board"):
+        cmp = res[key]
+        assert cmp["matched"] == cmp["cases"] == 8 and cmp["same_status"] == 8, cmp
+        assert cmp["force_rel_max"] < 5e-6, cmp
+    assert res["compare_coulomb"]["same_iterations"] == 8
+    assert all(r["converged"] == r["cases"] for r in res["overhead"])
