@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import contextlib
 import hashlib
+import importlib.util
 import io
 import itertools
 import json
@@ -497,7 +498,8 @@ def _run(
             raise SweepError(f"cannot reach the Dask scheduler at {client}: {e}", "scheduler") from e
     try:
         link = getattr(client, "dashboard_link", None)
-        if link:
+        # A local cluster serves its dashboard only where bokeh is installed; a remote one says for itself.
+        if link and (cluster is None or importlib.util.find_spec("bokeh") is not None):
             log.info("Dask dashboard: %s", link)
         futures = {}
         for case in todo:

@@ -282,3 +282,24 @@ def test_the_readme_sweep_example_runs(tmp_path: Path, monkeypatch: pytest.Monke
     df, grid = namespace["df"], namespace["grid"]
     assert len(df) == 4 and (df["status"] == "converged").all() and (tmp_path / "sweep-out" / "results.csv").is_file()
     assert grid["tangential_force"].shape == (2, 2)
+
+
+def test_a_case_that_kills_every_worker_is_a_row_and_not_cached(tmp_path: Path) -> None:
+    """A case that runs its worker out of memory (the nanny kills a worker above 95 % of its limit) is
+    retried on a fresh worker, and after `allowed-failures` + 1 deaths it is a row with status
+    `killed_worker`, not cached; the other cases complete."""
+    import dask
+
+    scene, out = scene_file(tmp_path), tmp_path / "out"
+    axes = {"discretization.h_min": [0.04, 0.0001], "discretization.growth": [0.02]}
+    with dask.config.set({"distributed.scheduler.allowed-failures": 1}):
+        with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=":0",
+                                      memory_limit="600MB", env={"RAYON_NUM_THREADS": "1"}) as cluster, \
+                distributed.Client(cluster) as c:
+            df = sweep(scene, axes, out=out, client=c, progress=False)
+    small, big = df.iloc[0], df.iloc[1]
+    assert small["status"] == "converged" and small["attempts"] == 1
+    assert big["status"] == "killed_worker" and "killed every worker" in big["failure"]
+    assert big["attempts"] == 2  # allowed-failures = 1: tried twice
+    assert not (out / "cases" / big["case"] / "row.json").exists()
+    assert (out / "cases" / small["case"] / "row.json").is_file()
