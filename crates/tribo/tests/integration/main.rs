@@ -10,6 +10,8 @@
 //! * `history`: loading histories (the incremental problem against the static one, the path, sliding);
 //! * `moved_supports`: histories that move prescribed displacements (moving the body is moving the obstacle);
 //! * `methods`: the active-set method against clarabel, QP by QP, on every scene above;
+//! * `paths`: every solver path (QP method, condensation, working set, KKT solver) to the unique answer,
+//!   on random problems;
 //! * `outputs`: what a reader gets back (global forces, plane-strain stress, current gap, formatted
 //!   numbers, the condensation's progress);
 //! * `supports`: rollers and prescribed displacements: patch tests, the half Hertz model against the full one;
@@ -32,5 +34,6 @@ mod methods;
 mod moved_supports;
 mod outputs;
 mod patch;
+mod paths;
 mod supports;
 mod two_bodies;
