@@ -90,6 +90,11 @@ impl Obstacle {
         if !self.shift.is_finite() {
             return bad(format!("tangential shift s must be finite, got {}", self.shift));
         }
+        for (name, v) in [("approach δ", self.approach), ("tangential shift s", self.shift)] {
+            if v.is_subnormal() {
+                return bad(crate::error::subnormal(name, v));
+            }
+        }
         match &self.shape {
             ObstacleShape::Flat | ObstacleShape::Function(_) => Ok(()),
             ObstacleShape::Circle { center, radius } | ObstacleShape::Parabola { center, radius } => {

@@ -501,3 +501,14 @@ pub(crate) fn check_setting(name: &'static str, value: f64, ok: bool, what: &str
         Err(Error::BadSetting { name, value, what: what.to_string() })
     }
 }
+
+/// The message for a subnormal datum (a length or displacement below `f64::MIN_POSITIVE` ≈ 2.2e-308, but
+/// not 0): such a number keeps only a few of its digits, and the answer of a linear problem, which scales
+/// with it, would keep as few; normal numbers down to 2.2e-308 are solved as accurately as any other.
+pub(crate) fn subnormal(name: &str, value: f64) -> String {
+    format!(
+        "{name} = {value:e} is subnormal (below {:e}): it keeps only a few digits; choose units in which it is a \
+         normal number",
+        f64::MIN_POSITIVE
+    )
+}

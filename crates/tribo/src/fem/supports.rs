@@ -90,6 +90,9 @@ impl Support {
                 if let Some(v) = v.filter(|v| !v.is_finite()) {
                     return bad(format!("the {name} component {v} is not finite"));
                 }
+                if let Some(v) = v.filter(|v| v.is_subnormal()) {
+                    return bad(crate::error::subnormal(&format!("the {name} component"), v));
+                }
             }
         }
         Ok(())

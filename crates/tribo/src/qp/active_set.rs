@@ -118,7 +118,7 @@ fn residual(x: &[f64], g: &[f64], bounds: &Bounds, scaling: &Scaling) -> f64 {
         if bounds.fixed(i) {
             continue;
         }
-        let gs = scaling.w[i] * g[i] / scaling.phi;
+        let gs = scaling.scaled_gradient(i, g[i]);
         let v = if x[i] <= bounds.lo[i] {
             (-gs).max(0.0)
         } else if x[i] >= bounds.hi[i] {
@@ -228,7 +228,7 @@ pub(crate) fn solve(
     let mut g = op.gradient(&x);
     let (mut fx, _) = objective(&x, &g, c);
     // A scaling that is not a positive finite number certifies nothing (every scaled residual would be 0).
-    let base = if scaling.phi.is_finite() && scaling.phi > 0.0 { threshold(scaling, tol) } else { -1.0 };
+    let base = if scaling.root_phi.is_finite() && scaling.root_phi > 0.0 { threshold(scaling, tol) } else { -1.0 };
     let mut threshold = base;
     let mut out = ActiveSetOutcome { x: Vec::new(), certified: false, newton_steps: 0, gradient_steps: 0 };
     // The PDAS iterate (a Newton point, possibly outside the box) the next prediction starts from, and
@@ -272,7 +272,7 @@ pub(crate) fn solve(
             // operator), the test cannot ask for less than twice the gradient's round-off, measured where
             // it should vanish.
             if let Some(noise) = op.round_off() {
-                let scaled = noise.iter().zip(&scaling.w).fold(0.0_f64, |m, (g, w)| m.max(w * g / scaling.phi));
+                let scaled = noise.iter().enumerate().fold(0.0_f64, |m, (i, g)| m.max(scaling.scaled_gradient(i, *g)));
                 threshold = base.max(2.0 * scaled);
             }
             let mut t = xn.clone();
@@ -337,7 +337,7 @@ mod tests {
     }
 
     fn unit_scaling(k: usize) -> Scaling {
-        Scaling { w: vec![1.0; k], phi: 1.0, c_max: 1.0 }
+        Scaling { w: vec![1.0; k], r: vec![1.0; k], root_phi: 1.0, c_max: 1.0 }
     }
 
     /// The certified answer satisfies the optimality conditions exactly checked here, from a cold and

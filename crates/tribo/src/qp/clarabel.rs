@@ -161,15 +161,15 @@ impl BoxQp {
         let tbox = scaling.tangential_box(self.q, &self.bounds);
         let b: Vec<f64> =
             std::iter::repeat_n(0.0, self.q).chain(tbox.iter().copied()).chain(tbox.iter().copied()).collect();
-        let Scaling { w, phi: f, .. } = scaling;
-        let k = w.len();
+        let Scaling { r, root_phi, .. } = scaling;
+        let k = r.len();
         let mut p = Vec::with_capacity(k * (k + 1) / 2);
         for j in 0..k {
             for i in 0..=j {
-                p.push(w[i] * self.h[j * k + i] * w[j] / f);
+                p.push(r[i] * self.h[j * k + i] * r[j]);
             }
         }
-        let qv = (0..k).map(|i| w[i] * self.c[i] / f).collect();
+        let qv = (0..k).map(|i| r[i] * self.c[i] / root_phi).collect();
         (p, qv, b)
     }
 

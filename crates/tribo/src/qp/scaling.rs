@@ -13,17 +13,29 @@
 /// on a normal unknown, `min(g_j, s_t)` on a tangential one, 0 where the bound vanishes) and the objective
 /// divided by `φ = max_i w_i² H_ii`. The active-set method certifies its answers in the same scaled units
 /// ([`crate::qp::active_set`]).
+///
+/// φ itself is never formed: for data of 1e-200 (an approach in those units) w is about 1e-200 and
+/// φ ≈ w² H would underflow to 0. The scaled data are formed from `r_i = w_i / √φ` (about 1/√H_ii) and
+/// `√φ = max_i w_i √H_ii` instead: `w_i H_ij w_j / φ = r_i H_ij r_j`, `w_i c_i / φ = r_i c_i / √φ`. The
+/// QP is homogeneous in (c, g), so its answer then scales with the data down to the subnormal range.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Scaling {
     /// `w_i` per unknown.
     pub w: Vec<f64>,
-    /// `φ`.
-    pub phi: f64,
+    /// `r_i = w_i / √φ` per unknown.
+    pub r: Vec<f64>,
+    /// `√φ`.
+    pub root_phi: f64,
     /// `max_i |w_i c_i| / φ`, the size of the scaled linear term the optimality tolerance is relative to.
     pub c_max: f64,
 }
 
 impl Scaling {
+    /// The scaled gradient `w_i g_i / φ` of unknown i, g the gradient `(Hν + c)_i`.
+    pub(crate) fn scaled_gradient(&self, i: usize, g: f64) -> f64 {
+        self.r[i] * g / self.root_phi
+    }
+
     /// The normal scale `s = c_s / h_s` (`h_s = max diag H_nn`, `c_s = max |c_n|`) of a QP with `q` normal
     /// unknowns; where nothing pushes normally (`c_n = 0`) but the tangential term does (a Tresca
     /// threshold with a shift), the same ratio over all unknowns. `None` only when `c = 0` (or H has no
@@ -46,10 +58,12 @@ impl Scaling {
         let c_st = c[q..].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let s_t = if h_st > 0.0 { s.max(c_st / h_st) } else { s };
         let w: Vec<f64> = (0..k).map(|i| if i < q { s } else { bounds[i - q].min(s_t) }).collect();
-        // (w √H_ii)² rather than w² H_ii: w is about 1/H, so w² alone can overflow where the product cannot.
-        let phi = (0..k).map(|i| (w[i] * diag[i].max(0.0).sqrt()).powi(2)).fold(0.0, f64::max);
-        let c_max = c.iter().zip(&w).fold(0.0_f64, |m, (ci, wi)| m.max((wi * ci / phi).abs()));
-        Self { w, phi, c_max }
+        // w √H_ii rather than w² H_ii: w is about 1/H, so w² alone can overflow (and underflow) where the
+        // product cannot.
+        let root_phi = (0..k).map(|i| w[i] * diag[i].max(0.0).sqrt()).fold(0.0, f64::max);
+        let r: Vec<f64> = w.iter().map(|wi| wi / root_phi).collect();
+        let c_max = c.iter().zip(&r).fold(0.0_f64, |m, (ci, ri)| m.max((ri * ci / root_phi).abs()));
+        Self { w, r, root_phi, c_max }
     }
 
     /// The scaled box of the tangential unknowns: `g_j / w_t,j` (1 where the bound vanishes, so that the

@@ -231,7 +231,72 @@ fn primary_residual(input: &EstimatorInput<'_>, s: [f64; 2], xa: f64, xb: f64) -
 }
 
 /// The per-triangle indicators η_K and ζ_K (not squared) and the totals.
+///
+/// Each term of η² and ζ² has the units of a stress squared (times a length of the mesh): the
+/// displacement-like fields (u, u_n, the slip, the gap) enter with E*, the stress-like ones (σ_h, λ_H,
+/// the threshold, the loads) without. Multiplying the first by k_u, the second by k_σ and E by
+/// k_σ / k_u therefore multiplies η and ζ by k_σ and leaves the relative estimates unchanged. The
+/// estimate is computed so, with powers of two that bring both kinds to order one (exact: nothing
+/// changes for data of ordinary size), and divided by k_σ after: for data of 1e-200 (or 1e200), or E of
+/// 1e-300, the squares no longer underflow (or overflow).
 pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEstimate) {
+    let sup = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let stresses = input.stress.iter().flatten().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let length = sup(input.displacement).max(sup(input.u_n)).max(sup(input.slip));
+    let stress = sup(input.lambda_n).max(sup(input.lambda_t)).max(stresses).max(sup(input.threshold));
+    let power = |size: f64| if size > 0.0 && size.is_finite() { -(size.log2().round() as i32) } else { 0 };
+    let (pu, ps) = (power(length), power(stress));
+    if pu == 0 && ps == 0 {
+        return estimate_scaled(input);
+    }
+    let (ku, ks, ke) = (2f64.powi(pu), 2f64.powi(ps), 2f64.powi(ps - pu));
+    let times = |v: &[f64], k: f64| v.iter().map(|x| x * k).collect::<Vec<f64>>();
+    let stress: Vec<[f64; 3]> = input.stress.iter().map(|s| s.map(|x| x * ks)).collect();
+    let (u, u_n, slip) = (times(input.displacement, ku), times(input.u_n, ku), times(input.slip, ku));
+    let (lambda_n, lambda_t, threshold) =
+        (times(input.lambda_n, ks), times(input.lambda_t, ks), times(input.threshold, ks));
+    let gap = |xi: f64| (input.gap)(xi) * ku;
+    let young = |m: &Material| Material { young: m.young * ke, ..*m };
+    let material = young(input.material);
+    let materials = Materials {
+        materials: input.materials.materials.iter().map(young).collect(),
+        region: input.materials.region.clone(),
+    };
+    let scaled = EstimatorInput {
+        mesh: input.mesh,
+        material: &material,
+        materials: &materials,
+        primary: input.primary,
+        dofs: input.dofs,
+        contact: input.contact,
+        multipliers: input.multipliers,
+        body_force: input.body_force.map(|x| x * ks),
+        tractions: input.tractions.iter().map(|(e, t)| (*e, t.map(|x| x * ks))).collect(),
+        stress: &stress,
+        displacement: &u,
+        lambda_n: &lambda_n,
+        lambda_t: &lambda_t,
+        threshold: &threshold,
+        u_n: &u_n,
+        slip: &slip,
+        gap: &gap,
+    };
+    let (eta, zeta, e) = estimate_scaled(&scaled);
+    let back = |v: Vec<f64>| v.into_iter().map(|x| x / ks).collect::<Vec<f64>>();
+    let estimate = ErrorEstimate {
+        total: e.total / ks,
+        bulk: e.bulk / ks,
+        gamma_c: e.gamma_c / ks,
+        contact: e.contact / ks,
+        friction: e.friction / ks,
+        traction: e.traction / ks,
+        ..e
+    };
+    (back(eta), back(zeta), estimate)
+}
+
+/// [`estimate`] on fields of ordinary size.
+fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEstimate) {
     let mesh = input.mesh;
     let pts = mesh.points();
     let e_star = input.material.young / (1.0 - input.material.poisson.powi(2));

@@ -52,8 +52,8 @@ impl Condensed<'_> {
             }
             let lam_n = &out.nu[..q];
             let max_diff = lam_n.iter().zip(&g).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
-            let diff: f64 = lam_n.iter().zip(&g).map(|(a, b)| (a - b).powi(2)).sum::<f64>().sqrt();
-            let norm: f64 = lam_n.iter().map(|a| a * a).sum::<f64>().sqrt();
+            let diff = euclidean(lam_n.iter().zip(&g).map(|(a, b)| a - b));
+            let norm = euclidean(lam_n.iter().copied());
             let change = if norm > 0.0 { diff / norm } else { diff };
             phase.history.push(change);
             let flow = notify(Progress::qp(self.factor(), it, change, &out));
@@ -91,4 +91,14 @@ impl Condensed<'_> {
         }
         Ok(())
     }
+}
+
+/// The Euclidean norm, scaled by the largest entry first so that its squares neither underflow (λ of
+/// 1e-200, where every square is 0 and a relative change would read 0) nor overflow.
+fn euclidean(v: impl Iterator<Item = f64> + Clone) -> f64 {
+    let m = v.clone().fold(0.0_f64, |m, x| m.max(x.abs()));
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    m * v.map(|x| (x / m).powi(2)).sum::<f64>().sqrt()
 }

@@ -447,7 +447,7 @@ impl LoadStep {
         }
     }
 
-    /// Checks that every value is finite.
+    /// Checks that every value is finite and not subnormal.
     ///
     /// # Errors
     /// [`Error::BadLoadStep`] naming the step (`index`) and the value.
@@ -457,6 +457,9 @@ impl LoadStep {
         for (name, v) in values {
             if !v.is_finite() {
                 return Err(Error::BadLoadStep { step: index, what: format!("{name} must be finite, got {v}") });
+            }
+            if v.is_subnormal() {
+                return Err(Error::BadLoadStep { step: index, what: crate::error::subnormal(name, v) });
             }
         }
         Ok(())

@@ -346,3 +346,109 @@ proptest! {
         );
     }
 }
+
+/// The answer of a linear problem does not depend on its units (issue 21): a block pressed onto a flat
+/// obstacle by the approach δ, or by a prescribed displacement of its base, from 1e-300 to 1e300, with E
+/// from 1e-300 to 1e300. The problem is homogeneous: u scales with δ and λ with E δ, so the scaled answers
+/// must be the same, to the accuracy `qp_tol · κ(H)` a QP determines λ to (`QpSettings::tol`), on the
+/// active-set path and on clarabel, and so must the relative error estimates. Before the QP's scaling
+/// avoided forming φ = w² H (which underflows for data below about 1e-160), every approach below 1e-200
+/// ended `qp_failed`; before the fixed point's change and the estimator scaled their sums of squares,
+/// Coulomb stopped after one iteration there (a change of 0/0) and the relative estimates read 0 and NaN.
+#[test]
+fn the_answer_does_not_depend_on_the_units() {
+    let mesh = rectangle([-1.0, 1.0], [-1.0, 0.0], 6, 3, Diagonal::Right).expect("valid");
+    let problem = |young: f64, approach: f64, base: f64| {
+        let spec = ProblemSpec {
+            material: Material { young, poisson: 0.3 },
+            clamped: vec![],
+            supports: vec![Support::displacement("bottom", Some(0.0), Some(base))],
+            body_force: [0.0, 0.0],
+            tractions: vec![],
+            contact: "top".into(),
+            obstacle: Obstacle { shape: ObstacleShape::Flat, approach, shift: 0.3 * (approach + base) },
+            multiplier_points: MultiplierPoints::RatioToFe(1.0),
+            multiplier_space: MultiplierSpace::P1,
+        };
+        Problem::new(mesh.clone(), spec).expect("a valid problem")
+    };
+    for method in [QpMethod::Auto, QpMethod::Clarabel] {
+        for friction in [Friction::Frictionless, Friction::Coulomb { mu: 0.3 }] {
+            let settings = SolverSettings { qp: QpSettings { method, ..Default::default() }, ..Default::default() };
+            // The unit problems: pushed by the approach, and by the base.
+            let units = [problem(1.0, 1.0, 0.0), problem(1.0, 0.0, 1.0)];
+            let references = units.each_ref().map(|p| p.solve(&friction, &settings, None).expect("solves"));
+            assert!(references.iter().all(|r| r.report.status == SolveStatus::Converged));
+            let kappa = tribo_testkit::condition_number(&units[0].condense(settings.stabilization).expect("condenses"));
+            let tol = tribo_testkit::reached_qp_tol(&settings, &references[0]) * kappa;
+            let mut cases: Vec<(f64, f64, f64)> = [-300, -250, -200, -150, -100, -50, 0, 50, 100, 150, 200, 250, 300]
+                .iter()
+                .map(|&e| (1.0, 10f64.powi(e), 0.0))
+                .collect();
+            cases.extend([(1e-300, 1e150, 0.0), (1e300, 1e-150, 0.0), (1e-150, 1e-150, 0.0), (1e150, 1e150, 0.0)]);
+            // Pushed by the base instead of the approach.
+            cases.extend([(1.0, 0.0, 1e-300), (1.0, 0.0, 1e-200), (1.0, 0.0, 1e200), (1.0, 0.0, 1e300)]);
+            // Relative to the reference's size (where the reference is 0, as λ_t without friction: absolute).
+            let same = |a: &[f64], b: &[f64], scale: f64| {
+                a.iter().zip(b).fold(0.0_f64, |m, (x, y)| m.max((x / scale - y).abs()))
+                    / if sup(b) > 0.0 { sup(b) } else { 1.0 }
+            };
+            for (young, approach, base) in cases {
+                let what = format!("{method} {friction:?} E = {young:e}, δ = {approach:e}, base {base:e}");
+                let p = problem(young, approach, base);
+                let sol = p.solve(&friction, &settings, None).expect("solves");
+                assert_eq!(sol.report.status, SolveStatus::Converged, "{what}");
+                let d = approach + base;
+                let reference = &references[usize::from(base != 0.0)];
+                let du = same(&sol.displacement, &reference.displacement, d);
+                let dl = same(&sol.lambda_n, &reference.lambda_n, young * d);
+                let dt = same(&sol.lambda_t, &reference.lambda_t, young * d);
+                assert!(
+                    du <= tol && dl <= tol && dt <= tol,
+                    "{what}: u {du:e}, λ_n {dl:e}, λ_t {dt:e} (allowed {tol:e})"
+                );
+                // The relative error estimates are dimensionless: the same numbers in any units.
+                let (e, r) = (&sol.report.estimate, &reference.report.estimate);
+                for (got, want) in [(e.energy_relative, r.energy_relative), (e.traction_relative, r.traction_relative)]
+                {
+                    assert!((got - want).abs() <= tol * want, "{what}: relative estimate {got} against {want}");
+                }
+            }
+        }
+    }
+}
+
+/// Subnormal data (below 2.2e-308) keep only a few digits, so the answer would too: a typed error naming
+/// the datum, before any work, for the approach, the shift, a prescribed displacement and a history step.
+#[test]
+fn subnormal_data_are_refused_by_name() {
+    let mesh = rectangle([-1.0, 1.0], [-1.0, 0.0], 4, 2, Diagonal::Right).expect("valid");
+    let spec = |approach: f64, shift: f64, base: f64| ProblemSpec {
+        material: Material { young: 1.0, poisson: 0.3 },
+        clamped: vec![],
+        supports: vec![Support::displacement("bottom", Some(0.0), Some(base))],
+        body_force: [0.0, 0.0],
+        tractions: vec![],
+        contact: "top".into(),
+        obstacle: Obstacle { shape: ObstacleShape::Flat, approach, shift },
+        multiplier_points: MultiplierPoints::RatioToFe(1.0),
+        multiplier_space: MultiplierSpace::P1,
+    };
+    for (approach, shift, base, name) in [
+        (1e-320, 0.0, 0.0, "approach δ"),
+        (0.01, -5e-324, 0.0, "tangential shift s"),
+        (0.0, 0.0, 1e-310, "the y component"),
+    ] {
+        let err = Problem::new(mesh.clone(), spec(approach, shift, base)).expect_err("subnormal data");
+        let text = err.to_string();
+        assert!(text.contains(name) && text.contains("subnormal"), "{text}");
+    }
+    // The smallest normal data are solved (the_answer_does_not_depend_on_the_units: down to 1e-300).
+    let p = Problem::new(mesh, spec(f64::MIN_POSITIVE, 0.0, 0.0)).expect("normal data");
+    let sol = p.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+    assert_eq!(sol.report.status, SolveStatus::Converged);
+    assert!(sol.normal_force > 0.0);
+    let step = LoadStep::new(1e-320, 0.0);
+    let err = p.solve_history(&Friction::Frictionless, &[step], &SolverSettings::default(), None).expect_err("refused");
+    assert!(err.to_string().contains("approach") && err.to_string().contains("subnormal"), "{err}");
+}
