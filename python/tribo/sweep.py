@@ -7,7 +7,9 @@ one ``SceneError`` naming the key, not a hundred failed cases.
 
 Each case runs ``tribo.cli.run_scene`` (what ``tribo run`` runs) on a Dask worker and becomes one row of a
 table: the axes, then status, failure reason, iterations, forces, the extents of the contact and stick
-zones, the largest KKT residual, unknowns, seconds, the estimated errors (see ``COLUMNS``). The table is
+zones, the largest KKT residual, unknowns, seconds, the estimated errors (see ``COLUMNS``): of the solve,
+of the last step of a ``[history]`` scene, of the last level of an ``[adapt]`` one, as ``tribo run``'s
+``summary.json`` reports them. The table is
 written to ``DIR/results.parquet`` and ``DIR/results.csv`` and returned as a pandas DataFrame;
 ``df.set_index(axes).to_xarray()`` gives the grid.
 
