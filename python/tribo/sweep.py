@@ -29,6 +29,10 @@ written to ``DIR/results.parquet`` and ``DIR/results.csv`` and returned as a pan
   workers (4 by default) is a row with status ``killed_worker`` and is not cached, so a rerun tries it
   again. The ``attempts`` column counts the workers that started a case (on a shared filesystem).
   Ctrl-C cancels what is left and writes the table of what is done before it re-raises.
+* **Batches.** Cases go to Dask in batches of about 8 per worker (one case per batch for small sweeps),
+  so that Dask's cost per task is paid per batch. A worker that dies retries its whole batch (its
+  finished cases count a second attempt); a batch that kills workers repeatedly is split into single
+  cases, so that only the case that kills them ends ``killed_worker``.
 
 Needs the ``sweep`` extra: ``pip install "tribo[sweep]"`` (dask, distributed, pandas, pyarrow).
 """
@@ -351,6 +355,18 @@ def run_case(
     return {"row": row, "summary": summary}
 
 
+def run_cases(cases_args: list[tuple[Any, ...]]) -> list[dict[str, Any]]:
+    """Runs a batch of cases (on one worker, one after the other): ``run_case`` of each argument tuple."""
+    return [run_case(*args) for args in cases_args]
+
+
+def _batches(cases_: list[Case], workers: int) -> list[list[Case]]:
+    """The cases in batches, one Dask task each: about 8 per worker, so that Dask's cost per task (about 2 ms)
+    is paid once per batch and the load stays balanced; one case per batch when there are few cases."""
+    size = max(1, math.ceil(len(cases_) / (8 * workers)))
+    return [cases_[i : i + size] for i in range(0, len(cases_), size)]
+
+
 # ----- the sweep -----
 def _scene_data(scene: str | Path | Mapping[str, Any], base_dir: Path | None) -> tuple[dict[str, Any], Path]:
     if isinstance(scene, Mapping):
@@ -503,29 +519,40 @@ def _run(
         # A local cluster serves its dashboard only where bokeh is installed; a remote one says for itself.
         if link and (cluster is None or importlib.util.find_spec("bokeh") is not None):
             log.info("Dask dashboard: %s", link)
-        futures = {}
         for case in todo:
             (out / "cases" / case.key / "attempts").unlink(missing_ok=True)  # count this run's starts only
-            future = client.submit(
-                run_case, case.data, str(base), str((out / "cases" / case.key).resolve()), files, plots, threads,
-                key=f"tribo-case-{case.key}", pure=False,
-            )
-            futures[future] = case
+        n_workers = max(1, len(client.scheduler_info().get("workers", {})))
+        ac = distributed.as_completed()
+        futures: dict[Any, list[Case]] = {}
+
+        def submit(batch: list[Case]) -> None:
+            args = [(c.data, str(base), str((out / "cases" / c.key).resolve()), files, plots, threads) for c in batch]
+            future = client.submit(run_cases, args, key=f"tribo-cases-{batch[0].key}-{len(batch)}", pure=False)
+            futures[future] = batch
+            ac.add(future)
+
+        for batch in _batches(list(todo), n_workers):
+            submit(batch)
         bar = tqdm(total=total, initial=total - len(todo), desc="cases", unit="case",
                    disable=progress is not True)
         try:
-            for future in distributed.as_completed(futures):
-                case = futures[future]
+            for future in ac:
+                batch = futures[future]
                 try:
-                    result = future.result()
+                    results = future.result()
                 except distributed.KilledWorker as e:
-                    result = {"row": {"status": "killed_worker", "failure": f"the case killed every worker that "
-                                      f"tried it ({e})", "seconds": math.nan}, "summary": None}
+                    if len(batch) > 1:  # one of them kills workers: run each alone, so that only it is marked
+                        for case in batch:
+                            submit([case])
+                        continue
+                    results = [{"row": {"status": "killed_worker", "failure": f"the case killed every worker that "
+                                        f"tried it ({e})", "seconds": math.nan}, "summary": None}]
                 except Exception as e:  # noqa: BLE001 - a bug in one case must not end the sweep
-                    result = {"row": {"status": "internal_error", "failure": f"{type(e).__name__}: {e}",
-                                      "seconds": math.nan}, "summary": None}
-                done[case.index] = _finish(out / "cases" / case.key, result)
-                bar.update(1)
+                    results = [{"row": {"status": "internal_error", "failure": f"{type(e).__name__}: {e}",
+                                        "seconds": math.nan}, "summary": None}] * len(batch)
+                for case, result in zip(batch, results):
+                    done[case.index] = _finish(out / "cases" / case.key, result)
+                bar.update(len(batch))
                 if callable(progress):
                     progress(len(done), total)
         except KeyboardInterrupt:
