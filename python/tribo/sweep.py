@@ -34,7 +34,7 @@ written to ``DIR/results.parquet`` and ``DIR/results.csv`` and returned as a pan
   finished cases count a second attempt); a batch that kills workers repeatedly is split into single
   cases, so that only the case that kills them ends ``killed_worker``.
 
-Needs the ``sweep`` extra: ``pip install "tribo[sweep]"`` (dask, distributed, pandas, pyarrow).
+Needs the ``sweep`` extra: ``pip install "tribo[sweep]"`` (dask, distributed, pandas, pyarrow, xarray).
 """
 
 from __future__ import annotations

@@ -50,7 +50,8 @@
 //! Round-off adds `64 ε_mach √n` relative to the size of what is compared.
 //!
 //! A path may end `qp_failed` only when the active-set method is forced (it cannot certify a QP whose
-//! free block is singular: λ not unique); every other path converges.
+//! free block is singular: λ not unique), and a Coulomb fixed point `stagnated` or `max_iterations` only
+//! where λ_n is not unique; every other path converges.
 
 use proptest::prelude::*;
 use tribo::choice::Choice;
@@ -290,6 +291,12 @@ proptest! {
                 refused += 1;
                 continue;
             }
+            if !unique && matches!(sol.report.status, SolveStatus::Stagnated | SolveStatus::MaxIterations) {
+                // A Coulomb fixed point whose λ_n is not unique may wander between the QP's answers: it
+                // says so (found with clarabel on T_H twice as fine as the FE edges, γ0 = 0).
+                refused += 1;
+                continue;
+            }
             prop_assert_eq!(sol.report.status, SolveStatus::Converged, "{}", what);
             // The reported u is A⁻¹(f − Eᵀλ) of the reported λ.
             let a = answer(&sol, &path);
@@ -340,7 +347,7 @@ proptest! {
             worst[2] = worst[2].max(df / allowed_f.max(f64::MIN_POSITIVE));
         }
         eprintln!(
-            "{} q = {}, λ unique: {lambda_unique}: {} paths, {refused} refused (forced active set); largest \
+            "{} q = {}, λ unique: {lambda_unique}: {} paths, {refused} refused (forced active set) or not converged (λ_n not unique); largest \
              (difference / allowed): objective {:.1e}, λ {:.1e}, forces {:.1e}",
             friction.law().as_str(), condensed.q(), answers.len(), worst[0], worst[1], worst[2]
         );
