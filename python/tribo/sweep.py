@@ -32,7 +32,10 @@ written to ``DIR/results.parquet`` and ``DIR/results.csv`` and returned as a pan
 * **Batches.** Cases go to Dask in batches of about 8 per worker (one case per batch for small sweeps),
   so that Dask's cost per task is paid per batch. A worker that dies retries its whole batch (its
   finished cases count a second attempt); a batch that kills workers repeatedly is split into single
-  cases, so that only the case that kills them ends ``killed_worker``.
+  cases, so that only the case that kills them ends ``killed_worker``. Dask counts a worker's death
+  against every case the worker held, queued ones too: a case that never started runs again (at most 3
+  more times; without a shared filesystem no start is recorded, so a case that kills workers is then
+  tried that often before it is marked).
 
 Needs the ``sweep`` extra: ``pip install "tribo[sweep]"`` (dask, distributed, pandas, pyarrow, xarray).
 """
@@ -416,11 +419,16 @@ def _write_table(out: Path, df: pd.DataFrame) -> None:
     df.to_csv(out / "results.csv", index=False)
 
 
-def _attempts(case_dir: Path) -> int:
+def _attempts_recorded(case_dir: Path) -> int:
+    """The starts of a case recorded in this run (0 when none, or without a shared filesystem)."""
     try:
-        return max(1, len((case_dir / "attempts").read_text(encoding="utf-8").splitlines()))
+        return len((case_dir / "attempts").read_text(encoding="utf-8").splitlines())
     except OSError:
-        return 1
+        return 0
+
+
+def _attempts(case_dir: Path) -> int:
+    return max(1, _attempts_recorded(case_dir))
 
 
 def _finish(case_dir: Path, result: Mapping[str, Any]) -> dict[str, Any]:
@@ -524,10 +532,14 @@ def _run(
         n_workers = max(1, len(client.scheduler_info().get("workers", {})))
         ac = distributed.as_completed()
         futures: dict[Any, list[Case]] = {}
+        innocent: dict[int, int] = {}
+        serial = itertools.count()
 
         def submit(batch: list[Case]) -> None:
+            # A key of its own per submission: Dask would hand back the erred task of a reused key.
             args = [(c.data, str(base), str((out / "cases" / c.key).resolve()), files, plots, threads) for c in batch]
-            future = client.submit(run_cases, args, key=f"tribo-cases-{batch[0].key}-{len(batch)}", pure=False)
+            key = f"tribo-cases-{batch[0].key}-{len(batch)}-{next(serial)}"
+            future = client.submit(run_cases, args, key=key, pure=False)
             futures[future] = batch
             ac.add(future)
 
@@ -537,7 +549,8 @@ def _run(
                    disable=progress is not True)
         try:
             for future in ac:
-                batch = futures[future]
+                # Released once read: Dask recomputes the results it still holds on a worker that dies.
+                batch = futures.pop(future)
                 try:
                     results = future.result()
                 except distributed.KilledWorker as e:
@@ -545,11 +558,20 @@ def _run(
                         for case in batch:
                             submit([case])
                         continue
+                    # Dask counts a death against every task the worker held, started or queued: a case that
+                    # never started (no attempt recorded) only waited behind the one that kills workers, and
+                    # runs again (a few times at most: without a shared filesystem no start is recorded).
+                    case = batch[0]
+                    innocent[case.index] = innocent.get(case.index, 0) + 1
+                    if _attempts_recorded(out / "cases" / case.key) == 0 and innocent[case.index] <= 3:
+                        submit([case])
+                        continue
                     results = [{"row": {"status": "killed_worker", "failure": f"the case killed every worker that "
                                         f"tried it ({e})", "seconds": math.nan}, "summary": None}]
                 except Exception as e:  # noqa: BLE001 - a bug in one case must not end the sweep
                     results = [{"row": {"status": "internal_error", "failure": f"{type(e).__name__}: {e}",
                                         "seconds": math.nan}, "summary": None}] * len(batch)
+                future.release()
                 for case, result in zip(batch, results):
                     done[case.index] = _finish(out / "cases" / case.key, result)
                 bar.update(len(batch))
