@@ -268,6 +268,8 @@ fn two_blocks(
 fn graded_half(h_min: f64, upper: bool) -> Mesh {
     let (side, y) = if upper { (Side::Bottom, [0.0, 1.0]) } else { (Side::Top, [-2.0, 0.0]) };
     let grading = Grading { side, segment: [-0.15, 0.15], h_min, h_max: 0.5, growth: 0.15 };
+    // Internal invariant of this dev-only kit (no user input reaches it): every caller passes a positive
+    // h_min below h_max = 0.5, so the generator cannot refuse it.
     graded_rectangle([-2.0, 2.0], y, &grading).expect("h_min is the calling test's own valid parameter")
 }
 
