@@ -95,7 +95,8 @@ class Report(_Record):
         reused_factorization: True when this solve reused the factorization of an earlier solve with the
             same γ0 (the 'factorization' and 'condensation' timings are then those of that earlier solve).
         timings: wall times per phase in seconds: assembly, contact_matrices, factorization,
-            condensation, qp, recovery.
+            condensation, qp, recovery, fields (stresses, reactions, contact fields, KKT residuals and
+            the error estimate formed from u and λ).
         estimate: the a posteriori error estimate (see ``Solution.estimator``): ``total`` η and its parts
             ``bulk``, ``gamma_c``, ``contact``, ``friction`` (each the root of a sum of squares over the
             triangles, in stress × length), ``energy_relative`` (η / (E* a(u_h, u_h))^½), ``traction``

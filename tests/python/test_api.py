@@ -53,7 +53,7 @@ def test_frictionless_hertz() -> None:
         "equilibrium", "normal_sign", "non_penetration", "normal_complementarity", "friction_bound", "stick",
         "slip_direction",
     }
-    assert set(r.timings) == {"assembly", "contact_matrices", "factorization", "condensation", "qp", "recovery"}
+    assert set(r.timings) == {"assembly", "contact_matrices", "factorization", "condensation", "qp", "recovery", "fields"}
     # Plane-strain Hertz: contact half-width a = sqrt(4 P R (1 − ν²) / (π E)).
     a = np.sqrt(4 * s.normal_force * (1 - 0.3**2) / (np.pi * 200.0))
     contact = s.multiplier_abscissae[s.states != 0]

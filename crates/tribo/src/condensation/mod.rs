@@ -17,7 +17,7 @@ use std::time::Instant;
 
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
 use faer::{Mat, MatMut, Par, Side};
 
 use crate::error::{Error, Num, Result};
@@ -93,7 +93,7 @@ fn schur_error(e: schur::SchurError) -> Error {
 /// The saddle-point system of `A`, `E` and `Dγ` (by columns), refused beyond `max_len` factor values
 /// (and beyond `budget` bytes, as [`Error::MemoryBudget`]).
 fn saddle_system(
-    a: &SparseColMat<usize, f64>,
+    a: SparseColMatRef<'_, usize, f64>,
     e_rows: &[Vec<(usize, f64)>],
     d_cols: &[Vec<(usize, f64)>],
     max_len: usize,
@@ -121,8 +121,12 @@ pub struct Factor {
     pub condensation: Condensation,
     /// Sparse Cholesky factor of A.
     direct: Direct,
-    /// A as a sparse matrix (for residuals).
-    a: SparseColMat<usize, f64>,
+    /// Order n of A.
+    n: usize,
+    /// The diagonal of A.
+    a_diag: Vec<f64>,
+    /// `−G` on the unknowns (A = K − G): with K, the product A x for the residuals.
+    minus_g: Vec<Triplet<usize, usize, f64>>,
     /// Rows of E (2q sparse rows over the unknowns).
     pub e_rows: Vec<Vec<(usize, f64)>>,
     /// Columns of H computed so far (2q of them at most, each of length 2q).
@@ -196,8 +200,9 @@ impl Factor {
             };
             values[range.start + pos] += t.val;
         }
-        let pattern = pattern.to_owned().map_err(|e| Error::Assembly { matrix: "K − G", what: format!("{e:?}") })?;
-        let a = SparseColMat::new(pattern, values);
+        // A view with K's pattern and A's values: no copy of the pattern; the values are dropped once A
+        // is factorized (A x is K x − G x afterwards, see [`Factor::apply_a`]).
+        let a = SparseColMatRef::new(pattern, &values);
         let nnz_k = k.compute_nnz();
         let (m, q) = (e_rows.len(), e_rows.len() / 2);
         let n_c = touched_dofs(&e_rows);
@@ -231,7 +236,7 @@ impl Factor {
         let partial = |cols: &mut Vec<Option<Vec<f64>>>| -> Result<(Direct, f64, f64)> {
             let clock = Instant::now();
             let sym = SchurSymbolic::new(a.symbolic(), &e_rows).map_err(schur_error)?;
-            let factor = sym.factorize(a.as_ref(), Par::rayon(0)).map_err(schur_error)?;
+            let factor = sym.factorize(a, Par::rayon(0)).map_err(schur_error)?;
             let factorization_seconds = clock.elapsed().as_secs_f64();
             let clock = Instant::now();
             let s_e = factor.schur(&e_rows, Par::rayon(0)).map_err(schur_error)?;
@@ -259,7 +264,7 @@ impl Factor {
                     symbolic.get_or_init(|| s)
                 }
             };
-            let llt = Llt::try_new_with_symbolic(symbolic.clone(), a.as_ref(), Side::Lower)
+            let llt = Llt::try_new_with_symbolic(symbolic.clone(), a, Side::Lower)
                 .map_err(|e| Error::NotPositiveDefinite { what: format!("{e:?}") })?;
             (Direct::Columns(llt), clock.elapsed().as_secs_f64(), 0.0)
         };
@@ -283,11 +288,11 @@ impl Factor {
         // error; preferred, one that fills in much beyond a Cholesky of A (T_H far finer than the FE edges:
         // the multipliers' block fills) or beyond the budget leaves H to the columns.
         let saddle = match condensation {
-            Condensation::Saddle => Some(saddle_system(&a, &e_rows, &d_cols, budget / 8, budget)?),
+            Condensation::Saddle => Some(saddle_system(a, &e_rows, &d_cols, budget / 8, budget)?),
             Condensation::Auto
                 if !use_schur && prefer_saddle(nnz_k, pushed) && quasi_definite(&e_rows, n_c, &d_cols) =>
             {
-                saddle_system(&a, &e_rows, &d_cols, 2 * CHOLESKY_FILL * nnz_k, budget).ok()
+                saddle_system(a, &e_rows, &d_cols, 2 * CHOLESKY_FILL * nnz_k, budget).ok()
             }
             _ => None,
         };
@@ -312,7 +317,9 @@ impl Factor {
             gamma0,
             condensation,
             direct,
-            a,
+            n: a.nrows(),
+            a_diag: diagonal(a),
+            minus_g: minus_g.to_vec(),
             e_rows,
             d_cols,
             c,
@@ -353,7 +360,7 @@ impl Factor {
         let missing: Vec<usize> = idx.iter().copied().filter(|&i| guard.cols[i].is_none()).collect();
         if !missing.is_empty() {
             let clock = Instant::now();
-            let n = self.a.nrows();
+            let n = self.n;
             let mut x = Mat::<f64>::zeros(n, BLOCK.min(missing.len()));
             for chunk in missing.chunks(BLOCK) {
                 let mut xb = x.as_mut().subcols_mut(0, chunk.len());
@@ -429,10 +436,7 @@ impl Factor {
 
     /// The diagonal of A.
     pub(crate) fn a_diagonal(&self) -> Vec<f64> {
-        let a = self.a.as_ref();
-        (0..a.ncols())
-            .map(|j| a.row_idx_of_col(j).zip(a.val_of_col(j)).find(|(i, _)| *i == j).map_or(0.0, |(_, v)| *v))
-            .collect()
+        self.a_diag.clone()
     }
 
     /// The diagonal of Dγ (2q).
@@ -450,14 +454,16 @@ impl Factor {
         self.saddle.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
     }
 
-    /// `A x` (free dofs).
-    pub fn apply_a(&self, x: &[f64]) -> Vec<f64> {
+    /// `A x` (free dofs) for the stiffness `k` this factor was built from: `K x − G x`.
+    pub fn apply_a(&self, k: SparseColMatRef<'_, usize, f64>, x: &[f64]) -> Vec<f64> {
         let mut y = vec![0.0; x.len()];
-        let a = self.a.as_ref();
         for (j, xj) in x.iter().enumerate() {
-            for (i, v) in a.row_idx_of_col(j).zip(a.val_of_col(j)) {
+            for (i, v) in k.row_idx_of_col(j).zip(k.val_of_col(j)) {
                 y[i] += v * xj;
             }
+        }
+        for t in &self.minus_g {
+            y[t.row] += t.val * x[t.col];
         }
         y
     }
@@ -480,7 +486,7 @@ impl Factor {
 
     /// `Eᵀ λ` (free dofs).
     pub fn apply_et(&self, lambda: &[f64]) -> Vec<f64> {
-        let mut y = vec![0.0; self.a.nrows()];
+        let mut y = vec![0.0; self.n];
         for (row, l) in self.e_rows.iter().zip(lambda) {
             for &(d, v) in row {
                 y[d] += v * l;
@@ -488,6 +494,13 @@ impl Factor {
         }
         y
     }
+}
+
+/// The diagonal of a sparse matrix (0 where it stores none).
+fn diagonal(a: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
+    (0..a.ncols())
+        .map(|j| a.row_idx_of_col(j).zip(a.val_of_col(j)).find(|(i, _)| *i == j).map_or(0.0, |(_, v)| *v))
+        .collect()
 }
 
 fn dot(row: &[(usize, f64)], x: &[f64]) -> f64 {

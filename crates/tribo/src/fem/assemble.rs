@@ -3,11 +3,12 @@
 //! displacements lifted, `Tᵀ (f − K ū)` (see [`crate::fem::supports`]). The γ0-dependent part of the
 //! lifting, through G, is added when A is factorized ([`crate::Problem::condense_with`]).
 
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 
 use crate::error::{Error, Result};
 use crate::fem::dofs::Dofs;
-use crate::fem::elasticity::{add_body_force, add_traction, stiffness_triplets, MaterialField};
+use crate::fem::elasticity::{add_body_force, add_traction, element_dofs, element_stiffness, MaterialField};
+use crate::fem::supports::NodeSupport;
 use crate::mesh::Mesh;
 
 /// The assembled linear system of the body before contact.
@@ -34,7 +35,6 @@ pub fn assemble(
     dofs: &Dofs,
 ) -> Result<LinearSystem> {
     let n_dofs = 2 * mesh.n_nodes();
-    let n_free = dofs.n_free;
     for (name, f) in [("body".to_string(), body_force)].iter().chain(tractions) {
         if !(f[0].is_finite() && f[1].is_finite()) {
             return Err(Error::NonFiniteLoad { target: name.clone(), x: f[0], y: f[1] });
@@ -52,21 +52,7 @@ pub fn assemble(
             y: f64::NAN,
         });
     }
-    // K over all dofs, then `Tᵀ K T` (faer sums the duplicates a rotated node's two dofs give) and
-    // the lifting `K ū` of the prescribed displacements.
-    let k_full = stiffness_triplets(mesh, material);
-    let mut k_lift = vec![0.0; n_dofs];
-    let mut k_free = Vec::with_capacity(k_full.len());
-    for t in &k_full {
-        if !t.val.is_finite() {
-            return Err(Error::Assembly { matrix: "K", what: format!("entry ({}, {}) is {}", t.row, t.col, t.val) });
-        }
-        k_lift[t.row] += t.val * dofs.lifting[t.col];
-        if let (Some((i, a)), Some((j, b))) = (dofs.unknown(t.row), dofs.unknown(t.col)) {
-            k_free.push(Triplet::new(i, j, a * b * t.val));
-        }
-    }
-    drop(k_full);
+    let (k_matrix, k_lift) = stiffness_on_unknowns(mesh, material, dofs)?;
     let f_lifted: Vec<f64> = f_full.iter().zip(&k_lift).map(|(f, k)| f - k).collect();
     if let Some(d) = f_lifted.iter().position(|v| !v.is_finite()) {
         return Err(Error::NonFiniteLoad {
@@ -76,8 +62,150 @@ pub fn assemble(
         });
     }
     let f_free = dofs.restrict(&f_lifted);
-    let k_matrix = SparseColMat::try_new_from_triplets(n_free, n_free, &k_free)
-        .map_err(|e| Error::Assembly { matrix: "K", what: format!("{e:?}") })?;
-    drop(k_free);
     Ok(LinearSystem { k_matrix, f_free, f_full })
+}
+
+/// `Tᵀ K T` straight into compressed columns, and `K ū` (2N) on the way.
+///
+/// The pattern comes from the mesh graph: the unknowns are numbered node by node (two at a free node, one
+/// at a sliding node, none at a fixed one), so column k of node i holds, in increasing order, the unknowns
+/// of every node that shares a triangle with i. The element matrices are then added in place, triangle by
+/// triangle in mesh order, so that each entry is summed in one fixed order (the matrix does not depend on
+/// the thread count). No triplet list of the whole matrix is ever held: the memory is K's own plus the
+/// node graph.
+///
+/// # Errors
+/// [`Error::Assembly`] for a non-finite element entry or a mesh too large for 32-bit node indices.
+fn stiffness_on_unknowns(
+    mesh: &Mesh,
+    material: &impl MaterialField,
+    dofs: &Dofs,
+) -> Result<(SparseColMat<usize, f64>, Vec<f64>)> {
+    let n_nodes = mesh.n_nodes();
+    let n_free = dofs.n_free;
+    let too_large = || Error::Assembly { matrix: "K", what: format!("{n_nodes} nodes: more than 2³² − 1") };
+    u32::try_from(n_nodes).map_err(|_| too_large())?;
+    // The unknowns of node i are first[i]..first[i + 1].
+    let mut first = Vec::with_capacity(n_nodes + 1);
+    first.push(0usize);
+    for ns in &dofs.nodes {
+        let count = match ns {
+            NodeSupport::Free => 2,
+            NodeSupport::Slide { .. } => 1,
+            NodeSupport::Fixed { .. } => 0,
+        };
+        first.push(first.last().copied().unwrap_or(0) + count);
+    }
+    debug_assert_eq!(first[n_nodes], n_free);
+    let (adj_ptr, adj) = node_graph(mesh);
+    // Per entry p of node i's neighbour list: the offset, in each column of node i, of the first row of
+    // that neighbour's unknowns.
+    let mut offset = vec![0usize; adj.len()];
+    let mut col_ptr = Vec::with_capacity(n_free + 1);
+    col_ptr.push(0usize);
+    for i in 0..n_nodes {
+        let mut o = 0;
+        for p in adj_ptr[i]..adj_ptr[i + 1] {
+            offset[p] = o;
+            let m = adj[p] as usize;
+            o += first[m + 1] - first[m];
+        }
+        for _ in first[i]..first[i + 1] {
+            col_ptr.push(col_ptr.last().copied().unwrap_or(0) + o);
+        }
+    }
+    let nnz = col_ptr[n_free];
+    let mut row_idx = Vec::with_capacity(nnz);
+    for i in 0..n_nodes {
+        for _ in first[i]..first[i + 1] {
+            for &m in &adj[adj_ptr[i]..adj_ptr[i + 1]] {
+                row_idx.extend(first[m as usize]..first[m as usize + 1]);
+            }
+        }
+    }
+    let mut values = vec![0.0; nnz];
+    let mut k_lift = vec![0.0; 2 * n_nodes];
+    let lifted = !dofs.homogeneous();
+    for (t, tri) in mesh.triangles().iter().enumerate() {
+        let k = element_stiffness(mesh, t, &material.at(t).elasticity_matrix());
+        let el = element_dofs(tri);
+        if let Some(e) = k.iter().position(|v| !v.is_finite()) {
+            let (r, c) = (e % 6, e / 6);
+            return Err(Error::Assembly { matrix: "K", what: format!("entry ({}, {}) is {}", el[r], el[c], k[e]) });
+        }
+        if lifted {
+            for (c, &dc) in el.iter().enumerate() {
+                let u = dofs.lifting[dc];
+                if u != 0.0 {
+                    for (r, &dr) in el.iter().enumerate() {
+                        k_lift[dr] += k[(r, c)] * u;
+                    }
+                }
+            }
+        }
+        for (b, &nb) in tri.iter().enumerate() {
+            // The column's node nb; each row node's place in nb's neighbour list.
+            let list = &adj[adj_ptr[nb]..adj_ptr[nb + 1]];
+            for (a, &na) in tri.iter().enumerate() {
+                // na shares triangle t with nb, so it is in nb's list.
+                let p = adj_ptr[nb] + list.binary_search(&(na as u32)).unwrap_or(0);
+                for cb in 0..2 {
+                    let Some((kj, wb)) = dofs.unknown(2 * nb + cb) else { continue };
+                    for ca in 0..2 {
+                        let Some((ki, wa)) = dofs.unknown(2 * na + ca) else { continue };
+                        let pos = col_ptr[kj] + offset[p] + (ki - first[na]);
+                        values[pos] += wa * wb * k[(2 * a + ca, 2 * b + cb)];
+                    }
+                }
+            }
+        }
+    }
+    let pattern = SymbolicSparseColMat::new_checked(n_free, n_free, col_ptr, None, row_idx);
+    Ok((SparseColMat::new(pattern, values), k_lift))
+}
+
+/// The nodes that share a triangle with each node (itself included), sorted: node i's are
+/// `adj[ptr[i]..ptr[i + 1]]` (32-bit indices, checked by the caller).
+fn node_graph(mesh: &Mesh) -> (Vec<usize>, Vec<u32>) {
+    let n = mesh.n_nodes();
+    let mut ptr = vec![0usize; n + 1];
+    for tri in mesh.triangles() {
+        for &a in tri {
+            ptr[a + 1] += 3;
+        }
+    }
+    for i in 0..n {
+        ptr[i + 1] += ptr[i];
+    }
+    let mut fill = ptr.clone();
+    let mut all = vec![0u32; ptr[n]];
+    for tri in mesh.triangles() {
+        for &a in tri {
+            for &b in tri {
+                all[fill[a]] = b as u32;
+                fill[a] += 1;
+            }
+        }
+    }
+    drop(fill);
+    // Sort and deduplicate each list, compacting in place.
+    let mut write = 0;
+    let mut start = 0;
+    for i in 0..n {
+        let end = ptr[i + 1];
+        all[start..end].sort_unstable();
+        let begin = write;
+        for r in start..end {
+            if write == begin || all[r] != all[write - 1] {
+                all[write] = all[r];
+                write += 1;
+            }
+        }
+        ptr[i] = begin;
+        start = end;
+    }
+    ptr[n] = write;
+    all.truncate(write);
+    all.shrink_to_fit();
+    (ptr, all)
 }

@@ -13,10 +13,11 @@ use crate::choice::{named_choice, Choice};
 use crate::error::{Error, Result};
 use crate::mesh::{Mesh, Point};
 
-/// Largest number of cells a generator agrees to build (estimated beforehand for graded meshes): 8 million
-/// triangles, about 1.5 GB while the mesh is validated, far beyond what the solver can factorize on one
-/// machine, and refused before anything is allocated.
-pub const MAX_CELLS: usize = 4_000_000;
+/// Largest number of cells a generator agrees to build (estimated beforehand for graded meshes): 16 million
+/// triangles (about 16 million unknowns), about 2 GB while the mesh is validated, beyond what the solver can
+/// factorize in 24 GB (10 million unknowns take about 20 GB, see docs/scale.md), and refused before anything
+/// is allocated.
+pub const MAX_CELLS: usize = 8_000_000;
 
 /// Largest lattice index on the finest level: keeps every lattice coordinate exact in an `f64`.
 const MAX_LATTICE: u64 = 1 << 52;

@@ -68,16 +68,12 @@ impl Mesh {
         }
         let n = points.len();
         let mut used = vec![false; n];
-        let mut seen: HashMap<[usize; 3], usize> = HashMap::with_capacity(triangles.len());
-        let mut edge_count: HashMap<[usize; 2], (usize, usize)> = HashMap::with_capacity(2 * triangles.len());
-        // Each directed edge (p → q of a counter-clockwise triangle) may occur once: two triangles on the
-        // same side of an edge overlap.
-        let mut directed: HashMap<[usize; 2], usize> = HashMap::with_capacity(3 * triangles.len());
         for (element, tri) in triangles.iter().enumerate() {
             for &node in tri {
                 if node >= n {
                     return Err(Error::NodeIndexOutOfRange { element, node, n_nodes: n });
                 }
+                used[node] = true;
             }
             let [a, b, c] = tri.map(|i| points[i]);
             let area = signed_area(a, b, c);
@@ -91,28 +87,48 @@ impl Mesh {
             if area < 0.0 {
                 return Err(Error::InvertedTriangle { element, area });
             }
-            let mut key = *tri;
-            key.sort_unstable();
-            if let Some(&first) = seen.get(&key) {
-                return Err(Error::DuplicateTriangle { first, second: element });
-            }
-            seen.insert(key, element);
+        }
+        // The checks across triangles sort lists instead of hashing (a fraction of the memory and time
+        // of hash maps on millions of triangles). Where several pairs offend, the one met first in mesh
+        // order is named, as a scan would.
+        let mut keys: Vec<([usize; 3], usize)> = triangles
+            .iter()
+            .enumerate()
+            .map(|(element, tri)| {
+                let mut key = *tri;
+                key.sort_unstable();
+                (key, element)
+            })
+            .collect();
+        keys.sort_unstable();
+        let duplicate = keys.windows(2).filter(|w| w[0].0 == w[1].0).min_by_key(|w| w[1].1);
+        if let Some(w) = duplicate {
+            return Err(Error::DuplicateTriangle { first: w[0].1, second: w[1].1 });
+        }
+        drop(keys);
+        // Each directed edge (p → q of a counter-clockwise triangle) may occur once: two triangles on the
+        // same side of an edge overlap. An edge whose reverse no triangle has is on the boundary.
+        let mut directed: Vec<([usize; 2], usize)> = Vec::with_capacity(3 * triangles.len());
+        for (element, tri) in triangles.iter().enumerate() {
             for local in 0..3 {
-                used[tri[local]] = true;
-                let (p, q) = (tri[(local + 1) % 3], tri[(local + 2) % 3]);
-                if let Some(&first) = directed.get(&[p, q]) {
-                    return Err(Error::OverlappingTriangles { first, second: element, a: p, b: q });
-                }
-                directed.insert([p, q], element);
-                let e = [p.min(q), p.max(q)];
-                edge_count.entry(e).and_modify(|v| v.1 += 1).or_insert((element, 1));
+                directed.push(([tri[(local + 1) % 3], tri[(local + 2) % 3]], element));
             }
         }
+        directed.sort_unstable();
+        let overlap = directed.windows(2).filter(|w| w[0].0 == w[1].0).min_by_key(|w| w[1].1);
+        if let Some(w) = overlap {
+            let [a, b] = w[0].0;
+            return Err(Error::OverlappingTriangles { first: w[0].1, second: w[1].1, a, b });
+        }
+        let boundary: HashMap<[usize; 2], usize> = directed
+            .iter()
+            .filter(|([p, q], _)| directed.binary_search_by(|probe| probe.0.cmp(&[*q, *p])).is_err())
+            .map(|&([p, q], element)| ([p.min(q), p.max(q)], element))
+            .collect();
+        drop(directed);
         if let Some(node) = used.iter().position(|u| !u) {
             return Err(Error::UnusedNode { node });
         }
-        let boundary: HashMap<[usize; 2], usize> =
-            edge_count.into_iter().filter(|(_, v)| v.1 == 1).map(|(e, v)| (e, v.0)).collect();
         for (set, edges) in &edge_sets {
             if edges.is_empty() {
                 return Err(Error::EmptyEdgeSet { name: set.clone() });

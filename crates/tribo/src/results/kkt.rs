@@ -78,9 +78,16 @@ fn ratio(num: f64, den: f64) -> f64 {
     }
 }
 
-pub(crate) fn kkt_residuals(c: &Factor, loading: &LoadCase, u: &[f64], lambda: &[f64], bound: &[f64]) -> KktResiduals {
+pub(crate) fn kkt_residuals(
+    c: &Factor,
+    k: faer::sparse::SparseColMatRef<'_, usize, f64>,
+    loading: &LoadCase,
+    u: &[f64],
+    lambda: &[f64],
+    bound: &[f64],
+) -> KktResiduals {
     let q = c.q();
-    let au = c.apply_a(u);
+    let au = c.apply_a(k, u);
     let etl = c.apply_et(lambda);
     let inf = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| nan_max(m, x.abs()));
     let res: Vec<f64> = au.iter().zip(&etl).zip(&loading.f_free).map(|((a, e), f)| a + e - f).collect();

@@ -175,7 +175,7 @@ impl Solution {
         };
         let (estimator, traction_estimator, estimate) = estimate(&input);
         let report = Report { estimate, ..report };
-        let kkt = kkt_residuals(condensed, loading, u_free, &lambda, &friction_threshold);
+        let kkt = kkt_residuals(condensed, problem.k_matrix.as_ref(), loading, u_free, &lambda, &friction_threshold);
         let lam_scale = lambda_n.iter().fold(condensed.lambda_scale(&loading.c), |m, v| m.max(v.abs()));
         let theta = qp_tol.sqrt() * lam_scale;
         let states = (0..q)

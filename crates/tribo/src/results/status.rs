@@ -99,11 +99,14 @@ pub struct Timings {
     pub qp: f64,
     /// Recovering u.
     pub recovery: f64,
+    /// Forming the fields from u and λ: stresses, reactions, the contact fields, the KKT residuals and
+    /// the a posteriori estimate.
+    pub fields: f64,
 }
 
 impl Timings {
     /// Every phase by name, in the order of the fields.
-    pub fn named(&self) -> [(&'static str, f64); 6] {
+    pub fn named(&self) -> [(&'static str, f64); 7] {
         [
             ("assembly", self.assembly),
             ("contact_matrices", self.contact_matrices),
@@ -111,6 +114,7 @@ impl Timings {
             ("condensation", self.condensation),
             ("qp", self.qp),
             ("recovery", self.recovery),
+            ("fields", self.fields),
         ]
     }
 }

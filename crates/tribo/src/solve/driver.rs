@@ -172,6 +172,7 @@ impl Condensed<'_> {
             condensation: factor.condensation_seconds(),
             qp: qp_total,
             recovery,
+            fields: 0.0,
         };
         let mu = friction.mu();
         let threshold = match mu {
@@ -196,7 +197,9 @@ impl Condensed<'_> {
             timings,
             estimate: ErrorEstimate::default(),
         };
+        let clock = Instant::now();
         let mut solution = Solution::new(self, loading, &u, phase.lambda, threshold, settings.qp.tol, report);
+        solution.report.timings.fields = clock.elapsed().as_secs_f64();
         // The equation of (3.1) is solved directly: a residual that lost half of the digits is a singular
         // stiffness (a mechanism), not a numerical outcome of the contact solve.
         let residual = solution.kkt.equilibrium;

@@ -288,12 +288,15 @@ fn the_recovered_stress_is_exact_for_linear_stress_fields_on_uniform_meshes() {
     assert!(worst_node <= 1e-12 * scale, "recovered {worst_node} against {scale}");
     assert!(worst_cell > 1e-2 * scale, "the cell stress is off by O(h): {worst_cell}");
     // The patch test's constant state, as a solve reproduces it (to the QP's accuracy): the recovered
-    // field is a mean of the cell stresses, so it stays within their spread, component by component.
+    // field is a mean of the cell stresses, so it stays within their spread, component by component, up to
+    // the rounding of an area-weighted mean (a few units in the last place of the largest value).
     let problem = patch_problem(0.01, 0.02, 0.0, 0.0, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
     let sol = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
     for k in 0..3 {
         let spread = sol.stress.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| (a.min(s[k]), b.max(s[k])));
-        assert!(sol.nodal_stress.iter().all(|s| spread.0 <= s[k] && s[k] <= spread.1), "component {k}");
+        let out = sol.nodal_stress.iter().map(|s| (spread.0 - s[k]).max(s[k] - spread.1)).fold(f64::MIN, f64::max);
+        let ulps = 4.0 * f64::EPSILON * spread.0.abs().max(spread.1.abs());
+        assert!(out <= ulps, "component {k}: {out:e} outside {spread:?}");
     }
     assert!(sol
         .nodal_von_mises

@@ -543,7 +543,7 @@ mod tests {
             par: Par::Seq,
             ..Default::default()
         };
-        let mut sys = SaddleSystem::with_options(&p.a, &p.e_rows, &p.d, opts).expect("analysed");
+        let mut sys = SaddleSystem::with_options(p.a.as_ref(), &p.e_rows, &p.d, opts).expect("analysed");
         sys.factorize(&vec![true; p.m]).expect("factorized");
         let SymbolicCholeskyRaw::Supernodal(s) = sys.symbolic.raw() else { panic!("supernodal") };
         let faer = SupernodalLdltRef::new(s, &sys.l_values);

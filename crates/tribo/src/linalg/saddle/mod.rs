@@ -61,7 +61,7 @@ use faer::sparse::linalg::cholesky::{
     SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
 
 mod border;
@@ -234,7 +234,7 @@ impl SaddleSystem {
     /// triangles stored; `e_rows`: the `m` rows of `E` as `(column, value)`;
     /// `d`: entries `(i, j, v)` of `D`, both triangles (may be empty: `D = 0`).
     pub fn new(
-        a: &SparseColMat<usize, f64>,
+        a: SparseColMatRef<'_, usize, f64>,
         e_rows: &[Vec<(usize, f64)>],
         d: &[(usize, usize, f64)],
     ) -> Result<Self, SaddleError> {
@@ -243,7 +243,7 @@ impl SaddleSystem {
 
     /// Symbolic analysis (ordering + symbolic factorization), done once.
     pub fn with_options(
-        a: &SparseColMat<usize, f64>,
+        a: SparseColMatRef<'_, usize, f64>,
         e_rows: &[Vec<(usize, f64)>],
         d: &[(usize, usize, f64)],
         opts: SaddleOptions,
@@ -257,7 +257,7 @@ impl SaddleSystem {
             return Err(SaddleError::InvalidInput("A is empty".into()));
         }
         let nk = n.checked_add(m).ok_or_else(|| too_large("n + m"))?;
-        let ar = a.as_ref();
+        let ar = a;
 
         // --- A: lower part per column (flat; sorted and merged), diagonal
         let mut al_ptr: Vec<usize> = Vec::with_capacity(n + 1);

@@ -141,7 +141,7 @@ fn rel_err(a: &[f64], b: &[f64]) -> f64 {
 fn check_problem(p: &ContactProblem, opts: SaddleOptions, seed: u64, label: &str) {
     let (n, m) = (p.n, p.m);
     let dref = DenseRef::new(p);
-    let mut sys = SaddleSystem::with_options(&p.a, &p.e_rows, &p.d, opts).unwrap();
+    let mut sys = SaddleSystem::with_options(p.a.as_ref(), &p.e_rows, &p.d, opts).unwrap();
     let mut rng = Rng(seed);
     let scale_nu = p.h * 1e-2; // multipliers are tractions ~ stress
     for trial in 0..8 {
@@ -204,7 +204,7 @@ fn both_factorization_kinds_and_parallel() {
             for ordering in [SaddleOrdering::ConstrainedAmd, SaddleOrdering::Amd] {
                 let opts =
                     SaddleOptions { supernodal_threshold: thr, ordering, par: Par::rayon(2), ..Default::default() };
-                let sys = SaddleSystem::with_options(&p.a, &p.e_rows, &p.d, opts).unwrap();
+                let sys = SaddleSystem::with_options(p.a.as_ref(), &p.e_rows, &p.d, opts).unwrap();
                 assert_eq!(sys.is_supernodal(), thr == SupernodalThreshold::FORCE_SUPERNODAL);
                 check_problem(&p, opts, seed, &format!("D>0={with_d} {thr:?} {ordering:?}"));
             }
@@ -215,12 +215,12 @@ fn both_factorization_kinds_and_parallel() {
 #[test]
 fn constrained_ordering_needs_no_regularization_for_d_zero() {
     let p = contact_problem(30, 10, false);
-    let mut sys = SaddleSystem::with_options(&p.a, &p.e_rows, &p.d, seq_opts()).unwrap();
+    let mut sys = SaddleSystem::with_options(p.a.as_ref(), &p.e_rows, &p.d, seq_opts()).unwrap();
     sys.factorize(&vec![true; p.m]).unwrap();
     assert_eq!(sys.regularized_pivots(), 0);
     // without any regularization the factorization must still exist
     let opts = SaddleOptions { reg_delta: 0.0, reg_eps: 0.0, ..seq_opts() };
-    let mut sys = SaddleSystem::with_options(&p.a, &p.e_rows, &p.d, opts).unwrap();
+    let mut sys = SaddleSystem::with_options(p.a.as_ref(), &p.e_rows, &p.d, opts).unwrap();
     let mut rng = Rng(7);
     let free: Vec<bool> = (0..p.m).map(|_| rng.unif() < 0.5).collect();
     sys.factorize(&free).unwrap();
@@ -232,7 +232,7 @@ fn constrained_ordering_needs_no_regularization_for_d_zero() {
 fn plain_amd_without_regularization_fails_cleanly_for_d_zero() {
     let p = contact_problem(20, 10, false);
     let opts = SaddleOptions { ordering: SaddleOrdering::Amd, reg_delta: 0.0, reg_eps: 0.0, ..seq_opts() };
-    let mut sys = SaddleSystem::with_options(&p.a, &p.e_rows, &p.d, opts).unwrap();
+    let mut sys = SaddleSystem::with_options(p.a.as_ref(), &p.e_rows, &p.d, opts).unwrap();
     // AMD eliminates some low-degree multiplier before its displacements: zero pivot
     match sys.factorize(&vec![true; p.m]) {
         Err(SaddleError::ZeroPivot { .. }) => {}
@@ -248,7 +248,7 @@ fn rank_deficient_e_is_reported() {
     let dup = p.e_rows[4].clone();
     p.e_rows.push(dup);
     p.m += 1;
-    let mut sys = SaddleSystem::with_options(&p.a, &p.e_rows, &p.d, seq_opts()).unwrap();
+    let mut sys = SaddleSystem::with_options(p.a.as_ref(), &p.e_rows, &p.d, seq_opts()).unwrap();
     let mut rng = Rng(9);
     let d: Vec<f64> = (0..p.m).map(|_| rng.sym()).collect();
     let res = sys.factorize(&vec![true; p.m]).and_then(|_| sys.solve(&vec![1.0; p.n], &d, &vec![0.0; p.m]));
@@ -268,11 +268,11 @@ fn invalid_inputs() {
     let p = contact_problem(6, 3, true);
     let mut bad_e = p.e_rows.clone();
     bad_e[0].push((p.n, 1.0));
-    assert!(matches!(SaddleSystem::new(&p.a, &bad_e, &p.d), Err(SaddleError::InvalidInput(_))));
+    assert!(matches!(SaddleSystem::new(p.a.as_ref(), &bad_e, &p.d), Err(SaddleError::InvalidInput(_))));
     let mut bad_d = p.d.clone();
     bad_d.push((0, 1, 1.0));
-    assert!(matches!(SaddleSystem::new(&p.a, &p.e_rows, &bad_d), Err(SaddleError::InvalidInput(_))));
-    let mut sys = SaddleSystem::new(&p.a, &p.e_rows, &p.d).unwrap();
+    assert!(matches!(SaddleSystem::new(p.a.as_ref(), &p.e_rows, &bad_d), Err(SaddleError::InvalidInput(_))));
+    let mut sys = SaddleSystem::new(p.a.as_ref(), &p.e_rows, &p.d).unwrap();
     assert_eq!(sys.solve(&vec![0.0; p.n], &vec![0.0; p.m], &vec![0.0; p.m]).unwrap_err(), SaddleError::NotFactorized);
     assert!(matches!(sys.factorize(&[true]), Err(SaddleError::InvalidInput(_))));
     sys.factorize(&vec![true; p.m]).unwrap();
@@ -285,7 +285,7 @@ fn invalid_inputs() {
         row.push((c, 0.5 * v));
         row.reverse();
     }
-    let mut sys2 = SaddleSystem::new(&p.a, &e2, &p.d).unwrap();
+    let mut sys2 = SaddleSystem::new(p.a.as_ref(), &e2, &p.d).unwrap();
     sys2.factorize(&vec![true; p.m]).unwrap();
     let f: Vec<f64> = (0..p.n).map(|i| (i as f64).sin()).collect();
     let a = sys.solve(&f, &vec![0.0; p.m], &vec![0.0; p.m]).unwrap();
@@ -309,8 +309,8 @@ fn unsorted_a_columns_are_accepted() {
         col_ptr.push(rows.len());
     }
     let a2 = SparseColMat::new(SymbolicSparseColMat::new_unsorted_checked(n, n, col_ptr, None, rows), vals);
-    let mut s1 = SaddleSystem::with_options(&p.a, &p.e_rows, &p.d, seq_opts()).unwrap();
-    let mut s2 = SaddleSystem::with_options(&a2, &p.e_rows, &p.d, seq_opts()).unwrap();
+    let mut s1 = SaddleSystem::with_options(p.a.as_ref(), &p.e_rows, &p.d, seq_opts()).unwrap();
+    let mut s2 = SaddleSystem::with_options(a2.as_ref(), &p.e_rows, &p.d, seq_opts()).unwrap();
     let free: Vec<bool> = (0..p.m).map(|j| j % 3 != 0).collect();
     s1.factorize(&free).unwrap();
     s2.factorize(&free).unwrap();
@@ -327,7 +327,7 @@ fn unsorted_a_columns_are_accepted() {
 fn check_near(p: &ContactProblem, opts: SaddleOptions, seed: u64, label: &str) {
     let (n, m) = (p.n, p.m);
     let dref = DenseRef::new(p);
-    let mut sys = SaddleSystem::with_options(&p.a, &p.e_rows, &p.d, opts).unwrap();
+    let mut sys = SaddleSystem::with_options(p.a.as_ref(), &p.e_rows, &p.d, opts).unwrap();
     let mut rng = Rng(seed);
     let f: Vec<f64> = (0..n).map(|_| rng.sym() * p.h * p.h).collect();
     let d: Vec<f64> = (0..m).map(|_| rng.sym() * p.h * 1e-3).collect();
@@ -375,7 +375,7 @@ fn nearby_partitions_solve_with_the_bordered_factorization() {
     {
         let opts = SaddleOptions { supernodal_threshold: threshold, ..seq_opts() };
         let p = contact_problem(20, 10, true);
-        let mut sys = SaddleSystem::with_options(&p.a, &p.e_rows, &p.d, opts).unwrap();
+        let mut sys = SaddleSystem::with_options(p.a.as_ref(), &p.e_rows, &p.d, opts).unwrap();
         sys.factorize(&vec![true; sys.m]).unwrap();
         assert_eq!(sys.is_supernodal(), kind == "supernodal");
         check_near(&p, opts, 11, &format!("D>0 {kind}"));
@@ -391,7 +391,7 @@ fn a_far_partition_is_declined_not_bordered() {
     let p = contact_problem(80, 4, true);
     let (n, m) = (p.n, p.m);
     let dref = DenseRef::new(&p);
-    let mut sys = SaddleSystem::with_options(&p.a, &p.e_rows, &p.d, seq_opts()).unwrap();
+    let mut sys = SaddleSystem::with_options(p.a.as_ref(), &p.e_rows, &p.d, seq_opts()).unwrap();
     let mut rng = Rng(21);
     let f: Vec<f64> = (0..n).map(|_| rng.sym() * p.h * p.h).collect();
     let d: Vec<f64> = (0..m).map(|_| rng.sym() * p.h * 1e-3).collect();
