@@ -12,13 +12,14 @@
 //! Every Tresca QP and every Coulomb fixed-point iteration works with multiplier unknowns only; the
 //! displacement is recovered at the end with one more solve.
 
-use std::sync::{Mutex, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, LltRef, SymbolicCholesky};
 use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
-use faer::{Mat, MatMut, Par, Side};
+use faer::{Conj, Mat, MatMut, Par, Side};
 
 use crate::error::{Error, Num, Result};
 use crate::linalg::saddle::{SaddleError, SaddleOptions, SaddleSystem};
@@ -46,7 +47,7 @@ struct Columns {
 /// The sparse Cholesky factorization of A, in one of two orderings.
 enum Direct {
     /// Fill-reducing (AMD) ordering, the symbolic factorization of K's pattern: columns of H are solves.
-    Columns(Llt<usize, f64>),
+    Columns(Arc<SymbolicCholesky<usize>>, Vec<f64>),
     /// The dofs E touches ordered last ([`crate::linalg::schur`]): all of `E A⁻¹ Eᵀ` from the trailing block.
     Schur(schur::SchurFactor),
 }
@@ -54,8 +55,15 @@ enum Direct {
 impl Direct {
     fn solve_in_place(&self, x: MatMut<'_, f64>) -> Result<()> {
         match self {
-            Self::Columns(llt) => {
-                llt.solve_in_place(x);
+            Self::Columns(symbolic, values) => {
+                let par = faer::get_global_parallelism();
+                let req = symbolic.solve_in_place_scratch::<f64>(x.ncols(), par);
+                let mut mem = MemBuffer::try_new(req).map_err(|_| Error::MemoryBudget {
+                    what: "the workspace of a solve with the factor of A".to_string(),
+                    needed: req.size_bytes() as f64,
+                    budget: f64::NAN,
+                })?;
+                LltRef::new(symbolic, values).solve_in_place_with_conj(Conj::No, x, par, MemStack::new(&mut mem));
                 Ok(())
             }
             Self::Schur(f) => f.solve_in_place(x, Par::rayon(0)).map_err(schur_error),
@@ -174,7 +182,7 @@ impl Factor {
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         k: &SparseColMat<usize, f64>,
-        symbolic: &OnceLock<SymbolicLlt<usize>>,
+        symbolic: &OnceLock<Arc<SymbolicCholesky<usize>>>,
         minus_g: &[Triplet<usize, usize, f64>],
         e_rows: Vec<Vec<(usize, f64)>>,
         d_gamma: Vec<(usize, usize, f64)>,
@@ -236,6 +244,9 @@ impl Factor {
         let partial = |cols: &mut Vec<Option<Vec<f64>>>| -> Result<(Direct, f64, f64)> {
             let clock = Instant::now();
             let sym = SchurSymbolic::new(a.symbolic(), &e_rows).map_err(schur_error)?;
+            let req = sym.symbolic().factorize_numeric_llt_scratch::<f64>(Par::rayon(0), Default::default());
+            let what = "the partial Cholesky factor of A = K − G (the Γ_C dofs last) and the dense H";
+            fits_budget(what, sym.len_val(), req, bytes, a.nrows(), budget)?;
             let factor = sym.factorize(a, Par::rayon(0)).map_err(schur_error)?;
             let factorization_seconds = clock.elapsed().as_secs_f64();
             let clock = Instant::now();
@@ -257,16 +268,17 @@ impl Factor {
             let symbolic = match symbolic.get() {
                 Some(s) => s,
                 None => {
-                    let s = SymbolicLlt::try_new(k.symbolic(), Side::Lower).map_err(|e| Error::Assembly {
-                        matrix: "the symbolic Cholesky factor of K",
-                        what: format!("{e:?}"),
-                    })?;
-                    symbolic.get_or_init(|| s)
+                    let s =
+                        factorize_symbolic_cholesky(k.symbolic(), Side::Lower, Default::default(), Default::default())
+                            .map_err(|e| Error::Assembly {
+                                matrix: "the symbolic Cholesky factor of K",
+                                what: format!("{e:?}"),
+                            })?;
+                    symbolic.get_or_init(|| Arc::new(s))
                 }
             };
-            let llt = Llt::try_new_with_symbolic(symbolic.clone(), a, Side::Lower)
-                .map_err(|e| Error::NotPositiveDefinite { what: format!("{e:?}") })?;
-            (Direct::Columns(llt), clock.elapsed().as_secs_f64(), 0.0)
+            let values = factorize_plain(symbolic, a, budget)?;
+            (Direct::Columns(symbolic.clone(), values), clock.elapsed().as_secs_f64(), 0.0)
         };
         let clock = Instant::now();
         let u_f = solve(&direct, f)?;
@@ -494,6 +506,58 @@ impl Factor {
         }
         y
     }
+}
+
+/// The numeric Cholesky factorization of `a` with the symbolic analysis of its pattern, after checking that
+/// the factor's values and the factorization's workspace fit `budget` bytes (they are the largest
+/// allocation of a solve: about 1.1 kB per unknown on 2D meshes, see docs/scale.md).
+///
+/// # Errors
+/// [`Error::MemoryBudget`] naming the size before anything of it is allocated;
+/// [`Error::NotPositiveDefinite`] for a non-positive pivot.
+fn factorize_plain(
+    symbolic: &SymbolicCholesky<usize>,
+    a: SparseColMatRef<'_, usize, f64>,
+    budget: usize,
+) -> Result<Vec<f64>> {
+    let par = faer::get_global_parallelism();
+    let req = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
+    fits_budget("the sparse Cholesky factor of A = K − G", symbolic.len_val(), req, 0.0, a.nrows(), budget)?;
+    let mut values = Vec::new();
+    let too_large = |bytes: usize| Error::MemoryBudget {
+        what: "the sparse Cholesky factor of A = K − G (the allocation failed)".to_string(),
+        needed: bytes as f64,
+        budget: budget as f64,
+    };
+    values.try_reserve_exact(symbolic.len_val()).map_err(|_| too_large(8 * symbolic.len_val()))?;
+    values.resize(symbolic.len_val(), 0.0);
+    let mut mem = MemBuffer::try_new(req).map_err(|_| too_large(req.size_bytes()))?;
+    symbolic
+        .factorize_numeric_llt(
+            &mut values,
+            a,
+            Side::Lower,
+            LltRegularization::default(),
+            par,
+            MemStack::new(&mut mem),
+            Default::default(),
+        )
+        .map_err(|e| Error::NotPositiveDefinite { what: format!("{e:?}") })?;
+    Ok(values)
+}
+
+/// A sparse factor of `len_val` values with a workspace `req`, and `extra` bytes beside them, must fit
+/// `budget` bytes.
+fn fits_budget(what: &str, len_val: usize, req: StackReq, extra: f64, n: usize, budget: usize) -> Result<()> {
+    let needed = 8.0 * len_val as f64 + req.size_bytes() as f64 + extra;
+    if needed > budget as f64 {
+        return Err(Error::MemoryBudget {
+            what: format!("{what} ({n} unknowns: {len_val} values and the factorization's workspace)"),
+            needed,
+            budget: budget as f64,
+        });
+    }
+    Ok(())
 }
 
 /// The diagonal of a sparse matrix (0 where it stores none).

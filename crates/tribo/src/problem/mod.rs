@@ -16,7 +16,7 @@ pub use condense::Condensed;
 use std::sync::OnceLock;
 use std::time::Instant;
 
-use faer::sparse::linalg::solvers::SymbolicLlt;
+use faer::sparse::linalg::cholesky::SymbolicCholesky;
 use faer::sparse::SparseColMat;
 
 use crate::contact::gamma0::{admissible_gamma0, Gamma0Bound};
@@ -98,7 +98,7 @@ pub struct Problem {
     /// Symbolic Cholesky factorization of that pattern (fill-reducing ordering, elimination tree),
     /// computed by the first condensation that factorizes A by it (H by columns, or the saddle-point
     /// system's gradients; the partial factorization has its own ordering) and reused for every γ0.
-    pub symbolic: OnceLock<SymbolicLlt<usize>>,
+    pub symbolic: OnceLock<std::sync::Arc<SymbolicCholesky<usize>>>,
     /// Load on the unknowns with the lifting through K, `Tᵀ (f − K ū)`; the part through G, which
     /// depends on γ0, is added when A is factorized ([`crate::Factor::f`]).
     pub f_free: Vec<f64>,

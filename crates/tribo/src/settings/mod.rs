@@ -176,8 +176,12 @@ pub struct SolverSettings {
     pub qp: QpSettings,
     /// The Coulomb fixed point.
     pub fp: FixedPointSettings,
-    /// Bytes the dense parts of a solve (columns of H, the dense QP) may take. A solve that would need
-    /// more is refused with [`Error::MemoryBudget`], which gives the size. Default 4 GiB.
+    /// Bytes a solve may take for its factorization (the sparse Cholesky factor of A and its workspace,
+    /// checked after the symbolic analysis, before anything of that size is allocated) and, each on its
+    /// own, for its dense parts (columns of H, the dense QP) and for the solutions a loading history
+    /// keeps. A solve that would need more is refused with [`Error::MemoryBudget`], which gives the size.
+    /// Default: the memory this machine has available when the settings are made
+    /// ([`default_memory_budget`]).
     pub memory_budget: usize,
     /// How H is formed. Default [`Condensation::Auto`].
     pub condensation: Condensation,
@@ -189,10 +193,25 @@ impl Default for SolverSettings {
             stabilization: Stabilization::default(),
             qp: QpSettings::default(),
             fp: FixedPointSettings::default(),
-            memory_budget: 4 << 30,
+            memory_budget: default_memory_budget(),
             condensation: Condensation::default(),
         }
     }
+}
+
+/// The default memory budget: the physical memory available to new allocations now (Linux's
+/// `MemAvailable`), or 4 GiB where it cannot be read.
+pub fn default_memory_budget() -> usize {
+    available_memory().unwrap_or(4 << 30).max(1 << 20)
+}
+
+/// Bytes of physical memory available to new allocations without swapping (Linux's `MemAvailable` in
+/// `/proc/meminfo`); `None` elsewhere.
+pub fn available_memory() -> Option<usize> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let kb: usize =
+        text.lines().find_map(|l| l.strip_prefix("MemAvailable:"))?.split_whitespace().next()?.parse().ok()?;
+    kb.checked_mul(1024)
 }
 
 impl SolverSettings {

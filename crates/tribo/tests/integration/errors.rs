@@ -283,6 +283,24 @@ fn fuzzing_holes_are_typed_errors() {
         Error::MemoryBudget { needed, budget, .. } => assert!(needed > budget && budget == (64 << 20) as f64),
         e => panic!("{e}"),
     }
+    // D3: a factorization beyond the memory budget is refused after its symbolic analysis, before its
+    // values are allocated, with the size it would need: the plain factor (H by columns) and the partial
+    // one (the Γ_C dofs last), on 20,000 unknowns (a factor of about 10 MB) against 4 MiB (more than the dense
+    // H of its 202 multipliers needs).
+    let mesh = rectangle([0.0, 1.0], [0.0, 1.0], 100, 100, Diagonal::Right).unwrap();
+    let problem = Problem::new(mesh, spec()).unwrap();
+    for condensation in [Condensation::Columns, Condensation::Schur] {
+        let settings = SolverSettings { memory_budget: 4 << 20, condensation, ..Default::default() };
+        match problem.solve(&Friction::Frictionless, &settings, None).unwrap_err() {
+            Error::MemoryBudget { what, needed, budget } => {
+                assert!(needed > budget && budget == (4 << 20) as f64 && what.contains("Cholesky factor"), "{what}")
+            }
+            e => panic!("{condensation:?}: {e}"),
+        }
+    }
+    // The same problem within the default budget (the memory this machine has available) solves.
+    let sol = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).unwrap();
+    assert_eq!(sol.report.status, SolveStatus::Converged);
 }
 
 /// A Solution reports the gap, von Mises and KKT residuals that do not overflow or divide by a

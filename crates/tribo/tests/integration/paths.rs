@@ -273,11 +273,18 @@ proptest! {
             let c = if bounds.is_some() { load.c.clone() } else { [&load.c[..k / 2], &vec![0.0; k / 2][..]].concat() };
             let objective = 0.5 * quad(&h, &nu) + c.iter().zip(&nu).map(|(a, b)| a * b).sum::<f64>();
             let tol = tribo_testkit::reached_qp_tol(&settings(*path), sol);
-            // The gap part, and the feasibility part: each scaled unknown may lie up to tol outside its
-            // box, which moves the objective by at most tol Σ w_i |(Hν + c)_i|.
+            // The gap part, and the feasibility part: clarabel stops when the violation of A x̃ + s̃ = b̃
+            // (x̃ = ν / w the scaled unknowns, b̃ their boxes, s̃ ≥ 0 the slacks) is at most
+            // tol · max(1, ‖b̃‖∞ + ‖x̃‖∞ + ‖s̃‖∞) (its `res_primal`), and ‖s̃‖∞ ≤ ‖b̃‖∞ + ‖x̃‖∞; so each scaled
+            // unknown may lie up to tol · max(1, 2 (‖b̃‖∞ + ‖x̃‖∞)) outside its box, which moves the objective
+            // by at most that times Σ w_i |(Hν + c)_i|.
             let (w, phi) = scaling(&h, &c, bounds.as_deref());
             let moved: f64 = (0..k).map(|i| w[i] * ((0..k).map(|j| h[i * k + j] * nu[j]).sum::<f64>() + c[i]).abs()).sum();
-            let slack = tol * (phi + objective.abs() + moved);
+            let x_max = (0..k).filter(|&i| w[i] > 0.0).map(|i| (nu[i] / w[i]).abs()).fold(0.0, f64::max);
+            let b_max = bounds.as_deref().map_or(0.0, |b| (0..k / 2).filter(|&j| w[k / 2 + j] > 0.0)
+                .map(|j| b[j] / w[k / 2 + j]).fold(0.0, f64::max));
+            let feasibility = (2.0 * (b_max + x_max)).max(1.0);
+            let slack = tol * (phi + objective.abs() + feasibility * moved);
             Answer { nu, objective, slack }
         };
         let reference_answer = answer(&reference, &reference_path);
