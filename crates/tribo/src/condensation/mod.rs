@@ -16,7 +16,6 @@ use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
-use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, LltRef, SymbolicCholesky};
 use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
 use faer::{Conj, Mat, MatMut, Par, Side};
@@ -523,27 +522,14 @@ fn factorize_plain(
     let par = faer::get_global_parallelism();
     let req = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
     fits_budget("the sparse Cholesky factor of A = K − G", symbolic.len_val(), req, 0.0, a.nrows(), budget)?;
-    let mut values = Vec::new();
-    let too_large = |bytes: usize| Error::MemoryBudget {
-        what: "the sparse Cholesky factor of A = K − G (the allocation failed)".to_string(),
-        needed: bytes as f64,
-        budget: budget as f64,
-    };
-    values.try_reserve_exact(symbolic.len_val()).map_err(|_| too_large(8 * symbolic.len_val()))?;
-    values.resize(symbolic.len_val(), 0.0);
-    let mut mem = MemBuffer::try_new(req).map_err(|_| too_large(req.size_bytes()))?;
-    symbolic
-        .factorize_numeric_llt(
-            &mut values,
-            a,
-            Side::Lower,
-            LltRegularization::default(),
-            par,
-            MemStack::new(&mut mem),
-            Default::default(),
-        )
-        .map_err(|e| Error::NotPositiveDefinite { what: format!("{e:?}") })?;
-    Ok(values)
+    schur::numeric_llt(symbolic, a, par).map_err(|e| match e {
+        schur::SchurError::TooLarge { what, bytes } => Error::MemoryBudget {
+            what: format!("the sparse Cholesky factor of A = K − G: {what} (the allocation failed)"),
+            needed: bytes as f64,
+            budget: budget as f64,
+        },
+        e => schur_error(e),
+    })
 }
 
 /// A sparse factor of `len_val` values with a workspace `req`, and `extra` bytes beside them, must fit

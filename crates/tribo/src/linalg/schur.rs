@@ -344,30 +344,35 @@ impl SchurSymbolic {
                 self.a_nnz
             )));
         }
-        let len = self.symbolic.len_val();
-        let mut values = Vec::new();
-        values.try_reserve_exact(len).map_err(|_| SchurError::TooLarge { what: "factor values", bytes: len * 8 })?;
-        values.resize(len, 0.0);
-        let mut mem = try_buffer(
-            self.symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
-            "factorization workspace",
-        )?;
-        let res = self.symbolic.factorize_numeric_llt(
-            &mut values,
-            a,
-            Side::Lower,
-            LltRegularization::default(),
-            par,
-            MemStack::new(&mut mem),
-            Default::default(),
-        );
-        match res {
-            Ok(_) => Ok(SchurFactor { symbolic: Arc::clone(self), values }),
-            Err(LltError::NonPositivePivot { index }) => {
-                let dof = self.symbolic.perm().map_or(index, |p| p.arrays().0.get(index).copied().unwrap_or(index));
-                Err(SchurError::NotPositiveDefinite { dof })
-            }
-        }
+        let values = numeric_llt(&self.symbolic, a, par)?;
+        Ok(SchurFactor { symbolic: Arc::clone(self), values })
+    }
+}
+
+/// The numeric Cholesky factorization of `a` with the symbolic analysis `symbolic` of its pattern (lower
+/// triangle read): the factor's values.
+///
+/// # Errors
+/// [`SchurError::TooLarge`] if the values or the workspace cannot be allocated;
+/// [`SchurError::NotPositiveDefinite`] naming the dof (in `a`'s numbering) of a non-positive pivot.
+pub fn numeric_llt(
+    symbolic: &SymbolicCholesky<usize>,
+    a: SparseColMatRef<'_, usize, f64>,
+    par: Par,
+) -> Result<Vec<f64>> {
+    let len = symbolic.len_val();
+    let mut values = Vec::new();
+    values.try_reserve_exact(len).map_err(|_| SchurError::TooLarge { what: "factor values", bytes: len * 8 })?;
+    values.resize(len, 0.0);
+    let mut mem =
+        try_buffer(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()), "factorization workspace")?;
+    let stack = MemStack::new(&mut mem);
+    let reg = LltRegularization::default();
+    match symbolic.factorize_numeric_llt(&mut values, a, Side::Lower, reg, par, stack, Default::default()) {
+        Ok(_) => Ok(values),
+        Err(LltError::NonPositivePivot { index }) => Err(SchurError::NotPositiveDefinite {
+            dof: symbolic.perm().map_or(index, |p| p.arrays().0.get(index).copied().unwrap_or(index)),
+        }),
     }
 }
 
