@@ -337,3 +337,11 @@ pub fn reached_qp_tol(settings: &SolverSettings, sol: &Solution) -> f64 {
         settings.qp.tol
     }
 }
+
+/// The peak resident memory of this process so far, in MB (Linux's VmHWM; NaN where there is none): the
+/// cost and scale examples read it after each phase.
+pub fn peak_mb() -> f64 {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    let kb = status.lines().find_map(|l| l.strip_prefix("VmHWM:")?.split_whitespace().next()?.parse::<f64>().ok());
+    kb.map_or(f64::NAN, |kb| kb / 1024.0)
+}

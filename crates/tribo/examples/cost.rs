@@ -38,7 +38,7 @@ use std::time::Instant;
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 use tribo::*;
-use tribo_testkit::{block_problem, hertz_mesh, hertz_scene, hertz_spec, two_body_hertz};
+use tribo_testkit::{block_problem, hertz_mesh, hertz_scene, hertz_spec, peak_mb, two_body_hertz};
 
 /// Builds a problem when called (the largest take seconds).
 type Build = Box<dyn Fn() -> Result<Problem>>;
@@ -80,13 +80,6 @@ fn problems(family: &str) -> Vec<(f64, Build)> {
 
 fn spec() -> ProblemSpec {
     hertz_spec(hertz_scene().approach, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1)
-}
-
-/// The peak resident memory of this process so far, in MB (Linux's VmHWM; NaN where there is none).
-fn peak_mb() -> f64 {
-    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
-    let kb = status.lines().find_map(|l| l.strip_prefix("VmHWM:")?.split_whitespace().next()?.parse::<f64>().ok());
-    kb.map_or(f64::NAN, |kb| kb / 1024.0)
 }
 
 /// Symbolic + numeric sparse Cholesky of K and one solve; returns the time in seconds (best of `reps`).

@@ -16,14 +16,7 @@ use std::time::Instant;
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 use tribo::*;
-use tribo_testkit::{hertz_scene, hertz_spec};
-
-/// The peak resident memory of this process so far, in MB (Linux's VmHWM; NaN where there is none).
-fn peak_mb() -> f64 {
-    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
-    let kb = status.lines().find_map(|l| l.strip_prefix("VmHWM:")?.split_whitespace().next()?.parse::<f64>().ok());
-    kb.map_or(f64::NAN, |kb| kb / 1024.0)
-}
+use tribo_testkit::{hertz_scene, hertz_spec, peak_mb};
 
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().collect();

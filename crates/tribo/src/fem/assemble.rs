@@ -160,6 +160,9 @@ fn stiffness_on_unknowns(
             }
         }
     }
+    // faer's checks hold by construction, whatever the mesh: col_ptr starts at 0 and never decreases (it
+    // adds counts), and each column's rows are below n_free and increasing (the neighbour lists are
+    // sorted and deduplicated, and the unknowns are numbered node by node).
     let pattern = SymbolicSparseColMat::new_checked(n_free, n_free, col_ptr, None, row_idx);
     Ok((SparseColMat::new(pattern, values), k_lift))
 }
