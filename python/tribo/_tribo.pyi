@@ -215,7 +215,15 @@ class Problem(ProblemData):
         on: list[int] = ...,
     ) -> tuple[
         dict[str, Any],
-        list[tuple[tuple[int, int, int, list[tuple[str, float]], float, float], str, Mesh, _Floats1]],
+        list[
+            tuple[
+                tuple[int, int, int, list[tuple[str, float]], float, float],
+                str,
+                list[tuple[int, int, int, int]],
+                Mesh,
+                _Floats1,
+            ]
+        ],
         str,
     ]: ...
     def contact_points(self, xi: _ArrayLike) -> _Floats2: ...

@@ -52,7 +52,7 @@ def write_levels(out: str | Path, adaptive: Adaptive | AdaptiveHistory, **solve:
     """Solves every level's problem again (``solve`` keywords, to their full tolerances) and writes the
     series ``levels/level_NNN.vtu`` (+ ``_contact``, ``_multipliers``) with ``adapt.pvd`` (and
     ``adapt_contact.pvd``, ``adapt_multipliers.pvd``): ParaView steps through the refinement, the level
-    as the time. For an adaptive history, each level solves the whole history again (its steps are
+    as the time (two bodies in one mesh, cell data ``body``). For an adaptive history, each level solves the whole history again (its steps are
     ``adaptive.history``'s) and writes its last converged step (the failed one if none converged; a level
     with neither is left out of the series, with a log line)."""
     out = Path(out)
@@ -63,14 +63,17 @@ def write_levels(out: str | Path, adaptive: Adaptive | AdaptiveHistory, **solve:
         problem = adaptive.level_problem(k)
         if isinstance(adaptive, AdaptiveHistory):
             h = adaptive.history
-            history = problem.solve_history(h.approach, h.shift, h.load_factor, **solve)
+            history = problem.solve_history(h.approach, h.shift, h.load_factor, displacements=h.displacements or None,
+                                            **solve)
             solution = history.solutions[-1] if len(history) else history.failed
             if solution is None:
                 log.info("level %d: the history's first step ended with status '%s'; not written", k, history.status)
                 continue
         else:
             solution = problem.solve(**solve)
-        for part, p in zip(series, write_vtu(out / "levels" / f"level_{k:03d}.vtu", problem, solution), strict=True):
+        # Two bodies: the joined mesh, whose cell data 'body' tells them apart (as a history's series).
+        paths = write_vtu(out / "levels" / f"level_{k:03d}.vtu", problem, solution, per_body=False)
+        for part, p in zip(series, paths, strict=True):
             part.append(p)
         levels.append(k)
     files = [p for part in series for p in part]

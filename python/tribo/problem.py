@@ -146,6 +146,16 @@ def history_steps(
     return np.stack(np.broadcast_arrays(*(a.reshape(-1) for a in arrays.values())), axis=1)
 
 
+def _body_mesh(mesh: _tribo.Mesh, name: str, spans: Sequence[int]) -> _tribo.Mesh:
+    """Body ``name`` of a joined two-body mesh alone: nodes ``spans[0]:spans[1]``, triangles
+    ``spans[2]:spans[3]``, its edge sets ('name.set') under their own names; the inverse of the join that
+    ``Problem.two_bodies`` makes (the vertex order, and with it the refinement state, is kept)."""
+    n0, n1, t0, t1 = (int(v) for v in spans)
+    prefix = f"{name}."
+    sets = {k[len(prefix):]: np.asarray(v) - n0 for k, v in mesh.edge_sets.items() if k.startswith(prefix)}
+    return _tribo.Mesh(mesh.points[n0:n1], np.asarray(mesh.triangles)[t0:t1] - n0, sets)
+
+
 class Problem(_tribo.Problem):
     """A contact problem, validated and assembled once (independent of γ0 and friction). It keeps the
     factorization of its last solve, reused by the next solve with the same γ0.
@@ -160,11 +170,13 @@ class Problem(_tribo.Problem):
     """
 
     _arguments: dict[str, Any]
+    _source: Any
 
     def __new__(cls, mesh: _tribo.Mesh | Sequence[tuple[Any, ...]], **arguments: Any) -> Problem:
         problem = super().__new__(cls, mesh, **_compiled_arguments(arguments))
-        # The arguments, so that an adaptive solve can build the problem of its last mesh.
+        # The arguments (and the bodies, for two), so that an adaptive solve can build a level's problem.
         problem._arguments = arguments
+        problem._source = mesh
         return problem
 
     @classmethod
@@ -188,7 +200,7 @@ class Problem(_tribo.Problem):
         profiles). Each body has its own material, supports and tractions (``Body``), and moves only
         through its supports; ``body_force`` acts on both. The problem solves, solves histories and plots
         as a one-body problem; ``bodies`` says where each body lies in ``mesh`` (the two joined, edge sets
-        renamed 'body.set'). Adaptive refinement of two bodies is not available yet."""
+        renamed 'body.set'); adaptive refinement bisects both bodies."""
         if not (isinstance(first, Body) and isinstance(second, Body)):
             raise TypeError(f"two_bodies takes two tribo.Body, got {type(first).__name__} and {type(second).__name__}")
         return cls(
@@ -389,25 +401,34 @@ class Problem(_tribo.Problem):
 
     def _adapt(
         self, options: dict[str, Any], adapt: tuple[Any, ...], *history: Any
-    ) -> tuple[Any, Problem, list[Level], str, list[tuple[_tribo.Mesh, npt.NDArray[np.float64]]]]:
+    ) -> tuple[Any, Problem, list[Level], str, list[tuple[_tribo.Mesh, npt.NDArray[np.float64], Any]]]:
         """The compiled adaptive loop: its answer, the Problem of the last mesh, the levels as Level
-        records, the stop, and each level's mesh with its T_H points."""
+        records, the stop, and each level's mesh with its T_H points and its bodies' spans."""
         answer, levels, stop = self._solve_adaptive(options, adapt, *history)
         records = [
             Level(unknowns=u, multipliers=q, triangles=t, estimate=dict(e), relative=r, seconds=s, status=st)  # type: ignore[arg-type]
-            for ((u, q, t, e, r, s), st, _, _) in levels
+            for ((u, q, t, e, r, s), st, _, _, _) in levels
         ]
-        meshes = [(mesh, xi) for (_, _, mesh, xi) in levels]
+        meshes = [(mesh, xi, spans) for (_, _, spans, mesh, xi) in levels]
         return answer, self.on_mesh(*meshes[-1]), records, stop, meshes
 
-    def on_mesh(self, mesh: _tribo.Mesh, multiplier_points: npt.ArrayLike) -> Problem:
-        """This problem (material, supports, loads, obstacle, multiplier space) on another mesh with the
-        multiplier mesh T_H through ``multiplier_points`` (abscissae on Γ_C): how an adaptive solve hands
-        back the problem of a level."""
-        if self.primary is not None:
-            raise _contact_error("a two-body problem cannot be moved to another mesh yet (no adaptive refinement)")
+    def on_mesh(
+        self, mesh: _tribo.Mesh, multiplier_points: npt.ArrayLike, bodies: Sequence[Sequence[int]] | None = None
+    ) -> Problem:
+        """This problem (materials, supports, loads, obstacle or contact pair, multiplier space) on another
+        mesh with the multiplier mesh T_H through ``multiplier_points`` (abscissae on Γ_C): how an adaptive
+        solve hands back the problem of a level. For two bodies ``mesh`` is the two joined, as in
+        ``problem.mesh``, and ``bodies`` gives each body's [first node, end, first triangle, end] in it (as
+        ``problem.bodies``; default this problem's)."""
         arguments = {**self._arguments, "multiplier_ratio": None, "multiplier_size": None}
-        return Problem(mesh, **{**arguments, "multiplier_points": multiplier_points})
+        arguments["multiplier_points"] = multiplier_points
+        if self.primary is None:
+            return Problem(mesh, **arguments)
+        spans = [s for _, s, _ in self.bodies] if bodies is None else bodies
+        if len(spans) != 2:
+            raise _contact_error(f"bodies must give the spans of the two bodies, got {len(spans)}")
+        compiled = [(b[0], _body_mesh(mesh, b[0], s), *b[2:]) for b, s in zip(self._source, spans, strict=True)]
+        return Problem(compiled, **arguments)
 
     @property
     def contact_edges(self) -> npt.NDArray[np.int64]:

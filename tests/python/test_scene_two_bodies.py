@@ -105,6 +105,43 @@ def test_the_two_body_fretting_scene_traces_a_loop(tmp_path: Path) -> None:
     assert not (out / "step_0000.vtm").exists(), "the series keeps the joined mesh (cell data 'body')"
 
 
+def test_an_adaptive_two_body_history_runs_and_writes_its_levels(tmp_path: Path) -> None:
+    """``[adapt]`` with ``[[bodies]]`` and a ``[history]`` that moves a support: the loop refines both bodies
+    from coarse uniform meshes, the history runs on the last mesh, and every level's joined mesh is written
+    in the series (read back with meshio: cell data 'body' splits it as the level's bodies)."""
+    text = scene_path("hertz_two_bodies").read_text(encoding="utf-8")
+    text = text.replace("grading = [-0.15, 0.15], h = 0.5, h_min = 0.005, growth = 0.15",
+                        'grading = "none", h = 0.5')
+    text = text.replace('{ kind = "displacement", edge_set = "top", y = -0.01 }',
+                        '{ kind = "displacement", edge_set = "top", x = 0.0, y = -0.01 }')
+    text = text.replace('  { kind = "displacement", edge_set = "left", x = 0.0 },\n', "")
+    text += (
+        "\n[friction]\nmu = 0.3\n"
+        '\n[history]\ndisplacements = { "upper.top.x" = [0.0, 0.001] }\nsteps = 2\n'
+        "\n[adapt]\ntol = 0.3\n"
+    )
+    scene = tmp_path / "s.toml"
+    scene.write_text(text, encoding="utf-8")
+    assert load_scene(scene).build().n_free < 1000, "the bodies start coarse"
+    out = tmp_path / "out"
+    assert main(["-q", "run", str(scene), "--out", str(out), "--no-plots"]) == 0
+    with (out / "adapt.csv").open(encoding="utf-8") as f:
+        levels = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    assert len(levels) > 2 and float(levels[-1]["relative"]) <= 0.3
+    with (out / "history.csv").open(encoding="utf-8") as f:
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    assert [float(r["upper.top.x"]) for r in rows] == [0.0, 0.0005, 0.001]
+    q = [float(r["tangential_force"]) for r in rows]
+    assert q[0] < q[1] < q[2] < 0.3 * float(rows[2]["normal_force"])
+    series = ET.parse(out / "adapt.pvd").getroot()
+    files = [d.get("file") for d in series.iter("DataSet")]
+    assert len(files) == len(levels)
+    last = meshio.read(out / str(files[-1]))
+    assert len(last.cells_dict["triangle"]) == int(levels[-1]["triangles"])
+    body = last.cell_data["body"][0]
+    assert set(np.unique(body)) == {0, 1} and np.all(np.diff(body) >= 0), "the lower body's triangles first"
+
+
 def two_body_scene(**changes: Any) -> dict[str, Any]:
     data = tomllib.loads(scene_path("hertz_two_bodies").read_text(encoding="utf-8"))
     for dotted, value in changes.items():

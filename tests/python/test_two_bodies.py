@@ -92,11 +92,52 @@ def test_bad_pairs_are_errors() -> None:
     with pytest.raises(tribo.ContactGeometryError, match="body 'punch' is not held.*translation") as info:
         tribo.Problem.two_bodies(a, punch, secondary="a.top", primary="punch.bottom")
     assert info.value.kind == "ContactPair"
-    # Not yet for two bodies, and said so: adaptive refinement (and so another mesh).
-    with pytest.raises(tribo.ContactGeometryError, match="two-body"):
-        problem.solve_adaptive(tol=0.1)
-    with pytest.raises(tribo.ContactGeometryError, match="two-body"):
-        problem.on_mesh(problem.mesh, problem.multiplier_mesh)
+    with pytest.raises(tribo.ContactGeometryError, match="spans of the two bodies"):
+        problem.on_mesh(problem.mesh, problem.multiplier_mesh, [[0, 1, 0, 1]])
+
+
+def coarse_pair() -> tribo.Problem:
+    """Two-body Hertz (steel under aluminium, a parabolic gap of radius 1) on coarse uniform meshes of
+    both blocks: no node of either side lies under the contact zone."""
+    lower = tribo.Body("lower", tribo.Mesh.rectangle((-2.0, 2.0), (-2.0, 0.0), 8, 4), young=200.0, poisson=0.3,
+                       clamped="bottom")
+    upper = tribo.Body("upper", tribo.Mesh.rectangle((-2.0, 2.0), (0.0, 1.0), 8, 2, diagonal="left"), young=70.0,
+                       poisson=0.33, supports=tribo.Support.displacement("top", x=0.0, y=-0.01))
+    return tribo.Problem.two_bodies(lower, upper, secondary="lower.top", primary="upper.bottom",
+                                    gap=tribo.Obstacle.parabola(1.0))
+
+
+def test_two_bodies_adapt_and_hand_back_each_level() -> None:
+    """The loop refines both bodies (the Rust test checks the accuracy against two-body Hertz); every level's
+    problem, rebuilt in Python from its joined mesh and the bodies' spans, is the one the loop solved."""
+    out = coarse_pair().solve_adaptive(tol=0.15)
+    assert out.stop == "tolerance" and out.solution.report.converged
+    assert [name for name, _, _ in out.problem.bodies] == ["lower", "upper"]
+    for k in (0, len(out.levels) // 2, len(out.levels) - 1):
+        level = out.level_problem(k)
+        assert (level.n_free, level.n_multipliers) == (out.levels[k].unknowns, out.levels[k].multipliers)
+        assert [list(s) for _, s, _ in level.bodies] == [list(s) for s in out.meshes[k][2]]
+    again = out.level_problem(len(out.levels) - 1).solve()
+    scale = np.max(out.solution.lambda_n)
+    assert np.max(np.abs(again.lambda_n - out.solution.lambda_n)) <= 1e-9 * scale
+    # Each body keeps its reaction balance: the two supports carry equal and opposite vertical forces.
+    (_, lo, _), (_, up, _) = out.problem.bodies
+    ry = again.reactions[:, 1]
+    assert ry[lo[0]:lo[1]].sum() == pytest.approx(-ry[up[0]:up[1]].sum(), rel=1e-9)
+
+
+def test_a_two_body_history_adapts() -> None:
+    """Pressed, then sheared through the upper block's top with Coulomb friction: every level solves the
+    whole history on both refined bodies."""
+    out = coarse_pair().solve_history_adaptive(displacements={"upper.top.x": [0.0, 0.0005, 0.001]}, mu=0.3,
+                                               tol=0.3)
+    assert out.stop == "tolerance" and out.history.status == "converged" and len(out.history.solutions) == 3
+    assert out.levels[-1].unknowns > 10 * out.levels[0].unknowns
+    # Pressing alone shears only through the dissimilar materials and the meshes' asymmetry; then the
+    # friction force grows with the shear, below sliding.
+    q = [s.tangential_force for s in out.history.solutions]
+    limit = 0.3 * out.history.solutions[-1].normal_force
+    assert abs(q[0]) < 1e-3 * limit and q[0] < q[1] < q[2] < limit
 
 
 def shear_pair(h_min: float = 0.01) -> tribo.Problem:

@@ -368,7 +368,7 @@ impl PyProblem {
     }
 
     /// Solves adaptively (`solve_adaptive`), or the history `steps` on the steps `on` (`solve_history_adaptive`);
-    /// returns the solution's or history's fields, the levels (each with its mesh and T_H) and the stop.
+    /// returns the solution's or history's fields, the levels (each with its bodies' spans, mesh and T_H), the stop.
     #[pyo3(name = "_solve_adaptive", signature = (options, a, steps = None, on = Vec::new()))]
     fn solve_adaptive<'py>(
         &self,
@@ -396,8 +396,10 @@ impl PyProblem {
         let (answer, levels, stop) = finish(result, error)?;
         let answer = answer.map_or_else(|s| results::solution(py, &s), |h| results::history(py, &h))?;
         let level = |l: &Level| (l.unknowns, l.multipliers, l.triangles, l.estimate.named(), l.relative, l.seconds);
-        let mesh =
-            |l: Level| Ok((level(&l), l.status.name(), PyMesh::from_core(py, l.mesh)?, vec1(py, &l.multiplier_mesh)?));
+        let spans = |l: &Level| l.bodies.iter().map(|b| b.spans()).collect::<Vec<_>>();
+        let mesh = |l: Level| {
+            Ok((level(&l), l.status.name(), spans(&l), PyMesh::from_core(py, l.mesh)?, vec1(py, &l.multiplier_mesh)?))
+        };
         let levels = levels.into_iter().map(mesh).collect::<PyResult<Vec<_>>>()?;
         (answer, levels, stop.as_str()).into_pyobject(py)
     }

@@ -44,7 +44,7 @@ use std::time::Instant;
 
 use crate::contact::multiplier::MultiplierPoints;
 use crate::error::{Error, Result};
-use crate::mesh::refine::{bisect, label_longest_edge};
+use crate::mesh::refine::{bisect, label_longest_edge, Refinement};
 use crate::problem::load_case::LoadCase;
 use crate::problem::Problem;
 use crate::results::{ErrorEstimate, Solution, SolveStatus};
@@ -74,6 +74,8 @@ pub struct Level {
     pub mesh: crate::mesh::Mesh,
     /// The points of the level's multiplier mesh T_H (abscissae on Γ_C).
     pub multiplier_mesh: Vec<f64>,
+    /// Where each body lies in `mesh` (as [`Problem::bodies`]).
+    pub bodies: Vec<crate::problem::bodies::BodyPart>,
 }
 
 /// Why the adaptive loop stopped.
@@ -180,15 +182,10 @@ impl Problem {
         read: &dyn Fn(&T) -> Vec<&Solution>,
         ended: &dyn Fn(&T) -> (SolveStatus, usize),
     ) -> Result<(Problem, T, Vec<Level>, AdaptStop)> {
-        if let Some(p) = &self.primary {
-            return Err(Error::ContactPair {
-                secondary: self.spec.contact.clone(),
-                primary: p.boundary.set.clone(),
-                what: "adaptive refinement of a two-body problem is not available yet".to_string(),
-            });
-        }
         let ratio = multipliers::ratio(&self.multipliers.xi, &self.contact);
-        let mut problem = Problem::new(label_longest_edge(&self.mesh), self.spec.clone())?;
+        // Relabelling rotates triangles: every triangle is its own parent, no node is new.
+        let identity: Vec<usize> = (0..self.mesh.n_triangles()).collect();
+        let mut problem = self.refined(label_longest_edge(&self.mesh), &identity, &[], self.spec.clone())?;
         let mut start: Option<Vec<f64>> = None;
         let mut levels = Vec::new();
         let warm = |s: &Solution| [s.lambda_n.as_slice(), s.lambda_t.as_slice()].concat();
@@ -222,8 +219,8 @@ impl Problem {
                 None => {
                     let solutions = read(&answer);
                     let marked = marking::mark(&marking::indicators(&solutions), adapt.theta, adapt.marking);
-                    let refined = bisect(&problem.mesh, &marked)?.into_mesh();
-                    if 2 * refined.n_nodes() > adapt.max_unknowns {
+                    let refined = bisect(&problem.mesh, &marked)?;
+                    if 2 * refined.mesh().n_nodes() > adapt.max_unknowns {
                         None
                     } else {
                         Some(next_problem(&problem, &solutions, refined, ratio)?)
@@ -280,6 +277,7 @@ fn new_level(problem: &Problem, solutions: Vec<&Solution>, status: SolveStatus) 
         status,
         mesh: problem.mesh.clone(),
         multiplier_mesh: problem.multipliers.xi.clone(),
+        bodies: problem.bodies.clone(),
     }
 }
 
@@ -297,9 +295,9 @@ fn solve_level(
 
 /// The problem of the next level: the refined mesh, and T_H refined where contact is or may be in any
 /// of the solutions.
-fn next_problem(problem: &Problem, solutions: &[&Solution], mesh: crate::mesh::Mesh, ratio: f64) -> Result<Problem> {
+fn next_problem(problem: &Problem, solutions: &[&Solution], refined: Refinement, ratio: f64) -> Result<Problem> {
     let mut spec = problem.spec.clone();
-    let contact = crate::contact::ContactBoundary::new(&mesh, &spec.contact)?;
+    let contact = crate::contact::ContactBoundary::new(refined.mesh(), &spec.contact)?;
     // Surely apart: every node of the segment has a current gap beyond the largest displacement on Γ_C,
     // in every solution.
     let old = &problem.contact.node_xi;
@@ -314,5 +312,6 @@ fn next_problem(problem: &Problem, solutions: &[&Solution], mesh: crate::mesh::M
     };
     let xi = multipliers::refine(&problem.multipliers.xi, &contact, ratio, apart);
     spec.multiplier_points = MultiplierPoints::Abscissae(xi);
-    Problem::new(mesh, spec)
+    let (mesh, parent, midpoints) = refined.into_parts();
+    problem.refined(mesh, &parent, &midpoints, spec)
 }

@@ -107,6 +107,11 @@ impl Refinement {
         self.mesh
     }
 
+    /// The refined mesh, [`Refinement::parent`] and [`Refinement::midpoints`], by value.
+    pub fn into_parts(self) -> (Mesh, Vec<usize>, Vec<[usize; 2]>) {
+        (self.mesh, self.parent, self.midpoints)
+    }
+
     /// For each triangle of the refined mesh, the index of the coarse triangle it lies in.
     pub fn parent(&self) -> &[usize] {
         &self.parent

@@ -9,9 +9,12 @@
 //! ([`crate::LoadStep::displacements`]); an obstacle motion (approach, shift) has no meaning for the pair
 //! and a history step that asks for one is refused ([`Error::BadLoadStep`]).
 //!
-//! What this first version does not do yet, each refused with [`Error::ContactPair`]: a body held only by
-//! the contact (each body needs its own supports; the error names the body and the motion they leave
-//! free) and adaptive refinement of a two-body problem.
+//! Adaptive refinement bisects the joined mesh ([`Problem::refined`]): a child triangle keeps its
+//! parent's body and material, and the nodes are renumbered so that each body's nodes stay one range, its
+//! own first ones before its new ones.
+//!
+//! What this version does not do yet, refused with [`Error::ContactPair`]: a body held only by the
+//! contact (each body needs its own supports; the error names the body and the motion they leave free).
 
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -174,6 +177,63 @@ impl Problem {
                  contact is not supported yet: hold that motion with a support ({e})"
             ))
         })
+    }
+
+    /// This problem on a mesh made from its own by relabelling or bisecting it, with `spec` (its own but
+    /// for the multiplier points): `parent[t]` is the triangle of `self.mesh` that triangle t of `mesh`
+    /// lies in, `midpoints` the coarse edge of each new node (node `n + i` for entry i, n the coarse nodes;
+    /// see [`crate::mesh::refine::Refinement`]). Each triangle keeps its parent's material and body; for
+    /// two bodies the nodes are renumbered so that each body's stay one range (its old nodes in their
+    /// order, then its new ones).
+    ///
+    /// # Errors
+    /// The errors of [`Problem::new`] on the new mesh.
+    pub(crate) fn refined(
+        &self,
+        mesh: Mesh,
+        parent: &[usize],
+        midpoints: &[[usize; 2]],
+        spec: ProblemSpec,
+    ) -> Result<Self> {
+        let body_of = |ranges: &dyn Fn(&BodyPart) -> &Range<usize>, i: usize| {
+            self.bodies.iter().position(|b| ranges(b).contains(&i)).unwrap_or(0)
+        };
+        let n_bodies = self.bodies.len();
+        let mut node_body: Vec<usize> = (0..self.mesh.n_nodes()).map(|i| body_of(&|b| &b.nodes, i)).collect();
+        let new: Vec<usize> = midpoints.iter().map(|&[a, _]| node_body[a]).collect();
+        node_body.extend(new);
+        let triangle_body: Vec<usize> = parent.iter().map(|&t| body_of(&|b| &b.triangles, t)).collect();
+        let region = parent.iter().map(|&t| self.materials.region[t]).collect();
+        let materials = Materials { materials: self.materials.materials.clone(), region };
+        let mesh = if n_bodies == 1 {
+            mesh
+        } else {
+            // Stable: each body's old nodes keep their order, its new ones follow.
+            let mut order: Vec<usize> = (0..node_body.len()).collect();
+            order.sort_by_key(|&i| node_body[i]);
+            let mut index = vec![0; order.len()];
+            for (k, &i) in order.iter().enumerate() {
+                index[i] = k;
+            }
+            let renumber = |e: &[usize; 2]| e.map(|i| index[i]);
+            Mesh::new(
+                order.iter().map(|&i| mesh.points()[i]).collect(),
+                mesh.triangles().iter().map(|t| t.map(|i| index[i])).collect(),
+                mesh.edge_sets().iter().map(|(k, v)| (k.clone(), v.iter().map(renumber).collect())).collect(),
+            )?
+        };
+        // Children are listed parent by parent, so each body's triangles stay one range too.
+        let (mut node0, mut triangle0) = (0, 0);
+        let parts = (0..n_bodies)
+            .map(|k| {
+                let nodes = node0..node0 + node_body.iter().filter(|&&b| b == k).count();
+                let triangles = triangle0..triangle0 + triangle_body.iter().filter(|&&b| b == k).count();
+                (node0, triangle0) = (nodes.end, triangles.end);
+                BodyPart { name: self.bodies[k].name.clone(), nodes, triangles, unknowns: 0 }
+            })
+            .collect();
+        let primary = self.primary.as_ref().map(|p| p.boundary.set.clone());
+        Self::build(mesh, spec, materials, primary.as_deref(), parts)
     }
 
     /// Whether this problem is two bodies in contact (a primary side) rather than one against the obstacle.
