@@ -9,7 +9,7 @@
 //! ([`crate::LoadStep::displacements`]); an obstacle motion (approach, shift) has no meaning for the pair
 //! and a history step that asks for one is refused ([`Error::BadLoadStep`]).
 //!
-//! Adaptive refinement bisects the joined mesh ([`Problem::refined`]): a child triangle keeps its
+//! Adaptive refinement bisects the joined mesh (`Problem::refined`): a child triangle keeps its
 //! parent's body and material, and the nodes are renumbered so that each body's nodes stay one range, its
 //! own first ones before its new ones.
 //!
