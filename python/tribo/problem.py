@@ -197,8 +197,8 @@ class Problem(_tribo.Problem):
         """Two elastic bodies in contact along one straight line: ``secondary`` ('body.edge_set') carries
         the multipliers T_H and the stabilization, ``primary`` meets it with the opposite normal; ``gap``
         is the initial gap between them as an obstacle shape (flat: touching; a parabola for two curved
-        profiles). Each body has its own material, supports and tractions (``Body``), and moves only
-        through its supports; ``body_force`` acts on both. The problem solves, solves histories and plots
+        profiles). Each body has its own material, supports and tractions (``Body``); a motion its supports
+        leave free is held by the contact alone (a punch pushed by a load); ``body_force`` acts on both. The problem solves, solves histories and plots
         as a one-body problem; ``bodies`` says where each body lies in ``mesh`` (the two joined, edge sets
         renamed 'body.set'); adaptive refinement bisects both bodies."""
         if not (isinstance(first, Body) and isinstance(second, Body)):

@@ -73,7 +73,8 @@ A scene has these tables (every key is optional unless marked *required*; see ``
 ``[obstacle]``)
     Exactly two entries, each with ``name`` (*required*), ``x``/``y`` or ``mesh`` as ``[body]``,
     ``material = { young, poisson }`` (*required*), ``supports`` (*required*: a list of tables as the
-    ``[[supports]]`` entries), ``loads = { tractions = { edge_set = [tx, ty] } }`` and ``discretization``
+    ``[[supports]]`` entries; a motion they leave free is held by the contact, and ``[]`` leaves the body
+    to the contact alone, e.g. a punch pushed by its ``loads``), ``loads = { tractions = { edge_set = [tx, ty] } }`` and ``discretization``
     with the rectangle's keys (``grading``, ``h``, ``h_min``, ``growth``, ``diagonal``; ``grading = "auto"``
     refines toward the contact: the whole side for a flat gap, ``[c − 2a, c + 2a]`` with ``a = √(2Rδ)`` for a
     curved one, δ the largest prescribed displacement of the scene). ``[contact]`` then names the sides as
@@ -406,8 +407,8 @@ def _body_entry(index: int, entry: Any) -> dict[str, Any]:
                     raise SceneError(f"scene key '{at}.{k}' is not known (known keys: {', '.join(known)})", f"{at}.{k}")
             out[key] = {k: known[k](f"{at}.{k}", v) for k, v in value.items()}
         elif key == "supports":
-            if not isinstance(value, list) or not value:
-                raise SceneError(f"scene key '{at}' must be a non-empty list of support tables", at)
+            if not isinstance(value, list):
+                raise SceneError(f"scene key '{at}' must be a list of support tables ([] : held by the contact alone)", at)
             out[key] = [_support_entry(k, e, at) for k, e in enumerate(value)]
         else:
             known_keys = ", ".join([*BODY_KEYS, *BODY_TABLES, "supports"])

@@ -145,7 +145,8 @@ def test_gap_function_errors_are_chained() -> None:
 def test_settings_errors(hertz: tribo.Problem) -> None:
     raises(tribo.SettingsError, "BadMaterial", lambda: hertz_problem(young=-1.0), "Young")
     raises(tribo.SettingsError, "BadMaterial", lambda: hertz_problem(poisson=0.5), "Poisson")
-    raises(tribo.SettingsError, "NoDirichlet", lambda: hertz_problem(clamped=[]))
+    # No support: the block is held by the contact alone, and nothing presses it against the cylinder.
+    raises(tribo.ContactGeometryError, "HeldOnlyByContact", lambda: hertz_problem(clamped=[]).solve(), "support")
     raises(tribo.SettingsError, "NonFiniteLoad", lambda: hertz_problem(body_force=(0.0, np.inf)))
     raises(tribo.SettingsError, "TractionOnContact", lambda: hertz_problem(tractions={"top": (0.0, -1.0)}))
     raises(tribo.SettingsError, "BadInput", lambda: hertz_problem(body_force=(1.0, 2.0, 3.0)))

@@ -127,12 +127,19 @@ def test_rejections() -> None:
     clash = [tribo.Support.clamp("top"), tribo.Support.displacement("left", y=-0.01)]
     e = raises(tribo.SettingsError, "ConflictingSupports", lambda: tribo.Problem(mesh, supports=clash, **kw))  # type: ignore[arg-type]
     assert e.details["node"] == 20 and "left" in str(e)
+    # Rollers on both sides leave the body free in y, to the contact (Γ_C the bottom): with nothing pressing
+    # it down its position is undetermined, said at the solve; a load on the top holds it there.
     parallel = [tribo.Support.roller("left"), tribo.Support.roller("right")]
-    e = raises(tribo.SettingsError, "RigidMotion", lambda: tribo.Problem(mesh, supports=parallel, **kw))  # type: ignore[arg-type]
-    assert "translation" in e.details["motion"]
+    free = tribo.Problem(mesh, supports=parallel, **kw)  # type: ignore[arg-type]
+    e = raises(tribo.ContactGeometryError, "HeldOnlyByContact", free.solve)
+    assert "translation along (0.000" in e.details["motion"]
+    pressed = tribo.Problem(mesh, supports=parallel, tractions={"top": (0.0, -1.0)}, **kw)  # type: ignore[arg-type]
+    assert pressed.solve().normal_force == pytest.approx(1.0, rel=1e-9)
     raises(tribo.SettingsError, "BadSupport", lambda: tribo.Support.displacement("top"))
     raises(tribo.SettingsError, "BadSupport", lambda: tribo.Support.displacement("top", x=float("nan")))
-    raises(tribo.SettingsError, "NoDirichlet", lambda: tribo.Problem(mesh, **kw))  # type: ignore[arg-type]
+    # No support at all and no friction: free to slide along the foundation, said by name.
+    e = raises(tribo.ContactGeometryError, "HeldOnlyByContact", lambda: tribo.Problem(mesh, **kw).solve())  # type: ignore[arg-type]
+    assert "frictionless" in e.details["what"]
     raises(tribo.SettingsError, "BadInput", lambda: tribo.Problem(mesh, supports="top", **kw))  # type: ignore[arg-type]
     raises(tribo.SettingsError, "BadInput", lambda: tribo.Problem(mesh, supports=[1], **kw))  # type: ignore[arg-type]
 

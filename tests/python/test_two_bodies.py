@@ -87,13 +87,30 @@ def test_bad_pairs_are_errors() -> None:
         tribo.Problem([a._compiled(), b._compiled()], contact="a.top", primary="b.bottom", young=1.0)
     with pytest.raises(TypeError, match="two tribo.Body"):
         tribo.Problem.two_bodies(a, mesh, secondary="a.top", primary="b.bottom")  # type: ignore[arg-type]
-    # A body its own supports do not hold (a punch held only by the contact): named, with the free motion.
+    # A punch held in y only by the contact, with nothing pressing it down: its position is undetermined.
     punch = tribo.Body("punch", mesh, young=1.0, poisson=0.3, supports=tribo.Support.roller("left"))
-    with pytest.raises(tribo.ContactGeometryError, match="body 'punch' is not held.*translation") as info:
-        tribo.Problem.two_bodies(a, punch, secondary="a.top", primary="punch.bottom")
-    assert info.value.kind == "ContactPair"
+    free = tribo.Problem.two_bodies(a, punch, secondary="a.top", primary="punch.bottom")
+    with pytest.raises(tribo.ContactGeometryError, match="body 'punch' is held only by the contact.*translation") as info:
+        free.solve()
+    assert info.value.kind == "HeldOnlyByContact" and "undetermined" in info.value.details["what"]
     with pytest.raises(tribo.ContactGeometryError, match="spans of the two bodies"):
         problem.on_mesh(problem.mesh, problem.multiplier_mesh, [[0, 1, 0, 1]])
+
+
+def test_a_punch_pushed_by_a_load_is_held_by_the_contact() -> None:
+    """The upper block has no support in y: a uniform pressure on its top pushes it onto the lower block,
+    and the contact holds it (uniaxial strain with rollers on the sides: the pressure is the load)."""
+    rollers = [tribo.Support.roller("left"), tribo.Support.roller("right")]
+    lower = tribo.Body("lower", tribo.Mesh.rectangle((0.0, 2.0), (-1.0, 0.0), 5, 3), young=100.0, poisson=0.3,
+                       supports=[*rollers, tribo.Support.roller("bottom")])
+    upper = tribo.Body("upper", tribo.Mesh.rectangle((0.0, 2.0), (0.0, 0.5), 7, 2), young=300.0, poisson=0.2,
+                       supports=rollers, tractions={"top": (0.0, -0.5)})
+    problem = tribo.Problem.two_bodies(lower, upper, secondary="lower.top", primary="upper.bottom")
+    for friction in ({}, {"mu": 0.3}):
+        sol = problem.solve(**friction)  # type: ignore[arg-type]
+        assert sol.report.converged and sol.report.qp_methods[-1] == "clarabel"
+        np.testing.assert_allclose(sol.lambda_n, 0.5, rtol=1e-9)
+        assert sol.normal_force == pytest.approx(1.0, rel=1e-9)
 
 
 def coarse_pair() -> tribo.Problem:

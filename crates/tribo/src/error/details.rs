@@ -114,6 +114,11 @@ impl Error {
                 "ContactPair",
                 vec![("secondary", T(secondary.clone())), ("primary", T(primary.clone())), ("what", T(what.clone()))],
             ),
+            Self::HeldOnlyByContact { body, motion, what } => (
+                ErrorCategory::ContactGeometry,
+                "HeldOnlyByContact",
+                vec![("body", T(body.clone())), ("motion", T(motion.clone())), ("what", T(what.clone()))],
+            ),
             Self::ContactNotConnected { set, what } => (
                 ErrorCategory::ContactGeometry,
                 "ContactNotConnected",

@@ -327,6 +327,17 @@ pub enum Error {
         /// What is wrong.
         what: String,
     },
+    /// A body held only by the contact (its supports leave it a free rigid motion) that the contact cannot
+    /// hold: free to slide along a frictionless contact, or two bodies free to move together.
+    #[error("body '{body}' is held only by the contact, which leaves it free: {motion}; {what}: hold that motion with a support")]
+    HeldOnlyByContact {
+        /// The body (`"body"` for one body).
+        body: String,
+        /// The free motion in words.
+        motion: String,
+        /// Why the contact cannot hold it.
+        what: String,
+    },
     /// A traction is applied on Γ_C: the method takes σ(u)·n = −λ there, so Γ_N and Γ_C must not overlap.
     #[error("traction set '{traction_set}' shares edge ({a}, {b}) with the contact boundary '{set}': Γ_N and Γ_C must not overlap")]
     TractionOnContact {

@@ -37,7 +37,7 @@
 use std::collections::HashSet;
 
 use crate::error::{Error, Result};
-use crate::fem::rigid_motions::check_held;
+use crate::fem::rigid_motions::{check_held, pins, FreeMotions};
 use crate::fem::supports::{node_supports, NodeSupport, Support};
 use crate::mesh::Mesh;
 
@@ -54,6 +54,11 @@ pub struct Dofs {
     pub lifting: Vec<f64>,
     /// Edges (sorted node pairs) that carry a support, for the checks against Γ_C.
     pub edges: HashSet<[usize; 2]>,
+    /// The pieces held only by the contact: their free rigid motions (`fem/rigid_motions.rs`).
+    pub floating: Vec<FreeMotions>,
+    /// The pins that hold those motions in the factorized stiffness: per pinned node, its support with
+    /// the pins (`u · a = 0` along each pinned direction a), which [`Dofs::lifting_of`] keeps too.
+    pub pins: Vec<(usize, NodeSupport)>,
 }
 
 impl Dofs {
@@ -65,12 +70,39 @@ impl Dofs {
     /// not straight; [`Error::ConflictingSupports`]; [`Error::FloatingPiece`] / [`Error::RigidMotion`]
     /// for a piece that the supports do not hold.
     pub fn new(mesh: &Mesh, supports: &[Support]) -> Result<Self> {
-        if supports.is_empty() {
+        Self::held_by_contact(mesh, supports, &|_| false)
+    }
+
+    /// [`Dofs::new`], where a piece that holds a node for which `may_float` is true (a node of a contact
+    /// side) may be left free by its supports: its free rigid motions are kept in `floating` and held in
+    /// the stiffness by pins (`pins`), chosen off the contact sides (see `fem/rigid_motions.rs`).
+    ///
+    /// # Errors
+    /// As [`Dofs::new`]; [`Error::NoDirichlet`] only when no node may float either.
+    pub fn held_by_contact(mesh: &Mesh, supports: &[Support], may_float: &dyn Fn(usize) -> bool) -> Result<Self> {
+        let n_nodes = mesh.n_nodes();
+        if supports.is_empty() && !(0..n_nodes).any(may_float) {
             return Err(Error::NoDirichlet);
         }
-        let n_nodes = mesh.n_nodes();
-        let (nodes, edges) = node_supports(mesh, supports)?;
-        check_held(mesh, &nodes)?;
+        let (mut nodes, edges) = node_supports(mesh, supports)?;
+        let floating = check_held(mesh, &nodes, may_float)?;
+        let mut pinned: Vec<(usize, NodeSupport)> = Vec::new();
+        for piece in &floating {
+            let chosen = pins(mesh, &nodes, piece, may_float);
+            if chosen.len() < piece.motions.len() {
+                // Fewer free directions than free motions (a piece of one or two nodes' worth): unpinnable.
+                let node = piece.nodes[0];
+                let motion = piece.describe(chosen.len());
+                return Err(Error::RigidMotion { triangle: piece.triangle, node, triangles: 0, pieces: 0, motion });
+            }
+            for (node, a) in chosen {
+                nodes[node] = pin(nodes[node], a);
+                match pinned.iter_mut().find(|(i, _)| *i == node) {
+                    Some(entry) => entry.1 = nodes[node],
+                    None => pinned.push((node, nodes[node])),
+                }
+            }
+        }
         let mut map = vec![None; 2 * n_nodes];
         let mut n_free = 0;
         for (i, ns) in nodes.iter().enumerate() {
@@ -91,7 +123,29 @@ impl Dofs {
             }
         }
         let lifting = lifting(&nodes);
-        Ok(Self { nodes, map, n_free, lifting, edges })
+        Ok(Self { nodes, map, n_free, lifting, edges, floating, pins: pinned })
+    }
+
+    /// The number of free rigid motions the contact must hold.
+    pub fn n_floating(&self) -> usize {
+        self.floating.iter().map(|p| p.motions.len()).sum()
+    }
+
+    /// Each free rigid motion as a displacement of all 2N dofs (zero off its piece).
+    pub fn rigid_fields(&self, mesh: &Mesh) -> Vec<Vec<f64>> {
+        let mut out = Vec::new();
+        for piece in &self.floating {
+            for k in 0..piece.motions.len() {
+                let mut field = vec![0.0; 2 * mesh.n_nodes()];
+                for &i in &piece.nodes {
+                    let u = piece.at(k, mesh.points()[i]);
+                    field[2 * i] = u[0];
+                    field[2 * i + 1] = u[1];
+                }
+                out.push(field);
+            }
+        }
+        out
     }
 
     /// The lifting ū (2N) of `supports`, the supports these dofs were resolved from with other prescribed
@@ -102,7 +156,10 @@ impl Dofs {
     /// disagree at a node that several supports reach; [`Error::BadSupport`] if the supports do not leave
     /// the same unknowns as these dofs (they must differ only in their values).
     pub fn lifting_of(&self, mesh: &Mesh, supports: &[Support]) -> Result<Vec<f64>> {
-        let (nodes, _) = node_supports(mesh, supports)?;
+        let (mut nodes, _) = node_supports(mesh, supports)?;
+        for &(node, pinned) in &self.pins {
+            nodes[node] = keep_value(pinned, nodes[node]);
+        }
         let same_kind = |a: &NodeSupport, b: &NodeSupport| match (a, b) {
             (NodeSupport::Slide { normal: n, .. }, NodeSupport::Slide { normal: m, .. }) => n == m,
             _ => std::mem::discriminant(a) == std::mem::discriminant(b),
@@ -185,6 +242,35 @@ impl Dofs {
                 NodeSupport::Fixed { .. } => {}
             }
         }
+    }
+}
+
+/// A node's support with the pin `u · a = 0` added (a a direction its support leaves free, a unit vector).
+fn pin(support: NodeSupport, a: [f64; 2]) -> NodeSupport {
+    match support {
+        NodeSupport::Free => {
+            // The unknown along a⊥, oriented as `supports` orients a roller's.
+            let mut t = [-a[1], a[0]];
+            if (if t[0].abs() >= t[1].abs() { t[0] } else { t[1] }) < 0.0 {
+                t = [-t[0], -t[1]];
+            }
+            NodeSupport::Slide { normal: a, tangent: t, value: 0.0 }
+        }
+        NodeSupport::Slide { normal, value, .. } => {
+            NodeSupport::Fixed { value: [value * normal[0], value * normal[1]] }
+        }
+        fixed @ NodeSupport::Fixed { .. } => fixed,
+    }
+}
+
+/// The pinned support `pinned` of a node with the prescribed values of `support`, the node's support of
+/// other prescribed values (a history's step): a pin only adds `u · a = 0`.
+fn keep_value(pinned: NodeSupport, support: NodeSupport) -> NodeSupport {
+    match (pinned, support) {
+        (NodeSupport::Fixed { .. }, NodeSupport::Slide { normal, value, .. }) => {
+            NodeSupport::Fixed { value: [value * normal[0], value * normal[1]] }
+        }
+        (pinned, _) => pinned,
     }
 }
 

@@ -8,4 +8,5 @@ pub mod assemble;
 mod dofs;
 pub mod elasticity;
 mod rigid_motions;
+pub use rigid_motions::FreeMotions;
 pub mod supports;

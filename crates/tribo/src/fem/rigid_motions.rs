@@ -1,4 +1,4 @@
-//! Floating bodies: every piece of the mesh must be held by the supports.
+//! Floating bodies: every piece of the mesh must be held, by the supports or by the contact.
 //!
 //! Every piece of the mesh (triangles joined through edges; pieces joined at a single node count as
 //! separate) must be held: the conditions at its nodes, rows `(a_x, a_y, (x − x̄) a_y − (y − ȳ) a_x)`
@@ -6,6 +6,15 @@
 //! condition is [`Error::FloatingPiece`]; one whose conditions leave a rigid motion free (rollers all
 //! parallel, a single held node) is [`Error::RigidMotion`], which says which motion. On a piece connected
 //! through edges the kernel of K is exactly the rigid motions, so this test is also sufficient.
+//!
+//! # Held by the contact
+//! A piece that holds a node of a contact side (and shares no node with another piece) may be left free
+//! by its supports (a punch pushed down by a
+//! load and held only by the contact): its free motions ([`FreeMotions`]) are then returned instead of
+//! refused, and [`pins`] chooses as many extra conditions as it has free motions, at nodes off the contact
+//! sides, that hold them exactly (pivoted Gram–Schmidt on the candidate rows). With those pins the
+//! stiffness is positive definite; the pins carry no force once the piece is in equilibrium, which the
+//! contact QP imposes ([`crate::fem::dofs`]).
 
 use std::collections::HashMap;
 
@@ -16,8 +25,43 @@ use crate::fem::supports::NodeSupport;
 use crate::mesh::line::geometric_tol_rel;
 use crate::mesh::Mesh;
 
-/// Every piece of the mesh must be held (see the module documentation).
-pub(super) fn check_held(mesh: &Mesh, nodes: &[NodeSupport]) -> Result<()> {
+/// A piece of the mesh its supports leave free to move rigidly, to be held by the contact.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FreeMotions {
+    /// A triangle of the piece.
+    pub triangle: usize,
+    /// The piece's nodes, sorted.
+    pub nodes: Vec<usize>,
+    /// The centre x̄ and size L of the piece's nodes.
+    pub centre: [f64; 2],
+    /// See `centre`.
+    pub scale: f64,
+    /// Orthonormal free motions `(α, β, θ)`: the displacement `(α − θ (y − ȳ)/L, β + θ (x − x̄)/L)`.
+    pub motions: Vec<[f64; 3]>,
+}
+
+impl FreeMotions {
+    /// The displacement of motion `k` at `point`.
+    pub fn at(&self, k: usize, point: [f64; 2]) -> [f64; 2] {
+        let [alpha, beta, theta] = self.motions[k];
+        let (x, y) = ((point[0] - self.centre[0]) / self.scale, (point[1] - self.centre[1]) / self.scale);
+        [alpha - theta * y, beta + theta * x]
+    }
+
+    /// Motion `k` in words (a translation along a direction, or a rotation about a point).
+    pub fn describe(&self, k: usize) -> String {
+        describe_motion(self.motions[k], self.centre, self.scale)
+    }
+}
+
+/// Every piece of the mesh must be held (see the module documentation): by its supports, or, for a piece
+/// holding a node for which `may_float` is true (a node of a contact side), by the contact, whose free
+/// motions are returned.
+pub(super) fn check_held(
+    mesh: &Mesh,
+    nodes: &[NodeSupport],
+    may_float: &dyn Fn(usize) -> bool,
+) -> Result<Vec<FreeMotions>> {
     let n = mesh.n_triangles();
     let mut parent: Vec<usize> = (0..n).collect();
     fn root(parent: &mut [usize], mut t: usize) -> usize {
@@ -49,19 +93,28 @@ pub(super) fn check_held(mesh: &Mesh, nodes: &[NodeSupport]) -> Result<()> {
         size[roots[t]] += 1;
         piece_nodes.entry(roots[t]).or_default().extend_from_slice(tri);
     }
+    // A node in two pieces joins them at a point: such a piece is hinged, not free, and cannot float.
+    let mut first_piece: Vec<Option<usize>> = vec![None; mesh.n_nodes()];
+    let mut shared = vec![false; mesh.n_nodes()];
+    for (t, tri) in mesh.triangles().iter().enumerate() {
+        for &v in tri {
+            match first_piece[v] {
+                None => first_piece[v] = Some(roots[t]),
+                Some(r) if r != roots[t] => shared[v] = true,
+                Some(_) => {}
+            }
+        }
+    }
     let pts = mesh.points();
     let mut order: Vec<usize> = piece_nodes.keys().copied().collect();
     order.sort_unstable();
+    let mut free = Vec::new();
     for r in order {
         // `r` is one of the map's own keys.
-        let list = piece_nodes.get_mut(&r).expect("key");
+        let mut list = piece_nodes.remove(&r).expect("key");
         list.sort_unstable();
         list.dedup();
-        let floating = Error::FloatingPiece { triangle: r, node: mesh.triangles()[r][0], triangles: size[r], pieces };
-        let held: Vec<usize> = list.iter().copied().filter(|&i| nodes[i] != NodeSupport::Free).collect();
-        if held.is_empty() {
-            return Err(floating);
-        }
+        let floats = list.iter().any(|&i| may_float(i)) && !list.iter().any(|&i| shared[i]);
         let m = list.len() as f64;
         let centre = list.iter().fold([0.0, 0.0], |c, &i| [c[0] + pts[i][0] / m, c[1] + pts[i][1] / m]);
         let scale = list
@@ -69,6 +122,20 @@ pub(super) fn check_held(mesh: &Mesh, nodes: &[NodeSupport]) -> Result<()> {
             .map(|&i| (pts[i][0] - centre[0]).hypot(pts[i][1] - centre[1]))
             .fold(0.0_f64, f64::max)
             .max(f64::MIN_POSITIVE);
+        let held: Vec<usize> = list.iter().copied().filter(|&i| nodes[i] != NodeSupport::Free).collect();
+        if held.is_empty() {
+            if !floats {
+                return Err(Error::FloatingPiece {
+                    triangle: r,
+                    node: mesh.triangles()[r][0],
+                    triangles: size[r],
+                    pieces,
+                });
+            }
+            let motions = vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+            free.push(FreeMotions { triangle: r, nodes: list, centre, scale, motions });
+            continue;
+        }
         let mut gram = Matrix3::<f64>::zeros();
         let mut rows = 0usize;
         for &i in &held {
@@ -86,16 +153,81 @@ pub(super) fn check_held(mesh: &Mesh, nodes: &[NodeSupport]) -> Result<()> {
         // The Gram matrix of `rows` unit-size rows is formed to about `rows · ε` of its norm: an
         // eigenvalue below 16 times that is a rigid motion the conditions do not see.
         let eig = gram.symmetric_eigen();
-        let (imin, lmin) =
-            eig.eigenvalues.iter().enumerate().fold((0, f64::INFINITY), |b, (k, &v)| if v < b.1 { (k, v) } else { b });
         let lmax = eig.eigenvalues.max();
-        if lmin <= 16.0 * rows as f64 * f64::EPSILON * lmax {
-            let v = eig.eigenvectors.column(imin);
-            let motion = describe_motion([v[0], v[1], v[2]], centre, scale);
-            return Err(Error::RigidMotion { triangle: r, node: held[0], triangles: size[r], pieces, motion });
+        let small: Vec<usize> =
+            (0..3).filter(|&k| eig.eigenvalues[k] <= 16.0 * rows as f64 * f64::EPSILON * lmax).collect();
+        let motion = |k: usize| {
+            let v = eig.eigenvectors.column(k);
+            [v[0], v[1], v[2]]
+        };
+        match small.first() {
+            None => {}
+            Some(_) if floats => {
+                free.push(FreeMotions {
+                    triangle: r,
+                    nodes: list,
+                    centre,
+                    scale,
+                    motions: small.iter().map(|&k| motion(k)).collect(),
+                });
+            }
+            Some(&k) => {
+                let motion = describe_motion(motion(k), centre, scale);
+                return Err(Error::RigidMotion { triangle: r, node: held[0], triangles: size[r], pieces, motion });
+            }
         }
     }
-    Ok(())
+    Ok(free)
+}
+
+/// The pins of a piece's free motions: as many conditions `u_i · a = 0` as it has free motions, at nodes
+/// off the contact sides where any (`may_float` false) and along directions the node's supports leave
+/// free, chosen by pivoted Gram–Schmidt on their rows `(motion_k(x_i) · a)_k` so that they hold the free
+/// motions as well as any such choice can. Returns `(node, a)` per pin.
+pub(super) fn pins(
+    mesh: &Mesh,
+    nodes: &[NodeSupport],
+    piece: &FreeMotions,
+    may_float: &dyn Fn(usize) -> bool,
+) -> Vec<(usize, [f64; 2])> {
+    let r = piece.motions.len();
+    let off_contact: Vec<usize> = piece.nodes.iter().copied().filter(|&i| !may_float(i)).collect();
+    let candidates = if off_contact.is_empty() { piece.nodes.clone() } else { off_contact };
+    let mut rows: Vec<(usize, [f64; 2], Vec<f64>)> = Vec::new();
+    for &i in &candidates {
+        let dirs: Vec<[f64; 2]> = match nodes[i] {
+            NodeSupport::Free => vec![[1.0, 0.0], [0.0, 1.0]],
+            NodeSupport::Slide { tangent, .. } => vec![tangent],
+            NodeSupport::Fixed { .. } => vec![],
+        };
+        for a in dirs {
+            let row = (0..r)
+                .map(|k| {
+                    let u = piece.at(k, mesh.points()[i]);
+                    u[0] * a[0] + u[1] * a[1]
+                })
+                .collect();
+            rows.push((i, a, row));
+        }
+    }
+    let mut chosen = Vec::with_capacity(r);
+    for _ in 0..r {
+        let norm2 = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();
+        let Some(best) = (0..rows.len()).max_by(|&a, &b| norm2(&rows[a].2).total_cmp(&norm2(&rows[b].2))) else {
+            break;
+        };
+        let (node, a, pivot) = rows.swap_remove(best);
+        let p2 = norm2(&pivot);
+        if p2 == 0.0 {
+            break;
+        }
+        for (_, _, v) in &mut rows {
+            let dot: f64 = v.iter().zip(&pivot).map(|(x, y)| x * y).sum();
+            v.iter_mut().zip(&pivot).for_each(|(x, y)| *x -= dot / p2 * y);
+        }
+        chosen.push((node, a));
+    }
+    chosen
 }
 
 /// Words for the rigid motion `(α − θ (y − ȳ)/L, β + θ (x − x̄)/L)`: a translation when θ is negligible,

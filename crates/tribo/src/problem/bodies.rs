@@ -13,8 +13,10 @@
 //! parent's body and material, and the nodes are renumbered so that each body's nodes stay one range, its
 //! own first ones before its new ones.
 //!
-//! What this version does not do yet, refused with [`Error::ContactPair`]: a body held only by the
-//! contact (each body needs its own supports; the error names the body and the motion they leave free).
+//! A body may be held by the contact alone in the motions its supports leave free (a punch pushed down by
+//! a load): see `problem/floating.rs`. A piece of a body that neither its supports nor the contact can
+//! hold (a piece off the contact line, or one joined to the rest at a single node) is refused with
+//! [`Error::ContactPair`], which names the body and the free motion.
 
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -102,8 +104,9 @@ impl Problem {
     /// # Errors
     /// [`Error::ContactPair`] for body names that are empty, repeated or hold a '.', a pair side that names
     /// no body or no edge set of it, both sides on one body, lines that are not one line with opposite
-    /// normals, a primary line that does not cover the secondary one, a body that its own supports do not
-    /// hold (naming the body and the free motion); the other errors of [`Problem::new`].
+    /// normals, a primary line that does not cover the secondary one, a piece of a body that neither its
+    /// supports nor the contact hold (naming the body and the free motion); the other errors of
+    /// [`Problem::new`].
     pub fn two_bodies(bodies: [Body; 2], pair: ContactPair, body_force: [f64; 2]) -> Result<Self> {
         let bad = |what: String| Error::ContactPair {
             secondary: pair.secondary.clone(),
@@ -165,7 +168,7 @@ impl Problem {
         let materials = Materials { materials: bodies.iter().map(|b| b.material).collect(), region };
         let spans: Vec<(String, Range<usize>)> = parts.iter().map(|p| (p.name.clone(), p.triangles.clone())).collect();
         Self::build(mesh, spec, materials, Some(&pair.primary), parts).map_err(|e| {
-            // A body its own supports do not hold: name the body and the free motion.
+            // A piece neither its supports nor the contact hold: name the body and the free motion.
             let (triangle, motion) = match &e {
                 Error::RigidMotion { triangle, motion, .. } => (*triangle, motion.clone()),
                 Error::FloatingPiece { triangle, .. } => (*triangle, "every rigid motion (it has no support)".into()),
@@ -173,8 +176,8 @@ impl Problem {
             };
             let Some((name, _)) = spans.iter().find(|(_, r)| r.contains(&triangle)) else { return e };
             bad(format!(
-                "body '{name}' is not held by its own supports, which leave free {motion}; a body held only by the \
-                 contact is not supported yet: hold that motion with a support ({e})"
+                "body '{name}' has a piece that neither its supports nor the contact hold, free in {motion}: hold \
+                 that motion with a support ({e})"
             ))
         })
     }

@@ -108,6 +108,21 @@ impl Problem {
         memory_budget: usize,
     ) -> Result<Condensed<'_>> {
         let gamma0 = self.gamma0_bound.resolve(stabilization)?;
+        // A body held only by the contact needs all of H for clarabel's QP with its equilibrium
+        // (`problem/floating.rs`): the saddle-point path does without H, so `auto` forms it by columns.
+        let condensation = match condensation {
+            Condensation::Saddle if !self.dofs.floating.is_empty() => {
+                return Err(Error::BadSetting {
+                    name: "condensation",
+                    value: f64::NAN,
+                    what: "'saddle' does without H, which a body held only by the contact needs: use 'auto', \
+                           'columns' or 'schur'"
+                        .to_string(),
+                });
+            }
+            Condensation::Auto if !self.dofs.floating.is_empty() => Condensation::Columns,
+            c => c,
+        };
         if let Some(factor) = self.factor_cache.get(gamma0, condensation) {
             return Ok(Condensed { problem: self, factor, reused: true });
         }
@@ -181,6 +196,13 @@ impl Problem {
         let minus_g_full = self.contact_stress.stiffness_triplets(&self.mortar, gamma0);
         let e_full = self.contact_stress.coupling_rows(&self.contact, &self.mortar, self.primary.as_ref(), gamma0);
         self.lifting_action(&minus_g_full, &e_full, ubar, true)
+    }
+
+    /// `E v` (2q) for a displacement v of all 2N dofs, E of the γ0 of a factorization (a body held only
+    /// by the contact moves by R α, which no unknown carries where the pins are).
+    pub(crate) fn e_action(&self, gamma0: f64, v: &[f64]) -> Vec<f64> {
+        let e_full = self.contact_stress.coupling_rows(&self.contact, &self.mortar, self.primary.as_ref(), gamma0);
+        e_full.iter().map(|row| row.iter().map(|&(k, x)| x * v[k]).sum()).collect()
     }
 
     /// `(Tᵀ(K − G) ū, E ū)` from the triplets of −G and the rows of E over all dofs, without K's part unless

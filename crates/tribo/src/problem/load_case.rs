@@ -32,8 +32,22 @@ pub struct LoadCase {
     /// At the FE nodes of Γ_C, the tangential displacement from which slip is measured: the shift s of a
     /// static solve, `u_t^{k−1} + s_k − s_{k−1}` in step k of a history.
     pub slip_origin: Vec<f64>,
-    /// Where a step of a history moves the prescribed displacements away from the problem's values.
+    /// Where a step of a history moves the prescribed displacements away from the problem's values (and,
+    /// once solved, where the rigid motion of a body held only by the contact moves it).
     pub moved_supports: Option<MovedSupports>,
+    /// The free rigid motions the contact holds (see `problem/floating.rs`); empty when the supports hold
+    /// every piece.
+    pub rigid: RigidLoad,
+}
+
+/// What the free rigid motions R of the pieces held only by the contact add to a load case: `E R` and
+/// the load they take, `Rᵀ f`.
+#[derive(Debug, Clone, Default)]
+pub struct RigidLoad {
+    /// `E R` (2q × r, column-major).
+    pub e_r: Vec<f64>,
+    /// `Rᵀ f` (r).
+    pub load: Vec<f64>,
 }
 
 /// Prescribed displacements moved by a step of a history to a lifting ū_k: the change `Δū = ū_k − ū`
@@ -51,7 +65,8 @@ pub struct MovedSupports {
 impl LoadCase {
     /// The data a Γ_C QP needs of this load case.
     pub fn qp_data(&self) -> QpData<'_> {
-        QpData { f: &self.f_free, d: &self.d, c: &self.c }
+        let rigid = (!self.rigid.load.is_empty()).then_some((self.rigid.e_r.as_slice(), self.rigid.load.as_slice()));
+        QpData { f: &self.f_free, d: &self.d, c: &self.c, rigid }
     }
 
     /// The problem's own load case (the static solve).
@@ -68,7 +83,27 @@ impl LoadCase {
             load_factor: 1.0,
             slip_origin: vec![shift; problem.contact.nodes.len()],
             moved_supports: None,
+            rigid: problem.rigid_load(&problem.f_full),
         }
+    }
+
+    /// This load case with the bodies held only by the contact moved by their rigid motion `alpha` (one
+    /// amplitude per free motion): the displacement of a solve is `T x + ū + R α`, and the moments
+    /// `d − E R α` (as for a moved support), so that `E x − d` is the gap of the whole motion.
+    pub(crate) fn with_rigid_motion(&self, problem: &Problem, alpha: &[f64]) -> Self {
+        let mut lifting = self.lifting(problem).to_vec();
+        for (field, a) in problem.dofs.rigid_fields(&problem.mesh).iter().zip(alpha) {
+            lifting.iter_mut().zip(field).for_each(|(l, r)| *l += a * r);
+        }
+        // The moments see the motion as a moved support does: d − E R α (A R = 0 leaves the load).
+        let two_q = self.d.len();
+        let mut d = self.d.clone();
+        for (column, a) in self.rigid.e_r.chunks_exact(two_q).zip(alpha) {
+            d.iter_mut().zip(column).for_each(|(d, e)| *d -= a * e);
+        }
+        let (a_change, e_change) =
+            self.moved_supports.as_ref().map_or((Vec::new(), Vec::new()), |m| (m.a_change.clone(), m.e_change.clone()));
+        Self { d, moved_supports: Some(MovedSupports { lifting, a_change, e_change }), ..self.clone() }
     }
 
     /// The lifting ū of this load case: the moved one, or the problem's.

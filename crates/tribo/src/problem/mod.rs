@@ -7,6 +7,7 @@
 //! factorization: [`crate::Report::reused_factorization`] says when that happened.
 
 pub mod bodies;
+mod floating;
 pub mod load_case;
 
 mod condense;
@@ -152,7 +153,15 @@ impl Problem {
         }
         spec.material.validate()?;
         spec.obstacle.validate()?;
-        let dofs = Dofs::new(&mesh, &spec.all_supports(None))?;
+        // A piece that holds a node of a contact side may be held by the contact alone.
+        let mut on_contact = vec![false; mesh.n_nodes()];
+        for set in std::iter::once(spec.contact.as_str()).chain(primary) {
+            for &[a, b] in mesh.edge_set(set)? {
+                on_contact[a] = true;
+                on_contact[b] = true;
+            }
+        }
+        let dofs = Dofs::held_by_contact(&mesh, &spec.all_supports(None), &|i| on_contact[i])?;
         let n_free = dofs.n_free;
         let mut bodies = bodies;
         for part in &mut bodies {

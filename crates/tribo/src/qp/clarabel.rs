@@ -4,7 +4,7 @@
 use std::time::Instant;
 
 use clarabel::algebra::CscMatrix;
-use clarabel::solver::{DefaultSettings, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus};
+use clarabel::solver::{DefaultSettings, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus, ZeroConeT};
 
 use crate::error::{Error, Result};
 use crate::qp::{diagonal, QpOutcome, QpStatus, Scaling, FALLBACK_TOL};
@@ -30,6 +30,9 @@ pub struct BoxQp {
     frictional: bool,
     n_scale: f64,
     bounds: Vec<f64>,
+    /// Equality constraints `G ν = b` (G r × k row-major, b r): the equilibrium of the bodies held only by
+    /// the contact ([`BoxQp::with_equality`]).
+    equality: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 impl std::fmt::Debug for BoxQp {
@@ -107,6 +110,7 @@ impl BoxQp {
             frictional,
             n_scale: n_scale.unwrap_or(0.0),
             bounds: bounds.map_or_else(Vec::new, <[f64]>::to_vec),
+            equality: None,
         };
         if n_scale.is_none() {
             // Nothing pushes at all (c = 0): λ = 0 solves P(g).
@@ -116,11 +120,57 @@ impl BoxQp {
         Ok(qp)
     }
 
+    /// Adds the equality constraints `G ν = b` (G r × k row-major over the QP's k unknowns, b r): the
+    /// equilibrium of the bodies held only by the contact (`problem/floating.rs`). The answer's
+    /// [`QpOutcome::alpha`] holds their multipliers α, with stationarity `H ν + c − Gᵀ α ∈ −N(ν)`.
+    ///
+    /// # Errors
+    /// [`Error::QpSetup`] if clarabel rejects the data.
+    pub fn with_equality(mut self, g: Vec<f64>, b: Vec<f64>) -> Result<Self> {
+        let k = self.c.len();
+        debug_assert_eq!(g.len(), k * b.len(), "bug: G has the wrong size");
+        if self.n_scale == 0.0 {
+            // Nothing pushes through c: the size of ν that balances the load.
+            let (b_max, g_max) =
+                (b.iter().fold(0.0_f64, |m, v| m.max(v.abs())), g.iter().fold(0.0_f64, |m, v| m.max(v.abs())));
+            if b_max > 0.0 && g_max > 0.0 {
+                self.n_scale = b_max / g_max;
+            }
+        }
+        self.equality = Some((g, b));
+        if self.n_scale > 0.0 {
+            self.solver = Some(self.setup()?);
+        }
+        Ok(self)
+    }
+
+    /// The equality rows in the scaled unknowns, each divided by its largest entry: the rows (r × k) and
+    /// the divisors ρ.
+    fn scaled_equality(&self, w: &[f64]) -> (Vec<Vec<f64>>, Vec<f64>) {
+        let Some((g, b)) = &self.equality else { return (Vec::new(), Vec::new()) };
+        let k = w.len();
+        let mut rows = Vec::with_capacity(b.len());
+        let mut rho = Vec::with_capacity(b.len());
+        for row in g.chunks_exact(k) {
+            let scaled: Vec<f64> = row.iter().zip(w).map(|(gi, wi)| gi * wi).collect();
+            let m = scaled.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            let r = if m > 0.0 { 1.0 / m } else { 1.0 };
+            rows.push(scaled.iter().map(|v| v * r).collect());
+            rho.push(r);
+        }
+        (rows, rho)
+    }
+
     /// Builds clarabel's solver for the current data and settings.
     fn setup(&self) -> Result<DefaultSolver<f64>> {
         let (q, frictional, settings) = (self.q, self.frictional, &self.settings);
         let k = if frictional { 2 * q } else { q };
-        let (p, qv, b) = self.scaled_data();
+        let (p, qv, mut b) = self.scaled_data();
+        let w = self.scaling().w;
+        let (eq_rows, rho) = self.scaled_equality(&w);
+        if let Some((_, eq_b)) = &self.equality {
+            b.extend(eq_b.iter().zip(&rho).map(|(v, r)| v * r));
+        }
         // Upper triangle of P in CSC.
         let mut colptr = Vec::with_capacity(k + 1);
         let mut rowval = Vec::with_capacity(k * (k + 1) / 2);
@@ -131,32 +181,38 @@ impl BoxQp {
         }
         let p = CscMatrix::new(k, k, colptr, rowval, p);
         // Constraints A x + s = b, s ≥ 0:  −ν_n ≤ 0;  τ ≤ 1;  −τ ≤ 1.
+        // Then the equality rows G̃ x = b̃ (zero cone).
         let m = if frictional { 3 * q } else { q };
+        let r = eq_rows.len();
         let mut colptr = Vec::with_capacity(k + 1);
-        let (mut rowval, mut nzval) = (Vec::with_capacity(m), Vec::with_capacity(m));
+        let (mut rowval, mut nzval) = (Vec::with_capacity(m + r * k), Vec::with_capacity(m + r * k));
         colptr.push(0);
-        for j in 0..q {
-            rowval.push(j);
-            nzval.push(-1.0);
+        for j in 0..k {
+            if j < q {
+                rowval.push(j);
+                nzval.push(-1.0);
+            } else {
+                rowval.extend([j, q + j]);
+                nzval.extend([1.0, -1.0]);
+            }
+            for (e, row) in eq_rows.iter().enumerate() {
+                if row[j] != 0.0 {
+                    rowval.push(m + e);
+                    nzval.push(row[j]);
+                }
+            }
             colptr.push(rowval.len());
         }
-        if frictional {
-            for j in 0..q {
-                rowval.extend([q + j, 2 * q + j]);
-                nzval.extend([1.0, -1.0]);
-                colptr.push(rowval.len());
-            }
-        }
-        let a = CscMatrix::new(m, k, colptr, rowval, nzval);
+        let a = CscMatrix::new(m + r, k, colptr, rowval, nzval);
         let cs = clarabel_settings(settings);
-        DefaultSolver::new(&p, &qv, &a, &b, &[NonnegativeConeT(m)], cs)
-            .map_err(|e| Error::QpSetup { what: e.to_string() })
+        let cones = if r > 0 { vec![NonnegativeConeT(m), ZeroConeT(r)] } else { vec![NonnegativeConeT(m)] };
+        DefaultSolver::new(&p, &qv, &a, &b, &cones, cs).map_err(|e| Error::QpSetup { what: e.to_string() })
     }
 
     /// Values of the upper triangle of the scaled P (column by column) and the scaled q, for the current
     /// bounds: variables `x = (ν_n / s, τ)`, objective divided by the largest diagonal entry.
     fn scaled_data(&self) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
-        let scaling = Scaling::new(&diagonal(&self.h, self.c.len()), &self.c, self.q, self.n_scale, &self.bounds);
+        let scaling = self.scaling();
         // Rows: −x_n ≤ 0, then x_t ≤ box, then −x_t ≤ box.
         let tbox = scaling.tangential_box(self.q, &self.bounds);
         let b: Vec<f64> =
@@ -173,7 +229,13 @@ impl BoxQp {
         (p, qv, b)
     }
 
-    /// Replaces the tangential bounds g (length q) without rebuilding the solver.
+    /// The scaling of the current data and bounds.
+    fn scaling(&self) -> Scaling {
+        Scaling::new(&diagonal(&self.h, self.c.len()), &self.c, self.q, self.n_scale, &self.bounds)
+    }
+
+    /// Replaces the tangential bounds g (length q) without rebuilding the solver (with equality
+    /// constraints, whose scaled rows follow the bounds, it is rebuilt).
     ///
     /// # Errors
     /// [`Error::BadThreshold`] for a wrong length or a negative value; [`Error::QpSetup`] if clarabel
@@ -182,6 +244,12 @@ impl BoxQp {
         debug_assert!(self.frictional, "bug: bounds on a frictionless QP");
         check_thresholds(g, self.q)?;
         self.bounds.copy_from_slice(g);
+        if self.equality.is_some() {
+            if self.solver.is_some() {
+                self.solver = Some(self.setup()?);
+            }
+            return Ok(());
+        }
         let (p, qv, b) = self.scaled_data();
         if let Some(solver) = self.solver.as_mut() {
             solver.update_b(&b).map_err(|e| Error::QpSetup { what: format!("{e:?}") })?;
@@ -220,7 +288,10 @@ impl BoxQp {
     fn solve_once(&mut self) -> QpOutcome {
         let q = self.q;
         let k = if self.frictional { 2 * q } else { q };
+        let scaling = self.scaling();
+        let (_, rho) = self.scaled_equality(&scaling.w);
         let Some(solver) = self.solver.as_mut() else {
+            // Nothing pushes (c = 0, no load on a body held by the contact): ν = 0, α = 0.
             return QpOutcome {
                 nu: vec![0.0; k],
                 status: QpStatus::Solved,
@@ -229,6 +300,7 @@ impl BoxQp {
                 method: QpMethod::Clarabel,
                 factorizations: 0,
                 fallback: false,
+                alpha: vec![0.0; rho.len()],
             };
         };
         let clock = Instant::now();
@@ -239,8 +311,12 @@ impl BoxQp {
             SolverStatus::Solved | SolverStatus::AlmostSolved => QpStatus::Inaccurate,
             s => QpStatus::Failed(status_name(s)),
         };
-        let w = Scaling::new(&diagonal(&self.h, self.c.len()), &self.c, q, self.n_scale, &self.bounds).w;
-        let nu = (0..k).map(|i| sol.x[i] * w[i]).collect();
+        let nu = (0..k).map(|i| sol.x[i] * scaling.w[i]).collect();
+        // The equality rows' duals z: stationarity of the scaled QP, multiplied by φ / w_i, reads
+        // H ν + c + Gᵀ (φ ρ z) + … = 0, so α = −φ ρ z (φ = root_phi², formed as two products).
+        let m = if self.frictional { 3 * q } else { q };
+        let alpha =
+            rho.iter().enumerate().map(|(e, r)| -(scaling.root_phi * (scaling.root_phi * r * sol.z[m + e]))).collect();
         QpOutcome {
             nu,
             status,
@@ -249,6 +325,7 @@ impl BoxQp {
             method: QpMethod::Clarabel,
             factorizations: 0,
             fallback: false,
+            alpha,
         }
     }
 }

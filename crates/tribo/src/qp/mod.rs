@@ -49,6 +49,9 @@ pub struct QpData<'a> {
     pub d: &'a [f64],
     /// The linear term (2q).
     pub c: &'a [f64],
+    /// For bodies held only by the contact: `E R` (2q × r, column-major) and `Rᵀ f` (r), the equality
+    /// `(E R)ᵀ ν = Rᵀ f` of their equilibrium (see `problem/floating.rs`).
+    pub rigid: Option<(&'a [f64], &'a [f64])>,
 }
 
 /// The tolerance a QP falls back to when it fails at a tighter one.
@@ -88,4 +91,7 @@ pub struct QpOutcome {
     /// True when the first method tried did not answer (the active-set method could not certify, or
     /// clarabel failed under [`QpMethod::Auto`]) and the other one did.
     pub fallback: bool,
+    /// The rigid motion α of the bodies held only by the contact (the multipliers of the equality of
+    /// [`QpData::rigid`]); empty without such bodies.
+    pub alpha: Vec<f64>,
 }

@@ -213,6 +213,7 @@ impl<'a> ContactQp<'a> {
             method: QpMethod::ActiveSet,
             factorizations,
             fallback: false,
+            alpha: Vec::new(),
         };
         let diag = crate::qp::diagonal(op.matrix(), c.len());
         let Some(n_scale) = Scaling::normal_scale(&diag, &c, s) else {
@@ -274,6 +275,7 @@ impl<'a> ContactQp<'a> {
                 method: QpMethod::ActiveSet,
                 factorizations: 0,
                 fallback: false,
+                alpha: Vec::new(),
             });
         }
         log::info!("the active-set method could not certify a QP on {} dofs: clarabel solves it", self.set.len());
@@ -287,6 +289,9 @@ impl<'a> ContactQp<'a> {
     /// # Errors
     /// QP set-up errors.
     pub fn solve(&mut self) -> Result<QpOutcome> {
+        if let Some((e_r, load)) = self.data.rigid {
+            return self.solve_held_by_contact(e_r, load);
+        }
         if self.condensed.condensation == Condensation::Saddle && self.settings.method != QpMethod::Clarabel {
             if let Some(out) = self.solve_sparse()? {
                 return Ok(out);
@@ -297,6 +302,32 @@ impl<'a> ContactQp<'a> {
             return Ok(out);
         }
         self.solve_dense()
+    }
+
+    /// Solves the whole QP with the equilibrium of the bodies held only by the contact, `(E R)ᵀ ν = Rᵀ f`
+    /// (`e_r` 2q × r column-major, `load` r), with clarabel on all of Γ_C: its equality multipliers are the
+    /// rigid motion α (see `problem/floating.rs`).
+    fn solve_held_by_contact(&mut self, e_r: &[f64], load: &[f64]) -> Result<QpOutcome> {
+        let q = self.q;
+        let k = if self.bounds.is_some() { 2 * q } else { q };
+        if self.set.len() < q {
+            self.set = (0..q).collect();
+        }
+        self.check_budget()?;
+        let (h, c, bounds) = self.block();
+        let g: Vec<f64> = (0..load.len()).flat_map(|m| e_r[m * 2 * q..m * 2 * q + k].iter().copied()).collect();
+        // Without friction (the start of a Coulomb solve) only the motions the normal multipliers see
+        // are balanced: the others (a tangential load) wait for the friction of the next QPs.
+        let r = load.len();
+        let (g, load, basis) = if bounds.is_none() { seen_motions(g, load, k) } else { (g, load.to_vec(), None) };
+        let mut qp = BoxQp::new(&h, &c, q, bounds.as_deref(), &self.settings)?.with_equality(g, load)?;
+        let mut out = qp.solve();
+        if let Some(v) = basis {
+            // Gᵀ α = (Vᵀ G)ᵀ α̃: the multipliers of the kept combinations, back on every motion.
+            out.alpha = (0..r).map(|m| v.iter().zip(&out.alpha).map(|(col, a)| col[m] * a).sum()).collect();
+        }
+        self.remember(&out.nu, false);
+        Ok(out)
     }
 
     /// Solves the whole QP without H, on the saddle-point system ([`crate::qp::sparse`]); `None` if the
@@ -331,6 +362,7 @@ impl<'a> ContactQp<'a> {
                 method: QpMethod::ActiveSet,
                 factorizations,
                 fallback: false,
+                alpha: Vec::new(),
             }
         }))
     }
@@ -396,6 +428,32 @@ impl<'a> ContactQp<'a> {
             self.dense = None;
         }
     }
+}
+
+/// The equality `G ν = b` (G r × k row-major) restricted to the range of G: the combinations of its
+/// rows that are not zero (to `16 k ε` of the largest, in the Gram matrix), with their loads. A row
+/// combination that vanishes is a motion the unknowns cannot hold (a tangential translation seen by the
+/// normal multipliers alone).
+/// Returns the kept rows, their loads and (when a combination was dropped) the kept combinations.
+#[allow(clippy::type_complexity)]
+fn seen_motions(g: Vec<f64>, b: &[f64], k: usize) -> (Vec<f64>, Vec<f64>, Option<Vec<Vec<f64>>>) {
+    let r = b.len();
+    let row = |m: usize| &g[m * k..(m + 1) * k];
+    let gram = nalgebra::DMatrix::from_fn(r, r, |a, c| row(a).iter().zip(row(c)).map(|(x, y)| x * y).sum::<f64>());
+    let eig = gram.symmetric_eigen();
+    let lmax = eig.eigenvalues.max();
+    let keep: Vec<usize> = (0..r).filter(|&j| eig.eigenvalues[j] > 16.0 * k as f64 * f64::EPSILON * lmax).collect();
+    if keep.len() == r {
+        return (g, b.to_vec(), None);
+    }
+    let basis: Vec<Vec<f64>> = keep.iter().map(|&j| eig.eigenvectors.column(j).iter().copied().collect()).collect();
+    let mut rows = Vec::with_capacity(keep.len() * k);
+    let mut loads = Vec::with_capacity(keep.len());
+    for v in &basis {
+        rows.extend((0..k).map(|i| (0..r).map(|m| v[m] * g[m * k + i]).sum::<f64>()));
+        loads.push((0..r).map(|m| v[m] * b[m]).sum::<f64>());
+    }
+    (rows, loads, Some(basis))
 }
 
 /// The former name of [`ContactQp`].

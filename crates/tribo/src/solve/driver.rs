@@ -31,6 +31,8 @@ pub(super) struct QpPhase {
     pub(super) qp_fallbacks: usize,
     /// QPs that met only [`crate::qp::FALLBACK_TOL`], not `qp.tol`.
     pub(super) qp_inaccurate: usize,
+    /// The rigid motion of the bodies held only by the contact, of the last QP (empty without them).
+    pub(super) alpha: Vec<f64>,
 }
 
 impl QpPhase {
@@ -41,6 +43,7 @@ impl QpPhase {
         self.qp_methods.push(out.method);
         self.qp_fallbacks += usize::from(out.fallback);
         self.qp_inaccurate += usize::from(out.status == QpStatus::Inaccurate);
+        self.alpha.clone_from(&out.alpha);
     }
 
     /// Books a QP solved outside the fixed point (iteration 0): progress, counts, status.
@@ -124,7 +127,9 @@ impl Condensed<'_> {
             qp_methods: Vec::new(),
             qp_fallbacks: 0,
             qp_inaccurate: 0,
+            alpha: vec![0.0; loading.rigid.load.len()],
         };
+        problem.check_held_by_contact(&loading.rigid, !matches!(friction, Friction::Frictionless))?;
         let budget = settings.memory_budget;
         let condensed = Progress {
             phase: Phase::Condensation,
@@ -198,6 +203,21 @@ impl Condensed<'_> {
             estimate: ErrorEstimate::default(),
         };
         let clock = Instant::now();
+        // A body held only by the contact moves rigidly by α besides u (`problem/floating.rs`); the contact
+        // forces must determine it.
+        if phase.status == SolveStatus::Converged {
+            let bound = (!matches!(friction, Friction::Frictionless)).then_some(threshold.as_slice());
+            let largest = phase.lambda.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
+            let noise = settings.qp.tol * factor.lambda_scale(&loading.c).max(largest);
+            problem.check_rigid_motion_determined(&loading.rigid, &phase.lambda, bound, noise)?;
+        }
+        let moved;
+        let loading = if phase.alpha.is_empty() {
+            loading
+        } else {
+            moved = loading.with_rigid_motion(problem, &phase.alpha);
+            &moved
+        };
         let mut solution = Solution::new(self, loading, &u, phase.lambda, threshold, settings.qp.tol, report);
         solution.report.timings.fields = clock.elapsed().as_secs_f64();
         // The equation of (3.1) is solved directly: a residual that lost half of the digits is a singular

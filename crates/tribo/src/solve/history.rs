@@ -239,11 +239,16 @@ fn after(condensed: &Condensed<'_>, solution: &Solution, loading: &LoadCase) -> 
     let (problem, factor) = (condensed.problem(), condensed.factor());
     let q = condensed.q();
     // The unknowns x = Tᵀ (u − ū_k) (T has orthonormal columns: a node's unknowns are its free
-    // directions); `E (u − ū) = E T x + E (ū_k − ū)`.
+    // directions); `E (u − ū) = E T x + E (ū_k − ū)` (+ E R α for a body held only by the contact).
     let relative: Vec<f64> = solution.displacement.iter().zip(loading.lifting(problem)).map(|(u, l)| u - l).collect();
-    let u_free = problem.dofs.restrict(&relative);
     let lambda: Vec<f64> = solution.lambda_n.iter().chain(&solution.lambda_t).copied().collect();
-    let (eu, dl) = (factor.apply_e(&u_free), factor.apply_d(&lambda));
+    // A body held only by the contact also moves by R α, which the unknowns do not carry at the pins.
+    let eu = if problem.dofs.floating.is_empty() {
+        factor.apply_e(&problem.dofs.restrict(&relative))
+    } else {
+        problem.e_action(factor.gamma0, &relative)
+    };
+    let dl = factor.apply_d(&lambda);
     let moved = |j: usize| loading.moved_supports.as_ref().map_or(0.0, |m| m.e_change[j]);
     let tangential = (q..2 * q).map(|j| eu[j] + moved(j) - dl[j]).collect();
     let shift = loading.shift;
@@ -331,6 +336,7 @@ fn step_load_case(problem: &Problem, factor: &Factor, step: &LoadStep, previous:
         load_factor: alpha,
         slip_origin: previous.u_t_nodes.iter().map(|u| u + ds).collect(),
         moved_supports,
+        rigid: problem.rigid_load(&problem.f_full.iter().map(|f| alpha * f).collect::<Vec<_>>()),
     })
 }
 

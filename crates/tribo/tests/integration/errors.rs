@@ -104,8 +104,20 @@ fn material_load_and_support_rules() {
     assert!(matches!(problem_err(square(), s), Error::NonFiniteLoad { target, .. } if target == "left"));
     let s = ProblemSpec { tractions: vec![("lft".into(), [1.0, 0.0])], ..spec() };
     assert!(matches!(problem_err(square(), s), Error::UnknownEdgeSet { name, .. } if name == "lft"));
+    // No support at all: the block rests on the foundation under its weight, held by the contact alone;
+    // without friction nothing holds it along the foundation, which the solve says by name.
     let s = ProblemSpec { clamped: vec![], ..spec() };
-    assert_eq!(problem_err(square(), s), Error::NoDirichlet);
+    let resting = Problem::new(square(), s).unwrap();
+    assert_eq!(resting.dofs.n_floating(), 3);
+    let e = resting.solve(&Friction::Frictionless, &SolverSettings::default(), None).unwrap_err();
+    assert!(
+        matches!(&e, Error::HeldOnlyByContact { motion, .. } if motion.contains("translation along (1.000, 0.000)")),
+        "{e}"
+    );
+    assert!(e.to_string().contains("hold that motion with a support"), "{e}");
+    let sol = resting.solve(&Friction::Coulomb { mu: 0.3 }, &SolverSettings::default(), None).unwrap();
+    assert_eq!(sol.report.status, SolveStatus::Converged);
+    assert!((sol.normal_force - 1.0).abs() < 1e-9, "the contact carries the weight: {}", sol.normal_force);
 }
 
 #[test]
@@ -373,15 +385,31 @@ fn support_rules() {
     // The same with compatible values is accepted: a roller along the left side and the top clamped.
     let s = with(vec![Support::clamp("top"), Support::roller("left")]);
     assert!(Problem::new(square(), s).is_ok());
-    // Two parallel rollers leave a translation along them free.
-    let e = problem_err(square(), with(vec![Support::roller("left"), Support::roller("right")]));
+    // Two parallel rollers leave a translation along them free: held by the contact (Γ_C the bottom), under
+    // the body's weight. Off the contact, the same rollers leave a piece free: refused, naming the motion.
+    let held = Problem::new(square(), with(vec![Support::roller("left"), Support::roller("right")])).unwrap();
+    assert_eq!(held.dofs.n_floating(), 1);
+    let sol = held.solve(&Friction::Frictionless, &SolverSettings::default(), None).unwrap();
+    assert!(sol.report.status == SolveStatus::Converged && (sol.normal_force - 1.0).abs() < 1e-9);
+    let pts = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [2.0, 0.0], [3.0, 0.0], [3.0, 1.0], [2.0, 1.0]];
+    let tris = vec![[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]];
+    let two = sets(&[("top", vec![[3, 2]]), ("bottom", vec![[0, 1]]), ("l2", vec![[7, 4]]), ("r2", vec![[5, 6]])]);
+    let mesh = Mesh::new(pts, tris, two).unwrap();
+    let s = ProblemSpec {
+        clamped: vec!["top".into()],
+        supports: vec![Support::roller("l2"), Support::roller("r2")],
+        ..spec()
+    };
+    let e = problem_err(mesh, s);
     assert!(
-        matches!(&e, Error::RigidMotion { triangles: 32, pieces: 1, motion, .. } if motion.contains("translation")),
+        matches!(&e, Error::RigidMotion { triangles: 2, pieces: 2, motion, .. } if motion.contains("translation along (0")),
         "{e}"
     );
-    // One roller on the top leaves the translation along it free; with a roller on the left it is held.
-    let e = problem_err(square(), with(vec![Support::roller("top")]));
-    assert!(matches!(&e, Error::RigidMotion { .. }), "{e}");
+    // One roller on the top leaves the translation along it free, which only friction could hold; with a
+    // roller on the left it is held.
+    let along = Problem::new(square(), with(vec![Support::roller("top")])).unwrap();
+    let e = along.solve(&Friction::Frictionless, &SolverSettings::default(), None).unwrap_err();
+    assert!(matches!(&e, Error::HeldOnlyByContact { .. }), "{e}");
     assert!(Problem::new(square(), with(vec![Support::roller("top"), Support::roller("left")])).is_ok());
     // A piece held at a single node turns about it: two squares joined at node 2 = (1, 1), the first
     // clamped on its bottom and its right side, which fixes node 2 but no other node of the second.

@@ -25,6 +25,7 @@ mod adaptive;
 mod errors;
 mod estimator;
 mod fuzz;
+mod held_by_contact;
 mod hertz;
 mod history;
 mod invariants;
