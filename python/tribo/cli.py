@@ -422,8 +422,8 @@ def _sweep_plot(df: Any, names: Sequence[str], column: str, out: Path) -> list[P
     return [path]
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``tribo`` script; returns the exit code."""
+def build_parser() -> argparse.ArgumentParser:
+    """The ``tribo`` command line (the documentation site renders its help from it)."""
     parser = argparse.ArgumentParser(prog="tribo", description="2D frictional contact, stabilized multipliers.")
     parser.add_argument("--version", action="version", version=f"tribo {__version__}")
     parser.add_argument("-q", "--quiet", action="store_true", help="no progress log on stderr")
@@ -449,7 +449,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     demo = sub.add_parser("demo", help="run the built-in demo scene")
     demo.add_argument("--out", type=Path, default=Path("tribo-demo-out"), help="output directory (tribo-demo-out)")
     demo.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
-    args = parser.parse_args(argv)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``tribo`` script; returns the exit code."""
+    args = build_parser().parse_args(argv)
     handler = logging.StreamHandler(sys.stderr)
     handler.setFormatter(logging.Formatter("[tribo %(relativeCreated)7.0f ms] %(message)s"))
     log.handlers[:] = [handler]

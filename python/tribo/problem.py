@@ -160,9 +160,9 @@ class Problem(_tribo.Problem):
     """A contact problem, validated and assembled once (independent of γ0 and friction). It keeps the
     factorization of its last solve, reused by the next solve with the same γ0.
 
-    Problem(mesh, *, young, poisson, contact, clamped=None, supports=None, obstacle=None, approach=None,
+    ``Problem(mesh, *, young, poisson, contact, clamped=None, supports=None, obstacle=None, approach=None,
     shift=None, tractions=None, body_force=None, multiplier_ratio=None, multiplier_size=None,
-    multiplier_points=None, space=None): the body (a Mesh, Young's modulus and Poisson's ratio, plane
+    multiplier_points=None, space=None)``: the body (a Mesh, Young's modulus and Poisson's ratio, plane
     strain), its supports (edge sets clamped, or a list of Support), its loads (tractions: a dict edge set ->
     (tx, ty); body_force (fx, fy)), Γ_C (the edge set `contact`) and the obstacle with its motion (an
     Obstacle or a callable gap(xi), the approach δ and the tangential shift s), and the multiplier mesh T_H
@@ -241,7 +241,7 @@ class Problem(_tribo.Problem):
         condensation); unset ones take the core's defaults.
 
         ``progress``, if given, is called as progress(iteration, change, qp_iterations, qp_seconds) after
-        every QP; returning False (any false value but None: 0, numpy.False_) stops the solve (status
+        every QP; returning False (any false value but None: 0, ``numpy.False_``) stops the solve (status
         'interrupted', with the last iterate), raising
         stops it and propagates. ``on_phase``, if given, is called as on_phase(phase, seconds) when a
         phase before the QPs ends: 'condensation' (A = K − G factorized or reused, c and possibly all of H

@@ -152,7 +152,7 @@ class Solution(_Record):
         multiplier_abscissae: abscissae of the multiplier dofs, (q,).
         lambda_n: λ_n at the multiplier dofs (a contact pressure: ≥ 0), (q,).
         lambda_t: λ_t at the multiplier dofs (along t), (q,).
-        friction_threshold: bound on |λ_t| per multiplier dof: μ λ_n (Coulomb), the Tresca threshold,
+        friction_threshold: bound on ``|λ_t|`` per multiplier dof: μ λ_n (Coulomb), the Tresca threshold,
             or 0, (q,).
         states: contact state per multiplier dof as int8: 0 separation, 1 stick, 2 slip (see
             STATE_NAMES), (q,).
@@ -279,7 +279,7 @@ class History(_Record):
         stick_slip_boundaries: per converged step, the abscissae of the stick–slip boundaries (midpoints
             between a dof that sticks and a neighbour that slips).
         gross_sliding: per converged step, True when the contact slides as a whole (something touches and
-            every dof in contact slips: |Q| = μP for Coulomb friction).
+            every dof in contact slips: ``|Q| = μP`` for Coulomb friction).
         step_seconds: wall time of each step solved (the converged ones, then the failed one), in seconds.
         factorizations: factorizations of K − G done for the history: 1, or 0 when an earlier solve's was
             reused.

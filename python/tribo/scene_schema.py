@@ -69,13 +69,13 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     ``qp_working_set`` (true/false), ``fp_tol``, ``fp_max_iter``, ``fp_relaxation``. Unset keys take the
     core's defaults. The table of keys is built from the core's, so it cannot drift from it.
 
-``[[bodies]]`` (two elastic bodies in contact, instead of ``[body]``, ``[material]``, ``[supports]`` and
-``[obstacle]``)
+``[[bodies]]``
+    Two elastic bodies in contact, instead of ``[body]``, ``[material]``, ``[supports]`` and ``[obstacle]``.
     Exactly two entries, each with ``name`` (*required*), ``x``/``y`` or ``mesh`` as ``[body]``,
     ``material = { young, poisson }`` (*required*), ``supports`` (*required*: a list of tables as the
     ``[[supports]]`` entries; a motion they leave free is held by the contact, and ``[]`` leaves the body
-    to the contact alone, e.g. a punch pushed by its ``loads``), ``loads = { tractions = { edge_set = [tx, ty] } }`` and ``discretization``
-    with the rectangle's keys (``grading``, ``h``, ``h_min``, ``growth``, ``diagonal``; ``grading = "auto"``
+    to the contact alone, e.g. a punch pushed by its ``loads``), ``loads = { tractions = { edge_set = [tx,
+    ty] } }`` and ``discretization`` with the rectangle's keys (``grading``, ``h``, ``h_min``, ``growth``, ``diagonal``; ``grading = "auto"``
     refines toward the contact: the whole side for a flat gap, ``[c − 2a, c + 2a]`` with ``a = √(2Rδ)`` for a
     curved one, δ the largest prescribed displacement of the scene). ``[contact]`` then names the sides as
     ``secondary = "body.edge_set"`` (it carries the multipliers and the stabilization) and ``primary``, and
@@ -167,22 +167,26 @@ def _count(largest: int) -> Checker:
             raise SceneError(f"scene key '{key}' must be an integer in [0, {largest}], got {n}", key)
         return n
 
+    check.__doc__ = f"An integer in [0, {largest}]."
     return check
 
 
 def _boolean(key: str, v: Any) -> bool:
+    """true or false."""
     if not isinstance(v, bool):
         raise SceneError(f"scene key '{key}' must be true or false, got {v!r}", key)
     return v
 
 
 def _string(key: str, v: Any) -> str:
+    """A string."""
     if not isinstance(v, str):
         raise SceneError(f"scene key '{key}' must be a string, got {v!r}", key)
     return v
 
 
 def _pair(key: str, v: Any) -> tuple[float, float]:
+    """Two numbers [x, y]."""
     if not (isinstance(v, list) and len(v) == 2):
         raise SceneError(f"scene key '{key}' must be a list of two numbers, got {v!r}", key)
     return (_number(key, v[0]), _number(key, v[1]))
@@ -197,6 +201,7 @@ def _range(key: str, v: Any) -> tuple[float, float]:
 
 
 def _numbers(key: str, v: Any) -> list[float]:
+    """A list of numbers."""
     if not isinstance(v, list):
         raise SceneError(f"scene key '{key}' must be a list of numbers, got {v!r}", key)
     return [_number(key, x) for x in v]
@@ -229,12 +234,14 @@ def _every(key: str, v: Any) -> int:
 
 
 def _steps(key: str, v: Any) -> list[int]:
+    """A list of step indices (0-based)."""
     if not isinstance(v, list) or any(isinstance(x, bool) or not isinstance(x, int) or x < 0 for x in v):
         raise SceneError(f"scene key '{key}' must be a list of step numbers (integers ≥ 0), got {v!r}", key)
     return list(v)
 
 
 def _names(key: str, v: Any) -> list[str]:
+    """An edge set name, or a list of names."""
     if isinstance(v, str):
         return [v]
     if isinstance(v, list) and v and all(isinstance(x, str) for x in v):
@@ -248,16 +255,19 @@ def _choice(*options: str) -> Checker:
             raise SceneError(f"scene key '{key}' must be one of {', '.join(map(repr, options))}, got {v!r}", key)
         return str(v)
 
+    check.__doc__ = f"One of {', '.join(map(repr, options))}."
     return check
 
 
 def _grading(key: str, v: Any) -> str | tuple[float, float]:
+    """"auto", "none" or a segment [a, b] of the contact side."""
     if isinstance(v, str):
         return str(_choice("auto", "none")(key, v))
     return _pair(key, v)
 
 
 def _pairs(key: str, v: Any) -> dict[str, tuple[float, float]]:
+    """A table edge_set = [tx, ty]."""
     if not isinstance(v, dict):
         raise SceneError(f"scene key '{key}' must be a table edge_set = [tx, ty]", key)
     return {name: _pair(f"{key}.{name}", t) for name, t in v.items()}
@@ -303,7 +313,7 @@ SCHEMA: dict[str, dict[str, Checker]] = {
     "material": {"young": _number, "poisson": _number},
     "supports": {"clamped": _names},
     "loads": {"body_force": _pair, "tractions": _pairs},
-    "contact": {"edge_set": _string, "secondary": _string, "primary": _string, "gap": lambda k, v: _shape(k, v)},
+    "contact": {"edge_set": _string, "secondary": _string, "primary": _string, "gap": _shape},
     "obstacle": {
         "shape": _choice("flat", "circle", "parabola", "polyline"),
         "radius": _number,
@@ -347,6 +357,20 @@ SCHEMA: dict[str, dict[str, Checker]] = {
     "solver": {name: _setting_checker(spec) for name, spec in solver_settings().items()},
 }
 REQUIRED = {"material": ("young", "poisson"), "contact": ("edge_set",)}
+
+
+def describe_keys() -> list[tuple[str, str, str]]:
+    """Every key a scene file takes, as (table, key, what its value must be), from the checkers of ``SCHEMA``
+    and of ``[[bodies]]`` entries (the documentation site renders this table, so it cannot drift)."""
+    def first_line(check: Checker) -> str:
+        return (check.__doc__ or "").strip().split("\n")[0]
+
+    rows = [(table, key, first_line(check)) for table, keys in SCHEMA.items() for key, check in keys.items()]
+    rows += [("bodies", key, first_line(check)) for key, check in BODY_KEYS.items()]
+    rows += [("bodies", f"{table}.{key}", first_line(check)) for table, keys in BODY_TABLES.items()
+             for key, check in keys.items()]
+    rows.append(("bodies", "supports", "A list of support tables, as [[supports]] entries ([]: held by the contact)."))
+    return rows
 # The keys of one [[bodies]] entry: plain values, and the sub-tables with their keys.
 BODY_KEYS: dict[str, Checker] = {"name": _string, "x": _range, "y": _range, "mesh": _string}
 BODY_TABLES: dict[str, dict[str, Checker]] = {

@@ -62,7 +62,7 @@ def test_demo_scene_runs_in_process(tmp_path: Path, capsys: pytest.CaptureFixtur
 
 
 def test_demo_scene_is_the_documented_one() -> None:
-    """The demo scene is the one README.md and the scene's description state."""
+    """The demo scene is the one README.md, the getting-started page and the scene's description state."""
     s = load_scene(demo_scene_path())
     assert s.solve_kwargs()["mu"] == 0.3
     assert s.get("obstacle", "radius") == 1.0 and s.get("obstacle", "approach") == 0.01

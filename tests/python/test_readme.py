@@ -1,4 +1,6 @@
-"""The README's Python example and scene snippet run as tests, so the README cannot drift from the API."""
+"""The code of the README and of the documentation site's pages runs as tests (Python examples, scene
+snippets), and the readings they quote are those of the studies' files, so the pages cannot drift from the
+API or from the measurements."""
 
 from __future__ import annotations
 
@@ -9,10 +11,23 @@ from pathlib import Path
 from tribo.scene import load_scene, parse_scene, scene_path
 
 README = Path(__file__).resolve().parents[2] / "README.md"
+DOCS = README.parent / "docs"
+# The pages whose code runs here, in reading order: the README, then the site's getting-started page, the
+# user guide and the measurements.
+PAGES = [README, DOCS / "getting-started.md", *sorted((DOCS / "guide").glob("*.md")), DOCS / "measured.md"]
+
+
+def _text() -> str:
+    return "\n".join(p.read_text(encoding="utf-8") for p in PAGES)
 
 
 def _blocks(lang: str) -> list[str]:
-    return re.findall(rf"```{lang}\n(.*?)```", README.read_text(encoding="utf-8"), flags=re.S)
+    return re.findall(rf"```{lang}\n(.*?)```", _text(), flags=re.S)
+
+
+def _embeds(text: str, name: str) -> bool:
+    """Whether a page embeds the chart ``docs/name.png`` (from the README, a page of docs/ or of docs/guide/)."""
+    return re.search(rf"!\[[^\]]*\]\((?:docs/|\.\./)?{name}\.png\)", text) is not None
 
 
 def test_readme_python_example_runs(capsys: object) -> None:
@@ -22,7 +37,7 @@ def test_readme_python_example_runs(capsys: object) -> None:
         if "tribo.sweep" in code:
             continue  # the sweep example starts a Dask cluster: tests/python/test_sweep.py runs it
         namespace: dict[str, object] = {}
-        exec(compile(code, "README.md", "exec"), namespace)  # noqa: S102 - our own README
+        exec(compile(code, "docs", "exec"), namespace)  # noqa: S102 - our own pages
         solution = namespace["solution"]
         assert solution.report.status == "converged"  # type: ignore[attr-defined]
         assert solution.normal_force > 0.0  # type: ignore[attr-defined]
@@ -57,9 +72,9 @@ def _rows(name: str) -> list[dict[str, str]]:
 def test_readme_embeds_the_study_charts_with_true_readings() -> None:
     """The work-precision, checkerboard and γ0 charts are embedded (and exist), and the numbers their
     readings quote are those of the studies' CSV files."""
-    text = README.read_text(encoding="utf-8")
+    text = _text()
     for name in ("work_precision", "checkerboard", "gamma0_bound"):
-        assert re.search(rf"!\[[^\]]*\]\(docs/{name}\.png\)", text), name
+        assert _embeds(text, name), name
         assert (README.parent / "docs" / f"{name}.png").stat().st_size > 0
     fine = [r for r in _rows("checkerboard.csv") if float(r["H/h"]) < 1]
 
@@ -92,8 +107,8 @@ def test_readme_half_model_scene_is_half_the_hertz_scene() -> None:
 
 def test_readme_quotes_the_two_body_and_path_studies_as_measured() -> None:
     """The two-body and path-choice readings of the README are those of docs/two_bodies.csv and paths.csv."""
-    text = README.read_text(encoding="utf-8")
-    assert re.search(r"!\[[^\]]*\]\(docs/two_bodies\.png\)", text)
+    text = _text()
+    assert _embeds(text, "two_bodies")
     rows = _rows("two_bodies.csv")
     finest = max(float(r["n_free"]) for r in rows)
     at = {r["pair"]: float(r["hertz_l2"]) for r in rows if float(r["n_free"]) == finest}

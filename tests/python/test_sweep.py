@@ -271,14 +271,14 @@ def test_ctrl_c_writes_what_is_done_and_the_rerun_resumes(tmp_path: Path, client
     assert set(partial["case"]) <= set(full["case"]) and (full["attempts"] == 1).all()
 
 
-def test_the_readme_sweep_example_runs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_the_guide_sweep_example_runs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     import re
 
-    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
-    (code,) = [b for b in re.findall(r"```python\n(.*?)```", readme, flags=re.S) if "tribo.sweep" in b]
+    page = (Path(__file__).resolve().parents[2] / "docs" / "guide" / "sweeps.md").read_text(encoding="utf-8")
+    (code,) = [b for b in re.findall(r"```python\n(.*?)```", page, flags=re.S) if "tribo.sweep" in b]
     monkeypatch.chdir(tmp_path)
     namespace: dict[str, Any] = {"__name__": "__main__"}
-    exec(compile(code, "README.md", "exec"), namespace)  # noqa: S102 - our own README
+    exec(compile(code, "docs/guide/sweeps.md", "exec"), namespace)  # noqa: S102 - our own page
     df, grid = namespace["df"], namespace["grid"]
     assert len(df) == 4 and (df["status"] == "converged").all() and (tmp_path / "sweep-out" / "results.csv").is_file()
     assert grid["tangential_force"].shape == (2, 2)

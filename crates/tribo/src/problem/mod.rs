@@ -7,7 +7,7 @@
 //! factorization: [`crate::Report::reused_factorization`] says when that happened.
 
 pub mod bodies;
-mod floating;
+pub mod floating;
 pub mod load_case;
 
 mod condense;

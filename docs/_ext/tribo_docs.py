@@ -1,0 +1,113 @@
+"""Sphinx directives and roles of tribo's documentation site, generated from the code so that the pages
+cannot drift from it:
+
+* ``scene-keys``: every key of a scene file and what its value must be (``tribo.scene_schema.describe_keys``);
+* ``cli-help``: the help of ``tribo`` and of each of its commands (``tribo.cli.build_parser``);
+* ``solver-settings``: every solver setting with its kind and default (the core's table);
+* the role ``rust``: a link into the crate documentation that ``cargo doc -p tribo --no-deps`` builds and
+  that is copied into ``rust/`` of the site once it is written (``{rust}`label <tribo/index.html>```).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from docutils import nodes
+from docutils.parsers.rst import Directive
+from sphinx.application import Sphinx
+
+
+def _table(header: list[str], rows: list[list[str]]) -> nodes.table:
+    table = nodes.table()
+    group = nodes.tgroup(cols=len(header))
+    table += group
+    for _ in header:
+        group += nodes.colspec(colwidth=1)
+    head = nodes.thead()
+    group += head
+    body = nodes.tbody()
+    group += body
+    for target, cells in ((head, [header]), (body, rows)):
+        for cells_row in cells:
+            row = nodes.row()
+            for text in cells_row:
+                entry = nodes.entry()
+                entry += nodes.paragraph(text=text)
+                row += entry
+            target += row
+    return table
+
+
+class SceneKeys(Directive):
+    """Every scene key: table, key, what its value must be."""
+
+    def run(self) -> list[nodes.Node]:
+        from tribo.scene_schema import describe_keys
+
+        rows = [[f"[{table}]" if table != "bodies" else "[[bodies]]", key, what] for table, key, what in describe_keys()]
+        return [_table(["table", "key", "value"], rows)]
+
+
+class SolverSettings(Directive):
+    """Every solver setting: name, kind, default."""
+
+    def run(self) -> list[nodes.Node]:
+        import tribo
+
+        defaults = tribo.solver_defaults()
+        rows = []
+        for name, spec in tribo.solver_settings().items():
+            kind = spec["kind"] + (f" ({', '.join(spec['options'])})" if "options" in spec else "")
+            rows.append([name, kind, repr(defaults.get(name))])
+        return [_table(["setting", "kind", "default"], rows)]
+
+
+class CliHelp(Directive):
+    """``tribo --help`` and the help of each command, as literal blocks."""
+
+    def run(self) -> list[nodes.Node]:
+        import argparse
+
+        from tribo.cli import build_parser
+
+        parser = build_parser()
+        out: list[nodes.Node] = [nodes.literal_block(text=parser.format_help())]
+        for action in parser._actions:  # noqa: SLF001 - argparse keeps its subparsers here
+            if isinstance(action, argparse._SubParsersAction):  # noqa: SLF001
+                for name, sub in action.choices.items():
+                    section = nodes.section(ids=[f"tribo-{name}"])
+                    section += nodes.title(text=f"tribo {name}")
+                    section += nodes.literal_block(text=sub.format_help())
+                    out.append(section)
+        return out
+
+
+def rust_role(name: str, rawtext: str, text: str, lineno: int, inliner: Any, options: Any = None,
+              content: Any = None) -> tuple[list[nodes.Node], list[nodes.Node]]:
+    """``{rust}`label <path>``` or ``{rust}`path```: a link to the crate documentation copied into the site."""
+    label, _, target = text.partition(" <")
+    target = target.rstrip(">") if target else label
+    # Relative to the page: the site root holds the crate documentation.
+    docname = inliner.document.settings.env.docname
+    prefix = "../" * docname.count("/") + "rust/"
+    return [nodes.reference(rawtext, label, refuri=prefix + target)], []
+
+
+def copy_rust_doc(app: Sphinx, exception: Exception | None) -> None:
+    """Copies the crate documentation into ``rust/`` of an HTML build, when ``cargo doc`` has made it."""
+    import shutil
+    from pathlib import Path
+
+    source = Path(app.config.tribo_rust_doc)
+    if exception is None and app.builder.format == "html" and (source / "tribo" / "index.html").is_file():
+        shutil.copytree(source, Path(app.outdir) / "rust", dirs_exist_ok=True)
+
+
+def setup(app: Sphinx) -> dict[str, Any]:
+    app.add_directive("scene-keys", SceneKeys)
+    app.add_directive("solver-settings", SolverSettings)
+    app.add_directive("cli-help", CliHelp)
+    app.add_role("rust", rust_role)
+    app.add_config_value("tribo_rust_doc", "", "html")
+    app.connect("build-finished", copy_rust_doc)
+    return {"parallel_read_safe": True, "parallel_write_safe": True}
