@@ -29,5 +29,5 @@ print(f"P = {solution.normal_force:.6f} (the load: {4 * 0.07:.6f}), QP by {solut
 
 fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4))
 tribo.plot.contact_pressure(problem, solution, ax=left)
-tribo.plot.von_mises(problem, solution, ax=right)
+tribo.plot.von_mises(problem, solution, ax=right, scale=1.0, window=(-0.25, 0.25, -0.2, 0.2))
 fig.tight_layout()

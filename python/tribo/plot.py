@@ -120,13 +120,17 @@ def _edge_steps(solution: Solution, values: npt.NDArray[np.float64]) -> tuple[An
 
 def hertz_pressure(problem: Problem, solution: Solution) -> tuple[np.ndarray, np.ndarray] | None:
     """The plane-strain Hertz pressure of the computed normal force for a circle or parabola (rigid, on an
-    elastic half-plane: a² = 4PR(1 − ν²)/(πE), p = (2P/(πa)) √(1 − (ξ − c)²/a²)), as (ξ, p) over the
-    contact width; None for other obstacles or without contact."""
+    elastic half-plane: a² = 4PR/(πE*), E* = E/(1 − ν²), p = (2P/(πa)) √(1 − (ξ − c)²/a²)), as (ξ, p) over
+    the contact width; between two bodies, for the combined modulus 1/E* = Σ (1 − ν_i²)/E_i of their
+    materials. None for other gaps or without contact."""
     o = problem.obstacle
     p_total = solution.normal_force
     if o.radius is None or o.center is None or not p_total > 0.0:
         return None
-    e_star = problem.young / (1.0 - problem.poisson**2)
+    if problem.primary is None:
+        e_star = problem.young / (1.0 - problem.poisson**2)
+    else:  # the two bodies' (name, mesh, young, poisson, …) as given to Problem.two_bodies
+        e_star = 1.0 / sum((1.0 - body[3] ** 2) / body[2] for body in problem._source)
     a = math.sqrt(4.0 * p_total * o.radius / (math.pi * e_star))
     xi = o.center + a * np.linspace(-1.0, 1.0, 201)
     return xi, 2.0 * p_total / (math.pi * a) * np.sqrt(np.clip(1.0 - ((xi - o.center) / a) ** 2, 0.0, None))
@@ -142,7 +146,8 @@ def contact_pressure(
     handles = _shade(ax, problem, solution)
     reference = hertz_pressure(problem, solution) if hertz else None
     if reference is not None:
-        ax.plot(*reference, color="k", lw=1.0, ls=":", label="Hertz, same force (half-plane)")
+        model = "half-plane" if problem.primary is None else "two half-planes"
+        ax.plot(*reference, color="k", lw=1.0, ls=":", label=f"Hertz, same force ({model})")
     x, y = _edge_steps(solution, -solution.sigma_n)
     ax.plot(x, y, color="0.35", lw=1.0, label=r"$-\sigma_n(u_h)$ (per FE edge)")
     x, y = _multiplier_curve(problem, solution, solution.lambda_n)

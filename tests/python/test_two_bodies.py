@@ -214,3 +214,18 @@ def test_bad_moves_are_errors() -> None:
                        clamped="bottom")
     with pytest.raises(tribo.SettingsError, match="none: the problem has no prescribed displacement"):
         no.solve_history(0.0, 0.0, displacements={"bottom.y": 0.01})
+
+
+def test_the_pressure_plot_compares_two_bodies_with_their_combined_modulus() -> None:
+    """Between two bodies the Hertz reference of the pressure plot is that of 1/E* = Σ (1 − ν_i²)/E_i."""
+    import math
+
+    import tribo.plot
+
+    problem = coarse_pair()
+    sol = problem.solve()
+    ref = tribo.plot.hertz_pressure(problem, sol)
+    assert ref is not None
+    e_star = 1.0 / ((1.0 - 0.3**2) / 200.0 + (1.0 - 0.33**2) / 70.0)
+    a = math.sqrt(4.0 * sol.normal_force * 1.0 / (math.pi * e_star))
+    assert ref[0][-1] - ref[0][0] == pytest.approx(2.0 * a, rel=1e-12)
