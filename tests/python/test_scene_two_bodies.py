@@ -233,6 +233,31 @@ def test_scene_errors_the_core_finds_name_what_is_wrong(tmp_path: Path) -> None:
         scene.solve_history(problem)
 
 
+def test_a_body_with_no_support_is_left_to_the_contact(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """``supports = []``: the upper block rests on the lower one (a flat gap: touching along the line) and
+    is held by the contact alone. Pressed by a traction with friction, friction holds it sideways and the
+    run converges; without friction nothing holds it along the line, and ``tribo run`` says so, naming the
+    body and the motion, with exit code 1 (an input error)."""
+    data = two_body_scene(bodies__0__discretization={"h_min": 0.02, "grading": [-0.15, 0.15]},
+                          bodies__1__discretization={"h_min": 0.02, "grading": [-0.15, 0.15]})
+    data["contact"]["gap"] = {"shape": "flat"}
+    data["bodies"][1]["supports"] = []
+    data["bodies"][1]["loads"] = {"tractions": {"top": [0.0, -0.07]}}
+    problem, solution = parse_scene({**data, "friction": {"mu": 0.3}}).solve()
+    assert solution.report.status == "converged" and solution.normal_force == pytest.approx(0.28, rel=1e-9)
+    scene = tmp_path / "free.toml"
+    lines = [f'[[bodies]]\nname = "{b["name"]}"\nx = {list(b["x"])}\ny = {list(b["y"])}\n'
+             f'material = {{ young = {b["material"]["young"]}, poisson = {b["material"]["poisson"]} }}\n'
+             f'discretization = {{ grading = [-0.15, 0.15], h_min = 0.02 }}\n' for b in data["bodies"]]
+    lines[0] += 'supports = [{ kind = "clamp", edge_set = "bottom" }]\n'
+    lines[1] += "supports = []\nloads = { tractions = { top = [0.0, -0.07] } }\n"
+    contact = '[contact]\nsecondary = "lower.top"\nprimary = "upper.bottom"\n'
+    scene.write_text("\n".join(lines) + contact, encoding="utf-8")
+    assert main(["-q", "run", str(scene), "--out", str(tmp_path / "out"), "--no-plots"]) == 1
+    err = capsys.readouterr().err
+    assert "body 'upper' is held only by the contact" in err and "translation along (1.000, 0.000)" in err, err
+
+
 def test_auto_grading_of_two_bodies_follows_the_press() -> None:
     """``grading = "auto"`` refines a body toward [c − 2a, c + 2a], a = √(2Rδ) with δ the largest prescribed
     displacement (0.01 here: a = 0.14)."""
