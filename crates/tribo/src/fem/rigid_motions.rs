@@ -14,7 +14,7 @@
 //! refused, and [`pins`] chooses as many extra conditions as it has free motions, at nodes off the contact
 //! sides, that hold them exactly (pivoted Gram–Schmidt on the candidate rows). With those pins the
 //! stiffness is positive definite; the pins carry no force once the piece is in equilibrium, which the
-//! contact QP imposes ([`crate::fem::dofs`]).
+//! contact QP imposes ([`crate::Dofs`]).
 
 use std::collections::HashMap;
 

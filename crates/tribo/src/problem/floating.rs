@@ -4,7 +4,7 @@
 //! # The formulation
 //! Let the free rigid motions of such pieces be the columns of R (each a displacement of all 2N dofs,
 //! `fem/rigid_motions.rs`). A = K − G is singular along R (a rigid motion has no stress, so
-//! neither K nor the stabilization term sees it). The problem holds R with pins ([`crate::fem::dofs`]):
+//! neither K nor the stabilization term sees it). The problem holds R with pins ([`crate::Dofs`]):
 //! as many conditions `u_i · a = 0` as free motions, off the contact sides, which make the factorized
 //! A_p positive definite. A displacement is then `u = u_p + R α`: u_p the pinned answer, α the rigid
 //! motion. For a load that the piece's contact forces balance, `Rᵀ (f − Eᵀ λ) = 0`, the pins carry no
