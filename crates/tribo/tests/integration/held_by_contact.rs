@@ -11,7 +11,10 @@
 //!   displacement; two-body Hertz with the upper block pressed by a traction converges to the Hertz
 //!   pressure of the combined modulus;
 //! * what the contact cannot hold is said: a frictionless body free to slide, two bodies free to move
-//!   together (typed errors), a load that pulls the body off or exceeds friction (the QP's status).
+//!   together, a body nothing presses against the contact (typed errors), a load that pulls the body off
+//!   or exceeds friction (the QP's status);
+//! * P0 multipliers and γ0 = 0; a ramped load equals the static solves; a Coulomb fretting history; a
+//!   punch refined adaptively from coarse meshes.
 
 use tribo::*;
 use tribo_testkit::{combined_modulus, hertz_l2_error_with};
@@ -329,4 +332,73 @@ fn a_history_shears_a_punch_held_by_the_contact() {
     eprintln!("Q over the steps: {q:?}");
     assert!(q[1] > q[0] && q[2] > q[1], "loading: {q:?}");
     assert!(q[3] < q[2] && q[4] < 0.0 && q[4] * q[2] < 0.0, "unloading and reversed: {q:?}");
+}
+
+/// The patch test with P0 multipliers and with the classic mixed method (γ0 = 0): the equilibrium
+/// equality does not depend on the multiplier space or the stabilization.
+#[test]
+fn the_patch_test_holds_for_p0_multipliers_and_without_stabilization() {
+    let p = 2.0;
+    let mut problem = block_on_foundation(vec![Support::roller("left")], [0.0, -p]);
+    problem = Problem::new(
+        problem.mesh.clone(),
+        ProblemSpec { multiplier_space: MultiplierSpace::P0, ..problem.spec.clone() },
+    )
+    .unwrap();
+    for stabilization in [Stabilization::Gamma0(0.0), Stabilization::default()] {
+        let settings = SolverSettings { stabilization, ..Default::default() };
+        let sol = problem.solve(&Friction::Frictionless, &settings, None).unwrap();
+        assert_eq!(sol.report.status, SolveStatus::Converged, "{stabilization:?}");
+        assert!(sol.lambda_n.iter().all(|l| (l - p).abs() <= PATCH_TOL * p), "{stabilization:?}: {:?}", sol.lambda_n);
+    }
+}
+
+/// A frictionless history that ramps the load is path independent: each step equals the static solve of
+/// its load (the equilibrium's load scales with the step's load factor).
+#[test]
+fn a_ramped_load_gives_the_static_answer_at_every_step() {
+    let problem = block_on_foundation(vec![Support::roller("left")], [0.3, -2.0]);
+    let settings = SolverSettings::default();
+    let coulomb = Friction::Coulomb { mu: 0.3 };
+    let steps: Vec<LoadStep> = [0.25, 0.5, 1.0]
+        .iter()
+        .map(|&load_factor| LoadStep { approach: 0.0, shift: 0.0, load_factor, displacements: vec![] })
+        .collect();
+    let history = problem.solve_history(&Friction::Frictionless, &steps, &settings, None).unwrap();
+    assert_eq!(history.status, SolveStatus::Converged);
+    for (step, sol) in steps.iter().zip(&history.solutions) {
+        let scaled =
+            block_on_foundation(vec![Support::roller("left")], [0.3 * step.load_factor, -2.0 * step.load_factor]);
+        let alone = scaled.solve(&Friction::Frictionless, &settings, None).unwrap();
+        let diff = sol.displacement.iter().zip(&alone.displacement).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(diff <= 1e-9 * max_abs(&alone.displacement), "load factor {}: {diff:e}", step.load_factor);
+    }
+    // With friction the ramp converges at every step, the contact carrying the load.
+    let history = problem.solve_history(&coulomb, &steps, &settings, None).unwrap();
+    assert_eq!(history.status, SolveStatus::Converged);
+    for (step, sol) in steps.iter().zip(&history.solutions) {
+        assert!((sol.normal_force - 4.0 * step.load_factor).abs() <= 1e-9 * 4.0);
+    }
+}
+
+/// A punch held by the contact refines adaptively from coarse uniform meshes of both blocks: every level
+/// keeps it free in y (pinned afresh on the refined mesh), the contact carries the load at the last one,
+/// and the loop stops at the tolerance.
+#[test]
+fn a_punch_held_by_the_contact_refines_adaptively() {
+    let steel = Material { young: 200.0, poisson: 0.3 };
+    let lower = rectangle([-2.0, 2.0], [-2.0, 0.0], 8, 4, Diagonal::Right).unwrap();
+    let upper = rectangle([-2.0, 2.0], [0.0, 2.0], 8, 4, Diagonal::Left).unwrap();
+    let bodies = [
+        body("lower", lower, steel, vec![Support::clamp("bottom")], vec![]),
+        body("upper", upper, steel, vec![Support::roller("left")], vec![("top".into(), [0.0, -0.07])]),
+    ];
+    let gap = ObstacleShape::Parabola { center: 0.0, radius: 1.0 };
+    let problem = Problem::two_bodies(bodies, pair("lower.top", "upper.bottom", gap), [0.0, 0.0]).unwrap();
+    let adapt = AdaptSettings { tol: 0.15, max_unknowns: 100_000, ..Default::default() };
+    let out = problem.solve_adaptive(&Friction::Frictionless, &SolverSettings::default(), &adapt, None).unwrap();
+    assert_eq!(out.stop, AdaptStop::Tolerance);
+    assert_eq!(out.problem.dofs.n_floating(), 1);
+    assert!(out.levels.len() > 5 && out.problem.n_free > 10 * out.levels[0].unknowns);
+    assert!((out.solution.normal_force - 0.28).abs() <= 1e-9, "{}", out.solution.normal_force);
 }
