@@ -51,30 +51,13 @@ impl Problem {
     /// # Errors
     /// [`Error::HeldOnlyByContact`] naming the body and the motion the contact cannot hold.
     pub(crate) fn check_held_by_contact(&self, rigid: &RigidLoad, frictional: bool) -> Result<()> {
-        let r = rigid.load.len();
-        if r == 0 {
-            return Ok(());
-        }
-        let q = self.n_multipliers();
-        let rows = if frictional { 2 * q } else { q };
-        let col = |k: usize| &rigid.e_r[k * 2 * q..k * 2 * q + rows];
-        let gram = nalgebra::DMatrix::from_fn(r, r, |a, b| col(a).iter().zip(col(b)).map(|(x, y)| x * y).sum::<f64>());
-        let eig = gram.clone().symmetric_eigen();
-        let lmax = eig.eigenvalues.max();
-        // Formed from `rows` products of each column: an eigenvalue below 16 rows ε of the largest is a
-        // motion E R does not see.
-        let Some(k) = (0..r).find(|&k| eig.eigenvalues[k] <= 16.0 * rows as f64 * f64::EPSILON * lmax) else {
-            return Ok(());
-        };
-        // The free motion (a combination of the pieces' motions) E R does not see, in words.
-        let v = eig.eigenvectors.column(k);
-        let (body, motion) = self.describe_combination(v.as_slice());
+        let rows: Vec<usize> = (0..if frictional { 2 } else { 1 } * self.n_multipliers()).collect();
         let what = if frictional {
-            "the contact line cannot hold it".to_string()
+            "the contact line cannot hold it"
         } else {
-            "frictionless contact cannot hold it (it only pushes along the normal)".to_string()
+            "frictionless contact cannot hold it (it only pushes along the normal)"
         };
-        Err(Error::HeldOnlyByContact { body, motion, what })
+        self.unseen_motion(rigid, &rows, what)
     }
 
     /// Checks that the contact forces `lambda` (2q) determine the rigid motion: the rows of `E R` where
@@ -92,27 +75,36 @@ impl Problem {
         bound: Option<&[f64]>,
         noise: f64,
     ) -> Result<()> {
-        let r = rigid.load.len();
-        if r == 0 {
-            return Ok(());
-        }
         let q = self.n_multipliers();
         let mut rows: Vec<usize> = (0..q).filter(|&j| lambda[j] > noise).collect();
         if let Some(b) = bound {
             rows.extend((0..q).filter(|&j| lambda[j] > noise && lambda[q + j].abs() < b[j] - noise).map(|j| q + j));
         }
-        let e_r = |k: usize, i: usize| rigid.e_r[k * 2 * q + i];
+        self.unseen_motion(
+            rigid,
+            &rows,
+            "nothing presses it against the contact along that motion, so its position is undetermined",
+        )
+    }
+
+    /// [`Error::HeldOnlyByContact`] (with `what`) for a combination of the free motions that the rows
+    /// `rows` of `E R` do not see: an eigenvalue of their Gram matrix below `16 (rows + 1) ε` times the
+    /// largest column norm² of the whole `E R` (each entry is a sum of that many rounded products).
+    fn unseen_motion(&self, rigid: &RigidLoad, rows: &[usize], what: &str) -> Result<()> {
+        let r = rigid.load.len();
+        if r == 0 {
+            return Ok(());
+        }
+        let two_q = 2 * self.n_multipliers();
+        let e_r = |k: usize, i: usize| rigid.e_r[k * two_q + i];
         let gram = nalgebra::DMatrix::from_fn(r, r, |a, b| rows.iter().map(|&i| e_r(a, i) * e_r(b, i)).sum::<f64>());
-        // The full E R's scale: an eigenvalue below 16 (rows + 1) ε of it is a motion the acting rows miss.
-        let full = (0..r).map(|k| (0..2 * q).map(|i| e_r(k, i).powi(2)).sum::<f64>()).fold(0.0, f64::max);
+        let full = (0..r).map(|k| (0..two_q).map(|i| e_r(k, i).powi(2)).sum::<f64>()).fold(0.0, f64::max);
         let eig = gram.symmetric_eigen();
         let tiny = 16.0 * (rows.len() + 1) as f64 * f64::EPSILON * full;
         let Some(k) = (0..r).find(|&k| eig.eigenvalues[k] <= tiny) else {
             return Ok(());
         };
-        let v = eig.eigenvectors.column(k);
-        let (body, motion) = self.describe_combination(v.as_slice());
-        let what = "nothing presses it against the contact along that motion, so its position is undetermined";
+        let (body, motion) = self.describe_combination(eig.eigenvectors.column(k).as_slice());
         Err(Error::HeldOnlyByContact { body, motion, what: what.to_string() })
     }
 
