@@ -97,14 +97,13 @@ impl Problem {
         }
         let two_q = 2 * self.n_multipliers();
         let e_r = |k: usize, i: usize| rigid.e_r[k * two_q + i];
-        let gram = nalgebra::DMatrix::from_fn(r, r, |a, b| rows.iter().map(|&i| e_r(a, i) * e_r(b, i)).sum::<f64>());
         let full = (0..r).map(|k| (0..two_q).map(|i| e_r(k, i).powi(2)).sum::<f64>()).fold(0.0, f64::max);
-        let eig = gram.symmetric_eigen();
         let tiny = 16.0 * (rows.len() + 1) as f64 * f64::EPSILON * full;
-        let Some(k) = (0..r).find(|&k| eig.eigenvalues[k] <= tiny) else {
+        let (_, missed) = crate::linalg::gram_split(r, rows, e_r, |_| tiny);
+        let Some(v) = missed.first() else {
             return Ok(());
         };
-        let (body, motion) = self.describe_combination(eig.eigenvectors.column(k).as_slice());
+        let (body, motion) = self.describe_combination(v);
         Err(Error::HeldOnlyByContact { body, motion, what: what.to_string() })
     }
 

@@ -438,17 +438,14 @@ impl<'a> ContactQp<'a> {
 #[allow(clippy::type_complexity)]
 fn seen_motions(g: Vec<f64>, b: &[f64], k: usize) -> (Vec<f64>, Vec<f64>, Option<Vec<Vec<f64>>>) {
     let r = b.len();
-    let row = |m: usize| &g[m * k..(m + 1) * k];
-    let gram = nalgebra::DMatrix::from_fn(r, r, |a, c| row(a).iter().zip(row(c)).map(|(x, y)| x * y).sum::<f64>());
-    let eig = gram.symmetric_eigen();
-    let lmax = eig.eigenvalues.max();
-    let keep: Vec<usize> = (0..r).filter(|&j| eig.eigenvalues[j] > 16.0 * k as f64 * f64::EPSILON * lmax).collect();
-    if keep.len() == r {
+    let all: Vec<usize> = (0..k).collect();
+    let (basis, missed) =
+        crate::linalg::gram_split(r, &all, |m, i| g[m * k + i], |lmax| 16.0 * k as f64 * f64::EPSILON * lmax);
+    if missed.is_empty() {
         return (g, b.to_vec(), None);
     }
-    let basis: Vec<Vec<f64>> = keep.iter().map(|&j| eig.eigenvectors.column(j).iter().copied().collect()).collect();
-    let mut rows = Vec::with_capacity(keep.len() * k);
-    let mut loads = Vec::with_capacity(keep.len());
+    let mut rows = Vec::with_capacity(basis.len() * k);
+    let mut loads = Vec::with_capacity(basis.len());
     for v in &basis {
         rows.extend((0..k).map(|i| (0..r).map(|m| v[m] * g[m * k + i]).sum::<f64>()));
         loads.push((0..r).map(|m| v[m] * b[m]).sum::<f64>());
