@@ -38,7 +38,7 @@ use std::collections::HashSet;
 
 use crate::error::{Error, Result};
 use crate::fem::rigid_motions::{check_held, pins, FreeMotions};
-use crate::fem::supports::{node_supports, NodeSupport, Support};
+use crate::fem::supports::{node_supports, slide, NodeSupport, Support};
 use crate::mesh::Mesh;
 
 /// The supports resolved on the nodes: which unknown each dof follows, and the lifting ū.
@@ -248,14 +248,7 @@ impl Dofs {
 /// A node's support with the pin `u · a = 0` added (a a direction its support leaves free, a unit vector).
 fn pin(support: NodeSupport, a: [f64; 2]) -> NodeSupport {
     match support {
-        NodeSupport::Free => {
-            // The unknown along a⊥, oriented as `supports` orients a roller's.
-            let mut t = [-a[1], a[0]];
-            if (if t[0].abs() >= t[1].abs() { t[0] } else { t[1] }) < 0.0 {
-                t = [-t[0], -t[1]];
-            }
-            NodeSupport::Slide { normal: a, tangent: t, value: 0.0 }
-        }
+        NodeSupport::Free => slide(a, 0.0),
         NodeSupport::Slide { normal, value, .. } => {
             NodeSupport::Fixed { value: [value * normal[0], value * normal[1]] }
         }

@@ -106,12 +106,11 @@ pub(super) fn check_held(
         }
     }
     let pts = mesh.points();
-    let mut order: Vec<usize> = piece_nodes.keys().copied().collect();
-    order.sort_unstable();
+    // The pieces in the order of their root triangles (the error names the first one met).
+    let mut by_root: Vec<(usize, Vec<usize>)> = piece_nodes.into_iter().collect();
+    by_root.sort_unstable_by_key(|(r, _)| *r);
     let mut free = Vec::new();
-    for r in order {
-        // `r` is one of the map's own keys.
-        let mut list = piece_nodes.remove(&r).expect("key");
+    for (r, mut list) in by_root {
         list.sort_unstable();
         list.dedup();
         let floats = list.iter().any(|&i| may_float(i)) && !list.iter().any(|&i| shared[i]);

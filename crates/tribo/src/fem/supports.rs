@@ -129,6 +129,18 @@ pub enum NodeSupport {
     },
 }
 
+/// The sliding node `u · a = value` (a a unit vector). The unknown's direction is a⊥ with its largest
+/// component positive (e_y for a = e_x, e_x for a = e_y), so that an axis-aligned slide's unknown is a plain
+/// displacement component.
+pub(super) fn slide(a: [f64; 2], value: f64) -> NodeSupport {
+    let mut t = [-a[1], a[0]];
+    let largest = if t[0].abs() >= t[1].abs() { t[0] } else { t[1] };
+    if largest < 0.0 {
+        t = [-t[0], -t[1]];
+    }
+    NodeSupport::Slide { normal: a, tangent: t, value }
+}
+
 /// One condition `a · u = v` at a node, with the support it comes from.
 #[derive(Clone, Copy)]
 struct Condition {
@@ -233,14 +245,7 @@ fn resolve(node: usize, list: &[Condition], supports: &[Support]) -> Result<Node
                     ));
                 }
             }
-            // The unknown's direction: a⊥ with its largest component positive (e_y for a = e_x, e_x
-            // for a = e_y), so that an axis-aligned slide's unknown is a plain displacement component.
-            let mut t = [-a[1], a[0]];
-            let largest = if t[0].abs() >= t[1].abs() { t[0] } else { t[1] };
-            if largest < 0.0 {
-                t = [-t[0], -t[1]];
-            }
-            Ok(NodeSupport::Slide { normal: a, tangent: t, value: first.v })
+            Ok(slide(a, first.v))
         }
         Some(second) => {
             // Two independent conditions fix the node; every other one must agree.
