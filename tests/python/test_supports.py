@@ -127,6 +127,21 @@ def test_rejections() -> None:
     clash = [tribo.Support.clamp("top"), tribo.Support.displacement("left", y=-0.01)]
     e = raises(tribo.SettingsError, "ConflictingSupports", lambda: tribo.Problem(mesh, supports=clash, **kw))  # type: ignore[arg-type]
     assert e.details["node"] == 20 and "left" in str(e)
+    # A roller on a side tilted by 1e-6 rad beside u_x = 0.01 on the top moves the corner by 1e4: refused,
+    # naming the node and the angle; with u_x = 0 there the corner is fixed at 0 and the problem is
+    # accepted, and a history that moves u_x to 0.01 is refused at that step.
+    points = mesh.points.copy()
+    right = points[:, 0] == 1.0
+    points[right, 0] += 1e-6 * points[right, 1]
+    tilted = tribo.Mesh(points, mesh.triangles, mesh.edge_sets)
+    near = [tribo.Support.displacement("top", x=0.01), tribo.Support.roller("right")]
+    e = raises(tribo.SettingsError, "NearlyParallelSupports", lambda: tribo.Problem(tilted, supports=near, **kw))  # type: ignore[arg-type]
+    assert e.details["node"] == 24 and e.details["angle_degrees"] == pytest.approx(np.degrees(1e-6), rel=1e-6)
+    assert e.details["displacement"] == pytest.approx(1e4, rel=1e-6) and "node 24" in str(e)
+    held = [tribo.Support.displacement("top", x=0.0), tribo.Support.roller("right")]
+    at_rest = tribo.Problem(tilted, supports=held, **kw)  # type: ignore[arg-type]
+    e = raises(tribo.SettingsError, "BadLoadStep", lambda: at_rest.solve_history(displacements={"top.x": [0.0, 0.01]}))
+    assert e.details["step"] == 1 and "at an angle of 5.730e-5°" in str(e)
     # Rollers on both sides leave the body free in y, to the contact (Γ_C the bottom): with nothing pressing
     # it down its position is undetermined, said at the solve; a load on the top holds it there.
     parallel = [tribo.Support.roller("left"), tribo.Support.roller("right")]

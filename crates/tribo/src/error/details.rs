@@ -216,6 +216,19 @@ impl Error {
                     ("what", T(what.clone())),
                 ],
             ),
+            Self::NearlyParallelSupports { node, first, second, angle_degrees, displacement, data, size } => (
+                ErrorCategory::Settings,
+                "NearlyParallelSupports",
+                vec![
+                    ("node", I(*node)),
+                    ("first", T(first.clone())),
+                    ("second", T(second.clone())),
+                    ("angle_degrees", F(*angle_degrees)),
+                    ("displacement", F(*displacement)),
+                    ("data", F(*data)),
+                    ("size", F(*size)),
+                ],
+            ),
             Self::BadSupport { set, what } => {
                 (ErrorCategory::Settings, "BadSupport", vec![("set", T(set.clone())), ("what", T(what.clone()))])
             }

@@ -244,6 +244,30 @@ pub enum Error {
         /// The two conditions.
         what: String,
     },
+    /// Two supports fix a node by conditions so nearly parallel that they turn their data into a
+    /// displacement beyond small displacements: larger than the body and than any pair of orthogonal
+    /// conditions on the same data could give (see [`crate::fem::supports`]).
+    #[error(
+        "the supports on '{first}' and '{second}' meet at node {node} at an angle of {angle_degrees:.3e}°: \
+         they move it by {displacement:e} from data of at most {data:e}, beyond the body's size {size:e} \
+         (nearly parallel conditions amplify their data by 1/sin θ; make them parallel or their data agree)"
+    )]
+    NearlyParallelSupports {
+        /// The node.
+        node: usize,
+        /// The set of the first condition.
+        first: String,
+        /// The set of the second condition.
+        second: String,
+        /// The angle between the two conditions' directions, in degrees.
+        angle_degrees: f64,
+        /// The length of the displacement they prescribe.
+        displacement: f64,
+        /// The largest prescribed value at the node.
+        data: f64,
+        /// The body's size (the diagonal of the mesh's bounding box).
+        size: f64,
+    },
     /// A support's data are unusable (a non-finite value, a displacement with no component).
     #[error("support on '{set}': {what}")]
     BadSupport {

@@ -67,7 +67,8 @@ impl Dofs {
     /// # Errors
     /// [`Error::NoDirichlet`] for no support; [`Error::UnknownEdgeSet`]; [`Error::BadSupport`] for a
     /// non-finite or missing prescribed value; [`Error::SupportNotStraight`] for a roller on a set that is
-    /// not straight; [`Error::ConflictingSupports`]; [`Error::FloatingPiece`] / [`Error::RigidMotion`]
+    /// not straight; [`Error::ConflictingSupports`]; [`Error::NearlyParallelSupports`];
+    /// [`Error::FloatingPiece`] / [`Error::RigidMotion`]
     /// for a piece that the supports do not hold.
     pub fn new(mesh: &Mesh, supports: &[Support]) -> Result<Self> {
         Self::held_by_contact(mesh, supports, &|_| false)
@@ -153,7 +154,8 @@ impl Dofs {
     ///
     /// # Errors
     /// [`Error::BadSupport`] for a non-finite value; [`Error::ConflictingSupports`] where the new values
-    /// disagree at a node that several supports reach; [`Error::BadSupport`] if the supports do not leave
+    /// disagree at a node that several supports reach; [`Error::NearlyParallelSupports`] where they move
+    /// a node held by nearly parallel conditions beyond the body's size; [`Error::BadSupport`] if the supports do not leave
     /// the same unknowns as these dofs (they must differ only in their values).
     pub fn lifting_of(&self, mesh: &Mesh, supports: &[Support]) -> Result<Vec<f64>> {
         let (mut nodes, _) = node_supports(mesh, supports)?;

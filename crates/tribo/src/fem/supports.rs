@@ -17,7 +17,20 @@
 //! node, and `u_y = −0.01` on a face next to a clamped side is refused at the shared corner (the data
 //! would be discontinuous there).
 //!
+//! # Nearly parallel conditions
+//! Two conditions `a · u = v₁`, `b · u = v₂` at an angle θ (`|a × b| = sin θ`) fix
+//! `u = [a; b]⁻¹ (v₁, v₂)`, whose length can reach `|v| / sin θ`: a roller on a side tilted by 10⁻⁶ from
+//! a prescribed `u_x = 0.01` moves the corner by 10⁴. Exactly parallel conditions (within the
+//! straightness tolerance) are one condition or a conflict, as above; between them and orthogonal ones
+//! the amplification grows without bound. A pair is refused ([`Error::NearlyParallelSupports`], naming
+//! the node and the angle) when the displacement it prescribes is both
+//! * longer than `√2 max |v|`, the most any two orthogonal conditions on the same data can prescribe (so
+//!   the length comes from the angle, not from the data), and
+//! * longer than the body (the diagonal of the mesh's bounding box): no reading of the small-displacement
+//!   model that tribo solves covers a node moved by more than the body's size.
 //!
+//! Homogeneous conditions (v = 0) fix the node at 0 whatever their angle and are always accepted, as is a
+//! displacement the data prescribe directly, however large.
 //! What the conditions leave as unknowns is [`crate::fem::supports::Dofs`]; the check that they hold
 //! every piece of the body is in `rigid_motions`.
 
@@ -154,7 +167,7 @@ struct Condition {
 ///
 /// # Errors
 /// [`Error::UnknownEdgeSet`]; [`Error::BadSupport`]; [`Error::SupportNotStraight`];
-/// [`Error::ConflictingSupports`].
+/// [`Error::ConflictingSupports`]; [`Error::NearlyParallelSupports`].
 pub(super) fn node_supports(mesh: &Mesh, supports: &[Support]) -> Result<(Vec<NodeSupport>, HashSet<[usize; 2]>)> {
     let n_nodes = mesh.n_nodes();
     let mut conditions: Vec<Vec<Condition>> = vec![Vec::new(); n_nodes];
@@ -190,9 +203,11 @@ pub(super) fn node_supports(mesh: &Mesh, supports: &[Support]) -> Result<(Vec<No
             }
         }
     }
+    let [x0, y0, x1, y1] = mesh.bounding_box();
+    let size = (x1 - x0).hypot(y1 - y0);
     let mut nodes = Vec::with_capacity(n_nodes);
     for (node, list) in conditions.iter().enumerate() {
-        nodes.push(resolve(node, list, supports)?);
+        nodes.push(resolve(node, list, supports, size)?);
     }
     Ok((nodes, edges))
 }
@@ -217,8 +232,10 @@ fn straight_normal(mesh: &Mesh, set: &str, raw: &[[usize; 2]]) -> Result<[f64; 2
 ///
 /// Two unit vectors count as parallel when `|a × b| ≤ 4√ε` (two straight sets on one line have normals
 /// that agree to the straightness tolerance `√ε`, twice, with margin); two values agree when they differ
-/// by at most `√ε` times the largest of them (user data given by different formulas).
-fn resolve(node: usize, list: &[Condition], supports: &[Support]) -> Result<NodeSupport> {
+/// by at most `√ε` times the largest of them (user data given by different formulas). Two conditions
+/// that fix the node are refused when they move it by more than `√2 max |v|` and more than `size`, the
+/// body's (see the module documentation).
+fn resolve(node: usize, list: &[Condition], supports: &[Support], size: f64) -> Result<NodeSupport> {
     let Some(first) = list.first() else {
         return Ok(NodeSupport::Free);
     };
@@ -252,6 +269,18 @@ fn resolve(node: usize, list: &[Condition], supports: &[Support]) -> Result<Node
             let (a, b) = (first.a, second.a);
             let det = cross(a, b);
             let value = [(first.v * b[1] - second.v * a[1]) / det, (a[0] * second.v - b[0] * first.v) / det];
+            let displacement = value[0].hypot(value[1]);
+            if displacement > std::f64::consts::SQRT_2 * vmax && displacement > size {
+                return Err(Error::NearlyParallelSupports {
+                    node,
+                    first: supports[first.support].set().to_string(),
+                    second: supports[second.support].set().to_string(),
+                    angle_degrees: det.abs().min(1.0).asin().to_degrees(),
+                    displacement,
+                    data: vmax,
+                    size,
+                });
+            }
             for c in list {
                 let got = c.a[0] * value[0] + c.a[1] * value[1];
                 if (got - c.v).abs() > tol_v {

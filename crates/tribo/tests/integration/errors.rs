@@ -382,6 +382,31 @@ fn support_rules() {
         matches!(&e, Error::ConflictingSupports { node: 20, first, second, .. } if first == "top" && second == "left"),
         "{e}"
     );
+    // Nearly parallel conditions at a corner: u_x = 0.01 on the top and a roller on the right side
+    // tilted by atan θ from the vertical (x = 1 + θ y) fix the corner (1 + θ, 1) at u = (0.01, ±0.01 / θ). At θ = 1e-6
+    // that is 1e4 on a body of size √2: refused, naming the node and the angle. At θ = 0.01 the corner
+    // moves by 1 (within the body: accepted), exactly parallel conditions conflict, and homogeneous ones
+    // (the top clamped) fix the corner at 0 whatever the angle.
+    let tilted = |theta: f64| {
+        let m = square();
+        let pts = m.points().iter().map(|p| if p[0] == 1.0 { [1.0 + theta * p[1], p[1]] } else { *p }).collect();
+        Mesh::new(pts, m.triangles().to_vec(), m.edge_sets().clone()).unwrap()
+    };
+    let pushed = || with(vec![Support::displacement("top", Some(0.01), None), Support::roller("right")]);
+    let e = problem_err(tilted(1e-6), pushed());
+    assert!(
+        matches!(&e, Error::NearlyParallelSupports { node: 24, first, second, angle_degrees, displacement, size, .. }
+            if first == "top" && second == "right" && (angle_degrees.to_radians() / 1e-6 - 1.0).abs() < 1e-6
+                && (displacement / 1e4 - 1.0).abs() < 1e-6 && (size - 2f64.sqrt()).abs() < 1e-5),
+        "{e}"
+    );
+    assert!(e.to_string().contains("node 24") && e.to_string().contains("5.730e-5°"), "{e}");
+    let sol = Problem::new(tilted(0.01), pushed()).unwrap();
+    let corner = &sol.dofs.lifting[48..50];
+    assert!((corner[0] - 0.01).abs() < 1e-15 && (corner[1].abs() - 1.0).abs() < 1e-12, "{corner:?}");
+    assert!(matches!(problem_err(tilted(0.0), pushed()), Error::ConflictingSupports { node: 24, .. }));
+    let clamped = with(vec![Support::clamp("top"), Support::roller("right")]);
+    assert!(Problem::new(tilted(1e-6), clamped).is_ok());
     // The same with compatible values is accepted: a roller along the left side and the top clamped.
     let s = with(vec![Support::clamp("top"), Support::roller("left")]);
     assert!(Problem::new(square(), s).is_ok());
