@@ -53,7 +53,7 @@ import numpy as np
 from tribo._tribo import TriboError, __version__
 from tribo.adaptive import write_adaptive, write_levels
 from tribo.checks import SceneWarning, conventions, warn_solution
-from tribo.history import write_history
+from tribo.history import vtu_every, write_history
 from tribo.io import write_contact_csv, write_vtu
 from tribo.problem import Problem
 from tribo.results import Adaptive, History, Solution
@@ -163,7 +163,9 @@ def run_history(
                 bar.update(1)
                 bar.set_postfix_str(status)
 
-            problem, history = scene.solve_history(problem, progress=progress)
+            # Only the solutions whose VTU files are written are kept (every step's forces and states are).
+            every = vtu_every(n_steps, scene.get("history", "write_every")) if fields else max(n_steps, 1)
+            problem, history = scene.solve_history(problem, progress=progress, keep_every=every)
     seconds = time.perf_counter() - clock
     log.info("history ended: %s after %d of %d steps, %.2f s", history.status, len(history), n_steps, seconds)
     sliding = np.flatnonzero(history.gross_sliding)

@@ -77,19 +77,24 @@ def history_table(history: History) -> dict[str, np.ndarray]:
         "stick_from": stick[:, 0],
         "stick_to": stick[:, 1],
         "gross_sliding": history.gross_sliding.astype(int),
-        "error_estimate": np.array([s.report.estimate.get("total", np.nan) for s in history.solutions]),
-        "traction_error": np.array([s.report.estimate.get("traction_relative", np.nan) for s in history.solutions]),
+        "error_estimate": history.error_estimate,
+        "traction_error": history.traction_error,
     }
 
 
+def vtu_every(n: int, every: int | None = None) -> int:
+    """Every how many steps a history of ``n`` steps writes its VTU files: ``every`` if given; by default 1 up
+    to ``MAX_VTU_STEPS`` steps, beyond that the smallest k that keeps the count within it (each step writes
+    three files)."""
+    return every if every is not None else max(1, math.ceil(n / MAX_VTU_STEPS))
+
+
 def vtu_steps(n: int, every: int | None = None) -> list[int]:
-    """The steps of a history of ``n`` converged steps whose VTU files are written: every ``every``-th step
-    and the last one; by default all of them up to ``MAX_VTU_STEPS``, beyond that every k-th step with the
-    smallest k that keeps the count within it (each step writes three files)."""
+    """The steps of a history of ``n`` converged steps whose VTU files are written: every ``vtu_every``-th
+    step and the last one (the steps a history with ``keep_every`` set to that keeps)."""
     if n == 0:
         return []
-    k = every if every is not None else max(1, math.ceil(n / MAX_VTU_STEPS))
-    return sorted(set(range(0, n, k)) | {n - 1})
+    return sorted(set(range(0, n, vtu_every(n, every))) | {n - 1})
 
 
 def write_history(out: str | Path, problem: Problem, history: History, *, plots: bool = True,
@@ -99,12 +104,13 @@ def write_history(out: str | Path, problem: Problem, history: History, *, plots:
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     series: list[list[Path]] = [[], [], []]
-    steps = vtu_steps(len(history), every)
+    kept = set(history.kept.tolist())
+    steps = [k for k in vtu_steps(len(history), every) if k in kept]
     if len(steps) < len(history):
-        log.info("writing the VTU files of %d of the %d steps (every %s-th and the last)", len(steps), len(history),
-                 every if every is not None else math.ceil(len(history) / MAX_VTU_STEPS))
+        log.info("writing the VTU files of %d of the %d steps (every %s-th and the last, of those kept)", len(steps),
+                 len(history), vtu_every(len(history), every))
     for k in steps:
-        vtu = write_vtu(out / f"step_{k:04d}.vtu", problem, history.solutions[k], per_body=False)
+        vtu = write_vtu(out / f"step_{k:04d}.vtu", problem, history.solution(k), per_body=False)
         for part, p in zip(series, vtu, strict=True):
             part.append(p)
     files = [p for part in series for p in part]
@@ -138,7 +144,11 @@ def _plots(out: Path, history: History, plot_steps: Sequence[int] | None) -> lis
     k = len(history)
     if k == 0:
         return []
-    steps = [s for s in (plot_steps if plot_steps is not None else sorted({0, k // 2, k - 1})) if s < k]
+    kept = history.kept.tolist()
+    middle = min(kept, key=lambda s: abs(s - k // 2))
+    steps = [s for s in (plot_steps if plot_steps is not None else sorted({kept[0], middle, kept[-1]})) if s in kept]
+    if plot_steps is not None and len(steps) < len(plot_steps):
+        log.warning("plot_steps: steps %s did not converge or were not kept", sorted(set(plot_steps) - set(steps)))
     from tribo import plot
 
     files = []

@@ -278,7 +278,7 @@ def history_tractions(history: History, steps: Sequence[int], ax: Axes | None = 
     """λ_t and ±μλ_n (the Coulomb bounds) along Γ_C at the given steps of a history."""
     ax = _axes(ax)
     for i, k in enumerate(steps):
-        sol = history.solutions[k]
+        sol = history.solution(k)
         x = sol.multiplier_abscissae
         (line,) = ax.plot(x, sol.lambda_t, "-", lw=1.4, label=f"λ_t, step {k} (s = {history.shift[k]:.3g})")
         ax.plot(x, sol.friction_threshold, ":", color=line.get_color(), lw=1.0,

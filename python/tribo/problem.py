@@ -238,7 +238,7 @@ class Problem(_tribo.Problem):
         (for studies of what happens there; the factorization may then fail with SolverError). Every
         other keyword is a solver setting by its name in ``solver_defaults()`` (qp_tol, qp_max_iter,
         qp_kkt_solver, qp_working_set, qp_method, fp_tol, fp_max_iter, fp_relaxation, memory_budget,
-        condensation); unset ones take the core's defaults.
+        condensation, keep_every); unset ones take the core's defaults.
 
         ``progress``, if given, is called as progress(iteration, change, qp_iterations, qp_seconds) after
         every QP; returning False (any false value but None: 0, ``numpy.False_``) stops the solve (status
@@ -283,7 +283,9 @@ class Problem(_tribo.Problem):
         (status 'interrupted', the steps done kept), raising ends it and propagates with the steps done as
         the exception's ``history`` (a History, status 'interrupted'). Ctrl-C is honoured between steps (the
         KeyboardInterrupt carries ``history`` too). A step that does not converge ends the history with its status; ``History.failed``
-        holds its last iterate.
+        holds its last iterate. ``keep_every=k`` keeps the whole solution of steps 0, k, 2k, … and of the last
+        converged step only (the per-step arrays cover every step): a long history then fits the memory
+        budget, which the solutions kept must fit before any step runs.
         """
         steps = self._steps(approach, shift, load_factor, displacements)
         try:

@@ -250,16 +250,20 @@ class Solution(_Record):
 
 @dataclass(frozen=True, eq=False, repr=False, kw_only=True)
 class History(_Record):
-    """A quasi-static loading history: the solution of every step that converged, and per-step arrays.
+    """A quasi-static loading history: per-step arrays for every step that converged, and the solutions kept.
 
     The arrays have one entry per converged step (``len(history)``); ``approach``, ``shift`` and
-    ``load_factor`` give the steps asked for (all of them).
+    ``load_factor`` give the steps asked for (all of them). ``solutions`` holds the whole solution of
+    every step by default; with the solve keyword ``keep_every=k`` only of every k-th step (steps with
+    ``step % k == 0``, the first included) and of the last converged one, ``kept`` naming their steps (the arrays still
+    cover every step). ``history.solution(step)`` finds a kept step's solution.
 
     Attributes:
         status: 'converged' when every step converged; otherwise the status of the step that ended the
             history ('interrupted' when the progress callback returned False).
         ended_at: the step (0-based) that ended the history early, or None.
-        solutions: the solutions of the steps that converged, in order.
+        solutions: the solutions kept (every converged step's by default), in order.
+        kept: the step (0-based) of each solution in ``solutions``.
         failed: the last iterate of a step that did not converge (not in ``solutions``), or None.
         approach: approach δ_k of every step asked for.
         shift: tangential position s_k of every step asked for.
@@ -269,6 +273,8 @@ class History(_Record):
             kept them as the problem has them.
         normal_force: total normal force ∫λ_n per converged step.
         tangential_force: total tangential force ∫λ_t per converged step.
+        error_estimate: the error estimate η (energy norm) per converged step.
+        traction_error: the relative traction error estimate per converged step (NaN where nothing touches).
         stick_count: multiplier dofs that stick, per converged step.
         slip_count: multiplier dofs that slip, per converged step.
         separation_count: multiplier dofs separated from the obstacle, per converged step.
@@ -289,6 +295,7 @@ class History(_Record):
     status: Status
     ended_at: int | None
     solutions: list[Solution]
+    kept: _Ints
     failed: Solution | None
     approach: _Floats
     shift: _Floats
@@ -296,6 +303,8 @@ class History(_Record):
     displacements: dict[str, _Floats] = dataclasses.field(default_factory=dict)
     normal_force: _Floats
     tangential_force: _Floats
+    error_estimate: _Floats
+    traction_error: _Floats
     stick_count: _Ints
     slip_count: _Ints
     separation_count: _Ints
@@ -323,12 +332,24 @@ class History(_Record):
         return self.status == "converged"
 
     def __len__(self) -> int:
-        return len(self.solutions)
+        return len(self.normal_force)
+
+    def solution(self, step: int) -> Solution:
+        """The kept solution of ``step`` (0-based; negative counts from the last converged step).
+
+        Raises:
+            KeyError: the step did not converge or was not kept (see ``keep_every``).
+        """
+        k = step + len(self) if step < 0 else step
+        where = np.flatnonzero(self.kept == k)
+        if where.size == 0:
+            raise KeyError(f"step {step} is not kept (kept: {self.kept.tolist()}; converged steps: {len(self)})")
+        return self.solutions[int(where[0])]
 
     def __repr__(self) -> str:
         return (
-            f"History(status='{self.status}', steps={len(self.solutions)}/{len(self.approach)}, "
-            f"factorizations={self.factorizations})"
+            f"History(status='{self.status}', steps={len(self)}/{len(self.approach)}, "
+            f"kept={len(self.solutions)}, factorizations={self.factorizations})"
         )
 
 

@@ -320,12 +320,14 @@ class Scene:
         return columns
 
     def solve_history(
-        self, problem: Problem | None = None, progress: Callable[[int, int, str, float], object] | None = None
+        self, problem: Problem | None = None, progress: Callable[[int, int, str, float], object] | None = None,
+        keep_every: int | None = None,
     ) -> tuple[Problem, History]:
-        """Builds (unless given) and solves the ``[history]``; returns the problem and the history."""
+        """Builds (unless given) and solves the ``[history]``; returns the problem and the history. ``keep_every``
+        (keep the solutions of every k-th step and the last) applies unless the ``[solver]`` table sets it."""
         problem = problem if problem is not None else self.build()
         c = self.history_columns()
-        kw = self.solve_kwargs()
+        kw = {**({} if keep_every is None else {"keep_every": keep_every}), **self.solve_kwargs()}
         return problem, problem.solve_history(c["approach"], c["shift"], c["load_factor"],
                                               displacements=c["displacements"] or None, progress=progress, **kw)
 

@@ -78,11 +78,42 @@ def test_a_raising_callback_keeps_the_steps_done(problem: tribo.Problem) -> None
 
 
 def test_a_history_beyond_the_memory_budget_is_refused(problem: tribo.Problem) -> None:
-    """Every step's solution is kept, so a million steps are refused before any runs (they aborted the
-    process before), with the bytes they would need."""
+    """Every step's solution is kept by default, so a million steps are refused before any runs (they
+    aborted the process before), with the bytes they would need; keeping fewer (``keep_every``) fits."""
     with pytest.raises(tribo.TriboError, match="a history of 1000000 steps") as info:
         problem.solve_history(0.01, np.zeros(1_000_000), mu=0.3)
     assert info.value.kind == "MemoryBudget" and info.value.details["needed"] > 4 * 2**30  # type: ignore[attr-defined]
+    # 40 steps need about 2.5 MB of solutions (about 60 kB each): over a 1 MiB budget unless only every
+    # 20th is kept.
+    budget = 2**20
+    with pytest.raises(tribo.TriboError, match="keeping 40 solutions"):
+        problem.solve_history(0.01, np.zeros(40), mu=0.3, memory_budget=budget)
+    h = problem.solve_history(0.01, np.zeros(40), mu=0.3, memory_budget=budget, keep_every=20)
+    assert h.converged and h.kept.tolist() == [0, 20, 39] and len(h.normal_force) == 40
+
+
+def test_keep_every_keeps_what_is_asked(problem: tribo.Problem) -> None:
+    """``keep_every=k`` keeps the solutions of steps 0, k, 2k, … and the last converged one, each equal to the
+    full history's; the per-step arrays still cover every step and equal the full history's."""
+    shifts = np.linspace(0.0, 0.004, 7)
+    full = problem.solve_history(0.01, shifts, mu=0.3)
+    sparse = problem.solve_history(0.01, shifts, mu=0.3, keep_every=3)
+    assert full.kept.tolist() == list(range(7)) and sparse.kept.tolist() == [0, 3, 6]
+    assert len(sparse) == 7 and len(sparse.solutions) == 3 and "kept=3" in repr(sparse)
+    for name in ("normal_force", "tangential_force", "stick_count", "slip_count", "error_estimate", "contact_zone"):
+        np.testing.assert_array_equal(getattr(sparse, name), getattr(full, name), err_msg=name)
+    np.testing.assert_array_equal(sparse.traction_error, full.traction_error)
+    np.testing.assert_array_equal(sparse.solution(3).displacement, full.solutions[3].displacement)
+    np.testing.assert_array_equal(sparse.solution(-1).lambda_t, full.solutions[-1].lambda_t)
+    assert sparse.error_estimate[2] == full.solutions[2].report.estimate["total"]
+    with pytest.raises(KeyError, match="step 2 is not kept"):
+        sparse.solution(2)
+    stopped = problem.solve_history(0.01, shifts, mu=0.3, keep_every=3, progress=lambda step, *a: step < 4)
+    assert stopped.kept.tolist() == [0, 3, 4] and len(stopped) == 5
+    with pytest.raises(tribo.SettingsError, match="keep_every"):
+        problem.solve_history(0.01, shifts, mu=0.3, keep_every=0)
+    with pytest.raises(tribo.SettingsError, match="keep_every.*adaptive history"):
+        problem.solve_history_adaptive(0.01, shifts, mu=0.3, keep_every=2)
 
 
 def test_bad_histories_are_errors(problem: tribo.Problem) -> None:

@@ -43,9 +43,10 @@ def solution(**kw: Any) -> tribo.Solution:
 def history(**kw: Any) -> tribo.History:
     s = solution()
     fields: dict[str, Any] = dict(
-        status="converged", ended_at=None, solutions=[s, s], failed=None, approach=np.full(2, 0.01),
+        status="converged", ended_at=None, solutions=[s, s], kept=np.arange(2), failed=None, approach=np.full(2, 0.01),
         shift=np.array([0.0, 0.001]), load_factor=np.ones(2), normal_force=np.full(2, 1.5),
-        tangential_force=np.full(2, 0.2), stick_count=np.ones(2, dtype=np.int64), slip_count=np.ones(2, dtype=np.int64),
+        tangential_force=np.full(2, 0.2), error_estimate=np.full(2, 0.1), traction_error=np.full(2, 0.05),
+        stick_count=np.ones(2, dtype=np.int64), slip_count=np.ones(2, dtype=np.int64),
         separation_count=np.ones(2, dtype=np.int64), contact_zone=np.array([[0.5, 1.0], [np.nan, np.nan]]),
         stick_zone=np.array([[0.5, 0.5], [np.nan, np.nan]]), stick_slip_boundaries=[np.array([0.75]), np.zeros(0)],
         gross_sliding=np.zeros(2, dtype=bool), step_seconds=np.full(2, 0.01), factorizations=1, setup_seconds=0.02,
@@ -65,7 +66,8 @@ def test_results_are_built_without_a_solve() -> None:
     assert repr(s) == "Solution(friction='coulomb', status='converged', normal_force=1.5, tangential_force=0.2)"
     assert repr(s.report) == "Report(status='converged', iterations=2, gamma0=0, gamma0_bound=9.29e-4)"
     h = history()
-    assert h.converged and len(h) == 2 and h.failed is None and repr(h) == "History(status='converged', steps=2/2, factorizations=1)"
+    assert h.converged and len(h) == 2 and h.failed is None and repr(h) == (
+        "History(status='converged', steps=2/2, kept=2, factorizations=1)")
     with pytest.raises(dataclasses.FrozenInstanceError):
         s.mu = 0.5  # type: ignore[misc]
 

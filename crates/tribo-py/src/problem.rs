@@ -338,8 +338,7 @@ impl PyProblem {
         results::solution(py, &finish(result, error)?)
     }
 
-    /// Solves the loading history of `steps`, rows (approach, shift, load_factor, displacements…), with the keywords of
-    /// `tribo.Problem.solve_history` in `options`; returns the fields of a History as a dict.
+    /// `tribo.Problem.solve_history` on `steps`, rows (approach, shift, load_factor, displacements…): a History dict.
     #[pyo3(name = "_solve_history")]
     fn solve_history<'py>(
         &self,

@@ -61,6 +61,7 @@ pub fn history<'py>(py: Python<'py>, h: &tribo::History) -> PyResult<Bound<'py, 
     d.set_item("status", h.status.name())?;
     d.set_item("ended_at", h.ended_at)?;
     d.set_item("solutions", h.solutions.iter().map(|s| solution(py, s)).collect::<PyResult<Vec<_>>>()?)?;
+    d.set_item("kept", vec1(py, &h.kept.iter().map(|&k| k as i64).collect::<Vec<_>>())?)?;
     d.set_item("failed", h.failed.as_deref().map(|s| solution(py, s)).transpose()?)?;
     for (name, v) in h.series() {
         d.set_item(name, vec1(py, &v)?)?;

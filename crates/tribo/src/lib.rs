@@ -127,7 +127,7 @@ pub use settings::{
     SettingKind, SettingValue, SolverSettings, Stabilization,
 };
 pub use solve::history::LoadStep;
-pub use solve::history::{History, StepObserver, StepProgress};
+pub use solve::history::{History, StepObserver, StepProgress, StepRecord};
 pub use solve::{Observer, Phase, Progress};
 
 // The module paths of the flat layout that the folders replaced: they keep resolving, so that code

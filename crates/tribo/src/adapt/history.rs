@@ -45,6 +45,13 @@ impl Problem {
         observer: Option<LevelObserver<'_>>,
     ) -> Result<AdaptiveHistory> {
         self.check_adaptive(friction, settings, adapt)?;
+        if settings.keep_every != 1 {
+            return Err(Error::BadSetting {
+                name: "keep_every",
+                value: settings.keep_every as f64,
+                what: "must be 1 in an adaptive history: every level marks on the solutions of its steps".into(),
+            });
+        }
         if let Some(&k) = on.iter().find(|&&k| k >= steps.len()) {
             return Err(Error::BadSetting {
                 name: "adapt_steps",

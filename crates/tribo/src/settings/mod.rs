@@ -185,6 +185,11 @@ pub struct SolverSettings {
     pub memory_budget: usize,
     /// How H is formed. Default [`Condensation::Auto`].
     pub condensation: Condensation,
+    /// A loading history keeps the whole solution of every `keep_every`-th step (steps k with
+    /// `k % keep_every == 0`, the first included) and of its last converged step; every step leaves its forces, states
+    /// and estimate ([`crate::solve::history::StepRecord`]). Default 1: every step. A static solve
+    /// ignores it.
+    pub keep_every: usize,
 }
 
 impl Default for SolverSettings {
@@ -195,6 +200,7 @@ impl Default for SolverSettings {
             fp: FixedPointSettings::default(),
             memory_budget: default_memory_budget(),
             condensation: Condensation::default(),
+            keep_every: 1,
         }
     }
 }
@@ -223,6 +229,7 @@ impl SolverSettings {
         self.qp.validate()?;
         self.fp.validate()?;
         let b = self.memory_budget;
-        check_setting("memory_budget", b as f64, b >= 1 << 20, "must be at least 1 MiB (1048576 bytes)")
+        check_setting("memory_budget", b as f64, b >= 1 << 20, "must be at least 1 MiB (1048576 bytes)")?;
+        check_setting("keep_every", self.keep_every as f64, self.keep_every >= 1, "must be at least 1")
     }
 }

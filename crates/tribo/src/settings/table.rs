@@ -187,6 +187,7 @@ settings_table! {
     "fp_relaxation" => fp.relaxation: f64;
     "memory_budget" => memory_budget: usize;
     "condensation" => condensation: Condensation;
+    "keep_every" => keep_every: usize;
 }
 
 impl SolverSettings {

@@ -67,18 +67,29 @@ use crate::condensation::Factor;
 use crate::error::{Error, Result};
 use crate::problem::load_case::{LoadCase, MovedSupports};
 use crate::problem::{Condensed, Problem};
-use crate::results::{ContactState, Solution, SolveStatus};
+use crate::results::{ContactState, ErrorEstimate, Solution, SolveStatus};
 use crate::settings::friction::Friction;
 use crate::settings::SolverSettings;
 pub use crate::solve::progress::{StepObserver, StepProgress};
 
 /// The result of a loading history.
+///
+/// Every converged step leaves a [`StepRecord`] (its forces, contact states and error estimate), from
+/// which the per-step series are derived; its whole [`Solution`] is kept for every `keep_every`-th step
+/// ([`SolverSettings::keep_every`]: steps `k` with `k % keep_every == 0`, the first included) and
+/// for the last converged one, so a long history's memory is its records plus the solutions asked for.
 #[derive(Debug, Clone)]
 pub struct History {
     /// The steps asked for.
     pub steps: Vec<LoadStep>,
-    /// The solutions of the steps that converged, in order.
+    /// The solutions kept (see above), in order; `kept` gives their steps.
     pub solutions: Vec<Solution>,
+    /// The step (0-based) of each kept solution.
+    pub kept: Vec<usize>,
+    /// One record per converged step, in order.
+    pub records: Vec<StepRecord>,
+    /// The abscissae of the multiplier dofs (the same at every step).
+    pub multiplier_abscissae: Vec<f64>,
     /// [`SolveStatus::Converged`] when every step converged; otherwise the status of the step that ended
     /// the history ([`SolveStatus::Interrupted`] when the observer stopped it).
     pub status: SolveStatus,
@@ -94,43 +105,77 @@ pub struct History {
     pub setup_seconds: f64,
 }
 
+/// What a history keeps of every converged step, kept or not.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepRecord {
+    /// `∫ λ_n`.
+    pub normal_force: f64,
+    /// `∫ λ_t`.
+    pub tangential_force: f64,
+    /// The state of every multiplier dof.
+    pub states: Vec<ContactState>,
+    /// The error estimate's totals.
+    pub estimate: ErrorEstimate,
+}
+
+impl StepRecord {
+    /// The record of a solution.
+    pub fn of(solution: &Solution) -> Self {
+        Self {
+            normal_force: solution.normal_force,
+            tangential_force: solution.tangential_force,
+            states: solution.states.clone(),
+            estimate: solution.report.estimate,
+        }
+    }
+
+    /// Bytes a record of a problem with `q` multiplier dofs takes.
+    pub fn bytes(q: usize) -> usize {
+        std::mem::size_of::<Self>() + q * std::mem::size_of::<ContactState>()
+    }
+}
+
 impl History {
     /// The per-step series of numbers by name: the approach, shift and load factor of every step asked
-    /// for, the total forces of the converged steps, and the wall time of each step solved.
-    pub fn series(&self) -> [(&'static str, Vec<f64>); 6] {
+    /// for, the total forces, the error estimate η and the relative traction estimate of the converged steps,
+    /// and the wall time of each step solved.
+    pub fn series(&self) -> [(&'static str, Vec<f64>); 8] {
         let step = |f: fn(&LoadStep) -> f64| self.steps.iter().map(f).collect();
+        let record = |f: fn(&StepRecord) -> f64| self.records.iter().map(f).collect();
         [
             ("approach", step(|s| s.approach)),
             ("shift", step(|s| s.shift)),
             ("load_factor", step(|s| s.load_factor)),
             ("normal_force", self.normal_force()),
             ("tangential_force", self.tangential_force()),
+            ("error_estimate", record(|r| r.estimate.total)),
+            ("traction_error", record(|r| r.estimate.traction_relative)),
             ("step_seconds", self.step_seconds.clone()),
         ]
     }
 
     /// Total normal force `∫ λ_n` per converged step.
     pub fn normal_force(&self) -> Vec<f64> {
-        self.solutions.iter().map(|s| s.normal_force).collect()
+        self.records.iter().map(|s| s.normal_force).collect()
     }
 
     /// Total tangential force `∫ λ_t` per converged step.
     pub fn tangential_force(&self) -> Vec<f64> {
-        self.solutions.iter().map(|s| s.tangential_force).collect()
+        self.records.iter().map(|s| s.tangential_force).collect()
     }
 
     /// Number of multiplier dofs in `state` per converged step.
     pub fn count(&self, state: ContactState) -> Vec<usize> {
-        self.solutions.iter().map(|s| s.states.iter().filter(|&&x| x == state).count()).collect()
+        self.records.iter().map(|s| s.states.iter().filter(|&&x| x == state).count()).collect()
     }
 
     /// Per converged step, the smallest interval of abscissae holding the multiplier dofs whose state
     /// `keep` accepts (NaN, NaN when there are none): e.g. the contact zone or the stick zone.
     pub fn extent(&self, keep: impl Fn(ContactState) -> bool) -> Vec<[f64; 2]> {
-        self.solutions
+        self.records
             .iter()
             .map(|s| {
-                let xs = s.states.iter().zip(&s.multiplier_abscissae).filter(|(st, _)| keep(**st)).map(|(_, x)| *x);
+                let xs = s.states.iter().zip(&self.multiplier_abscissae).filter(|(st, _)| keep(**st)).map(|(_, x)| *x);
                 xs.fold([f64::NAN, f64::NAN], |[a, b], x| [a.min(x), b.max(x)])
             })
             .collect()
@@ -139,7 +184,7 @@ impl History {
     /// Per converged step, whether the contact slides as a whole: something touches and every multiplier
     /// dof in contact slips (then `|Q| = μP` for Coulomb friction).
     pub fn gross_sliding(&self) -> Vec<bool> {
-        self.solutions
+        self.records
             .iter()
             .map(|s| {
                 let touching = s.states.iter().filter(|&&x| x != ContactState::Separation);
@@ -151,10 +196,10 @@ impl History {
     /// Per converged step, the stick–slip boundaries: the midpoints between neighbouring multiplier dofs
     /// of which one sticks and the other slips.
     pub fn stick_slip_boundaries(&self) -> Vec<Vec<f64>> {
-        self.solutions
+        self.records
             .iter()
             .map(|s| {
-                let pairs = s.states.windows(2).zip(s.multiplier_abscissae.windows(2));
+                let pairs = s.states.windows(2).zip(self.multiplier_abscissae.windows(2));
                 pairs
                     .filter(|(st, _)| {
                         matches!(
@@ -166,6 +211,11 @@ impl History {
                     .collect()
             })
             .collect()
+    }
+
+    /// The kept solution of step `k` (0-based), if it was kept.
+    pub fn solution_of(&self, k: usize) -> Option<&Solution> {
+        self.kept.binary_search(&k).ok().map(|i| &self.solutions[i])
     }
 }
 
@@ -180,9 +230,13 @@ impl Condensed<'_> {
     ) -> Result<History> {
         let (problem, factor) = (self.problem(), self.factor());
         let mut previous = PreviousStep::rest(problem, factor);
+        let every = settings.keep_every.max(1);
         let mut history = History {
             steps: steps.to_vec(),
-            solutions: Vec::with_capacity(steps.len()),
+            solutions: Vec::with_capacity(steps.len().div_ceil(every) + 1),
+            kept: Vec::with_capacity(steps.len().div_ceil(every) + 1),
+            records: Vec::with_capacity(steps.len()),
+            multiplier_abscissae: Vec::new(),
             status: SolveStatus::Converged,
             ended_at: None,
             failed: None,
@@ -191,6 +245,8 @@ impl Condensed<'_> {
             setup_seconds: if self.reused_factorization() { 0.0 } else { factor.factorization_seconds },
         };
         let mut start: Option<Vec<f64>> = None;
+        // The last converged step's solution while it is not one to keep: kept if the history ends there.
+        let mut latest: Option<(usize, Solution)> = None;
         for (k, step) in steps.iter().enumerate() {
             let clock = Instant::now();
             let loading = step_load_case(problem, factor, step, &previous)?;
@@ -221,13 +277,27 @@ impl Condensed<'_> {
             }
             previous = after(self, &solution, &loading);
             start = Some(solution.lambda_n.iter().chain(&solution.lambda_t).copied().collect());
-            history.solutions.push(solution);
+            history.records.push(StepRecord::of(&solution));
+            if history.multiplier_abscissae.is_empty() {
+                history.multiplier_abscissae.clone_from(&solution.multiplier_abscissae);
+            }
+            if k % every == 0 {
+                history.kept.push(k);
+                history.solutions.push(solution);
+                latest = None;
+            } else {
+                latest = Some((k, solution));
+            }
             let flow = observer.as_mut().map_or(ControlFlow::Continue(()), |o| o(&progress));
             if flow.is_break() && k + 1 < steps.len() {
                 history.status = SolveStatus::Interrupted { iteration: progress.iterations };
                 history.ended_at = Some(k);
                 break;
             }
+        }
+        if let Some((k, solution)) = latest {
+            history.kept.push(k);
+            history.solutions.push(solution);
         }
         Ok(history)
     }

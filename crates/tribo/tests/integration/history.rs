@@ -150,18 +150,24 @@ fn interrupted_and_refused_histories() {
     assert!(matches!(e, Error::BadLoadStep { step: 3, .. }), "{e}");
     let e = problem.solve_history(&coulomb, &[], &SolverSettings::default(), None).unwrap_err();
     assert!(matches!(e, Error::BadLoadStep { .. }), "{e}");
-    // Every step's solution is kept: a history that cannot fit the memory budget is refused before any
-    // step (a million steps abort the process otherwise), and so is one just over a small budget.
+    // By default every step's solution is kept: a history that cannot fit the memory budget is refused
+    // before any step (a million steps abort the process otherwise), and so is one just over a small
+    // budget. Keeping every k-th solution (and the last) fits it.
     let per_step = Solution::estimated_bytes(&problem);
+    let record = tribo::StepRecord::bytes(problem.n_multipliers());
     let long = vec![LoadStep::new(s.approach, 0.0); 1_000_000];
     let e = problem.solve_history(&coulomb, &long, &SolverSettings::default(), None).unwrap_err();
     assert!(matches!(e, Error::MemoryBudget { .. }), "{e}");
     let budget = SolverSettings { memory_budget: 1 << 20, ..Default::default() };
-    let fit = (1 << 20) / per_step;
+    let fit = (1 << 20) / (per_step + record);
     let many = vec![LoadStep::new(s.approach, 0.0); fit + 1];
     let e = problem.solve_history(&coulomb, &many, &budget, None).unwrap_err();
-    assert!(matches!(e, Error::MemoryBudget { needed, .. } if needed == ((fit + 1) * per_step) as f64), "{e}");
+    let needed = ((fit + 1) * (per_step + record)) as f64;
+    assert!(matches!(e, Error::MemoryBudget { needed: n, .. } if n == needed), "{e}");
     assert!(problem.solve_history(&coulomb, &many[..fit], &budget, None).is_ok());
+    let sparse = SolverSettings { keep_every: fit + 1, ..budget };
+    let h = problem.solve_history(&coulomb, &many, &sparse, None).unwrap();
+    assert_eq!((h.kept.as_slice(), h.records.len()), ([0, fit].as_slice(), fit + 1));
     // The estimate is the size of a solution's fields (a step's report adds a few hundred bytes).
     let h = problem.solve_history(&coulomb, &steps[..1], &SolverSettings::default(), None).unwrap();
     let sol = &h.solutions[0];
@@ -171,6 +177,46 @@ fn interrupted_and_refused_histories() {
         + sol.reactions.len()
         + sol.vectors().iter().map(|(_, v)| v.len()).sum::<usize>();
     assert!((8 * floats + 512..8 * floats + 4096).contains(&per_step), "{per_step} for {floats} floats");
+}
+
+/// `keep_every = k` keeps the solutions of steps 0, k, 2k, … and the last, each bit for bit that of the
+/// history that keeps them all; the per-step series (forces, states, zones, estimates) cover every step
+/// and equal the full history's. A history ended early keeps its last converged step.
+#[test]
+fn keep_every_keeps_what_is_asked() {
+    let problem = hertz(0.04, 0.0);
+    let approach = hertz_scene().approach;
+    // Partial slip growing, then a jump to gross sliding at the last step.
+    let shift = |k: usize| if k < 9 { 0.0004 * k as f64 } else { 0.03 };
+    let steps: Vec<LoadStep> = (0..10).map(|k| LoadStep::new(approach, shift(k))).collect();
+    let coulomb = Friction::Coulomb { mu: MU };
+    let full = problem.solve_history(&coulomb, &steps, &SolverSettings::default(), None).unwrap();
+    let every = SolverSettings { keep_every: 4, ..Default::default() };
+    let sparse = problem.solve_history(&coulomb, &steps, &every, None).unwrap();
+    assert_eq!((full.status, sparse.status), (SolveStatus::Converged, SolveStatus::Converged));
+    assert_eq!(full.kept, (0..10).collect::<Vec<_>>());
+    assert_eq!(sparse.kept, vec![0, 4, 8, 9]);
+    assert_eq!(sparse.records, full.records);
+    for ((name, a), (_, b)) in sparse.series().iter().zip(full.series().iter()) {
+        if *name != "step_seconds" {
+            assert!(a.iter().zip(b).all(|(x, y)| x == y || (x.is_nan() && y.is_nan())), "{name}");
+        }
+    }
+    assert_eq!(sparse.stick_slip_boundaries(), full.stick_slip_boundaries());
+    assert!(sparse.stick_slip_boundaries()[4].len() == 2, "{:?}", sparse.stick_slip_boundaries()[4]);
+    assert_eq!(sparse.gross_sliding(), [vec![false; 9], vec![true]].concat());
+    for (sol, &k) in sparse.solutions.iter().zip(&sparse.kept) {
+        assert_eq!(sol.displacement, full.solutions[k].displacement, "step {k}");
+        assert_eq!(sparse.solution_of(k).map(|s| &s.lambda_t), Some(&full.solutions[k].lambda_t));
+    }
+    assert!(sparse.solution_of(5).is_none());
+    // Stopped after step 5: steps 0 and 4 kept, and 5, the last converged.
+    let mut stop = |p: &StepProgress| if p.step == 5 { ControlFlow::Break(()) } else { ControlFlow::Continue(()) };
+    let h = problem.solve_history(&coulomb, &steps, &every, Some(&mut stop)).unwrap();
+    assert_eq!((h.kept.as_slice(), h.records.len(), h.ended_at), ([0, 4, 5].as_slice(), 6, Some(5)));
+    assert_eq!(h.solutions[2].lambda_n, full.solutions[5].lambda_n);
+    let e = problem.solve_history(&coulomb, &steps, &SolverSettings { keep_every: 0, ..Default::default() }, None);
+    assert!(matches!(e, Err(Error::BadSetting { name: "keep_every", .. })), "{e:?}");
 }
 
 /// A fretting cycle — drag to +s, then three times back to −s and again to +s — settles on a closed
