@@ -29,8 +29,8 @@ mod choose;
 mod diagonal;
 
 use choose::{
-    prefer_saddle, prefer_schur, pushed_estimate, quasi_definite, touched_dofs, AFTER_FACTORIZING, BEFORE_FACTORIZING,
-    CHOLESKY_FILL,
+    path_costs, prefer_saddle, prefer_schur, pushed_estimate, quasi_definite, saddle_pays_for, touched_dofs,
+    AFTER_FACTORIZING, BEFORE_FACTORIZING, CHOLESKY_FILL,
 };
 
 /// Number of right-hand sides solved together when forming `A⁻¹ Eᵀ`.
@@ -154,6 +154,10 @@ pub struct Factor {
     /// The sparse saddle-point system of the QPs that do without H ([`Condensation::Saddle`]), analysed
     /// when first needed.
     saddle: Mutex<Option<SaddleSystem>>,
+    /// The cost model's estimates of one solve by columns and by the saddle-point system, when
+    /// [`Condensation::Auto`] chose the saddle-point system (a loading history may prefer the columns
+    /// after all: [`Factor::saddle_for`]); `None` when it was asked for or not chosen.
+    auto_saddle: Option<[f64; 2]>,
     /// The estimates of diag H the sparse QPs use, by number k of leading unknowns (`0..k`: q for a
     /// frictionless QP, 2q with friction), formed once rather than for every QP of the fixed point.
     h_diagonal_estimates: Mutex<Vec<(usize, Vec<f64>)>>,
@@ -307,6 +311,7 @@ impl Factor {
             }
             _ => None,
         };
+        let auto_saddle = (condensation == Condensation::Auto && saddle.is_some()).then(|| path_costs(nnz_k, pushed));
         let condensation = if use_schur {
             Condensation::Schur
         } else if saddle.is_some() {
@@ -341,7 +346,17 @@ impl Factor {
             factorization_seconds,
             saddle: Mutex::new(saddle),
             h_diagonal_estimates: Mutex::new(Vec::new()),
+            auto_saddle,
         })
+    }
+
+    /// Whether the QPs of `load_cases` solves on this factorization (the steps of a loading history) use
+    /// the saddle-point system: always when it was asked for; when [`Condensation::Auto`] chose it for
+    /// one solve, only while it stays the cheaper path over all of them (the cost model of
+    /// `condensation/choose.rs`: a later step costs a twentieth of the first by columns, half by the
+    /// saddle-point system); otherwise they form columns of H from the same factor of A.
+    pub fn saddle_for(&self, load_cases: usize) -> bool {
+        self.condensation == Condensation::Saddle && self.auto_saddle.is_none_or(|c| saddle_pays_for(c, load_cases))
     }
 
     /// Number of multiplier dofs per component.

@@ -53,6 +53,9 @@ pub struct Condensed<'p> {
     problem: &'p Problem,
     factor: Arc<Factor>,
     reused: bool,
+    /// The solves this condensation serves (the steps of a loading history; 1 for a static solve): the
+    /// QPs' path follows from it ([`Factor::saddle_for`]).
+    load_cases: usize,
 }
 
 impl<'p> Condensed<'p> {
@@ -74,6 +77,17 @@ impl<'p> Condensed<'p> {
     /// Number of multiplier dofs q (per component).
     pub fn q(&self) -> usize {
         self.factor.q()
+    }
+
+    /// Whether the QPs solve the sparse saddle-point system (else they use columns of H): see
+    /// [`Factor::saddle_for`].
+    pub fn sparse_qps(&self) -> bool {
+        self.factor.saddle_for(self.load_cases)
+    }
+
+    /// This condensation, serving `load_cases` solves (the steps of a loading history).
+    pub(crate) fn for_load_cases(&self, load_cases: usize) -> Self {
+        Self { load_cases, ..self.clone() }
     }
 
     /// True when the factorization came from the problem's cache (an earlier condensation with the same
@@ -124,7 +138,7 @@ impl Problem {
             c => c,
         };
         if let Some(factor) = self.factor_cache.get(gamma0, condensation) {
-            return Ok(Condensed { problem: self, factor, reused: true });
+            return Ok(Condensed { problem: self, factor, reused: true, load_cases: 1 });
         }
         // −G and E over all dofs, restricted to the unknowns; their action on the lifting ū gives the
         // γ0-dependent part of the lifted load and obstacle moments (see [`crate::fem::supports`]).
@@ -185,7 +199,7 @@ impl Problem {
         })?;
         let factor = Arc::new(factor);
         self.factor_cache.set(condensation, factor.clone());
-        Ok(Condensed { problem: self, factor, reused: false })
+        Ok(Condensed { problem: self, factor, reused: false, load_cases: 1 })
     }
 
     /// What a lifting ū (2N) adds to the equations, for the γ0 of a factorization: `(Tᵀ A ū, E ū)`

@@ -54,6 +54,9 @@ pub struct ContactQp<'a> {
     places: Option<Vec<Option<Place>>>,
     /// Bytes the dense parts may take.
     budget: usize,
+    /// Whether the QPs solve the sparse saddle-point system of a [`Condensation::Saddle`] factor (else
+    /// columns of H from its factor of A).
+    sparse: bool,
 }
 
 impl<'a> ContactQp<'a> {
@@ -87,6 +90,7 @@ impl<'a> ContactQp<'a> {
             last,
             places: None,
             budget,
+            sparse: condensed.condensation == Condensation::Saddle,
         };
         if let Some(b) = bounds {
             check_thresholds(b, q)?;
@@ -284,6 +288,14 @@ impl<'a> ContactQp<'a> {
         Ok(out)
     }
 
+    /// Solves on the sparse saddle-point system only if `sparse` (and the factor has one; see
+    /// [`crate::Condensed::sparse_qps`]).
+    #[must_use]
+    pub fn with_sparse(mut self, sparse: bool) -> Self {
+        self.sparse &= sparse;
+        self
+    }
+
     /// Solves the whole QP; the returned ν has the full size (q, or 2q with friction).
     ///
     /// # Errors
@@ -292,7 +304,7 @@ impl<'a> ContactQp<'a> {
         if let Some((e_r, load)) = self.data.rigid {
             return self.solve_held_by_contact(e_r, load);
         }
-        if self.condensed.condensation == Condensation::Saddle && self.settings.method != QpMethod::Clarabel {
+        if self.sparse && self.settings.method != QpMethod::Clarabel {
             if let Some(out) = self.solve_sparse()? {
                 return Ok(out);
             }

@@ -12,7 +12,7 @@ use crate::qp::working_set::ContactQp;
 use crate::qp::{QpOutcome, QpStatus};
 use crate::results::{ErrorEstimate, Report, Solution, SolveStatus, Timings};
 use crate::settings::friction::Friction;
-use crate::settings::{QpMethod, SolverSettings};
+use crate::settings::{Condensation, QpMethod, SolverSettings};
 use crate::solve::progress::{Observer, Phase, Progress};
 
 /// What the QP phase produced: multipliers (2q), the tangential bound used, status, history.
@@ -148,13 +148,16 @@ impl Condensed<'_> {
             }
             (Friction::Frictionless | Friction::Coulomb { .. }, _) => {
                 // Coulomb starts from the frictionless λ_n.
-                let out = ContactQp::new(factor, loading.qp_data(), None, &settings.qp, budget, start)?.solve()?;
+                let out = ContactQp::new(factor, loading.qp_data(), None, &settings.qp, budget, start)?
+                    .with_sparse(self.sparse_qps())
+                    .solve()?;
                 phase.lambda[..q].copy_from_slice(&out.nu);
                 phase.record_single_qp(factor, &out, &mut notify);
             }
             (Friction::Tresca(_), _) => {
                 phase.bound = friction.tresca_bounds(q);
                 let out = ContactQp::new(factor, loading.qp_data(), Some(&phase.bound), &settings.qp, budget, start)?
+                    .with_sparse(self.sparse_qps())
                     .solve()?;
                 phase.lambda.copy_from_slice(&out.nu);
                 phase.record_single_qp(factor, &out, &mut notify);
@@ -198,7 +201,11 @@ impl Condensed<'_> {
             gamma0: factor.gamma0,
             gamma0_bound: problem.gamma0_bound.value,
             reused_factorization: self.reused_factorization(),
-            condensation: factor.condensation,
+            condensation: if factor.condensation == Condensation::Saddle && !self.sparse_qps() {
+                Condensation::Columns
+            } else {
+                factor.condensation
+            },
             timings,
             estimate: ErrorEstimate::default(),
         };

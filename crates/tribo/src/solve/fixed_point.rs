@@ -39,7 +39,8 @@ impl Condensed<'_> {
             &settings.qp,
             settings.memory_budget,
             Some(&phase.lambda),
-        )?;
+        )?
+        .with_sparse(self.sparse_qps());
         phase.status = SolveStatus::MaxIterations;
         let (mut best, mut since_best) = (f64::INFINITY, 0);
         for it in 1..=fp.max_iter {

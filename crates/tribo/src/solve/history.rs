@@ -228,6 +228,8 @@ impl Condensed<'_> {
         settings: &SolverSettings,
         mut observer: Option<StepObserver<'_>>,
     ) -> Result<History> {
+        // The QPs' path over all the steps: an automatic saddle-point path may give way to columns of H.
+        let this = self.for_load_cases(steps.len());
         let (problem, factor) = (self.problem(), self.factor());
         let mut previous = PreviousStep::rest(problem, factor);
         let every = settings.keep_every.max(1);
@@ -250,7 +252,7 @@ impl Condensed<'_> {
         for (k, step) in steps.iter().enumerate() {
             let clock = Instant::now();
             let loading = step_load_case(problem, factor, step, &previous)?;
-            let solution = self.solve_loading(friction, settings, &loading, start.as_deref(), None)?;
+            let solution = this.solve_loading(friction, settings, &loading, start.as_deref(), None)?;
             let seconds = clock.elapsed().as_secs_f64();
             history.step_seconds.push(seconds);
             let status = solution.report.status;

@@ -219,6 +219,43 @@ fn keep_every_keeps_what_is_asked() {
     assert!(matches!(e, Err(Error::BadSetting { name: "keep_every", .. })), "{e:?}");
 }
 
+/// The QPs' path over a history: where `auto` solves one static Coulomb problem on the saddle-point
+/// system, a history of many steps forms columns of H from the same factor of A instead (its later steps
+/// cost a twentieth of the first by columns, half by the saddle-point system: `condensation::choose`);
+/// the report says which, one step keeps the static choice, and the answers are those of the forced
+/// saddle-point path.
+#[test]
+fn a_long_history_uses_columns_where_one_solve_uses_the_saddle_point_system() {
+    let problem = hertz(0.0025, 0.0);
+    let approach = hertz_scene().approach;
+    let coulomb = Friction::Coulomb { mu: MU };
+    let settings = SolverSettings::default();
+    let fresh = || hertz(0.0025, 0.0);
+    let static_path = fresh().solve(&coulomb, &settings, None).unwrap().report.condensation;
+    assert_eq!(static_path, tribo::Condensation::Saddle, "the static choice on this mesh");
+    let steps: Vec<LoadStep> = (0..11).map(|k| LoadStep::new(approach, 0.00045 * k as f64)).collect();
+    let one = fresh().solve_history(&coulomb, &steps[..1], &settings, None).unwrap();
+    assert_eq!(one.solutions[0].report.condensation, tribo::Condensation::Saddle);
+    let auto = problem.solve_history(&coulomb, &steps, &settings, None).unwrap();
+    let forced = SolverSettings { condensation: tribo::Condensation::Saddle, ..settings };
+    let saddle = fresh().solve_history(&coulomb, &steps, &forced, None).unwrap();
+    assert_eq!((auto.status, saddle.status), (SolveStatus::Converged, SolveStatus::Converged));
+    for (a, b) in auto.solutions.iter().zip(&saddle.solutions) {
+        assert_eq!(
+            (a.report.condensation, b.report.condensation),
+            (tribo::Condensation::Columns, tribo::Condensation::Saddle)
+        );
+        // Each path stops its fixed point at a relative change of λ_n below fp_tol, so each answer lies
+        // within fp_tol / (1 − L) of its step's fixed point (L ≤ 1/2, the contraction at μ = 0.3 measured
+        // in `paths.rs`), and a step's error enters the next through its slip memory: the two differ by at
+        // most 2 · 2 fp_tol per step, summed over the steps.
+        let allowed = 4.0 * settings.fp.tol * steps.len() as f64 * b.normal_force.abs();
+        let dn = (a.normal_force - b.normal_force).abs();
+        let dt = (a.tangential_force - b.tangential_force).abs();
+        assert!(dn <= allowed && dt <= allowed, "ΔN {dn:e}, ΔT {dt:e}, allowed {allowed:e}");
+    }
+}
+
 /// A fretting cycle — drag to +s, then three times back to −s and again to +s — settles on a closed
 /// hysteresis loop: the change from one cycle to the next falls at least tenfold per cycle (measured:
 /// 5e-4 μP, then 8e-6 μP), the way back differs from the way out, and the obstacle does positive work
