@@ -3,7 +3,7 @@
 //! then the one solved on the last mesh. A stick zone that moves, or a contact zone that grows, is
 //! refined for every step it passes through, on one mesh.
 
-use super::{AdaptStop, Level, LevelObserver};
+use super::{AdaptStop, Level, LevelObserver, Start};
 use crate::error::{Error, Result};
 use crate::problem::Problem;
 use crate::settings::friction::Friction;
@@ -59,7 +59,16 @@ impl Problem {
                 what: format!("is not a step of the history (0 to {})", steps.len().saturating_sub(1)),
             });
         }
-        let solve = |p: &Problem, s: &SolverSettings, _: Option<&[f64]>| p.solve_history(friction, steps, s, None);
+        // A loose answer solved again to fp_tol starts every step from its own (a history from rest would
+        // cost a whole history again); the coarser level's multipliers are not carried over.
+        let solve = |p: &Problem, s: &SolverSettings, start: Start<'_, History>| match start {
+            Start::Answer(h) => {
+                let starts: Vec<Vec<f64>> =
+                    h.solutions.iter().map(|x| [x.lambda_n.as_slice(), x.lambda_t.as_slice()].concat()).collect();
+                p.solve_history_from(friction, steps, s, None, &starts)
+            }
+            Start::Rest | Start::Lambda(_) => p.solve_history(friction, steps, s, None),
+        };
         let read = super::reader(|h: &History| {
             if on.is_empty() {
                 h.solutions.iter().collect()

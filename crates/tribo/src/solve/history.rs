@@ -220,13 +220,15 @@ impl History {
 }
 
 impl Condensed<'_> {
-    /// The step loop of [`Condensed::solve_history`], on validated friction, steps and settings.
+    /// The step loop of [`Condensed::solve_history`], on validated friction, steps and settings; step k
+    /// starts from `starts[k]` where given, else from the previous step's answer.
     pub(crate) fn run_history(
         &self,
         friction: &Friction,
         steps: &[LoadStep],
         settings: &SolverSettings,
         mut observer: Option<StepObserver<'_>>,
+        starts: &[Vec<f64>],
     ) -> Result<History> {
         // The QPs' path over all the steps: an automatic saddle-point path may give way to columns of H.
         let this = self.for_load_cases(steps.len());
@@ -252,7 +254,8 @@ impl Condensed<'_> {
         for (k, step) in steps.iter().enumerate() {
             let clock = Instant::now();
             let loading = step_load_case(problem, factor, step, &previous)?;
-            let solution = this.solve_loading(friction, settings, &loading, start.as_deref(), None)?;
+            let from = starts.get(k).map(Vec::as_slice).or(start.as_deref());
+            let solution = this.solve_loading(friction, settings, &loading, from, None)?;
             let seconds = clock.elapsed().as_secs_f64();
             history.step_seconds.push(seconds);
             let status = solution.report.status;

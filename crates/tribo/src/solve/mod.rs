@@ -56,6 +56,19 @@ impl Condensed<'_> {
         settings: &SolverSettings,
         observer: Option<StepObserver<'_>>,
     ) -> Result<History> {
+        self.solve_history_from(friction, steps, settings, observer, &[])
+    }
+
+    /// [`Condensed::solve_history`], step k's fixed point starting from `starts[k]` (2q values) where
+    /// given, else from the previous step's answer.
+    pub(crate) fn solve_history_from(
+        &self,
+        friction: &Friction,
+        steps: &[LoadStep],
+        settings: &SolverSettings,
+        observer: Option<StepObserver<'_>>,
+        starts: &[Vec<f64>],
+    ) -> Result<History> {
         settings.validate()?;
         friction.validate(self.q())?;
         if steps.is_empty() {
@@ -66,7 +79,7 @@ impl Condensed<'_> {
         }
         history::check_steps(self.problem(), steps)?;
         history_fits(self.problem(), steps, settings)?;
-        self.run_history(friction, steps, settings, observer)
+        self.run_history(friction, steps, settings, observer, starts)
     }
 }
 
@@ -126,9 +139,22 @@ impl Problem {
         settings: &SolverSettings,
         observer: Option<StepObserver<'_>>,
     ) -> Result<History> {
+        self.solve_history_from(friction, steps, settings, observer, &[])
+    }
+
+    /// [`Problem::solve_history`], step k starting from `starts[k]` where given (an adaptive level's
+    /// loose answer solved again to `fp_tol`).
+    pub(crate) fn solve_history_from(
+        &self,
+        friction: &Friction,
+        steps: &[LoadStep],
+        settings: &SolverSettings,
+        observer: Option<StepObserver<'_>>,
+        starts: &[Vec<f64>],
+    ) -> Result<History> {
         settings.validate()?;
         history_fits(self, steps, settings)?;
         self.condense_with(settings.stabilization, settings.condensation, settings.memory_budget)?
-            .solve_history(friction, steps, settings, observer)
+            .solve_history_from(friction, steps, settings, observer, starts)
     }
 }
