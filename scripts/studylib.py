@@ -233,6 +233,26 @@ def markdown_table(headers: Sequence[str], rows: Sequence[Sequence[Any]]) -> str
     return "\n".join(lines) + "\n"
 
 
+def effectivity_summary(effectivity: Sequence[float], in_contact: Sequence[int]) -> str:
+    """One paragraph on effectivity indices over levels: their range, max/min and drift from the first to the
+    last, over every level with a finite index and over those whose contact zone holds at least
+    ``tribo.checks.MIN_CONTACT_DOFS`` multiplier dofs (below it every solve warns that the zone is barely
+    resolved)."""
+    from tribo.checks import MIN_CONTACT_DOFS
+
+    def line(what: str, e: list[float]) -> str:
+        if not e:
+            return f"{what}: none.\n"
+        return (f"{what}: energy effectivity from {min(e):.3g} to {max(e):.3g} (max/min {max(e) / min(e):.3g}, "
+                f"first to last {e[-1] / e[0] - 1:+.0%}).\n")
+
+    finite = [(e, c) for e, c in zip(effectivity, in_contact, strict=True) if math.isfinite(e)]
+    resolved = [e for e, c in finite if c >= MIN_CONTACT_DOFS]
+    return ("\n" + line(f"Over {len(finite)} levels", [e for e, _ in finite]) + "\n"
+            + line(f"Over the {len(resolved)} levels with at least {MIN_CONTACT_DOFS} multiplier dofs in contact",
+                   resolved))
+
+
 def write_csv(path: Path, headers: Sequence[str], rows: Sequence[Sequence[Any]]) -> None:
     with open(path, "w") as f:
         f.write(",".join(headers) + "\n")
