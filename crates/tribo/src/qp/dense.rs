@@ -74,8 +74,8 @@ impl DenseBlock {
     /// Removals go last position first, each a rank-one update of the trailing block with the column
     /// below it; the removed row and column then become the identity's (a unit diagonal, zeros around),
     /// which every later update passes through unchanged (its entry of the update vector stays 0), so the
-    /// factor is compacted once at the end rather than copied at every removal. Each addition is a new
-    /// last row, solved in place in the compacted factor, allocated once at its final size.
+    /// factor is compacted once at the end, in place, rather than copied at every removal. Each addition
+    /// is a new last row, solved in place in the compacted factor, grown once to its final size.
     fn update(
         &self,
         order: Vec<usize>,
