@@ -232,12 +232,15 @@ mod tests {
             let mut sorted = order.clone();
             sorted.sort_unstable();
             prop_assert_eq!(sorted, new);
+            // Round-off: a Cholesky factorization reproduces H to about k ε max|H| (backward stable),
+            // and each of at most k removals or additions adds as much again.
+            let allowed = 4.0 * (k * k) as f64 * f64::EPSILON * h.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
             let n = order.len();
             for a in 0..n {
                 for b in 0..n {
                     let llt: f64 = (0..n).map(|r| lu[(a, r)] * lu[(b, r)]).sum();
                     let want = h[order[b] * k + order[a]];
-                    prop_assert!((llt - want).abs() <= 1e-12 * k as f64 * k as f64, "{a} {b}: {llt} {want}");
+                    prop_assert!((llt - want).abs() <= allowed, "{a} {b}: {llt} {want} (allowed {allowed:e})");
                     if b > a {
                         prop_assert_eq!(lu[(a, b)], 0.0);
                     }
