@@ -6,6 +6,7 @@
 use super::{AdaptStop, Level, LevelObserver, Start};
 use crate::error::{Error, Result};
 use crate::problem::Problem;
+use crate::results::Solution;
 use crate::settings::friction::Friction;
 use crate::settings::{AdaptSettings, SolverSettings};
 use crate::solve::history::{History, LoadStep};
@@ -63,9 +64,10 @@ impl Problem {
         // cost a whole history again); the coarser level's multipliers are not carried over.
         let solve = |p: &Problem, s: &SolverSettings, start: Start<'_, History>| match start {
             Start::Answer(h) => {
-                let starts: Vec<Vec<f64>> =
-                    h.solutions.iter().map(|x| [x.lambda_n.as_slice(), x.lambda_t.as_slice()].concat()).collect();
-                p.solve_history_from(friction, steps, s, None, &starts)
+                let starts: Vec<Vec<f64>> = h.solutions.iter().map(Solution::multipliers).collect();
+                // This level's problem holds its factorization: condensing again takes it from the cache.
+                p.condense_with(s.stabilization, s.condensation, s.memory_budget)?
+                    .solve_history_from(friction, steps, s, None, &starts)
             }
             Start::Rest | Start::Lambda(_) => p.solve_history(friction, steps, s, None),
         };

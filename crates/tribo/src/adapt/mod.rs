@@ -147,13 +147,10 @@ impl Problem {
         observer: Option<LevelObserver<'_>>,
     ) -> Result<Adaptive> {
         self.check_adaptive(friction, settings, adapt)?;
-        let solve = |p: &Problem, s: &SolverSettings, start: Start<'_, Solution>| {
-            let warm = |s: &Solution| [s.lambda_n.as_slice(), s.lambda_t.as_slice()].concat();
-            match start {
-                Start::Rest => solve_level(p, friction, s, None),
-                Start::Lambda(v) => solve_level(p, friction, s, Some(v)),
-                Start::Answer(a) => solve_level(p, friction, s, Some(&warm(a))),
-            }
+        let solve = |p: &Problem, s: &SolverSettings, start: Start<'_, Solution>| match start {
+            Start::Rest => solve_level(p, friction, s, None),
+            Start::Lambda(v) => solve_level(p, friction, s, Some(v)),
+            Start::Answer(a) => solve_level(p, friction, s, Some(&a.multipliers())),
         };
         let read = reader(|s: &Solution| vec![s]);
         let ended = |s: &Solution| (s.report.status, s.report.iterations);

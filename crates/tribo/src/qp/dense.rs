@@ -224,11 +224,14 @@ mod tests {
             let block = DenseBlock::new(h.clone(), vec![0.0; k]);
             let old: Vec<usize> = (0..k).filter(|&i| first[i]).collect();
             prop_assume!(!old.is_empty());
-            let l = Mat::<f64>::from_fn(old.len(), old.len(), |a, b| h[old[b] * k + old[a]]).llt(Side::Lower).unwrap().L().to_owned();
+            // Test code: `spd` is positive definite by construction (BᵀB + kI), so every principal block
+            // factorizes and every update keeps it so; a failure here is a defect of the update.
+            let hff = Mat::<f64>::from_fn(old.len(), old.len(), |a, b| h[old[b] * k + old[a]]);
+            let l = hff.llt(Side::Lower).expect("a principal block of BᵀB + kI is positive definite").L().to_owned();
             let new: Vec<usize> = (0..k).filter(|&i| second[i]).collect();
             let keep: std::collections::HashSet<usize> = new.iter().copied().collect();
             let added: Vec<usize> = new.iter().copied().filter(|i| !old.contains(i)).collect();
-            let (order, lu) = block.update(old.clone(), l, &keep, &added).expect("positive definite");
+            let (order, lu) = block.update(old.clone(), l, &keep, &added).expect("an update of a positive definite block stays so");
             let mut sorted = order.clone();
             sorted.sort_unstable();
             prop_assert_eq!(sorted, new);

@@ -262,6 +262,11 @@ impl Solution {
         self.gap.iter().zip(&self.u_n).map(|(g, u)| g - u).collect()
     }
 
+    /// The multipliers as the QPs take them: λ_n then λ_t (2q values), e.g. to start a solve from them.
+    pub fn multipliers(&self) -> Vec<f64> {
+        [self.lambda_n.as_slice(), self.lambda_t.as_slice()].concat()
+    }
+
     /// About how many bytes a solution of `problem` holds: its fields per node, triangle, multiplier dof
     /// and Γ_C edge and node, and a report (a history keeps one per step; see
     /// [`crate::Condensed::solve_history`]).

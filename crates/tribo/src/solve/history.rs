@@ -281,7 +281,7 @@ impl Condensed<'_> {
                 break;
             }
             previous = after(self, &solution, &loading);
-            start = Some(solution.lambda_n.iter().chain(&solution.lambda_t).copied().collect());
+            start = Some(solution.multipliers());
             history.records.push(StepRecord::of(&solution));
             if history.multiplier_abscissae.is_empty() {
                 history.multiplier_abscissae.clone_from(&solution.multiplier_abscissae);
@@ -316,7 +316,7 @@ fn after(condensed: &Condensed<'_>, solution: &Solution, loading: &LoadCase) -> 
     // The unknowns x = Tᵀ (u − ū_k) (T has orthonormal columns: a node's unknowns are its free
     // directions); `E (u − ū) = E T x + E (ū_k − ū)` (+ E R α for a body held only by the contact).
     let relative: Vec<f64> = solution.displacement.iter().zip(loading.lifting(problem)).map(|(u, l)| u - l).collect();
-    let lambda: Vec<f64> = solution.lambda_n.iter().chain(&solution.lambda_t).copied().collect();
+    let lambda = solution.multipliers();
     // A body held only by the contact also moves by R α, which the unknowns do not carry at the pins.
     let eu = if problem.dofs.floating.is_empty() {
         factor.apply_e(&problem.dofs.restrict(&relative))

@@ -139,22 +139,9 @@ impl Problem {
         settings: &SolverSettings,
         observer: Option<StepObserver<'_>>,
     ) -> Result<History> {
-        self.solve_history_from(friction, steps, settings, observer, &[])
-    }
-
-    /// [`Problem::solve_history`], step k starting from `starts[k]` where given (an adaptive level's
-    /// loose answer solved again to `fp_tol`).
-    pub(crate) fn solve_history_from(
-        &self,
-        friction: &Friction,
-        steps: &[LoadStep],
-        settings: &SolverSettings,
-        observer: Option<StepObserver<'_>>,
-        starts: &[Vec<f64>],
-    ) -> Result<History> {
         settings.validate()?;
         history_fits(self, steps, settings)?;
         self.condense_with(settings.stabilization, settings.condensation, settings.memory_budget)?
-            .solve_history_from(friction, steps, settings, observer, starts)
+            .solve_history(friction, steps, settings, observer)
     }
 }
