@@ -307,6 +307,7 @@ class Problem(_tribo.Problem):
         max_unknowns: int | None = None,
         theta: float | None = None,
         marking: Literal["dorfler", "maximum"] | None = None,
+        bisection: Literal["all_edges", "refinement_edge"] | None = None,
         max_levels: int | None = None,
         algebraic: float | None = None,
         friction: _Law | None = None,
@@ -327,7 +328,9 @@ class Problem(_tribo.Problem):
         the energy while nothing does. It bounds the true error, pessimistically (on Hertz by 3 on coarse
         meshes and up to 24 on fine ones, docs/STUDIES.md, study 6): ``tol`` is a guarantee, and the
         answer is usually several times more accurate. Marking is Dörfler's with ``theta`` (default 0.5), or the maximum
-        strategy (``marking='maximum'``); ``max_levels`` (default 40) bounds the levels. A level's Coulomb
+        strategy (``marking='maximum'``); a marked triangle is bisected on all three edges into four
+        (``bisection='all_edges'``, the default: fewer levels) or on its refinement edge only
+        (``'refinement_edge'``); ``max_levels`` (default 40) bounds the levels. A level's Coulomb
         fixed point stops once its change is ``algebraic`` (default 0.1) times the previous level's relative
         estimate (never below ``fp_tol``); the last level is solved again to ``fp_tol``. T_H is refined
         where the FE edges under it are, keeping the ratio H/h of this problem, except where the body is
@@ -339,7 +342,7 @@ class Problem(_tribo.Problem):
             "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
             "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
         }
-        adapt = (tol, max_unknowns, theta, marking, max_levels, algebraic)
+        adapt = (tol, max_unknowns, theta, marking, bisection, max_levels, algebraic)
         solution, problem, levels, stop, meshes = self._adapt(options, adapt)
         return Adaptive(solution=Solution.from_dict(solution), problem=problem, levels=levels, stop=stop, meshes=meshes)  # type: ignore[arg-type]
 
@@ -355,6 +358,7 @@ class Problem(_tribo.Problem):
         max_unknowns: int | None = None,
         theta: float | None = None,
         marking: Literal["dorfler", "maximum"] | None = None,
+        bisection: Literal["all_edges", "refinement_edge"] | None = None,
         max_levels: int | None = None,
         algebraic: float | None = None,
         friction: _Law | None = None,
@@ -379,7 +383,7 @@ class Problem(_tribo.Problem):
             "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
             "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
         }
-        adapt = (tol, max_unknowns, theta, marking, max_levels, algebraic)
+        adapt = (tol, max_unknowns, theta, marking, bisection, max_levels, algebraic)
         history, problem, levels, stop, meshes = self._adapt(options, adapt, steps, list(on or []))
         return AdaptiveHistory(
             history=self._history(steps, history), problem=problem, levels=levels, stop=stop, meshes=meshes  # type: ignore[arg-type]

@@ -58,7 +58,8 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     Adaptive refinement (``tribo run`` then calls ``Problem.solve_adaptive`` from the scene's mesh, see
     ``tribo.adaptive``): ``tol`` (the relative estimated error of the contact tractions at which to stop,
     default 0.01), ``max_unknowns`` (default 200 000), ``theta`` (Dörfler's θ, default 0.5), ``marking``
-    (``"dorfler"``/``"maximum"``), ``max_levels`` (default 40), ``algebraic`` (default 0.1: a coarse level's
+    (``"dorfler"``/``"maximum"``), ``bisection`` (``"all_edges"``, the default, or ``"refinement_edge"``),
+    ``max_levels`` (default 40), ``algebraic`` (default 0.1: a coarse level's
     fixed point stops at that fraction of the previous level's estimate). The core checks the values. With a
     ``[history]``, every level solves the whole history (``Problem.solve_history_adaptive``) and is refined on
     the largest indicators over the steps ``on`` (a list of step numbers; default all of them), and the
@@ -350,6 +351,7 @@ SCHEMA: dict[str, dict[str, Checker]] = {
         "max_unknowns": _count(2**62),
         "theta": _number,
         "marking": _choice(*CHOICES["marking"]),
+        "bisection": _choice(*CHOICES["bisection"]),
         "max_levels": _count(2**62),
         "algebraic": _number,
         "on": _steps,

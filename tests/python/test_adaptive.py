@@ -68,9 +68,20 @@ def test_bad_adaptive_settings_name_the_setting(keywords: dict[str, float], name
         off_centre().solve_adaptive(**keywords)  # type: ignore[arg-type]
 
 
-def test_an_unknown_marking_is_refused() -> None:
+def test_an_unknown_marking_or_bisection_is_refused() -> None:
     with pytest.raises(tribo.SettingsError, match="dorfler"):
         off_centre().solve_adaptive(marking="greedy")  # type: ignore[arg-type]
+    with pytest.raises(tribo.SettingsError, match="all_edges") as e:
+        off_centre().solve_adaptive(bisection="red")  # type: ignore[arg-type]
+    assert e.value.kind == "UnknownChoice"  # type: ignore[attr-defined]
+
+
+def test_all_edge_bisection_takes_fewer_levels_to_the_same_tolerance() -> None:
+    """Both bisections reach the tolerance; all three edges of a marked triangle (the default) grows each level
+    more, so the loop needs fewer levels (the shapes of the children are checked in the core's tests)."""
+    default, one_edge = (off_centre().solve_adaptive(tol=0.1, bisection=b) for b in (None, "refinement_edge"))
+    assert default.stop == one_edge.stop == "tolerance"
+    assert len(default.levels) < len(one_edge.levels)
 
 
 def test_a_history_adapts_and_hands_back_the_history_on_its_last_mesh() -> None:

@@ -146,8 +146,8 @@ fn load_steps(steps: &Bound<'_, PyAny>) -> PyResult<Vec<LoadStep>> {
     flat.chunks(width.max(1)).enumerate().map(|(k, row)| LoadStep::from_row(k, row).map_err(to_pyerr)).collect()
 }
 
-/// `solve_adaptive`'s tol, max_unknowns, theta, marking, max_levels, algebraic (None: the core's default).
-type AdaptKeywords = (Option<f64>, Option<usize>, Option<f64>, Option<String>, Option<usize>, Option<f64>);
+/// `solve_adaptive`'s tol, max_unknowns, theta, marking, bisection, max_levels, algebraic (None: the default).
+type AdaptArgs = (Option<f64>, Option<usize>, Option<f64>, Option<String>, Option<String>, Option<usize>, Option<f64>);
 
 /// The keywords of a solve as core values: the friction law, the settings (γ0 among them) and the
 /// callbacks. `tribo.Problem.solve` and `solve_history` (Python) spell them out and pass them as one dict.
@@ -322,16 +322,11 @@ impl PyProblem {
     fn solve<'py>(&self, py: Python<'py>, options: &Bound<'_, PyDict>) -> PyResult<Bound<'py, PyDict>> {
         let o = SolveOptions::new(options, "(iteration, change, qp_iterations, qp_seconds)")?;
         let mut error: Option<PyErr> = None;
+        let (on_phase, progress) = (o.on_phase.as_ref(), o.progress.as_ref());
         let result = py.detach(|| {
             let mut observe = |p: &Progress| match p.phase {
-                Phase::Condensation => {
-                    observe_with(o.on_phase.as_ref(), ("condensation", p.condensation_seconds), &mut error)
-                }
-                _ => observe_with(
-                    o.progress.as_ref(),
-                    (p.iteration, p.change, p.qp_iterations, p.qp_seconds),
-                    &mut error,
-                ),
+                Phase::Condensation => observe_with(on_phase, ("condensation", p.condensation_seconds), &mut error),
+                _ => observe_with(progress, (p.iteration, p.change, p.qp_iterations, p.qp_seconds), &mut error),
             };
             self.inner.solve(&o.friction, &o.settings, Some(&mut observe))
         });
@@ -373,12 +368,14 @@ impl PyProblem {
         &self,
         py: Python<'py>,
         options: &Bound<'_, PyDict>,
-        a: AdaptKeywords,
+        a: AdaptArgs,
         steps: Option<&Bound<'_, PyAny>>,
         on: Vec<usize>,
     ) -> PyResult<Bound<'py, PyTuple>> {
         let o = SolveOptions::new(options, "(unknowns, relative, seconds)")?;
-        let adapt = AdaptSettings::from_keywords(a.0, a.1, a.2, a.3.as_deref(), a.4, a.5).map_err(to_pyerr)?;
+        let (tol, max_unknowns, theta, marking, bisection, max_levels, algebraic) = a;
+        let k = tribo::AdaptKeywords { tol, max_unknowns, theta, marking, bisection, max_levels, algebraic };
+        let adapt = AdaptSettings::from_keywords(k).map_err(to_pyerr)?;
         let steps = steps.map(load_steps).transpose()?;
         let mut error = None;
         let result = py.detach(|| {

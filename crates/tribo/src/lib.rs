@@ -123,8 +123,8 @@ pub use qp::{QpOutcome, QpStatus};
 pub use results::{ContactState, KktResiduals, Report, Solution, SolveStatus, Timings};
 pub use settings::friction::{Friction, FrictionLaw, Threshold};
 pub use settings::{
-    AdaptSettings, Condensation, FixedPointSettings, KktSolver, Marking, QpMethod, QpSettings, SettingInfo,
-    SettingKind, SettingValue, SolverSettings, Stabilization,
+    AdaptKeywords, AdaptSettings, Bisection, Condensation, FixedPointSettings, KktSolver, Marking, QpMethod,
+    QpSettings, SettingInfo, SettingKind, SettingValue, SolverSettings, Stabilization,
 };
 pub use solve::history::LoadStep;
 pub use solve::history::{History, StepObserver, StepProgress, StepRecord};
@@ -172,7 +172,7 @@ pub struct ReadmeDoctests;
 
 /// Every named choice of the keyword surface (the Python binding, scene files), by the keyword that takes
 /// it: `side`, `diagonal`, `space`, `friction`, `state` (in the order of [`Choice::code`]), `status`
-/// ([`SolveStatus::NAMES`]), `marking` ([`Marking`]) and every choice among the solver settings ([`SolverSettings::table`]), each
+/// ([`SolveStatus::NAMES`]), `marking` ([`Marking`]), `bisection` ([`Bisection`]) and every choice among the solver settings ([`SolverSettings::table`]), each
 /// with its names as [`Choice::parse`] takes them.
 ///
 /// It lives here, above every module, because it names the option enums of all of them (`choice` sits
@@ -186,6 +186,7 @@ pub fn choice_registry() -> Vec<(&'static str, Vec<&'static str>)> {
         ("state", ContactState::names()),
         ("status", SolveStatus::NAMES.to_vec()),
         ("marking", Marking::names()),
+        ("bisection", Bisection::names()),
     ];
     out.extend(SolverSettings::table().into_iter().filter_map(|info| match info.kind {
         SettingKind::Choice(names) => Some((info.name, names)),

@@ -30,7 +30,9 @@
 //!
 //! # The closure
 //!
-//! 1. The refinement edge of every marked triangle is marked.
+//! 1. The refinement edge of every marked triangle is marked ([`Bisection::RefinementEdge`], p1afem's
+//!    `bisec1`), or all three of its edges ([`Bisection::AllEdges`], `bisec3`: the marked triangle
+//!    becomes four, as by two bisections of it and its children).
 //! 2. Repeatedly, a triangle with a marked edge gets its refinement edge marked (a worklist over edges;
 //!    it stops because edges are only ever marked).
 //! 3. Every triangle is bisected by its marked edges: none (kept), its refinement edge only (2 children),
@@ -87,6 +89,7 @@ use std::collections::BTreeMap;
 use crate::error::{Error, Result};
 use crate::mesh::generate::MAX_CELLS;
 use crate::mesh::{dist2, Mesh, Point};
+use crate::settings::Bisection;
 
 /// The result of [`bisect`]: the refined mesh and how it relates to the coarse one.
 #[derive(Debug, Clone)]
@@ -181,8 +184,10 @@ pub fn label_longest_edge(mesh: &Mesh) -> Mesh {
     Mesh { points: mesh.points.clone(), triangles, edge_sets: mesh.edge_sets.clone(), boundary: mesh.boundary.clone() }
 }
 
-/// Refines every marked triangle at least once by newest-vertex bisection, with the conforming closure
-/// (see the [module documentation](self) for the convention, the closure and what is inherited).
+/// Refines every marked triangle by newest-vertex bisection, with the conforming closure (see the [module
+/// documentation](self) for the convention, the closure and what is inherited): at least once, by its
+/// refinement edge ([`Bisection::RefinementEdge`]), or by all three edges, into at least four
+/// ([`Bisection::AllEdges`]).
 ///
 /// `mesh` must be labelled: its vertex order is the refinement state (a mesh from [`bisect`], or one passed
 /// once through [`label_longest_edge`]); any order gives a conforming mesh. `marked` lists coarse triangle
@@ -193,18 +198,18 @@ pub fn label_longest_edge(mesh: &Mesh) -> Mesh {
 /// [`Error::RefinementTooLarge`] if the refined mesh would have more than
 /// [`MAX_CELLS`] triangles (checked before it is built); the errors of
 /// [`Mesh::new`] if a child degenerates (only for triangles already degenerate to round-off).
-pub fn bisect(mesh: &Mesh, marked: &[usize]) -> Result<Refinement> {
-    bisect_within(mesh, marked, MAX_CELLS)
+pub fn bisect(mesh: &Mesh, marked: &[usize], bisection: Bisection) -> Result<Refinement> {
+    bisect_within(mesh, marked, bisection, MAX_CELLS)
 }
 
 /// [`bisect`] with a limit on the number of triangles of the result.
-fn bisect_within(mesh: &Mesh, marked: &[usize], limit: usize) -> Result<Refinement> {
+fn bisect_within(mesh: &Mesh, marked: &[usize], bisection: Bisection, limit: usize) -> Result<Refinement> {
     let n_triangles = mesh.n_triangles();
     if let Some((position, &triangle)) = marked.iter().enumerate().find(|(_, &t)| t >= n_triangles) {
         return Err(Error::MarkedTriangleOutOfRange { position, triangle, n_triangles });
     }
     let edges = Edges::new(mesh.triangles());
-    let is_marked = edges.closure(marked);
+    let is_marked = edges.closure(marked, bisection);
     let n_children: usize = edges.of_triangle.iter().map(|e| 1 + e.iter().filter(|&&e| is_marked[e]).count()).sum();
     if n_children > limit {
         return Err(Error::RefinementTooLarge { triangles: n_children, limit });
@@ -314,8 +319,13 @@ impl Edges {
         self.nodes.binary_search(&sorted(a, b)).ok()
     }
 
-    /// The marked edges after the conforming closure of the marked triangles.
-    fn closure(&self, marked: &[usize]) -> Vec<bool> {
+    /// The marked edges after the conforming closure of the marked triangles' refinement edges (and of
+    /// their other two edges for [`Bisection::AllEdges`]).
+    fn closure(&self, marked: &[usize], bisection: Bisection) -> Vec<bool> {
+        let edges_of_marked = match bisection {
+            Bisection::AllEdges => 3,
+            Bisection::RefinementEdge => 1,
+        };
         let mut is_marked = vec![false; self.nodes.len()];
         let mut work = Vec::new();
         let mut mark = |e: usize, work: &mut Vec<usize>| {
@@ -325,7 +335,9 @@ impl Edges {
             }
         };
         for &t in marked {
-            mark(self.of_triangle[t][0], &mut work);
+            for &e in &self.of_triangle[t][..edges_of_marked] {
+                mark(e, &mut work);
+            }
         }
         while let Some(e) = work.pop() {
             for t in self.triangles[e].into_iter().flatten() {
@@ -341,6 +353,7 @@ mod tests {
     use super::*;
     use crate::mesh::generate::{rectangle, Diagonal};
     use crate::mesh::signed_area;
+    use crate::settings::Bisection::{AllEdges, RefinementEdge};
     use proptest::prelude::*;
 
     const DIAGONALS: [Diagonal; 3] = [Diagonal::Right, Diagonal::Left, Diagonal::Alternating];
@@ -469,7 +482,7 @@ mod tests {
         let points = vec![[0.0, 1.0], [-1.0, 0.0], [1.0, 0.0]];
         let sets = BTreeMap::from([("base".to_string(), vec![[1, 2]]), ("side".to_string(), vec![[2, 0]])]);
         let mesh = Mesh::new(points, vec![[0, 1, 2]], sets).unwrap();
-        let r = bisect(&mesh, &[0]).unwrap();
+        let r = bisect(&mesh, &[0], RefinementEdge).unwrap();
         check(&mesh, &r);
         assert_eq!(r.mesh().triangles(), [[3, 0, 1], [3, 2, 0]]);
         assert_eq!(r.mesh().points()[3], [0.0, 0.0]);
@@ -477,13 +490,13 @@ mod tests {
         assert_eq!(r.mesh().edge_set("base").unwrap(), [[1, 3], [3, 2]]);
         assert_eq!(r.mesh().edge_set("side").unwrap(), [[2, 0]]);
         // Marking both children bisects both legs: 4 triangles, each with its newest vertex first.
-        let r2 = bisect(r.mesh(), &[0, 1]).unwrap();
+        let r2 = bisect(r.mesh(), &[0, 1], RefinementEdge).unwrap();
         check(r.mesh(), &r2);
         assert_eq!(r2.mesh().triangles(), [[4, 3, 0], [4, 1, 3], [5, 3, 2], [5, 0, 3]]);
         assert_eq!(r2.midpoints(), [[0, 1], [0, 2]]);
         assert_eq!(r2.mesh().edge_set("side").unwrap(), [[2, 5], [5, 0]]);
         // Nothing marked: the same mesh.
-        let none = bisect(&mesh, &[]).unwrap();
+        let none = bisect(&mesh, &[], RefinementEdge).unwrap();
         assert_eq!((none.mesh().triangles(), none.parent(), none.midpoints().len()), (mesh.triangles(), &[0][..], 0));
     }
 
@@ -492,8 +505,15 @@ mod tests {
         for diagonal in DIAGONALS {
             let (x, y) = ([-1.0, 2.0], [0.5, 1.75]);
             let mut mesh = labelled(x, y, 5, 3, diagonal);
-            for marked in [vec![0, 7, 29], vec![3], (0..10).collect(), vec![2, 2, 40]] {
-                let r = bisect(&mesh, &marked).unwrap();
+            let rounds: [(Vec<usize>, _); 5] = [
+                (vec![0, 7, 29], RefinementEdge),
+                (vec![3], AllEdges),
+                ((0..10).collect(), RefinementEdge),
+                (vec![2, 2, 40], AllEdges),
+                (vec![5, 61], RefinementEdge),
+            ];
+            for (marked, bisection) in rounds {
+                let r = bisect(&mesh, &marked, bisection).unwrap();
                 check(&mesh, &r);
                 // The sides stay chains from their lower to their higher end.
                 for (name, set) in r.mesh().edge_sets() {
@@ -514,7 +534,7 @@ mod tests {
         let mut mesh = labelled([-2.0, 3.0], [1.0, 2.5], 4, 3, Diagonal::Alternating);
         for level in 0..6 {
             let marked: Vec<usize> = (0..mesh.n_triangles()).filter(|t| (t * 7 + level) % 5 == 0).collect();
-            let r = bisect(&mesh, &marked).unwrap();
+            let r = bisect(&mesh, &marked, RefinementEdge).unwrap();
             let coarse: Vec<f64> = mesh.points().iter().flat_map(|&p| f(p)).collect();
             let fine = r.prolongate(&coarse, 2).unwrap();
             let exact: Vec<f64> = r.mesh().points().iter().flat_map(|&p| f(p)).collect();
@@ -564,7 +584,7 @@ mod tests {
                     let mut counts = vec![mesh.n_triangles()];
                     for _ in 0..20 {
                         let marked = touching(&mesh, p);
-                        let r = bisect(&mesh, &marked).unwrap();
+                        let r = bisect(&mesh, &marked, RefinementEdge).unwrap();
                         check(&mesh, &r);
                         for &t in &marked {
                             assert!(r.parent().iter().filter(|&&q| q == t).count() >= 2, "{t} not refined");
@@ -590,27 +610,43 @@ mod tests {
         for diagonal in DIAGONALS {
             let mesh = labelled([0.0, 1.5], [-1.0, 1.0], 3, 4, diagonal);
             let n = mesh.n_triangles();
-            let once = bisect(&mesh, &(0..n).collect::<Vec<_>>()).unwrap();
+            let once = bisect(&mesh, &(0..n).collect::<Vec<_>>(), RefinementEdge).unwrap();
             check(&mesh, &once);
             assert_eq!(once.mesh().n_triangles(), 2 * n);
             let all: Vec<usize> = (0..2 * n).collect();
-            let twice = bisect(once.mesh(), &all).unwrap();
+            let twice = bisect(once.mesh(), &all, RefinementEdge).unwrap();
             check(once.mesh(), &twice);
             assert_eq!(twice.mesh().n_triangles(), 4 * n);
             // The two levels: 4 congruent children per coarse triangle.
             assert!(close(min_angle(twice.mesh()), min_angle(&mesh)));
+            // All three edges at once: the same triangles as two levels of the refinement edge (node
+            // numbers differ: each call numbers its own new nodes).
+            let all_edges = bisect(&mesh, &(0..n).collect::<Vec<_>>(), AllEdges).unwrap();
+            check(&mesh, &all_edges);
+            let shapes = |m: &Mesh| {
+                let mut s: Vec<Vec<[u64; 2]>> = (0..m.n_triangles())
+                    .map(|t| {
+                        let mut v: Vec<[u64; 2]> = m.vertices(t).iter().map(|p| p.map(f64::to_bits)).collect();
+                        v.sort_unstable();
+                        v
+                    })
+                    .collect();
+                s.sort_unstable();
+                s
+            };
+            assert_eq!(shapes(all_edges.mesh()), shapes(twice.mesh()));
         }
         // Unlabelled generator output refines too (conforming, more closure).
         let mesh = rectangle([0.0, 1.0], [0.0, 1.0], 3, 3, Diagonal::Right).unwrap();
-        let r = bisect(&mesh, &[4]).unwrap();
+        let r = bisect(&mesh, &[4], RefinementEdge).unwrap();
         check(&mesh, &r);
     }
 
     #[test]
     fn output_depends_on_the_set_of_marks_only() {
         let mesh = labelled([0.0, 2.0], [0.0, 1.0], 4, 2, Diagonal::Alternating);
-        let a = bisect(&mesh, &[9, 1, 9, 4]).unwrap();
-        let b = bisect(&mesh, &[1, 4, 9]).unwrap();
+        let a = bisect(&mesh, &[9, 1, 9, 4], RefinementEdge).unwrap();
+        let b = bisect(&mesh, &[1, 4, 9], RefinementEdge).unwrap();
         assert_eq!((a.mesh().points(), a.mesh().triangles()), (b.mesh().points(), b.mesh().triangles()));
         assert_eq!(
             (a.parent(), a.midpoints(), a.mesh().edge_sets()),
@@ -622,14 +658,17 @@ mod tests {
     fn bad_input_is_a_typed_error() {
         let mesh = labelled([0.0, 1.0], [0.0, 1.0], 2, 2, Diagonal::Right);
         assert_eq!(
-            bisect(&mesh, &[0, 8, 3]).unwrap_err(),
+            bisect(&mesh, &[0, 8, 3], RefinementEdge).unwrap_err(),
             Error::MarkedTriangleOutOfRange { position: 1, triangle: 8, n_triangles: 8 }
         );
-        assert!(matches!(bisect(&mesh, &[usize::MAX]), Err(Error::MarkedTriangleOutOfRange { .. })));
+        assert!(matches!(bisect(&mesh, &[usize::MAX], RefinementEdge), Err(Error::MarkedTriangleOutOfRange { .. })));
         let all: Vec<usize> = (0..8).collect();
-        assert_eq!(bisect_within(&mesh, &all, 15).unwrap_err(), Error::RefinementTooLarge { triangles: 16, limit: 15 });
-        assert!(bisect_within(&mesh, &all, 16).is_ok());
-        let r = bisect(&mesh, &[0]).unwrap();
+        assert_eq!(
+            bisect_within(&mesh, &all, RefinementEdge, 15).unwrap_err(),
+            Error::RefinementTooLarge { triangles: 16, limit: 15 }
+        );
+        assert!(bisect_within(&mesh, &all, RefinementEdge, 16).is_ok());
+        let r = bisect(&mesh, &[0], RefinementEdge).unwrap();
         for (len, components) in [(9, 2), (19, 2), (0, 1), (18, 0)] {
             assert_eq!(
                 r.prolongate(&vec![0.0; len], components).unwrap_err(),
@@ -648,15 +687,17 @@ mod tests {
             x0 in -10.0..10.0f64, w in 0.1..10.0f64, y0 in -10.0..10.0f64, aspect in 0.2..5.0f64,
             nx in 1..6usize, ny in 1..6usize, diagonal in 0..3usize, label in any::<bool>(),
             rounds in prop::collection::vec(prop::collection::vec(any::<usize>(), 0..8), 1..4),
+            all_edges in any::<bool>(),
         ) {
             let mesh = rectangle([x0, x0 + w], [y0, y0 + w * aspect], nx, ny, DIAGONALS[diagonal]).unwrap();
             let mut mesh = if label { label_longest_edge(&mesh) } else { mesh };
             for marks in rounds {
                 let marked: Vec<usize> = marks.iter().map(|m| m % mesh.n_triangles()).collect();
-                let r = bisect(&mesh, &marked).unwrap();
+                let (bisection, children) = if all_edges { (AllEdges, 4) } else { (RefinementEdge, 2) };
+                let r = bisect(&mesh, &marked, bisection).unwrap();
                 check(&mesh, &r);
                 for &t in &marked {
-                    prop_assert!(r.parent().iter().filter(|&&q| q == t).count() >= 2);
+                    prop_assert!(r.parent().iter().filter(|&&q| q == t).count() >= children);
                 }
                 mesh = r.into_mesh();
             }

@@ -35,6 +35,18 @@ pub enum SettingKind {
     Choice(Vec<&'static str>),
 }
 
+impl SettingKind {
+    /// The kind's name: `float`, `count`, `bool` or `choice`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Float => "float",
+            Self::Count { .. } => "count",
+            Self::Bool => "bool",
+            Self::Choice(_) => "choice",
+        }
+    }
+}
+
 /// One row of the table of solver settings.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SettingInfo {

@@ -197,6 +197,7 @@ fn the_choice_registry_lists_every_option() {
     let registry: std::collections::BTreeMap<_, _> = choice_registry().into_iter().collect();
     let keys: Vec<&str> = registry.keys().copied().collect();
     let expected = [
+        "bisection",
         "condensation",
         "diagonal",
         "friction",
@@ -213,6 +214,7 @@ fn the_choice_registry_lists_every_option() {
     assert_eq!(registry["state"][ContactState::Slip.code()], "slip");
     assert_eq!(registry["status"], SolveStatus::NAMES);
     assert_eq!(registry["qp_method"], QpMethod::names());
+    assert_eq!(registry["bisection"], ["all_edges", "refinement_edge"]);
     assert_eq!(registry["marking"], Marking::names());
     for name in &registry["condensation"] {
         assert_eq!(Condensation::parse(name).map(Condensation::as_str), Ok(*name));
