@@ -45,7 +45,7 @@ NU = 0.45
 STEPS = 10
 GRADED = [0.02, 0.01, 0.005, 0.0025]
 TOLS = [0.4, 0.3, 0.2, 0.15, 0.1, 0.07]
-LEVELS = list(range(8, 29, 2))
+LEVELS = list(range(5, 16))
 REFERENCE = dict(h_min=0.000625, h_max=0.05, growth=0.075)
 
 

@@ -304,7 +304,8 @@ fn solve_level(
     settings: &SolverSettings,
     start: Option<&[f64]>,
 ) -> Result<Solution> {
-    let condensed = problem.condense_with(settings.stabilization, settings.condensation, settings.memory_budget)?;
+    let (stabilization, condensation, budget) = (settings.stabilization, settings.condensation, settings.memory_budget);
+    let condensed = problem.condense_for(stabilization, condensation, budget, start.is_some())?;
     let load = LoadCase::of_problem(problem, condensed.factor());
     condensed.solve_loading(friction, settings, &load, start, None)
 }

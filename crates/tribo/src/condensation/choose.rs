@@ -24,9 +24,34 @@ pub(super) const CHOLESKY_FILL: usize = 6;
 /// against 0.08 s by columns; 0.19 against 0.24 s at 15k, 0.51 against 0.90 s at 28k), where the
 /// partial factorization ([`prefer_schur`], tried first) is not taken; the rule puts the switch at about
 /// w = 120 pushed dofs.
-pub(super) fn prefer_saddle(nnz_k: usize, w: usize) -> bool {
+///
+/// A solve whose QPs start from the multipliers of a nearby problem (`warm`: the coarser level of the
+/// adaptive loop) costs the saddle-point system [`WARM_SADDLE`] instead.
+pub(super) fn prefer_saddle(nnz_k: usize, w: usize, warm: bool) -> bool {
     let [columns, saddle] = path_costs(nnz_k, w);
-    columns > saddle
+    columns > if warm { WARM_SADDLE } else { saddle }
+}
+
+/// What the QPs of a solve cost on the saddle-point system when they start from the multipliers of a
+/// nearby problem (the coarser level of the adaptive loop, prolongated), in sparse solves with A: the
+/// start's partition is factorized once (1.3 × a Cholesky of A ≈ 28 solves, and two solves) and the few
+/// multipliers whose state changed are bordered (about 3 solves each; measured on the last levels of study
+/// 6's Hertz runs, 12k to 24k unknowns: 1 LDLᵀ and 5 QP iterations). The columns and the partial
+/// factorization gain little from the start: their cost is in forming H.
+pub(super) const WARM_SADDLE: f64 = 1.3 * 22.0 + 2.0 + 5.0 * 3.0;
+
+/// Whether the warm saddle-point solve ([`WARM_SADDLE`]) is cheaper than the dense block of the partial
+/// factorization ([`prefer_schur`]'s flops, in solves of `4 nnz(L) ≈ 24 nnz(K)` flops); both paths
+/// factorize A once besides. Measured at 12k adaptive unknowns (q = 295): the partial factorization and H
+/// 0.09 s, the plain factorization and the warm QPs 0.05 s.
+pub(super) fn warm_saddle_beats_schur(nnz_k: usize, m: usize, n_c: usize) -> bool {
+    schur_dense_flops(m, n_c) > WARM_SADDLE * 4.0 * CHOLESKY_FILL as f64 * nnz_k as f64
+}
+
+/// The dense flops of the partial factorization's trailing block and of all of `E A⁻¹ Eᵀ` from it.
+fn schur_dense_flops(m: usize, n_c: usize) -> f64 {
+    let (m, nc) = (m as f64, n_c as f64);
+    nc.powi(3) / 3.0 + nc * nc * m / 2.0 + nc * m * m / 2.0
 }
 
 /// The costs of a whole solve by columns and by the saddle-point system, in sparse solves with A (the
@@ -116,10 +141,10 @@ pub(super) const AFTER_FACTORIZING: f64 = 1.0;
 ///
 /// `m` is the number of rows of E and `n_c` the dofs they touch ([`touched_dofs`]).
 pub(super) fn prefer_schur(nnz_k: usize, m: usize, n_c: usize, w: usize, margin: f64, budget: usize) -> (bool, f64) {
+    let dense = schur_dense_flops(m, n_c);
     let (m, nc) = (m as f64, n_c as f64);
     let bytes = 8.0 * (nc * nc + nc * m + 2.0 * m * m);
     let nnz = nnz_k as f64;
-    let dense = nc.powi(3) / 3.0 + nc * nc * m / 2.0 + nc * m * m / 2.0;
     let dense_pays = dense <= margin * 4.0 * CHOLESKY_FILL as f64 * nnz * w as f64;
     (m * m <= 16.0 * nnz && dense_pays && bytes <= budget as f64, bytes)
 }

@@ -30,7 +30,7 @@ mod diagonal;
 
 use choose::{
     path_costs, prefer_saddle, prefer_schur, pushed_estimate, quasi_definite, saddle_pays_for, touched_dofs,
-    AFTER_FACTORIZING, BEFORE_FACTORIZING, CHOLESKY_FILL,
+    warm_saddle_beats_schur, AFTER_FACTORIZING, BEFORE_FACTORIZING, CHOLESKY_FILL,
 };
 
 /// Number of right-hand sides solved together when forming `A⁻¹ Eᵀ`.
@@ -176,7 +176,9 @@ impl Factor {
     /// `e_rows` are the 2q rows of E over the unknowns, `d_gamma` the entries `(i, j, v)` of the q × q
     /// block Dγ (the same block acts on the normal and on the tangential multipliers), `f` the load and
     /// `d` the obstacle moments (2q). `condensation` chooses how H is formed ([`Condensation::Auto`]: the
-    /// partial factorization where it is cheaper and fits `budget` bytes, see [`crate::linalg::schur`]).
+    /// partial factorization where it is cheaper and fits `budget` bytes, see [`crate::linalg::schur`]);
+    /// `warm` says that the QPs will start from the multipliers of a nearby problem, which makes the
+    /// saddle-point system cheaper (the cost model's `WARM_SADDLE`).
     ///
     /// # Errors
     /// [`Error::NotPositiveDefinite`] if the Cholesky factorization fails; [`Error::Assembly`] if `−G`
@@ -194,6 +196,7 @@ impl Factor {
         gamma0: f64,
         condensation: Condensation,
         budget: usize,
+        warm: bool,
     ) -> Result<Self> {
         let clock = Instant::now();
         // A = K − G on K's pattern (G couples the dofs of one triangle, all present in K), factorized
@@ -223,24 +226,28 @@ impl Factor {
         // they are known once A is factorized, so a partial factorization that could pay (it does at most
         // when all q are pushed) is decided after the plain one ([`choose::prefer_schur`]).
         let loaded = f.iter().any(|&v| v != 0.0);
+        // The Γ_C dofs, E's rows and Dγ decide whether the saddle-point system can do without pivoting.
+        let mut d_cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); m];
+        for &(i, j, v) in &d_gamma {
+            d_cols[j].push((i, v));
+            d_cols[q + j].push((q + i, v));
+        }
+        let warm_saddle = warm && quasi_definite(&e_rows, n_c, &d_cols) && warm_saddle_beats_schur(nnz_k, m, n_c);
         let mut use_schur = match condensation {
             Condensation::Columns | Condensation::Saddle => false,
             Condensation::Schur => true,
-            Condensation::Auto => !loaded && schur_pays(pushed_estimate(f, &d, q), BEFORE_FACTORIZING).0,
+            Condensation::Auto => {
+                !loaded && !warm_saddle && schur_pays(pushed_estimate(f, &d, q), BEFORE_FACTORIZING).0
+            }
         };
-        let undecided = condensation == Condensation::Auto && loaded && schur_pays(q, AFTER_FACTORIZING).0;
+        let undecided =
+            condensation == Condensation::Auto && loaded && !warm_saddle && schur_pays(q, AFTER_FACTORIZING).0;
         if condensation == Condensation::Schur && bytes > budget as f64 {
             return Err(Error::MemoryBudget {
                 what: "the partial factorization's dense trailing block and E A⁻¹ Eᵀ".to_string(),
                 needed: bytes,
                 budget: budget as f64,
             });
-        }
-        // Dγ by columns: for column j of block b, the rows i of the same block.
-        let mut d_cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); m];
-        for &(i, j, v) in &d_gamma {
-            d_cols[j].push((i, v));
-            d_cols[q + j].push((q + i, v));
         }
         let mut cols = vec![None; m];
         // The partial factorization and all of H from it: (the factor, its seconds, H's seconds).
@@ -284,7 +291,8 @@ impl Factor {
             (Direct::Columns(symbolic.clone(), values), clock.elapsed().as_secs_f64(), 0.0)
         };
         let clock = Instant::now();
-        let u_f = solve(&direct, f)?;
+        // A⁻¹ 0 = 0: a body pressed only by the obstacle (no load on the free dofs) needs no solve here.
+        let u_f = if loaded { solve(&direct, f)? } else { vec![0.0; f.len()] };
         let e_ainv_f: Vec<f64> = e_rows.iter().map(|row| dot(row, &u_f)).collect();
         let c: Vec<f64> = d.iter().zip(&e_ainv_f).map(|(di, ei)| di - ei).collect();
         let pushed = c[..q].iter().filter(|v: &&f64| **v < 0.0).count();
@@ -305,7 +313,7 @@ impl Factor {
         let saddle = match condensation {
             Condensation::Saddle => Some(saddle_system(a, &e_rows, &d_cols, budget / 8, budget)?),
             Condensation::Auto
-                if !use_schur && prefer_saddle(nnz_k, pushed) && quasi_definite(&e_rows, n_c, &d_cols) =>
+                if !use_schur && prefer_saddle(nnz_k, pushed, warm) && quasi_definite(&e_rows, n_c, &d_cols) =>
             {
                 saddle_system(a, &e_rows, &d_cols, 2 * CHOLESKY_FILL * nnz_k, budget).ok()
             }

@@ -121,6 +121,18 @@ impl Problem {
         condensation: Condensation,
         memory_budget: usize,
     ) -> Result<Condensed<'_>> {
+        self.condense_for(stabilization, condensation, memory_budget, false)
+    }
+
+    /// As [`Problem::condense_with`]; `warm` says that the QPs will start from the multipliers of a nearby
+    /// problem (the adaptive loop's coarser level), which [`Condensation::Auto`] weighs.
+    pub(crate) fn condense_for(
+        &self,
+        stabilization: Stabilization,
+        condensation: Condensation,
+        memory_budget: usize,
+        warm: bool,
+    ) -> Result<Condensed<'_>> {
         let gamma0 = self.gamma0_bound.resolve(stabilization)?;
         // A body held only by the contact needs all of H for clarabel's QP with its equilibrium
         // (`problem/floating.rs`): the saddle-point path does without H, so `auto` forms it by columns.
@@ -179,6 +191,7 @@ impl Problem {
             gamma0,
             condensation,
             memory_budget,
+            warm,
         )
         .map_err(|e| match e {
             // At γ0 = 0 the matrix is K itself: the supports hold every piece (checked at the door), so only
