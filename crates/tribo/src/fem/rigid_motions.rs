@@ -16,8 +16,6 @@
 //! stiffness is positive definite; the pins carry no force once the piece is in equilibrium, which the
 //! contact QP imposes ([`crate::Dofs`]).
 
-use std::collections::HashMap;
-
 use nalgebra::{Matrix3, Vector3};
 
 use crate::error::{Error, Result};
@@ -71,31 +69,58 @@ pub(super) fn check_held(
         }
         t
     }
-    let mut owner: HashMap<[usize; 2], usize> = HashMap::with_capacity(2 * n);
+    // Triangles sharing an edge join: the edges are bucketed by their smaller node (a counting sort, no
+    // hashing), and two entries of a bucket with the same larger node are one edge.
+    let n_nodes = mesh.n_nodes();
+    let mut bucket = vec![0usize; n_nodes + 1];
+    for tri in mesh.triangles() {
+        for local in 0..3 {
+            bucket[tri[local].min(tri[(local + 1) % 3]) + 1] += 1;
+        }
+    }
+    for i in 0..n_nodes {
+        bucket[i + 1] += bucket[i];
+    }
+    let mut fill = bucket.clone();
+    let mut ends = vec![(0usize, 0usize); bucket[n_nodes]];
     for (t, tri) in mesh.triangles().iter().enumerate() {
         for local in 0..3 {
             let (a, b) = (tri[local], tri[(local + 1) % 3]);
-            if let Some(&other) = owner.get(&[a.min(b), a.max(b)]) {
+            ends[fill[a.min(b)]] = (a.max(b), t);
+            fill[a.min(b)] += 1;
+        }
+    }
+    drop(fill);
+    for i in 0..n_nodes {
+        let edges = &ends[bucket[i]..bucket[i + 1]];
+        for (k, &(b, t)) in edges.iter().enumerate() {
+            if let Some(&(_, other)) = edges[..k].iter().find(|(c, _)| *c == b) {
                 let (ra, rb) = (root(&mut parent, t), root(&mut parent, other));
                 parent[ra] = rb;
-            } else {
-                owner.insert([a.min(b), a.max(b)], t);
             }
         }
     }
-    let roots: Vec<usize> = (0..n).map(|t| root(&mut parent, t)).collect();
+    drop(ends);
+    // Each piece is named by its first triangle: the union-find's roots depend on the order of the unions.
+    let mut roots: Vec<usize> = (0..n).map(|t| root(&mut parent, t)).collect();
+    let mut first = vec![usize::MAX; n];
+    for (t, &r) in roots.iter().enumerate() {
+        first[r] = first[r].min(t);
+    }
+    for r in &mut roots {
+        *r = first[*r];
+    }
+    drop(first);
     let pieces = (0..n).filter(|&t| roots[t] == t).count();
     // Per piece: its triangles, its nodes (a node shared by pieces counts in each), the centroid and size
     // of its nodes, then the Gram matrix of its conditions against the rigid motions.
     let mut size = vec![0usize; n];
-    let mut piece_nodes: HashMap<usize, Vec<usize>> = HashMap::new();
-    for (t, tri) in mesh.triangles().iter().enumerate() {
-        size[roots[t]] += 1;
-        piece_nodes.entry(roots[t]).or_default().extend_from_slice(tri);
+    for &r in &roots {
+        size[r] += 1;
     }
     // A node in two pieces joins them at a point: such a piece is hinged, not free, and cannot float.
-    let mut first_piece: Vec<Option<usize>> = vec![None; mesh.n_nodes()];
-    let mut shared = vec![false; mesh.n_nodes()];
+    let mut first_piece: Vec<Option<usize>> = vec![None; n_nodes];
+    let mut shared = vec![false; n_nodes];
     for (t, tri) in mesh.triangles().iter().enumerate() {
         for &v in tri {
             match first_piece[v] {
@@ -105,14 +130,34 @@ pub(super) fn check_held(
             }
         }
     }
+    // The pieces in the order of their root triangles (the error names the first one met), each with its
+    // nodes in increasing order: a node of one piece is listed by its piece, a shared node by each of its.
+    let mut index = vec![usize::MAX; n];
+    let mut by_root: Vec<(usize, Vec<usize>)> = Vec::with_capacity(pieces);
+    for t in (0..n).filter(|&t| roots[t] == t) {
+        index[t] = by_root.len();
+        by_root.push((t, Vec::new()));
+    }
+    for (v, piece) in first_piece.iter().enumerate() {
+        if let (Some(r), false) = (piece, shared[v]) {
+            by_root[index[*r]].1.push(v);
+        }
+    }
+    if shared.iter().any(|&s| s) {
+        for (t, tri) in mesh.triangles().iter().enumerate() {
+            for &v in tri.iter().filter(|&&v| shared[v]) {
+                by_root[index[roots[t]]].1.push(v);
+            }
+        }
+        for (_, list) in &mut by_root {
+            list.sort_unstable();
+            list.dedup();
+        }
+    }
+    drop(index);
     let pts = mesh.points();
-    // The pieces in the order of their root triangles (the error names the first one met).
-    let mut by_root: Vec<(usize, Vec<usize>)> = piece_nodes.into_iter().collect();
-    by_root.sort_unstable_by_key(|(r, _)| *r);
     let mut free = Vec::new();
-    for (r, mut list) in by_root {
-        list.sort_unstable();
-        list.dedup();
+    for (r, list) in by_root {
         let floats = list.iter().any(|&i| may_float(i)) && !list.iter().any(|&i| shared[i]);
         let m = list.len() as f64;
         let centre = list.iter().fold([0.0, 0.0], |c, &i| [c[0] + pts[i][0] / m, c[1] + pts[i][1] / m]);

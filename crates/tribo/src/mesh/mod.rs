@@ -88,43 +88,42 @@ impl Mesh {
                 return Err(Error::InvertedTriangle { element, area });
             }
         }
-        // The checks across triangles sort lists instead of hashing (a fraction of the memory and time
-        // of hash maps on millions of triangles). Where several pairs offend, the one met first in mesh
-        // order is named, as a scan would.
-        let mut keys: Vec<([usize; 3], usize)> = triangles
-            .iter()
-            .enumerate()
-            .map(|(element, tri)| {
+        // The checks across triangles group lists by a node (a counting sort) and sort each short group,
+        // instead of hashing or sorting the whole list: a fraction of the time and memory on millions of
+        // triangles. Where several pairs offend, the one met first in mesh order is named, as a scan would.
+        let keys = grouped(
+            n,
+            triangles.iter().enumerate().map(|(element, tri)| {
                 let mut key = *tri;
                 key.sort_unstable();
-                (key, element)
-            })
-            .collect();
-        keys.sort_unstable();
-        let duplicate = keys.windows(2).filter(|w| w[0].0 == w[1].0).min_by_key(|w| w[1].1);
-        if let Some(w) = duplicate {
-            return Err(Error::DuplicateTriangle { first: w[0].1, second: w[1].1 });
+                (key[0], ([key[1], key[2]], element))
+            }),
+        );
+        let duplicate = first_pair(&keys);
+        if let Some((first, second, _)) = duplicate {
+            return Err(Error::DuplicateTriangle { first, second });
         }
         drop(keys);
         // Each directed edge (p → q of a counter-clockwise triangle) may occur once: two triangles on the
         // same side of an edge overlap. An edge whose reverse no triangle has is on the boundary.
-        let mut directed: Vec<([usize; 2], usize)> = Vec::with_capacity(3 * triangles.len());
-        for (element, tri) in triangles.iter().enumerate() {
-            for local in 0..3 {
-                directed.push(([tri[(local + 1) % 3], tri[(local + 2) % 3]], element));
+        let directed = grouped(
+            n,
+            triangles.iter().enumerate().flat_map(|(element, tri)| {
+                (0..3).map(move |local| (tri[(local + 1) % 3], (tri[(local + 2) % 3], element)))
+            }),
+        );
+        if let Some((first, second, (a, b))) = first_pair(&directed) {
+            return Err(Error::OverlappingTriangles { first, second, a, b });
+        }
+        let (start, out) = &directed;
+        let mut boundary: HashMap<[usize; 2], usize> = HashMap::new();
+        for p in 0..n {
+            for &(q, element) in &out[start[p]..start[p + 1]] {
+                if !out[start[q]..start[q + 1]].iter().any(|&(r, _)| r == p) {
+                    boundary.insert([p.min(q), p.max(q)], element);
+                }
             }
         }
-        directed.sort_unstable();
-        let overlap = directed.windows(2).filter(|w| w[0].0 == w[1].0).min_by_key(|w| w[1].1);
-        if let Some(w) = overlap {
-            let [a, b] = w[0].0;
-            return Err(Error::OverlappingTriangles { first: w[0].1, second: w[1].1, a, b });
-        }
-        let boundary: HashMap<[usize; 2], usize> = directed
-            .iter()
-            .filter(|([p, q], _)| directed.binary_search_by(|probe| probe.0.cmp(&[*q, *p])).is_err())
-            .map(|&([p, q], element)| ([p.min(q), p.max(q)], element))
-            .collect();
         drop(directed);
         if let Some(node) = used.iter().position(|u| !u) {
             return Err(Error::UnusedNode { node });
@@ -229,5 +228,101 @@ impl Mesh {
     /// Length of the edge (a, b).
     pub fn edge_length(&self, a: usize, b: usize) -> f64 {
         dist2(self.points[a], self.points[b]).sqrt()
+    }
+}
+
+/// Items keyed by a node (below `n`), grouped by it with a counting sort: the items of node i are
+/// `items[start[i]..start[i + 1]]`, each group sorted. Returns `(start, items)`.
+fn grouped<T: Ord + Copy>(n: usize, keyed: impl Iterator<Item = (usize, T)> + Clone) -> (Vec<usize>, Vec<T>) {
+    let mut start = vec![0usize; n + 1];
+    for (i, _) in keyed.clone() {
+        start[i + 1] += 1;
+    }
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut items = Vec::with_capacity(start[n]);
+    // Every slot is written once below; the first item is a placeholder value for the unwritten ones.
+    if let Some((_, first)) = keyed.clone().next() {
+        items.resize(start[n], first);
+    }
+    for (i, item) in keyed {
+        items[fill[i]] = item;
+        fill[i] += 1;
+    }
+    for i in 0..n {
+        items[start[i]..start[i + 1]].sort_unstable();
+    }
+    (start, items)
+}
+
+/// The first pair, in mesh order of its second element, of items `(key, element)` of one group with the
+/// same key: `(first element, second element, (node, key))`.
+fn first_pair<K: Ord + Copy>(groups: &(Vec<usize>, Vec<(K, usize)>)) -> Option<(usize, usize, (usize, K))> {
+    let (start, items) = groups;
+    let mut best: Option<(usize, usize, (usize, K))> = None;
+    for node in 0..start.len() - 1 {
+        for w in items[start[node]..start[node + 1]].windows(2) {
+            if w[0].0 == w[1].0 && best.is_none_or(|b| w[1].1 < b.1) {
+                best = Some((w[0].1, w[1].1, (node, w[0].0)));
+            }
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The offending pair the whole sorted list names (the former implementation): of the items
+    /// `((node, key), element)` with equal `(node, key)`, adjacent in sorted order, the pair whose second
+    /// element comes first in mesh order.
+    fn by_sorting<K: Ord + Copy>(mut all: Vec<((usize, K), usize)>) -> Option<(usize, usize, (usize, K))> {
+        all.sort_unstable();
+        all.windows(2).filter(|w| w[0].0 == w[1].0).min_by_key(|w| w[1].1).map(|w| (w[0].1, w[1].1, w[0].0))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(256))]
+        /// Grouping by a node and sorting each group finds the duplicate triangles, the overlapping
+        /// directed edges and the boundary edges that sorting the whole lists finds (any node triples,
+        /// repeats and degenerate ones included: these checks see only indices).
+        #[test]
+        fn grouping_finds_what_sorting_finds(
+            triangles in prop::collection::vec(prop::array::uniform3(0..7usize), 1..24),
+        ) {
+            let n = 7;
+            let sorted_key = |tri: &[usize; 3]| {
+                let mut k = *tri;
+                k.sort_unstable();
+                k
+            };
+            let keys = grouped(n, triangles.iter().enumerate().map(|(e, t)| {
+                let k = sorted_key(t);
+                (k[0], ([k[1], k[2]], e))
+            }));
+            let all = triangles.iter().enumerate().map(|(e, t)| {
+                let k = sorted_key(t);
+                ((k[0], [k[1], k[2]]), e)
+            });
+            prop_assert_eq!(first_pair(&keys), by_sorting(all.collect()));
+            let edges = |(e, t): (usize, &[usize; 3])| {
+                let t = *t;
+                (0..3).map(move |l| (t[(l + 1) % 3], t[(l + 2) % 3], e))
+            };
+            let directed = grouped(n, triangles.iter().enumerate().flat_map(edges).map(|(p, q, e)| (p, (q, e))));
+            let all: Vec<((usize, usize), usize)> =
+                triangles.iter().enumerate().flat_map(edges).map(|(p, q, e)| ((p, q), e)).collect();
+            prop_assert_eq!(first_pair(&directed), by_sorting(all.clone()));
+            // A directed edge is on the boundary when no triangle has its reverse.
+            let (start, items) = &directed;
+            for &((p, q), e) in &all {
+                let grouped_says = !items[start[q]..start[q + 1]].iter().any(|&(r, _)| r == p);
+                prop_assert_eq!(grouped_says, !all.iter().any(|&((a, b), _)| (a, b) == (q, p)), "edge {} {} of {}", p, q, e);
+            }
+        }
     }
 }
