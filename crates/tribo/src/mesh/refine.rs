@@ -621,6 +621,7 @@ mod tests {
             assert!(close(min_angle(twice.mesh()), min_angle(&mesh)));
             // All three edges at once: the same triangles as two levels of the refinement edge (node
             // numbers differ: each call numbers its own new nodes).
+            // A valid mesh and marks in range: the bisection cannot fail.
             let all_edges = bisect(&mesh, &(0..n).collect::<Vec<_>>(), AllEdges).unwrap();
             check(&mesh, &all_edges);
             let shapes = |m: &Mesh| {
