@@ -14,6 +14,14 @@ if matplotlib is installed, plots (``tribo.plot``, not imported here).
 'converged'
 """
 
+import os as _os
+
+# The compiled module allocates with mimalloc. Told never to return freed pages to the system, it reuses
+# them instead of faulting in fresh ones at every level of an adaptive loop: Hertz to 0.3 % in 0.35-0.40 s
+# against 0.41-0.65 s (docs/STUDIES.md, study 6). The process keeps its peak memory until it exits; a
+# user's own MIMALLOC_PURGE_DELAY wins.
+_os.environ.setdefault("MIMALLOC_PURGE_DELAY", "-1")
+
 from tribo._tribo import (
     STATE_NAMES,
     ContactGeometryError,
