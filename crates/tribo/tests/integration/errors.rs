@@ -295,6 +295,16 @@ fn fuzzing_holes_are_typed_errors() {
         Error::MemoryBudget { needed, budget, .. } => assert!(needed > budget && budget == (64 << 20) as f64),
         e => panic!("{e}"),
     }
+    // D3: the saddle-point path on the same problem: its 20,001 multipliers on the square's few FE edges
+    // couple thousands of multiplier unknowns to one displacement dof, a clique of the factor beyond the
+    // budget, refused before the symbolic analysis (which took 56 s for 200k multipliers before).
+    let settings = SolverSettings { memory_budget: 64 << 20, condensation: Condensation::Saddle, ..Default::default() };
+    match problem.solve(&Friction::Frictionless, &settings, None).unwrap_err() {
+        Error::MemoryBudget { what, needed, budget } => {
+            assert!(needed > budget && what.contains("couple to one displacement dof"), "{what}")
+        }
+        e => panic!("{e}"),
+    }
     // D3: a factorization beyond the memory budget is refused after its symbolic analysis, before its
     // values are allocated, with the size it would need: the plain factor (H by columns) and the partial
     // one (the Γ_C dofs last), on 20,000 unknowns (a factor of about 10 MB) against 4 MiB (more than the dense
