@@ -29,8 +29,8 @@ mod choose;
 mod diagonal;
 
 use choose::{
-    path_costs, prefer_saddle, prefer_schur, pushed_estimate, quasi_definite, saddle_pays_for, touched_dofs,
-    warm_saddle_beats_schur, AFTER_FACTORIZING, BEFORE_FACTORIZING, CHOLESKY_FILL,
+    path_costs, prefer_saddle, prefer_schur, pushed_estimate, quasi_definite, saddle_clique, saddle_pays_for,
+    touched_dofs, warm_saddle_beats_schur, AFTER_FACTORIZING, BEFORE_FACTORIZING, CHOLESKY_FILL,
 };
 
 /// Number of right-hand sides solved together when forming `A⁻¹ Eᵀ`.
@@ -109,24 +109,13 @@ fn saddle_system(
     let d: Vec<(usize, usize, f64)> =
         d_cols.iter().enumerate().flat_map(|(j, col)| col.iter().map(move |&(i, v)| (i, j, v))).collect();
     let opts = SaddleOptions { max_factor_len: max_len.min(budget / 8), ..Default::default() };
-    // The ordering eliminates every displacement dof before the multipliers its column of E touches, so
-    // those c multipliers form a clique of the factor: at least c (c + 1) / 2 values, known before the
-    // symbolic analysis, whose cost grows with the fill (56 s for 200k multipliers over 8 FE edges).
-    let mut touching = vec![0usize; a.nrows()];
-    for &(dof, _) in e_rows.iter().flatten() {
-        touching[dof] += 1;
-    }
-    let c = touching.into_iter().max().unwrap_or(0);
-    let clique = c * (c + 1) / 2;
+    let (c, clique) = saddle_clique(e_rows, a.nrows());
     if clique > opts.max_factor_len {
-        return Err(Error::MemoryBudget {
-            what: format!(
-                "the sparse factor of the saddle-point system [[A, Eᵀ], [E, −Dγ]] (at least: {c} multiplier \
-                 unknowns couple to one displacement dof)"
-            ),
-            needed: 8.0 * clique as f64,
-            budget: budget as f64,
-        });
+        let what = format!(
+            "the sparse factor of the saddle-point system [[A, Eᵀ], [E, −Dγ]] (at least: {c} multiplier \
+                            unknowns couple to one displacement dof)"
+        );
+        return Err(Error::MemoryBudget { what, needed: 8.0 * clique as f64, budget: budget as f64 });
     }
     SaddleSystem::with_options(a, e_rows, &d, opts).map_err(|e| match e {
         SaddleError::FactorTooLarge { values } => Error::MemoryBudget {

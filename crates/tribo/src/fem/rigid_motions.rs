@@ -21,7 +21,7 @@ use nalgebra::{Matrix3, Vector3};
 use crate::error::{Error, Result};
 use crate::fem::supports::NodeSupport;
 use crate::mesh::line::geometric_tol_rel;
-use crate::mesh::Mesh;
+use crate::mesh::{grouped, Mesh};
 
 /// A piece of the mesh its supports leave free to move rigidly, to be held by the contact.
 #[derive(Debug, Clone, PartialEq)]
@@ -69,33 +69,22 @@ pub(super) fn check_held(
         }
         t
     }
-    // Triangles sharing an edge join: the edges are bucketed by their smaller node (a counting sort, no
-    // hashing), and two entries of a bucket with the same larger node are one edge.
+    // Triangles sharing an edge join: the edges grouped by their smaller node (a counting sort, no
+    // hashing), each group sorted, so that the entries of one edge are adjacent.
     let n_nodes = mesh.n_nodes();
-    let mut bucket = vec![0usize; n_nodes + 1];
-    for tri in mesh.triangles() {
-        for local in 0..3 {
-            bucket[tri[local].min(tri[(local + 1) % 3]) + 1] += 1;
-        }
-    }
+    let (start, ends) = grouped(
+        n_nodes,
+        mesh.triangles().iter().enumerate().flat_map(|(t, tri)| {
+            (0..3).map(move |l| {
+                let (a, b) = (tri[l], tri[(l + 1) % 3]);
+                (a.min(b), (a.max(b), t))
+            })
+        }),
+    );
     for i in 0..n_nodes {
-        bucket[i + 1] += bucket[i];
-    }
-    let mut fill = bucket.clone();
-    let mut ends = vec![(0usize, 0usize); bucket[n_nodes]];
-    for (t, tri) in mesh.triangles().iter().enumerate() {
-        for local in 0..3 {
-            let (a, b) = (tri[local], tri[(local + 1) % 3]);
-            ends[fill[a.min(b)]] = (a.max(b), t);
-            fill[a.min(b)] += 1;
-        }
-    }
-    drop(fill);
-    for i in 0..n_nodes {
-        let edges = &ends[bucket[i]..bucket[i + 1]];
-        for (k, &(b, t)) in edges.iter().enumerate() {
-            if let Some(&(_, other)) = edges[..k].iter().find(|(c, _)| *c == b) {
-                let (ra, rb) = (root(&mut parent, t), root(&mut parent, other));
+        for w in ends[start[i]..start[i + 1]].windows(2) {
+            if w[0].0 == w[1].0 {
+                let (ra, rb) = (root(&mut parent, w[1].1), root(&mut parent, w[0].1));
                 parent[ra] = rb;
             }
         }

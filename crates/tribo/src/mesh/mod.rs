@@ -233,7 +233,10 @@ impl Mesh {
 
 /// Items keyed by a node (below `n`), grouped by it with a counting sort: the items of node i are
 /// `items[start[i]..start[i + 1]]`, each group sorted. Returns `(start, items)`.
-fn grouped<T: Ord + Copy>(n: usize, keyed: impl Iterator<Item = (usize, T)> + Clone) -> (Vec<usize>, Vec<T>) {
+pub(crate) fn grouped<T: Ord + Copy>(
+    n: usize,
+    keyed: impl Iterator<Item = (usize, T)> + Clone,
+) -> (Vec<usize>, Vec<T>) {
     let mut start = vec![0usize; n + 1];
     for (i, _) in keyed.clone() {
         start[i + 1] += 1;

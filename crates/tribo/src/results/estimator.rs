@@ -310,26 +310,11 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
         }
     }
 
-    // The triangles around each node (CSR), to find the neighbour across each edge without a map of
-    // all the edges.
+    // The triangles around each node (grouped by node), to find the neighbour across each edge without a
+    // map of all the edges.
     let tris = mesh.triangles();
-    let mut start = vec![0usize; mesh.n_nodes() + 1];
-    for tri in tris {
-        for &v in tri {
-            start[v + 1] += 1;
-        }
-    }
-    for v in 0..mesh.n_nodes() {
-        start[v + 1] += start[v];
-    }
-    let mut around = vec![0usize; start[mesh.n_nodes()]];
-    let mut fill = start.clone();
-    for (t, tri) in tris.iter().enumerate() {
-        for &v in tri {
-            around[fill[v]] = t;
-            fill[v] += 1;
-        }
-    }
+    let (start, around) =
+        crate::mesh::grouped(mesh.n_nodes(), tris.iter().enumerate().flat_map(|(t, tri)| tri.map(|v| (v, t))));
     let mut neumann: std::collections::HashMap<[usize; 2], [f64; 2]> = std::collections::HashMap::new();
     for (set, g) in &input.tractions {
         for &[a, b] in *set {
