@@ -13,7 +13,8 @@
 //!    or maximum marking.
 //! 4. Refine the marked triangles by newest-vertex bisection ([`crate::mesh::refine`]; all three edges of a
 //!    marked triangle by default, [`crate::settings::Bisection`]): conforming, nested, shape regular; the
-//!    edge sets (Γ_C, the supports, the loaded edges) are inherited by the halves. The first level's triangles are labelled by their longest edges.
+//!    edge sets (Γ_C, the supports, the loaded edges) are inherited by the halves. The first level's
+//!    triangles are labelled by their longest edges.
 //! 5. Refine T_H where the FE edges under it were, keeping the first level's ratio H/h, but not where
 //!    the body is surely apart from the obstacle (`multipliers`): a segment whose every node has a
 //!    current gap `g − u_n` larger than the largest displacement on Γ_C stays as it was. T_H is given to

@@ -240,7 +240,8 @@ impl Factor {
             d_cols[j].push((i, v));
             d_cols[q + j].push((q + i, v));
         }
-        let warm_saddle = warm && quasi_definite(&e_rows, n_c, &d_cols) && warm_saddle_beats_schur(nnz_k, m, n_c);
+        let definite = quasi_definite(&e_rows, n_c, &d_cols);
+        let warm_saddle = warm && definite && warm_saddle_beats_schur(nnz_k, m, n_c);
         let mut use_schur = match condensation {
             Condensation::Columns | Condensation::Saddle => false,
             Condensation::Schur => true,
@@ -320,9 +321,7 @@ impl Factor {
         // the multipliers' block fills) or beyond the budget leaves H to the columns.
         let saddle = match condensation {
             Condensation::Saddle => Some(saddle_system(a, &e_rows, &d_cols, budget / 8, budget)?),
-            Condensation::Auto
-                if !use_schur && prefer_saddle(nnz_k, pushed, warm) && quasi_definite(&e_rows, n_c, &d_cols) =>
-            {
+            Condensation::Auto if !use_schur && prefer_saddle(nnz_k, pushed, warm) && definite => {
                 saddle_system(a, &e_rows, &d_cols, 2 * CHOLESKY_FILL * nnz_k, budget).ok()
             }
             _ => None,

@@ -349,6 +349,9 @@ impl Edges {
 }
 
 #[cfg(test)]
+// The `unwrap`s on `bisect` below hold by construction: every test mesh is a valid generator output (or a
+// bisection of one) and every mark is an index below its triangle count, the only inputs `bisect` refuses
+// (`bad_input_is_a_typed_error` checks those refusals without unwrapping).
 mod tests {
     use super::*;
     use crate::mesh::generate::{rectangle, Diagonal};
