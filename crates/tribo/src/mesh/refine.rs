@@ -349,10 +349,10 @@ impl Edges {
 }
 
 #[cfg(test)]
-// The `unwrap`s on `bisect` below hold by construction: every test mesh is a valid generator output (or a
-// bisection of one) and every mark is an index below its triangle count, the only inputs `bisect` refuses
-// (`bad_input_is_a_typed_error` checks those refusals without unwrapping).
 mod tests {
+    // The `unwrap`s on `bisect` below hold by construction: every test mesh is a valid generator output (or
+    // a bisection of one) and every mark is an index below its triangle count, the only inputs `bisect`
+    // refuses (`bad_input_is_a_typed_error` checks those refusals without unwrapping).
     use super::*;
     use crate::mesh::generate::{rectangle, Diagonal};
     use crate::mesh::signed_area;
