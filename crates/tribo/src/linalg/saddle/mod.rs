@@ -139,7 +139,14 @@ pub struct SaddleOptions {
     pub tol: f64,
     /// Maximum number of refinement steps (after the first solve).
     pub max_refinement: usize,
+    /// Parallelism of the numeric factorization and of the solves. Default sequential: the fronts of a
+    /// 2D mesh are narrow, and on the graded Hertz family (8k–109k unknowns, Coulomb, two cores) faer's
+    /// rayon kernels made the whole solve 5–20 % slower (55k: 1.25 s sequential against 1.39–1.53 s).
     pub par: Par,
+    /// Supernodal or simplicial factor. Default supernodal: faer's automatic choice took the
+    /// simplicial one on these meshes, whose factorization and solves made the QPs of a Coulomb solve
+    /// 1.3–1.5 × slower (55k graded unknowns: whole solve 1.9–2.0 s against 1.25 s with the two
+    /// defaults together; 8k: 0.13–0.16 s against 0.08 s).
     pub supernodal_threshold: SupernodalThreshold,
     /// The most values the factor may hold: a larger one is refused ([`SaddleError::TooLarge`]) after the
     /// symbolic analysis, before anything of its size is allocated.
@@ -154,8 +161,8 @@ impl Default for SaddleOptions {
             reg_eps: 1e-13,
             tol: 1e-12,
             max_refinement: 30,
-            par: Par::rayon(0),
-            supernodal_threshold: SupernodalThreshold::AUTO,
+            par: Par::Seq,
+            supernodal_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
             max_factor_len: usize::MAX,
         }
     }
