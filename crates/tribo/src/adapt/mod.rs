@@ -46,6 +46,7 @@ pub use history::AdaptiveHistory;
 use std::ops::ControlFlow;
 use std::time::Instant;
 
+use crate::condensation::Expected;
 use crate::contact::multiplier::MultiplierPoints;
 use crate::error::{Error, Result};
 use crate::mesh::refine::{bisect, label_longest_edge, Refinement};
@@ -306,7 +307,8 @@ fn solve_level(
     start: Option<&[f64]>,
 ) -> Result<Solution> {
     let (stabilization, condensation, budget) = (settings.stabilization, settings.condensation, settings.memory_budget);
-    let condensed = problem.condense_for(stabilization, condensation, budget, start.is_some())?;
+    let expected = Expected { warm: start.is_some(), fixed_point: friction.mu().is_some() };
+    let condensed = problem.condense_for(stabilization, condensation, budget, expected)?;
     let load = LoadCase::of_problem(problem, condensed.factor());
     condensed.solve_loading(friction, settings, &load, start, None)
 }

@@ -145,6 +145,26 @@ pub(super) fn pushed_estimate(f: &[f64], d: &[f64], q: usize) -> usize {
 /// with `w = q` the rule is as favourable to the partial factorization as it can be.
 pub(super) const BEFORE_FACTORIZING: f64 = 2.5;
 
+/// [`BEFORE_FACTORIZING`] when a Coulomb fixed point will follow ([`Expected::fixed_point`]). Its QPs
+/// have tangential unknowns and there are several of them: on the saddle-point system and by columns
+/// a Coulomb solve costs 1.7–2.3 times a frictionless one, while from the partial factorization, whose
+/// cost is in forming H, it costs about the same (study 7, docs/paths.md, every scene). Measured on the
+/// last meshes of adaptive Hertz runs: at dense ratios 2.6 and 3.6 (22k and 39k unknowns) the partial
+/// factorization answers Coulomb in 0.23 and 0.65 s, the saddle-point system in 0.30 and 0.81 s, while
+/// frictionless the saddle-point system is 1.2 times faster; on graded meshes, from ratio 10 (15k
+/// unknowns) the partial factorization is 1.6 times slower or more for Coulomb too.
+pub(super) const FIXED_POINT_BEFORE_FACTORIZING: f64 = 5.0;
+
+/// What the solves that follow a factorization will do, as far as the choice of the path weighs it.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(crate) struct Expected {
+    /// The QPs start from the multipliers of a nearby problem (the adaptive loop's coarser level):
+    /// [`WARM_SADDLE`].
+    pub warm: bool,
+    /// A Coulomb fixed point follows, not a single QP: [`FIXED_POINT_BEFORE_FACTORIZING`].
+    pub fixed_point: bool,
+}
+
 /// The margin once A is factorized the plain way (a loaded problem, whose pushed multipliers the
 /// factorization told): the partial factorization then costs a second factorization besides its dense
 /// block, the columns only their solves, so it must be cheaper outright. Measured on two-body Hertz

@@ -28,9 +28,11 @@ use crate::settings::Condensation;
 mod choose;
 mod diagonal;
 
+pub(crate) use choose::Expected;
 use choose::{
     path_costs, prefer_saddle, prefer_schur, pushed_estimate, quasi_definite, saddle_clique, saddle_pays_for,
     touched_dofs, warm_saddle_beats_schur, AFTER_FACTORIZING, BEFORE_FACTORIZING, CHOLESKY_FILL,
+    FIXED_POINT_BEFORE_FACTORIZING,
 };
 
 /// Number of right-hand sides solved together when forming `A⁻¹ Eᵀ`.
@@ -185,15 +187,16 @@ impl Factor {
     /// block Dγ (the same block acts on the normal and on the tangential multipliers), `f` the load and
     /// `d` the obstacle moments (2q). `condensation` chooses how H is formed ([`Condensation::Auto`]: the
     /// partial factorization where it is cheaper and fits `budget` bytes, see [`crate::linalg::schur`]);
-    /// `warm` says that the QPs will start from the multipliers of a nearby problem, which makes the
-    /// saddle-point system cheaper (the cost model's `WARM_SADDLE`).
+    /// `expected` says what the solves will do: QPs that start from the multipliers of a nearby problem
+    /// make the saddle-point system cheaper (the cost model's `WARM_SADDLE`); a Coulomb fixed point makes
+    /// every path but the partial factorization dearer (`FIXED_POINT_BEFORE_FACTORIZING`).
     ///
     /// # Errors
     /// [`Error::NotPositiveDefinite`] if the Cholesky factorization fails; [`Error::Assembly`] if `−G`
     /// does not lie in the pattern of K; [`Error::MemoryBudget`] if the partial factorization is asked
     /// for and its dense parts exceed `budget`.
     #[allow(clippy::too_many_arguments)]
-    pub fn new(
+    pub(crate) fn new(
         k: &SparseColMat<usize, f64>,
         symbolic: &OnceLock<Arc<SymbolicCholesky<usize>>>,
         minus_g: &[Triplet<usize, usize, f64>],
@@ -204,8 +207,9 @@ impl Factor {
         gamma0: f64,
         condensation: Condensation,
         budget: usize,
-        warm: bool,
+        expected: Expected,
     ) -> Result<Self> {
+        let warm = expected.warm;
         let clock = Instant::now();
         // A = K − G on K's pattern (G couples the dofs of one triangle, all present in K), factorized
         // with the symbolic analysis of K: only values change with γ0.
@@ -246,7 +250,8 @@ impl Factor {
             Condensation::Columns | Condensation::Saddle => false,
             Condensation::Schur => true,
             Condensation::Auto => {
-                !loaded && !warm_saddle && schur_pays(pushed_estimate(f, &d, q), BEFORE_FACTORIZING).0
+                let margin = if expected.fixed_point { FIXED_POINT_BEFORE_FACTORIZING } else { BEFORE_FACTORIZING };
+                !loaded && !warm_saddle && schur_pays(pushed_estimate(f, &d, q), margin).0
             }
         };
         let undecided =

@@ -10,7 +10,7 @@ use std::sync::{Arc, Mutex, PoisonError};
 
 use faer::sparse::Triplet;
 
-use crate::condensation::Factor;
+use crate::condensation::{Expected, Factor};
 use crate::error::{Error, Result};
 use crate::problem::Problem;
 use crate::settings::{Condensation, SolverSettings, Stabilization};
@@ -121,17 +121,19 @@ impl Problem {
         condensation: Condensation,
         memory_budget: usize,
     ) -> Result<Condensed<'_>> {
-        self.condense_for(stabilization, condensation, memory_budget, false)
+        self.condense_for(stabilization, condensation, memory_budget, Expected::default())
     }
 
-    /// As [`Problem::condense_with`]; `warm` says that the QPs will start from the multipliers of a nearby
-    /// problem (the adaptive loop's coarser level), which [`Condensation::Auto`] weighs.
+    /// As [`Problem::condense_with`]; `expected` says whether the QPs will start from the multipliers of a
+    /// nearby problem (the adaptive loop's coarser level) and whether a Coulomb fixed point follows, which
+    /// [`Condensation::Auto`] weighs. A factorization kept from an earlier call is reused whatever that
+    /// call expected: a second factorization costs more than the better path saves.
     pub(crate) fn condense_for(
         &self,
         stabilization: Stabilization,
         condensation: Condensation,
         memory_budget: usize,
-        warm: bool,
+        expected: Expected,
     ) -> Result<Condensed<'_>> {
         let gamma0 = self.gamma0_bound.resolve(stabilization)?;
         // A body held only by the contact needs all of H for clarabel's QP with its equilibrium
@@ -191,7 +193,7 @@ impl Problem {
             gamma0,
             condensation,
             memory_budget,
-            warm,
+            expected,
         )
         .map_err(|e| match e {
             // At γ0 = 0 the matrix is K itself: the supports hold every piece (checked at the door), so only

@@ -16,6 +16,7 @@ pub use fixed_point::STAGNATION_WINDOW;
 pub use history::{History, StepObserver, StepProgress};
 pub use progress::{Observer, Phase, Progress};
 
+use crate::condensation::Expected;
 use crate::error::{Error, Result};
 use crate::problem::{Condensed, Problem};
 use crate::results::Solution;
@@ -123,7 +124,8 @@ impl Problem {
         settings.validate()?;
         friction.validate(self.n_multipliers())?;
         self.check_prescribed_contact(&self.contact_gap, &self.dofs.lifting, None)?;
-        self.condense_with(settings.stabilization, settings.condensation, settings.memory_budget)?
+        let expected = Expected { warm: false, fixed_point: friction.mu().is_some() };
+        self.condense_for(settings.stabilization, settings.condensation, settings.memory_budget, expected)?
             .solve_validated(friction, settings, observer)
     }
 
@@ -141,7 +143,8 @@ impl Problem {
     ) -> Result<History> {
         settings.validate()?;
         history_fits(self, steps, settings)?;
-        self.condense_with(settings.stabilization, settings.condensation, settings.memory_budget)?
+        let expected = Expected { warm: false, fixed_point: friction.mu().is_some() };
+        self.condense_for(settings.stabilization, settings.condensation, settings.memory_budget, expected)?
             .solve_history(friction, steps, settings, observer)
     }
 }

@@ -200,3 +200,35 @@ fn a_warm_level_takes_the_saddle_point_system() {
     let diff = again.lambda_n.iter().zip(&out.solution.lambda_n).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
     assert!(diff <= tol * scale, "λ_n differs by {diff:e} of {scale:e} (qp_tol · κ(H) = {tol:e})");
 }
+
+/// The law weighs the choice: on an adaptive mesh whose dense block is a little too large for one
+/// frictionless QP (the saddle-point system), a Coulomb fixed point, whose several QPs cost the other
+/// paths about twice as much, takes the partial factorization; the two paths agree on its answer.
+#[test]
+fn a_coulomb_fixed_point_weighs_the_partial_factorization_higher() {
+    let settings = SolverSettings::default();
+    let adapt = AdaptSettings { tol: 0.06, ..Default::default() };
+    let out = off_centre_problem().solve_adaptive(&Friction::Frictionless, &settings, &adapt, None).expect("adapts");
+    let mut spec = out.problem.spec.clone();
+    spec.multiplier_points = MultiplierPoints::Abscissae(out.problem.multipliers.xi.clone());
+    let cold = || Problem::new(out.problem.mesh.clone(), spec.clone()).expect("valid");
+    let frictionless = cold().solve(&Friction::Frictionless, &settings, None).expect("solves");
+    assert_eq!(frictionless.report.condensation, Condensation::Saddle);
+    let coulomb = Friction::Coulomb { mu: 0.3 };
+    let by_auto = cold().solve(&coulomb, &settings, None).expect("solves");
+    assert_eq!(by_auto.report.condensation, Condensation::Schur);
+    let saddle = SolverSettings { condensation: Condensation::Saddle, ..settings };
+    let by_saddle = cold().solve(&coulomb, &saddle, None).expect("solves");
+    assert_eq!(by_saddle.report.condensation, Condensation::Saddle);
+    assert_eq!(by_auto.report.status, SolveStatus::Converged);
+    assert_eq!(by_saddle.report.status, SolveStatus::Converged);
+    // Two fixed points, each stopped at fp_tol and with QPs determining λ to about qp_tol · κ(H).
+    let kappa = tribo_testkit::condition_number(&cold().condense(settings.stabilization).expect("condenses"));
+    let tol = (tribo_testkit::reached_qp_tol(&settings, &by_auto)
+        + tribo_testkit::reached_qp_tol(&settings, &by_saddle))
+        * kappa
+        + 2.0 * settings.fp.tol;
+    let scale = by_auto.lambda_n.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let diff = by_auto.lambda_n.iter().zip(&by_saddle.lambda_n).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(diff <= tol * scale, "λ_n differs by {diff:e} of {scale:e} (allowed {tol:e})");
+}
