@@ -13,8 +13,9 @@ assembly, which every path shares). Scenes:
 
 The "ratio" is the automatic choice's time over the fastest path's, per friction law; "minimax" is the
 larger of the two. The rule it checks is `tribo::condensation` (`choose.rs`): the partial factorization
-while its dense flops are at most 2.5 × (5 × for a Coulomb fixed point) those of `w` sparse solves (w the
-pushed multipliers), then the saddle-point system or the columns by their own cost model.
+while its dense flops are at most 2.5 × those of `w` sparse solves (w the pushed multipliers; 5 × for a
+Coulomb fixed point where the saddle-point system is the alternative), then the saddle-point system or the
+columns by their own cost model.
 
     python scripts/study_paths.py          # docs/paths.{md,csv,png}
     python scripts/study_paths.py --smoke --out /tmp/x
@@ -125,8 +126,8 @@ def write(rows: list[dict[str, Any]], out: Path) -> None:
           "Regenerate with `python scripts/study_paths.py`; every number is in `paths.csv`. Wall time of "
           "`solve()` on a fresh Problem, best of two (of up to 20 within 0.3 s for short solves), on the 2-core machine, with each path forced and with "
           "`condensation=\"auto\"`; the ratio is the time of the path auto chose over the fastest path's. The "
-          "choice weighs the friction law: a Coulomb fixed point takes the partial factorization up to a dense "
-          "ratio of 5 where one frictionless QP takes it up to 2.5 (`choose.rs`); a Problem keeps the "
+          "choice weighs the friction law: against the saddle-point system a Coulomb fixed point takes the partial "
+          "factorization up to a dense ratio of 5, one frictionless QP up to 2.5 (`choose.rs`); a Problem keeps the "
           "factorization of its first solve for the next.\n\n",
           f"Largest ratio over {len(rows)} scenes and both laws: **{worst['minimax']:.2f}** "
           f"({worst['family']}, h = {worst['h']:g}, {worst['n_free']} unknowns).\n\n"]

@@ -145,15 +145,29 @@ pub(super) fn pushed_estimate(f: &[f64], d: &[f64], q: usize) -> usize {
 /// with `w = q` the rule is as favourable to the partial factorization as it can be.
 pub(super) const BEFORE_FACTORIZING: f64 = 2.5;
 
-/// [`BEFORE_FACTORIZING`] when a Coulomb fixed point will follow ([`Expected::fixed_point`]). Its QPs
-/// have tangential unknowns and there are several of them: on the saddle-point system and by columns
-/// a Coulomb solve costs 1.7–2.3 times a frictionless one, while from the partial factorization, whose
-/// cost is in forming H, it costs about the same (study 7, docs/paths.md, every scene). Measured on the
-/// last meshes of adaptive Hertz runs: at dense ratios 2.6 and 3.6 (22k and 39k unknowns) the partial
-/// factorization answers Coulomb in 0.23 and 0.65 s, the saddle-point system in 0.30 and 0.81 s, while
-/// frictionless the saddle-point system is 1.2 times faster; on graded meshes, from ratio 10 (15k
-/// unknowns) the partial factorization is 1.6 times slower or more for Coulomb too.
+/// [`BEFORE_FACTORIZING`] when a Coulomb fixed point will follow ([`Expected::fixed_point`]) and the
+/// alternative is the saddle-point system ([`prefer_saddle`]). The fixed point's QPs have tangential
+/// unknowns and there are several of them: on the saddle-point system a Coulomb solve costs 1.6–2.3
+/// times a frictionless one, while from the partial factorization, whose cost is in forming H, it costs
+/// about the same (study 7, docs/paths.md). Measured on the last meshes of adaptive Hertz runs: at dense
+/// ratios 2.6 and 3.6 (22k and 39k unknowns) the partial factorization answers Coulomb in 0.23 and
+/// 0.65 s, the saddle-point system in 0.30 and 0.81 s, while frictionless the saddle-point system is 1.2
+/// times faster; on graded meshes, from ratio 10 (15k unknowns) the partial factorization is 1.6 times
+/// slower or more for Coulomb too. Against the columns (small contact zones, whose dense QPs are cheap)
+/// the margin stays: at ratio 3.6 (graded, 4.5k unknowns) the columns answer Coulomb in 20 ms, the
+/// partial factorization in 28 ms.
 pub(super) const FIXED_POINT_BEFORE_FACTORIZING: f64 = 5.0;
+
+/// The margin of [`prefer_schur`] before anything is factorized: [`FIXED_POINT_BEFORE_FACTORIZING`] for a
+/// Coulomb fixed point whose alternative is the saddle-point system (`definite`: it can be factorized
+/// without pivoting, [`quasi_definite`]; `w` the pushed multipliers), else [`BEFORE_FACTORIZING`].
+pub(super) fn margin_before_factorizing(expected: Expected, definite: bool, nnz_k: usize, w: usize) -> f64 {
+    if expected.fixed_point && definite && prefer_saddle(nnz_k, w, false) {
+        FIXED_POINT_BEFORE_FACTORIZING
+    } else {
+        BEFORE_FACTORIZING
+    }
+}
 
 /// What the solves that follow a factorization will do, as far as the choice of the path weighs it.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]

@@ -30,9 +30,8 @@ mod diagonal;
 
 pub(crate) use choose::Expected;
 use choose::{
-    path_costs, prefer_saddle, prefer_schur, pushed_estimate, quasi_definite, saddle_clique, saddle_pays_for,
-    touched_dofs, warm_saddle_beats_schur, AFTER_FACTORIZING, BEFORE_FACTORIZING, CHOLESKY_FILL,
-    FIXED_POINT_BEFORE_FACTORIZING,
+    margin_before_factorizing, path_costs, prefer_saddle, prefer_schur, pushed_estimate, quasi_definite, saddle_clique,
+    saddle_pays_for, touched_dofs, warm_saddle_beats_schur, AFTER_FACTORIZING, BEFORE_FACTORIZING, CHOLESKY_FILL,
 };
 
 /// Number of right-hand sides solved together when forming `A⁻¹ Eᵀ`.
@@ -189,7 +188,7 @@ impl Factor {
     /// partial factorization where it is cheaper and fits `budget` bytes, see [`crate::linalg::schur`]);
     /// `expected` says what the solves will do: QPs that start from the multipliers of a nearby problem
     /// make the saddle-point system cheaper (the cost model's `WARM_SADDLE`); a Coulomb fixed point makes
-    /// every path but the partial factorization dearer (`FIXED_POINT_BEFORE_FACTORIZING`).
+    /// it dearer against the partial factorization (`FIXED_POINT_BEFORE_FACTORIZING`).
     ///
     /// # Errors
     /// [`Error::NotPositiveDefinite`] if the Cholesky factorization fails; [`Error::Assembly`] if `−G`
@@ -250,8 +249,8 @@ impl Factor {
             Condensation::Columns | Condensation::Saddle => false,
             Condensation::Schur => true,
             Condensation::Auto => {
-                let margin = if expected.fixed_point { FIXED_POINT_BEFORE_FACTORIZING } else { BEFORE_FACTORIZING };
-                !loaded && !warm_saddle && schur_pays(pushed_estimate(f, &d, q), margin).0
+                let w = pushed_estimate(f, &d, q);
+                !loaded && !warm_saddle && schur_pays(w, margin_before_factorizing(expected, definite, nnz_k, w)).0
             }
         };
         let undecided =

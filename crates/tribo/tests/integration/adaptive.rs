@@ -202,8 +202,9 @@ fn a_warm_level_takes_the_saddle_point_system() {
 }
 
 /// The law weighs the choice: on an adaptive mesh whose dense block is a little too large for one
-/// frictionless QP (the saddle-point system), a Coulomb fixed point, whose several QPs cost the other
-/// paths about twice as much, takes the partial factorization; the two paths agree on its answer.
+/// frictionless QP (the saddle-point system), a Coulomb fixed point, whose several QPs cost the
+/// saddle-point system about twice as much, takes the partial factorization; the two paths agree on its
+/// answer.
 #[test]
 fn a_coulomb_fixed_point_weighs_the_partial_factorization_higher() {
     let settings = SolverSettings::default();
