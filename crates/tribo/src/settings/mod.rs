@@ -67,7 +67,7 @@ named_choice!(QpMethod, "QP method", {
 pub enum Condensation {
     /// The partial factorization where it is the cheaper and fits the memory budget (its dense trailing
     /// block of the Γ_C dofs weighed against the multipliers the load pushes, and against a Coulomb fixed
-    /// point's several QPs, which make the other paths dearer); else the saddle-point
+    /// point's several QPs, which make the saddle-point system dearer); else the saddle-point
     /// system where the contact zone makes the columns of H and the dense QP dearer; else columns.
     /// Measured against every path forced: `scripts/study_paths.py` (docs/paths.md).
     #[default]
