@@ -307,8 +307,8 @@ fn solve_level(
     start: Option<&[f64]>,
 ) -> Result<Solution> {
     let (stabilization, condensation, budget) = (settings.stabilization, settings.condensation, settings.memory_budget);
-    let expected = Expected { warm: start.is_some(), fixed_point: friction.mu().is_some() };
-    let condensed = problem.condense_for(stabilization, condensation, budget, expected)?;
+    let condensed =
+        problem.condense_for(stabilization, condensation, budget, Expected::solving(friction, start.is_some()))?;
     let load = LoadCase::of_problem(problem, condensed.factor());
     condensed.solve_loading(friction, settings, &load, start, None)
 }

@@ -3,6 +3,8 @@
 //! ([`crate::linalg::schur`]), or no H at all (the saddle-point system, [`crate::linalg::saddle`]) —
 //! calibrated on the measured Hertz families (the numbers are stated with each rule).
 
+use crate::settings::friction::Friction;
+
 /// `nnz(L) / nnz(K)` of the Cholesky factor of A on these meshes (measured 5.5–7).
 pub(super) const CHOLESKY_FILL: usize = 6;
 
@@ -177,6 +179,13 @@ pub(crate) struct Expected {
     pub warm: bool,
     /// A Coulomb fixed point follows, not a single QP: [`FIXED_POINT_BEFORE_FACTORIZING`].
     pub fixed_point: bool,
+}
+
+impl Expected {
+    /// The solves of `friction` (a fixed point for Coulomb with μ > 0), warm or not.
+    pub(crate) fn solving(friction: &Friction, warm: bool) -> Self {
+        Self { warm, fixed_point: friction.mu().is_some() }
+    }
 }
 
 /// The margin once A is factorized the plain way (a loaded problem, whose pushed multipliers the

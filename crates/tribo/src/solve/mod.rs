@@ -124,7 +124,7 @@ impl Problem {
         settings.validate()?;
         friction.validate(self.n_multipliers())?;
         self.check_prescribed_contact(&self.contact_gap, &self.dofs.lifting, None)?;
-        let expected = Expected { warm: false, fixed_point: friction.mu().is_some() };
+        let expected = Expected::solving(friction, false);
         self.condense_for(settings.stabilization, settings.condensation, settings.memory_budget, expected)?
             .solve_validated(friction, settings, observer)
     }
@@ -143,7 +143,7 @@ impl Problem {
     ) -> Result<History> {
         settings.validate()?;
         history_fits(self, steps, settings)?;
-        let expected = Expected { warm: false, fixed_point: friction.mu().is_some() };
+        let expected = Expected::solving(friction, false);
         self.condense_for(settings.stabilization, settings.condensation, settings.memory_budget, expected)?
             .solve_history(friction, steps, settings, observer)
     }
