@@ -10,23 +10,26 @@
 //! and then kept: the working-set QP ([`crate::qp::working_set`]) only needs the columns of the multiplier
 //! dofs that can be in contact, so on a long Γ_C with a small contact zone most of H is never formed.
 //! Every Tresca QP and every Coulomb fixed-point iteration works with multiplier unknowns only; the
-//! displacement is recovered at the end with one more solve.
+//! displacement is recovered at the end with one more solve (about half a solve on the partial
+//! factorization, whose last rows hold `Eᵀ λ`: [`crate::linalg::schur::SchurFactor::solve_from_contact`]).
 
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
-use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
-use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, LltRef, SymbolicCholesky};
+use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, SymbolicCholesky};
 use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
-use faer::{Conj, Mat, MatMut, Par, Side};
+use faer::{Mat, Par, Side};
 
 use crate::error::{Error, Num, Result};
 use crate::linalg::saddle::{SaddleError, SaddleOptions, SaddleSystem};
-use crate::linalg::schur::{self, SchurSymbolic};
+use crate::linalg::schur::SchurSymbolic;
 use crate::settings::Condensation;
 
 mod choose;
 mod diagonal;
+mod direct;
+
+use direct::{factorize_plain, fits_budget, schur_error, solve, Direct};
 
 pub(crate) use choose::Expected;
 use choose::{
@@ -44,33 +47,6 @@ struct Columns {
     seconds: f64,
 }
 
-/// The sparse Cholesky factorization of A, in one of two orderings.
-enum Direct {
-    /// Fill-reducing (AMD) ordering, the symbolic factorization of K's pattern: columns of H are solves.
-    Columns(Arc<SymbolicCholesky<usize>>, Vec<f64>),
-    /// The dofs E touches ordered last ([`crate::linalg::schur`]): all of `E A⁻¹ Eᵀ` from the trailing block.
-    Schur(schur::SchurFactor),
-}
-
-impl Direct {
-    fn solve_in_place(&self, x: MatMut<'_, f64>) -> Result<()> {
-        match self {
-            Self::Columns(symbolic, values) => {
-                let par = faer::get_global_parallelism();
-                let req = symbolic.solve_in_place_scratch::<f64>(x.ncols(), par);
-                let mut mem = MemBuffer::try_new(req).map_err(|_| Error::MemoryBudget {
-                    what: "the workspace of a solve with the factor of A".to_string(),
-                    needed: req.size_bytes() as f64,
-                    budget: f64::NAN,
-                })?;
-                LltRef::new(symbolic, values).solve_in_place_with_conj(Conj::No, x, par, MemStack::new(&mut mem));
-                Ok(())
-            }
-            Self::Schur(f) => f.solve_in_place(x, Par::rayon(0)).map_err(schur_error),
-        }
-    }
-}
-
 /// The saddle-point kernel's errors as the crate's (its inputs come from the core, so only size and
 /// breakdowns can occur; a breakdown is reported by the caller as an uncertified QP).
 pub(crate) fn saddle_error(e: SaddleError) -> Error {
@@ -81,20 +57,6 @@ pub(crate) fn saddle_error(e: SaddleError) -> Error {
             budget: f64::NAN,
         },
         e => Error::Assembly { matrix: "the saddle-point system [[A, Eᵀ], [E, −Dγ]]", what: e.to_string() },
-    }
-}
-
-fn schur_error(e: schur::SchurError) -> Error {
-    match e {
-        schur::SchurError::NotPositiveDefinite { dof } => {
-            Error::NotPositiveDefinite { what: format!("non-positive pivot at unknown {dof}") }
-        }
-        schur::SchurError::TooLarge { what, bytes } => Error::MemoryBudget {
-            what: format!("the partial factorization's {what}"),
-            needed: bytes as f64,
-            budget: f64::NAN,
-        },
-        schur::SchurError::InvalidInput(what) => Error::Assembly { matrix: "the Schur complement of A", what },
     }
 }
 
@@ -153,6 +115,8 @@ pub struct Factor {
     pub d: Vec<f64>,
     /// `E A⁻¹ f` (2q): the load's part of c, kept so that a scaled load needs no new solve.
     pub e_ainv_f: Vec<f64>,
+    /// `A⁻¹ f` on the partial factor when f is not zero (then [`Factor::displacement`] needs half a solve).
+    u_f: Option<Vec<f64>>,
     /// The load on the unknowns A was condensed with (`f̃`, with the lifting of prescribed displacements,
     /// see [`crate::fem::supports`]): the `f` of [`Factor::displacement`] and of the equilibrium residual.
     pub f: Vec<f64>,
@@ -360,6 +324,7 @@ impl Factor {
             c,
             d,
             e_ainv_f,
+            u_f: (use_schur && loaded).then_some(u_f),
             f: f.to_vec(),
             columns,
             factorization_seconds,
@@ -465,18 +430,13 @@ impl Factor {
         self.columns.lock().unwrap_or_else(std::sync::PoisonError::into_inner).seconds
     }
 
-    /// The displacement (free dofs) for multipliers λ (2q): `u = A⁻¹ (f − Eᵀ λ)`.
+    /// The displacement (free dofs) for multipliers λ (2q): `u = A⁻¹ (f − Eᵀ λ)` (about half a solve on
+    /// the partial factorization when f is zero or the load `c` was formed with).
     ///
     /// # Errors
     /// [`Error::MemoryBudget`] if the solve's workspace cannot be allocated.
     pub fn displacement(&self, f: &[f64], lambda: &[f64]) -> Result<Vec<f64>> {
-        let mut rhs = f.to_vec();
-        for (row, l) in self.e_rows.iter().zip(lambda) {
-            for &(d, v) in row {
-                rhs[d] -= v * l;
-            }
-        }
-        solve(&self.direct, &rhs)
+        direct::displacement(&self.direct, &self.e_rows, f, lambda, self.u_f.as_ref().filter(|_| f == self.f))
     }
 
     /// The diagonal of A.
@@ -541,45 +501,6 @@ impl Factor {
     }
 }
 
-/// The numeric Cholesky factorization of `a` with the symbolic analysis of its pattern, after checking that
-/// the factor's values and the factorization's workspace fit `budget` bytes (they are the largest
-/// allocation of a solve: about 1.1 kB per unknown on 2D meshes, see docs/scale.md).
-///
-/// # Errors
-/// [`Error::MemoryBudget`] naming the size before anything of it is allocated;
-/// [`Error::NotPositiveDefinite`] for a non-positive pivot.
-fn factorize_plain(
-    symbolic: &SymbolicCholesky<usize>,
-    a: SparseColMatRef<'_, usize, f64>,
-    budget: usize,
-) -> Result<Vec<f64>> {
-    let par = faer::get_global_parallelism();
-    let req = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
-    fits_budget("the sparse Cholesky factor of A = K − G", symbolic.len_val(), req, 0.0, a.nrows(), budget)?;
-    schur::numeric_llt(symbolic, a, par).map_err(|e| match e {
-        schur::SchurError::TooLarge { what, bytes } => Error::MemoryBudget {
-            what: format!("the sparse Cholesky factor of A = K − G: {what} (the allocation failed)"),
-            needed: bytes as f64,
-            budget: budget as f64,
-        },
-        e => schur_error(e),
-    })
-}
-
-/// A sparse factor of `len_val` values with a workspace `req`, and `extra` bytes beside them, must fit
-/// `budget` bytes.
-fn fits_budget(what: &str, len_val: usize, req: StackReq, extra: f64, n: usize, budget: usize) -> Result<()> {
-    let needed = 8.0 * len_val as f64 + req.size_bytes() as f64 + extra;
-    if needed > budget as f64 {
-        return Err(Error::MemoryBudget {
-            what: format!("{what} ({n} unknowns: {len_val} values and the factorization's workspace)"),
-            needed,
-            budget: budget as f64,
-        });
-    }
-    Ok(())
-}
-
 /// The diagonal of a sparse matrix (0 where it stores none).
 fn diagonal(a: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
     (0..a.ncols())
@@ -589,10 +510,4 @@ fn diagonal(a: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
 
 fn dot(row: &[(usize, f64)], x: &[f64]) -> f64 {
     row.iter().map(|&(d, v)| v * x[d]).sum()
-}
-
-fn solve(direct: &Direct, b: &[f64]) -> Result<Vec<f64>> {
-    let mut x = Mat::<f64>::from_fn(b.len(), 1, |i, _| b[i]);
-    direct.solve_in_place(x.as_mut())?;
-    Ok((0..b.len()).map(|i| x[(i, 0)]).collect())
 }

@@ -475,6 +475,43 @@ impl SchurFactor {
         Ok((0..b.len()).map(|i| x[(i, 0)]).collect())
     }
 
+    /// Solves `A x = b` for a `b` that vanishes off the contact dofs C, such as `Eᵀ λ`. C is eliminated
+    /// last, so `L y = P b` leaves the rows before C at zero and runs over the trailing block only; the
+    /// backward substitution runs over the whole factor. The solve reads the factor about once where
+    /// [`Self::solve`] reads it twice.
+    ///
+    /// # Errors
+    /// [`SchurError::InvalidInput`] if `b` does not have n rows or does not vanish off C;
+    /// [`SchurError::TooLarge`] if the workspace cannot be allocated.
+    pub fn solve_from_contact(&self, b: &[f64], par: Par) -> Result<Vec<f64>> {
+        let (n, contact) = (self.symbolic.n, &self.symbolic.contact);
+        let pos = &self.symbolic.pos_in_c;
+        if b.len() != n || b.iter().zip(pos).any(|(v, &k)| *v != 0.0 && k == usize::MAX) {
+            return Err(SchurError::InvalidInput("b has the wrong length or does not vanish off C".to_string()));
+        }
+        let (nc, n0) = (contact.len(), n - contact.len());
+        let mut y = try_zeros(n, 1, "solve vector", usize::MAX)?;
+        for (k, &d) in contact.iter().enumerate() {
+            y[(n0 + k, 0)] = b[d];
+        }
+        let first = contact.iter().position(|&d| b[d] != 0.0).unwrap_or(nc);
+        self.forward_solve_c(y.as_mut().subrows_mut(n0, nc), &[first], 1, par)?;
+        let s = self.supernodal()?;
+        let mut mem = try_buffer(s.solve_in_place_scratch::<f64>(1, par), "solve workspace")?;
+        SupernodalLltRef::<usize, f64>::new(s, &self.values).l_transpose_solve_with_conj(
+            Conj::No,
+            y.as_mut(),
+            par,
+            MemStack::new(&mut mem),
+        );
+        let mut x = vec![0.0; n];
+        match self.symbolic.symbolic.perm() {
+            Some(p) => p.arrays().0.iter().enumerate().for_each(|(i, &d)| x[d] = y[(i, 0)]),
+            None => x.iter_mut().enumerate().for_each(|(i, xi)| *xi = y[(i, 0)]),
+        }
+        Ok(x)
+    }
+
     /// Forward substitution `W ← L_CC⁻¹ W` with the supernodes of the trailing block, by blocks of `bs`
     /// columns; the rows of `W` above `first[k0]` are zero for the block starting at column k0 and are
     /// skipped (whole supernodes, or the leading part of a supernode).
@@ -750,3 +787,59 @@ pub type Options = SchurOptions;
 /// See [`SchurTimings`].
 #[deprecated(note = "renamed SchurTimings")]
 pub type Timings = SchurTimings;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::sparse::Triplet;
+
+    /// A 5-point Laplacian plus a multiple of the identity on an `nx × nx` grid, and rows of `E` that
+    /// couple neighbouring dofs of its last grid row (a contact line).
+    type Rows = Vec<Vec<(usize, f64)>>;
+
+    fn grid(nx: usize) -> (SparseColMat<usize, f64>, Rows) {
+        let id = |i: usize, j: usize| j * nx + i;
+        let mut t = Vec::new();
+        for j in 0..nx {
+            for i in 0..nx {
+                t.push(Triplet::new(id(i, j), id(i, j), 4.5 + 0.01 * i as f64));
+                for (a, b) in [(i + 1, j), (i, j + 1)] {
+                    if a < nx && b < nx {
+                        t.push(Triplet::new(id(i, j), id(a, b), -1.0));
+                        t.push(Triplet::new(id(a, b), id(i, j), -1.0));
+                    }
+                }
+            }
+        }
+        let a = SparseColMat::try_new_from_triplets(nx * nx, nx * nx, &t).unwrap();
+        let e = (0..nx - 1).map(|i| vec![(id(i, nx - 1), 0.5), (id(i + 1, nx - 1), 0.5 + 0.1 * i as f64)]).collect();
+        (a, e)
+    }
+
+    /// The half solve from the contact dofs gives the full solve's answer, for a right-hand side that
+    /// starts anywhere on C, and refuses one that does not vanish off C.
+    #[test]
+    fn a_right_hand_side_on_the_contact_dofs_solves_as_a_full_solve() {
+        let (a, e) = grid(14);
+        let n = a.nrows();
+        let (factor, _) = schur_e(&a, &e, Par::Seq).unwrap();
+        for skip in [0, 3, 12] {
+            let mut b = vec![0.0; n];
+            for (r, row) in e.iter().enumerate().skip(skip) {
+                for &(d, v) in row {
+                    b[d] += v * (1.0 + r as f64).sin();
+                }
+            }
+            let (half, full) = (factor.solve_from_contact(&b, Par::Seq).unwrap(), factor.solve(&b, Par::Seq).unwrap());
+            let size = full.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            assert!(size > 0.0);
+            for (h, f) in half.iter().zip(&full) {
+                assert!((h - f).abs() <= 1e-14 * size, "{h} against {f}");
+            }
+        }
+        let mut off = vec![0.0; n];
+        off[0] = 1.0;
+        assert!(matches!(factor.solve_from_contact(&off, Par::Seq), Err(SchurError::InvalidInput(_))));
+        assert!(matches!(factor.solve_from_contact(&[1.0], Par::Seq), Err(SchurError::InvalidInput(_))));
+    }
+}

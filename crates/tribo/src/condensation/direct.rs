@@ -1,0 +1,134 @@
+//! The sparse Cholesky factor of `A = K − G` in its two orderings (fill-reducing, or the dofs `E`
+//! touches last for all of H at once), its solves, and the check that a factor fits the memory budget
+//! before its values are allocated.
+
+use std::sync::Arc;
+
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::sparse::linalg::cholesky::{LltRef, SymbolicCholesky};
+use faer::sparse::SparseColMatRef;
+use faer::{Conj, Mat, MatMut, Par};
+
+use crate::error::{Error, Result};
+use crate::linalg::schur;
+
+/// The sparse Cholesky factorization of A, in one of two orderings.
+pub(super) enum Direct {
+    /// Fill-reducing (AMD) ordering, the symbolic factorization of K's pattern: columns of H are solves.
+    Columns(Arc<SymbolicCholesky<usize>>, Vec<f64>),
+    /// The dofs E touches ordered last ([`crate::linalg::schur`]): all of `E A⁻¹ Eᵀ` from the trailing block.
+    Schur(schur::SchurFactor),
+}
+
+impl Direct {
+    pub(super) fn solve_in_place(&self, x: MatMut<'_, f64>) -> Result<()> {
+        match self {
+            Self::Columns(symbolic, values) => {
+                let par = faer::get_global_parallelism();
+                let req = symbolic.solve_in_place_scratch::<f64>(x.ncols(), par);
+                let mut mem = MemBuffer::try_new(req).map_err(|_| Error::MemoryBudget {
+                    what: "the workspace of a solve with the factor of A".to_string(),
+                    needed: req.size_bytes() as f64,
+                    budget: f64::NAN,
+                })?;
+                LltRef::new(symbolic, values).solve_in_place_with_conj(Conj::No, x, par, MemStack::new(&mut mem));
+                Ok(())
+            }
+            Self::Schur(f) => f.solve_in_place(x, Par::rayon(0)).map_err(schur_error),
+        }
+    }
+}
+
+/// The displacement for multipliers λ: `u = A⁻¹ (f − Eᵀ λ)`. On the partial factor `A⁻¹ Eᵀ λ` costs
+/// about half a solve (`Eᵀ λ` lives on the dofs ordered last), and so does u with no load, or with the
+/// load whose solve `u_f = A⁻¹ f` is known.
+pub(super) fn displacement(
+    direct: &Direct,
+    e_rows: &[Vec<(usize, f64)>],
+    f: &[f64],
+    lambda: &[f64],
+    u_f: Option<&Vec<f64>>,
+) -> Result<Vec<f64>> {
+    let half = matches!(direct, Direct::Schur(_)) && (u_f.is_some() || f.iter().all(|v| *v == 0.0));
+    let mut rhs = if half { vec![0.0; f.len()] } else { f.to_vec() };
+    for (row, l) in e_rows.iter().zip(lambda) {
+        for &(d, v) in row {
+            rhs[d] -= v * l;
+        }
+    }
+    match direct {
+        Direct::Schur(factor) if half => {
+            let mut u = factor.solve_from_contact(&rhs, Par::rayon(0)).map_err(schur_error)?;
+            u.iter_mut().zip(u_f.into_iter().flatten()).for_each(|(ui, fi)| *ui += fi);
+            Ok(u)
+        }
+        _ => solve(direct, &rhs),
+    }
+}
+
+/// The partial factorization's errors as the crate's.
+pub(super) fn schur_error(e: schur::SchurError) -> Error {
+    match e {
+        schur::SchurError::NotPositiveDefinite { dof } => {
+            Error::NotPositiveDefinite { what: format!("non-positive pivot at unknown {dof}") }
+        }
+        schur::SchurError::TooLarge { what, bytes } => Error::MemoryBudget {
+            what: format!("the partial factorization's {what}"),
+            needed: bytes as f64,
+            budget: f64::NAN,
+        },
+        schur::SchurError::InvalidInput(what) => Error::Assembly { matrix: "the Schur complement of A", what },
+    }
+}
+
+/// The numeric Cholesky factorization of `a` with the symbolic analysis of its pattern, after checking that
+/// the factor's values and the factorization's workspace fit `budget` bytes (they are the largest
+/// allocation of a solve: about 1.1 kB per unknown on 2D meshes, see docs/scale.md).
+///
+/// # Errors
+/// [`Error::MemoryBudget`] naming the size before anything of it is allocated;
+/// [`Error::NotPositiveDefinite`] for a non-positive pivot.
+pub(super) fn factorize_plain(
+    symbolic: &SymbolicCholesky<usize>,
+    a: SparseColMatRef<'_, usize, f64>,
+    budget: usize,
+) -> Result<Vec<f64>> {
+    let par = faer::get_global_parallelism();
+    let req = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
+    fits_budget("the sparse Cholesky factor of A = K − G", symbolic.len_val(), req, 0.0, a.nrows(), budget)?;
+    schur::numeric_llt(symbolic, a, par).map_err(|e| match e {
+        schur::SchurError::TooLarge { what, bytes } => Error::MemoryBudget {
+            what: format!("the sparse Cholesky factor of A = K − G: {what} (the allocation failed)"),
+            needed: bytes as f64,
+            budget: budget as f64,
+        },
+        e => schur_error(e),
+    })
+}
+
+/// A sparse factor of `len_val` values with a workspace `req`, and `extra` bytes beside them, must fit
+/// `budget` bytes.
+pub(super) fn fits_budget(
+    what: &str,
+    len_val: usize,
+    req: StackReq,
+    extra: f64,
+    n: usize,
+    budget: usize,
+) -> Result<()> {
+    let needed = 8.0 * len_val as f64 + req.size_bytes() as f64 + extra;
+    if needed > budget as f64 {
+        return Err(Error::MemoryBudget {
+            what: format!("{what} ({n} unknowns: {len_val} values and the factorization's workspace)"),
+            needed,
+            budget: budget as f64,
+        });
+    }
+    Ok(())
+}
+
+pub(super) fn solve(direct: &Direct, b: &[f64]) -> Result<Vec<f64>> {
+    let mut x = Mat::<f64>::from_fn(b.len(), 1, |i, _| b[i]);
+    direct.solve_in_place(x.as_mut())?;
+    Ok((0..b.len()).map(|i| x[(i, 0)]).collect())
+}
