@@ -34,7 +34,12 @@
 //! it: its H and c carry the same errors, but its gradient and Newton point share them. So the test
 //! here asks for no less than twice the gradient's size on the free unknowns of the last Newton point,
 //! where it is zero in exact arithmetic: the signs of the active bounds' multipliers are checked to the
-//! accuracy the arithmetic gives, as the dense path's answer is exact only to that accuracy too.
+//! accuracy the arithmetic gives, as the dense path's answer is exact only to that accuracy too. That
+//! measurement needs the gradient at the Newton point by a solve with A; on the steps where the answer
+//! cannot be near (the projection moved the point and the free set changed), the Newton point's gradient
+//! only predicts the next free set, and it is formed from the saddle-point solve's own displacement
+//! (`E u` from `u` of the bordered solve: no solve with A). One solve with A per step instead of two:
+//! 55k graded unknowns, Coulomb, 1.17 → 1.09 s.
 
 use crate::condensation::Factor;
 use crate::linalg::saddle::SaddleSystem;
@@ -49,8 +54,8 @@ pub(crate) struct SaddleOperator<'a> {
     d: &'a [f64],
     idx: &'a [usize],
     diag: Vec<f64>,
-    /// `|H x + c|` on the free unknowns of the last Newton point (its round-off).
-    noise: Vec<f64>,
+    /// The last Newton point and its gradient formed from the saddle-point solve's displacement.
+    newton: Option<(Vec<f64>, Vec<f64>)>,
     /// LDLᵀ factorizations done.
     pub factorizations: u32,
     /// Newton points solved with the factorization of a nearby partition, bordered.
@@ -72,7 +77,6 @@ impl<'a> SaddleOperator<'a> {
         idx: &'a [usize],
     ) -> Self {
         let diag = factor.h_diagonal_estimate(idx);
-        let noise = vec![0.0; idx.len()];
         let border_limit = saddle.border_limit();
         Self {
             factor,
@@ -81,12 +85,18 @@ impl<'a> SaddleOperator<'a> {
             d,
             idx,
             diag,
-            noise,
+            newton: None,
             factorizations: 0,
             bordered: 0,
             border_limit,
             last_gradient: Default::default(),
         }
+    }
+
+    /// `H ν + c = −E u + Dγ ν + d` on the unknowns, for the displacement `u` of the multipliers `nu` (2q).
+    fn gradient_from(&self, u: &[f64], nu: &[f64]) -> Vec<f64> {
+        let (eu, dnu) = (self.factor.apply_e(u), self.factor.apply_d(nu));
+        self.idx.iter().map(|&i| dnu[i] + self.d[i] - eu[i]).collect()
     }
 
     /// The multipliers (2q) with `x` on the unknowns and 0 elsewhere.
@@ -110,8 +120,7 @@ impl QpOperator for SaddleOperator<'_> {
         let Ok(u) = self.factor.displacement(self.f, &nu) else {
             return vec![f64::NAN; x.len()];
         };
-        let (eu, dnu) = (self.factor.apply_e(&u), self.factor.apply_d(&nu));
-        let g: Vec<f64> = self.idx.iter().map(|&i| dnu[i] + self.d[i] - eu[i]).collect();
+        let g = self.gradient_from(&u, &nu);
         *self.last_gradient.borrow_mut() = Some((x.to_vec(), g.clone()));
         g
     }
@@ -137,17 +146,20 @@ impl QpOperator for SaddleOperator<'_> {
             }
         };
         let x: Vec<f64> = self.idx.iter().map(|&i| sol.nu[i]).collect();
-        let g = self.gradient(&x);
-        self.noise = g.iter().zip(free).map(|(g, f)| if *f { g.abs() } else { 0.0 }).collect();
+        self.newton = Some((x.clone(), self.gradient_from(&sol.u, &sol.nu)));
         Some(x)
+    }
+
+    fn newton_gradient(&self, x: &[f64]) -> Option<Vec<f64>> {
+        self.newton.as_ref().filter(|(at, _)| at == x).map(|(_, g)| g.clone())
     }
 
     fn diagonal(&self) -> &[f64] {
         &self.diag
     }
 
-    fn round_off(&self) -> Option<&[f64]> {
-        Some(&self.noise)
+    fn measures_round_off(&self) -> bool {
+        true
     }
 }
 
