@@ -5,7 +5,10 @@
 * ``summary.json``: the scene, the status, iterations, forces (normal and tangential resultants and the
   global components Fx, Fy), the obstacle's motion in global axes, KKT residuals, timings, the a posteriori
   error estimate (``estimate``: η, its parts and the relative traction and energy estimates), ``bodies``
-  (per body: name, nodes, triangles, unknowns and the total reaction of its supports), warnings, and the
+  (per body: name, nodes, triangles, unknowns and the total reaction of its supports), the wall time
+  (``wall_seconds``) and the peak resident memory of the process up to the end of the solve
+  (``process_peak_memory_mb``, MiB, Linux's VmHWM; null where the platform does not report it),
+  warnings, and the
   conventions (n, t, the direction of ξ, the signs of λ_t, of the shift and of the forces);
 * ``adapt.csv``, ``adapt.png`` and the level series ``levels/level_NNN.vtu`` with ``adapt.pvd`` for a
   scene with ``[adapt]`` (the outputs above are then the last level's, on its refined mesh; see
@@ -81,6 +84,27 @@ def _phase(phase: str, seconds: float) -> None:
     log.info("%s: %.3f s (factorization of K − G, and H where formed at once)", phase, seconds)
 
 
+def peak_memory_mb() -> float | None:
+    """The peak resident memory of this process so far, in MiB: Linux's high-water mark ``VmHWM`` of
+    ``/proc/self/status`` (``getrusage``'s ``ru_maxrss`` is not used there: it keeps the parent's peak
+    across ``exec``, so a run started from a large process would report that process's), else
+    ``ru_maxrss`` (bytes on macOS); ``None`` where neither exists (Windows). In a sweep worker it covers
+    every case the worker ran."""
+    try:
+        with open("/proc/self/status", encoding="ascii") as f:
+            for line in f:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024.0
+    except (OSError, ValueError, IndexError):
+        pass
+    try:
+        import resource
+    except ImportError:
+        return None
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    return peak / 1048576.0 if sys.platform == "darwin" else peak / 1024.0
+
+
 def summary(
     scene: Scene, problem: Problem, solution: Solution, seconds: float, warned: Sequence[str] = ()
 ) -> dict[str, Any]:
@@ -123,6 +147,7 @@ def summary(
         "estimate": {k: (v if math.isfinite(v) else None) for k, v in r.estimate.items()},
         "bodies": bodies(problem, solution),
         "wall_seconds": seconds,
+        "process_peak_memory_mb": peak_memory_mb(),
         "warnings": list(warned),
         "conventions": conventions(problem, solution),
     }
@@ -350,6 +375,13 @@ def _run(scene_path: Path, out: Path, plots: bool) -> int:
     print(
         "  multiplier dofs: "
         + ", ".join(f"{states.count(n)} {n}" for n in ("separation", "stick", "slip"))
+    )
+    said_json = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    peak = said_json["process_peak_memory_mb"]
+    t = r.timings
+    print(
+        f"  {said_json['wall_seconds']:.3g} s (factorization {t['factorization']:.3g} s, QPs {t['qp']:.3g} s)"
+        + (f", peak memory {peak:.0f} MiB" if peak is not None else "")
     )
     print(f"  wrote {len(files)} files to {out.resolve()}:")
     for f in files:

@@ -472,3 +472,40 @@ def test_a_closed_pipe_stops_quietly(tmp_path: Path) -> None:
     _, err = proc.communicate()
     assert proc.returncode == 141 and "internal error" not in err.decode() and not err.strip(), err.decode()
     assert (tmp_path / "o" / "summary.json").is_file()
+
+
+def test_run_reports_its_time_and_peak_memory(tmp_path: Path) -> None:
+    """``tribo run`` prints and writes the wall time and the process's peak resident memory at the end of
+    the solve: at most the kernel's high-water mark read from /proc after the run, and not the peak of
+    the (larger) process that started it, which ``getrusage`` would carry across ``exec``."""
+    scene = tmp_path / "s.toml"
+    scene.write_text(SCENE)
+    code = (
+        "import sys; from tribo.cli import main; code = main(sys.argv[1:]); "
+        "print('VmHWM', [l.split()[1] for l in open('/proc/self/status') if l.startswith('VmHWM')][0]); "
+        "sys.exit(code)"
+    )
+    r = subprocess.run(
+        [sys.executable, "-c", code, "run", str(scene), "--out", str(tmp_path / "o"), "--no-plots"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert r.returncode == 0, r.stderr
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+    peak, seconds = summary["process_peak_memory_mb"], summary["wall_seconds"]
+    assert 0.0 < seconds < 120.0
+    assert re.search(rf"{seconds:.3g} s \(factorization .* s, QPs .* s\), peak memory {peak:.0f} MiB", r.stdout)
+    vm_hwm_mib = int(re.search(r"VmHWM (\d+)", r.stdout).group(1)) / 1024.0
+    # An interpreter with numpy and the extension loaded holds tens of MiB; the high-water mark only rises.
+    assert 20.0 < peak <= vm_hwm_mib
+    ballast = np.ones(64 << 20, dtype=np.uint8)  # this process's peak: 64 MiB above the child's
+    r = subprocess.run(
+        [sys.executable, "-c", code, "run", str(scene), "--out", str(tmp_path / "o"), "--no-plots"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    del ballast
+    again = json.loads((tmp_path / "o" / "summary.json").read_text())["process_peak_memory_mb"]
+    assert again <= int(re.search(r"VmHWM (\d+)", r.stdout).group(1)) / 1024.0
