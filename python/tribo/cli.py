@@ -8,8 +8,8 @@
   (per body: name, nodes, triangles, unknowns and the total reaction of its supports), the wall time
   (``wall_seconds``) and the peak resident memory of the process up to the end of the solve
   (``process_peak_memory_mb``, MiB, Linux's VmHWM; null where the platform does not report it),
-  warnings, and the
-  conventions (n, t, the direction of ξ, the signs of λ_t, of the shift and of the forces);
+  warnings, and the conventions (n, t, the direction of ξ, the signs of λ_t, of the shift and of the
+  forces);
 * ``adapt.csv``, ``adapt.png`` and the level series ``levels/level_NNN.vtu`` with ``adapt.pvd`` for a
   scene with ``[adapt]`` (the outputs above are then the last level's, on its refined mesh; see
   ``tribo.adaptive``);

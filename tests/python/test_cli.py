@@ -7,6 +7,7 @@ import re
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -485,27 +486,27 @@ def test_run_reports_its_time_and_peak_memory(tmp_path: Path) -> None:
         "print('VmHWM', [l.split()[1] for l in open('/proc/self/status') if l.startswith('VmHWM')][0]); "
         "sys.exit(code)"
     )
-    r = subprocess.run(
-        [sys.executable, "-c", code, "run", str(scene), "--out", str(tmp_path / "o"), "--no-plots"],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
-    assert r.returncode == 0, r.stderr
-    summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+
+    def run() -> tuple[str, dict[str, Any], float]:
+        """The run's output, its summary and the child's VmHWM after it, in MiB."""
+        r = subprocess.run(
+            [sys.executable, "-c", code, "run", str(scene), "--out", str(tmp_path / "o"), "--no-plots"],
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
+        assert r.returncode == 0, r.stderr
+        hwm = re.search(r"VmHWM (\d+)", r.stdout)
+        assert hwm is not None, r.stdout
+        return r.stdout, json.loads((tmp_path / "o" / "summary.json").read_text()), int(hwm.group(1)) / 1024.0
+
+    stdout, summary, vm_hwm_mib = run()
     peak, seconds = summary["process_peak_memory_mb"], summary["wall_seconds"]
     assert 0.0 < seconds < 120.0
-    assert re.search(rf"{seconds:.3g} s \(factorization .* s, QPs .* s\), peak memory {peak:.0f} MiB", r.stdout)
-    vm_hwm_mib = int(re.search(r"VmHWM (\d+)", r.stdout).group(1)) / 1024.0
+    assert re.search(rf"{seconds:.3g} s \(factorization .* s, QPs .* s\), peak memory {peak:.0f} MiB", stdout)
     # An interpreter with numpy and the extension loaded holds tens of MiB; the high-water mark only rises.
     assert 20.0 < peak <= vm_hwm_mib
     ballast = np.ones(64 << 20, dtype=np.uint8)  # this process's peak: 64 MiB above the child's
-    r = subprocess.run(
-        [sys.executable, "-c", code, "run", str(scene), "--out", str(tmp_path / "o"), "--no-plots"],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
+    _, summary, vm_hwm_mib = run()
     del ballast
-    again = json.loads((tmp_path / "o" / "summary.json").read_text())["process_peak_memory_mb"]
-    assert again <= int(re.search(r"VmHWM (\d+)", r.stdout).group(1)) / 1024.0
+    assert summary["process_peak_memory_mb"] <= vm_hwm_mib
