@@ -17,6 +17,14 @@
 //! `μ g` changed) the first step does not predict at all: it keeps the previous answer's places
 //! (`Start::places`), each bound dof on its new bound, and is usually right.
 //!
+//! # The front
+//! From a zone slightly too large, PDAS crawls: the Newton point leaves its box only at the outermost
+//! unknown or two of each edge, and each step moves the edge by about that much. When few free unknowns
+//! left their box, an operator that can form `[H_FF⁻¹]_JJ` cheaply for a small set J around them
+//! (`QpOperator::front`) has the box QP over J, with every other unknown kept on its side, solved
+//! exactly (`front_places`); its places replace the prediction on J in the next step. At 55k graded
+//! unknowns, Coulomb, the first three QPs took 13, 18 and 11 steps, and take 8, 8 and 4.
+//!
 //! # The safeguard
 //! Plain PDAS may cycle when H is not an M-matrix, as here. A Newton point is accepted only if its
 //! projection does not raise f; otherwise the projected Newton arc `P(x + α (x_N − x))` is searched
@@ -56,6 +64,69 @@ pub(crate) trait QpOperator {
     fn measures_round_off(&self) -> bool {
         false
     }
+    /// The front of a Newton point whose free unknowns `outside` (indices into the QP's unknowns) left
+    /// their box: a set J of free unknowns holding them (and those near them, as the operator sees it)
+    /// and `[H_FF⁻¹]_JJ` (column-major), F the free set `free` of that Newton point; `None` when the
+    /// operator cannot form it cheaply (then the next step predicts every unknown as usual). See
+    /// [`front_places`].
+    fn front(&mut self, _free: &[bool], _outside: &[usize]) -> Option<(Vec<usize>, Vec<f64>)> {
+        None
+    }
+}
+
+/// At most this many free unknowns outside their box for a Newton point to have its front resolved: a
+/// front is where the free set crawls (a few unknowns a step), not the first steps of a cold start.
+pub(crate) const FRONT_MAX_OUTSIDE: usize = 32;
+
+/// The places of the front J (see [`QpOperator::front`]) in the exact minimizer of the QP over the
+/// Newton point's face with J released to its box.
+///
+/// # Why
+/// From a contact zone slightly too large, the pressure of a Newton point is negative only at its
+/// outermost unknown or two: the projection moves each edge by about one unknown a step, and so does
+/// the front between stick and slip (42 steps in the first three QPs of a graded Coulomb solve at 55k,
+/// most of them moving a front by one unknown).
+///
+/// # The mathematics
+/// With the unknowns off J kept on their side (those of F free, the others on their bounds), the QP
+/// over `y = x_J` is, up to a constant, `½ (y − x_N,J)ᵀ R (y − x_N,J)` with `R = ([H_FF⁻¹]_JJ)⁻¹` (the
+/// Schur complement of `H_{F∖J,F∖J}` in `H_FF`) and `x_N` the Newton point of F: its gradient
+/// `R (y − x_N,J)` is the gradient of the whole QP on J once the free unknowns off J have followed
+/// (they keep a zero gradient). The box QP over J is small and dense; its answer is solved here by the
+/// same method, and the places it finds replace the prediction of the next step on J. The answer of the
+/// whole QP is exact after that next step whenever its places differ from the Newton point's only on J.
+/// Nothing is certified here: the next step is a Newton step like any other, accepted only if it
+/// lowers the objective.
+pub(crate) fn front_places(
+    dofs: &[usize],
+    inverse: &[f64],
+    xn: &[f64],
+    bounds: &Bounds,
+    scaling: &Scaling,
+    tol: f64,
+) -> Option<Vec<(usize, Place)>> {
+    let r = dofs.len();
+    if r == 0 || inverse.len() != r * r {
+        return None;
+    }
+    let m = faer::Mat::from_fn(r, r, |a, b| inverse[b * r + a]);
+    let llt = m.llt(faer::Side::Lower).ok()?;
+    let reduced = faer::linalg::solvers::DenseSolveCore::inverse(&llt);
+    let h: Vec<f64> = (0..r * r).map(|p| reduced[(p % r, p / r)]).collect();
+    let centre: Vec<f64> = dofs.iter().map(|&i| xn[i]).collect();
+    let c: Vec<f64> = (0..r).map(|a| -(0..r).map(|b| h[b * r + a] * centre[b]).sum::<f64>()).collect();
+    let box_j =
+        Bounds { lo: dofs.iter().map(|&i| bounds.lo[i]).collect(), hi: dofs.iter().map(|&i| bounds.hi[i]).collect() };
+    let scaling_j = Scaling {
+        w: dofs.iter().map(|&i| scaling.w[i]).collect(),
+        r: dofs.iter().map(|&i| scaling.r[i]).collect(),
+        root_phi: scaling.root_phi,
+        c_max: scaling.c_max,
+    };
+    let mut op = crate::qp::dense::DenseBlock::new(h, c.clone());
+    let out = solve(&mut op, &c, &box_j, Start { x: &centre, places: None }, &scaling_j, tol, 4 * r as u32 + 20);
+    out.certified
+        .then(|| places(&out.x, &box_j).into_iter().zip(dofs).filter_map(|(p, &i)| p.map(|p| (i, p))).collect())
 }
 
 /// The tolerance on the scaled gradient: `tol · max(1, ‖q̃‖∞)`.
@@ -241,6 +312,8 @@ pub(crate) fn solve(
     let (mut xk, mut gk) = (x.clone(), g.clone());
     // The free set of the last Newton step.
     let mut last_free: Option<Vec<bool>> = None;
+    // The places the last Newton point's front resolved ([`front_places`]), if any.
+    let mut front: Vec<Option<Place>> = vec![None; k];
     loop {
         let r = residual(&x, &g, bounds, scaling);
         if r <= threshold {
@@ -261,7 +334,7 @@ pub(crate) fn solve(
                 xb[i] = bounds.lo[i];
                 continue;
             }
-            let known = if first { start.places.and_then(|p| p[i]) } else { None };
+            let known = if first { start.places.and_then(|p| p[i]) } else { front[i] };
             let place = known.unwrap_or_else(|| {
                 let y = if diag[i] > 0.0 { xk[i] - gk[i] / diag[i] } else { xk[i] };
                 predict(xk[i], y, bounds.lo[i], bounds.hi[i])
@@ -273,8 +346,19 @@ pub(crate) fn solve(
             }
         }
         let mut accepted = false;
+        front.fill(None);
         if let Some(xn) = op.newton_point(&free, &xb) {
             out.newton_steps += 1;
+            let outside: Vec<usize> =
+                (0..k).filter(|&i| free[i] && (xn[i] < bounds.lo[i] || xn[i] > bounds.hi[i])).collect();
+            if (1..=FRONT_MAX_OUTSIDE).contains(&outside.len()) {
+                let resolved = op
+                    .front(&free, &outside)
+                    .and_then(|(dofs, inverse)| front_places(&dofs, &inverse, &xn, bounds, scaling, tol));
+                for (i, place) in resolved.unwrap_or_default() {
+                    front[i] = Some(place);
+                }
+            }
             let mut t = xn.clone();
             bounds.project(&mut t);
             // The gradient at the projected point, in the certifying arithmetic. Where the gradient is
@@ -475,6 +559,71 @@ mod tests {
             assert_eq!(places(&out.x, &bounds), places(&reference.x, &bounds), "seed {seed}");
             assert!(out.x.iter().zip(&reference.x).all(|(a, b)| (a - b).abs() <= 1e-6), "seed {seed}");
             assert!(op.calls.get() <= 1 + 2 * (out.newton_steps + out.gradient_steps), "seed {seed}");
+        }
+    }
+
+    /// The dense block with its front: `[H_FF⁻¹]_JJ` from the inverse of the free block, J the unknowns
+    /// outside their box and the free ones within `reach` of them.
+    struct Fronted {
+        inner: DenseBlock,
+        reach: usize,
+        fronts: u32,
+    }
+
+    impl QpOperator for Fronted {
+        fn gradient(&self, x: &[f64]) -> Vec<f64> {
+            self.inner.gradient(x)
+        }
+        fn newton_point(&mut self, free: &[bool], x: &[f64]) -> Option<Vec<f64>> {
+            self.inner.newton_point(free, x)
+        }
+        fn diagonal(&self) -> &[f64] {
+            self.inner.diagonal()
+        }
+        fn front(&mut self, free: &[bool], outside: &[usize]) -> Option<(Vec<usize>, Vec<f64>)> {
+            let k = free.len();
+            let f: Vec<usize> = (0..k).filter(|&i| free[i]).collect();
+            let dofs: Vec<usize> =
+                (0..k).filter(|&i| free[i] && outside.iter().any(|&o| o.abs_diff(i) <= self.reach)).collect();
+            let h = self.inner.matrix();
+            let hff = faer::Mat::from_fn(f.len(), f.len(), |a, b| h[f[b] * k + f[a]]);
+            let inverse = faer::linalg::solvers::DenseSolveCore::inverse(&hff.llt(faer::Side::Lower).ok()?);
+            let at = |i: usize| f.iter().position(|&j| j == i);
+            let r = dofs.len();
+            let block =
+                (0..r * r).map(|p| Some(inverse[(at(dofs[p % r])?, at(dofs[p / r])?)])).collect::<Option<_>>()?;
+            self.fronts += 1;
+            Some((dofs, block))
+        }
+    }
+
+    /// A Hertz-like QP along a line: H a smoothing kernel (`exp(−|i − j| / ℓ)`, positive definite, not an
+    /// M-matrix) and a gap `c_i = (x_i² − δ)` that pushes a zone wider than the one in contact. From the
+    /// pushed zone the plain method crawls, an edge unknown or two a step; with the front resolved it
+    /// takes far fewer steps to the same certified answer, the places of every unknown included.
+    #[test]
+    fn a_resolved_front_ends_the_crawl_with_the_same_answer() {
+        for (k, ell) in [(120_usize, 10.0), (200, 20.0), (300, 15.0)] {
+            let h: Vec<f64> = (0..k * k).map(|p| (-((p % k).abs_diff(p / k) as f64) / ell).exp()).collect();
+            let c: Vec<f64> = (0..k).map(|i| ((i as f64 - k as f64 / 2.0) / k as f64).powi(2) - 0.04).collect();
+            let bounds = Bounds { lo: vec![0.0; k], hi: vec![f64::INFINITY; k] };
+            let pushed: Vec<f64> = c.iter().map(|v| if *v < 0.0 { 1.0 } else { 0.0 }).collect();
+            let mut plain = DenseBlock::new(h.clone(), c.clone());
+            let a = solve(&mut plain, &c, &bounds, cold(&pushed), &unit_scaling(k), 1e-12, 200);
+            let mut fronted = Fronted { inner: DenseBlock::new(h, c.clone()), reach: 4, fronts: 0 };
+            let b = solve(&mut fronted, &c, &bounds, cold(&pushed), &unit_scaling(k), 1e-12, 200);
+            assert!(a.certified && b.certified, "k = {k}");
+            assert_eq!(places(&a.x, &bounds), places(&b.x, &bounds), "k = {k}");
+            let scale = a.x.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            assert!(a.x.iter().zip(&b.x).all(|(x, y)| (x - y).abs() <= 1e-10 * scale), "k = {k}");
+            eprintln!("k = {k}: {} steps plain, {} with {} fronts", a.newton_steps, b.newton_steps, fronted.fronts);
+            assert!(a.newton_steps >= 8, "k = {k}: the plain method did not crawl ({} steps)", a.newton_steps);
+            assert!(
+                fronted.fronts > 0 && 2 * b.newton_steps < a.newton_steps,
+                "k = {k}: {} against {}",
+                b.newton_steps,
+                a.newton_steps
+            );
         }
     }
 

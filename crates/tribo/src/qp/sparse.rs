@@ -20,6 +20,11 @@
 //!   substitution per changed multiplier, up to [`SaddleSystem::border_limit`] of them (measured on the
 //!   graded Hertz family: 5–7 LDLᵀ and 40–45 bordered steps per Coulomb solve instead of 49–66 LDLᵀ).
 //!
+//! Where the free set crawls, the front of a Newton point ([`QpOperator::front`]) is resolved with
+//! `[H_FF⁻¹]_JJ` from the same bordered factorization ([`SaddleSystem::inverse_block`]): a forward
+//! substitution along one path of the elimination tree per unknown of J and the products between
+//! them, 1–2 ms at 55k against 7–8 ms for a bordered solve.
+//!
 //! The method also uses diag H (its prediction from a non-Newton start, the projected-gradient safeguard
 //! and the scaling of the optimality test). Its exact value costs a solve per dof, so it is estimated
 //! ([`Factor::h_diagonal_estimate`]). The estimate enters the certification only through the
@@ -161,7 +166,44 @@ impl QpOperator for SaddleOperator<'_> {
     fn measures_round_off(&self) -> bool {
         true
     }
+
+    /// J: the unknowns outside their box and the free unknowns of the same kind (normal or tangential)
+    /// within [`FRONT_REACH`] multipliers of them along Γ_C, at most [`FRONT_MAX`]; `[H_FF⁻¹]_JJ` from the
+    /// bordered factorization of F ([`SaddleSystem::inverse_block`]), which the Newton point just used.
+    fn front(&mut self, free: &[bool], outside: &[usize]) -> Option<(Vec<usize>, Vec<f64>)> {
+        let k = self.idx.len();
+        let m = self.factor.e_rows.len();
+        let q = m / 2;
+        // The multipliers are ν_n (0..q) then ν_t (q..2q), each along Γ_C: the kind and the place of an
+        // unknown along Γ_C.
+        let kind = |a: usize| self.idx[a] / q.max(1);
+        let mut member = vec![false; k];
+        for &a in outside {
+            let lo = a.saturating_sub(FRONT_REACH);
+            for b in lo..(a + FRONT_REACH + 1).min(k) {
+                member[b] |= free[b] && kind(b) == kind(a) && self.idx[b].abs_diff(self.idx[a]) <= FRONT_REACH;
+            }
+        }
+        let dofs: Vec<usize> = (0..k).filter(|&a| member[a]).collect();
+        if dofs.len() > FRONT_MAX {
+            return None;
+        }
+        let mut free_all = vec![false; m];
+        for (&i, &f) in self.idx.iter().zip(free) {
+            free_all[i] = f;
+        }
+        let multipliers: Vec<usize> = dofs.iter().map(|&a| self.idx[a]).collect();
+        let inverse = self.saddle.inverse_block(&free_all, &multipliers).ok()?;
+        Some((dofs, inverse))
+    }
 }
+
+/// How far along Γ_C (in multipliers) a front reaches beyond the unknowns that left their box.
+const FRONT_REACH: usize = 4;
+
+/// The largest front resolved: its `[H_FF⁻¹]_JJ` costs a forward substitution per unknown and the
+/// products between them.
+const FRONT_MAX: usize = 160;
 
 /// Solves the QP `min ½ νᵀHν + cᵀν` on the unknowns `idx` (normal ones first: the first `q_n` of `idx`
 /// are normal, the rest tangential with the bounds `bounds`) from `start`, with the active-set method on

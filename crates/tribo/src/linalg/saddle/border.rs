@@ -205,6 +205,33 @@ impl Tree {
     }
 }
 
+/// `W = L⁻¹ v` for a sparse `v` (permuted indices) on the blocks its entries reach: those blocks (in
+/// order) and the values of their columns. `x` is a zero work vector of the factor's order, left zero.
+fn forward_column(
+    blocks: &Blocks<'_>,
+    tree: &Tree,
+    v: &[(usize, f64)],
+    x: &mut [f64],
+    tmp: &mut Vec<f64>,
+    seen: &mut [bool],
+) -> (Vec<usize>, Vec<f64>) {
+    let reach = tree.reach(v.iter().map(|&(i, _)| i), seen);
+    for &(i, val) in v {
+        x[i] = val;
+    }
+    for &k in &reach {
+        blocks.forward(k, x, tmp);
+    }
+    let mut w = Vec::new();
+    for &k in &reach {
+        for c in blocks.columns(k) {
+            w.push(x[c]);
+            x[c] = 0.0;
+        }
+    }
+    (reach, w)
+}
+
 /// A border column: the changed multiplier, its column `v` (sparse, scaled) and `W = L⁻¹ P v` on the
 /// blocks it reaches (block list, then the values of their columns in that order).
 #[derive(Debug)]
@@ -389,20 +416,8 @@ impl SaddleSystem {
                 positions.push(p);
                 continue;
             }
-            let reach = tree.reach(v.iter().map(|&(i, _)| at(i)), &mut seen);
-            for &(i, val) in &v {
-                x[at(i)] = val;
-            }
-            for &k in &reach {
-                blocks.forward(k, &mut x, &mut tmp);
-            }
-            let mut w = Vec::new();
-            for &k in &reach {
-                for c in blocks.columns(k) {
-                    w.push(x[c]);
-                    x[c] = 0.0;
-                }
-            }
+            let permuted: Vec<(usize, f64)> = v.iter().map(|&(i, val)| (at(i), val)).collect();
+            let (reach, w) = forward_column(&blocks, tree, &permuted, &mut x, &mut tmp, &mut seen);
             // The columns together may hold no more values than the factor itself: beyond, a new
             // factorization is the cheaper start (and the memory stays that of the factor).
             let held: usize = columns.iter().map(|c| c.w.len()).sum::<usize>() + w.len();
@@ -422,6 +437,85 @@ impl SaddleSystem {
         Ok(positions)
     }
 
+    /// `S = C − Wᵀ D⁻¹ W` of the border columns at the positions `at` of the multipliers `changed`.
+    fn border_schur(&self, free: &[bool], changed: &[usize], at: &[usize]) -> Mat<f64> {
+        let gram = |a: usize, c: usize| {
+            let (p, q) = (at[a].max(at[c]), at[a].min(at[c]));
+            self.border.gram[p][q]
+        };
+        Mat::from_fn(changed.len(), changed.len(), |a, c| self.freed_entry(free, changed[a], changed[c]) - gram(a, c))
+    }
+
+    /// `[H_FF⁻¹]_JJ` (column-major, `J` = `dofs`, every one free in `free`) for the partition `free`, from
+    /// the factorization held and the border of `free` (the one [`Self::solve_near`] last solved with),
+    /// without a solve: the multipliers' block of the inverse of the saddle-point matrix is `−H_FF⁻¹`,
+    /// and that of the bordered matrix is, in the scaled variables,
+    ///
+    /// `[K̃⁻¹]_ij = W_iᵀ D⁻¹ W_j + h_iᵀ S⁻¹ h_j`,
+    ///
+    /// with `W_j = L⁻¹ P e_j` (a forward substitution along one path of the elimination tree) and
+    /// `h_j = Wᵀ_C D⁻¹ W_j` for a multiplier outside the changed ones `C`; for a changed (freed) one at
+    /// position `a` of `C`, `W_j = 0` and `h_j = −e_a` (its value is the border unknown `w_a`).
+    ///
+    /// # Errors
+    /// [`SaddleError::NotFactorized`]; [`SaddleError::InvalidInput`] for a multiplier that is not free in
+    /// `free` or out of range; [`SaddleError::TooLarge`] as [`Self::solve_near`].
+    pub fn inverse_block(&mut self, free: &[bool], dofs: &[usize]) -> Result<Vec<f64>, SaddleError> {
+        if !self.factorized {
+            return Err(SaddleError::NotFactorized);
+        }
+        let (n, m) = (self.n, self.m);
+        if free.len() != m || dofs.iter().any(|&j| j >= m || !free[j]) {
+            return Err(SaddleError::InvalidInput("inverse block: a multiplier not free or out of range".into()));
+        }
+        let changed = self.changed(free);
+        let at = self.border_columns(free, &changed)?;
+        let lu = (!changed.is_empty()).then(|| FullPivLu::new(self.border_schur(free, &changed, &at).as_ref()));
+        let blocks = Blocks::new(&self.symbolic, &self.l_values);
+        let Border { columns, d_inv, tree, .. } = &mut self.border;
+        let tree = tree.get_or_insert_with(|| Tree::new(&blocks));
+        let inv = self.symbolic.perm().map(|p| p.arrays().1);
+        let at_perm = |i: usize| inv.map_or(i, |inv| inv[i]);
+        let (r, c) = (dofs.len(), changed.len());
+        let mut x = try_zeroed::<f64>(n + m)?;
+        let (mut tmp, mut seen) = (Vec::new(), vec![false; blocks.len()]);
+        // W_j and h_j per multiplier of J (W_j empty for a changed one).
+        let mut own: Vec<Option<Column>> = Vec::with_capacity(r);
+        let mut h = Mat::<f64>::zeros(c, r);
+        for (b, &j) in dofs.iter().enumerate() {
+            if let Some(a) = changed.iter().position(|&k| k == j) {
+                h[(a, b)] = -1.0;
+                own.push(None);
+                continue;
+            }
+            let (reach, w) = forward_column(&blocks, tree, &[(at_perm(n + j), 1.0)], &mut x, &mut tmp, &mut seen);
+            let column = Column { dof: j, v: vec![(n + j, 1.0)], blocks: reach, w };
+            for (a, &pos) in at.iter().enumerate() {
+                h[(a, b)] = product(&blocks, d_inv, &columns[pos], &column);
+            }
+            own.push(Some(column));
+        }
+        let s_h = lu.map_or_else(|| Mat::zeros(0, r), |lu| lu.solve(h.as_ref()));
+        let mut out = vec![0.0; r * r];
+        for b in 0..r {
+            for a in 0..=b {
+                let direct = match (&own[a], &own[b]) {
+                    (Some(x), Some(y)) => product(&blocks, d_inv, x, y),
+                    _ => 0.0,
+                };
+                let coupled: f64 = (0..c).map(|k| h[(k, a)] * s_h[(k, b)]).sum();
+                let v = -(direct + coupled) * self.scale[n + dofs[a]] * self.scale[n + dofs[b]];
+                out[b * r + a] = v;
+                out[a * r + b] = v;
+            }
+        }
+        if out.iter().all(|v| v.is_finite()) {
+            Ok(out)
+        } else {
+            Err(SaddleError::RefinementNotConverged { steps: 0, backward_error: f64::INFINITY })
+        }
+    }
+
     /// [`Self::solve_near`] once `self.k` holds the values of `free`.
     fn solve_bordered(
         &mut self,
@@ -436,12 +530,7 @@ impl SaddleSystem {
         let blocks = Blocks::new(&self.symbolic, &self.l_values);
         let cols: Vec<&Column> = at.iter().map(|&p| &border.columns[p]).collect();
         let r = changed.len();
-        let gram = |a: usize, c: usize| {
-            let (p, q) = (at[a].max(at[c]), at[a].min(at[c]));
-            border.gram[p][q]
-        };
-        let s = Mat::from_fn(r, r, |a, c| self.freed_entry(free, changed[a], changed[c]) - gram(a, c));
-        let lu = FullPivLu::new(s.as_ref());
+        let lu = FullPivLu::new(self.border_schur(free, changed, &at).as_ref());
         let freed: Vec<bool> = changed.iter().map(|&j| !self.free[j]).collect();
         let (fwd, inv) = match self.symbolic.perm() {
             Some(p) => {

@@ -406,3 +406,48 @@ fn a_far_partition_is_declined_not_bordered() {
     let sol = sys.solve(&f, &d, &nu_b).unwrap();
     assert!(rel_err(&sol.u, &dref.solve(&p, &far, &f, &d, &nu_b).0) < 1e-8);
 }
+
+/// `[H_FF⁻¹]_JJ` from the bordered factorization ([`SaddleSystem::inverse_block`]) equals the block of
+/// the dense inverse, for the factorized partition itself and for nearby ones (J holding multipliers
+/// free in both partitions and freed ones), with and without D, simplicial and supernodal.
+#[test]
+fn the_inverse_block_of_a_nearby_partition_matches_the_dense_inverse() -> Result<(), SaddleError> {
+    for threshold in [SupernodalThreshold::FORCE_SIMPLICIAL, SupernodalThreshold::FORCE_SUPERNODAL] {
+        for with_d in [true, false] {
+            let p = contact_problem(20, 10, with_d);
+            let (n, m) = (p.n, p.m);
+            let dref = DenseRef::new(&p);
+            let opts = SaddleOptions { supernodal_threshold: threshold, ..seq_opts() };
+            let mut sys = SaddleSystem::with_options(p.a.as_ref(), &p.e_rows, &p.d, opts)?;
+            let mut rng = Rng(5);
+            let reference: Vec<bool> = (0..m).map(|_| rng.unif() < 0.7).collect();
+            sys.factorize(&reference)?;
+            let (f, d, nu_b) = (vec![0.0; n], vec![1.0; m], vec![0.0; m]);
+            let mut near = reference.clone();
+            for flips in [0usize, 2, 5] {
+                let start = (rng.unif() * (m - flips) as f64) as usize;
+                for j in start..start + flips {
+                    near[j] = !near[j];
+                }
+                sys.solve_near(&near, &f, &d, &nu_b)?;
+                let free: Vec<usize> = (0..m).filter(|&j| near[j]).collect();
+                // every third free multiplier, and every freed one
+                let dofs: Vec<usize> =
+                    free.iter().copied().filter(|&j| j % 3 == 0 || (near[j] && !reference[j])).collect();
+                let block = sys.inverse_block(&near, &dofs)?;
+                let hff = Mat::<f64>::from_fn(free.len(), free.len(), |a, b| dref.h[(free[a], free[b])]);
+                let llt = hff.llt(Side::Lower).map_err(|e| SaddleError::InvalidInput(format!("{e:?}")))?;
+                let inverse = faer::linalg::solvers::DenseSolveCore::inverse(&llt);
+                let pos = |j: usize| free.iter().position(|&k| k == j).unwrap_or(usize::MAX);
+                let r = dofs.len();
+                let expected: Vec<f64> = (0..r * r).map(|q| inverse[(pos(dofs[q % r]), pos(dofs[q / r]))]).collect();
+                let err = rel_err(&block, &expected);
+                let freed = dofs.iter().filter(|&&j| !reference[j]).count();
+                assert!(r > 3 && (flips == 0 || freed > 0), "{flips} flips: {r} multipliers, {freed} freed");
+                assert!(err < 1e-9, "{flips} flips ({freed} freed of {r}): relative error {err:e}");
+            }
+            assert!(matches!(sys.inverse_block(&near, &[m]), Err(SaddleError::InvalidInput(_))));
+        }
+    }
+    Ok(())
+}
