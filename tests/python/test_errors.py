@@ -142,6 +142,30 @@ def test_gap_function_errors_are_chained() -> None:
         tribo.Obstacle.function(lambda xi: 1 / 0).gap0(1.0)
 
 
+def test_a_gap_function_that_raises_during_a_solve_raises_from_it() -> None:
+    """The error estimate evaluates the gap between the points checked when the problem was built: an
+    exception the gap function raises there reaches the caller of `solve` (a KeyboardInterrupt as it is),
+    and the next solve, with the function sound again, converges."""
+    state: dict[str, Any] = {"raise": None}
+    mesh = tribo.Mesh.rectangle((-2.0, 2.0), (-1.0, 0.0), 8, 2)
+    nodes = set(np.round(np.linspace(-2.0, 2.0, 9), 12))
+
+    def gap(xi: float) -> float:
+        if state["raise"] is not None and round(xi, 12) not in nodes:
+            raise state["raise"]("between the nodes")
+        return xi * xi / 2.0
+
+    problem = tribo.Problem(
+        mesh, young=200.0, poisson=0.3, clamped="bottom", contact="top", obstacle=tribo.Obstacle.function(gap), approach=0.01
+    )
+    for exc in (RuntimeError, KeyboardInterrupt):
+        state["raise"] = exc
+        with pytest.raises(exc, match="between the nodes"):
+            problem.solve(mu=0.3)
+    state["raise"] = None
+    assert problem.solve(mu=0.3).report.status == "converged"
+
+
 def test_settings_errors(hertz: tribo.Problem) -> None:
     raises(tribo.SettingsError, "BadMaterial", lambda: hertz_problem(young=-1.0), "Young")
     raises(tribo.SettingsError, "BadMaterial", lambda: hertz_problem(poisson=0.5), "Poisson")

@@ -162,6 +162,10 @@ def test_reprs_format_numbers_for_people(hertz: tribo.Problem) -> None:
     assert "gamma0=0," in repr(s.report) and "e0" not in repr(s.report)
     assert "gamma0_bound=9.29e-4)" in repr(hertz)
     assert f"normal_force={s.normal_force:.6g}," in repr(s)
+    # More digits than a double holds print 17; a precision beyond what Rust's formatter takes is no panic.
+    from tribo._tribo import format_number
+
+    assert format_number(1.0 / 3.0, 70000) == format_number(1.0 / 3.0, 17) == "0.33333333333333331"
 
 
 def test_recovered_stress_is_written_and_plotted(hertz: tribo.Problem, tmp_path: Path) -> None:

@@ -205,11 +205,14 @@ impl SolveOptions {
     }
 }
 
-/// The result of a core call made with callbacks: the core's error, else the callbacks' (an exception
-/// they raised, or Ctrl-C), else the value.
-fn finish<T>(result: tribo::Result<T>, error: Option<PyErr>) -> PyResult<T> {
-    let value = result.map_err(to_pyerr)?;
-    error.map_or(Ok(value), Err)
+/// The result of a core call made with callbacks: the core's error (with the exception a gap function
+/// raised chained, [`chain_gap_error`]), else the callbacks' exception (or Ctrl-C), else one a gap
+/// function raised while the call went on (the estimator and a refined mesh evaluate the gap between
+/// the points checked at set-up), else the value.
+fn finish<T>(py: Python<'_>, result: tribo::Result<T>, error: Option<PyErr>) -> PyResult<T> {
+    let value = result.map_err(|e| chain_gap_error(py, to_pyerr(e)))?;
+    let gap = take_gap_error();
+    error.or(gap).map_or(Ok(value), Err)
 }
 
 #[pymethods]
@@ -323,6 +326,7 @@ impl PyProblem {
         let o = SolveOptions::new(options, "(iteration, change, qp_iterations, qp_seconds)")?;
         let mut error: Option<PyErr> = None;
         let (on_phase, progress) = (o.on_phase.as_ref(), o.progress.as_ref());
+        take_gap_error();
         let result = py.detach(|| {
             let mut observe = |p: &Progress| match p.phase {
                 Phase::Condensation => observe_with(on_phase, ("condensation", p.condensation_seconds), &mut error),
@@ -330,7 +334,7 @@ impl PyProblem {
             };
             self.inner.solve(&o.friction, &o.settings, Some(&mut observe))
         });
-        results::solution(py, &finish(result, error)?)
+        results::solution(py, &finish(py, result, error)?)
     }
 
     /// `tribo.Problem.solve_history` on `steps`, rows (approach, shift, load_factor, displacements…): a History dict.
@@ -344,15 +348,16 @@ impl PyProblem {
         let o = SolveOptions::new(options, "(step, steps, status, seconds)")?;
         let steps = load_steps(steps)?;
         let mut error: Option<PyErr> = None;
+        take_gap_error();
         let result = py.detach(|| {
             let mut observe = |p: &StepProgress| {
                 observe_with(o.progress.as_ref(), (p.step, p.steps, p.status.name(), p.seconds), &mut error)
             };
             self.inner.solve_history(&o.friction, &steps, &o.settings, Some(&mut observe))
         });
-        // An exception from the callback (or Ctrl-C) ends the history: it carries the steps done.
-        let history = results::history(py, &result.map_err(to_pyerr)?)?;
-        match error {
+        // An exception from the callback (or Ctrl-C, or one a gap function raised) ends the history: it carries the steps done.
+        let history = results::history(py, &result.map_err(|e| chain_gap_error(py, to_pyerr(e)))?)?;
+        match error.or_else(take_gap_error) {
             Some(e) => {
                 e.value(py).setattr("_partial_history", history)?;
                 Err(e)
@@ -378,6 +383,7 @@ impl PyProblem {
         let adapt = AdaptSettings::from_keywords(k).map_err(to_pyerr)?;
         let steps = steps.map(load_steps).transpose()?;
         let mut error = None;
+        take_gap_error();
         let result = py.detach(|| {
             let mut observe =
                 |l: &Level| observe_with(o.progress.as_ref(), (l.unknowns, l.relative, l.seconds), &mut error);
@@ -389,7 +395,7 @@ impl PyProblem {
                 }
             }
         });
-        let (answer, levels, stop) = finish(result, error)?;
+        let (answer, levels, stop) = finish(py, result, error)?;
         let answer = answer.map_or_else(|s| results::solution(py, &s), |h| results::history(py, &h))?;
         let level = |l: &Level| (l.unknowns, l.multipliers, l.triangles, l.estimate.named(), l.relative, l.seconds);
         let spans = |l: &Level| l.bodies.iter().map(|b| b.spans()).collect::<Vec<_>>();

@@ -103,6 +103,16 @@ impl MultiplierMesh {
             }
             MultiplierPoints::RatioToFe(r) => from_ratio(&contact.node_xi, *r)?,
         };
+        // A spacing below the resolution of the abscissae (H of 1e-6 on a Γ_C at ξ ≈ 1e12) repeats points.
+        if let Some(index) = (1..xi.len()).find(|&i| xi[i] <= xi[i - 1]) {
+            return Err(Error::BadMultiplierMesh {
+                what: format!(
+                    "points {} and {index} coincide at ξ = {}: the spacing asked for is below the resolution of the abscissae",
+                    index - 1,
+                    xi[index]
+                ),
+            });
+        }
         Ok(Self { xi, space })
     }
 
@@ -230,6 +240,12 @@ fn from_ratio(fe: &[f64], r: f64) -> Result<Vec<f64>> {
             if next >= fe[n] - 0.5 * r * (fe[e + 1] - fe[e]) {
                 x.push(fe[n]);
                 break;
+            }
+            if next <= cur || x.len() as f64 > 2.0 * count {
+                // The step is below the resolution of the abscissae: the points would repeat forever.
+                return Err(Error::BadMultiplierMesh {
+                    what: format!("ratio H/h = {r} gives steps below the resolution of the abscissae near ξ = {cur}"),
+                });
             }
             x.push(next);
         }

@@ -90,12 +90,16 @@ impl BoxQp {
     /// The settings are taken as validated ([`QpSettings::validate`]).
     ///
     /// # Errors
-    /// [`Error::QpSetup`] if clarabel rejects the data; [`Error::BadThreshold`].
+    /// [`Error::QpSetup`] for `h` or `c` of the wrong size, or if clarabel rejects the data;
+    /// [`Error::BadThreshold`].
     pub fn new(h: &[f64], c: &[f64], q: usize, bounds: Option<&[f64]>, settings: &QpSettings) -> Result<Self> {
         let frictional = bounds.is_some();
         let k = if frictional { 2 * q } else { q };
-        debug_assert_eq!(h.len(), k * k, "bug: H has the wrong size");
-        debug_assert_eq!(c.len(), k, "bug: c has the wrong size");
+        if h.len() != k * k || c.len() != k {
+            return Err(Error::QpSetup {
+                what: format!("H of {} values and c of {} for {k} unknowns (q = {q})", h.len(), c.len()),
+            });
+        }
         if let Some(g) = bounds {
             check_thresholds(g, q)?;
         }
@@ -125,10 +129,12 @@ impl BoxQp {
     /// [`QpOutcome::alpha`] holds their multipliers α, with stationarity `H ν + c − Gᵀ α ∈ −N(ν)`.
     ///
     /// # Errors
-    /// [`Error::QpSetup`] if clarabel rejects the data.
+    /// [`Error::QpSetup`] for `g` of the wrong size, or if clarabel rejects the data.
     pub fn with_equality(mut self, g: Vec<f64>, b: Vec<f64>) -> Result<Self> {
         let k = self.c.len();
-        debug_assert_eq!(g.len(), k * b.len(), "bug: G has the wrong size");
+        if g.len() != k * b.len() {
+            return Err(Error::QpSetup { what: format!("G of {} values for {} rows of {k}", g.len(), b.len()) });
+        }
         if self.n_scale == 0.0 {
             // Nothing pushes through c: the size of ν that balances the load.
             let (b_max, g_max) =
@@ -238,10 +244,12 @@ impl BoxQp {
     /// constraints, whose scaled rows follow the bounds, it is rebuilt).
     ///
     /// # Errors
-    /// [`Error::BadThreshold`] for a wrong length or a negative value; [`Error::QpSetup`] if clarabel
-    /// refuses the update.
+    /// [`Error::BadThreshold`] for a wrong length or a negative value; [`Error::QpSetup`] on a
+    /// frictionless QP, or if clarabel refuses the update.
     pub fn set_bounds(&mut self, g: &[f64]) -> Result<()> {
-        debug_assert!(self.frictional, "bug: bounds on a frictionless QP");
+        if !self.frictional {
+            return Err(Error::QpSetup { what: "tangential bounds for a frictionless QP".into() });
+        }
         check_thresholds(g, self.q)?;
         self.bounds.copy_from_slice(g);
         if self.equality.is_some() {

@@ -230,7 +230,8 @@ impl Solution {
         reached.sqrt().max(fp_tol)
     }
 
-    /// True when every field, total and residual is finite.
+    /// True when every field, total, residual and error indicator is finite (the relative estimates
+    /// may be NaN: without contact the traction estimate has nothing to be relative to).
     pub fn all_finite(&self) -> bool {
         let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
         [
@@ -247,13 +248,22 @@ impl Solution {
             &self.slip,
             &self.gap,
             &self.report.residual_history,
+            &self.estimator,
+            &self.traction_estimator,
         ]
         .into_iter()
         .all(|v| finite(v))
             && self.stress.iter().all(|s| finite(s))
-            && [self.normal_force, self.tangential_force, self.max_penetration, self.kkt.max()]
-                .iter()
-                .all(|x| x.is_finite())
+            && [
+                self.normal_force,
+                self.tangential_force,
+                self.max_penetration,
+                self.kkt.max(),
+                self.report.estimate.total,
+                self.report.estimate.traction,
+            ]
+            .iter()
+            .all(|x| x.is_finite())
     }
 
     /// The current gap `g − u_n` at the FE nodes of Γ_C (along n, from the deformed body to the

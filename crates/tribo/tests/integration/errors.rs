@@ -195,6 +195,16 @@ fn multiplier_rules() {
     ] {
         assert!(matches!(with(p), Error::BadMultiplierMesh { .. }));
     }
+    // Far from the origin a spacing below the resolution of the abscissae (ξ ≈ 1e12, half an ulp 6e-5)
+    // would repeat points, or never advance: refused, whichever way T_H is asked for.
+    let far = || rectangle([1e12, 1e12 + 1.0], [0.0, 1.0], 4, 4, Diagonal::Right);
+    for p in
+        [MultiplierPoints::RatioToFe(1.5e-5), MultiplierPoints::RatioToFe(1.0 / 4096.0), MultiplierPoints::Size(1e-5)]
+    {
+        let mesh = far().expect("a valid mesh");
+        let e = problem_err(mesh, ProblemSpec { multiplier_points: p.clone(), ..spec() });
+        assert!(matches!(e, Error::BadMultiplierMesh { .. }), "{p:?}: {e}");
+    }
 }
 
 #[test]
@@ -496,4 +506,49 @@ fn multiplier_keywords_exclude_each_other() {
     assert_eq!(MultiplierPoints::from_keywords(None, Some(0.1), None), Ok(MultiplierPoints::Size(0.1)));
     assert_eq!(MultiplierPoints::from_keywords(None, None, points()), Ok(points().unwrap()));
     assert_eq!(MultiplierPoints::from_keywords(None, None, None), Ok(MultiplierPoints::default()));
+}
+
+/// A gap function that turns NaN after the set-up, except at the FE nodes of Γ_C: the error estimate
+/// evaluates it between the points the set-up checked, and a solve whose estimate is not finite is not
+/// reported converged.
+#[test]
+fn a_gap_that_fails_between_the_checked_points_is_not_converged() -> Result<()> {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    let broken = Arc::new(AtomicBool::new(false));
+    let flag = broken.clone();
+    let gap = move |x: f64| {
+        // The bottom of the unit square, 4 edges: nodes at multiples of 1/4.
+        let at_node = ((4.0 * x) - (4.0 * x).round()).abs() < 1e-12;
+        if flag.load(Ordering::Relaxed) && !at_node {
+            f64::NAN
+        } else {
+            0.01 * (x - 0.5).powi(2)
+        }
+    };
+    let obstacle = Obstacle { shape: ObstacleShape::Function(GapFunction(Arc::new(gap))), approach: 0.01, shift: 0.0 };
+    let problem = Problem::new(square(), ProblemSpec { obstacle, ..spec() })?;
+    let settings = SolverSettings::default();
+    let sound = problem.solve(&Friction::Frictionless, &settings, None)?;
+    assert_eq!(sound.report.status, SolveStatus::Converged);
+    assert!(sound.report.estimate.total.is_finite() && sound.report.estimate.total > 0.0);
+    broken.store(true, Ordering::Relaxed);
+    let sol = problem.solve(&Friction::Frictionless, &settings, None)?;
+    assert!(sol.report.estimate.total.is_nan(), "the estimate read the gap between the nodes");
+    assert_eq!(sol.report.status, SolveStatus::NonFinite);
+    Ok(())
+}
+
+/// The public `BoxQp` refuses data of the wrong size with a typed error (its sizes were debug
+/// assertions: a release build indexed out of range).
+#[test]
+fn a_box_qp_of_the_wrong_size_is_an_error() -> Result<()> {
+    let s = QpSettings::default();
+    let h = [2.0, 0.0, 0.0, 2.0];
+    assert!(matches!(tribo::qp::BoxQp::new(&h[..3], &[-1.0, -1.0], 2, None, &s), Err(Error::QpSetup { .. })));
+    assert!(matches!(tribo::qp::BoxQp::new(&h, &[-1.0], 2, None, &s), Err(Error::QpSetup { .. })));
+    let mut frictionless = tribo::qp::BoxQp::new(&h, &[-1.0, -1.0], 2, None, &s)?;
+    assert!(matches!(frictionless.set_bounds(&[1.0, 1.0]), Err(Error::QpSetup { .. })));
+    let one = tribo::qp::BoxQp::new(&h, &[-1.0, 0.5], 1, Some(&[1.0]), &s)?;
+    assert!(matches!(one.with_equality(vec![1.0; 3], vec![0.0]), Err(Error::QpSetup { .. })));
+    Ok(())
 }
