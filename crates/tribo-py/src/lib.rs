@@ -73,8 +73,7 @@ fn choices(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 #[pyfunction]
 #[pyo3(signature = (x, digits = 3))]
 fn format_number(x: f64, digits: usize) -> String {
-    // `Num` prints at most 17 digits; a precision beyond u16::MAX would make `format!` panic.
-    format!("{:.*}", digits.min(17), tribo::Num(x))
+    format!("{:.*}", digits.min(17), tribo::Num(x)) // Num prints ≤ 17 digits; > u16::MAX would panic
 }
 
 #[pymodule]

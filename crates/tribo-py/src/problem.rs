@@ -168,6 +168,7 @@ fn take<'py, T: FromPyObjectOwned<'py>>(options: &Bound<'py, PyDict>, key: &str)
 impl SolveOptions {
     /// Reads the keywords; `call` is the progress callback's arguments, for its error message.
     fn new(options: &Bound<'_, PyDict>, call: &str) -> PyResult<Self> {
+        take_gap_error(); // every solve starts from here: no exception of an earlier call is left over
         let options = options.copy()?;
         let threshold = match take::<Bound<'_, PyAny>>(&options, "threshold")? {
             None => None,
@@ -205,14 +206,10 @@ impl SolveOptions {
     }
 }
 
-/// The result of a core call made with callbacks: the core's error (with the exception a gap function
-/// raised chained, [`chain_gap_error`]), else the callbacks' exception (or Ctrl-C), else one a gap
-/// function raised while the call went on (the estimator and a refined mesh evaluate the gap between
-/// the points checked at set-up), else the value.
+/// A core call with callbacks: its error (a gap's exception chained), else theirs, else a gap's, else the value.
 fn finish<T>(py: Python<'_>, result: tribo::Result<T>, error: Option<PyErr>) -> PyResult<T> {
     let value = result.map_err(|e| chain_gap_error(py, to_pyerr(e)))?;
-    let gap = take_gap_error();
-    error.or(gap).map_or(Ok(value), Err)
+    error.or_else(take_gap_error).map_or(Ok(value), Err)
 }
 
 #[pymethods]
@@ -326,7 +323,6 @@ impl PyProblem {
         let o = SolveOptions::new(options, "(iteration, change, qp_iterations, qp_seconds)")?;
         let mut error: Option<PyErr> = None;
         let (on_phase, progress) = (o.on_phase.as_ref(), o.progress.as_ref());
-        take_gap_error();
         let result = py.detach(|| {
             let mut observe = |p: &Progress| match p.phase {
                 Phase::Condensation => observe_with(on_phase, ("condensation", p.condensation_seconds), &mut error),
@@ -348,14 +344,13 @@ impl PyProblem {
         let o = SolveOptions::new(options, "(step, steps, status, seconds)")?;
         let steps = load_steps(steps)?;
         let mut error: Option<PyErr> = None;
-        take_gap_error();
         let result = py.detach(|| {
             let mut observe = |p: &StepProgress| {
                 observe_with(o.progress.as_ref(), (p.step, p.steps, p.status.name(), p.seconds), &mut error)
             };
             self.inner.solve_history(&o.friction, &steps, &o.settings, Some(&mut observe))
         });
-        // An exception from the callback (or Ctrl-C, or one a gap function raised) ends the history: it carries the steps done.
+        // An exception from the callback (or Ctrl-C, or a gap function) ends the history: it carries the steps done.
         let history = results::history(py, &result.map_err(|e| chain_gap_error(py, to_pyerr(e)))?)?;
         match error.or_else(take_gap_error) {
             Some(e) => {
@@ -383,7 +378,6 @@ impl PyProblem {
         let adapt = AdaptSettings::from_keywords(k).map_err(to_pyerr)?;
         let steps = steps.map(load_steps).transpose()?;
         let mut error = None;
-        take_gap_error();
         let result = py.detach(|| {
             let mut observe =
                 |l: &Level| observe_with(o.progress.as_ref(), (l.unknowns, l.relative, l.seconds), &mut error);

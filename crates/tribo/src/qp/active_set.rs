@@ -355,7 +355,7 @@ pub(crate) fn solve(
                 let resolved = op
                     .front(&free, &outside)
                     .and_then(|(dofs, inverse)| front_places(&dofs, &inverse, &xn, bounds, scaling, tol));
-                for (i, place) in resolved.unwrap_or_default() {
+                for (i, place) in resolved.into_iter().flatten() {
                     front[i] = Some(place);
                 }
             }

@@ -165,7 +165,7 @@ fn obstacle_rules() {
 }
 
 #[test]
-fn multiplier_rules() {
+fn multiplier_rules() -> Result<()> {
     let with = |p: MultiplierPoints| problem_err(square(), ProblemSpec { multiplier_points: p, ..spec() });
     assert!(matches!(
         with(MultiplierPoints::Abscissae(vec![0.0, 0.5, 0.4, 1.0])),
@@ -201,10 +201,10 @@ fn multiplier_rules() {
     for p in
         [MultiplierPoints::RatioToFe(1.5e-5), MultiplierPoints::RatioToFe(1.0 / 4096.0), MultiplierPoints::Size(1e-5)]
     {
-        let mesh = far().expect("a valid mesh");
-        let e = problem_err(mesh, ProblemSpec { multiplier_points: p.clone(), ..spec() });
+        let e = problem_err(far()?, ProblemSpec { multiplier_points: p.clone(), ..spec() });
         assert!(matches!(e, Error::BadMultiplierMesh { .. }), "{p:?}: {e}");
     }
+    Ok(())
 }
 
 #[test]
