@@ -104,6 +104,15 @@ impl<'a> SaddleOperator<'a> {
         self.idx.iter().map(|&i| dnu[i] + self.d[i] - eu[i]).collect()
     }
 
+    /// The free set on the multipliers (2q) from the free set `free` on the unknowns (the others fixed).
+    fn free_multipliers(&self, free: &[bool]) -> Vec<bool> {
+        let mut all = vec![false; self.factor.e_rows.len()];
+        for (&i, &f) in self.idx.iter().zip(free) {
+            all[i] = f;
+        }
+        all
+    }
+
     /// The multipliers (2q) with `x` on the unknowns and 0 elsewhere.
     fn expand(&self, x: &[f64]) -> Vec<f64> {
         let mut nu = vec![0.0; self.factor.e_rows.len()];
@@ -131,10 +140,7 @@ impl QpOperator for SaddleOperator<'_> {
     }
 
     fn newton_point(&mut self, free: &[bool], x: &[f64]) -> Option<Vec<f64>> {
-        let mut free_all = vec![false; self.factor.e_rows.len()];
-        for (&i, &f) in self.idx.iter().zip(free) {
-            free_all[i] = f;
-        }
+        let free_all = self.free_multipliers(free);
         let fixed = self.expand(x);
         // Near the factorized partition, border it; else factorize this one.
         let near = self.saddle.is_factorized() && self.saddle.changed(&free_all).len() <= self.border_limit;
@@ -188,10 +194,7 @@ impl QpOperator for SaddleOperator<'_> {
         if dofs.len() > FRONT_MAX {
             return None;
         }
-        let mut free_all = vec![false; m];
-        for (&i, &f) in self.idx.iter().zip(free) {
-            free_all[i] = f;
-        }
+        let free_all = self.free_multipliers(free);
         let multipliers: Vec<usize> = dofs.iter().map(|&a| self.idx[a]).collect();
         let inverse = self.saddle.inverse_block(&free_all, &multipliers).ok()?;
         Some((dofs, inverse))
