@@ -12,10 +12,18 @@ use crate::Solution;
 /// weight, whatever their units; where ζ = 0 only the energy part is left. Measured (study 6): marking
 /// on ζ alone leaves the far field too coarse and needs more unknowns for 1 % in λ_n than equal parts.
 pub(crate) fn indicators(solutions: &[&Solution]) -> Vec<f64> {
-    // The largest η_K and ζ_K over the solutions (the steps of a history), squared.
+    // The largest η_K and ζ_K over the solutions (the steps of a history), over the largest of all and
+    // then squared: the parts are ratios, so this changes none of them, and η_K of 1e200 (E = 1e300) or
+    // 1e-200 no longer overflows or underflows when squared (defect D27: nothing was marked).
     let largest = |f: fn(&Solution) -> &[f64]| -> Vec<f64> {
         let n = solutions.first().map_or(0, |s| f(s).len());
-        (0..n).map(|k| solutions.iter().map(|s| f(s)[k]).fold(0.0, f64::max).powi(2)).collect()
+        let per: Vec<f64> = (0..n).map(|k| solutions.iter().map(|s| f(s)[k]).fold(0.0, f64::max)).collect();
+        let top = per.iter().copied().fold(0.0, f64::max);
+        if top > 0.0 && top.is_finite() {
+            per.iter().map(|v| (v / top).powi(2)).collect()
+        } else {
+            per.iter().map(|v| v.powi(2)).collect()
+        }
     };
     let eta2 = largest(|s| &s.estimator);
     let zeta2 = largest(|s| &s.traction_estimator);

@@ -6,7 +6,8 @@
 //!
 //! # One level
 //! 1. Solve the problem on the current mesh; its [`crate::results::ErrorEstimate`] comes with the solution.
-//! 2. Stop if the relative estimate is at most `tol`: of the contact tractions when something touches
+//! 2. Stop if the estimate is exactly zero ([`AdaptStop::Exact`]), or if the relative estimate is at most
+//!    `tol`: of the contact tractions when something touches
 //!    ([`crate::results::ErrorEstimate::traction_relative`]), of the energy when nothing does (the first
 //!    levels of a coarse start, where only the penetration term sees the obstacle).
 //! 3. Mark (`marking`): the energy estimate and the traction estimate in equal parts, Dörfler (θ = 0.5)
@@ -37,10 +38,12 @@
 //! A refinement that would exceed `max_unknowns` is not made; the loop then stops with the last level
 //! and says so ([`AdaptStop::MaxUnknowns`]), as it does at `max_levels` or when a level does not converge.
 
+mod enriched;
 mod history;
 mod marking;
 mod multipliers;
 
+pub use enriched::{multiplier_difference, near_contact};
 pub use history::AdaptiveHistory;
 
 use std::ops::ControlFlow;
@@ -94,7 +97,11 @@ pub enum AdaptStop {
     MaxLevels,
     /// A level's solve did not converge (its status is the last level's).
     NotConverged,
-    /// The estimate is zero: nothing to refine.
+    /// The estimate is exactly zero: nothing to refine. Either the discrete answer is exact, or nothing
+    /// touches and nothing penetrates where the estimator looks (its Gauss points on every edge of Γ_C,
+    /// and finely around the obstacle's lowest points, [`crate::ObstacleShape::lowest_points`]: a gap
+    /// *function* that dips below Γ_C only between those points is not seen). It is checked before the
+    /// tolerance, so a relative estimate of 0 / 0 never reads as an accuracy reached.
     Exact,
     /// The observer asked to stop.
     Interrupted,
@@ -207,10 +214,11 @@ impl Problem {
             let mut level = new_level(&problem, read(&answer), ended(&answer).0);
             let stop = if level.status != SolveStatus::Converged {
                 Some(AdaptStop::NotConverged)
+            } else if level.estimate.total == 0.0 {
+                // Before the tolerance: a relative estimate of 0 / 0 is no accuracy reached (defect D28).
+                Some(AdaptStop::Exact)
             } else if level.relative <= adapt.tol {
                 Some(AdaptStop::Tolerance)
-            } else if level.estimate.total == 0.0 {
-                Some(AdaptStop::Exact)
             } else if levels.len() + 1 >= adapt.max_levels {
                 Some(AdaptStop::MaxLevels)
             } else {

@@ -184,6 +184,18 @@ impl ObstacleShape {
         }
     }
 
+    /// The abscissae, sorted, where the initial gap may have a local minimum between two points at which
+    /// it is sampled: the lowest point of a circle or a parabola, the vertices of a polyline; none for a
+    /// flat obstacle or a function (whose minima are not known). The estimator integrates the penetration
+    /// finely around them.
+    pub fn lowest_points(&self) -> Vec<f64> {
+        match self {
+            Self::Circle { center, .. } | Self::Parabola { center, .. } => vec![*center],
+            Self::Polyline { xi, .. } => xi.clone(),
+            Self::Flat | Self::Function(_) => Vec::new(),
+        }
+    }
+
     /// The shape's name, as scene files and Python spell it: `flat`, `circle`, `parabola`, `polyline` or
     /// `function`.
     pub fn kind(&self) -> &'static str {

@@ -141,8 +141,10 @@ pub fn strain_displacement(mesh: &Mesh, t: usize) -> StrainDisplacement {
 
 /// Element stiffness `|T| Bᵀ C B` (6 × 6).
 pub fn element_stiffness(mesh: &Mesh, t: usize, c: &Matrix3<f64>) -> SMatrix<f64, 6, 6> {
-    let b = strain_displacement(mesh, t);
-    b.transpose() * c * b * mesh.area(t)
+    // (√|T| B)ᵀ C (√|T| B): √|T| B is of order one whatever the size of T, so C of 1e300 on a small
+    // triangle does not overflow in a product that the area would have brought back in range.
+    let b = strain_displacement(mesh, t) * mesh.area(t).sqrt();
+    b.transpose() * c * b
 }
 
 /// Triplets of the global stiffness matrix (2N × 2N, duplicates to be summed).

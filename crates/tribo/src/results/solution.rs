@@ -172,6 +172,7 @@ impl Solution {
             u_n: &u_n,
             slip: &slip,
             gap: &gap_at,
+            lowest: &spec.obstacle.shape.lowest_points(),
         };
         let (estimator, traction_estimator, estimate) = estimate(&input);
         let report = Report { estimate, ..report };

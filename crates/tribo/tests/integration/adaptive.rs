@@ -256,3 +256,83 @@ fn a_coulomb_fixed_point_weighs_the_partial_factorization_higher() {
     let diff = by_auto.lambda_n.iter().zip(&by_saddle.lambda_n).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
     assert!(diff <= tol * scale, "λ_n differs by {diff:e} of {scale:e} (allowed {tol:e})");
 }
+
+/// The unknowns of every level of an adaptive solve (tol out of reach, so the loop refines to
+/// `max_unknowns`).
+fn adapted_levels(problem: &Problem, friction: &Friction) -> (Vec<usize>, AdaptStop) {
+    let adapt = AdaptSettings { tol: 1e-6, max_unknowns: 4_000, ..Default::default() };
+    let out = problem.solve_adaptive(friction, &SolverSettings::default(), &adapt, None).expect("adapts");
+    (out.levels.iter().map(|l| l.unknowns).collect(), out.stop)
+}
+
+/// Defect D27: the marking squared each indicator, so beyond about 1e154 (E = 1e300, or an approach of
+/// 1e300) the squares overflowed, nothing was marked and the loop solved its first mesh again until
+/// `max_levels`. A change of units (stress by E, lengths of the motion by δ and s) changes no level.
+#[test]
+fn scaled_problems_adapt_alike() {
+    let (base, mu) = tribo_testkit::block_problem(8, 2);
+    let friction = Friction::Coulomb { mu };
+    let scaled = |young: f64, motion: f64| {
+        let mut spec = base.spec.clone();
+        spec.material.young *= young;
+        spec.obstacle.approach *= motion;
+        spec.obstacle.shift *= motion;
+        Problem::new(base.mesh.clone(), spec).expect("valid")
+    };
+    let (reference, stop) = adapted_levels(&base, &friction);
+    assert_eq!(stop, AdaptStop::MaxUnknowns);
+    assert!(reference.len() >= 5 && reference.windows(2).all(|w| w[1] > w[0]), "{reference:?}");
+    for (young, motion) in [(1e300, 1.0), (1.0, 1e300), (1e150, 1e150), (1e-150, 1e-150), (1e-300, 1.0)] {
+        let (levels, stop) = adapted_levels(&scaled(young, motion), &friction);
+        assert_eq!((levels, stop), (reference.clone(), AdaptStop::MaxUnknowns), "E × {young:e}, motion × {motion:e}");
+    }
+}
+
+/// Defect D28: with the cylinder pushed 1e-6 between two nodes of the 8 × 4 mesh, the dip (3e-3 wide
+/// under edges of 0.5) fell between the estimator's Gauss points: the estimate was exactly 0, its 0 / 0
+/// was read as "tolerance reached", and the loop stopped at level 0 with no contact. It must find it.
+#[test]
+fn a_coarse_mesh_that_misses_a_shallow_contact_refines_until_it_finds_it() {
+    let problem = off_centre_problem();
+    let mut spec = problem.spec.clone();
+    spec.obstacle.approach = 1e-6;
+    let shallow = Problem::new(problem.mesh.clone(), spec).expect("valid");
+    let first = shallow.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+    assert!(first.normal_force == 0.0, "no node touches at first");
+    assert!(first.report.estimate.contact > 0.0, "the estimate sees the dip between the nodes");
+    let adapt = AdaptSettings { tol: 0.2, max_unknowns: 200_000, ..Default::default() };
+    let out =
+        shallow.solve_adaptive(&Friction::Frictionless, &SolverSettings::default(), &adapt, None).expect("adapts");
+    assert_eq!(out.stop, AdaptStop::Tolerance, "{:?}", out.levels.iter().map(|l| l.unknowns).collect::<Vec<_>>());
+    assert!(out.solution.normal_force > 0.0 && out.levels.len() > 5);
+}
+
+/// The other half of D28: an obstacle that touches nowhere has an estimate of exactly 0; the loop says
+/// so (`Exact`), it does not report the tolerance as reached.
+#[test]
+fn an_obstacle_that_touches_nowhere_stops_exact_not_on_the_tolerance() {
+    let problem = off_centre_problem();
+    let mut spec = problem.spec.clone();
+    spec.obstacle.approach = -0.01;
+    let apart = Problem::new(problem.mesh.clone(), spec).expect("valid");
+    let adapt = AdaptSettings { tol: 0.2, ..Default::default() };
+    let out = apart.solve_adaptive(&Friction::Frictionless, &SolverSettings::default(), &adapt, None).expect("adapts");
+    assert_eq!(out.stop, AdaptStop::Exact);
+    assert_eq!((out.levels.len(), out.solution.normal_force), (1, 0.0));
+}
+
+/// Defect D29: where nothing touches, the penetration term was `E*² × 0`, which is NaN for E ≥ 1e155:
+/// a solve with u = 0 and λ = 0 ended `non_finite`.
+#[test]
+fn nothing_touching_at_a_huge_modulus_converges() {
+    let problem = off_centre_problem();
+    for young in [1e150, 1e200, 1e300] {
+        let mut spec = problem.spec.clone();
+        spec.obstacle.approach = -0.01;
+        spec.material.young = young;
+        let apart = Problem::new(problem.mesh.clone(), spec).expect("valid");
+        let sol = apart.solve(&Friction::Coulomb { mu: 0.3 }, &SolverSettings::default(), None).expect("solves");
+        assert_eq!(sol.report.status, SolveStatus::Converged, "E = {young:e}");
+        assert_eq!((sol.report.estimate.total, sol.normal_force), (0.0, 0.0), "E = {young:e}");
+    }
+}

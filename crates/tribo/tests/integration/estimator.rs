@@ -85,3 +85,51 @@ fn the_estimate_flags_the_checkerboard_of_the_classic_method() {
     assert!(classic >= classic_error && stabilized >= stabilized_error, "the estimates bound the errors: {out:?}");
     assert!(classic > 2.0 * stabilized, "the checkerboard shows in the estimate: {out:?}");
 }
+
+/// The pieces of the hierarchical traction estimate (`Problem::solve_enriched`,
+/// `adapt::multiplier_difference`, `adapt::near_contact`): the difference of a multiplier from itself is
+/// 0 and is symmetric; the whole mesh enriched is four times the triangles with T_H halved, and its answer
+/// is closer to Hertz; a strip holds only triangles near the contact zone, and none when nothing touches.
+#[test]
+fn the_enriched_problem_halves_h_and_h_and_its_answer_is_closer() {
+    use tribo::adapt::{multiplier_difference, near_contact};
+    let problem = tribo_testkit::hertz_problem(0.04, 0.01, 0.0, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    let (friction, settings) = (Friction::Frictionless, SolverSettings::default());
+    let sol = problem.solve(&friction, &settings, None).expect("solves");
+    let (zero, norm) = multiplier_difference(&problem, &sol, &problem, &sol);
+    assert!(zero == 0.0 && norm > 0.0);
+
+    let all: Vec<usize> = (0..problem.mesh.n_triangles()).collect();
+    assert_eq!(near_contact(&problem, &sol, f64::INFINITY), all);
+    let (fine, fsol) = problem.solve_enriched(&sol, &all, &friction, &settings).expect("solves");
+    assert_eq!(fsol.report.status, SolveStatus::Converged);
+    assert_eq!(fine.mesh.n_triangles(), 4 * problem.mesh.n_triangles());
+    // T_H is halved where contact is or may be (it stays as it was where the body is surely apart, as
+    // in the adaptive loop): every coarse point kept, every segment under the contact zone split.
+    let (coarse_xi, fine_xi) = (&problem.multipliers.xi, &fine.multipliers.xi);
+    assert!(coarse_xi.iter().all(|x| fine_xi.contains(x)) && fine_xi.len() > coarse_xi.len());
+    for w in coarse_xi.windows(2).filter(|w| w[1] > -0.12 && w[0] < 0.12) {
+        assert!(fine_xi.contains(&(0.5 * (w[0] + w[1]))), "segment {w:?} is not halved");
+    }
+    let (d, _) = multiplier_difference(&problem, &sol, &fine, &fsol);
+    let (back, _) = multiplier_difference(&fine, &fsol, &problem, &sol);
+    assert!(d > 0.0 && (d - back).abs() <= 1e-12 * d, "{d} {back}");
+    let (coarse_error, fine_error) =
+        (tribo_testkit::hertz_l2_error(&problem, &sol), tribo_testkit::hertz_l2_error(&fine, &fsol));
+    assert!(fine_error < coarse_error, "enriched {fine_error} against {coarse_error}");
+
+    let strip = near_contact(&problem, &sol, 0.1);
+    assert!(!strip.is_empty() && strip.len() < all.len() / 2, "{} of {}", strip.len(), all.len());
+    let (lo, hi) = (-0.3, 0.3); // the contact half-width is about 0.1, 0.1 beyond plus one cell of 0.04
+    for &t in &strip {
+        assert!(problem.mesh.vertices(t).iter().any(|p| p[0] > lo && p[0] < hi && p[1] > -0.3), "triangle {t}");
+    }
+    let (strip_fine, _) = problem.solve_enriched(&sol, &strip, &friction, &settings).expect("solves");
+    assert!(strip_fine.n_free < fine.n_free && strip_fine.n_free > problem.n_free);
+
+    let mut apart = problem.spec.clone();
+    apart.obstacle.approach = -0.01;
+    let apart = Problem::new(problem.mesh.clone(), apart).expect("valid");
+    let none = apart.solve(&friction, &settings, None).expect("solves");
+    assert!(near_contact(&apart, &none, f64::INFINITY).is_empty());
+}

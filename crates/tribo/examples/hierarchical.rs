@@ -1,0 +1,98 @@
+//! How sharp is a hierarchical estimate of the traction error? (issue 36, the second route it names)
+//!
+//! The Hertz block (E = 200, ν = 0.3, R = 1, δ = 0.01) with the cylinder at `CENTER`, frictionless or
+//! Coulomb (`MU` > 0, the obstacle shifted 0.004), adapted from the 8 × 4 mesh to 80k unknowns. Each
+//! level with at least 3 multiplier dofs in contact is solved again and compared with a reference on a
+//! graded mesh of 466k unknowns (h_min 1.5625e-4, growth 0.02), and with three enriched solves of the same
+//! level (`Problem::solve_enriched`: triangles bisected on all three edges, T_H halved under them): the
+//! whole mesh, and the triangles within 1, 0.5 and 0.25 contact widths of the contact zone. Printed per
+//! level: the true relative L²(Γ_C) error of λ, the effectivity of today's bound (`traction_relative`
+//! over the true error), the enriched difference ‖λ_H − λ_f‖ over the true error, e_f / e_H for the whole
+//! mesh, the enriched sizes and time; and the difference of each level from the next adaptive level over
+//! the true error (free in the adaptive loop).
+//!
+//! `cargo run --release -p tribo --example hierarchical [CENTER] [MU]` (about 1–3 minutes: the reference
+//! solve is most of it).
+use tribo::adapt::{multiplier_difference, near_contact};
+use tribo::*;
+use tribo_testkit::hertz_spec;
+
+fn main() -> Result<()> {
+    let arg = |k: usize, default: f64| std::env::args().nth(k).and_then(|s| s.parse().ok()).unwrap_or(default);
+    let (center, mu) = (arg(1, 0.0), arg(2, 0.0));
+    let friction = if mu > 0.0 { Friction::Coulomb { mu } } else { Friction::Frictionless };
+    let mut spec = hertz_spec(0.01, 0.0, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    spec.obstacle.shape = ObstacleShape::Circle { center, radius: 1.0 };
+    if mu > 0.0 {
+        spec.obstacle.shift = 0.004;
+    }
+    let settings = SolverSettings::default();
+    let (x, y) = ([-2.0, 2.0], [-2.0, 0.0]);
+    let grading =
+        Grading { side: Side::Top, segment: [center - 0.1, center + 0.1], h_min: 1.5625e-4, h_max: 0.05, growth: 0.02 };
+    let reference = Problem::new(graded_rectangle(x, y, &grading)?, spec.clone())?;
+    let rsol = reference.solve(&friction, &settings, None)?;
+    println!("reference: {} unknowns, {}", reference.n_free, rsol.report.status);
+    let coarse = Problem::new(rectangle(x, y, 8, 4, Diagonal::Right)?, spec.clone())?;
+    let adapt = AdaptSettings { tol: 1e-4, max_unknowns: 80_000, ..AdaptSettings::default() };
+    let run = coarse.solve_adaptive(&friction, &settings, &adapt, None)?;
+    println!(
+        "level unknowns in-contact true-error bound/true | whole mesh: d/true e_f/e_H unknowns seconds | \
+         strips of 1, 0.5, 0.25 contact widths: d/true unknowns"
+    );
+    let mut previous: Option<(Problem, Solution, f64)> = None;
+    for (k, level) in run.levels.iter().enumerate() {
+        let mut s = spec.clone();
+        s.multiplier_points = MultiplierPoints::Abscissae(level.multiplier_mesh.clone());
+        let p = Problem::new(level.mesh.clone(), s)?;
+        let sol = p.solve(&friction, &settings, None)?;
+        let (err, norm) = multiplier_difference(&p, &sol, &reference, &rsol);
+        if let Some((pp, ps, perr)) = previous.take() {
+            let (d, _) = multiplier_difference(&pp, &ps, &p, &sol);
+            println!(
+                "    level {} against level {k}: d/true {:.3} (e_{k}/e_{} {:.3})",
+                k - 1,
+                d / perr,
+                k - 1,
+                err / perr
+            );
+        }
+        previous = Some((p.clone(), sol.clone(), err));
+        let in_contact = sol.lambda_n.iter().filter(|l| **l > 0.0).count();
+        if in_contact < 3 {
+            continue;
+        }
+        let truth = err / norm;
+        let clock = std::time::Instant::now();
+        let all: Vec<usize> = (0..p.mesh.n_triangles()).collect();
+        let (pf, sf) = p.solve_enriched(&sol, &all, &friction, &settings)?;
+        let seconds = clock.elapsed().as_secs_f64();
+        let (d, _) = multiplier_difference(&p, &sol, &pf, &sf);
+        let (ef, _) = multiplier_difference(&pf, &sf, &reference, &rsol);
+        let mut line = format!(
+            "{k:>3} {:>7} {in_contact:>4} {truth:.3e} {:>6.2} | {:.3} {:.3} {:>7} {seconds:.3} |",
+            p.n_free,
+            sol.report.estimate.traction_relative / truth,
+            d / err,
+            ef / err,
+            pf.n_free
+        );
+        let touching: Vec<f64> = p
+            .multipliers
+            .dof_abscissae()
+            .into_iter()
+            .zip(&sol.lambda_n)
+            .filter(|(_, l)| **l > 0.0)
+            .map(|(x, _)| x)
+            .collect();
+        let width = touching[touching.len() - 1] - touching[0];
+        for fraction in [1.0, 0.5, 0.25] {
+            let marked = near_contact(&p, &sol, fraction * width);
+            let (pf, sf) = p.solve_enriched(&sol, &marked, &friction, &settings)?;
+            let (d, _) = multiplier_difference(&p, &sol, &pf, &sf);
+            line += &format!(" {:.3} {:>7}", d / err, pf.n_free);
+        }
+        println!("{line}");
+    }
+    Ok(())
+}
