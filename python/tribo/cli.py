@@ -57,7 +57,7 @@ from tribo._tribo import TriboError, __version__
 from tribo.adaptive import write_adaptive, write_levels
 from tribo.checks import SceneWarning, conventions, warn_solution
 from tribo.history import vtu_every, write_history
-from tribo.io import write_contact_csv, write_vtu
+from tribo.io import write_contact_csv, write_text_atomic, write_vtu
 from tribo.problem import Problem
 from tribo.results import Adaptive, History, Solution
 from tribo.scene import Scene, SceneError, demo_scene_path, load_scene
@@ -270,7 +270,7 @@ def run_scene(
     log.info("solve ended: %s after %.2f s", solution.report.status, seconds)
     files = []
     path = out / "summary.json"
-    path.write_text(json.dumps(summary(scene, problem, solution, seconds, warned), indent=2) + "\n", encoding="utf-8")
+    write_text_atomic(path, json.dumps(summary(scene, problem, solution, seconds, warned), indent=2) + "\n")
     files.append(path)
     if not fields:
         return problem, solution, files

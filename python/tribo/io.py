@@ -31,6 +31,8 @@ from __future__ import annotations
 
 import contextlib
 import io
+import os
+import threading
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -53,6 +55,15 @@ __all__ = [
     "stress_tensor",
     "obstacle_points",
 ]
+
+
+def write_text_atomic(path: Path, text: str) -> None:
+    """Writes ``text`` (UTF-8) to ``path`` whole or not at all: into a temporary file beside it, then renamed
+    over it, so that a reader never sees half a file (defect D33: one sweep case's copy read another's
+    half-written ``summary.json``)."""
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.{threading.get_ident()}.tmp")
+    tmp.write_text(text, encoding="utf-8")
+    tmp.replace(path)
 
 
 def _mesh_error(message: str, kind: str, **details: Any) -> MeshError:

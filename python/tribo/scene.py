@@ -386,6 +386,8 @@ def read_scene_data(path: Path) -> dict[str, Any]:
         raise SceneError(f"scene file {path} is not UTF-8 text: {e.reason} at byte {e.start}") from e
     except tomllib.TOMLDecodeError as e:
         raise SceneError(f"scene file {path} is not valid TOML: {e}") from e
+    except RecursionError as e:  # tomllib reads nested arrays and inline tables by recursion (defect D32)
+        raise SceneError(f"scene file {path} nests arrays or inline tables too deeply to be read") from e
     return data
 
 

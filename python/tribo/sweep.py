@@ -63,6 +63,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from tribo._tribo import TriboError, __version__
+from tribo.io import write_text_atomic
 from tribo.scene import SceneError, parse_scene, read_scene_data
 
 if TYPE_CHECKING:  # pragma: no cover - types only
@@ -145,7 +146,7 @@ def _value(text: str) -> Any:
     """A value as TOML reads it (``0.2``, ``[1, 2]``, ``"P1"``, ``true``); a bare word is a string."""
     try:
         return tomllib.loads(f"v = {text}")["v"]
-    except tomllib.TOMLDecodeError:
+    except (tomllib.TOMLDecodeError, RecursionError):  # nested too deeply to read: a string the schema refuses
         return text
 
 
@@ -267,13 +268,15 @@ def cases(
     zipped: Mapping[str, Sequence[Any]] | None = None,
     base_dir: Path | None = None,
 ) -> list[Case]:
-    """Every case of a sweep of the scene ``data`` (TOML data), each checked by the scene schema: a bad
-    key or value raises ``SceneError`` naming the key (and the case) before anything runs."""
+    """Every distinct case of a sweep of the scene ``data`` (TOML data), each checked by the scene schema: a
+    bad key or value raises ``SceneError`` naming the key (and the case) before anything runs. Values that
+    make one checked scene (``0.1``, ``1e-1``, ``0.10``) are one case, run once (defect D33)."""
     zipped = dict(zipped or {})
     base_dir = base_dir if base_dir is not None else Path.cwd()
     _grid(axes, zipped)
-    out = []
-    for index, values in enumerate(_combinations(axes, zipped)):
+    out: list[Case] = []
+    seen: set[str] = set()
+    for values in _combinations(axes, zipped):
         case = deepcopy(dict(data))
         for key, value in values.items():
             set_key(case, key, value)
@@ -282,7 +285,9 @@ def cases(
         except SceneError as e:
             e.add_note("in the sweep case " + ", ".join(f"{k} = {v!r}" for k, v in values.items()))
             raise
-        out.append(Case(index, values, case, key))
+        if key not in seen:
+            seen.add(key)
+            out.append(Case(len(out), values, case, key))
     return out
 
 
@@ -437,11 +442,9 @@ def _finish(case_dir: Path, result: Mapping[str, Any]) -> dict[str, Any]:
     row["attempts"] = _attempts(case_dir)
     case_dir.mkdir(parents=True, exist_ok=True)
     if result["summary"] is not None and not (case_dir / "summary.json").exists():
-        (case_dir / "summary.json").write_text(json.dumps(result["summary"], indent=2) + "\n", encoding="utf-8")
+        write_text_atomic(case_dir / "summary.json", json.dumps(result["summary"], indent=2) + "\n")
     if row["status"] not in ("killed_worker", "internal_error"):  # these may not happen again: not cached
-        tmp = case_dir / "row.json.tmp"
-        tmp.write_text(json.dumps(row, default=str) + "\n", encoding="utf-8")
-        tmp.replace(case_dir / "row.json")
+        write_text_atomic(case_dir / "row.json", json.dumps(row, default=str) + "\n")
     return row
 
 

@@ -238,6 +238,17 @@ def test_scene_file_not_utf8(tmp_path: Path) -> None:
         load_scene(path)
 
 
+def test_a_scene_nested_too_deeply_is_a_scene_error(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """Defect D32: 600 nested arrays made the TOML reader raise RecursionError, which `tribo run` reported
+    as an internal error (exit 2) and `load_scene` raised as it was."""
+    path = tmp_path / "nested.toml"
+    path.write_text(SCENE + "\n[extra]\nvalue = " + "[" * 600 + "]" * 600 + "\n")
+    with pytest.raises(SceneError, match="nests arrays or inline tables too deeply"):
+        load_scene(path)
+    assert main(["-q", "run", str(path), "--out", str(tmp_path / "o")]) == 1
+    assert "too deeply" in one_error_line(capsys)
+
+
 def one_error_line(capsys: pytest.CaptureFixture[str], prefix: str = "tribo: error: ") -> str:
     """The only line on stderr besides scene warnings (the runs below are quiet), which starts with
     `prefix`; no traceback."""

@@ -72,6 +72,27 @@ def test_cases_are_the_product_with_zipped_axes_last() -> None:
         cases(hertz_data(), {"friction.mu": []})
 
 
+def test_equal_values_are_one_case() -> None:
+    """Defect D33: ``friction.mu=0.1,0.1,1e-1,0.10`` is one scene (one hash), and ran four times at once into
+    one folder; now it is one case, and a grid keeps one case per distinct scene, first seen first."""
+    assert len(cases(hertz_data(), {"friction.mu": parse_axis("friction.mu=0.1,0.1,1e-1,0.10")[1]})) == 1
+    got = cases(hertz_data(), {"friction.mu": [0.1, 0.2, 0.1], "obstacle.shift": [0.0, 0.0]})
+    assert [c.values for c in got] == [{"friction.mu": 0.1, "obstacle.shift": 0.0},
+                                       {"friction.mu": 0.2, "obstacle.shift": 0.0}]
+    assert [c.index for c in got] == [0, 1] and len({c.key for c in got}) == 2
+
+
+def test_files_are_replaced_whole(tmp_path: Path) -> None:
+    """A reader sees the old file or the new one, never a part: the text goes to a temporary file that is
+    renamed over the target, and nothing else is left in the folder."""
+    from tribo.io import write_text_atomic
+
+    path = tmp_path / "summary.json"
+    write_text_atomic(path, "old\n")
+    write_text_atomic(path, "new\n")
+    assert path.read_text(encoding="utf-8") == "new\n" and [p.name for p in tmp_path.iterdir()] == ["summary.json"]
+
+
 def test_a_typo_is_one_scene_error_naming_the_key_before_anything_runs() -> None:
     with pytest.raises(SceneError, match="friction.muu") as e:
         cases(hertz_data(), {"friction.muu": [0.1, 0.2]})
