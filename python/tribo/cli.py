@@ -59,7 +59,7 @@ from tribo.checks import SceneWarning, conventions, warn_solution
 from tribo.history import vtu_every, write_history
 from tribo.io import write_contact_csv, write_text_atomic, write_vtu
 from tribo.problem import Problem
-from tribo.results import Adaptive, History, Solution
+from tribo.results import Adaptive, AdaptiveHistory, History, Solution
 from tribo.scene import Scene, SceneError, demo_scene_path, load_scene
 
 __all__ = ["main", "run_scene"]
@@ -106,15 +106,17 @@ def peak_memory_mb() -> float | None:
 
 
 def summary(
-    scene: Scene, problem: Problem, solution: Solution, seconds: float, warned: Sequence[str] = ()
+    scene: Scene, problem: Problem, solution: Solution, seconds: float, warned: Sequence[str] = (),
+    adapt_stop: str | None = None,
 ) -> dict[str, Any]:
-    """The JSON summary of a run."""
+    """The JSON summary of a run; ``adapt_stop``: why an adaptive loop stopped (None without ``[adapt]``)."""
     r = solution.report
     states = solution.state_names
     return {
         "tribo_version": __version__,
         "scene": scene.to_dict(),
         "status": r.status,
+        "adapt_stop": adapt_stop,
         "failure": {"iteration": r.failed_iteration, "reason": r.failure_reason} if r.status == "qp_failed" else None,
         "friction": solution.friction,
         "mu": solution.mu,
@@ -165,19 +167,22 @@ def bodies(problem: Problem, solution: Solution) -> list[dict[str, Any]]:
 
 def run_history(
     scene: Scene, problem: Problem, out: Path, *, plots: bool = True, fields: bool = True
-) -> tuple[Problem, History, list[Path]]:
+) -> tuple[Problem, History, list[Path], str | None]:
     """Solves the scene's ``[history]`` with a progress bar over the steps and writes its outputs; with an
     ``[adapt]`` table, adaptively (a log line per level, then the history on the last mesh, and
-    ``adapt.csv``/``adapt.png``). Returns the problem the history was solved on, the history and the files."""
+    ``adapt.csv``/``adapt.png``). Returns the problem the history was solved on, the history, the files and
+    why the adaptive loop stopped (None without ``[adapt]``)."""
     from tqdm import tqdm
 
     n_steps = len(scene.history_steps()[0])
     clock = time.perf_counter()
     files: list[Path] = []
+    stop = None
     if scene.has_adapt:
         adaptive = scene.solve_history_adaptive(problem, progress=_level_progress)
         log.info("adaptive history stopped (%s) after %d levels", adaptive.stop, len(adaptive.levels))
-        problem, history = adaptive.problem, adaptive.history
+        warn_adapt_stop(scene, adaptive)
+        problem, history, stop = adaptive.problem, adaptive.history, adaptive.stop
         if fields:
             files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
             files += write_levels(out, adaptive, **scene.solve_kwargs())
@@ -199,7 +204,7 @@ def run_history(
     if fields:
         files = write_history(out, problem, history, plots=plots, plot_steps=scene.get("history", "plot_steps"),
                               every=scene.get("history", "write_every")) + files
-    return problem, history, files
+    return problem, history, files, stop
 
 
 def _level_progress(unknowns: int, relative: float, seconds: float) -> None:
@@ -210,7 +215,18 @@ def run_adaptive(scene: Scene, problem: Problem) -> Adaptive:
     """Solves the scene adaptively (its ``[adapt]`` table), logging one line per level."""
     adaptive = scene.solve_adaptive(problem, progress=_level_progress)
     log.info("adaptive solve stopped (%s) after %d levels", adaptive.stop, len(adaptive.levels))
+    warn_adapt_stop(scene, adaptive)
     return adaptive
+
+
+def warn_adapt_stop(scene: Scene, adaptive: Adaptive | AdaptiveHistory) -> None:
+    """A ``SceneWarning`` when the adaptive loop stopped before its estimate reached ``adapt.tol``: on
+    ``max_unknowns``, ``max_levels``, a level that did not converge, or an interruption."""
+    if adaptive.stop not in ("tolerance", "exact"):
+        tol = scene.get("adapt", "tol")
+        asked = f"adapt.tol = {tol:g}" if tol is not None else "the default adapt.tol"
+        warnings.warn(f"the adaptive loop stopped on {adaptive.stop} before its estimate reached {asked}: the last "
+                      f"level's relative estimate is {adaptive.levels[-1].relative:.3g}", SceneWarning, stacklevel=2)
 
 
 def run_scene(
@@ -241,7 +257,7 @@ def run_scene(
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", SceneWarning)
         if scene.has_history:
-            problem, history, history_files = run_history(scene, problem, out, plots=plots, fields=fields)
+            problem, history, history_files, adapt_stop = run_history(scene, problem, out, plots=plots, fields=fields)
             # The step that failed if one did (its status then sets the exit code), else the last one.
             last = history.failed if history.failed is not None else (history.solutions[-1] if len(history) else None)
             if last is None:
@@ -250,14 +266,14 @@ def run_scene(
             warn_solution(problem, solution)
         elif scene.has_adapt:
             adaptive = run_adaptive(scene, problem)
-            problem, solution = adaptive.problem, adaptive.solution
+            problem, solution, adapt_stop = adaptive.problem, adaptive.solution, adaptive.stop
             history_files = []
             if fields:
                 history_files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
                 history_files += write_levels(out, adaptive, **scene.solve_kwargs())
             warn_solution(problem, solution)
         else:
-            history_files = []
+            history_files, adapt_stop = [], None
             problem, solution = scene.solve(problem, progress=_progress, on_phase=_phase)
     warned = []
     for w in caught:
@@ -270,7 +286,8 @@ def run_scene(
     log.info("solve ended: %s after %.2f s", solution.report.status, seconds)
     files = []
     path = out / "summary.json"
-    write_text_atomic(path, json.dumps(summary(scene, problem, solution, seconds, warned), indent=2) + "\n")
+    said = summary(scene, problem, solution, seconds, warned, adapt_stop)
+    write_text_atomic(path, json.dumps(said, indent=2) + "\n")
     files.append(path)
     if not fields:
         return problem, solution, files
@@ -377,6 +394,8 @@ def _run(scene_path: Path, out: Path, plots: bool) -> int:
         + ", ".join(f"{states.count(n)} {n}" for n in ("separation", "stick", "slip"))
     )
     said_json = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    if said_json["adapt_stop"] is not None:
+        print(f"  adaptive loop stopped on {said_json['adapt_stop']}")
     peak = said_json["process_peak_memory_mb"]
     t = r.timings
     print(

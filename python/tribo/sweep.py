@@ -82,6 +82,7 @@ COLUMNS: dict[str, str] = {
     "case": "the case's hash: its outputs are in DIR/cases/<case>/",
     "status": "the solve's status (converged, max_iterations, qp_failed, …); error: the scene could not be "
     "built or solved (failure says why); killed_worker: the case killed every worker that tried it",
+    "adapt_stop": "why the adaptive loop stopped (tolerance, exact, max_unknowns, …); empty without [adapt]",
     "failure": "why a case did not converge or failed (empty when it converged)",
     "friction": "the friction law the solve used",
     "iterations": "fixed-point iterations (of the last step of a history)",
@@ -312,6 +313,7 @@ def _row(summary: Mapping[str, Any], solution: Any) -> dict[str, Any]:
     states = solution.states
     return {
         "status": summary["status"],
+        "adapt_stop": summary.get("adapt_stop") or "",
         "failure": failure,
         "friction": summary["friction"],
         "iterations": summary["iterations"],

@@ -404,6 +404,7 @@ def test_run_adapts_a_scene_with_an_adapt_table(tmp_path: Path) -> None:
     assert float(rows[-1]["relative"]) <= 0.05 < float(rows[-2]["relative"])
     summary = json.loads((tmp_path / "o" / "summary.json").read_text())
     assert summary["n_free"] == int(rows[-1]["unknowns"]) and summary["status"] == "converged"
+    assert summary["adapt_stop"] == "tolerance" and summary["warnings"] == []
     assert summary["estimate"]["traction_relative"] == pytest.approx(float(rows[-1]["relative"]))
     vtu = meshio.read(tmp_path / "o" / "result.vtu")
     assert len(vtu.cells_dict["triangle"]) == int(rows[-1]["triangles"])
@@ -415,6 +416,23 @@ def test_run_adapts_a_scene_with_an_adapt_table(tmp_path: Path) -> None:
     assert files == [f"levels/level_{k:03d}.vtu" for k in range(len(rows))]
     for f, row in zip(files, rows, strict=True):
         assert len(meshio.read(tmp_path / "o" / str(f)).cells_dict["triangle"]) == int(row["triangles"])
+
+
+def test_a_tolerance_not_reached_is_said(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """Issue 37: with ``adapt.tol = 1e-6`` out of reach, ``tribo -q run`` printed ``converged`` and
+    summary.json had no stop reason and no warning. Now the status lines say why the loop stopped,
+    summary.json has ``adapt_stop`` and the warning, which names the tolerance and the last estimate."""
+    path = tmp_path / "a.toml"
+    path.write_text(ADAPT_SCENE.replace("tol = 0.05", "tol = 1e-6\nmax_unknowns = 2000"), encoding="utf-8")
+    assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 0
+    out, err = capsys.readouterr()
+    assert "adaptive loop stopped on max_unknowns" in out
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert summary["adapt_stop"] == "max_unknowns" and summary["status"] == "converged"
+    relative = summary["estimate"]["traction_relative"]
+    (warning,) = [w for w in summary["warnings"] if "adaptive loop" in w]
+    assert "max_unknowns" in warning and "adapt.tol = 1e-06" in warning and f"{relative:.3g}" in warning
+    assert f"tribo: warning: {warning}" in err
 
 
 def test_run_adapts_a_history(tmp_path: Path) -> None:
@@ -440,6 +458,7 @@ def test_run_adapts_a_history(tmp_path: Path) -> None:
     assert len(step.cells_dict["triangle"]) == int(rows[-1]["triangles"]), "the steps are on the last mesh"
     summary = json.loads((tmp_path / "o" / "summary.json").read_text())
     assert summary["n_free"] == int(rows[-1]["unknowns"]) and summary["status"] == "converged"
+    assert summary["adapt_stop"] == "tolerance"
     # The level series: each level's history solved again, its last step on the level's mesh; the last
     # level's equals the history's own last step.
     import xml.etree.ElementTree as ET
