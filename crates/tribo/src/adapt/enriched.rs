@@ -54,14 +54,8 @@ pub fn near_contact(problem: &Problem, solution: &Solution, width: f64) -> Vec<u
     // The zone reaches the neighbouring T_H points (a P1 multiplier is not zero up to them).
     let lo = m.xi[m.xi.partition_point(|&x| x < lo).saturating_sub(1)];
     let hi = m.xi[m.xi.partition_point(|&x| x <= hi).min(m.xi.len() - 1)];
-    let (o, d, n) = (problem.contact.origin, problem.contact.direction, problem.contact.normal);
     let pts = problem.mesh.points();
-    let distance = |v: usize| {
-        let r = [pts[v][0] - o[0], pts[v][1] - o[1]];
-        let xi = r[0] * d[0] + r[1] * d[1];
-        let s = r[0] * n[0] + r[1] * n[1];
-        (lo - xi).max(xi - hi).max(0.0).hypot(s)
-    };
+    let distance = |v: usize| problem.contact.distance_to_span(pts[v], lo, hi);
     problem
         .mesh
         .triangles()

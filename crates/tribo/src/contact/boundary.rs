@@ -117,6 +117,12 @@ impl ContactBoundary {
         (p[0] - self.origin[0]) * self.direction[0] + (p[1] - self.origin[1]) * self.direction[1]
     }
 
+    /// Distance of a point from the segment `[lo, hi]` (abscissae) of the line of Γ_C.
+    pub fn distance_to_span(&self, p: Point, lo: f64, hi: f64) -> f64 {
+        let xi = self.abscissa(p);
+        (lo - xi).max(xi - hi).max(0.0).hypot(self.distance_to_line(p))
+    }
+
     /// Signed distance of a point from the line of Γ_C (along n).
     pub fn distance_to_line(&self, p: Point) -> f64 {
         (p[0] - self.origin[0]) * self.normal[0] + (p[1] - self.origin[1]) * self.normal[1]

@@ -210,13 +210,7 @@ pub(crate) fn traction_weights(mesh: &Mesh, contact: &ContactBoundary) -> Vec<f6
         (Some(&lo), Some(&hi)) => (lo, hi),
         _ => return vec![0.0; mesh.n_triangles()],
     };
-    let (o, d, n) = (contact.origin, contact.direction, contact.normal);
-    let distance = |v: usize| {
-        let r = [pts[v][0] - o[0], pts[v][1] - o[1]];
-        let xi = r[0] * d[0] + r[1] * d[1];
-        let s = r[0] * n[0] + r[1] * n[1];
-        (lo - xi).max(xi - hi).max(0.0).hypot(s)
-    };
+    let distance = |v: usize| contact.distance_to_span(pts[v], lo, hi);
     mesh.triangles()
         .iter()
         .enumerate()
