@@ -146,8 +146,8 @@ fn load_steps(steps: &Bound<'_, PyAny>) -> PyResult<Vec<LoadStep>> {
     flat.chunks(width.max(1)).enumerate().map(|(k, row)| LoadStep::from_row(k, row).map_err(to_pyerr)).collect()
 }
 
-/// `solve_adaptive`'s tol, max_unknowns, theta, marking, bisection, max_levels, algebraic (None: the default).
-type AdaptArgs = (Option<f64>, Option<usize>, Option<f64>, Option<String>, Option<String>, Option<usize>, Option<f64>);
+/// `solve_adaptive`'s tol, max_unknowns, theta, (marking, bisection, stop_on), max_levels, algebraic (None: default).
+type AdaptArgs = (Option<f64>, Option<usize>, Option<f64>, [Option<String>; 3], Option<usize>, Option<f64>);
 
 /// The keywords of a solve as core values: the friction law, the settings (γ0 among them) and the
 /// callbacks. `tribo.Problem.solve` and `solve_history` (Python) spell them out and pass them as one dict.
@@ -373,8 +373,8 @@ impl PyProblem {
         on: Vec<usize>,
     ) -> PyResult<Bound<'py, PyTuple>> {
         let o = SolveOptions::new(options, "(unknowns, relative, seconds)")?;
-        let (tol, max_unknowns, theta, marking, bisection, max_levels, algebraic) = a;
-        let k = tribo::AdaptKeywords { tol, max_unknowns, theta, marking, bisection, max_levels, algebraic };
+        let (tol, max_unknowns, theta, [marking, bisection, stop_on], max_levels, algebraic) = a;
+        let k = tribo::AdaptKeywords { tol, max_unknowns, theta, marking, bisection, max_levels, algebraic, stop_on };
         let adapt = AdaptSettings::from_keywords(k).map_err(to_pyerr)?;
         let steps = steps.map(load_steps).transpose()?;
         let mut error = None;

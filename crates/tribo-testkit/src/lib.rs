@@ -71,6 +71,39 @@ pub fn hertz_mesh(h_min: f64) -> Mesh {
     graded_rectangle(s.x, s.y, &grading).expect("valid grading")
 }
 
+/// The adaptive Hertz cases of studies 12 and 13 (issue 36): the cylinder at `center`, frictionless, or
+/// Coulomb with `mu` > 0 and the obstacle shifted 0.004; their 466k-unknown reference on a mesh graded
+/// toward [center − 0.1, center + 0.1] (h_min 1.5625e-4, growth 0.02), solved with the default settings;
+/// and their coarse 8 × 4 start.
+pub struct AdaptiveHertzCase {
+    /// The problem's specification.
+    pub spec: ProblemSpec,
+    /// The friction law.
+    pub friction: Friction,
+    /// The reference problem and its solution.
+    pub reference: (Problem, Solution),
+    /// The 8 × 4 start of the adaptive runs.
+    pub coarse: Problem,
+}
+
+/// [`AdaptiveHertzCase`] for the cylinder at `center` and friction `mu` (the reference solve takes about
+/// a minute).
+pub fn adaptive_hertz_case(center: f64, mu: f64) -> Result<AdaptiveHertzCase> {
+    let friction = if mu > 0.0 { Friction::Coulomb { mu } } else { Friction::Frictionless };
+    let mut spec = hertz_spec(0.01, 0.0, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    spec.obstacle.shape = ObstacleShape::Circle { center, radius: 1.0 };
+    if mu > 0.0 {
+        spec.obstacle.shift = 0.004;
+    }
+    let (x, y) = ([-2.0, 2.0], [-2.0, 0.0]);
+    let grading =
+        Grading { side: Side::Top, segment: [center - 0.1, center + 0.1], h_min: 1.5625e-4, h_max: 0.05, growth: 0.02 };
+    let reference = Problem::new(graded_rectangle(x, y, &grading)?, spec.clone())?;
+    let solution = reference.solve(&friction, &SolverSettings::default(), None)?;
+    let coarse = Problem::new(rectangle(x, y, 8, 4, Diagonal::Right)?, spec.clone())?;
+    Ok(AdaptiveHertzCase { spec, friction, reference: (reference, solution), coarse })
+}
+
 /// The specification of the Hertz scene: clamped at the bottom, contact on the top, the cylinder pushed
 /// `approach` and shifted `shift`.
 pub fn hertz_spec(approach: f64, shift: f64, points: MultiplierPoints, space: MultiplierSpace) -> ProblemSpec {

@@ -17,27 +17,17 @@
 //! reference solve is most of it).
 use tribo::adapt::{multiplier_difference, near_contact};
 use tribo::*;
-use tribo_testkit::hertz_spec;
 
 fn main() -> Result<()> {
     let arg = |k: usize, default: f64| std::env::args().nth(k).and_then(|s| s.parse().ok()).unwrap_or(default);
     let (center, mu) = (arg(1, 0.0), arg(2, 0.0));
     // The twice-enriched strip has about 5 times a level's unknowns: measured up to this size.
     let max_twice = arg(3, 40_000.0) as usize;
-    let friction = if mu > 0.0 { Friction::Coulomb { mu } } else { Friction::Frictionless };
-    let mut spec = hertz_spec(0.01, 0.0, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
-    spec.obstacle.shape = ObstacleShape::Circle { center, radius: 1.0 };
-    if mu > 0.0 {
-        spec.obstacle.shift = 0.004;
-    }
+    let case = tribo_testkit::adaptive_hertz_case(center, mu)?;
+    let (spec, friction, coarse) = (case.spec, case.friction, case.coarse);
+    let (reference, rsol) = case.reference;
     let settings = SolverSettings::default();
-    let (x, y) = ([-2.0, 2.0], [-2.0, 0.0]);
-    let grading =
-        Grading { side: Side::Top, segment: [center - 0.1, center + 0.1], h_min: 1.5625e-4, h_max: 0.05, growth: 0.02 };
-    let reference = Problem::new(graded_rectangle(x, y, &grading)?, spec.clone())?;
-    let rsol = reference.solve(&friction, &settings, None)?;
     println!("reference: {} unknowns, {}", reference.n_free, rsol.report.status);
-    let coarse = Problem::new(rectangle(x, y, 8, 4, Diagonal::Right)?, spec.clone())?;
     let adapt = AdaptSettings { tol: 1e-4, max_unknowns: 80_000, ..AdaptSettings::default() };
     let run = coarse.solve_adaptive(&friction, &settings, &adapt, None)?;
     println!(

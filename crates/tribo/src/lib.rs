@@ -71,6 +71,13 @@
 //! * H. J. C. Barbosa, T. J. R. Hughes, *The finite element method with Lagrange multipliers on the
 //!   boundary: circumventing the Babuška–Brezzi condition*, Computer Methods in Applied Mechanics and
 //!   Engineering 85(1), 109–128, 1991: the stabilization.
+//! * The hierarchical traction estimate ([`Problem::estimate_hierarchical`]): R. E. Bank, A. Weiser, *Some a
+//!   posteriori error estimators for elliptic partial differential equations*, Mathematics of Computation
+//!   44(170), 283–301, 1985; R. E. Bank, R. K. Smith, *A posteriori error estimates based on hierarchical
+//!   bases*, SIAM Journal on Numerical Analysis 30(4), 921–935, 1993; W. Dörfler, R. H. Nochetto, *Small
+//!   data oscillation implies the saturation assumption*, Numerische Mathematik 91, 1–12, 2002; Q. Zou,
+//!   A. Veeser, R. Kornhuber, C. Gräser, *Hierarchical error estimates for the energy functional in obstacle
+//!   problems*, Numerische Mathematik 117, 653–677, 2011.
 //!
 //! ## Conventions
 //! Dofs are interleaved (x, y) per node; stresses are `(σ_xx, σ_yy, σ_xy)`; n is the outward normal on
@@ -124,7 +131,7 @@ pub use results::{ContactState, KktResiduals, Report, Solution, SolveStatus, Tim
 pub use settings::friction::{Friction, FrictionLaw, Threshold};
 pub use settings::{
     AdaptKeywords, AdaptSettings, Bisection, Condensation, FixedPointSettings, KktSolver, Marking, QpMethod,
-    QpSettings, SettingInfo, SettingKind, SettingValue, SolverSettings, Stabilization,
+    QpSettings, SettingInfo, SettingKind, SettingValue, SolverSettings, Stabilization, StopOn,
 };
 pub use solve::history::LoadStep;
 pub use solve::history::{History, StepObserver, StepProgress, StepRecord};
@@ -172,7 +179,7 @@ pub struct ReadmeDoctests;
 
 /// Every named choice of the keyword surface (the Python binding, scene files), by the keyword that takes
 /// it: `side`, `diagonal`, `space`, `friction`, `state` (in the order of [`Choice::code`]), `status`
-/// ([`SolveStatus::NAMES`]), `marking` ([`Marking`]), `bisection` ([`Bisection`]) and every choice among the solver settings ([`SolverSettings::table`]), each
+/// ([`SolveStatus::NAMES`]), `marking` ([`Marking`]), `bisection` ([`Bisection`]), `stop_on` ([`StopOn`]) and every choice among the solver settings ([`SolverSettings::table`]), each
 /// with its names as [`Choice::parse`] takes them.
 ///
 /// It lives here, above every module, because it names the option enums of all of them (`choice` sits
@@ -187,6 +194,7 @@ pub fn choice_registry() -> Vec<(&'static str, Vec<&'static str>)> {
         ("status", SolveStatus::NAMES.to_vec()),
         ("marking", Marking::names()),
         ("bisection", Bisection::names()),
+        ("stop_on", StopOn::names()),
     ];
     out.extend(SolverSettings::table().into_iter().filter_map(|info| match info.kind {
         SettingKind::Choice(names) => Some((info.name, names)),

@@ -8,7 +8,7 @@ use crate::error::{Error, Result};
 use crate::problem::Problem;
 use crate::results::Solution;
 use crate::settings::friction::Friction;
-use crate::settings::{AdaptSettings, SolverSettings};
+use crate::settings::{AdaptSettings, SolverSettings, StopOn};
 use crate::solve::history::{History, LoadStep};
 
 /// The result of an adaptive history: the problem on the last mesh, the history solved on it, and
@@ -46,6 +46,12 @@ impl Problem {
         observer: Option<LevelObserver<'_>>,
     ) -> Result<AdaptiveHistory> {
         self.check_adaptive(friction, settings, adapt)?;
+        if adapt.stop_on == StopOn::Hierarchical {
+            return Err(Error::BadSettingValue {
+                name: "adapt_stop_on",
+                what: "'hierarchical' is not yet available for a loading history: it stops on 'bound'".into(),
+            });
+        }
         if settings.keep_every != 1 {
             return Err(Error::BadSetting {
                 name: "keep_every",
@@ -79,7 +85,8 @@ impl Problem {
             }
         });
         let ended = |h: &History| (h.status, h.solutions.iter().map(|s| s.report.iterations).sum());
-        let (problem, history, levels, stop) = self.adapt_loop(settings, adapt, observer, &solve, &read, &ended)?;
+        let (problem, history, levels, stop) =
+            self.adapt_loop(settings, adapt, observer, &solve, &read, &ended, None)?;
         Ok(AdaptiveHistory { problem, history, levels, stop })
     }
 }

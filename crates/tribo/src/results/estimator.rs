@@ -88,7 +88,8 @@ pub const SUBDIVISIONS: usize = 8;
 const GAUSS3: [(f64, f64); 3] =
     [(-0.774_596_669_241_483_4, 5.0 / 9.0), (0.0, 8.0 / 9.0), (0.774_596_669_241_483_4, 5.0 / 9.0)];
 
-/// The totals of the estimate (each the square root of a sum of squares over the triangles).
+/// The totals of the estimate (each the square root of a sum of squares over the triangles), and the
+/// hierarchical traction estimate when it was computed.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ErrorEstimate {
     /// `η = (Σ_K η_K²)^{1/2}`.
@@ -107,11 +108,18 @@ pub struct ErrorEstimate {
     pub traction: f64,
     /// `ζ / min(‖λ_H‖, ‖σ_h n‖)` in L²(Γ_C) (NaN when λ_H = 0: nothing touches).
     pub traction_relative: f64,
+    /// `2 ‖λ_H − λ_f‖_{L²(Γ_C)}`, the hierarchical estimate of the traction error (λ_f the answer of the
+    /// problem enriched near the contact zone: [`crate::Problem::estimate_hierarchical`], which derives it).
+    /// Sharp where the bound ζ is pessimistic, but not a guaranteed bound. `None` unless it was computed
+    /// (by the adaptive loop with [`crate::settings::StopOn::Hierarchical`]; NaN by [`Self::named`]).
+    pub traction_hierarchical: Option<f64>,
+    /// `traction_hierarchical / ‖λ_f‖` in L²(Γ_C) (`None` unless computed).
+    pub traction_hierarchical_relative: Option<f64>,
 }
 
 impl ErrorEstimate {
-    /// Every total by name, in the order of the fields.
-    pub fn named(&self) -> [(&'static str, f64); 8] {
+    /// Every total by name, in the order of the fields (an estimate not computed is NaN).
+    pub fn named(&self) -> [(&'static str, f64); 10] {
         [
             ("total", self.total),
             ("bulk", self.bulk),
@@ -121,6 +129,8 @@ impl ErrorEstimate {
             ("energy_relative", self.energy_relative),
             ("traction", self.traction),
             ("traction_relative", self.traction_relative),
+            ("traction_hierarchical", self.traction_hierarchical.unwrap_or(f64::NAN)),
+            ("traction_hierarchical_relative", self.traction_hierarchical_relative.unwrap_or(f64::NAN)),
         ]
     }
 }
@@ -505,6 +515,7 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
         // ‖λ‖ estimated by the smaller of ‖λ_H‖ and ‖σ_h n‖: a checkerboard inflates ‖λ_H‖ and would
         // hide its own error behind it.
         traction_relative: if lambda_l2 > 0.0 { (zeta2 / lambda_l2.min(sigma_l2)).sqrt() } else { f64::NAN },
+        ..ErrorEstimate::default()
     };
     (eta, zeta, estimate)
 }

@@ -13,7 +13,7 @@ pub mod friction;
 mod stabilization;
 mod table;
 
-pub use adapt::{AdaptKeywords, AdaptSettings, Bisection, Marking};
+pub use adapt::{AdaptKeywords, AdaptSettings, Bisection, Marking, StopOn};
 pub use stabilization::Stabilization;
 pub use table::{SettingInfo, SettingKind, SettingValue};
 

@@ -100,6 +100,59 @@ fn bad_adaptive_settings_are_typed_errors() {
     }
 }
 
+/// Stopping on the hierarchical estimate (issue 36): from the 8 × 4 mesh that sees no contact at first,
+/// `tol` = 5 % and 2 % end on the tolerance with a true error (against the Hertz pressure) within
+/// [tol / 3, tol], as the issue asks, where the bound ends 10 to 30 times below tol with several times the
+/// unknowns. The answer carries the estimate it stopped on; a level where the loop did not compute it
+/// carries NaN and reads the bound.
+#[test]
+fn stopping_on_the_hierarchical_estimate_ends_near_the_asked_accuracy() {
+    let problem = off_centre_problem();
+    let (friction, settings) = (Friction::Frictionless, SolverSettings::default());
+    for tol in [0.05, 0.02] {
+        let adapt = AdaptSettings { tol, stop_on: StopOn::Hierarchical, max_unknowns: 200_000, ..Default::default() };
+        let sharp = problem.solve_adaptive(&friction, &settings, &adapt, None).expect("adapts");
+        let estimate = sharp.solution.report.estimate;
+        let last = sharp.levels.last().expect("levels");
+        assert_eq!(sharp.stop, AdaptStop::Tolerance);
+        let relative = estimate.traction_hierarchical_relative.expect("the answer carries the estimate");
+        assert!(relative <= tol && estimate.traction_hierarchical.is_some_and(|e| e > 0.0));
+        assert_eq!(last.relative, relative);
+        assert_eq!(last.estimate, estimate);
+        let skipped = sharp.levels.iter().filter(|l| l.estimate.traction_hierarchical_relative.is_none()).count();
+        assert!(skipped > 0, "the loop computes it only on the levels that need it");
+        for level in sharp.levels.iter().filter(|l| l.estimate.traction_hierarchical_relative.is_none()) {
+            let bound = level.estimate.traction_relative;
+            assert!(level.relative == bound || (bound.is_nan() && level.relative == level.estimate.energy_relative));
+        }
+        let error = hertz_error(&sharp.problem, &sharp.solution);
+        let bounded = AdaptSettings { stop_on: StopOn::Bound, ..adapt };
+        let safe = problem.solve_adaptive(&friction, &settings, &bounded, None).expect("adapts");
+        let safe_error = hertz_error(&safe.problem, &safe.solution);
+        println!(
+            "tol {tol}: hierarchical {error:.3e} ({} unknowns, estimate {:.3e}); bound {safe_error:.3e} ({} unknowns)",
+            sharp.problem.n_free, relative, safe.problem.n_free
+        );
+        assert!(error <= tol && error >= tol / 3.0, "tol {tol}: true error {error}");
+        assert!(safe_error < tol / 3.0 && safe.problem.n_free > 2 * sharp.problem.n_free, "{safe_error}");
+    }
+}
+
+/// A loading history does not stop on the hierarchical estimate yet: it says so, by name.
+#[test]
+fn a_history_refuses_the_hierarchical_stop() {
+    let (problem, mu) = tribo_testkit::block_problem(8, 2);
+    let steps = [LoadStep::new(0.01, 0.0)];
+    let adapt = AdaptSettings { stop_on: StopOn::Hierarchical, ..Default::default() };
+    let friction = Friction::Coulomb { mu };
+    match problem.solve_history_adaptive(&friction, &steps, &SolverSettings::default(), &adapt, &[], None) {
+        Err(Error::BadSettingValue { name, what }) => assert!(name == "adapt_stop_on" && what.contains("history")),
+        other => panic!("{other:?}"),
+    }
+    let named = AdaptKeywords { stop_on: Some("sharpest".into()), ..Default::default() };
+    assert!(matches!(AdaptSettings::from_keywords(named), Err(Error::UnknownChoice { .. })));
+}
+
 /// Coulomb friction, with coarse fixed points stopped at a tenth of the previous level's estimate and
 /// with every level converged to `fp_tol`: both stop on the tolerance, the answer handed back is
 /// converged to `fp_tol` in both, and the two answers are one: their λ_n, on meshes that differ by the

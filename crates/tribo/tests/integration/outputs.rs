@@ -208,6 +208,7 @@ fn the_choice_registry_lists_every_option() {
         "space",
         "state",
         "status",
+        "stop_on",
     ];
     assert_eq!(keys, expected);
     assert_eq!(registry["state"], ContactState::ALL.iter().map(|s| s.as_str()).collect::<Vec<_>>());
@@ -216,6 +217,7 @@ fn the_choice_registry_lists_every_option() {
     assert_eq!(registry["qp_method"], QpMethod::names());
     assert_eq!(registry["bisection"], ["all_edges", "refinement_edge"]);
     assert_eq!(registry["marking"], Marking::names());
+    assert_eq!(registry["stop_on"], ["bound", "hierarchical"]);
     for name in &registry["condensation"] {
         assert_eq!(Condensation::parse(name).map(Condensation::as_str), Ok(*name));
     }

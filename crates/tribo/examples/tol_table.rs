@@ -1,0 +1,77 @@
+//! Does `tol` mean what it says? (issue 36, item 2: the `tol` table)
+//!
+//! The Hertz block (E = 200, ν = 0.3, R = 1, δ = 0.01) with the cylinder at `CENTER`, frictionless or
+//! Coulomb (`MU` > 0, the obstacle shifted 0.004), solved by `solve_adaptive` from the 8 × 4 mesh with
+//! `tol` = 5 %, 2 %, 1 %, 0.5 %, stopping on the bound and on the hierarchical estimate. The true error is
+//! the relative L²(Γ_C) error of λ against a reference on a graded mesh of 466k unknowns (study 12's); every
+//! level of every run is solved again on its mesh to measure it. Printed per run: the asked X, the true error
+//! of the answer handed back and its ratio to X, the unknowns, the run's time (the sum of its levels'
+//! seconds, the hierarchical solves included), and the cheapest level of the same run whose true error is
+//! at most X with the time the run took to reach it; then, per level where the hierarchical estimate was
+//! computed, its effectivity (estimate over true error) beside the bound's.
+//!
+//! `cargo run --release -p tribo --example tol_table [CENTER] [MU]` (a few minutes: the reference solve and
+//! the re-solves of the levels are most of it).
+use tribo::adapt::multiplier_difference;
+use tribo::*;
+
+fn main() -> Result<()> {
+    let arg = |k: usize, default: f64| std::env::args().nth(k).and_then(|s| s.parse().ok()).unwrap_or(default);
+    let (center, mu) = (arg(1, 0.0), arg(2, 0.0));
+    let case = tribo_testkit::adaptive_hertz_case(center, mu)?;
+    let (spec, friction, coarse) = (case.spec, case.friction, case.coarse);
+    let (reference, rsol) = case.reference;
+    let settings = SolverSettings::default();
+    println!("reference: {} unknowns, {}", reference.n_free, rsol.report.status);
+    let true_error = |p: &Problem, s: &Solution| {
+        let (e, n) = multiplier_difference(p, s, &reference, &rsol);
+        e / n
+    };
+    println!(
+        "stop_on tol | true error  true/tol  unknowns  seconds | cheapest level reaching tol: unknowns seconds \
+         | time / cheapest | stop"
+    );
+    let mut effectivities = Vec::new();
+    for stop_on in [StopOn::Bound, StopOn::Hierarchical] {
+        for tol in [0.05, 0.02, 0.01, 0.005] {
+            let adapt = AdaptSettings { tol, stop_on, max_unknowns: 400_000, ..AdaptSettings::default() };
+            let run = coarse.solve_adaptive(&friction, &settings, &adapt, None)?;
+            let achieved = true_error(&run.problem, &run.solution);
+            let total: f64 = run.levels.iter().map(|l| l.seconds).sum();
+            let mut cheapest = None;
+            let mut elapsed = 0.0;
+            for level in &run.levels {
+                elapsed += level.seconds;
+                let mut s = spec.clone();
+                s.multiplier_points = MultiplierPoints::Abscissae(level.multiplier_mesh.clone());
+                let p = Problem::new(level.mesh.clone(), s)?;
+                let sol = p.solve(&friction, &settings, None)?;
+                let truth = true_error(&p, &sol);
+                if cheapest.is_none() && truth <= tol {
+                    cheapest = Some((level.unknowns, elapsed));
+                }
+                let e = &level.estimate;
+                let sharp =
+                    e.traction_hierarchical_relative.filter(|_| stop_on == StopOn::Hierarchical && tol == 0.005);
+                if let Some(sharp) = sharp {
+                    effectivities.push((level.unknowns, truth, sharp / truth, e.traction_relative / truth));
+                }
+            }
+            let (cn, ct) = cheapest.map_or((0, f64::NAN), |(n, t)| (n, t));
+            println!(
+                "{:>12} {tol:<5} | {achieved:.3e} {:>8.3} {:>9} {total:>8.3} | {cn:>9} {ct:>8.3} | {:>6.2} | {}",
+                stop_on.as_str(),
+                achieved / tol,
+                run.problem.n_free,
+                total / ct,
+                run.stop
+            );
+        }
+    }
+    println!("levels of the hierarchical run at tol 0.005 where it computed the estimate:");
+    println!("unknowns true-error hierarchical/true bound/true");
+    for (n, truth, h, b) in effectivities {
+        println!("{n:>8} {truth:.3e} {h:.3} {b:.2}");
+    }
+    Ok(())
+}
