@@ -210,7 +210,7 @@ class Problem(ProblemData):
     def _solve_adaptive(
         self,
         options: Mapping[str, Any],
-        a: tuple[float | None, int | None, float | None, str | None, str | None, int | None, float | None],
+        a: tuple[float | None, int | None, float | None, tuple[str | None, str | None, str | None], int | None, float | None],
         steps: npt.ArrayLike | None = None,
         on: list[int] = ...,
     ) -> tuple[

@@ -6,8 +6,10 @@ mesh is the refined one):
 
 * ``adapt.csv``: per level, the unknowns, multiplier dofs and triangles, the relative estimate the loop
   stops on (of the contact tractions, or of the energy while nothing touches), the estimate η with its
-  bulk, Γ_C, contact and friction parts, the level's seconds and status;
-* ``adapt.png``: the relative estimate and η against the unknowns (log-log), with the tolerance;
+  bulk, Γ_C, contact and friction parts, the traction bound and (where ``stop_on = "hierarchical"``
+  computed it) the hierarchical traction estimate, the level's seconds and status;
+* ``adapt.png``: the relative estimate, the bound and the hierarchical estimate, and η against the
+  unknowns (log-log), with the tolerance;
 * ``levels/level_NNN.vtu`` and ``adapt.pvd`` (``write_levels``): every level's mesh and solution, solved
   again to full tolerance (for a history: the whole history, its last step written), a series ParaView
   steps through.
@@ -41,7 +43,8 @@ def adapt_table(adaptive: Adaptive | AdaptiveHistory) -> dict[str, list[Any]]:
         "triangles": [x.triangles for x in lv],
         "relative": [x.relative for x in lv],
     }
-    for key in ("total", "bulk", "gamma_c", "contact", "friction", "traction_relative", "energy_relative"):
+    for key in ("total", "bulk", "gamma_c", "contact", "friction", "traction_relative", "energy_relative",
+                "traction_hierarchical_relative"):
         table[f"estimate_{key}"] = [x.estimate[key] for x in lv]
     table["seconds"] = [x.seconds for x in lv]
     table["status"] = [x.status for x in lv]
@@ -108,6 +111,11 @@ def write_adaptive(
         rel = np.array(table["relative"], dtype=float)
         ok = np.isfinite(rel)
         ax.loglog(n[ok], rel[ok], "o-", label="relative estimate (tractions, or energy)")
+        sharp = np.array(table["estimate_traction_hierarchical_relative"], dtype=float)
+        if np.any(np.isfinite(sharp)):
+            bound = np.array(table["estimate_traction_relative"], dtype=float)
+            ax.loglog(n, bound, "^:", ms=4, label="traction bound")
+            ax.loglog(n, sharp, "D", ms=5, label="traction, hierarchical")
         eta = np.array(table["estimate_total"], dtype=float)
         if np.any(eta > 0):
             ax.loglog(n, eta / eta[eta > 0][0] * (rel[ok][0] if np.any(ok) else 1.0), "s--", ms=3,

@@ -95,7 +95,8 @@ COLUMNS: dict[str, str] = {
     "pressure oscillates (the checkerboard of γ0 = 0 with T_H finer than the FE edges)",
     "unknowns": "free displacement dofs",
     "multipliers": "multiplier dofs",
-    "traction_estimate": "the relative a posteriori estimate of the error in the contact tractions",
+    "traction_estimate": "the relative a posteriori estimate of the error in the contact tractions (the bound)",
+    "traction_hierarchical": "the hierarchical one, where an [adapt] stop_on = \"hierarchical\" computed it",
     "energy_estimate": "the relative a posteriori estimate of the energy error",
     "seconds": "wall time of the case on its worker (build, solve and outputs)",
     "warnings": "the scene warnings of the run (tribo.checks), joined by ' | '",
@@ -326,6 +327,7 @@ def _row(summary: Mapping[str, Any], solution: Any) -> dict[str, Any]:
         "unknowns": summary["n_free"],
         "multipliers": summary["n_multipliers"],
         "traction_estimate": est.get("traction_relative"),
+        "traction_hierarchical": est.get("traction_hierarchical_relative"),
         "energy_estimate": est.get("energy_relative"),
         "warnings": " | ".join(summary["warnings"]),
     }

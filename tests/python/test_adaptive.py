@@ -76,6 +76,22 @@ def test_an_unknown_marking_or_bisection_is_refused() -> None:
     assert e.value.kind == "UnknownChoice"  # type: ignore[attr-defined]
 
 
+def test_stopping_on_the_hierarchical_estimate_reports_it() -> None:
+    """``stop_on='hierarchical'`` (issue 36): the loop stops on the hierarchical estimate, which the answer
+    and the last level carry (NaN on the levels where the loop did not compute it, and always with the
+    bound), and ends on fewer unknowns than the bound at the same tol; an unknown name is refused."""
+    out = off_centre().solve_adaptive(tol=0.05, stop_on="hierarchical")
+    est = out.solution.report.estimate
+    assert out.stop == "tolerance" and 0 < est["traction_hierarchical_relative"] <= 0.05
+    assert est["traction_hierarchical"] > 0 and out.levels[-1].relative == est["traction_hierarchical_relative"]
+    assert np.isnan(out.levels[0].estimate["traction_hierarchical_relative"])
+    bound = off_centre().solve_adaptive(tol=0.05)
+    assert np.isnan(bound.solution.report.estimate["traction_hierarchical_relative"])
+    assert bound.problem.n_free > 2 * out.problem.n_free
+    with pytest.raises(tribo.SettingsError, match="hierarchical"):
+        off_centre().solve_adaptive(stop_on="sharpest")  # type: ignore[arg-type]
+
+
 def test_all_edge_bisection_takes_fewer_levels_to_the_same_tolerance() -> None:
     """Both bisections reach the tolerance; all three edges of a marked triangle (the default) grows each level
     more, so the loop needs fewer levels (the shapes of the children are checked in the core's tests)."""

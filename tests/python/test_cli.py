@@ -56,7 +56,8 @@ def test_demo_scene_runs_in_process(tmp_path: Path, capsys: pytest.CaptureFixtur
     summary = json.loads((tmp_path / "demo" / "summary.json").read_text())
     assert summary["status"] == "converged" and summary["friction"] == "coulomb"
     assert summary["states"]["stick"] >= 20 and summary["states"]["slip"] > 0
-    assert summary["estimate"]["traction_relative"] <= 0.1 and (tmp_path / "demo" / "adapt.csv").is_file()
+    est = summary["estimate"]
+    assert est["traction_hierarchical_relative"] <= 0.01 < est["traction_relative"] and (tmp_path / "demo" / "adapt.csv").is_file()
     assert summary["kkt_max"] < 1e-6 and summary["normal_force"] > 0
     for name in ("contact.csv", "result.vtu", "result_contact.vtu", "contact_normal.png", "von_mises.png"):
         assert (tmp_path / "demo" / name).stat().st_size > 0
@@ -68,7 +69,8 @@ def test_demo_scene_is_the_documented_one() -> None:
     assert s.solve_kwargs()["mu"] == 0.3
     assert s.get("obstacle", "radius") == 1.0 and s.get("obstacle", "approach") == 0.01
     assert s.get("obstacle", "shift") == 0.004 and s.get("discretization", "h_min") == 0.01
-    assert s.get("discretization", "gamma0_fraction") == 0.5 and s.get("adapt", "tol") == 0.1
+    assert s.get("discretization", "gamma0_fraction") == 0.5 and s.get("adapt", "tol") == 0.01
+    assert s.get("adapt", "stop_on") == "hierarchical"
 
 
 def test_run_scene_subprocess(tmp_path: Path) -> None:
@@ -351,7 +353,9 @@ def test_run_reports_the_estimated_error(tmp_path: Path, capsys: pytest.CaptureF
     assert printed, "the run prints the traction estimate"
     summary = json.loads((tmp_path / "o" / "summary.json").read_text(), parse_constant=lambda c: pytest.fail(c))
     est = summary["estimate"]
-    assert set(est) == {"total", "bulk", "gamma_c", "contact", "friction", "energy_relative", "traction", "traction_relative"}
+    assert set(est) == {"total", "bulk", "gamma_c", "contact", "friction", "energy_relative", "traction", "traction_relative",
+                        "traction_hierarchical", "traction_hierarchical_relative"}
+    assert est["traction_hierarchical"] is None  # computed only when asked (an adaptive run with stop_on)
     assert est["total"] ** 2 == pytest.approx(est["bulk"] ** 2 + est["gamma_c"] ** 2 + est["contact"] ** 2 + est["friction"] ** 2)
     assert float(printed.group(1)) == pytest.approx(100 * est["traction_relative"], rel=0.05)
     problem, solution = load_scene(path).solve()
@@ -433,6 +437,31 @@ def test_a_tolerance_not_reached_is_said(tmp_path: Path, capsys: pytest.CaptureF
     (warning,) = [w for w in summary["warnings"] if "adaptive loop" in w]
     assert "max_unknowns" in warning and "adapt.tol = 1e-06" in warning and f"{relative:.3g}" in warning
     assert f"tribo: warning: {warning}" in err
+
+
+def test_run_stops_on_the_hierarchical_estimate_and_says_which(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """``[adapt] stop_on = "hierarchical"``: the run prints the hierarchical estimate and the bound, each
+    named; summary.json and adapt.csv carry both; a name that is not an option is a SceneError."""
+    import csv
+
+    path = tmp_path / "a.toml"
+    path.write_text(ADAPT_SCENE + 'stop_on = "hierarchical"\n', encoding="utf-8")
+    assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 0
+    printed = re.search(r"estimated error: ([0-9.e+-]+) % in the contact tractions \(L2 of Γ_C; hierarchical, sharp "
+                        r"but not a bound; the bound: ([0-9.e+-]+) %\)", capsys.readouterr().out)
+    assert printed, "the run names the estimate it prints"
+    est = json.loads((tmp_path / "o" / "summary.json").read_text())["estimate"]
+    assert float(printed.group(1)) == pytest.approx(100 * est["traction_hierarchical_relative"], rel=0.05)
+    assert float(printed.group(2)) == pytest.approx(100 * est["traction_relative"], rel=0.05)
+    assert est["traction_hierarchical_relative"] <= 0.05 < est["traction_relative"]
+    with (tmp_path / "o" / "adapt.csv").open(encoding="utf-8") as f:
+        f.readline()
+        rows = list(csv.DictReader(f))
+    assert float(rows[-1]["estimate_traction_hierarchical_relative"]) == pytest.approx(est["traction_hierarchical_relative"])
+    assert rows[0]["estimate_traction_hierarchical_relative"] == "nan"
+    path.write_text(ADAPT_SCENE + 'stop_on = "sharpest"\n', encoding="utf-8")
+    with pytest.raises(SceneError, match="adapt.stop_on"):
+        load_scene(path)
 
 
 def test_run_adapts_a_history(tmp_path: Path) -> None:
