@@ -33,7 +33,8 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import studylib as sl  # noqa: E402
 
-from tribo.cli import main as tribo_main, run_scene  # noqa: E402
+from tribo.cli import main as tribo_main  # noqa: E402
+from tribo.run import run_scene  # noqa: E402
 from tribo.scene import parse_scene, read_scene_data, scene_path  # noqa: E402
 from tribo.sweep import cases, sweep  # noqa: E402
 

@@ -5,7 +5,7 @@ The cases are the product of the axes; axes given as ``zipped`` move together (e
 factor of that product. Every case is checked against the scene schema before anything runs, so a typo is
 one ``SceneError`` naming the key, not a hundred failed cases.
 
-Each case runs ``tribo.cli.run_scene`` (what ``tribo run`` runs) on a Dask worker and becomes one row of a
+Each case runs ``tribo.run.run_scene`` (what ``tribo run`` runs) on a Dask worker and becomes one row of a
 table: the axes, then status, failure reason, iterations, forces, the extents of the contact and stick
 zones, the largest KKT residual, unknowns, seconds, the estimated errors (see ``COLUMNS``): of the solve,
 of the last step of a ``[history]`` scene, of the last level of an ``[adapt]`` one, as ``tribo run``'s
@@ -64,6 +64,7 @@ import numpy as np
 
 from tribo._tribo import TriboError, __version__
 from tribo.io import write_text_atomic
+from tribo.run import run_scene
 from tribo.scene import SceneError, parse_scene, read_scene_data
 
 if TYPE_CHECKING:  # pragma: no cover - types only
@@ -340,7 +341,6 @@ def run_case(
     with ``files``). Returns ``{"row": …, "summary": …}``; a failure is a row with status ``error``."""
     # faer's parallel factorizations use rayon's global pool, sized from this on the first solve of the process.
     os.environ.setdefault("RAYON_NUM_THREADS", str(threads))
-    from tribo.cli import run_scene  # the command line's run: imported here, the CLI imports this module
 
     out = Path(case_dir)
     clock = time.perf_counter()

@@ -308,12 +308,12 @@ def test_cli_ctrl_c_ends_with_one_line(
 ) -> None:
     """A KeyboardInterrupt (here from the progress callback, as Ctrl-C during a solve arrives) is not an
     internal error: one line, exit code 130."""
-    import tribo.cli
+    import tribo.run
 
     def interrupt(*args: object) -> None:
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(tribo.cli, "_progress", interrupt)
+    monkeypatch.setattr(tribo.run, "_progress", interrupt)
     path = tmp_path / "coulomb.toml"
     path.write_text(SCENE.replace("threshold = 0.2", "mu = 0.3"))
     assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 130
@@ -328,12 +328,12 @@ class PanicException(BaseException):
 def test_cli_internal_errors_give_one_line(
     tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch, exception: BaseException
 ) -> None:
-    import tribo.cli
+    import tribo.run
 
     def fail(*args: object) -> None:
         raise exception
 
-    monkeypatch.setattr(tribo.cli, "write_contact_csv", fail)
+    monkeypatch.setattr(tribo.run, "write_contact_csv", fail)
     path = tmp_path / "good.toml"
     path.write_text(SCENE)
     assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 2
