@@ -367,6 +367,7 @@ class Problem(_tribo.Problem):
         bisection: Literal["all_edges", "refinement_edge"] | None = None,
         max_levels: int | None = None,
         algebraic: float | None = None,
+        stop_on: Literal["bound", "hierarchical"] | None = None,
         friction: _Law | None = None,
         mu: float | None = None,
         threshold: float | npt.ArrayLike | None = None,
@@ -381,7 +382,8 @@ class Problem(_tribo.Problem):
         steps ``on`` (0-based indices; default all) are; the loop stops when the largest relative estimate
         over those steps is at most ``tol``. Returns an AdaptiveHistory with the ``history`` on the last
         mesh, its ``problem``, every level (each with the estimate of its worst step) and the stop reason.
-        The adaptive keywords are those of ``solve_adaptive``. Levels start their steps from rest, as a
+        The adaptive keywords are those of ``solve_adaptive``, but a history stops on the bound: ``stop_on=
+        'hierarchical'`` is a SettingsError naming ``adapt_stop_on``. Levels start their steps from rest, as a
         history does, not from the previous level.
         """
         steps = self._steps(approach, shift, load_factor, displacements)
@@ -389,7 +391,7 @@ class Problem(_tribo.Problem):
             "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
             "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
         }
-        adapt = (tol, max_unknowns, theta, (marking, bisection, None), max_levels, algebraic)
+        adapt = (tol, max_unknowns, theta, (marking, bisection, stop_on), max_levels, algebraic)
         history, problem, levels, stop, meshes = self._adapt(options, adapt, steps, list(on or []))
         return AdaptiveHistory(
             history=self._history(steps, history), problem=problem, levels=levels, stop=stop, meshes=meshes  # type: ignore[arg-type]

@@ -100,8 +100,10 @@ class Report(_Record):
         estimate: the a posteriori error estimate (see ``Solution.estimator``): ``total`` η and its parts
             ``bulk``, ``gamma_c``, ``contact``, ``friction`` (each the root of a sum of squares over the
             triangles, in stress × length), ``energy_relative`` (η / (E* a(u_h, u_h))^½), ``traction``
-            (ζ, the estimate of ‖λ − λ_H‖ in L²(Γ_C)) and ``traction_relative`` (ζ / ‖λ_H‖, NaN when
-            nothing touches). Empty for a report built without one.
+            (ζ, the estimate of ‖λ − λ_H‖ in L²(Γ_C), a bound) and ``traction_relative`` (ζ / ‖λ_H‖, NaN
+            when nothing touches); ``traction_hierarchical`` and ``traction_hierarchical_relative``, the
+            hierarchical estimate 2‖λ_H − λ_f‖ and its ratio to ‖λ_f‖ (sharp but not a bound; NaN unless an
+            adaptive solve with ``stop_on='hierarchical'`` computed it). Empty for a report built without one.
     """
 
     status: Status

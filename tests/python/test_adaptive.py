@@ -92,6 +92,15 @@ def test_stopping_on_the_hierarchical_estimate_reports_it() -> None:
         off_centre().solve_adaptive(stop_on="sharpest")  # type: ignore[arg-type]
 
 
+def test_a_history_refuses_the_hierarchical_stop() -> None:
+    """A loading history stops on the bound: ``stop_on='hierarchical'`` is a SettingsError naming the setting
+    (it was a TypeError, reported by ``tribo run`` as an internal error); ``'bound'`` is accepted."""
+    with pytest.raises(tribo.SettingsError, match="adapt_stop_on"):
+        off_centre().solve_history_adaptive(0.01, [0.0, 0.001], mu=0.3, tol=0.5, stop_on="hierarchical")
+    out = off_centre().solve_history_adaptive(0.01, [0.0, 0.001], mu=0.3, tol=0.5, stop_on="bound")
+    assert out.stop in ("tolerance", "max_unknowns") and len(out.history) == 2
+
+
 def test_all_edge_bisection_takes_fewer_levels_to_the_same_tolerance() -> None:
     """Both bisections reach the tolerance; all three edges of a marked triangle (the default) grows each level
     more, so the loop needs fewer levels (the shapes of the children are checked in the core's tests)."""

@@ -30,7 +30,7 @@ use crate::error::Result;
 use crate::mesh::refine::bisect;
 use crate::problem::Problem;
 use crate::results::Solution;
-use crate::results::SolveStatus;
+use crate::results::{ContactState, SolveStatus};
 use crate::settings::friction::{Friction, Threshold};
 use crate::settings::{Bisection, SolverSettings};
 
@@ -83,13 +83,14 @@ pub fn multiplier_difference(a: &Problem, sa: &Solution, b: &Problem, sb: &Solut
     (diff.sqrt(), norm.sqrt())
 }
 
-/// The triangles within `width` of the contact zone of `solution` (the span of T_H cells where λ_n ≠ 0),
-/// the distance taken from a triangle's nearest vertex to that segment of the Γ_C line. All triangles
-/// when `width` is infinite; none when nothing touches.
+/// The triangles within `width` of the contact zone of `solution` (the span of the multiplier dofs not in
+/// separation), the distance taken from a triangle's nearest vertex to that segment of the Γ_C line. All
+/// triangles when `width` is infinite; none when nothing touches.
 pub fn near_contact(problem: &Problem, solution: &Solution, width: f64) -> Vec<usize> {
     let m = &problem.multipliers;
     let dofs = m.dof_abscissae();
-    let touching: Vec<f64> = dofs.iter().zip(&solution.lambda_n).filter(|(_, l)| **l != 0.0).map(|(x, _)| *x).collect();
+    let touching: Vec<f64> =
+        dofs.iter().zip(&solution.states).filter(|(_, c)| **c != ContactState::Separation).map(|(x, _)| *x).collect();
     let (Some(lo), Some(hi)) = (touching.iter().copied().reduce(f64::min), touching.iter().copied().reduce(f64::max))
     else {
         return Vec::new();
@@ -109,11 +110,11 @@ pub fn near_contact(problem: &Problem, solution: &Solution, width: f64) -> Vec<u
         .collect()
 }
 
-/// The width of the contact zone of `solution` (the span of the multiplier dofs where λ_n ≠ 0), 0 when
-/// nothing touches.
+/// The width of the contact zone of `solution` (the span of the multiplier dofs not in separation,
+/// [`Solution::states`]: an interior-point answer has no exact zeros), 0 when nothing touches.
 pub fn contact_width(problem: &Problem, solution: &Solution) -> f64 {
     let dofs = problem.multipliers.dof_abscissae();
-    let touching = dofs.iter().zip(&solution.lambda_n).filter(|(_, l)| **l != 0.0).map(|(x, _)| *x);
+    let touching = dofs.iter().zip(&solution.states).filter(|(_, c)| **c != ContactState::Separation).map(|(x, _)| *x);
     touching.clone().reduce(f64::max).zip(touching.reduce(f64::min)).map_or(0.0, |(hi, lo)| hi - lo)
 }
 

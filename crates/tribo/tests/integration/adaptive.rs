@@ -138,6 +138,31 @@ fn stopping_on_the_hierarchical_estimate_ends_near_the_asked_accuracy() {
     }
 }
 
+/// A Coulomb loop stopping on the hierarchical estimate that hits `max_unknowns` hands back the level it
+/// estimated, with the estimate: that level's answer was converged to `fp_tol` before its enriched solve, so
+/// it is not solved again (which dropped the estimate). The observer heard the level that is handed back.
+#[test]
+fn a_stop_on_max_unknowns_keeps_the_hierarchical_estimate() {
+    let problem = off_centre_problem();
+    let (friction, settings) = (Friction::Coulomb { mu: 0.3 }, SolverSettings::default());
+    let adapt = AdaptSettings { tol: 1e-4, stop_on: StopOn::Hierarchical, max_unknowns: 15_000, ..Default::default() };
+    let mut heard = Vec::new();
+    let mut observer = |level: &Level| {
+        heard.push(level.estimate);
+        std::ops::ControlFlow::Continue(())
+    };
+    let out = problem.solve_adaptive(&friction, &settings, &adapt, Some(&mut observer)).expect("adapts");
+    assert_eq!(out.stop, AdaptStop::MaxUnknowns);
+    let last = out.levels.last().expect("levels");
+    let sharp = last.estimate.traction_hierarchical_relative;
+    println!("{} levels, last {} unknowns, hierarchical {sharp:?}", out.levels.len(), last.unknowns);
+    assert!(sharp.is_some(), "the last level (4 times the unknowns of the one before it estimated) is estimated");
+    assert_eq!(out.solution.report.estimate, last.estimate, "the answer carries the level's estimate");
+    assert_eq!(heard.last(), Some(&last.estimate), "the observer heard the level handed back");
+    let bound = Solution::accuracy_bound(settings.qp.tol, out.solution.report.qp_inaccurate, settings.fp.tol);
+    assert!(out.solution.kkt.max() <= bound, "converged to fp_tol: {:?}", out.solution.kkt);
+}
+
 /// A loading history does not stop on the hierarchical estimate yet: it says so, by name.
 #[test]
 fn a_history_refuses_the_hierarchical_stop() {
