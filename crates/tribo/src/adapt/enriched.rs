@@ -88,11 +88,7 @@ pub fn multiplier_difference(a: &Problem, sa: &Solution, b: &Problem, sb: &Solut
 /// triangles when `width` is infinite; none when nothing touches.
 pub fn near_contact(problem: &Problem, solution: &Solution, width: f64) -> Vec<usize> {
     let m = &problem.multipliers;
-    let dofs = m.dof_abscissae();
-    let touching: Vec<f64> =
-        dofs.iter().zip(&solution.states).filter(|(_, c)| **c != ContactState::Separation).map(|(x, _)| *x).collect();
-    let (Some(lo), Some(hi)) = (touching.iter().copied().reduce(f64::min), touching.iter().copied().reduce(f64::max))
-    else {
+    let Some((lo, hi)) = touching_span(problem, solution) else {
         return Vec::new();
     };
     // The zone reaches the neighbouring T_H points (a P1 multiplier is not zero up to them).
@@ -110,12 +106,18 @@ pub fn near_contact(problem: &Problem, solution: &Solution, width: f64) -> Vec<u
         .collect()
 }
 
-/// The width of the contact zone of `solution` (the span of the multiplier dofs not in separation,
-/// [`Solution::states`]: an interior-point answer has no exact zeros), 0 when nothing touches.
-pub fn contact_width(problem: &Problem, solution: &Solution) -> f64 {
+/// The first and last abscissae of the multiplier dofs of `solution` not in separation
+/// ([`Solution::states`]: an interior-point answer has no exact zeros), `None` when nothing touches.
+fn touching_span(problem: &Problem, solution: &Solution) -> Option<(f64, f64)> {
     let dofs = problem.multipliers.dof_abscissae();
-    let touching = dofs.iter().zip(&solution.states).filter(|(_, c)| **c != ContactState::Separation).map(|(x, _)| *x);
-    touching.clone().reduce(f64::max).zip(touching.reduce(f64::min)).map_or(0.0, |(hi, lo)| hi - lo)
+    let touching = dofs.iter().zip(&solution.states).filter(|(_, c)| **c != ContactState::Separation);
+    touching.fold(None, |span, (&x, _)| Some(span.map_or((x, x), |(lo, hi): (f64, f64)| (lo.min(x), hi.max(x)))))
+}
+
+/// The width of the contact zone of `solution` (the span of the multiplier dofs not in separation), 0 when
+/// nothing touches.
+pub fn contact_width(problem: &Problem, solution: &Solution) -> f64 {
+    touching_span(problem, solution).map_or(0.0, |(lo, hi)| hi - lo)
 }
 
 impl Problem {

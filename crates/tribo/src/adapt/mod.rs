@@ -41,10 +41,10 @@
 //! With [`StopOn::Hierarchical`] the tolerance is read against the hierarchical estimate
 //! ([`Problem::estimate_hierarchical`], `2 ‖λ_H − λ_f‖ / ‖λ_f‖`) where it was computed, and against the
 //! bound elsewhere (a level whose bound, above the true error, is already below `tol` stops too). It
-//! tracks the true error where the bound grows pessimistic, but costs a solve of about 2.6 times the level's unknowns. It is computed on a
-//! level whose answer converged, with at least [`MIN_IN_CONTACT`] multiplier dofs in contact (not in
-//! separation, [`crate::Solution::states`]; below, the
-//! enriched mesh may still place the contact edge in the wrong cell), and only where it may be near `tol`:
+//! tracks the true error where the bound grows pessimistic, but costs a solve of about 2.6 times the
+//! level's unknowns. It is computed on a level whose answer converged, with at least [`MIN_IN_CONTACT`]
+//! multiplier dofs in contact (not in separation, [`crate::Solution::states`]; below, the enriched mesh
+//! may still place the contact edge in the wrong cell), and only where it may be near `tol`:
 //! on the first such level, then where the bound times the last measured ratio of the two estimates is at
 //! most 3 `tol` (the bound's pessimism grows from level to level: on adaptive Hertz about 1.4 times per
 //! level below 2000 unknowns, 1.1 times beyond), or where the unknowns have grown fourfold since it was
@@ -79,7 +79,7 @@ use crate::results::{ContactState, ErrorEstimate, Solution, SolveStatus};
 use crate::settings::friction::Friction;
 use crate::settings::{AdaptSettings, SolverSettings, StopOn};
 
-/// The fewest multiplier dofs in contact (λ_n > 0) on which the adaptive loop computes the hierarchical
+/// The fewest multiplier dofs in contact (not in separation) on which the adaptive loop computes the hierarchical
 /// estimate: the threshold from which issue 36 asks for its effectivity, and below which the enrichment
 /// of a coarse contact zone is unreliable (study 12).
 pub const MIN_IN_CONTACT: usize = 10;
