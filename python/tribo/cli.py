@@ -70,6 +70,11 @@ def _percent(x: float) -> str:
     return f"{100 * x:.2g} %" if math.isfinite(x) else "n/a"
 
 
+# The quantities that carry error bars, as `tribo run` names them, and their Solution attributes.
+_BARS = (("P", "normal_force"), ("Q", "tangential_force"), ("contact width", "contact_width"),
+         ("stick width", "stick_width"))
+
+
 def _run(scene_path: Path, out: Path, plots: bool) -> int:
     if out.exists() and not out.is_dir():
         return _error(f"--out {out} exists and is not a directory")
@@ -89,6 +94,10 @@ def _run(scene_path: Path, out: Path, plots: bool) -> int:
         f"max KKT residual {solution.kkt_max:.2e}"
     )
     est = r.estimate
+    bars = [(name, getattr(solution, key), est.get(f"{key}_error", math.nan)) for name, key in _BARS]
+    if all(math.isfinite(bar) for _, _, bar in bars):
+        shown = ", ".join(f"{name} = {value:.6g} ± {bar:.2g}" for name, value, bar in bars)
+        print(f"  {shown} (error bars: twice the change under enrichment, sharp but not bounds)")
     sharp = est.get("traction_hierarchical_relative", math.nan)
     traction = (f"{_percent(sharp)} in the contact tractions (L2 of Γ_C; hierarchical, sharp but not a bound; "
                 f"the bound: {_percent(est['traction_relative'])}), " if math.isfinite(sharp) else

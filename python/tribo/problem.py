@@ -225,6 +225,7 @@ class Problem(_tribo.Problem):
         gamma0: float | None = None,
         gamma0_fraction: float | None = None,
         check_gamma0: bool = True,
+        error_bars: bool = False,
         progress: ProgressCallback | None = None,
         on_phase: PhaseCallback | None = None,
         **settings: Any,
@@ -240,6 +241,15 @@ class Problem(_tribo.Problem):
         qp_kkt_solver, qp_working_set, qp_method, fp_tol, fp_max_iter, fp_relaxation, memory_budget,
         condensation, keep_every); unset ones take the core's defaults.
 
+        ``error_bars=True`` also solves the problem enriched on the whole mesh (every triangle bisected,
+        T_H halved: about 4 times the unknowns) and adds to ``report.estimate`` the hierarchical traction
+        estimate and the error bars of the normal and tangential forces and of the widths of the contact and
+        stick zones (``normal_force_error``, ``tangential_force_error``, ``contact_width_error``,
+        ``stick_width_error``: estimated absolute errors, twice the change under the enrichment; sharp, but
+        not guaranteed bounds; the crate documentation of ``tribo::adapt::enriched`` derives them and
+        ``docs/error_bars.md`` measures them). They stay NaN without ``error_bars`` and when the solve or the
+        enriched solve did not converge.
+
         ``progress``, if given, is called as progress(iteration, change, qp_iterations, qp_seconds) after
         every QP; returning False (any false value but None: 0, ``numpy.False_``) stops the solve (status
         'interrupted', with the last iterate), raising
@@ -250,8 +260,8 @@ class Problem(_tribo.Problem):
         """
         return Solution.from_dict(self._solve({
             "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
-            "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress,
-            "on_phase": on_phase, **settings,
+            "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "error_bars": error_bars,
+            "progress": progress, "on_phase": on_phase, **settings,
         }))
 
     def solve_history(

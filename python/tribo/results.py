@@ -103,7 +103,10 @@ class Report(_Record):
             (ζ, the estimate of ‖λ − λ_H‖ in L²(Γ_C), a bound) and ``traction_relative`` (ζ / ‖λ_H‖, NaN
             when nothing touches); ``traction_hierarchical`` and ``traction_hierarchical_relative``, the
             hierarchical estimate 2‖λ_H − λ_f‖ and its ratio to ‖λ_f‖ (sharp but not a bound; NaN unless an
-            adaptive solve with ``stop_on='hierarchical'`` computed it). Empty for a report built without one.
+            adaptive solve with ``stop_on='hierarchical'`` or ``solve(error_bars=True)`` computed it); from the
+            same enriched solve, the error bars ``normal_force_error``, ``tangential_force_error``,
+            ``contact_width_error`` and ``stick_width_error`` (estimated absolute errors of those quantities
+            of the Solution, NaN unless computed). Empty for a report built without one.
     """
 
     status: Status
@@ -173,6 +176,10 @@ class Solution(_Record):
         tangential_force: total tangential contact force ∫ λ_t (the obstacle pulls the body by
             −tangential_force along t).
         max_penetration: largest pointwise penetration max(u_n − g)₊ over the FE nodes of Γ_C.
+        contact_width: the width of the contact zone: from the first to the last multiplier dof in contact,
+            each end placed midway to the neighbouring dof in separation (or at the end of Γ_C); 0 when
+            nothing touches. ``report.estimate["contact_width_error"]`` is its error bar when computed.
+        stick_width: the same for the dofs that stick (0 when none does).
         kkt: dimensionless discrete KKT residuals of (3.1): equilibrium, normal_sign, non_penetration,
             normal_complementarity, friction_bound, stick, slip_direction.
         report: the report of the solve.
@@ -220,6 +227,8 @@ class Solution(_Record):
     traction_estimator: _Floats = dataclasses.field(default_factory=lambda: np.zeros(0))
     nodal_stress: _Floats = dataclasses.field(default_factory=lambda: np.zeros((0, 3)))
     nodal_von_mises: _Floats = dataclasses.field(default_factory=lambda: np.zeros(0))
+    contact_width: float = math.nan
+    stick_width: float = math.nan
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Solution:

@@ -106,6 +106,8 @@ def summary(
         "normal": [v + 0.0 for v in problem.contact_normal],
         "tangent": [v + 0.0 for v in problem.contact_tangent],
         "max_penetration": solution.max_penetration,
+        "contact_width": solution.contact_width,
+        "stick_width": solution.stick_width,
         "states": {name: states.count(name) for name in ("separation", "stick", "slip")},
         "kkt": solution.kkt,
         "kkt_max": solution.kkt_max,
@@ -232,6 +234,9 @@ def run_scene(
         elif scene.has_adapt:
             adaptive = run_adaptive(scene, problem)
             problem, solution, adapt_stop = adaptive.problem, adaptive.solution, adaptive.stop
+            if scene.get("estimate", "error_bars", False):
+                log.info("solving the last level again with its error bars")
+                solution = problem.solve(error_bars=True, **scene.solve_kwargs())
             history_files = []
             if fields:
                 history_files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)

@@ -255,7 +255,8 @@ class Scene:
         probably not what the scene meant (nothing touches, few multiplier dofs in contact, a large
         approach: ``tribo.checks``) emits a ``SceneWarning``."""
         problem = problem if problem is not None else self.build()
-        solution = problem.solve(progress=progress, on_phase=on_phase, **self.solve_kwargs())
+        bars = bool(self.get("estimate", "error_bars", False))
+        solution = problem.solve(progress=progress, on_phase=on_phase, error_bars=bars, **self.solve_kwargs())
         warn_solution(problem, solution, stacklevel=2)
         return problem, solution
 

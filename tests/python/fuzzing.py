@@ -94,6 +94,8 @@ def assert_honest(s: tribo.Solution) -> None:
         "max_penetration": s.max_penetration,
         "normal_force": s.normal_force,
         "tangential_force": s.tangential_force,
+        "contact_width": s.contact_width,
+        "stick_width": s.stick_width,
         **{f"kkt[{k}]": v for k, v in s.kkt.items()},
     }
     bad += [name for name, v in scalars.items() if not np.isfinite(v)]

@@ -114,6 +114,26 @@ def test_coulomb_stick_and_slip(hertz: tribo.Problem) -> None:
     np.testing.assert_array_equal(again.lambda_t, s.lambda_t)
 
 
+def test_error_bars_only_when_asked_and_equal_to_the_core(hertz: tribo.Problem) -> None:
+    """``error_bars=True`` adds the bars of P, Q and the zone widths to the estimate (the core's numbers:
+    ``crates/tribo/tests/integration/error_bars.rs`` checks them against a finer mesh); the answer itself is
+    the plain solve's; without it they are NaN. The widths are read from the states."""
+    plain, barred = hertz.solve(mu=0.3), hertz.solve(mu=0.3, error_bars=True)
+    np.testing.assert_array_equal(plain.lambda_n, barred.lambda_n)
+    keys = ("normal_force_error", "tangential_force_error", "contact_width_error", "stick_width_error")
+    assert all(np.isnan(plain.report.estimate[k]) for k in keys)
+    assert np.isnan(plain.report.estimate["traction_hierarchical"])
+    assert all(barred.report.estimate[k] > 0 for k in (*keys, "traction_hierarchical"))
+    # The bars are small next to the quantities (the mesh is fine enough to read them), and a width's bar is
+    # at least half the spacing of the multiplier dofs at each of its ends.
+    assert barred.report.estimate["normal_force_error"] < 0.1 * barred.normal_force
+    assert 0 < barred.stick_width < barred.contact_width < 1.0
+    x = barred.multiplier_abscissae
+    inside = x[barred.states != 0]
+    assert inside.min() - barred.contact_width / 2 < 0 < inside.max() + barred.contact_width / 2
+    assert barred.report.estimate["contact_width_error"] >= 0.5 * np.diff(x).min()
+
+
 def test_coulomb_mu_zero_is_frictionless(hertz: tribo.Problem) -> None:
     s = hertz.solve(mu=0.0)
     assert s.friction == "frictionless" and s.report.iterations == 0

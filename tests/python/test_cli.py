@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import csv
 import json
 import re
 import subprocess
@@ -354,8 +355,10 @@ def test_run_reports_the_estimated_error(tmp_path: Path, capsys: pytest.CaptureF
     summary = json.loads((tmp_path / "o" / "summary.json").read_text(), parse_constant=lambda c: pytest.fail(c))
     est = summary["estimate"]
     assert set(est) == {"total", "bulk", "gamma_c", "contact", "friction", "energy_relative", "traction", "traction_relative",
-                        "traction_hierarchical", "traction_hierarchical_relative"}
-    assert est["traction_hierarchical"] is None  # computed only when asked (an adaptive run with stop_on)
+                        "traction_hierarchical", "traction_hierarchical_relative", "normal_force_error",
+                        "tangential_force_error", "contact_width_error", "stick_width_error"}
+    # Computed only when asked (an adaptive run with stop_on, or solve(error_bars=True)).
+    assert est["traction_hierarchical"] is None and est["normal_force_error"] is None
     assert est["total"] ** 2 == pytest.approx(est["bulk"] ** 2 + est["gamma_c"] ** 2 + est["contact"] ** 2 + est["friction"] ** 2)
     assert float(printed.group(1)) == pytest.approx(100 * est["traction_relative"], rel=0.05)
     problem, solution = load_scene(path).solve()
@@ -394,8 +397,6 @@ tol = 0.05
 
 def test_run_adapts_a_scene_with_an_adapt_table(tmp_path: Path) -> None:
     """``[adapt]``: the outputs are the last level's, on its refined mesh, and adapt.csv lists the levels."""
-    import csv
-
     import meshio
 
     path = tmp_path / "a.toml"
@@ -439,17 +440,51 @@ def test_a_tolerance_not_reached_is_said(tmp_path: Path, capsys: pytest.CaptureF
     assert f"tribo: warning: {warning}" in err
 
 
+def test_run_prints_error_bars_when_the_scene_asks(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """``[estimate] error_bars = true``: ``tribo run`` prints ``P = … ± …`` for P, Q and both widths, as
+    summary.json has them; without the key no bars; a history refuses the key by name."""
+    path = tmp_path / "s.toml"
+    path.write_text(SCENE + "[estimate]\nerror_bars = true\n", encoding="utf-8")
+    assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 0
+    out = capsys.readouterr().out
+    said = json.loads((tmp_path / "o" / "summary.json").read_text())
+    printed = re.search(r"P = ([0-9.e+-]+) ± ([0-9.e+-]+), Q = ([0-9.e+-]+) ± ([0-9.e+-]+), contact width = "
+                        r"([0-9.e+-]+) ± ([0-9.e+-]+), stick width = ([0-9.e+-]+) ± ([0-9.e+-]+)", out)
+    assert printed, out
+    values = [float(v) for v in printed.groups()]
+    keys = ("normal_force", "tangential_force", "contact_width", "stick_width")
+    for k, (value, bar) in zip(keys, zip(values[::2], values[1::2])):
+        assert value == pytest.approx(said[k], rel=1e-5, abs=1e-12)
+        assert bar == pytest.approx(said["estimate"][f"{k}_error"], rel=0.05)
+    assert said["estimate"]["normal_force_error"] > 0 and said["contact_width"] > 0
+    path.write_text(SCENE, encoding="utf-8")
+    assert main(["run", str(path), "--out", str(tmp_path / "p"), "--no-plots"]) == 0
+    assert " ± " not in capsys.readouterr().out
+    # With [adapt], the last level solved again with its bars: the same mesh as adapt.csv's last row.
+    path.write_text(ADAPT_SCENE + "[estimate]\nerror_bars = true\n", encoding="utf-8")
+    assert main(["run", str(path), "--out", str(tmp_path / "a"), "--no-plots"]) == 0
+    assert re.search(r"P = [0-9.e+-]+ ± [0-9.e+-]+, Q = ", capsys.readouterr().out)
+    said = json.loads((tmp_path / "a" / "summary.json").read_text())
+    with (tmp_path / "a" / "adapt.csv").open(encoding="utf-8") as f:
+        f.readline()
+        last = list(csv.DictReader(f))[-1]
+    assert said["n_free"] == int(last["unknowns"]) and said["estimate"]["normal_force_error"] > 0
+    path.write_text(SCENE + "[estimate]\nerror_bars = true\n[history]\nshift = [0.0, 0.001]\n", encoding="utf-8")
+    with pytest.raises(SceneError, match="estimate.error_bars"):
+        load_scene(path)
+
+
 def test_run_stops_on_the_hierarchical_estimate_and_says_which(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """``[adapt] stop_on = "hierarchical"``: the run prints the hierarchical estimate and the bound, each
     named; summary.json and adapt.csv carry both; a name that is not an option is a SceneError."""
-    import csv
-
     path = tmp_path / "a.toml"
     path.write_text(ADAPT_SCENE + 'stop_on = "hierarchical"\n', encoding="utf-8")
     assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 0
+    out = capsys.readouterr().out
     printed = re.search(r"estimated error: ([0-9.e+-]+) % in the contact tractions \(L2 of Γ_C; hierarchical, sharp "
-                        r"but not a bound; the bound: ([0-9.e+-]+) %\)", capsys.readouterr().out)
+                        r"but not a bound; the bound: ([0-9.e+-]+) %\)", out)
     assert printed, "the run names the estimate it prints"
+    assert " ± " not in out  # the strip the stop enriches gives no error bars
     est = json.loads((tmp_path / "o" / "summary.json").read_text())["estimate"]
     assert float(printed.group(1)) == pytest.approx(100 * est["traction_hierarchical_relative"], rel=0.05)
     assert float(printed.group(2)) == pytest.approx(100 * est["traction_relative"], rel=0.05)
@@ -467,8 +502,6 @@ def test_run_stops_on_the_hierarchical_estimate_and_says_which(tmp_path: Path, c
 def test_run_adapts_a_history(tmp_path: Path) -> None:
     """``[adapt]`` with ``[history]``: every level solves the history; the history's outputs are those of
     the last mesh, with adapt.csv beside them."""
-    import csv
-
     import meshio
 
     scene = ADAPT_SCENE.replace("tol = 0.05", "tol = 0.2\non = [0, 4]") + (

@@ -83,8 +83,7 @@ fn with_details(err: PyErr, kind: &str, fields: Vec<(&'static str, Detail)>) -> 
     err
 }
 
-/// Converts a core error into the exception of its category, with `kind` (the variant) and `details`
-/// (its fields) set.
+/// A core error as the exception of its category, with `kind` (the variant) and `details` (its fields) set.
 pub fn to_pyerr(e: Error) -> PyErr {
     with_details(new_err(e.category(), e.to_string()), e.kind(), e.details())
 }

@@ -26,9 +26,8 @@ pub fn take_gap_error() -> Option<PyErr> {
     GAP_ERROR.with(|slot| slot.borrow_mut().take())
 }
 
-/// The exception to raise for a core error: the gap function's own exception if it was a
-/// KeyboardInterrupt or SystemExit (they must propagate unchanged), else `err` with that exception
-/// chained as its cause.
+/// The exception to raise for a core error: the gap function's own exception if it was a KeyboardInterrupt
+/// or SystemExit (they must propagate unchanged), else `err` with that exception chained as its cause.
 pub fn chain_gap_error(py: Python<'_>, err: PyErr) -> PyErr {
     match take_gap_error() {
         Some(cause) if !cause.is_instance_of::<PyException>(py) => cause,

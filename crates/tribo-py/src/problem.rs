@@ -320,6 +320,7 @@ impl PyProblem {
     /// Solves with the keywords of `tribo.Problem.solve` in `options`; returns a Solution's fields (dict).
     #[pyo3(name = "_solve")]
     fn solve<'py>(&self, py: Python<'py>, options: &Bound<'_, PyDict>) -> PyResult<Bound<'py, PyDict>> {
+        let bars = take::<bool>(options, "error_bars")?.unwrap_or(false);
         let o = SolveOptions::new(options, "(iteration, change, qp_iterations, qp_seconds)")?;
         let mut error: Option<PyErr> = None;
         let (on_phase, progress) = (o.on_phase.as_ref(), o.progress.as_ref());
@@ -328,7 +329,8 @@ impl PyProblem {
                 Phase::Condensation => observe_with(on_phase, ("condensation", p.condensation_seconds), &mut error),
                 _ => observe_with(progress, (p.iteration, p.change, p.qp_iterations, p.qp_seconds), &mut error),
             };
-            self.inner.solve(&o.friction, &o.settings, Some(&mut observe))
+            let solve = if bars { tribo::Problem::solve_with_error_bars } else { tribo::Problem::solve };
+            solve(&self.inner, &o.friction, &o.settings, Some(&mut observe))
         });
         results::solution(py, &finish(py, result, error)?)
     }

@@ -45,9 +45,9 @@ pub fn solution<'py>(py: Python<'py>, s: &tribo::Solution) -> PyResult<Bound<'py
     }
     d.set_item("contact_force", (s.contact_force[0], s.contact_force[1]))?;
     d.set_item("obstacle_motion", (s.obstacle_motion[0], s.obstacle_motion[1]))?;
-    d.set_item("normal_force", s.normal_force)?;
-    d.set_item("tangential_force", s.tangential_force)?;
-    d.set_item("max_penetration", s.max_penetration)?;
+    for (name, v) in s.scalars() {
+        d.set_item(name, v)?;
+    }
     d.set_item("kkt", s.kkt.named().into_py_dict(py)?)?;
     d.set_item("report", report(py, &s.report)?)?;
     Ok(d)

@@ -24,15 +24,34 @@
 //! (28 of 30 levels in [1, 2]), without the drift of the residual bound ζ (effectivity 4 → 20 over the same
 //! levels). The strip of one contact width gives the differences of the whole mesh within 11 % at about
 //! two thirds of its unknowns (2.6 times the level's).
+//!
+//! # Error bars of the forces and the zone widths
+//! The answer of the problem enriched everywhere (every triangle bisected, T_H halved: h and H halved)
+//! gives the error bars ([`ErrorBars`]) of what users read ([`Problem::estimate_error_bars`]). For a
+//! quantity J of the answer, the argument above with J in place of λ gives `|J − J_H| ≤ |J_H − J_f| /
+//! (1 − q_J)`, and the same `2 |J_H − J_f|` under the same assumption `q_J ≤ ½`:
+//! - the forces `P = ∫ λ_n` and `Q = ∫ λ_t` are linear in λ. Under a prescribed approach their error is
+//!   that of the body's compliance, which the whole mesh carries: in a linear problem
+//!   `P_H − P = ‖u − u_h‖²_a / δ` (Galerkin orthogonality), of order h² where the energy error is of order
+//!   h, so `q_P ≈ ¼` and the bar overestimates by about `2 (1 − ¼) = 1.5`. This is why the bars take the
+//!   whole mesh and not the strip along the contact zone: measured on adaptive Hertz (study 14), the strip
+//!   gives 0.32–0.70 times the error of P, the whole mesh 1.43–1.54 times;
+//! - the contact and stick widths end at the edges of their zones, which the answer places to within
+//!   the multiplier cells there ([`crate::results::Zone`]): their error falls like H, halved by the
+//!   enrichment, but a difference `w_H − w_f` can vanish where both answers place an edge in cells that
+//!   share their midpoint. The bar of a width is therefore `max(2 |w_H − w_f|, r_H)`, r_H the resolution
+//!   of the zone (half the dof spacing at each end): an edge is never placed better than that.
+//!
+//! Study 14 (`docs/error_bars.md`, the example `error_bars`) measures their effectivity against a reference.
 
 use crate::contact::mortar::GAUSS2;
 use crate::error::Result;
 use crate::mesh::refine::bisect;
 use crate::problem::Problem;
-use crate::results::Solution;
-use crate::results::{ContactState, SolveStatus};
+use crate::results::{ContactState, ErrorBars, Solution, SolveStatus, Zone};
 use crate::settings::friction::{Friction, Threshold};
 use crate::settings::{Bisection, SolverSettings};
+use crate::solve::Observer;
 
 /// The hierarchical estimate of one solve ([`Problem::estimate_hierarchical`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,6 +70,27 @@ pub struct Hierarchical {
     pub status: SolveStatus,
     /// Wall time of building and solving the enriched problem.
     pub seconds: f64,
+    /// The error bars of the forces and zone widths (the module documentation derives them): `None` from
+    /// [`Problem::estimate_hierarchical`], whose strip misses the error of the forces.
+    pub error_bars: Option<ErrorBars>,
+}
+
+impl Hierarchical {
+    /// Writes the estimate and the error bars (if any) into `solution`'s report
+    /// ([`crate::results::ErrorEstimate::traction_hierarchical`] and the fields after it).
+    pub fn store(&self, solution: &mut Solution) {
+        let e = &mut solution.report.estimate;
+        e.traction_hierarchical = Some(self.estimate);
+        e.traction_hierarchical_relative = Some(self.relative);
+        e.error_bars = self.error_bars;
+    }
+}
+
+/// The error bar of a zone's width: `max(2 |w_H − w_f|, r_H)` (the module documentation), 0 when neither
+/// answer has the zone.
+fn width_bar(coarse: Option<Zone>, enriched: Option<Zone>) -> f64 {
+    let width = |z: Option<Zone>| z.map_or(0.0, |z| z.width());
+    (2.0 * (width(coarse) - width(enriched)).abs()).max(coarse.map_or(0.0, |z| z.resolution))
 }
 
 /// The L²(Γ_C) norms of `λ_a − λ_b` and of `λ_b`, normal and tangential together, for the multipliers
@@ -114,9 +154,10 @@ fn touching_span(problem: &Problem, solution: &Solution) -> Option<(f64, f64)> {
     touching.fold(None, |span, (&x, _)| Some(span.map_or((x, x), |(lo, hi): (f64, f64)| (lo.min(x), hi.max(x)))))
 }
 
-/// The width of the contact zone of `solution` (the span of the multiplier dofs not in separation), 0 when
-/// nothing touches.
-pub fn contact_width(problem: &Problem, solution: &Solution) -> f64 {
+/// The span of the multiplier dofs of `solution` not in separation, 0 when nothing touches: the width of
+/// the strip [`Problem::estimate_hierarchical`] enriches ([`Solution::contact_width`] less the half cells
+/// at its ends).
+fn touching_width(problem: &Problem, solution: &Solution) -> f64 {
     touching_span(problem, solution).map_or(0.0, |(lo, hi)| hi - lo)
 }
 
@@ -135,13 +176,50 @@ impl Problem {
         friction: &Friction,
         settings: &SolverSettings,
     ) -> Result<Hierarchical> {
-        let clock = std::time::Instant::now();
-        let width = contact_width(self, solution);
+        let width = touching_width(self, solution);
         let marked =
             if width > 0.0 { near_contact(self, solution, width) } else { (0..self.mesh.n_triangles()).collect() };
-        let (enriched, answer) = self.solve_enriched(solution, &marked, friction, settings)?;
+        Ok(Hierarchical { error_bars: None, ..self.estimate_hierarchical_on(solution, &marked, friction, settings)? })
+    }
+
+    /// The hierarchical estimate of the traction error of `solution` and the error bars of its forces and
+    /// zone widths (see the module documentation), from the problem enriched on the whole mesh, solved
+    /// with `settings` from `solution`'s multipliers (about 4 times the unknowns of this problem).
+    ///
+    /// # Errors
+    /// Those of [`Problem::solve_enriched`].
+    pub fn estimate_error_bars(
+        &self,
+        solution: &Solution,
+        friction: &Friction,
+        settings: &SolverSettings,
+    ) -> Result<Hierarchical> {
+        let all: Vec<usize> = (0..self.mesh.n_triangles()).collect();
+        self.estimate_hierarchical_on(solution, &all, friction, settings)
+    }
+
+    /// [`Problem::estimate_hierarchical`] with the triangles `marked` enriched, the error bars included
+    /// (they mean what the module documentation says only when every triangle is marked).
+    ///
+    /// # Errors
+    /// Those of [`Problem::solve_enriched`].
+    pub fn estimate_hierarchical_on(
+        &self,
+        solution: &Solution,
+        marked: &[usize],
+        friction: &Friction,
+        settings: &SolverSettings,
+    ) -> Result<Hierarchical> {
+        let clock = std::time::Instant::now();
+        let (enriched, answer) = self.solve_enriched(solution, marked, friction, settings)?;
         let (difference, norm) = multiplier_difference(self, solution, &enriched, &answer);
         let estimate = 2.0 * difference;
+        let error_bars = Some(ErrorBars {
+            normal_force: 2.0 * (solution.normal_force - answer.normal_force).abs(),
+            tangential_force: 2.0 * (solution.tangential_force - answer.tangential_force).abs(),
+            contact_width: width_bar(solution.contact_zone(), answer.contact_zone()),
+            stick_width: width_bar(solution.stick_zone(), answer.stick_zone()),
+        });
         Ok(Hierarchical {
             difference,
             norm,
@@ -150,7 +228,34 @@ impl Problem {
             unknowns: enriched.n_free,
             status: answer.report.status,
             seconds: clock.elapsed().as_secs_f64(),
+            error_bars,
         })
+    }
+
+    /// Solves (as [`Problem::solve`]) and, when the solve converged, adds the hierarchical estimate and
+    /// the error bars of [`Problem::estimate_error_bars`] to the answer's report
+    /// ([`crate::results::ErrorEstimate::error_bars`]). When the enriched solve does not converge, the
+    /// report keeps `None` there, and a warning is logged. The enriched solve has about 4 times the
+    /// unknowns of the solve.
+    ///
+    /// # Errors
+    /// Those of [`Problem::solve`] and of [`Problem::solve_enriched`].
+    pub fn solve_with_error_bars(
+        &self,
+        friction: &Friction,
+        settings: &SolverSettings,
+        observer: Option<Observer<'_>>,
+    ) -> Result<Solution> {
+        let mut solution = self.solve(friction, settings, observer)?;
+        if solution.report.status == SolveStatus::Converged {
+            let h = self.estimate_error_bars(&solution, friction, settings)?;
+            if h.status == SolveStatus::Converged {
+                h.store(&mut solution);
+            } else {
+                log::warn!("the enriched solve ended {}: no error bars", h.status);
+            }
+        }
+        Ok(solution)
     }
 
     /// This problem with the triangles `marked` bisected on all three edges (and the conforming closure),

@@ -63,7 +63,7 @@ mod history;
 mod marking;
 mod multipliers;
 
-pub use enriched::{contact_width, multiplier_difference, near_contact, Hierarchical};
+pub use enriched::{multiplier_difference, near_contact, Hierarchical};
 pub use history::AdaptiveHistory;
 
 use std::ops::ControlFlow;
@@ -192,10 +192,7 @@ impl Problem {
         let read = reader(|s: &Solution| vec![s]);
         let ended = |s: &Solution| (s.report.status, s.report.iterations);
         let estimate = |p: &Problem, s: &Solution| p.estimate_hierarchical(s, friction, settings);
-        let store = |s: &mut Solution, h: &Hierarchical| {
-            s.report.estimate.traction_hierarchical = Some(h.estimate);
-            s.report.estimate.traction_hierarchical_relative = Some(h.relative);
-        };
+        let store = |s: &mut Solution, h: &Hierarchical| h.store(s);
         let sharp = Sharp { estimate: &estimate, store: &store };
         let (problem, solution, levels, stop) =
             self.adapt_loop(settings, adapt, observer, &solve, &read, &ended, Some(&sharp))?;

@@ -115,11 +115,38 @@ pub struct ErrorEstimate {
     pub traction_hierarchical: Option<f64>,
     /// `traction_hierarchical / ‖λ_f‖` in L²(Γ_C) (`None` unless computed).
     pub traction_hierarchical_relative: Option<f64>,
+    /// The error bars of the forces and zone widths, from the same enriched solve (`None` unless it was
+    /// computed; NaN by [`Self::named`]).
+    pub error_bars: Option<ErrorBars>,
+}
+
+/// Estimates of the errors of what users read, each from the answer λ_H and the answer λ_f of the problem
+/// enriched near the contact zone ([`crate::Problem::estimate_hierarchical`], which derives them): the
+/// absolute errors of [`crate::Solution::normal_force`], [`crate::Solution::tangential_force`],
+/// [`crate::Solution::contact_width`] and [`crate::Solution::stick_width`]. Like the hierarchical traction
+/// estimate, sharp but not guaranteed bounds.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ErrorBars {
+    /// `2 |P_H − P_f|`, P = ∫ λ_n.
+    pub normal_force: f64,
+    /// `2 |Q_H − Q_f|`, Q = ∫ λ_t.
+    pub tangential_force: f64,
+    /// `max(2 |w_H − w_f|, r_H)`, w the width of the contact zone and r_H its resolution
+    /// ([`crate::results::Zone::resolution`]).
+    pub contact_width: f64,
+    /// The same for the stick zone.
+    pub stick_width: f64,
 }
 
 impl ErrorEstimate {
     /// Every total by name, in the order of the fields (an estimate not computed is NaN).
-    pub fn named(&self) -> [(&'static str, f64); 10] {
+    pub fn named(&self) -> [(&'static str, f64); 14] {
+        let bars = self.error_bars.unwrap_or(ErrorBars {
+            normal_force: f64::NAN,
+            tangential_force: f64::NAN,
+            contact_width: f64::NAN,
+            stick_width: f64::NAN,
+        });
         [
             ("total", self.total),
             ("bulk", self.bulk),
@@ -131,6 +158,10 @@ impl ErrorEstimate {
             ("traction_relative", self.traction_relative),
             ("traction_hierarchical", self.traction_hierarchical.unwrap_or(f64::NAN)),
             ("traction_hierarchical_relative", self.traction_hierarchical_relative.unwrap_or(f64::NAN)),
+            ("normal_force_error", bars.normal_force),
+            ("tangential_force_error", bars.tangential_force),
+            ("contact_width_error", bars.contact_width),
+            ("stick_width_error", bars.stick_width),
         ]
     }
 }

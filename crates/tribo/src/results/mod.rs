@@ -6,8 +6,10 @@ pub(crate) mod estimator;
 mod kkt;
 mod solution;
 mod status;
+mod zones;
 
-pub use estimator::{ErrorEstimate, SUBDIVISIONS};
+pub use estimator::{ErrorBars, ErrorEstimate, SUBDIVISIONS};
 pub use kkt::KktResiduals;
 pub use solution::Solution;
 pub use status::{ContactState, Report, Scalar, SolveStatus, Timings};
+pub use zones::{zone, Zone};

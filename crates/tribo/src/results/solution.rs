@@ -313,6 +313,18 @@ impl Solution {
         ]
     }
 
+    /// The totals by name, as the Python binding and the files name them: the forces, the largest
+    /// penetration and the widths of the contact and stick zones ([`Solution::contact_width`]).
+    pub fn scalars(&self) -> [(&'static str, f64); 5] {
+        [
+            ("normal_force", self.normal_force),
+            ("tangential_force", self.tangential_force),
+            ("max_penetration", self.max_penetration),
+            ("contact_width", self.contact_width()),
+            ("stick_width", self.stick_width()),
+        ]
+    }
+
     /// Displacement of node `i`.
     pub fn node_displacement(&self, i: usize) -> [f64; 2] {
         [self.displacement[2 * i], self.displacement[2 * i + 1]]

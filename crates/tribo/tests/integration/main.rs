@@ -17,11 +17,13 @@
 //! * `supports`: rollers and prescribed displacements: patch tests, the half Hertz model against the full one;
 //! * `two_bodies`: two elastic bodies in contact (patch test, action and reaction, the rigid limit, Hertz);
 //! * `estimator`: the a posteriori estimate (what it sees, and how it tracks the true error of λ_n);
+//! * `error_bars`: the error bars of the forces and zone widths against a finer mesh, only when asked for;
 //! * `layout`: the house rules of the crate (the layer table of its folders, file sizes).
 //!
 //! Scenes and measures shared with the benches and examples come from the `tribo-testkit` crate.
 
 mod adaptive;
+mod error_bars;
 mod errors;
 mod estimator;
 mod fuzz;

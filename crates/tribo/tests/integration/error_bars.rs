@@ -1,0 +1,70 @@
+//! The error bars of the forces and zone widths (`Problem::estimate_error_bars`): against a reference two
+//! uniform refinements finer, on Hertz with Coulomb friction in partial slip; only when asked for.
+
+use tribo::*;
+
+/// The Hertz block on its graded mesh (h_min 0.04), the cylinder shifted 0.004, μ = 0.3: partial slip,
+/// with a stick zone in the middle of the contact zone.
+fn partial_slip() -> (Problem, Friction) {
+    let s = tribo_testkit::hertz_scene();
+    let problem =
+        tribo_testkit::hertz_problem(0.04, s.approach, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    (problem, Friction::Coulomb { mu: 0.3 })
+}
+
+/// Each bar lies between once and three times the error of its quantity against the answer on the mesh
+/// refined twice more everywhere (h / 4: its own error is about 1/16 of the forces' and 1/4 of the widths'),
+/// and a width's bar is at least the resolution of its zone. The traction estimate of the same enriched
+/// solve comes with them.
+#[test]
+fn the_error_bars_hold_the_answer_of_a_finer_mesh() {
+    let (problem, friction) = partial_slip();
+    let settings = SolverSettings::default();
+    let solution = problem.solve_with_error_bars(&friction, &settings, None).expect("solves");
+    assert_eq!(solution.report.status, SolveStatus::Converged);
+    let bars = solution.report.estimate.error_bars.expect("computed when asked for");
+    assert!(solution.report.estimate.traction_hierarchical_relative.is_some_and(|r| r > 0.0 && r < 1.0));
+    // The reference: every triangle bisected twice (T_H halved with it each time).
+    let all = |p: &Problem| (0..p.mesh.n_triangles()).collect::<Vec<_>>();
+    let (fine, fine_solution) = problem.solve_enriched(&solution, &all(&problem), &friction, &settings).expect("f");
+    let (finest, reference) = fine.solve_enriched(&fine_solution, &all(&fine), &friction, &settings).expect("ff");
+    assert_eq!(reference.report.status, SolveStatus::Converged);
+    assert!(finest.n_free > 15 * problem.n_free);
+    let pairs = [
+        ("P", bars.normal_force, solution.normal_force, reference.normal_force),
+        ("Q", bars.tangential_force, solution.tangential_force, reference.tangential_force),
+        ("contact width", bars.contact_width, solution.contact_width(), reference.contact_width()),
+        ("stick width", bars.stick_width, solution.stick_width(), reference.stick_width()),
+    ];
+    for (name, bar, value, truth) in pairs {
+        let error = (value - truth).abs();
+        println!(
+            "{name}: {value:.6e} ± {bar:.2e}, reference {truth:.6e}, error {error:.2e}, bar/error {:.2}",
+            bar / error
+        );
+        assert!(value != 0.0 && error > 0.0, "{name}: the quantity is there and the coarse mesh is off");
+        assert!((error..=3.0 * error).contains(&bar), "{name}: bar {bar:.3e}, error {error:.3e}");
+    }
+    for (bar, zone) in [(bars.contact_width, solution.contact_zone()), (bars.stick_width, solution.stick_zone())] {
+        assert!(bar >= zone.expect("the zone is there").resolution);
+    }
+}
+
+/// A plain solve carries no bars (they cost an enriched solve); the strip the adaptive stop enriches gives
+/// the traction estimate without them (it misses the error of the forces: see `adapt::enriched`); nothing
+/// touching gives bars of zero width.
+#[test]
+fn bars_come_only_from_the_whole_mesh_and_only_when_asked_for() {
+    let (problem, friction) = partial_slip();
+    let settings = SolverSettings::default();
+    let plain = problem.solve(&friction, &settings, None).expect("solves");
+    assert_eq!(plain.report.estimate.error_bars, None);
+    assert!(plain.report.estimate.named().iter().any(|(k, v)| *k == "normal_force_error" && v.is_nan()));
+    let strip = problem.estimate_hierarchical(&plain, &friction, &settings).expect("estimates");
+    assert!(strip.error_bars.is_none() && strip.relative > 0.0);
+    let apart = tribo_testkit::hertz_problem(0.04, -0.01, 0.0, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    let nothing = apart.solve_with_error_bars(&friction, &settings, None).expect("solves");
+    let bars = nothing.report.estimate.error_bars.expect("computed");
+    assert_eq!((nothing.normal_force, nothing.contact_width(), nothing.contact_zone()), (0.0, 0.0, None));
+    assert_eq!([bars.normal_force, bars.tangential_force, bars.contact_width, bars.stick_width], [0.0; 4]);
+}
