@@ -18,6 +18,26 @@ line prints each as a ``tribo: warning: …`` line. The rules and their threshol
   answer carries an error of that order no mesh removes (and a δ comparable to the body is often a unit
   mistake).
 
+* **A contact side that a support also holds**: a node of Γ_C (or of the primary side of two bodies) other
+  than its two ends lies on a clamped edge set or under a clamp or prescribed displacement (the core refuses
+  a support on an edge of Γ_C; the primary side, and nodes shared without an edge, reach this check). Such a node cannot move, so what the contact does
+  there is decided by the support (a clamped Hertz top face carries a contact force that only the supports
+  balance): almost always a support named on the wrong side. The ends are exempt: a contact side commonly
+  meets a clamped side at a corner.
+* **A contact zone cut by the end of Γ_C**: the first or last multiplier dof is in contact at an end of Γ_C
+  where the body's boundary goes on straight (the next boundary edge is collinear with the last edge of
+  Γ_C). The contact could spread past that end, and the answer depends on where the contact side was cut;
+  at a corner of the body (a block on a foundation) the zone may end there, and nothing is said.
+* **ν close to ½**: ``poisson`` ≥ ``MAX_POISSON`` = 0.49. P1 triangles lock as ν → ½ (λ/μ = 2ν/(1 − 2ν)
+  is 49 there): on Hertz, λ_n is 4.4 % off at ν = 0.49 and 18 % at 0.499, against 0.73 % at ν = 0.3, and
+  at 0.4999 a punch reports a normal force twice that of ν = 0.3 — far beyond the 3 % the change of E*
+  explains. No mesh near the contact repairs it.
+* **A shift large for small sliding**: the obstacle is not flat and ``|s|`` exceeds ``MAX_SHIFT_FRACTION`` =
+  10 % of the contact width. tribo's friction is small sliding: the gap is that of the obstacle where it
+  started, so the answer places the contact zone where it was before the shift. The physical zone moves
+  with the obstacle by about s; past a tenth of its width, the answer's zone is off by more than that.
+  A flat obstacle's gap does not change as it slides, and nothing is said.
+
 ``conventions(problem, solution)`` gives the directions and signs every output is read in (written into
 ``summary.json``, the CSV files and the plots).
 """
@@ -33,6 +53,8 @@ from tribo.results import Solution
 
 __all__ = [
     "MAX_APPROACH_FRACTION",
+    "MAX_POISSON",
+    "MAX_SHIFT_FRACTION",
     "MIN_CONTACT_DOFS",
     "SceneWarning",
     "check_solution",
@@ -44,6 +66,8 @@ __all__ = [
 
 MIN_CONTACT_DOFS = 10
 MAX_APPROACH_FRACTION = 0.05
+MAX_POISSON = 0.49
+MAX_SHIFT_FRACTION = 0.1
 
 
 class SceneWarning(UserWarning):
@@ -84,6 +108,80 @@ def check_solution(problem: Problem, solution: Solution) -> list[str]:
             f"extent along n ({_g(extent)}), more than {_g(MAX_APPROACH_FRACTION * 100)} %: beyond small "
             "strain (check the units)"
         )
+    reasons += _held_contact(problem) + _cut_zone(problem, solution)
+    if problem.poisson >= MAX_POISSON:
+        reasons.append(
+            f"ν = {problem.poisson:.6g} is close to ½: P1 triangles lock "
+            f"(λ/μ = {_g(2 * problem.poisson / (1 - 2 * problem.poisson))}), so the body is too stiff and the contact pressure and force are too large, by more than any "
+            "estimate here shows (Hertz: 4.4 % at ν = 0.49, 18 % at 0.499); no refinement repairs it"
+        )
+    t = np.asarray(problem.contact_tangent)
+    shift = float(np.dot(solution.obstacle_motion, t))
+    width = solution.contact_width
+    if problem.primary is None and problem.obstacle.kind != "flat" and width > 0 and abs(shift) > MAX_SHIFT_FRACTION * width:
+        reasons.append(
+            f"the shift s = {_g(shift)} is {_g(abs(shift) / width * 100)} % of the contact width ({_g(width)}), more "
+            f"than {_g(MAX_SHIFT_FRACTION * 100)} %: friction is small sliding here (the gap is the obstacle's where it "
+            "started), so the contact zone is where it was before the shift, not where the moved obstacle puts it"
+        )
+    return reasons
+
+
+def _held_nodes(problem: Problem) -> set[int]:
+    """The nodes that a clamp or a prescribed displacement holds (rollers leave the tangent free)."""
+    sets = list(problem.clamped) + [s.edge_set for s in problem.supports if s.kind in ("clamp", "displacement")]
+    edges = problem.mesh.edge_sets
+    return {int(v) for name in sets if name in edges for v in np.asarray(edges[name]).ravel()}
+
+
+def _held_contact(problem: Problem) -> list[str]:
+    """The reasons to doubt a contact side (the secondary one, or the primary one of two bodies) that a
+    support also holds inside its ends (none if both are free there)."""
+    sides = [problem.contact] + ([problem.primary] if problem.primary is not None else [])
+    held_nodes, reasons = _held_nodes(problem), []
+    for side in sides:
+        edges = np.asarray(problem.mesh.edge_sets[side]).reshape(-1, 2)
+        nodes, counts = np.unique(edges, return_counts=True)
+        inside = {int(v) for v in nodes[counts >= 2]}  # a chain's two ends belong to one edge each
+        held = inside & held_nodes
+        if held:
+            reasons.append(
+                f"the contact side '{side}' is also held by a support at {len(held)} of its {len(nodes)} nodes "
+                "(not counting its ends): those nodes cannot move, so the supports, not the contact, decide the "
+                "answer there (a support named on the wrong side?)"
+            )
+    return reasons
+
+
+def _cut_zone(problem: Problem, solution: Solution) -> list[str]:
+    """The reason to doubt a contact zone that reaches an end of Γ_C where the body's boundary goes on
+    straight (none at a corner, or when the zone stops short of the ends)."""
+    states, nodes = solution.states, np.asarray(problem.contact_nodes)
+    if len(states) == 0 or len(nodes) < 2:
+        return []
+    tri = np.asarray(problem.mesh.triangles)
+    edges = np.sort(np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]]), axis=1)
+    unique, counts = np.unique(edges, axis=0, return_counts=True)
+    boundary = unique[counts == 1]
+    points = np.asarray(problem.mesh.points)
+    reasons = []
+    for touching, end, inner in ((states[0] != 0, nodes[0], nodes[1]), (states[-1] != 0, nodes[-1], nodes[-2])):
+        if not touching:
+            continue
+        last = points[end] - points[inner]
+        for a, b in boundary[(boundary == end).any(axis=1)]:
+            other = b if a == end else a
+            if other == inner:
+                continue
+            beyond = points[other] - points[end]
+            cross = last[0] * beyond[1] - last[1] * beyond[0]
+            if np.dot(last, beyond) > 0 and abs(cross) <= 1e-9 * np.linalg.norm(last) * np.linalg.norm(beyond):
+                xi = float(problem.node_abscissae[0 if end == nodes[0] else -1])
+                reasons.append(
+                    f"the contact zone reaches the end of the contact side '{problem.contact}' at ξ = {_g(xi)}, where "
+                    "the body's boundary goes on straight: the contact could spread past it, and the answer depends "
+                    "on where the side was cut (extend the contact edge set)"
+                )
     return reasons
 
 

@@ -12,9 +12,16 @@ import pytest
 
 import tribo
 from conftest import hertz_problem
-from tribo.checks import MAX_APPROACH_FRACTION, MIN_CONTACT_DOFS, check_solution, warn_solution
+from tribo.checks import (
+    MAX_APPROACH_FRACTION,
+    MAX_POISSON,
+    MAX_SHIFT_FRACTION,
+    MIN_CONTACT_DOFS,
+    check_solution,
+    warn_solution,
+)
 from tribo.cli import main
-from tribo.scene import demo_scene_path, load_scene
+from tribo.scene import demo_scene_path, load_scene, scene_path
 
 
 def square(n: int = 8, **kw: object) -> tribo.Problem:
@@ -76,6 +83,65 @@ def test_warning_large_approach() -> None:
         warn_solution(problem, problem.solve())
     small = square(16, approach=0.5 * MAX_APPROACH_FRACTION)
     assert check_solution(small, small.solve()) == []
+
+
+def test_warning_contact_side_held_by_a_support(tmp_path: Path) -> None:
+    """The primary side of two bodies clamped: it cannot move, and the contact force is what the supports
+    allow (the core refuses a support on the secondary side, Γ_C). Supports meeting the contact sides at
+    their ends (the two-body scene as shipped) are no reason."""
+    text = scene_path("hertz_two_bodies").read_text(encoding="utf-8")
+    held = text.replace('{ kind = "displacement", edge_set = "left", x = 0.0 },',
+                        '{ kind = "displacement", edge_set = "left", x = 0.0 }, { kind = "clamp", edge_set = "bottom" },')
+    assert held != text
+    path = tmp_path / "held.toml"
+    path.write_text(held, encoding="utf-8")
+    problem = load_scene(path).build()
+    reasons = check_solution(problem, problem.solve())
+    assert [r for r in reasons if "contact side 'upper.bottom' is also held by a support at" in r], reasons
+    shipped = load_scene(scene_path("hertz_two_bodies")).build()
+    assert not [r for r in check_solution(shipped, shipped.solve()) if "held by a support" in r]
+
+
+def test_warning_contact_zone_cut_by_the_end_of_the_contact_side() -> None:
+    """A flat obstacle pressed on the middle half of a top face: the zone fills the contact side and would
+    spread past its ends, where the face goes on. The whole top face pressed ends at the body's corners:
+    no reason. A cylinder whose zone stops short of the ends: none either."""
+    mesh = tribo.Mesh.rectangle((0.0, 2.0), (0.0, 1.0), 16, 8)
+    x = mesh.points[:, 0]
+    top = np.asarray(mesh.edge_sets["top"])
+    middle = top[(x[top] >= 0.5 - 1e-12).all(axis=1) & (x[top] <= 1.5 + 1e-12).all(axis=1)]
+    cut = tribo.Mesh(mesh.points, mesh.triangles, {**mesh.edge_sets, "middle": middle})
+    args: dict[str, object] = dict(young=1.0, poisson=0.3, clamped="bottom", obstacle=tribo.Obstacle.flat(), approach=0.01)
+    problem = tribo.Problem(cut, contact="middle", **args)  # type: ignore[arg-type]
+    reasons = check_solution(problem, problem.solve())
+    ends = [r for r in reasons if "reaches the end of the contact side 'middle'" in r]
+    assert len(ends) == 2 and "ξ = 0.5" in ends[0] + ends[1] and "ξ = 1.5" in ends[0] + ends[1], reasons
+    whole = tribo.Problem(cut, contact="top", **args)  # type: ignore[arg-type]
+    assert check_solution(whole, whole.solve()) == []
+    args["obstacle"] = tribo.Obstacle.parabola(1.0, 1.0)
+    curved = tribo.Problem(cut, contact="middle", **args)  # type: ignore[arg-type]
+    solution = curved.solve()
+    assert solution.states[0] == 0 and solution.states[-1] == 0
+    assert not [r for r in check_solution(curved, solution) if "reaches the end" in r]
+
+
+def test_warning_nearly_incompressible() -> None:
+    problem = square(16, poisson=0.4999)
+    with pytest.warns(tribo.SceneWarning, match=r"ν = 0.4999 is close to ½: P1 triangles lock \(λ/μ = 5e\+03\)"):
+        warn_solution(problem, problem.solve())
+    below = square(16, poisson=MAX_POISSON - 0.01)
+    assert not [r for r in check_solution(below, below.solve()) if "close to ½" in r]
+
+
+def test_warning_shift_large_for_small_sliding(hertz: tribo.Problem) -> None:
+    """A cylinder shifted by a third of its contact width: the answer's zone stays where it was. The demo's
+    shift (3 % of the width) is no reason, nor any shift of a flat obstacle."""
+    width = hertz.solve(mu=0.3).contact_width
+    moved = hertz_problem(shift=3 * MAX_SHIFT_FRACTION * width)
+    with pytest.warns(tribo.SceneWarning, match=r"the shift s = \S+ is \S+ % of the contact width .* small sliding"):
+        warn_solution(moved, moved.solve(mu=0.3))
+    flat = square(16, shift=0.5)
+    assert not [r for r in check_solution(flat, flat.solve(mu=0.3)) if "shift" in r]
 
 
 def test_scene_solve_and_cli_warn(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
