@@ -157,6 +157,12 @@ def test_adaptive(tmp_path: Path) -> None:
     for center in (0.0, 0.3):
         runs = [r for r in adaptive if r["center"] == center]
         assert runs[-1]["hertz_error"] < runs[0]["hertz_error"] and runs[-1]["n_free"] > runs[0]["n_free"]
+    # The levels carry the hierarchical estimate of their answer beside the bound, charted against the unknowns.
+    levels = [r for r in rows if r["family"] == "levels"]
+    assert levels and all(r["hierarchical"] > 0 for r in levels if r["in_contact"] > 0)
+    assert (tmp_path / "adaptive_estimates.png").stat().st_size > 0 and (tmp_path / "adaptive_asked.png").is_file()
+    sharp = [r for r in rows if r["family"] == "adaptive, hierarchical stop"]
+    assert {r["tol"] for r in sharp} == {r["tol"] for r in adaptive} and all(r["stop"] == "tolerance" for r in sharp)
 
 
 def test_adaptive_history(tmp_path: Path) -> None:
