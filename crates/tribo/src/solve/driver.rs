@@ -211,10 +211,15 @@ impl Condensed<'_> {
         };
         let clock = Instant::now();
         // A body held only by the contact moves rigidly by α besides u (`problem/floating.rs`); the contact
-        // forces must determine it.
-        if phase.status == SolveStatus::Converged {
+        // forces must determine it. A fixed point that stagnated or ran out of iterations on such a body is
+        // checked too: where nothing presses the body against the contact (a history unloading it), the
+        // undetermined position is why it did not converge, and that is the answer to give (defect D31).
+        let undecided = matches!(phase.status, SolveStatus::Stagnated | SolveStatus::MaxIterations);
+        if phase.status == SolveStatus::Converged || (undecided && !loading.rigid.load.is_empty()) {
             let bound = (!matches!(friction, Friction::Frictionless)).then_some(threshold.as_slice());
-            let largest = phase.lambda.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
+            // The scale of λ: the answer's, the linear term's, and the nearby answer's it started from (a
+            // history step that unloads the body has λ ≈ 0 and c ≈ 0: the previous step sets the scale).
+            let largest = phase.lambda.iter().chain(start.unwrap_or_default()).fold(0.0_f64, |m, l| m.max(l.abs()));
             let noise = settings.qp.tol * factor.lambda_scale(&loading.c).max(largest);
             problem.check_rigid_motion_determined(&loading.rigid, &phase.lambda, bound, noise)?;
         }

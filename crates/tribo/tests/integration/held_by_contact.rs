@@ -355,6 +355,31 @@ fn the_patch_test_holds_for_p0_multipliers_and_without_stabilization() {
 
 /// A frictionless history that ramps the load is path independent: each step equals the static solve of
 /// its load (the equilibrium's load scales with the step's load factor).
+/// Defect D31: a Coulomb history that unloads a block held only by the contact (load factor 1 → 0) says
+/// what the static solve of the unloaded block says (nothing presses it against the contact: its position
+/// is undetermined), naming the motion; it ended `stagnated` with no reason. The loaded step alone converges.
+#[test]
+fn a_history_that_unloads_a_body_held_by_the_contact_says_why_it_stops() {
+    let problem = block_on_foundation(vec![], [0.0, -0.1]);
+    let (coulomb, settings) = (Friction::Coulomb { mu: 0.3 }, SolverSettings::default());
+    let step = |load_factor| LoadStep { approach: 0.0, shift: 0.0, load_factor, displacements: vec![] };
+    let loaded = problem.solve_history(&coulomb, &[step(1.0)], &settings, None).unwrap();
+    assert_eq!(loaded.status, SolveStatus::Converged);
+    let unloaded = block_on_foundation(vec![], [0.0, 0.0]);
+    let static_error = unloaded.solve(&coulomb, &settings, None).map(|s| s.report.status).unwrap_err();
+    match problem.solve_history(&coulomb, &[step(1.0), step(0.0)], &settings, None) {
+        Err(e @ Error::HeldOnlyByContact { .. }) => {
+            let (Error::HeldOnlyByContact { what, motion, .. }, Error::HeldOnlyByContact { motion: m, .. }) =
+                (&e, &static_error)
+            else {
+                unreachable!()
+            };
+            assert!(what.contains("undetermined") && motion == m, "{e}; the static solve: {static_error}");
+        }
+        other => panic!("expected HeldOnlyByContact, got {:?}", other.map(|h| h.status)),
+    }
+}
+
 #[test]
 fn a_ramped_load_gives_the_static_answer_at_every_step() {
     let problem = block_on_foundation(vec![Support::roller("left")], [0.3, -2.0]);
