@@ -92,6 +92,33 @@ def test_a_history_beyond_the_memory_budget_is_refused(problem: tribo.Problem) -
     assert h.converged and h.kept.tolist() == [0, 20, 39] and len(h.normal_force) == 40
 
 
+def test_the_default_budget_respects_the_address_space_limit(problem: tribo.Problem) -> None:
+    """Defect D21: the default memory budget is what the process may still allocate, not only what the
+    machine has free: under an address-space limit (``ulimit -v``) 1 GiB above what the process holds, it is
+    at most that GiB, and a history that needs more is refused by name before any step (it aborted on
+    "memory allocation failed" past the limit). In a child process, so the limit stays there."""
+    import subprocess
+    import sys
+
+    code = """
+import resource, numpy as np, tribo
+vm = next(int(l.split()[1]) * 1024 for l in open("/proc/self/status") if l.startswith("VmSize:"))
+resource.setrlimit(resource.RLIMIT_AS, (vm + 2**30, resource.RLIM_INFINITY))
+budget = tribo.solver_defaults()["memory_budget"]
+p = tribo.Problem(tribo.Mesh.rectangle((-1.0, 1.0), (-1.0, 0.0), 24, 12), young=200.0, poisson=0.3,
+                  clamped="bottom", contact="top", obstacle=tribo.Obstacle.circle(1.0), approach=0.01)
+try:
+    p.solve_history(0.01, np.zeros(40_000), mu=0.3)
+    print(budget, "solved")
+except tribo.TriboError as e:
+    print(budget, e.kind)
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True)
+    budget, outcome = out.stdout.split()
+    available = next(int(line.split()[1]) * 1024 for line in open("/proc/meminfo") if line.startswith("MemAvailable:"))
+    assert int(budget) <= 2**30 < available and outcome == "MemoryBudget", out.stdout + out.stderr
+
+
 def test_keep_every_keeps_what_is_asked(problem: tribo.Problem) -> None:
     """``keep_every=k`` keeps the solutions of steps 0, k, 2k, … and the last converged one, each equal to the
     full history's; the per-step arrays still cover every step and equal the full history's."""

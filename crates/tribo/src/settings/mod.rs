@@ -10,10 +10,12 @@
 
 pub mod adapt;
 pub mod friction;
+mod memory;
 mod stabilization;
 mod table;
 
 pub use adapt::{AdaptKeywords, AdaptSettings, Bisection, Marking, StopOn};
+pub use memory::{available_memory, default_memory_budget};
 pub use stabilization::Stabilization;
 pub use table::{SettingInfo, SettingKind, SettingValue};
 
@@ -181,8 +183,8 @@ pub struct SolverSettings {
     /// checked after the symbolic analysis, before anything of that size is allocated) and, each on its
     /// own, for its dense parts (columns of H, the dense QP) and for the solutions a loading history
     /// keeps. A solve that would need more is refused with [`Error::MemoryBudget`], which gives the size.
-    /// Default: the memory this machine has available when the settings are made
-    /// ([`default_memory_budget`]).
+    /// Default: the memory this process may still allocate when the settings are made (the smallest
+    /// headroom of the machine, its memory cgroup and its address-space limit: [`default_memory_budget`]).
     pub memory_budget: usize,
     /// How H is formed. Default [`Condensation::Auto`].
     pub condensation: Condensation,
@@ -204,21 +206,6 @@ impl Default for SolverSettings {
             keep_every: 1,
         }
     }
-}
-
-/// The default memory budget: the physical memory available to new allocations now (Linux's
-/// `MemAvailable`), or 4 GiB where it cannot be read.
-pub fn default_memory_budget() -> usize {
-    available_memory().unwrap_or(4 << 30).max(1 << 20)
-}
-
-/// Bytes of physical memory available to new allocations without swapping (Linux's `MemAvailable` in
-/// `/proc/meminfo`); `None` elsewhere.
-pub fn available_memory() -> Option<usize> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let kb: usize =
-        text.lines().find_map(|l| l.strip_prefix("MemAvailable:"))?.split_whitespace().next()?.parse().ok()?;
-    kb.checked_mul(1024)
 }
 
 impl SolverSettings {
