@@ -198,9 +198,16 @@ def format_vector(v: tuple[float, float] | np.ndarray) -> str:
     return f"({_g(float(v[0]))}, {_g(float(v[1]))})"
 
 
-def shift_description(problem: Problem) -> str:
-    """Which way the obstacle was shifted, in words: ``s = 0.004 along t = (-1, 0): toward −x``."""
-    s, t = problem.shift, problem.contact_tangent
+def shift_description(problem: Problem, solution: Solution | None = None) -> str:
+    """Which way the obstacle was shifted, in words: ``s = 0.004 along t = (-1, 0): toward −x``. The shift
+    is the solution's (a step of a history moves the obstacle by its own), else the problem's."""
+    t = problem.contact_tangent
+    if solution is None:
+        s = problem.shift
+    else:
+        motion = np.asarray(solution.obstacle_motion)
+        s = float(np.dot(motion, t)) + 0.0
+        s = 0.0 if abs(s) <= 1e-12 * float(np.abs(motion).max()) else s  # the approach's round-off along t
     if s == 0:
         return "no shift"
     d = (s * t[0], s * t[1])
@@ -226,7 +233,7 @@ def conventions(problem: Problem, solution: Solution) -> dict[str, str]:
         "tangential_force": "∫ λ_t: the obstacle pulls the body by −tangential_force along t",
         "contact_force": "(Fx, Fy) = −(normal_force n + tangential_force t): the force the obstacle exerts on "
         "the body, global axes",
-        "shift": shift_description(problem),
+        "shift": shift_description(problem, solution),
         "obstacle_motion": f"−approach n + shift t = {format_vector(motion)}, global axes",
         "slip": "u_t − s: tangential displacement of the body relative to the obstacle, along t",
         "current_gap": "g − u_n along n: 0 in contact, negative where the body penetrates",

@@ -186,7 +186,7 @@ def tangential(problem: Problem, solution: Solution, ax: Axes | None = None, *, 
     ax.set_title(
         rf"Friction ({solution.friction}{mu}): $\lambda_t$ against its bound" + "\n"
         rf"$\int\lambda_t$ = {solution.tangential_force:.3g}: the obstacle pulls the body by "
-        f"{-solution.tangential_force + 0.0:.3g} along t\n{shift_description(problem)}",
+        f"{-solution.tangential_force + 0.0:.3g} along t\n{shift_description(problem, solution)}",
         fontsize="small",
     )
     if zoom:

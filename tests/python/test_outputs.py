@@ -18,6 +18,7 @@ from tribo.checks import (
     MAX_SHIFT_FRACTION,
     MIN_CONTACT_DOFS,
     check_solution,
+    conventions,
     warn_solution,
 )
 from tribo.cli import main
@@ -173,6 +174,20 @@ def test_summary_states_the_conventions(tmp_path: Path, capsys: pytest.CaptureFi
     assert c["shift"] == "s = 0.004 along t = (-1, 0): the obstacle moved toward −x"
     for key in ("n", "t", "lambda_n", "lambda_t", "tangential_force", "contact_force", "slip", "current_gap"):
         assert c[key]
+
+
+def test_a_history_step_states_its_own_shift() -> None:
+    """A drag in a history moves the obstacle by each step's shift: the conventions (summary.json, the CSV
+    headers) and the tangential plot state that shift, not the problem's (which said "no shift" while the
+    obstacle had moved by (-0.03, -0.01))."""
+    problem = hertz_problem()
+    assert problem.shift == 0.0
+    history = problem.solve_history(0.01, [0.0, 0.003], mu=0.3)
+    last = history.solutions[-1]
+    assert last.obstacle_motion == pytest.approx((-0.003, -0.01))
+    said = conventions(problem, last)["shift"]
+    assert said == "s = 0.003 along t = (-1, 0): the obstacle moved toward −x", said
+    assert conventions(problem, history.solutions[0])["shift"] == "no shift"
 
 
 def test_on_phase_reports_the_condensation(hertz: tribo.Problem) -> None:
