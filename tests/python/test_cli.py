@@ -60,6 +60,11 @@ def test_demo_scene_runs_in_process(tmp_path: Path, capsys: pytest.CaptureFixtur
     est = summary["estimate"]
     assert est["traction_hierarchical_relative"] <= 0.01 < est["traction_relative"] and (tmp_path / "demo" / "adapt.csv").is_file()
     assert summary["kkt_max"] < 1e-6 and summary["normal_force"] > 0
+    # The description states the contact and stick zones of this answer (issue 38: it said the centre sticks).
+    zones = re.findall(r"ξ ∈ \[(−?[0-9.]+), (−?[0-9.]+)\]", load_scene(demo_scene_path()).description)
+    (c0, c1), (s0, s1) = [(float(a.replace("−", "-")), float(b.replace("−", "-"))) for a, b in zones]
+    assert summary["contact_width"] == pytest.approx(c1 - c0, rel=0.05)
+    assert summary["stick_width"] == pytest.approx(s1 - s0, rel=0.05) and 0 < s0 < s1 < c1
     for name in ("contact.csv", "result.vtu", "result_contact.vtu", "contact_normal.png", "von_mises.png"):
         assert (tmp_path / "demo" / name).stat().st_size > 0
 
