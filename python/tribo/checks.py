@@ -57,6 +57,7 @@ __all__ = [
     "MAX_SHIFT_FRACTION",
     "MIN_CONTACT_DOFS",
     "SceneWarning",
+    "actors",
     "check_solution",
     "conventions",
     "format_vector",
@@ -196,6 +197,15 @@ def warn_solution(problem: Problem, solution: Solution, stacklevel: int = 2) -> 
 def format_vector(v: tuple[float, float] | np.ndarray) -> str:
     """A 2-vector for people: ``(-0.004, -0.01)``."""
     return f"({_g(float(v[0]))}, {_g(float(v[1]))})"
+
+
+def actors(problem: Problem) -> tuple[str, str]:
+    """Who exerts the contact force on whom, in words: ("the obstacle", "the body") against the rigid
+    obstacle, ("'upper.bottom'", "the secondary body") between two bodies (the primary side on the side that
+    carries the multipliers). Every output that names the contact force reads them from here."""
+    if problem.primary is None:
+        return "the obstacle", "the body"
+    return f"'{problem.primary}'", "the secondary body"
 
 
 def shift_description(problem: Problem, solution: Solution | None = None) -> str:

@@ -49,7 +49,7 @@ from pathlib import Path
 from typing import Any
 
 from tribo._tribo import TriboError, __version__
-from tribo.checks import conventions
+from tribo.checks import actors, conventions
 from tribo.run import log, run_scene
 from tribo.scene import demo_scene_path, load_scene
 
@@ -109,7 +109,7 @@ def _run(scene_path: Path, out: Path, plots: bool) -> int:
     )
     fx, fy = solution.contact_force
     said = conventions(problem, solution)
-    on = "the obstacle on the body" if problem.primary is None else f"'{problem.primary}' on the secondary body"
+    on = " on ".join(actors(problem))
     print(f"  force of {on} (Fx, Fy) = ({fx:.6g}, {fy:.6g}) in global axes")
     print(f"  {said['n']}; {said['t']}; shift: {said['shift']}")
     states = solution.state_names

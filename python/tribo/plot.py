@@ -25,7 +25,7 @@ import numpy as np
 import numpy.typing as npt
 
 from tribo._tribo import STATE_NAMES
-from tribo.checks import format_vector, shift_description
+from tribo.checks import actors, format_vector, shift_description
 from tribo.problem import Problem
 from tribo.results import History, Solution
 
@@ -157,7 +157,7 @@ def contact_pressure(
     ax.set_ylabel(rf"contact pressure $\lambda_n = -\sigma_n$, n = {format_vector(problem.contact_normal)}")
     ax.set_title(
         rf"Normal contact: $\lambda_n$ and $-\sigma_n(u_h)$, total force {solution.normal_force:.4g}"
-        + f"\nforce of the obstacle on the body (Fx, Fy) = {format_vector(solution.contact_force)}",
+        + f"\nforce of {' on '.join(actors(problem))} (Fx, Fy) = {format_vector(solution.contact_force)}",
         fontsize="medium",
     )
     if zoom:
@@ -185,8 +185,9 @@ def tangential(problem: Problem, solution: Solution, ax: Axes | None = None, *, 
     mu = f", μ = {solution.mu:g}" if solution.mu is not None else ""
     ax.set_title(
         rf"Friction ({solution.friction}{mu}): $\lambda_t$ against its bound" + "\n"
-        rf"$\int\lambda_t$ = {solution.tangential_force:.3g}: the obstacle pulls the body by "
-        f"{-solution.tangential_force + 0.0:.3g} along t\n{shift_description(problem, solution)}",
+        rf"$\int\lambda_t$ = {solution.tangential_force:.3g}: {' pulls '.join(actors(problem))} by "
+        f"{-solution.tangential_force + 0.0:.3g} along t"
+        + ("" if problem.primary is not None else f"\n{shift_description(problem, solution)}"),
         fontsize="small",
     )
     if zoom:

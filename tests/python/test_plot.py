@@ -52,3 +52,29 @@ def test_normal_plot_shows_the_hertz_pressure_of_the_same_force(hertz: tribo.Pro
     flat = tribo.Problem(tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 4, 4), young=1.0, poisson=0.3,
                          clamped="bottom", contact="top", obstacle=tribo.Obstacle.flat(), approach=0.01)
     assert plot.hertz_pressure(flat, flat.solve()) is None
+
+
+def test_plot_titles_name_who_exerts_the_force() -> None:
+    """Between two bodies the titles name the primary side and the secondary body (they said "the obstacle"),
+    against a rigid obstacle the obstacle and the body, with the force components of the run."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from tribo import plot
+    from tribo.checks import format_vector
+    from tribo.scene import load_scene, scene_path
+
+    problem = load_scene(scene_path("fretting_two_bodies")).build()
+    solution = problem.solve(mu=0.3)
+    normal = plot.contact_pressure(problem, solution).get_title()
+    tangential = plot.tangential(problem, solution).get_title()
+    assert "obstacle" not in normal + tangential, normal + tangential
+    assert f"force of '{problem.primary}' on the secondary body (Fx, Fy) = {format_vector(solution.contact_force)}" in normal
+    assert f"'{problem.primary}' pulls the secondary body by" in tangential
+    hertz = load_scene(scene_path("hertz")).build()
+    s = hertz.solve(mu=0.3)
+    assert "force of the obstacle on the body" in plot.contact_pressure(hertz, s).get_title()
+    assert "the obstacle pulls the body by" in plot.tangential(hertz, s).get_title()
+    plt.close("all")
