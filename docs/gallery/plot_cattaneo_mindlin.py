@@ -35,6 +35,6 @@ for k in range(1, len(history)):
     print(f"Q/μP = {ratio:.2f}: c/a = {c_over_a:.2f}, Cattaneo–Mindlin {np.sqrt(1.0 - ratio):.2f}")
 
 fig, ax = plt.subplots(figsize=(7, 4))
-tribo.plot.history_tractions(history, [2, 4, 6], ax=ax)
+tribo.plot.history_tractions(history, [2, 4, 6], ax=ax, problem=problem)
 ax.set_xlim(-0.15, 0.15)
 fig.tight_layout()

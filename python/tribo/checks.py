@@ -57,6 +57,7 @@ __all__ = [
     "MAX_SHIFT_FRACTION",
     "MIN_CONTACT_DOFS",
     "SceneWarning",
+    "abscissa_description",
     "actors",
     "check_solution",
     "conventions",
@@ -228,16 +229,22 @@ def shift_description(problem: Problem, solution: Solution | None = None) -> str
     return f"s = {_g(s)} along t = {format_vector(t)}: the obstacle moved {where}"
 
 
+def abscissa_description(problem: Problem) -> str:
+    """Which way the abscissa ξ of Γ_C runs, in words: ``abscissa ξ along Γ_C, increasing with x (along
+    −t)``; every output that plots or lists positions on Γ_C reads it from here."""
+    t = problem.contact_tangent
+    axis = "x" if abs(t[0]) >= abs(t[1]) else "y"
+    return f"abscissa ξ along Γ_C, increasing with {axis} (along {'+t' if problem.tangent_sign > 0 else '−t'})"
+
+
 def conventions(problem: Problem, solution: Solution) -> dict[str, str]:
     """The directions and signs of every output, as sentences keyed by the quantity."""
     n, t = problem.contact_normal, problem.contact_tangent
-    axis = "x" if abs(t[0]) >= abs(t[1]) else "y"
-    xi_along = "+t" if problem.tangent_sign > 0 else "−t"
     motion = solution.obstacle_motion
     out = {
         "n": f"outward unit normal of the body on Γ_C, n = {format_vector(n)}",
         "t": f"unit tangent t = (−n₂, n₁) = {format_vector(t)}",
-        "xi": f"abscissa ξ along Γ_C, increasing with {axis} (along {xi_along})",
+        "xi": abscissa_description(problem),
         "lambda_n": "λ_n = −σ_n ≥ 0, the contact pressure",
         "lambda_t": "λ_t = −σ_t, along t: the obstacle's friction traction on the body is −λ_t t",
         "tangential_force": "∫ λ_t: the obstacle pulls the body by −tangential_force along t",

@@ -15,7 +15,8 @@ writes its results:
   fretting cycle, the hysteresis loop), and ``history_tractions.png``: λ_t against ±μλ_n at chosen steps.
 
 Conventions: s is the obstacle's position along the tangent t = (−n₂, n₁) of Γ_C (n the outward normal),
-Q = ∫λ_t is the tangential force along t, and abscissae run along t.
+Q = ∫λ_t is the tangential force along t, and abscissae run as ``tribo.checks.abscissa_description`` says
+(written into the CSV header and the plot).
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
+from tribo.checks import abscissa_description
 from tribo.io import write_vtu
 from tribo.problem import Problem
 from tribo.results import History
@@ -121,18 +123,18 @@ def write_history(out: str | Path, problem: Problem, history: History, *, plots:
     with path.open("w", newline="", encoding="utf-8") as f:
         f.write(
             "# s (shift): obstacle position along t = (-n2, n1); tangential_force = ∫λ_t along t; "
-            "zones are abscissae along t\n"
+            f"zones are positions on Γ_C as the {abscissa_description(problem)}\n"
         )
         w = csv.writer(f)
         w.writerow(table)
         w.writerows(zip(*(v.tolist() for v in table.values()), strict=True))
     files.append(path)
     if plots:
-        files += _plots(out, history, plot_steps)
+        files += _plots(out, problem, history, plot_steps)
     return files
 
 
-def _plots(out: Path, history: History, plot_steps: Sequence[int] | None) -> list[Path]:
+def _plots(out: Path, problem: Problem, history: History, plot_steps: Sequence[int] | None) -> list[Path]:
     try:
         import matplotlib
 
@@ -154,7 +156,7 @@ def _plots(out: Path, history: History, plot_steps: Sequence[int] | None) -> lis
     files = []
     draws: tuple[tuple[str, Callable[[Any], Any]], ...] = (
         ("history_loop.png", lambda ax: plot.history_loop(history, ax)),
-        ("history_tractions.png", lambda ax: plot.history_tractions(history, steps, ax)),
+        ("history_tractions.png", lambda ax: plot.history_tractions(history, steps, ax, problem=problem)),
     )
     for name, draw in draws:
         fig, ax = plt.subplots(figsize=(7.0, 4.0), layout="constrained")

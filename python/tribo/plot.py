@@ -25,7 +25,7 @@ import numpy as np
 import numpy.typing as npt
 
 from tribo._tribo import STATE_NAMES
-from tribo.checks import actors, format_vector, shift_description
+from tribo.checks import abscissa_description, actors, format_vector, shift_description
 from tribo.problem import Problem
 from tribo.results import History, Solution
 
@@ -83,11 +83,8 @@ def _shade(ax: Axes, problem: Problem, solution: Solution) -> list[Patch]:
 
 
 def _xi_label(problem: Problem) -> str:
-    """The abscissa's label: which way ξ increases."""
-    t = problem.contact_tangent
-    axis = "x" if abs(t[0]) >= abs(t[1]) else "y"
-    along = "+t" if problem.tangent_sign > 0 else "−t"
-    return rf"abscissa $\xi$ on $\Gamma_C$ (increasing with {axis}, along {along})"
+    """The abscissa's label: which way ξ increases (``tribo.checks.abscissa_description``)."""
+    return abscissa_description(problem)
 
 
 def _zoom(ax: Axes, problem: Problem, solution: Solution) -> None:
@@ -275,13 +272,20 @@ def history_loop(history: History, ax: Axes | None = None) -> Axes:
     return ax
 
 
-def history_tractions(history: History, steps: Sequence[int], ax: Axes | None = None) -> Axes:
-    """λ_t and ±μλ_n (the Coulomb bounds) along Γ_C at the given steps of a history."""
+def history_tractions(
+    history: History, steps: Sequence[int], ax: Axes | None = None, *, problem: Problem | None = None
+) -> Axes:
+    """λ_t and ±μλ_n (the Coulomb bounds) along Γ_C at the given steps of a history. Each step is labelled by
+    what the history moves (the shift s, the load factor) and its tangential force Q; with ``problem``, the
+    abscissa says which way it runs."""
     ax = _axes(ax)
+    moved = [(name, values) for name, values in (("s", history.shift), ("load factor", history.load_factor))
+             if len(values) and float(np.ptp(values)) > 0]
     for i, k in enumerate(steps):
         sol = history.solution(k)
         x = sol.multiplier_abscissae
-        (line,) = ax.plot(x, sol.lambda_t, "-", lw=1.4, label=f"λ_t, step {k} (s = {history.shift[k]:.3g})")
+        said = ", ".join([*(f"{name} = {values[k]:.3g}" for name, values in moved), f"Q = {history.tangential_force[k]:.3g}"])
+        (line,) = ax.plot(x, sol.lambda_t, "-", lw=1.4, label=f"λ_t, step {k} ({said})")
         ax.plot(x, sol.friction_threshold, ":", color=line.get_color(), lw=1.0,
                 label="±μλ_n" if i == 0 else None)
         ax.plot(x, -sol.friction_threshold, ":", color=line.get_color(), lw=1.0)
@@ -291,7 +295,7 @@ def history_tractions(history: History, steps: Sequence[int], ax: Axes | None = 
         a, b = float(zone[:, 0].min()), float(zone[:, 1].max())
         pad = 0.3 * (b - a) if b > a else 1.0
         ax.set_xlim(a - pad, b + pad)
-    ax.set_xlabel("abscissa along Γ_C (along t)")
+    ax.set_xlabel(abscissa_description(problem) if problem is not None else "abscissa ξ along Γ_C")
     ax.set_ylabel("tangential traction λ_t (along t)")
     ax.set_title("Tangential traction and the Coulomb bounds ±μλ_n")
     ax.grid(alpha=0.3)

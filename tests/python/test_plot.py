@@ -78,3 +78,29 @@ def test_plot_titles_name_who_exerts_the_force() -> None:
     assert "force of the obstacle on the body" in plot.contact_pressure(hertz, s).get_title()
     assert "the obstacle pulls the body by" in plot.tangential(hertz, s).get_title()
     plt.close("all")
+
+
+def test_history_tractions_say_what_moves_and_which_way_positions_run() -> None:
+    """Each step's legend gives what the history moves and its Q (the Cattaneo–Mindlin gallery said "s = 0"
+    at every step of a history that moves prescribed displacements); the abscissa says which way it runs
+    (it said "along t" while positions increase along −t)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    from tribo import plot
+    from tribo.scene import load_scene, scene_path
+
+    hertz = load_scene(scene_path("hertz")).build()
+    shifted = hertz.solve_history(0.01, np.linspace(0.0, 0.004, 3), mu=0.3)
+    ax = plot.history_tractions(shifted, [1, 2], problem=hertz)
+    labels = [line.get_label() for line in ax.get_lines() if line.get_label().startswith("λ_t")]
+    assert labels == [f"λ_t, step {k} (s = {shifted.shift[k]:.3g}, Q = {shifted.tangential_force[k]:.3g})" for k in (1, 2)]
+    assert ax.get_xlabel() == "abscissa ξ along Γ_C, increasing with x (along −t)"
+    two = load_scene(scene_path("fretting_two_bodies")).build()
+    moved = two.solve_history(displacements={"upper.top.x": np.array([0.0, 0.001])}, mu=0.3)
+    labels = [line.get_label() for line in plot.history_tractions(moved, [1]).get_lines()]
+    assert f"λ_t, step 1 (Q = {moved.tangential_force[1]:.3g})" in labels, labels
+    plt.close("all")
