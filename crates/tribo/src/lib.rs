@@ -6,6 +6,25 @@
 //! λ_H = (λ_Hn, λ_Ht) live on their own 1D mesh T_H of Γ_C (P0 or continuous P1) whose points need not be
 //! FE nodes.
 //!
+//! ## A first solve
+//! A block clamped at the bottom, a rigid cylinder pressed into its top and shifted along it, Coulomb
+//! friction:
+//!
+//! ```
+//! use tribo::*;
+//!
+//! let mesh = rectangle([-2.0, 2.0], [-2.0, 0.0], 32, 16, Diagonal::Right)?;
+//! let spec = ProblemSpec::new(Material { young: 200.0, poisson: 0.3 }, "top")
+//!     .clamped(["bottom"])
+//!     .obstacle(ObstacleShape::Circle { center: 0.0, radius: 1.0 })
+//!     .approach(0.01)
+//!     .shift(0.004);
+//! let solution = Problem::new(mesh, spec)?.solve(&Friction::Coulomb { mu: 0.3 }, &SolverSettings::default(), None)?;
+//! assert_eq!(solution.report.status, SolveStatus::Converged);
+//! println!("P = {}, Q = {}, contact width {}", solution.normal_force, solution.tangential_force, solution.contact_width());
+//! # Ok::<(), tribo::Error>(())
+//! ```
+//!
 //! ## The discrete problem (3.1)
 //! Find `u_h ∈ V_h`, `λ_H ∈ M_H(μ λ_Hn)` with
 //!
@@ -176,6 +195,11 @@ pub mod loading {
 #[cfg(doctest)]
 #[doc = include_str!("../../../README.md")]
 pub struct ReadmeDoctests;
+
+/// The example of the Rust guide (`docs/guide/rust.md`), compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/guide/rust.md")]
+pub struct RustGuideDoctests;
 
 /// Every named choice of the keyword surface (the Python binding, scene files), by the keyword that takes
 /// it: `side`, `diagonal`, `space`, `friction`, `state` (in the order of [`Choice::code`]), `status`

@@ -11,6 +11,7 @@ pub mod floating;
 pub mod load_case;
 
 mod condense;
+mod spec;
 
 pub use condense::Condensed;
 
@@ -34,7 +35,8 @@ use crate::fem::supports::{Dofs, NodeSupport, Support};
 use crate::mesh::Mesh;
 use condense::FactorCache;
 
-/// Everything that defines a contact problem besides the mesh.
+/// Everything that defines a contact problem besides the mesh. [`ProblemSpec::new`] takes the two parts
+/// without a default (the material and the contact edge set) and sets the others by name.
 #[derive(Debug, Clone)]
 pub struct ProblemSpec {
     /// Material.
