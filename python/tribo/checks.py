@@ -44,7 +44,9 @@ line prints each as a ``tribo: warning: …`` line. The rules and their threshol
 
 from __future__ import annotations
 
+import math
 import warnings
+from typing import Any
 
 import numpy as np
 
@@ -63,6 +65,7 @@ __all__ = [
     "conventions",
     "format_vector",
     "shift_description",
+    "warn_missing_error_bars",
     "warn_solution",
 ]
 
@@ -70,6 +73,7 @@ MIN_CONTACT_DOFS = 10
 MAX_APPROACH_FRACTION = 0.05
 MAX_POISSON = 0.49
 MAX_SHIFT_FRACTION = 0.1
+STRAIGHT = float(np.sqrt(np.finfo(float).eps))
 
 
 class SceneWarning(UserWarning):
@@ -123,15 +127,24 @@ def check_solution(problem: Problem, solution: Solution) -> list[str]:
     if problem.primary is None and problem.obstacle.kind != "flat" and width > 0 and abs(shift) > MAX_SHIFT_FRACTION * width:
         reasons.append(
             f"the shift s = {_g(shift)} is {_g(abs(shift) / width * 100)} % of the contact width ({_g(width)}), more "
-            f"than {_g(MAX_SHIFT_FRACTION * 100)} %: friction is small sliding here (the gap is the obstacle's where it "
-            "started), so the contact zone is where it was before the shift, not where the moved obstacle puts it"
+            f"than {_g(MAX_SHIFT_FRACTION * 100)} %: tribo's contact is small sliding (the gap is the obstacle's where "
+            "it started), so the contact zone is where it was before the shift, not where the moved obstacle puts it"
         )
     return reasons
 
 
 def _held_nodes(problem: Problem) -> set[int]:
-    """The nodes that a clamp or a prescribed displacement holds (rollers leave the tangent free)."""
-    sets = list(problem.clamped) + [s.edge_set for s in problem.supports if s.kind in ("clamp", "displacement")]
+    """The nodes that a clamp holds, or a prescribed displacement that prescribes every component the contact
+    normal has (one that prescribes only the tangential component leaves the node free to close the gap)."""
+    n = problem.contact_normal
+
+    def holds(support: Any) -> bool:
+        x, y = support.value
+        return support.kind == "clamp" or (
+            support.kind == "displacement" and (x is not None or n[0] == 0) and (y is not None or n[1] == 0)
+        )
+
+    sets = list(problem.clamped) + [s.edge_set for s in problem.supports if holds(s)]
     edges = problem.mesh.edge_sets
     return {int(v) for name in sets if name in edges for v in np.asarray(edges[name]).ravel()}
 
@@ -159,7 +172,7 @@ def _cut_zone(problem: Problem, solution: Solution) -> list[str]:
     """The reason to doubt a contact zone that reaches an end of Γ_C where the body's boundary goes on
     straight (none at a corner, or when the zone stops short of the ends)."""
     states, nodes = solution.states, np.asarray(problem.contact_nodes)
-    if len(states) == 0 or len(nodes) < 2:
+    if len(states) == 0 or len(nodes) < 2 or (states[0] == 0 and states[-1] == 0):
         return []
     tri = np.asarray(problem.mesh.triangles)
     edges = np.sort(np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]]), axis=1)
@@ -177,7 +190,9 @@ def _cut_zone(problem: Problem, solution: Solution) -> list[str]:
                 continue
             beyond = points[other] - points[end]
             cross = last[0] * beyond[1] - last[1] * beyond[0]
-            if np.dot(last, beyond) > 0 and abs(cross) <= 1e-9 * np.linalg.norm(last) * np.linalg.norm(beyond):
+            # Straight as the core judges a line straight (to √ε of the lengths, `mesh/line.rs`).
+            straight = abs(cross) <= STRAIGHT * np.linalg.norm(last) * np.linalg.norm(beyond)
+            if np.dot(last, beyond) > 0 and straight:
                 xi = float(problem.node_abscissae[0 if end == nodes[0] else -1])
                 reasons.append(
                     f"the contact zone reaches the end of the contact side '{problem.contact}' at ξ = {_g(xi)}, where "
@@ -185,6 +200,17 @@ def _cut_zone(problem: Problem, solution: Solution) -> list[str]:
                     "on where the side was cut (extend the contact edge set)"
                 )
     return reasons
+
+
+def warn_missing_error_bars(solution: Solution, stacklevel: int = 2) -> bool:
+    """Emits a ``SceneWarning`` when error bars were asked for and the solution has none (the solve or the
+    enriched solve did not converge, or the enriched problem did not fit the memory budget: the log says
+    which); returns whether it did."""
+    if solution.report.status == "converged" and math.isnan(solution.report.estimate.get("normal_force_error", math.nan)):
+        warnings.warn("error bars were asked for, but the enriched solve gave none (it did not converge or did not "
+                      "fit the memory budget; the log says which)", SceneWarning, stacklevel=stacklevel + 1)
+        return True
+    return False
 
 
 def warn_solution(problem: Problem, solution: Solution, stacklevel: int = 2) -> list[str]:

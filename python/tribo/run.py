@@ -20,7 +20,7 @@ import numpy as np
 
 from tribo._tribo import __version__
 from tribo.adaptive import write_adaptive, write_levels
-from tribo.checks import SceneWarning, conventions, warn_solution
+from tribo.checks import SceneWarning, conventions, warn_missing_error_bars, warn_solution
 from tribo.history import vtu_every, write_history
 from tribo.io import write_contact_csv, write_text_atomic, write_vtu
 from tribo.problem import Problem
@@ -237,6 +237,7 @@ def run_scene(
             if scene.get("estimate", "error_bars", False):
                 log.info("solving the last level again with its error bars")
                 solution = problem.solve(error_bars=True, **scene.solve_kwargs())
+                warn_missing_error_bars(solution)
             history_files = []
             if fields:
                 history_files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)

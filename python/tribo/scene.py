@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from tribo._tribo import Mesh, Obstacle, Support, TriboError
-from tribo.checks import warn_solution
+from tribo.checks import warn_missing_error_bars, warn_solution
 from tribo.io import read_mesh
 from tribo.problem import Body, Problem
 from tribo.results import Adaptive, AdaptiveHistory, History, Solution
@@ -258,6 +258,8 @@ class Scene:
         bars = bool(self.get("estimate", "error_bars", False))
         solution = problem.solve(progress=progress, on_phase=on_phase, error_bars=bars, **self.solve_kwargs())
         warn_solution(problem, solution, stacklevel=2)
+        if bars:
+            warn_missing_error_bars(solution, stacklevel=2)
         return problem, solution
 
     @property

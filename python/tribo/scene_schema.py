@@ -72,13 +72,13 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     their kinds and defaults): ``qp_tol``, ``qp_max_iter``, ``qp_kkt_solver`` (``"faer"``/``"qdldl"``),
     ``qp_working_set`` (true/false), ``fp_tol``, ``fp_max_iter``, ``fp_relaxation``. Unset keys take the
     core's defaults. The table of keys is built from the core's, so it cannot drift from it.
-
 ``[estimate]``
     ``error_bars`` (true/false, default false): also solve the problem enriched on the whole mesh (every
     triangle bisected, T_H halved; about 4 times the unknowns) and report the error bars of the normal and
     tangential forces and of the contact and stick widths (``P = 0.851 ± 0.0004`` in ``tribo run``, the
     ``*_error`` keys of ``estimate`` in ``summary.json``): twice their change under the enrichment, sharp but
-    not guaranteed bounds. With ``[adapt]``, the last level is solved again with them. Not with a ``[history]``.
+    not guaranteed bounds. With ``[adapt]``, ``tribo run`` solves the last level again with them
+    (``Scene.solve_adaptive`` returns the loop's answer, without). Not with a ``[history]``.
 ``[[bodies]]``
     Two elastic bodies in contact, instead of ``[body]``, ``[material]``, ``[supports]`` and ``[obstacle]``.
     Exactly two entries, each with ``name`` (*required*), ``x``/``y`` or ``mesh`` as ``[body]``,

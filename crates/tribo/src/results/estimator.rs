@@ -109,9 +109,10 @@ pub struct ErrorEstimate {
     /// `ζ / min(‖λ_H‖, ‖σ_h n‖)` in L²(Γ_C) (NaN when λ_H = 0: nothing touches).
     pub traction_relative: f64,
     /// `2 ‖λ_H − λ_f‖_{L²(Γ_C)}`, the hierarchical estimate of the traction error (λ_f the answer of the
-    /// problem enriched near the contact zone: [`crate::Problem::estimate_hierarchical`], which derives it).
-    /// Sharp where the bound ζ is pessimistic, but not a guaranteed bound. `None` unless it was computed
-    /// (by the adaptive loop with [`crate::settings::StopOn::Hierarchical`]; NaN by [`Self::named`]).
+    /// problem enriched near the contact zone by the adaptive loop with
+    /// [`crate::settings::StopOn::Hierarchical`] ([`crate::Problem::estimate_hierarchical`], which derives
+    /// it), or on the whole mesh by [`crate::Problem::solve_with_error_bars`]). Sharp where the bound ζ is
+    /// pessimistic, but not a guaranteed bound. `None` unless it was computed (NaN by [`Self::named`]).
     pub traction_hierarchical: Option<f64>,
     /// `traction_hierarchical / ‖λ_f‖` in L²(Γ_C) (`None` unless computed).
     pub traction_hierarchical_relative: Option<f64>,
@@ -121,7 +122,7 @@ pub struct ErrorEstimate {
 }
 
 /// Estimates of the errors of what users read, each from the answer λ_H and the answer λ_f of the problem
-/// enriched near the contact zone ([`crate::Problem::estimate_hierarchical`], which derives them): the
+/// enriched on the whole mesh ([`crate::Problem::estimate_error_bars`]; `crate::adapt::enriched` derives them): the
 /// absolute errors of [`crate::Solution::normal_force`], [`crate::Solution::tangential_force`],
 /// [`crate::Solution::contact_width`] and [`crate::Solution::stick_width`]. Like the hierarchical traction
 /// estimate, sharp but not guaranteed bounds.

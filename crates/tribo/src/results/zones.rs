@@ -31,13 +31,16 @@ impl Zone {
 }
 
 /// The zone of the dofs at `abscissae` (increasing) whose `states` `keep` accepts, on a Γ_C from
-/// `ends[0]` to `ends[1]`; `None` when it accepts none.
+/// `ends[0]` to `ends[1]`; `None` when it accepts none. Only the dofs that have both an abscissa and a
+/// state are read.
 pub fn zone(
     abscissae: &[f64],
     ends: [f64; 2],
     states: &[ContactState],
     keep: impl Fn(ContactState) -> bool,
 ) -> Option<Zone> {
+    let n = abscissae.len().min(states.len());
+    let (abscissae, states) = (&abscissae[..n], &states[..n]);
     let first = states.iter().position(|&s| keep(s))?;
     let last = states.iter().rposition(|&s| keep(s))?;
     let (lo, lo_half) = match first.checked_sub(1) {

@@ -217,9 +217,11 @@ impl Condensed<'_> {
         let undecided = matches!(phase.status, SolveStatus::Stagnated | SolveStatus::MaxIterations);
         if phase.status == SolveStatus::Converged || (undecided && !loading.rigid.load.is_empty()) {
             let bound = (!matches!(friction, Friction::Frictionless)).then_some(threshold.as_slice());
-            // The scale of λ: the answer's, the linear term's, and the nearby answer's it started from (a
-            // history step that unloads the body has λ ≈ 0 and c ≈ 0: the previous step sets the scale).
-            let largest = phase.lambda.iter().chain(start.unwrap_or_default()).fold(0.0_f64, |m, l| m.max(l.abs()));
+            // The scale of λ: the answer's and the linear term's; for a fixed point that did not converge, also
+            // the nearby answer's it started from (a history step that unloads the body has λ ≈ 0 and c ≈ 0:
+            // the previous step sets the scale).
+            let earlier = if undecided { start.unwrap_or_default() } else { &[] };
+            let largest = phase.lambda.iter().chain(earlier).fold(0.0_f64, |m, l| m.max(l.abs()));
             let noise = settings.qp.tol * factor.lambda_scale(&loading.c).max(largest);
             problem.check_rigid_motion_determined(&loading.rigid, &phase.lambda, bound, noise)?;
         }

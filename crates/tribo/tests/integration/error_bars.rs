@@ -12,10 +12,11 @@ fn partial_slip() -> (Problem, Friction) {
     (problem, Friction::Coulomb { mu: 0.3 })
 }
 
-/// Each bar lies between once and three times the error of its quantity against the answer on the mesh
-/// refined twice more everywhere (h / 4: its own error is about 1/16 of the forces' and 1/4 of the widths'),
-/// and a width's bar is at least the resolution of its zone. The traction estimate of the same enriched
-/// solve comes with them.
+/// Each bar is at least the error of its quantity against the answer on the mesh refined twice more
+/// everywhere (h / 4: its own error is about 1/16 of the forces' and 1/4 of the widths'); a force's bar is at
+/// most three times its error (the saturation argument gives 1.5, study 14 measures 1.39–2.25), while a
+/// width's may be more (its error is quantized by the dof spacing: study 14 measures up to 13) and is at
+/// least the resolution of its zone. The traction estimate of the same enriched solve comes with them.
 #[test]
 fn the_error_bars_hold_the_answer_of_a_finer_mesh() {
     let (problem, friction) = partial_slip();
@@ -36,14 +37,15 @@ fn the_error_bars_hold_the_answer_of_a_finer_mesh() {
         ("contact width", bars.contact_width, solution.contact_width(), reference.contact_width()),
         ("stick width", bars.stick_width, solution.stick_width(), reference.stick_width()),
     ];
-    for (name, bar, value, truth) in pairs {
+    for (k, (name, bar, value, truth)) in pairs.into_iter().enumerate() {
         let error = (value - truth).abs();
         println!(
             "{name}: {value:.6e} ± {bar:.2e}, reference {truth:.6e}, error {error:.2e}, bar/error {:.2}",
             bar / error
         );
         assert!(value != 0.0 && error > 0.0, "{name}: the quantity is there and the coarse mesh is off");
-        assert!((error..=3.0 * error).contains(&bar), "{name}: bar {bar:.3e}, error {error:.3e}");
+        assert!(bar >= error, "{name}: bar {bar:.3e}, error {error:.3e}");
+        assert!(k >= 2 || bar <= 3.0 * error, "{name}: bar {bar:.3e}, error {error:.3e}");
     }
     for (bar, zone) in [(bars.contact_width, solution.contact_zone()), (bars.stick_width, solution.stick_zone())] {
         assert!(bar >= zone.expect("the zone is there").resolution);

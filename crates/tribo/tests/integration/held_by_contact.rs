@@ -353,8 +353,6 @@ fn the_patch_test_holds_for_p0_multipliers_and_without_stabilization() {
     }
 }
 
-/// A frictionless history that ramps the load is path independent: each step equals the static solve of
-/// its load (the equilibrium's load scales with the step's load factor).
 /// Defect D31: a Coulomb history that unloads a block held only by the contact (load factor 1 → 0) says
 /// what the static solve of the unloaded block says (nothing presses it against the contact: its position
 /// is undetermined), naming the motion; it ended `stagnated` with no reason. The loaded step alone converges.
@@ -380,6 +378,8 @@ fn a_history_that_unloads_a_body_held_by_the_contact_says_why_it_stops() {
     }
 }
 
+/// A frictionless history that ramps the load is path independent: each step equals the static solve of
+/// its load (the equilibrium's load scales with the step's load factor).
 #[test]
 fn a_ramped_load_gives_the_static_answer_at_every_step() {
     let problem = block_on_foundation(vec![Support::roller("left")], [0.3, -2.0]);
