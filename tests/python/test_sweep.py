@@ -312,18 +312,22 @@ def test_a_case_that_kills_every_worker_is_a_row_and_not_cached(tmp_path: Path) 
     import dask
 
     scene, out = scene_file(tmp_path), tmp_path / "out"
-    # 9 cases on one worker go in batches of 2: the big one shares its batch with a small one, which must
-    # not be marked with it (the batch is split into single cases once it kills workers).
-    zipped = {"friction.mu": [0.1 * k for k in range(1, 10)],
-              "discretization.h_min": [0.04] * 4 + [0.0001] + [0.04] * 4, "discretization.growth": [0.02] * 9}
-    with dask.config.set({"distributed.scheduler.allowed-failures": 1}):
-        with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=":0",
+    # 17 cases on two workers go in batches of 2: the big one shares its batch with a small one, which must
+    # not be marked with it (the batch is split into single cases once it kills workers). Two workers, not
+    # one: in 1 of 4 runs a nanny that had restarted its worker four times in seconds did not start a fifth,
+    # and the sweep waited for ever on a cluster with no worker. The no-workers timeout turns such a loss
+    # into a failed task (an `internal_error` row that fails this test) rather than a hang.
+    zipped = {"friction.mu": [0.05 * k for k in range(1, 18)],
+              "discretization.h_min": [0.04] * 4 + [0.0001] + [0.04] * 12, "discretization.growth": [0.02] * 17}
+    with dask.config.set({"distributed.scheduler.allowed-failures": 1,
+                          "distributed.scheduler.no-workers-timeout": "120s"}):
+        with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
                                       memory_limit="600MB", env={"RAYON_NUM_THREADS": "1"}) as cluster, \
                 distributed.Client(cluster) as c:
             df = sweep(scene, {}, zipped=zipped, out=out, client=c, progress=False)
     big = df.iloc[4]
     small = df.drop(index=4)
-    assert (small["status"] == "converged").all() and len(small) == 8
+    assert (small["status"] == "converged").all() and len(small) == 16
     assert big["status"] == "killed_worker" and "killed every worker" in big["failure"]
     assert big["attempts"] >= 2  # allowed-failures = 1: tried twice alone (and in its batch before)
     assert not (out / "cases" / big["case"] / "row.json").exists()
