@@ -32,9 +32,17 @@ pub(crate) fn indicators(solutions: &[&Solution]) -> Vec<f64> {
     eta2.iter().zip(&zeta2).map(|(e, z)| part(*e, se) + part(*z, sz)).collect()
 }
 
+/// Indicators within this relative distance of each other are ties. Two computations of one indicator
+/// that differ only in rounding (a mirror image of the mesh, or the problem in other units, D27) differ by
+/// a few ε per operation of the sums behind them; 1e-9 leaves room for sums of millions of terms and is
+/// far below any difference the marking means to see.
+const TIE: f64 = 1e-9;
+
 /// The triangles to refine, in increasing order: Dörfler's fewest triangles whose indicators reach θ of
-/// the total (largest first, ties by index), or every triangle at least θ times the largest. Empty when
-/// every indicator is 0.
+/// the total (largest first), or every triangle at least θ times the largest; in both, every triangle tied
+/// ([`TIE`]) with the smallest marked one too, so that the marking does not depend on rounding (a symmetric
+/// problem is refined symmetrically, the same problem in other units alike). Empty when every indicator
+/// is 0.
 pub(crate) fn mark(indicators: &[f64], theta: f64, marking: Marking) -> Vec<usize> {
     let total: f64 = indicators.iter().sum();
     if total <= 0.0 || !total.is_finite() {
@@ -47,7 +55,8 @@ pub(crate) fn mark(indicators: &[f64], theta: f64, marking: Marking) -> Vec<usiz
             let mut sum = 0.0;
             let mut out = Vec::new();
             for t in order {
-                if sum >= theta * total {
+                let tied = out.last().is_some_and(|&last: &usize| indicators[t] >= indicators[last] * (1.0 - TIE));
+                if sum >= theta * total && !tied {
                     break;
                 }
                 sum += indicators[t];
@@ -57,7 +66,7 @@ pub(crate) fn mark(indicators: &[f64], theta: f64, marking: Marking) -> Vec<usiz
         }
         Marking::Maximum => {
             let max = indicators.iter().copied().fold(0.0, f64::max);
-            (0..indicators.len()).filter(|&t| indicators[t] >= theta * max).collect()
+            (0..indicators.len()).filter(|&t| indicators[t] >= theta * max * (1.0 - TIE)).collect()
         }
     };
     marked.sort_unstable();
@@ -76,6 +85,15 @@ mod tests {
         assert_eq!(mark(&m, 0.71, Marking::Dorfler), vec![1, 2, 3]);
         assert_eq!(mark(&m, 1.0, Marking::Dorfler), vec![0, 1, 2, 3]);
         assert_eq!(mark(&[0.0, 0.0], 0.5, Marking::Dorfler), Vec::<usize>::new());
+    }
+
+    #[test]
+    fn ties_are_marked_together_whatever_their_rounding() {
+        // One 0.4 reaches θ of the total alone, but the two equal to it up to rounding go with it.
+        let m = [0.1, 0.4 * (1.0 - 1e-15), 0.1, 0.4, 0.4 * (1.0 + 1e-15)];
+        assert_eq!(mark(&m, 0.25, Marking::Dorfler), vec![1, 3, 4]);
+        assert_eq!(mark(&[0.3, 0.3, 0.3, 0.1], 0.2, Marking::Dorfler), vec![0, 1, 2]);
+        assert_eq!(mark(&[0.2, 0.5 * (1.0 - 1e-15), 1.0], 0.5, Marking::Maximum), vec![1, 2]);
     }
 
     #[test]

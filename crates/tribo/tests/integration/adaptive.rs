@@ -1,6 +1,7 @@
 //! Adaptive refinement: from a coarse uniform mesh that knows nothing of where contact will be, the loop
 //! finds the contact zone and stops at the asked accuracy; bad adaptive settings are typed errors.
 
+use proptest::prelude::*;
 use tribo::*;
 
 const CENTER: f64 = 0.3;
@@ -436,4 +437,105 @@ fn a_stop_on_max_unknowns_hands_back_an_answer_converged_to_fp_tol() {
     assert_eq!(sol.states, fresh.states, "the handed-back states are those of the last mesh solved afresh");
     let last = out.levels.last().expect("levels");
     assert_eq!((last.status, last.estimate), (sol.report.status, sol.report.estimate), "the level is the answer's");
+}
+
+/// A random adaptive case: the block `(−w/2, w/2) × (−h, 0)` on an `nx × ny` mesh, clamped at the bottom,
+/// pushed on its top by a cylinder or a flat obstacle, frictionless, Tresca or Coulomb, with random
+/// adaptive settings; every length is multiplied by `length` and E (and a Tresca threshold) by `stress`.
+#[derive(Debug, Clone)]
+struct RandomCase {
+    w: f64,
+    h: f64,
+    nx: usize,
+    ny: usize,
+    young: f64,
+    poisson: f64,
+    /// Centre and radius of the cylinder (None: flat).
+    cylinder: Option<(f64, f64)>,
+    approach: f64,
+    shift: f64,
+    /// 0 frictionless, 1 Tresca, 2 Coulomb, with its coefficient (μ, or the threshold over E).
+    law: (usize, f64),
+    adapt: AdaptSettings,
+}
+
+impl RandomCase {
+    fn problem(&self, length: f64, stress: f64) -> (Problem, Friction) {
+        let (w, h) = (self.w * length, self.h * length);
+        let mesh = rectangle([-w / 2.0, w / 2.0], [-h, 0.0], self.nx, self.ny, Diagonal::Right).expect("valid");
+        let shape = self.cylinder.map_or(ObstacleShape::Flat, |(center, radius)| ObstacleShape::Circle {
+            center: center * length,
+            radius: radius * length,
+        });
+        let material = Material { young: self.young * stress, poisson: self.poisson };
+        let spec = ProblemSpec::new(material, "top")
+            .clamped(["bottom"])
+            .obstacle(shape)
+            .approach(self.approach * length)
+            .shift(self.shift * length);
+        let friction = match self.law {
+            (0, _) => Friction::Frictionless,
+            (1, t) => Friction::Tresca(Threshold::Uniform(t * self.young * stress)),
+            (_, mu) => Friction::Coulomb { mu },
+        };
+        (Problem::new(mesh, spec).expect("valid"), friction)
+    }
+}
+
+fn any_case() -> impl Strategy<Value = RandomCase> {
+    let geometry = (1.0f64..4.0, 0.5f64..2.0, 2usize..9, 1usize..5, -1.0f64..1.0, 0.3f64..5.0, any::<bool>());
+    let physics = (-3i32..4, 0.0f64..0.45, 1e-3f64..2e-2, 0.0f64..1.0, 0usize..3, 0.05f64..0.8);
+    let adapt = (0.01f64..0.5, 500usize..4000, 1usize..7, any::<bool>());
+    (geometry, physics, adapt).prop_map(
+        |((w, h, nx, ny, c, r, flat), (e, nu, d, s, law, k), (tol, n, levels, sharp))| RandomCase {
+            w,
+            h,
+            nx,
+            ny,
+            young: 10f64.powi(e),
+            poisson: nu,
+            cylinder: (!flat).then_some((0.25 * c * w, r)),
+            approach: d * h,
+            shift: s * d * h,
+            law: (law, if law == 1 { 1e-3 * k } else { k }),
+            adapt: AdaptSettings {
+                tol,
+                max_unknowns: n,
+                max_levels: levels,
+                stop_on: if sharp { StopOn::Hierarchical } else { StopOn::Bound },
+                ..AdaptSettings::default()
+            },
+        },
+    )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 16, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Issue 37: whatever the loop stops on, the answer it hands back is what its status says: `converged`
+    /// means finite fields and KKT residuals within the bound the tolerances justify, the loop stops as not
+    /// converged exactly when the answer is not, and the last level is the answer's. The same problem in
+    /// other units (lengths by 10^±2, E and the threshold by 10^±3) goes through the same levels to the same
+    /// stop.
+    #[test]
+    fn every_adaptive_stop_hands_back_what_it_says(case in any_case(), length in -2i32..3, stress in -3i32..4) {
+        let settings = SolverSettings::default();
+        let (problem, friction) = case.problem(1.0, 1.0);
+        let adapt = AdaptSettings { max_unknowns: case.adapt.max_unknowns.max(problem.n_free), ..case.adapt };
+        let out = problem.solve_adaptive(&friction, &settings, &adapt, None).expect("a valid case adapts");
+        let sol = &out.solution;
+        let converged = sol.report.status == SolveStatus::Converged;
+        prop_assert_eq!(out.stop == AdaptStop::NotConverged, !converged, "{:?} with {}", out.stop, sol.report.status);
+        if converged {
+            let bound = Solution::accuracy_bound(settings.qp.tol, sol.report.qp_inaccurate, settings.fp.tol);
+            prop_assert!(sol.all_finite(), "a converged answer with non-finite fields");
+            prop_assert!(sol.kkt.max() <= bound, "KKT {:?} above {bound:e}", sol.kkt);
+        }
+        let last = out.levels.last().expect("one level at least");
+        prop_assert_eq!((last.unknowns, last.status), (out.problem.n_free, sol.report.status));
+        let (scaled, friction) = case.problem(10f64.powi(length), 10f64.powi(stress));
+        let again = scaled.solve_adaptive(&friction, &settings, &adapt, None).expect("a valid case adapts");
+        let sizes = |a: &Adaptive| a.levels.iter().map(|l| l.unknowns).collect::<Vec<_>>();
+        prop_assert_eq!((sizes(&out), out.stop), (sizes(&again), again.stop), "lengths × 1e{}, E × 1e{}", length, stress);
+    }
 }
