@@ -71,24 +71,82 @@ pub fn hertz_mesh(h_min: f64) -> Mesh {
     graded_rectangle(s.x, s.y, &grading).expect("valid grading")
 }
 
-/// The adaptive Hertz cases of studies 12 and 13 (issue 36): the cylinder at `center`, frictionless, or
-/// Coulomb with `mu` > 0 and the obstacle shifted 0.004; their 466k-unknown reference on a mesh graded
-/// toward [center − 0.1, center + 0.1] (h_min 1.5625e-4, growth 0.02), solved with the default settings;
-/// and their coarse 8 × 4 start.
-pub struct AdaptiveHertzCase {
-    /// The problem's specification.
-    pub spec: ProblemSpec,
+/// An adaptive case of studies 12–14 (issue 36): a coarse start, its friction law and a reference.
+pub struct AdaptiveCase {
     /// The friction law.
     pub friction: Friction,
     /// The reference problem and its solution.
     pub reference: (Problem, Solution),
-    /// The 8 × 4 start of the adaptive runs.
+    /// How the reference was made (for the studies' printouts).
+    pub reference_source: String,
+    /// The coarse start of the adaptive runs.
     pub coarse: Problem,
 }
 
-/// [`AdaptiveHertzCase`] for the cylinder at `center` and friction `mu` (the reference solve takes about
-/// a minute).
-pub fn adaptive_hertz_case(center: f64, mu: f64) -> Result<AdaptiveHertzCase> {
+/// The names [`adaptive_case`] knows, with what each is.
+pub const ADAPTIVE_CASES: [(&str, &str); 7] = [
+    ("hertz", "Hertz, the cylinder centred, frictionless"),
+    ("hertz@X", "Hertz, the cylinder at x = X, frictionless"),
+    ("hertz-coulomb", "Hertz, centred, Coulomb mu = 0.3, the obstacle shifted 0.004 (partial slip)"),
+    ("hertz-p0", "Hertz, centred, frictionless, P0 multipliers"),
+    ("block", "the block scene (full contact, Coulomb mu = 0.3, shifted 0.008)"),
+    ("two-body", "two-body Hertz, steel under aluminium, frictionless"),
+    ("two-body-coulomb", "two-body Hertz, steel under aluminium, Coulomb mu = 0.3 (slip from the mismatch)"),
+];
+
+/// The adaptive case named `name` ([`ADAPTIVE_CASES`]). The Hertz cases start from the 8 × 4 mesh and
+/// take their 466k-unknown graded reference ([`adaptive_hertz_case`]; P0 multipliers are measured against
+/// the P1 reference: both approximate one λ). The block starts from 8 × 2 (h = 0.5) and two-body Hertz from
+/// its blocks at h = 0.5 (8 × 4 under 8 × 2); their reference is the adaptive loop itself from that start,
+/// run to `REFERENCE_UNKNOWNS` with the bound (a few minutes).
+///
+/// # Errors
+/// [`Error::UnknownChoice`] for a name not in [`ADAPTIVE_CASES`]; the errors of the solves.
+pub fn adaptive_case(name: &str) -> Result<AdaptiveCase> {
+    let coulomb = Friction::Coulomb { mu: 0.3 };
+    let steel = Material { young: 200.0, poisson: 0.3 };
+    let aluminium = Material { young: 70.0, poisson: 0.33 };
+    let (coarse, friction) = match name {
+        "hertz" => return adaptive_hertz_case(0.0, 0.0, MultiplierSpace::P1),
+        "hertz-coulomb" => return adaptive_hertz_case(0.0, 0.3, MultiplierSpace::P1),
+        "hertz-p0" => return adaptive_hertz_case(0.0, 0.0, MultiplierSpace::P0),
+        "block" => (block_problem(8, 2).0, coulomb),
+        "two-body" => (two_body_hertz(0.5, steel, aluminium, false, 0.01), Friction::Frictionless),
+        "two-body-coulomb" => (two_body_hertz(0.5, steel, aluminium, false, 0.01), coulomb),
+        _ => match name.strip_prefix("hertz@").and_then(|x| x.parse::<f64>().ok()) {
+            Some(center) => return adaptive_hertz_case(center, 0.0, MultiplierSpace::P1),
+            None => {
+                return Err(Error::UnknownChoice {
+                    what: "adaptive case",
+                    got: name.to_string(),
+                    options: ADAPTIVE_CASES.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "),
+                })
+            }
+        },
+    };
+    let adapt = AdaptSettings { tol: 1e-9, max_unknowns: REFERENCE_UNKNOWNS, ..AdaptSettings::default() };
+    let run = coarse.solve_adaptive(&friction, &SolverSettings::default(), &adapt, None)?;
+    let reference_source = format!(
+        "the adaptive loop from the coarse start to {} unknowns ({} levels, stopped on {}; its bound {:.2e})",
+        run.problem.n_free,
+        run.levels.len(),
+        run.stop,
+        run.solution.report.estimate.traction_relative
+    );
+    Ok(AdaptiveCase { friction, reference: (run.problem, run.solution), reference_source, coarse })
+}
+
+/// The largest reference [`adaptive_case`] builds by the adaptive loop.
+pub const REFERENCE_UNKNOWNS: usize = 500_000;
+
+/// The adaptive Hertz cases of studies 12 and 13 (issue 36): the cylinder at `center`, frictionless, or
+/// Coulomb with `mu` > 0 and the obstacle shifted 0.004, with multipliers in `space`; their 466k-unknown
+/// reference (P1 multipliers) on a mesh graded toward [center − 0.1, center + 0.1] (h_min 1.5625e-4,
+/// growth 0.02), solved with the default settings (about a minute); and their coarse 8 × 4 start.
+///
+/// # Errors
+/// Those of the solves.
+pub fn adaptive_hertz_case(center: f64, mu: f64, space: MultiplierSpace) -> Result<AdaptiveCase> {
     let friction = if mu > 0.0 { Friction::Coulomb { mu } } else { Friction::Frictionless };
     let mut spec = hertz_spec(0.01, 0.0, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
     spec.obstacle.shape = ObstacleShape::Circle { center, radius: 1.0 };
@@ -100,8 +158,10 @@ pub fn adaptive_hertz_case(center: f64, mu: f64) -> Result<AdaptiveHertzCase> {
         Grading { side: Side::Top, segment: [center - 0.1, center + 0.1], h_min: 1.5625e-4, h_max: 0.05, growth: 0.02 };
     let reference = Problem::new(graded_rectangle(x, y, &grading)?, spec.clone())?;
     let solution = reference.solve(&friction, &SolverSettings::default(), None)?;
-    let coarse = Problem::new(rectangle(x, y, 8, 4, Diagonal::Right)?, spec.clone())?;
-    Ok(AdaptiveHertzCase { spec, friction, reference: (reference, solution), coarse })
+    spec.multiplier_space = space;
+    let coarse = Problem::new(rectangle(x, y, 8, 4, Diagonal::Right)?, spec)?;
+    let reference_source = format!("a graded mesh of {} unknowns (h_min 1.5625e-4, growth 0.02)", reference.n_free);
+    Ok(AdaptiveCase { friction, reference: (reference, solution), reference_source, coarse })
 }
 
 /// The specification of the Hertz scene: clamped at the bottom, contact on the top, the cylinder pushed

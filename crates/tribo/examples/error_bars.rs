@@ -1,22 +1,27 @@
-//! How good are the error bars of P, Q and the zone widths? (issue 36, item 3; study 14)
+//! How good are the error bars of P, Q and the zone widths, and the traction estimates? (issue 36, items 1
+//! and 3; studies 14 and 15)
 //!
-//! The Hertz block (E = 200, ν = 0.3, R = 1, δ = 0.01) with the cylinder at `CENTER`, frictionless or
-//! Coulomb (`MU` > 0, the obstacle shifted 0.004: partial slip), adapted from the 8 × 4 mesh to
-//! `MAX_UNKNOWNS` (80k by default). Every level with at least 10 multiplier dofs in contact is solved again
-//! on its mesh, its error bars computed (`Problem::estimate_error_bars`: the whole mesh enriched; with
-//! `STRIP` = 1, the strip of one contact width that the adaptive stop enriches), and each error bar
-//! (`tribo::results::ErrorBars`) compared with the true error of its quantity against the reference on a graded
-//! mesh of 466k unknowns (study 12's): the normal force P, the tangential force Q, the width of the contact
-//! zone and of the stick zone. Printed per level: each true error and the effectivity (bar over true
-//! error); then per quantity the smallest and largest effectivity, and the levels where the bar fell below
-//! the true error. The reference's own errors bound how small a true error can be read: a true error below
-//! twice the reference's resolution of that quantity is marked `~` (not counted): the zone resolution of a
-//! width, half the error bar of a force on the reference (its own enriched solve, 1.9M unknowns; skipped,
-//! and the floor of the forces taken as 0, with `SKIP` = 1).
+//! An adaptive case (`CASE`, one of `tribo_testkit::ADAPTIVE_CASES`: Hertz centred (the default), at
+//! `hertz@X`, Coulomb, with P0 multipliers; the block; two-body Hertz, frictionless and Coulomb) adapted from
+//! its coarse start to `MAX_UNKNOWNS` (80k by default). Every level with at least 10 multiplier dofs in
+//! contact is solved again on its mesh (`Problem::on_level`), its error bars computed
+//! (`Problem::estimate_error_bars`: the whole mesh enriched; with `STRIP` = 1, the strip of one contact width
+//! that the adaptive stop enriches), and each error bar (`tribo::results::ErrorBars`) compared with the true
+//! error of its quantity against the case's reference (for Hertz a graded mesh of 466k unknowns, study 12's;
+//! else the adaptive loop run to 500k unknowns): the normal force P, the tangential force Q, the width of the
+//! contact zone and of the stick zone. The traction estimates are compared with the true relative L²(Γ_C)
+//! error of λ: the hierarchical estimate the adaptive stop reads (`Problem::estimate_hierarchical`, the
+//! strip), the same from the whole mesh (the enriched solve of the bars), and the bound (`traction_relative`).
+//! Printed per level: each true error and the effectivity (estimate over true error); then per quantity the
+//! smallest and largest effectivity, and the levels where it fell below 1. The reference's own errors bound
+//! how small a true error can be read: a true error below twice the reference's resolution of that quantity
+//! is marked `~` (not counted): the zone resolution of a width, half the error bar of a force on the
+//! reference (its own enriched solve, 4 times its unknowns; skipped, and the floor of the forces taken as 0,
+//! with `SKIP` = 1).
 //!
-//! `cargo run --release -p tribo --example error_bars [CENTER] [MU] [MAX_UNKNOWNS] [STRIP] [SKIP]` (a few minutes: the
-//! reference solve and the re-solves of the levels are most of it).
-use tribo::adapt::near_contact;
+//! `cargo run --release -p tribo --example error_bars [CASE] [MAX_UNKNOWNS] [STRIP] [SKIP]` (a few minutes:
+//! the reference solve and the re-solves of the levels are most of it).
+use tribo::adapt::{multiplier_difference, near_contact};
 use tribo::results::ErrorBars;
 use tribo::*;
 
@@ -37,11 +42,12 @@ fn bar(b: &ErrorBars, k: usize) -> f64 {
 
 fn main() -> Result<()> {
     let arg = |k: usize, default: f64| std::env::args().nth(k).and_then(|s| s.parse().ok()).unwrap_or(default);
-    let (center, mu, max_unknowns) = (arg(1, 0.0), arg(2, 0.0), arg(3, 80_000.0) as usize);
-    let strip = arg(4, 0.0) > 0.0;
-    let skip_reference_bars = arg(5, 0.0) > 0.0;
-    let case = tribo_testkit::adaptive_hertz_case(center, mu)?;
-    let (spec, friction, coarse) = (case.spec, case.friction, case.coarse);
+    let name = std::env::args().nth(1).unwrap_or_else(|| "hertz".into());
+    let max_unknowns = arg(2, 80_000.0) as usize;
+    let strip = arg(3, 0.0) > 0.0;
+    let skip_reference_bars = arg(4, 0.0) > 0.0;
+    let case = tribo_testkit::adaptive_case(&name)?;
+    let (friction, coarse) = (case.friction, case.coarse);
     let (reference, rsol) = case.reference;
     let settings = SolverSettings::default();
     let exact: Vec<f64> = QUANTITIES.iter().map(|(_, f)| f(&rsol)).collect();
@@ -55,22 +61,23 @@ fn main() -> Result<()> {
         rsol.contact_zone().map_or(0.0, |z| z.resolution),
         rsol.stick_zone().map_or(0.0, |z| z.resolution),
     ];
-    println!("reference: {} unknowns, {}", reference.n_free, rsol.report.status);
+    println!("{name}: reference {} ({})", case.reference_source, rsol.report.status);
     for (k, (name, _)) in QUANTITIES.iter().enumerate() {
         println!("  {name} = {:.6e}, known to about {:.1e}", exact[k], floor[k]);
     }
     let adapt = AdaptSettings { tol: 1e-5, max_unknowns, ..AdaptSettings::default() };
     let run = coarse.solve_adaptive(&friction, &settings, &adapt, None)?;
-    let mut header = "level unknowns in-contact seconds(solve, enriched)".to_string();
+    let mut header = "level unknowns in-contact seconds(solve, enriched) | tractions: true error, strip/true \
+                      whole/true bound/true"
+        .to_string();
     for (name, _) in QUANTITIES {
         header += &format!(" | {name}: true error, bar/true");
     }
     println!("{header}");
     let mut ratios: Vec<Vec<(usize, f64)>> = vec![Vec::new(); QUANTITIES.len()];
+    let mut tractions: Vec<Vec<(usize, f64)>> = vec![Vec::new(); 3];
     for (level, l) in run.levels.iter().enumerate() {
-        let mut s = spec.clone();
-        s.multiplier_points = MultiplierPoints::Abscissae(l.multiplier_mesh.clone());
-        let p = Problem::new(l.mesh.clone(), s)?;
+        let p = coarse.on_level(l)?;
         let clock = std::time::Instant::now();
         let sol = p.solve(&friction, &settings, None)?;
         let solve_seconds = clock.elapsed().as_secs_f64();
@@ -86,6 +93,15 @@ fn main() -> Result<()> {
         };
         let bars = h.error_bars.expect("the whole mesh or the strip, with bars");
         let mut line = format!("{level:>3} {:>7} {in_contact:>5} {solve_seconds:.2} {:.2}", p.n_free, h.seconds);
+        let (e, norm) = multiplier_difference(&p, &sol, &reference, &rsol);
+        let truth = e / norm;
+        let sharp = p.estimate_hierarchical(&sol, &friction, &settings)?.relative;
+        let estimates = [sharp, h.relative, sol.report.estimate.traction_relative];
+        line += &format!(" | {truth:.2e}");
+        for (k, estimate) in estimates.iter().enumerate() {
+            tractions[k].push((level, estimate / truth));
+            line += &format!(" {:>5.2}", estimate / truth);
+        }
         for (k, (_, value)) in QUANTITIES.iter().enumerate() {
             let truth = (value(&sol) - exact[k]).abs();
             let b = bar(&bars, k);
@@ -99,8 +115,10 @@ fn main() -> Result<()> {
         }
         println!("{line}");
     }
-    for (k, (name, _)) in QUANTITIES.iter().enumerate() {
-        let r = &ratios[k];
+    let traction_names =
+        ["tractions, hierarchical (strip)", "tractions, hierarchical (whole mesh)", "tractions, bound"];
+    let names = traction_names.iter().copied().chain(QUANTITIES.iter().map(|(name, _)| *name));
+    for (name, r) in names.zip(tractions.iter().chain(&ratios)) {
         if r.is_empty() {
             println!("{name}: no level with a true error above the reference's resolution");
             continue;

@@ -1,9 +1,9 @@
 //! How sharp is a hierarchical estimate of the traction error? (issue 36, the second route it names)
 //!
-//! The Hertz block (E = 200, ν = 0.3, R = 1, δ = 0.01) with the cylinder at `CENTER`, frictionless or
-//! Coulomb (`MU` > 0, the obstacle shifted 0.004), adapted from the 8 × 4 mesh to 80k unknowns. Each
-//! level with at least 3 multiplier dofs in contact is solved again and compared with a reference on a
-//! graded mesh of 466k unknowns (h_min 1.5625e-4, growth 0.02), and with three enriched solves of the same
+//! An adaptive case (`tribo_testkit::ADAPTIVE_CASES`; by default the Hertz block, E = 200, ν = 0.3, R = 1,
+//! δ = 0.01, the cylinder centred) adapted from its coarse start to 80k unknowns. Each level with at least
+//! 3 multiplier dofs in contact is solved again and compared with the case's reference (for Hertz a graded
+//! mesh of 466k unknowns, h_min 1.5625e-4, growth 0.02), and with three enriched solves of the same
 //! level (`Problem::solve_enriched`: triangles bisected on all three edges, T_H halved under them): the
 //! whole mesh, and the triangles within 1, 0.5 and 0.25 contact widths of the contact zone. Printed per
 //! level: the true relative L²(Γ_C) error of λ, the effectivity of today's bound (`traction_relative`
@@ -13,21 +13,21 @@
 //! the strip of half a contact width is enriched twice: the reduction q = ‖λ_f − λ_ff‖ / ‖λ_H − λ_f‖ is
 //! measured, and the extrapolated estimate ‖λ_H − λ_f‖ / (1 − q) compared with the true error.
 //!
-//! `cargo run --release -p tribo --example hierarchical [CENTER] [MU] [MAX_TWICE]` (about 1–3 minutes: the
-//! reference solve is most of it).
+//! `cargo run --release -p tribo --example hierarchical [CASE] [MAX_TWICE]` (`hertz@0.3`: the cylinder at
+//! x = 0.3; about 1–3 minutes, the reference solve most of it).
 use tribo::adapt::{multiplier_difference, near_contact};
 use tribo::*;
 
 fn main() -> Result<()> {
     let arg = |k: usize, default: f64| std::env::args().nth(k).and_then(|s| s.parse().ok()).unwrap_or(default);
-    let (center, mu) = (arg(1, 0.0), arg(2, 0.0));
+    let name = std::env::args().nth(1).unwrap_or_else(|| "hertz".into());
     // The twice-enriched strip has about 5 times a level's unknowns: measured up to this size.
-    let max_twice = arg(3, 40_000.0) as usize;
-    let case = tribo_testkit::adaptive_hertz_case(center, mu)?;
-    let (spec, friction, coarse) = (case.spec, case.friction, case.coarse);
+    let max_twice = arg(2, 40_000.0) as usize;
+    let case = tribo_testkit::adaptive_case(&name)?;
+    let (friction, coarse) = (case.friction, case.coarse);
     let (reference, rsol) = case.reference;
     let settings = SolverSettings::default();
-    println!("reference: {} unknowns, {}", reference.n_free, rsol.report.status);
+    println!("{name}: reference {} ({})", case.reference_source, rsol.report.status);
     let adapt = AdaptSettings { tol: 1e-4, max_unknowns: 80_000, ..AdaptSettings::default() };
     let run = coarse.solve_adaptive(&friction, &settings, &adapt, None)?;
     println!(
@@ -36,9 +36,7 @@ fn main() -> Result<()> {
     );
     let mut previous: Option<(Problem, Solution, f64)> = None;
     for (k, level) in run.levels.iter().enumerate() {
-        let mut s = spec.clone();
-        s.multiplier_points = MultiplierPoints::Abscissae(level.multiplier_mesh.clone());
-        let p = Problem::new(level.mesh.clone(), s)?;
+        let p = coarse.on_level(level)?;
         let sol = p.solve(&friction, &settings, None)?;
         let (err, norm) = multiplier_difference(&p, &sol, &reference, &rsol);
         if let Some((pp, ps, perr)) = previous.take() {

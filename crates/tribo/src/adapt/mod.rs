@@ -12,7 +12,8 @@
 //!    [`StopOn::Hierarchical`], below), of the energy when nothing does (the first levels of a coarse
 //!    start, where only the penetration term sees the obstacle).
 //! 3. Mark (`marking`): the energy estimate and the traction estimate in equal parts, Dörfler (θ = 0.5)
-//!    or maximum marking.
+//!    or maximum marking; indicators equal up to rounding are marked together, so that the levels do
+//!    not depend on the units or on a mirror image of the mesh.
 //! 4. Refine the marked triangles by newest-vertex bisection ([`crate::mesh::refine`]; all three edges of a
 //!    marked triangle by default, [`crate::settings::Bisection`]): conforming, nested, shape regular; the
 //!    edge sets (Γ_C, the supports, the loaded edges) are inherited by the halves. The first level's
@@ -110,6 +111,9 @@ pub struct Level {
     pub multiplier_mesh: Vec<f64>,
     /// Where each body lies in `mesh` (as [`Problem::bodies`]).
     pub bodies: Vec<crate::problem::bodies::BodyPart>,
+    /// The material of every triangle of `mesh`: an index into the materials of the problem the run
+    /// started from (as [`crate::fem::elasticity::Materials::region`]).
+    pub regions: Vec<usize>,
 }
 
 /// Why the adaptive loop stopped.
@@ -197,6 +201,19 @@ impl Problem {
         let (problem, solution, levels, stop) =
             self.adapt_loop(settings, adapt, observer, &solve, &read, &ended, Some(&sharp))?;
         Ok(Adaptive { problem, solution, levels, stop })
+    }
+
+    /// This problem on the mesh and T_H of `level`, a level of an adaptive solve that started from it
+    /// ([`Problem::solve_adaptive`], [`Problem::solve_history_adaptive`]), so that the level can be solved
+    /// again or looked at: every triangle has the material and body the level gave it.
+    ///
+    /// # Errors
+    /// [`Error::BadMaterial`] when `level` is not of a run of this problem (its regions or bodies do not
+    /// match); the errors of [`Problem::new`] on the level's mesh and T_H.
+    pub fn on_level(&self, level: &Level) -> Result<Problem> {
+        let mut spec = self.spec.clone();
+        spec.multiplier_points = MultiplierPoints::Abscissae(level.multiplier_mesh.clone());
+        self.on_mesh(level.mesh.clone(), level.regions.clone(), level.bodies.clone(), spec)
     }
 
     /// The checks every adaptive entry point makes before its first solve.
@@ -399,6 +416,7 @@ fn new_level(problem: &Problem, solutions: Vec<&Solution>, status: SolveStatus) 
         mesh: problem.mesh.clone(),
         multiplier_mesh: problem.multipliers.xi.clone(),
         bodies: problem.bodies.clone(),
+        regions: problem.materials.region.clone(),
     }
 }
 

@@ -239,6 +239,42 @@ impl Problem {
         Self::build(mesh, spec, materials, primary.as_deref(), parts)
     }
 
+    /// This problem on another mesh of the same bodies, with `spec` (its own but for the multiplier
+    /// points): `region[t]` is the index into this problem's materials of triangle t, `parts` where each
+    /// body lies in `mesh` (each body's nodes and triangles one range, as [`Problem::refined`] makes them).
+    ///
+    /// # Errors
+    /// [`Error::BadMaterial`] when `region` does not give every triangle one of this problem's materials,
+    /// or `parts` do not name this problem's bodies; the errors of [`Problem::new`] on the mesh.
+    pub(crate) fn on_mesh(
+        &self,
+        mesh: Mesh,
+        region: Vec<usize>,
+        parts: Vec<BodyPart>,
+        spec: ProblemSpec,
+    ) -> Result<Self> {
+        let n = self.materials.materials.len();
+        if region.len() != mesh.n_triangles() || region.iter().any(|&r| r >= n) {
+            return Err(Error::BadMaterial {
+                what: format!(
+                    "{} regions for {} triangles, or one beyond this problem's {n} materials: not a mesh of \
+                     this problem's bodies",
+                    region.len(),
+                    mesh.n_triangles()
+                ),
+            });
+        }
+        let names = |p: &[BodyPart]| p.iter().map(|b| b.name.clone()).collect::<Vec<_>>();
+        if names(&parts) != names(&self.bodies) {
+            return Err(Error::BadMaterial {
+                what: format!("bodies {:?} are not this problem's {:?}", names(&parts), names(&self.bodies)),
+            });
+        }
+        let materials = Materials { materials: self.materials.materials.clone(), region };
+        let primary = self.primary.as_ref().map(|p| p.boundary.set.clone());
+        Self::build(mesh, spec, materials, primary.as_deref(), parts)
+    }
+
     /// Whether this problem is two bodies in contact (a primary side) rather than one against the obstacle.
     pub fn is_two_bodies(&self) -> bool {
         self.primary.is_some()

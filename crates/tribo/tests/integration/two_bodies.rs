@@ -308,6 +308,22 @@ fn two_bodies_refine_adaptively() {
     let tol =
         (tribo_testkit::reached_qp_tol(&settings, sol) + tribo_testkit::reached_qp_tol(&settings, &again)) * kappa;
     assert!(diff <= tol * scale, "λ_n differs by {diff:e} of {scale:e} (qp_tol · κ(H) = {tol:e})");
+    // A third path: the first problem on the last level (`on_level`): the same unknowns, the same material
+    // on every triangle, the same answer to the same accuracy.
+    let on_level = problem.on_level(last).unwrap();
+    assert_eq!((on_level.n_free, on_level.n_multipliers()), (p.n_free, p.n_multipliers()));
+    assert_eq!(on_level.materials.region, p.materials.region);
+    let third = on_level.solve(&Friction::Frictionless, &settings, None).unwrap();
+    let diff = third.lambda_n.iter().zip(&sol.lambda_n).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(diff <= tol * scale, "on_level: λ_n differs by {diff:e} of {scale:e}");
+    // A level of another problem is refused by name, not solved with the wrong bodies.
+    let one_body = Problem::new(
+        body_mesh(&p.mesh, &p.bodies[0]),
+        tribo_testkit::hertz_spec(0.01, 0.0, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1),
+    )
+    .unwrap();
+    let err = one_body.on_level(last).unwrap_err();
+    assert!(matches!(err, Error::BadMaterial { .. }), "{err}");
 }
 
 /// Cattaneo–Mindlin between two bodies: the upper block's top pressed down δ = 0.01, then moved along x
