@@ -340,8 +340,10 @@ class Problem(_tribo.Problem):
         true error but pessimistically (on Hertz by 3 on coarse meshes and up to 24 on fine ones,
         docs/STUDIES.md, study 6): the answer is usually several times more accurate than ``tol``. With
         ``stop_on='hierarchical'`` it is the hierarchical estimate 2‖λ_H − λ_f‖ / ‖λ_f‖ (λ_f the answer
-        enriched near the contact zone, ``report.estimate["traction_hierarchical_relative"]``): within a
-        factor of about 1–2 of the true error, not a guaranteed bound, computed on the levels near ``tol``
+        enriched near the contact zone, ``report.estimate["traction_hierarchical_relative"]``; where the
+        contact zone reaches an end of Γ_C, its reduction there is measured by a second enrichment): within a
+        factor of about 1–2 of the true error, not a guaranteed bound, read with the bound if that is smaller
+        (it is where the traction is singular at a corner, docs/beyond_hertz.md), computed on the levels near ``tol``
         with at least 10 multiplier dofs in contact at the cost of a solve of about 2.6 times their unknowns
         (static solves only). Marking is Dörfler's with ``theta`` (default 0.5), or the maximum
         strategy (``marking='maximum'``); a marked triangle is bisected on all three edges into four
