@@ -43,7 +43,8 @@
 //! `η_hier² = 4 ‖λ_H − λ_f‖²_{Γ_C ∖ R} + Σ_R (d_R / (1 − max(q_R, ½)))²`
 //!
 //! (infinite where `q_R ≥ 1`, the enrichment not reducing the difference, or where the second enriched
-//! solve did not converge: the estimate then says nothing). `d_R / (1 − q_R)` is the triangle inequality
+//! solve did not converge or could not be made, the memory budget say: the estimate then says nothing, and
+//! the error bars stand). `d_R / (1 − q_R)` is the triangle inequality
 //! `e_H ≤ d + e_f` with the measured q, a bound where the second enrichment reduces the error as the first
 //! did; it is pessimistic where the two errors point apart (on the block q_R = 0.85–0.87 on every level,
 //! and the estimate 2.3–3.4 times the truth). The adaptive stop reads the smaller of this estimate and the
@@ -134,9 +135,11 @@ struct EndReduction {
 
 impl EndReduction {
     /// `d_R / (1 − max(q, ½))`: the saturation bound with the measured reduction, never a smaller factor
-    /// than the rest of Γ_C takes; infinite when the enrichment does not reduce the difference (q ≥ 1).
+    /// than the rest of Γ_C takes; infinite when the enrichment does not reduce the difference (q ≥ 1) or
+    /// q is unknown (NaN).
     fn estimate(&self) -> f64 {
-        let q = self.reduction.max(0.5);
+        // Not `max`, which would turn a NaN reduction into ½.
+        let q = if self.reduction < 0.5 { 0.5 } else { self.reduction };
         if q < 1.0 {
             self.difference / (1.0 - q)
         } else {
@@ -282,9 +285,22 @@ impl Problem {
         let clock = std::time::Instant::now();
         let (enriched, answer) = self.solve_enriched(solution, marked, friction, settings)?;
         let (difference, norm) = multiplier_difference(self, solution, &enriched, &answer);
-        let ends = self.end_reductions(solution, (&enriched, &answer), friction, settings)?;
-        let at_ends: f64 = ends.iter().map(|e| e.difference.powi(2)).sum();
-        let rest = (difference.powi(2) - at_ends).max(0.0);
+        // Measured only where the first enrichment converged (its estimate means nothing otherwise); a
+        // second enrichment that cannot be built or solved leaves those ends unmeasured (no estimate there),
+        // not the whole estimate and the error bars failed.
+        let ends = if answer.report.status == SolveStatus::Converged {
+            self.end_reductions(solution, (&enriched, &answer), friction, settings)
+        } else {
+            Ok(Vec::new())
+        };
+        let ends = ends.unwrap_or_else(|e| {
+            log::warn!("the second enrichment at the ends of Γ_C failed ({e}): no estimate there");
+            vec![EndReduction { difference: f64::NAN, reduction: f64::INFINITY }]
+        });
+        let at_ends: f64 = ends.iter().map(|e| e.difference.powi(2)).filter(|d| d.is_finite()).sum();
+        // Clamped without `max`, which would turn a NaN difference into 0.
+        let rest = difference.powi(2) - at_ends;
+        let rest = if rest < 0.0 { 0.0 } else { rest };
         let estimate = (4.0 * rest + ends.iter().map(|e| e.estimate().powi(2)).sum::<f64>()).sqrt();
         let error_bars = Some(ErrorBars {
             normal_force: 2.0 * (solution.normal_force - answer.normal_force).abs(),

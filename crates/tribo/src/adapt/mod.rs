@@ -299,6 +299,8 @@ impl Problem {
                                 levels.len(),
                                 h.end_reductions
                             );
+                            // The bound is the smaller: due again only once the unknowns have grown fourfold.
+                            measured = Some((f64::INFINITY, level.unknowns));
                         } else if h.status == SolveStatus::Converged && h.relative.is_finite() {
                             log::info!(
                                 "level {}: hierarchical estimate {:.3e} (the bound {bound:.3e}; reductions measured at \
