@@ -218,7 +218,7 @@ impl Problem {
     ///
     /// # Errors
     /// [`Error::BadMaterial`] when `level` is not of a run of this problem (its regions or bodies do not
-    /// match); the errors of [`Problem::new`] on the level's mesh and T_H.
+    /// match, or its mesh does not begin with this problem's nodes); the errors of [`Problem::new`] on the level's mesh and T_H.
     pub fn on_level(&self, level: &Level) -> Result<Problem> {
         let mut spec = self.spec.clone();
         spec.multiplier_points = MultiplierPoints::Abscissae(level.multiplier_mesh.clone());

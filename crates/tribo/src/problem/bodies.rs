@@ -245,7 +245,8 @@ impl Problem {
     ///
     /// # Errors
     /// [`Error::BadMaterial`] when `region` does not give every triangle one of this problem's materials,
-    /// or `parts` do not name this problem's bodies; the errors of [`Problem::new`] on the mesh.
+    /// or `parts` do not name this problem's bodies or do not make `mesh` a refinement of this problem's
+    /// mesh ([`Problem::check_refines`]); the errors of [`Problem::new`] on the mesh.
     pub(crate) fn on_mesh(
         &self,
         mesh: Mesh,
@@ -270,9 +271,54 @@ impl Problem {
                 what: format!("bodies {:?} are not this problem's {:?}", names(&parts), names(&self.bodies)),
             });
         }
+        self.check_refines(&mesh, &parts)?;
         let materials = Materials { materials: self.materials.materials.clone(), region };
         let primary = self.primary.as_ref().map(|p| p.boundary.set.clone());
         Self::build(mesh, spec, materials, primary.as_deref(), parts)
+    }
+
+    /// That `parts` split `mesh` into one range of nodes and one of triangles per body, in order, each
+    /// triangle on nodes of its own body, and that each body's range begins with this problem's nodes of
+    /// that body at their places (as [`Problem::refined`] keeps them): `mesh` refines this problem's.
+    ///
+    /// # Errors
+    /// [`Error::BadMaterial`] saying which of these fails.
+    fn check_refines(&self, mesh: &Mesh, parts: &[BodyPart]) -> Result<()> {
+        let refuse = |what: String| Err(Error::BadMaterial { what });
+        let (mut node0, mut triangle0) = (0, 0);
+        for (part, own) in parts.iter().zip(&self.bodies) {
+            let (nodes, triangles) = (&part.nodes, &part.triangles);
+            if nodes.start != node0 || triangles.start != triangle0 || nodes.is_empty() || triangles.is_empty() {
+                return refuse(format!(
+                    "body '{}' is empty or does not begin where the body before it ends",
+                    part.name
+                ));
+            }
+            (node0, triangle0) = (nodes.end, triangles.end);
+            if node0 > mesh.n_nodes() || triangle0 > mesh.n_triangles() {
+                return refuse(format!("body '{}' reaches beyond the mesh", part.name));
+            }
+            if let Some(t) = triangles.clone().find(|&t| mesh.triangles()[t].iter().any(|v| !nodes.contains(v))) {
+                return refuse(format!("triangle {t} of body '{}' has a node of another body", part.name));
+            }
+            let kept = own.nodes.len();
+            let same = nodes.len() >= kept
+                && mesh.points()[nodes.start..nodes.start + kept] == self.mesh.points()[own.nodes.clone()];
+            if !same {
+                return refuse(format!(
+                    "the nodes of body '{}' do not begin with this problem's: not a refinement of its mesh",
+                    part.name
+                ));
+            }
+        }
+        if node0 != mesh.n_nodes() || triangle0 != mesh.n_triangles() {
+            return refuse(format!(
+                "the bodies cover {node0} of {} nodes and {triangle0} of {} triangles",
+                mesh.n_nodes(),
+                mesh.n_triangles()
+            ));
+        }
+        Ok(())
     }
 
     /// Whether this problem is two bodies in contact (a primary side) rather than one against the obstacle.
