@@ -56,7 +56,9 @@ pub(crate) fn mark(indicators: &[f64], theta: f64, marking: Marking) -> Vec<usiz
             let mut out = Vec::new();
             for t in order {
                 let tied = out.last().is_some_and(|&last: &usize| indicators[t] >= indicators[last] * (1.0 - TIE));
-                if sum >= theta * total && !tied {
+                // The cut is protected from rounding like the ties: a sum that reaches θ of the total
+                // only up to rounding (θ = 0.8 of 0.5 + 0.3 + 0.2) reaches it.
+                if sum >= theta * total * (1.0 - TIE) && !tied {
                     break;
                 }
                 sum += indicators[t];
@@ -93,6 +95,9 @@ mod tests {
         let m = [0.1, 0.4 * (1.0 - 1e-15), 0.1, 0.4, 0.4 * (1.0 + 1e-15)];
         assert_eq!(mark(&m, 0.25, Marking::Dorfler), vec![1, 3, 4]);
         assert_eq!(mark(&[0.3, 0.3, 0.3, 0.1], 0.2, Marking::Dorfler), vec![0, 1, 2]);
+        // A sum that reaches θ of the total up to rounding reaches it: 0.5 + 0.3 is 0.8 of the total.
+        assert_eq!(mark(&[0.3, 0.2, 0.5], 0.8, Marking::Dorfler), vec![0, 2]);
+        assert_eq!(mark(&[0.3 * (1.0 - 1e-15), 0.2, 0.5], 0.8, Marking::Dorfler), vec![0, 2]);
         assert_eq!(mark(&[0.2, 0.5 * (1.0 - 1e-15), 1.0], 0.5, Marking::Maximum), vec![1, 2]);
     }
 

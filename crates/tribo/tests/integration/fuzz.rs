@@ -113,11 +113,6 @@ fn any_settings() -> impl Strategy<Value = SolverSettings> {
     )
 }
 
-/// Cases per test: 256, or `PROPTEST_CASES`.
-fn cases() -> u32 {
-    std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(256)
-}
-
 /// Reports how a case ended when `TRIBO_FUZZ_VERBOSE` is set (to see what the generators reach).
 fn note(what: &str) {
     if std::env::var("TRIBO_FUZZ_VERBOSE").is_ok() {
@@ -135,7 +130,7 @@ fn assert_honest(sol: &Solution, settings: &SolverSettings) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: cases(), failure_persistence: None, ..ProptestConfig::default() })]
+    #![proptest_config(crate::reproducible(256))]
 
     /// Any mesh, material, load, obstacle, multiplier mesh, friction law and settings: a typed error or an
     /// honest solution.

@@ -14,7 +14,8 @@ fn any_mesh() -> impl Strategy<Value = Mesh> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    // The regression file beside this one is read (its cases run first).
+    #![proptest_config(ProptestConfig { failure_persistence: ProptestConfig::default().failure_persistence, ..crate::reproducible(48) })]
 
     /// K r = 0 for the three rigid-body modes, up to round-off: |K r| ≤ 8 ε ‖K‖₁ ‖r‖∞ (a sum of at most
     /// 8 products per entry per element, each exact to ε).

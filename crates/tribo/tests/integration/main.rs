@@ -40,3 +40,15 @@ mod patch;
 mod paths;
 mod supports;
 mod two_bodies;
+
+/// The property tests' configuration: `cases` cases (or `PROPTEST_CASES`), reproducible like the Python
+/// fuzz tests (derandomized there): a fixed seed, or `PROPTEST_RNG_SEED` to explore others; no regression
+/// files are written (a failure prints its shrunk case, which the fixed seed reproduces).
+fn reproducible(cases: u32) -> proptest::test_runner::Config {
+    use proptest::test_runner::{Config, RngSeed};
+    let config = Config::default();
+    let cases = std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(cases);
+    let rng_seed =
+        if std::env::var_os("PROPTEST_RNG_SEED").is_some() { config.rng_seed } else { RngSeed::Fixed(0x74_7269_626f) };
+    Config { cases, rng_seed, failure_persistence: None, ..config }
+}

@@ -179,11 +179,6 @@ fn paths() -> Vec<QpSettingsAndCondensation> {
 
 type QpSettingsAndCondensation = (QpSettings, Condensation);
 
-/// Cases: 96, or `PROPTEST_CASES` (a longer campaign: `PROPTEST_CASES=5000`).
-fn cases() -> u32 {
-    std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(96)
-}
-
 /// The scaling of a QP as `qp::scaling` documents it, recomputed from that formula: the weights w_i of
 /// the unknowns (the normal scale s = max|c_n| / max H_nn; min(g_j, s_t) on a tangential one) and φ =
 /// max w_i² H_ii, the objective's unit.
@@ -219,7 +214,7 @@ fn quad(h: &[f64], x: &[f64]) -> f64 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: cases(), failure_persistence: None, ..ProptestConfig::default() })]
+    #![proptest_config(crate::reproducible(96))]
 
     #[test]
     fn every_path_gives_the_unique_answer(case in any_case()) {
