@@ -242,7 +242,7 @@ class Problem(_tribo.Problem):
         condensation, keep_every); unset ones take the core's defaults.
 
         ``error_bars=True`` also solves the problem enriched on the whole mesh (every triangle bisected,
-        T_H halved: about 4 times the unknowns) and adds to ``report.estimate`` the hierarchical traction
+        T_H halved: about 4 times the unknowns, twice where the contact reaches an end of Γ_C) and adds to ``report.estimate`` the hierarchical traction
         estimate and the error bars of the normal and tangential forces and of the widths of the contact and
         stick zones (``normal_force_error``, ``tangential_force_error``, ``contact_width_error``,
         ``stick_width_error``: estimated absolute errors, twice the change under the enrichment; sharp, but

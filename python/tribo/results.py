@@ -102,8 +102,10 @@ class Report(_Record):
             triangles, in stress × length), ``energy_relative`` (η / (E* a(u_h, u_h))^½), ``traction``
             (ζ, the estimate of ‖λ − λ_H‖ in L²(Γ_C), a bound) and ``traction_relative`` (ζ / ‖λ_H‖, NaN
             when nothing touches); ``traction_hierarchical`` and ``traction_hierarchical_relative``, the
-            hierarchical estimate 2‖λ_H − λ_f‖ and its ratio to ‖λ_f‖ (sharp but not a bound; NaN unless an
-            adaptive solve with ``stop_on='hierarchical'`` or ``solve(error_bars=True)`` computed it); from the
+            hierarchical estimate (2‖λ_H − λ_f‖, the reduction measured where the contact zone reaches an end
+            of Γ_C) and its ratio to ‖λ_f‖ (sharp but not a bound; inf where a measured reduction is 1 or
+            more: no estimate; NaN unless an adaptive solve with ``stop_on='hierarchical'`` or
+            ``solve(error_bars=True)`` computed it); from the
             same enriched solve, the error bars ``normal_force_error``, ``tangential_force_error``,
             ``contact_width_error`` and ``stick_width_error`` (estimated absolute errors of those quantities
             of the Solution, NaN unless computed). Empty for a report built without one.

@@ -44,13 +44,14 @@
 //!
 //! (infinite where `q_R ≥ 1`, the enrichment not reducing the difference, or where the second enriched
 //! solve did not converge or could not be made, the memory budget say: the estimate then says nothing, and
-//! the error bars stand). `d_R / (1 − q_R)` is the triangle inequality
+//! the error bars stand; an end whose `d_R` is within the accuracy of the solves, `fp_tol ‖λ_f‖`, measures
+//! nothing and stays in the rest). `d_R / (1 − q_R)` is the triangle inequality
 //! `e_H ≤ d + e_f` with the measured q, a bound where the second enrichment reduces the error as the first
 //! did; it is pessimistic where the two errors point apart (on the block q_R = 0.85–0.87 on every level,
 //! and the estimate 2.3–3.4 times the truth). The adaptive stop reads the smaller of this estimate and the
 //! bound (on the block the bound, 1.84–1.98 times the truth),
 //! so it ends within the accuracy asked either way. The second enrichment costs a solve as large as the
-//! first; it is made only where an end touches.
+//! first (the first's factorization freed before it is made); it is made only where an end touches.
 //!
 //! # Error bars of the forces and the zone widths
 //! The answer of the problem enriched everywhere (every triangle bisected, T_H halved: h and H halved)
@@ -88,9 +89,11 @@ pub struct Hierarchical {
     pub difference: f64,
     /// `‖λ_f‖` in L²(Γ_C).
     pub norm: f64,
-    /// The estimate `2 ‖λ_H − λ_f‖` (the module documentation derives the factor).
+    /// The estimate: `2 ‖λ_H − λ_f‖` away from the ends of Γ_C in contact, `d_R / (1 − max(q_R, ½))` at
+    /// them (the module documentation derives both); infinite (no estimate) where an end's measured
+    /// reduction is 1 or more, or could not be measured.
     pub estimate: f64,
-    /// `estimate / ‖λ_f‖` (NaN when nothing touches in the enriched answer).
+    /// `estimate / ‖λ_f‖` (NaN when nothing touches in the enriched answer, infinite with `estimate`).
     pub relative: f64,
     /// The enriched problem's unknowns.
     pub unknowns: usize,
@@ -146,6 +149,20 @@ impl EndReduction {
             f64::INFINITY
         }
     }
+}
+
+/// `η_hier` from the difference `d` on all of Γ_C and the parts measured at its ends (the module
+/// documentation): `(4 (d² − Σ d_R²) + Σ (d_R / (1 − max(q_R, ½)))²)^½`. An end whose difference is at most
+/// `noise` (the accuracy to which the solves determine λ) measures nothing: its q is a ratio of rounding, and
+/// it is left in the rest of Γ_C, where the factor 2 keeps it below the noise's double.
+fn combine(difference: f64, ends: &[EndReduction], noise: f64) -> f64 {
+    // A NaN difference (an end that could not be measured) stays among the ends.
+    let measured = || ends.iter().filter(|e| e.difference > noise || e.difference.is_nan());
+    let at_ends: f64 = measured().map(|e| e.difference.powi(2)).filter(|d| d.is_finite()).sum();
+    // Clamped without `max`, which would turn a NaN difference into 0.
+    let rest = difference.powi(2) - at_ends;
+    let rest = if rest < 0.0 { 0.0 } else { rest };
+    (4.0 * rest + measured().map(|e| e.estimate().powi(2)).sum::<f64>()).sqrt()
 }
 
 fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -256,7 +273,8 @@ impl Problem {
 
     /// The hierarchical estimate of the traction error of `solution` and the error bars of its forces and
     /// zone widths (see the module documentation), from the problem enriched on the whole mesh, solved
-    /// with `settings` from `solution`'s multipliers (about 4 times the unknowns of this problem).
+    /// with `settings` from `solution`'s multipliers (about 4 times the unknowns of this problem; where an
+    /// end of Γ_C touches, a second solve of about that size follows, the first's factorization freed).
     ///
     /// # Errors
     /// Those of [`Problem::solve_enriched`].
@@ -297,11 +315,7 @@ impl Problem {
             log::warn!("the second enrichment at the ends of Γ_C failed ({e}): no estimate there");
             vec![EndReduction { difference: f64::NAN, reduction: f64::INFINITY }]
         });
-        let at_ends: f64 = ends.iter().map(|e| e.difference.powi(2)).filter(|d| d.is_finite()).sum();
-        // Clamped without `max`, which would turn a NaN difference into 0.
-        let rest = difference.powi(2) - at_ends;
-        let rest = if rest < 0.0 { 0.0 } else { rest };
-        let estimate = (4.0 * rest + ends.iter().map(|e| e.estimate().powi(2)).sum::<f64>()).sqrt();
+        let estimate = combine(difference, &ends, settings.fp.tol * norm);
         let error_bars = Some(ErrorBars {
             normal_force: 2.0 * (solution.normal_force - answer.normal_force).abs(),
             tangential_force: 2.0 * (solution.tangential_force - answer.tangential_force).abs(),
@@ -372,6 +386,8 @@ impl Problem {
             .map(|(t, _)| t)
             .collect();
         let friction = self.carried_friction(friction, enriched);
+        // The first enrichment's factorization is not needed again: the second solve does not hold both.
+        enriched.forget_factorization();
         let (twice, again) = enriched.solve_enriched(answer, &near, &friction, settings)?;
         let mut out = Vec::new();
         for [lo, hi] in regions {
@@ -390,7 +406,9 @@ impl Problem {
     /// the error bars of [`Problem::estimate_error_bars`] to the answer's report
     /// ([`crate::results::ErrorEstimate::error_bars`]). When the enriched problem cannot be built or solved
     /// (the memory budget, say) or does not converge, the answer keeps `None` there and a warning is logged:
-    /// the answer itself is returned either way. The enriched solve has about 4 times the unknowns.
+    /// the answer itself is returned either way. The enriched solve has about 4 times the unknowns (and
+    /// is made twice where an end of Γ_C touches). An infinite hierarchical estimate (a measured reduction of
+    /// 1 or more at an end) is stored as it is: no estimate of the traction error, the error bars standing.
     ///
     /// # Errors
     /// Those of [`Problem::solve`] and of [`Problem::solve_enriched`].
@@ -448,5 +466,33 @@ impl Problem {
             Friction::Tresca(Threshold::PerDof(g)) => Friction::Tresca(Threshold::PerDof(self.carried(g, to))),
             other => other.clone(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn end(difference: f64, reduction: f64) -> EndReduction {
+        EndReduction { difference, reduction }
+    }
+
+    #[test]
+    fn the_ends_take_their_measured_reduction_and_the_rest_twice_the_difference() {
+        // d² = 25: 16 at one end (q = 0.75: 4 / 0.25 = 16), 9 elsewhere (2 · 3 = 6).
+        assert!((combine(5.0, &[end(4.0, 0.75)], 0.0) - (16.0_f64.powi(2) + 36.0).sqrt()).abs() < 1e-12);
+        // A reduction below ½ takes ½, as the rest does: 2 d.
+        assert!((combine(5.0, &[end(4.0, 0.1)], 0.0) - 10.0).abs() < 1e-12);
+        assert_eq!(combine(5.0, &[], 0.0), 10.0);
+    }
+
+    #[test]
+    fn an_end_not_reduced_or_not_measured_leaves_no_estimate_unless_it_is_noise() {
+        assert_eq!(combine(5.0, &[end(1.0, 1.2)], 0.0), f64::INFINITY);
+        assert_eq!(combine(5.0, &[end(1.0, f64::NAN)], 0.0), f64::INFINITY);
+        assert_eq!(combine(5.0, &[end(f64::NAN, f64::INFINITY)], 1e-8), f64::INFINITY);
+        // An end within the solves' accuracy measures nothing: it stays in the rest (2 d).
+        assert_eq!(combine(5.0, &[end(1e-9, 3.0)], 1e-8), 10.0);
+        assert!(combine(f64::NAN, &[], 0.0).is_nan());
     }
 }

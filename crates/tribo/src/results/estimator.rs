@@ -108,11 +108,13 @@ pub struct ErrorEstimate {
     pub traction: f64,
     /// `ζ / min(‖λ_H‖, ‖σ_h n‖)` in L²(Γ_C) (NaN when λ_H = 0: nothing touches).
     pub traction_relative: f64,
-    /// `2 ‖λ_H − λ_f‖_{L²(Γ_C)}`, the hierarchical estimate of the traction error (λ_f the answer of the
-    /// problem enriched near the contact zone by the adaptive loop with
-    /// [`crate::settings::StopOn::Hierarchical`] ([`crate::Problem::estimate_hierarchical`], which derives
-    /// it), or on the whole mesh by [`crate::Problem::solve_with_error_bars`]). Sharp where the bound ζ is
-    /// pessimistic, but not a guaranteed bound. `None` unless it was computed (NaN by [`Self::named`]).
+    /// The hierarchical estimate of the traction error in L²(Γ_C) (λ_f the answer of the problem enriched
+    /// near the contact zone by the adaptive loop with [`crate::settings::StopOn::Hierarchical`], or on the
+    /// whole mesh by [`crate::Problem::solve_with_error_bars`]): `2 ‖λ_H − λ_f‖`, with the reduction
+    /// measured instead of assumed where the contact zone reaches an end of Γ_C (`crate::adapt::enriched`
+    /// derives it). Sharp where the bound ζ is pessimistic, but not a guaranteed bound; infinite where
+    /// a measured reduction is 1 or more (no estimate). `None` unless it was computed (NaN by
+    /// [`Self::named`]).
     pub traction_hierarchical: Option<f64>,
     /// `traction_hierarchical / ‖λ_f‖` in L²(Γ_C) (`None` unless computed).
     pub traction_hierarchical_relative: Option<f64>,

@@ -40,11 +40,13 @@ pub enum StopOn {
     /// a few hundred unknowns, 20 at 70k): the loop ends well below `tol`. Free.
     #[default]
     Bound,
-    /// The hierarchical estimate ([`crate::Problem::estimate_hierarchical`]): `2 ‖λ_H − λ_f‖`, λ_f the answer
-    /// enriched near the contact zone. Sharp (measured 0.98–2.2 times the true error on adaptive Hertz,
-    /// without drift) but not a guaranteed bound, and it costs a solve of about 2.6 times the level's
-    /// unknowns, so the loop computes it only where it may be near `tol` (see [`crate::adapt`]). Static
-    /// solves only; while nothing touches the loop reads the energy estimate, as with the bound.
+    /// The smaller of the bound and the hierarchical estimate ([`crate::Problem::estimate_hierarchical`]):
+    /// `2 ‖λ_H − λ_f‖`, λ_f the answer enriched near the contact zone, the reduction measured where the zone
+    /// reaches an end of Γ_C. Sharp (measured 0.98–2.2 times the true error on adaptive Hertz, 1.3–2.0 on
+    /// two bodies, without drift) but not a guaranteed bound, and it costs a solve of about 2.6 times the
+    /// level's unknowns (twice where an end touches), so the loop computes it only where it may stop the
+    /// loop before the bound (see [`crate::adapt`]). Static solves only; while nothing touches the loop
+    /// reads the energy estimate, as with the bound.
     Hierarchical,
 }
 
