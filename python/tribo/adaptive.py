@@ -10,9 +10,10 @@ mesh is the refined one):
   computed it) the hierarchical traction estimate, the level's seconds and status;
 * ``adapt.png``: the relative estimate, the bound and the hierarchical estimate, and η against the
   unknowns (log-log), with the tolerance;
-* ``levels/level_NNN.vtu`` and ``adapt.pvd`` (``write_levels``): every level's mesh and solution, solved
-  again to full tolerance (for a history: the whole history, its last step written), a series ParaView
-  steps through.
+* ``levels/level_NNN.vtu`` and ``adapt.pvd`` (``write_levels``, only with the scene's ``[adapt]
+  write_levels = true``: the loop keeps no level's solution, so each level is solved again, to full
+  tolerance, for a history the whole history with its last step written; it costs about what the loop
+  did): every level's mesh and solution, a series ParaView steps through.
 """
 
 from __future__ import annotations

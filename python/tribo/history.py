@@ -3,7 +3,7 @@
 ``Problem.solve_history`` (the core) solves the quasi-static steps on one factorization; this module
 writes its results:
 
-* ``step_NNNN.vtu`` (+ ``_contact``, ``_multipliers``) per converged step (beyond ``MAX_VTU_STEPS`` = 200
+* ``steps/step_NNNN.vtu`` (+ ``_contact``, ``_multipliers``) per converged step (beyond ``MAX_VTU_STEPS`` = 200
   steps, every k-th step and the last, k the smallest that keeps them within 200; ``[history]
   write_every`` chooses k), and ``result.pvd``, ``result_contact.pvd``, ``result_multipliers.pvd``:
   collections ParaView opens as time series (the "time" is the step number);
@@ -111,8 +111,10 @@ def write_history(out: str | Path, problem: Problem, history: History, *, plots:
     if len(steps) < len(history):
         log.info("writing the VTU files of %d of the %d steps (every %s-th and the last, of those kept)", len(steps),
                  len(history), vtu_every(len(history), every))
+    if steps:
+        (out / "steps").mkdir(exist_ok=True)
     for k in steps:
-        vtu = write_vtu(out / f"step_{k:04d}.vtu", problem, history.solution(k), per_body=False)
+        vtu = write_vtu(out / "steps" / f"step_{k:04d}.vtu", problem, history.solution(k), per_body=False)
         for part, p in zip(series, vtu, strict=True):
             part.append(p)
     files = [p for part in series for p in part]

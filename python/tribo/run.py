@@ -152,7 +152,8 @@ def run_history(
         problem, history, stop = adaptive.problem, adaptive.history, adaptive.stop
         if fields:
             files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
-            files += write_levels(out, adaptive, **scene.solve_kwargs())
+            if scene.get("adapt", "write_levels", False):
+                files += write_levels(out, adaptive, **scene.solve_kwargs())
     else:
         with tqdm(total=n_steps, desc="steps", unit="step", disable=not log.isEnabledFor(logging.INFO)) as bar:
 
@@ -239,9 +240,6 @@ def run_scene(
                 solution = problem.solve(error_bars=True, **scene.solve_kwargs())
                 warn_missing_error_bars(solution)
             history_files = []
-            if fields:
-                history_files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
-                history_files += write_levels(out, adaptive, **scene.solve_kwargs())
             warn_solution(problem, solution)
         else:
             history_files, adapt_stop = [], None
@@ -255,6 +253,11 @@ def run_scene(
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     seconds = time.perf_counter() - clock
     log.info("solve ended: %s after %.2f s", solution.report.status, seconds)
+    clock = time.perf_counter()
+    if fields and scene.has_adapt and not scene.has_history:
+        history_files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
+        if scene.get("adapt", "write_levels", False):
+            history_files += write_levels(out, adaptive, **scene.solve_kwargs())
     files = []
     path = out / "summary.json"
     said = summary(scene, problem, solution, seconds, warned, adapt_stop)
@@ -266,6 +269,7 @@ def run_scene(
     files += write_vtu(out / "result.vtu", problem, solution)
     if plots:
         files += _plots(out, problem, solution)
+    log.info("wrote %d files in %.2f s", len(files) + len(history_files), time.perf_counter() - clock)
     return problem, solution, files + history_files
 
 

@@ -272,7 +272,11 @@ class Scene:
     ) -> Adaptive:
         """Builds (unless given) and solves adaptively with the ``[adapt]`` table's settings."""
         problem = problem if problem is not None else self.build()
-        return problem.solve_adaptive(progress=progress, **self.sections.get("adapt", {}), **self.solve_kwargs())
+        return problem.solve_adaptive(progress=progress, **self.adapt_kwargs(), **self.solve_kwargs())
+
+    def adapt_kwargs(self) -> dict[str, Any]:
+        """The ``[adapt]`` table's keywords of the adaptive solve (``write_levels`` is ``tribo run``'s)."""
+        return {k: v for k, v in self.sections.get("adapt", {}).items() if k != "write_levels"}
 
     @property
     def has_history(self) -> bool:
@@ -340,7 +344,7 @@ class Scene:
         """Builds (unless given) and solves the ``[history]`` adaptively with the ``[adapt]`` table's settings."""
         problem = problem if problem is not None else self.build()
         c = self.history_columns()
-        kw = {**self.sections.get("adapt", {}), **self.solve_kwargs()}
+        kw = {**self.adapt_kwargs(), **self.solve_kwargs()}
         return problem.solve_history_adaptive(c["approach"], c["shift"], c["load_factor"],
                                               displacements=c["displacements"] or None, progress=progress, **kw)
 

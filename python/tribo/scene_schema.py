@@ -66,7 +66,10 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     ``[history]``). The core checks the values. With a
     ``[history]``, every level solves the whole history (``Problem.solve_history_adaptive``) and is refined on
     the largest indicators over the steps ``on`` (a list of step numbers; default all of them), and the
-    history's outputs are those of the last mesh.
+    history's outputs are those of the last mesh. ``write_levels`` (true/false, default false): ``tribo run``
+    also writes every level, solved again to full tolerance (a solve, or a history, per level: it costs about
+    what the loop did), as ``levels/level_NNN.vtu`` with the ParaView series ``adapt.pvd``; by default only
+    the last level is written (the ``result`` files).
 ``[solver]``
     Any solver setting by the name ``Problem.solve`` takes (``tribo.solver_settings()`` lists them with
     their kinds and defaults): ``qp_tol``, ``qp_max_iter``, ``qp_kkt_solver`` (``"faer"``/``"qdldl"``),
@@ -365,6 +368,7 @@ SCHEMA: dict[str, dict[str, Checker]] = {
         "algebraic": _number,
         "stop_on": _choice(*CHOICES["stop_on"]),
         "on": _steps,
+        "write_levels": _boolean,
     },
     "solver": {name: _setting_checker(spec) for name, spec in solver_settings().items()},
     "estimate": {"error_bars": _boolean},

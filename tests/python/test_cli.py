@@ -419,9 +419,13 @@ def test_run_adapts_a_scene_with_an_adapt_table(tmp_path: Path) -> None:
     vtu = meshio.read(tmp_path / "o" / "result.vtu")
     assert len(vtu.cells_dict["triangle"]) == int(rows[-1]["triangles"])
     assert (tmp_path / "o" / "adapt.png").stat().st_size > 0
-    # The level series: one VTU per level in adapt.pvd, each on its level's mesh.
+    # Only the last level is written by default (issue 38: the levels were solved again to be written).
+    assert not (tmp_path / "o" / "levels").exists() and not (tmp_path / "o" / "adapt.pvd").exists()
+    # With write_levels, the level series: one VTU per level in adapt.pvd, each on its level's mesh.
     import xml.etree.ElementTree as ET
 
+    path.write_text(ADAPT_SCENE + "write_levels = true\n", encoding="utf-8")
+    assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 0
     files = [d.get("file") for d in ET.parse(tmp_path / "o" / "adapt.pvd").getroot().iter("DataSet")]
     assert files == [f"levels/level_{k:03d}.vtu" for k in range(len(rows))]
     for f, row in zip(files, rows, strict=True):
@@ -509,7 +513,7 @@ def test_run_adapts_a_history(tmp_path: Path) -> None:
     the last mesh, with adapt.csv beside them."""
     import meshio
 
-    scene = ADAPT_SCENE.replace("tol = 0.05", "tol = 0.2\non = [0, 4]") + (
+    scene = ADAPT_SCENE.replace("tol = 0.05", "tol = 0.2\non = [0, 4]\nwrite_levels = true") + (
         "[friction]\nmu = 0.3\n[history]\nshift = [0.0, 0.004]\nsteps = 4\n"
     )
     path = tmp_path / "h.toml"
@@ -521,7 +525,7 @@ def test_run_adapts_a_history(tmp_path: Path) -> None:
     lines = (tmp_path / "o" / "history.csv").read_text(encoding="utf-8").splitlines()
     history = list(csv.DictReader(line for line in lines if not line.startswith("#")))
     assert len(history) == 5 and float(rows[-1]["relative"]) <= 0.2
-    step = meshio.read(tmp_path / "o" / "step_0004.vtu")
+    step = meshio.read(tmp_path / "o" / "steps" / "step_0004.vtu")
     assert len(step.cells_dict["triangle"]) == int(rows[-1]["triangles"]), "the steps are on the last mesh"
     summary = json.loads((tmp_path / "o" / "summary.json").read_text())
     assert summary["n_free"] == int(rows[-1]["unknowns"]) and summary["status"] == "converged"

@@ -192,7 +192,7 @@ def test_run_writes_a_time_series(tmp_path: Path) -> None:
     assert main(["-q", "run", str(tmp_path / "fretting.toml"), "--out", str(out)]) == 0
     pvd = ET.parse(out / "result.pvd").getroot()
     files = [d.get("file") for d in pvd.iter("DataSet")]
-    assert files == [f"step_{k:04d}.vtu" for k in range(7)]
+    assert files == [f"steps/step_{k:04d}.vtu" for k in range(7)]
     for f in files:
         assert meshio.read(out / str(f)).points.shape[1] == 3
     rows = (out / "history.csv").read_text(encoding="utf-8").splitlines()
@@ -222,7 +222,7 @@ def test_long_histories_write_a_bounded_series(tmp_path: Path) -> None:
     out = tmp_path / "out"
     assert main(["-q", "run", str(tmp_path / "fretting.toml"), "--out", str(out), "--no-plots"]) == 0
     files = [d.get("file") for d in ET.parse(out / "result.pvd").getroot().iter("DataSet")]
-    assert files == ["step_0000.vtu", "step_0003.vtu", "step_0006.vtu"]
+    assert files == ["steps/step_0000.vtu", "steps/step_0003.vtu", "steps/step_0006.vtu"]
     assert len((out / "history.csv").read_text(encoding="utf-8").splitlines()) == 2 + 7
     bad = text.replace("write_every = 3", "write_every = 0")
     with pytest.raises(SceneError, match="write_every"):

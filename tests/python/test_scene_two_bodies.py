@@ -102,7 +102,8 @@ def test_the_two_body_fretting_scene_traces_a_loop(tmp_path: Path) -> None:
     assert x[back] == pytest.approx(0.0, abs=1e-12) and x[out_again] == pytest.approx(0.0, abs=1e-12)
     assert q[back] * q[out_again] < 0.0
     assert (out / "history_loop.png").is_file() and (out / "result.pvd").is_file()
-    assert not (out / "step_0000.vtm").exists(), "the series keeps the joined mesh (cell data 'body')"
+    assert (out / "steps" / "step_0000.vtu").is_file()
+    assert not (out / "steps" / "step_0000.vtm").exists(), "the series keeps the joined mesh (cell data 'body')"
 
 
 def test_an_adaptive_two_body_history_runs_and_writes_its_levels(tmp_path: Path) -> None:
@@ -118,7 +119,7 @@ def test_an_adaptive_two_body_history_runs_and_writes_its_levels(tmp_path: Path)
     text += (
         "\n[friction]\nmu = 0.3\n"
         '\n[history]\ndisplacements = { "upper.top.x" = [0.0, 0.001] }\nsteps = 2\n'
-        "\n[adapt]\ntol = 0.3\n"
+        "\n[adapt]\ntol = 0.3\nwrite_levels = true\n"
     )
     scene = tmp_path / "s.toml"
     scene.write_text(text, encoding="utf-8")
