@@ -1,7 +1,6 @@
 """Sphinx directives and roles of tribo's documentation site, generated from the code so that the pages
 cannot drift from it:
 
-* ``scene-keys``: every key of a scene file and what its value must be (``tribo.scene_schema.describe_keys``);
 * ``cli-help``: the help of ``tribo`` and of each of its commands (``tribo.cli.build_parser``);
 * ``solver-settings``: every solver setting with its kind and default (the core's table);
 * the role ``rust``: a link into the crate documentation that ``cargo doc -p tribo --no-deps`` builds and
@@ -36,16 +35,6 @@ def _table(header: list[str], rows: list[list[str]]) -> nodes.table:
                 row += entry
             target += row
     return table
-
-
-class SceneKeys(Directive):
-    """Every scene key: table, key, what its value must be."""
-
-    def run(self) -> list[nodes.Node]:
-        from tribo.scene_schema import describe_keys
-
-        rows = [[f"[{table}]" if table != "bodies" else "[[bodies]]", key, what] for table, key, what in describe_keys()]
-        return [_table(["table", "key", "value"], rows)]
 
 
 class SolverSettings(Directive):
@@ -104,7 +93,6 @@ def copy_rust_doc(app: Sphinx, exception: Exception | None) -> None:
 
 
 def setup(app: Sphinx) -> dict[str, Any]:
-    app.add_directive("scene-keys", SceneKeys)
     app.add_directive("solver-settings", SolverSettings)
     app.add_directive("cli-help", CliHelp)
     app.add_role("rust", rust_role)

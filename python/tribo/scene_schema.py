@@ -155,7 +155,9 @@ Checker = Callable[[str, Any], Any]
 
 
 def _number(key: str, v: Any) -> float:
-    """A finite number: TOML spells nan and inf, and an integer may be too large for a float."""
+    """A finite number.
+
+    TOML spells nan and inf, and an integer may be too large for a float: both are refused."""
     if isinstance(v, bool) or not isinstance(v, (int, float)):
         raise SceneError(f"scene key '{key}' must be a number, got {v!r}", key)
     try:
@@ -380,7 +382,9 @@ def describe_keys() -> list[tuple[str, str, str]]:
     """Every key a scene file takes, as (table, key, what its value must be), from the checkers of ``SCHEMA``
     and of ``[[bodies]]`` entries (the documentation site renders this table, so it cannot drift)."""
     def first_line(check: Checker) -> str:
-        return (check.__doc__ or "").strip().split("\n")[0]
+        # The first paragraph, whole (a row cut mid-sentence showed raw markup), in Markdown's quotes.
+        paragraph = (check.__doc__ or "").strip().split("\n\n")[0]
+        return " ".join(paragraph.split()).replace("``", "`")
 
     rows = [(table, key, first_line(check)) for table, keys in SCHEMA.items() for key, check in keys.items()]
     rows += [("bodies", key, first_line(check)) for key, check in BODY_KEYS.items()]

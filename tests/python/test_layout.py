@@ -39,7 +39,7 @@ LAYERS: list[set[str]] = [
     {"history"},
     {"adaptive"},
     {"scene_schema"},
-    {"scene"},
+    {"scene", "scene_keys"},
     {"run"},
     {"sweep"},
     {"cli"},
