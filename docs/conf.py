@@ -55,3 +55,4 @@ sphinx_gallery_conf = {
 }
 nitpicky = False
 suppress_warnings: list[str] = []
+napoleon_use_ivar = True
