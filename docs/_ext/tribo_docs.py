@@ -76,20 +76,39 @@ def rust_role(name: str, rawtext: str, text: str, lineno: int, inliner: Any, opt
     """``{rust}`label <path>``` or ``{rust}`path```: a link to the crate documentation copied into the site."""
     label, _, target = text.partition(" <")
     target = target.rstrip(">") if target else label
+    env = inliner.document.settings.env
+    # Checked once the crate documentation is in place (``copy_rust_doc``): a link that breaks fails the build.
+    env.tribo_rust_links = {*getattr(env, "tribo_rust_links", set()), (env.docname, target.split("#")[0])}
     # Relative to the page: the site root holds the crate documentation.
-    docname = inliner.document.settings.env.docname
+    docname = env.docname
     prefix = "../" * docname.count("/") + "rust/"
     return [nodes.reference(rawtext, label, refuri=prefix + target)], []
 
 
 def copy_rust_doc(app: Sphinx, exception: Exception | None) -> None:
-    """Copies the crate documentation into ``rust/`` of an HTML build, when ``cargo doc`` has made it."""
+    """Copies the crate documentation into ``rust/`` of an HTML build, running ``cargo doc -p tribo --no-deps``
+    first when it has not been built; fails the build when it cannot be made or a ``rust`` link points at no
+    page of it (the links used to break silently when ``cargo doc`` had not run before Sphinx)."""
     import shutil
+    import subprocess
     from pathlib import Path
 
+    from sphinx.errors import ExtensionError
+
+    if exception is not None or app.builder.format != "html":
+        return
     source = Path(app.config.tribo_rust_doc)
-    if exception is None and app.builder.format == "html" and (source / "tribo" / "index.html").is_file():
-        shutil.copytree(source, Path(app.outdir) / "rust", dirs_exist_ok=True)
+    if not (source / "tribo" / "index.html").is_file():
+        root = source.parent.parent  # <repository>/target/doc
+        try:
+            subprocess.run(["cargo", "doc", "-p", "tribo", "--no-deps"], cwd=root, check=True, capture_output=True)
+        except (OSError, subprocess.CalledProcessError) as e:
+            raise ExtensionError(f"the crate documentation is not in {source} and cargo doc failed: {e}") from e
+    shutil.copytree(source, Path(app.outdir) / "rust", dirs_exist_ok=True)
+    links = getattr(app.env, "tribo_rust_links", set())
+    broken = sorted(f"{page}: {target}" for page, target in links if not (source / target).is_file())
+    if broken:
+        raise ExtensionError(f"rust links to no page of the crate documentation: {broken}")
 
 
 def setup(app: Sphinx) -> dict[str, Any]:
