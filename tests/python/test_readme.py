@@ -138,3 +138,19 @@ def test_the_scene_key_table_means_every_key_and_is_the_generated_one() -> None:
     page = (DOCS / "guide" / "scene-files.md").read_text(encoding="utf-8")
     assert markdown_table() in page, "regenerate it: python -m tribo.scene_keys docs/guide/scene-files.md"
     assert page.count(END) == 1
+
+
+def test_the_python_guide_quotes_the_adaptive_study_as_measured() -> None:
+    """Issue 38: the guide said "22 levels at 6.3k unknowns, 0.69 %" where the study gives 12 levels, 7,240
+    unknowns and 0.83 %. Its readings are now those of docs/adaptive.csv and adaptive_levels.csv."""
+    text = (DOCS / "guide" / "python.md").read_text(encoding="utf-8")
+    text = " ".join(text.split())
+    row = next(r for r in _rows("adaptive.csv") if r["center"] == "0.3" and r["family"] == "adaptive"
+               and r["tol"] == "0.1")
+    quoted = (f"stops after {row['levels']} levels at {int(row['n_free']):,} unknowns, {float(row['seconds']):.2f} s "
+              f"in all, with an estimate of {float(row['relative']):.2%} and a true L2 error of λ_n of "
+              f"{float(row['error']):.2%}").replace("%", " %")
+    assert quoted in text, quoted
+    levels = [r for r in _rows("adaptive_levels.csv") if float(r["error"]) > 0]
+    ratios = [float(r["relative"]) / float(r["error"]) for r in levels]
+    assert f"by {min(ratios):.1f} to {max(ratios):.1f} over the {len(levels)} levels" in text
