@@ -4,8 +4,9 @@ A Gmsh mesh through meshio
 
 Any mesh meshio reads (Gmsh ``.msh``, VTK, XDMF, MED…) is a body: ``tribo.read_mesh`` takes its
 triangles and the line elements tagged with physical names as edge sets. Here a mesh is written as a
-Gmsh 2.2 file and read back, as one from Gmsh would be, then pressed by a flat punch (a flat obstacle
-over part of its top).
+Gmsh 2.2 file and read back, as one from Gmsh would be, then pressed 0.002 down over its whole top by a
+rigid flat (Coulomb, μ = 0.2; clamped at the bottom): the figure shows the von Mises stress, highest at
+the corners, where the clamped bottom and the friction on the top hold back the block's sideways expansion.
 """
 
 from pathlib import Path
