@@ -1,9 +1,14 @@
 """What every scene key means: its meaning, unit and default, beside what its value must be (the checkers of
-``tribo.scene_schema``), as one table.
+``tribo.scene_schema``), as one table, and the JSON Schema of scene files built from the same.
 
-``markdown_table()`` renders it; ``docs/guide/scene-files.md`` holds the rendered table between its
-``scene-keys`` markers (so that it reads on the repository host too) and a test checks that it is the one
-this module renders. To write it again after a change: ``python -m tribo.scene_keys docs/guide/scene-files.md``.
+``markdown_table()`` renders the table; ``docs/guide/scene-files.md`` holds it between its ``scene-keys``
+markers (so that it reads on the repository host too). ``json_schema()`` is the JSON Schema (draft
+2020-12) of a scene file as ``tomllib`` reads it: every table and key with its type, range or choices and
+its meaning, so that an editor that checks TOML against a schema (Taplo, "Even Better TOML") completes and
+checks scene files; it ships as ``scene.schema.json`` beside this module (``SCHEMA_FILE``). The schema checks
+keys and types; the scene reader checks the rest (which keys a shape requires, one body or two). Tests check
+that both files are the ones this module makes. To write them again after a change:
+``python -m tribo.scene_keys docs/guide/scene-files.md python/tribo/scene.schema.json``.
 
 Units: a scene has no unit system; any consistent one works. "length" is the unit of the coordinates,
 "stress" that of Young's modulus (force per area in 2D: force per length per unit thickness), "—" a pure
@@ -13,11 +18,16 @@ the two cannot disagree.
 
 from __future__ import annotations
 
+import json
 import sys
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from tribo._tribo import solver_defaults
-from tribo.scene_schema import describe_keys
+from tribo.scene_schema import BODY_KEYS, BODY_TABLES, MAX_HISTORY_STEPS, SCHEMA, SUPPORT_KINDS, describe_keys
+
+SCHEMA_FILE = Path(__file__).with_name("scene.schema.json")
 
 # table.key → (meaning, unit, default). A default of None is shown from the core's (``solver_defaults``).
 _BODY = {
@@ -127,13 +137,16 @@ def rows() -> list[tuple[str, str, str, str, str, str]]:
     """(table, key, meaning, unit, default, value) for every key the scene reader takes, in its order.
 
     Raises KeyError for a key without a meaning (a test keeps them in step)."""
-    defaults = solver_defaults()
     out = []
     for table, key, value in describe_keys():
-        meaning, unit, default = MEANINGS[f"{table}.{key}"]
-        shown = default if default is not None else _show(defaults[key])
-        out.append((f"[[{table}]]" if table == "bodies" else f"[{table}]", f"`{key}`", meaning, unit, shown, value))
+        meaning, unit, default = _meaning(f"{table}.{key}")
+        out.append((f"[[{table}]]" if table == "bodies" else f"[{table}]", f"`{key}`", meaning, unit, default, value))
     return out
+
+
+def _meaning(name: str) -> tuple[str, str, str]:
+    meaning, unit, default = MEANINGS[name]
+    return meaning, unit, default if default is not None else _show(solver_defaults()[name.split(".")[-1]])
 
 
 def _show(value: object) -> str:
@@ -151,11 +164,85 @@ def markdown_table() -> str:
     return "\n".join([*lines, "", END])
 
 
+_NUMBER = {"type": "number"}
+_PAIR = {"type": "array", "items": _NUMBER, "minItems": 2, "maxItems": 2}
+_PATH = {"oneOf": [_NUMBER, {"type": "array", "items": _NUMBER, "minItems": 2}]}
+_STEPS = {"type": "integer", "minimum": 1, "maximum": MAX_HISTORY_STEPS}
+# The JSON Schema of each checker of ``tribo.scene_schema`` by its name (those the factories make carry theirs).
+_BY_CHECKER: dict[str, dict[str, Any]] = {
+    "_number": _NUMBER,
+    "_integer": {"type": "integer"},
+    "_boolean": {"type": "boolean"},
+    "_string": {"type": "string"},
+    "_pair": _PAIR,
+    "_range": _PAIR,
+    "_numbers": {"type": "array", "items": _NUMBER},
+    "_path": _PATH,
+    "_counts": {"oneOf": [_STEPS, {"type": "array", "items": _STEPS, "minItems": 1}]},
+    "_every": {"type": "integer", "minimum": 1},
+    "_steps": {"type": "array", "items": {"type": "integer", "minimum": 0}},
+    "_names": {"oneOf": [{"type": "string"}, {"type": "array", "items": {"type": "string"}, "minItems": 1}]},
+    "_grading": {"oneOf": [{"enum": ["auto", "none"]}, _PAIR]},
+    "_pairs": {"type": "object", "additionalProperties": _PAIR},
+    "_paths": {"type": "object", "additionalProperties": _PATH},
+}
+
+
+def _key(name: str, check: Callable[..., Any]) -> dict[str, Any]:
+    """The schema of one key: its checker's, with its meaning, unit and default as the description."""
+    if check.__name__ == "_shape":
+        shape = {k: _key(f"obstacle.{k}", c) for k, c in SCHEMA["obstacle"].items() if k not in ("approach", "shift")}
+        own: dict[str, Any] = {"type": "object", "additionalProperties": False, "properties": shape}
+    else:
+        own = getattr(check, "json_schema", None) or _BY_CHECKER[check.__name__]
+    return {**own, "description": _description(name)}
+
+
+def _description(name: str) -> str:
+    meaning, unit, default = _meaning(name)
+    return f"{meaning}. Unit: {unit}. Default: {default}.".replace("`", "")
+
+
+def _table(prefix: str, keys: dict[str, Callable[..., Any]]) -> dict[str, Any]:
+    properties = {k: _key(f"{prefix}.{k}", c) for k, c in keys.items()}
+    return {"type": "object", "additionalProperties": False, "properties": properties}
+
+
+def json_schema() -> dict[str, Any]:
+    """The JSON Schema (draft 2020-12) of a scene file as ``tomllib`` reads it (see the module documentation)."""
+    tables = {t: _table(t, keys) for t, keys in SCHEMA.items()}
+    tables["material"]["required"] = ["young", "poisson"]
+    support = {"type": "object", "required": ["kind", "edge_set"], "additionalProperties": False,
+               "properties": {"kind": {"enum": list(SUPPORT_KINDS)}, "edge_set": {"type": "string"}, "x": _NUMBER,
+                              "y": _NUMBER}}
+    supports = {"type": "array", "items": support, "description": _description("bodies.supports")}
+    tables["supports"] = {"oneOf": [tables["supports"], {**supports, "minItems": 1}]}
+    body = _table("bodies", BODY_KEYS)
+    body["properties"] |= {t: _table(f"bodies.{t}", keys) for t, keys in BODY_TABLES.items()} | {"supports": supports}
+    body["required"] = ["name", "material", "supports"]
+    tables["bodies"] = {"type": "array", "items": body, "minItems": 2, "maxItems": 2,
+                        "description": "Two elastic bodies in contact, instead of [body], [material], [supports] "
+                                       "and [obstacle]."}
+    text = {"type": "string"}
+    return {
+        "$schema": "https://json-schema.org/draft/2020-12/schema",
+        "title": "tribo scene file",
+        "description": "A scene of tribo (tribo run SCENE.toml): every table and key, as tribo.scene_keys makes it.",
+        "type": "object",
+        "additionalProperties": False,
+        "properties": {"title": text, "description": text, **tables},
+    }
+
+
 def rewrite(path: Path) -> bool:
-    """Replaces the table between the markers of ``path`` with ``markdown_table()``; True if it changed."""
-    text = path.read_text(encoding="utf-8")
-    start, end = text.index(BEGIN), text.index(END) + len(END)
-    new = text[:start] + markdown_table() + text[end:]
+    """Writes ``path`` again: the JSON Schema for a ``.json`` file, else the table between the markers of the
+    page; True if it changed."""
+    text = path.read_text(encoding="utf-8") if path.exists() else ""
+    if path.suffix == ".json":
+        new = json.dumps(json_schema(), indent=1, ensure_ascii=False) + "\n"
+    else:
+        start, end = text.index(BEGIN), text.index(END) + len(END)
+        new = text[:start] + markdown_table() + text[end:]
     path.write_text(new, encoding="utf-8")
     return new != text
 

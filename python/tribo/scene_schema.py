@@ -183,6 +183,7 @@ def _count(largest: int) -> Checker:
         return n
 
     check.__doc__ = f"An integer in [0, {largest}]."
+    check.json_schema = {"type": "integer", "minimum": 0, "maximum": largest}  # type: ignore[attr-defined]
     return check
 
 
@@ -271,6 +272,7 @@ def _choice(*options: str) -> Checker:
         return str(v)
 
     check.__doc__ = f"One of {', '.join(map(repr, options))}."
+    check.json_schema = {"enum": list(options)}  # type: ignore[attr-defined]
     return check
 
 

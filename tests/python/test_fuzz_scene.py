@@ -16,6 +16,7 @@ from __future__ import annotations
 import contextlib
 import io
 import tempfile
+import tomllib
 from pathlib import Path
 from typing import Any
 
@@ -207,3 +208,35 @@ def test_fuzz_tribo_run(text: str) -> None:
         scene = Path(tmp) / "scene.toml"
         scene.write_text(text, encoding="utf-8")
         event(f"exit code {run_cli(scene, Path(tmp) / 'out')}")
+
+
+# ----- the JSON Schema never flags what the reader takes -----
+
+
+def _schema_errors(data: dict[str, Any]) -> list[str]:
+    import json
+
+    import jsonschema
+
+    from tribo.scene_keys import SCHEMA_FILE
+
+    schema = json.loads(SCHEMA_FILE.read_text(encoding="utf-8"))
+    return [e.message for e in jsonschema.Draft202012Validator(schema).iter_errors(data)]
+
+
+def _toml(text: str) -> dict[str, Any]:
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError:
+        return {}
+
+
+@fuzz(200)
+@given(st.one_of(scene_texts().map(_toml), scene_dicts()))
+@example(tomllib.loads(render(BASE)))
+def test_fuzz_a_scene_the_reader_takes_meets_the_json_schema(data: dict[str, Any]) -> None:
+    """An editor that checks scene files against scene.schema.json never flags one that tribo reads (the
+    schema checks keys and types; the reader more)."""
+    if loaded(lambda: parse_scene(data)) is not None:
+        event("read")
+        assert not _schema_errors(data), data

@@ -118,28 +118,6 @@ def test_readme_quotes_the_two_body_and_path_studies_as_measured() -> None:
     assert f"at most {worst:.2f}× the fastest" in text
 
 
-def test_the_scene_key_table_means_every_key_and_is_the_generated_one() -> None:
-    """Issue 38: the scene-key table described 30 keys only as "A finite number…", cut one row
-    mid-sentence and was empty on the repository host. Every key the reader takes has a meaning, a unit and
-    a default (no meaning for a key it does not take), the core's defaults are shown, no cell is cut or
-    holds reST quotes, and the page holds the table this module renders."""
-    from tribo import solver_defaults
-    from tribo.scene_keys import END, MEANINGS, markdown_table, rows
-    from tribo.scene_schema import describe_keys
-
-    keys = {f"{table}.{key}" for table, key, _ in describe_keys()}
-    assert keys == set(MEANINGS), f"without a meaning: {keys - set(MEANINGS)}; unknown: {set(MEANINGS) - keys}"
-    table = rows()
-    assert all(all(cell.strip() for cell in row) for row in table)
-    assert not any("``" in cell for row in table for cell in row)
-    assert all(row[5].endswith((".", ")")) for row in table), "a value cut mid-sentence"
-    shown = {row[1].strip("`"): row[4] for row in table if row[0] == "[solver]"}
-    assert shown["qp_tol"] == "1e-12" == f"{solver_defaults()['qp_tol']:g}"
-    page = (DOCS / "guide" / "scene-files.md").read_text(encoding="utf-8")
-    assert markdown_table() in page, "regenerate it: python -m tribo.scene_keys docs/guide/scene-files.md"
-    assert page.count(END) == 1
-
-
 def test_the_python_guide_quotes_the_adaptive_study_as_measured() -> None:
     """Issue 38: the guide said "22 levels at 6.3k unknowns, 0.69 %" where the study gives 12 levels, 7,240
     unknowns and 0.83 %. Its readings are now those of docs/adaptive.csv and adaptive_levels.csv."""
