@@ -307,10 +307,12 @@ def _ticks(values: Sequence[Any]) -> list[str]:
     return [format(v, ".4g") if isinstance(v, float) else str(v) for v in values]
 
 
-def sweep_map(df: Any, x: str, y: str, value: str, ax: Axes | None = None) -> Axes:
+def sweep_map(df: Any, x: str, y: str, value: str, ax: Axes | None = None, *,
+              limits: tuple[float, float] | None = None, colorbar: bool = True) -> Axes:
     """A sweep's output ``value`` over two of its axes ``x`` and ``y`` (a ``tribo.sweep`` table, one case
     per cell), as coloured cells labelled with their values; cells of cases that did not converge are
-    crossed. Other axes must have one value in ``df`` (select them first)."""
+    crossed. Other axes must have one value in ``df`` (select them first). ``limits`` fixes the colour scale
+    (several maps on one scale); ``colorbar=False`` leaves the colour bar to the caller."""
     ax = _axes(ax)
     xs, ys = sorted(df[x].unique()), sorted(df[y].unique())
     if len(df) != len(df.drop_duplicates([x, y])):
@@ -322,14 +324,16 @@ def sweep_map(df: Any, x: str, y: str, value: str, ax: Axes | None = None) -> Ax
         grid[i, j] = float(row[value]) if row[value] is not None else np.nan
         if row["status"] != "converged":
             failed.append((j, i))
-    image = ax.imshow(grid, origin="lower", aspect="auto", cmap="viridis")
-    plt.colorbar(image, ax=ax, label=value)
+    vmin, vmax = limits if limits is not None else (None, None)
+    image = ax.imshow(grid, origin="lower", aspect="auto", cmap="viridis", vmin=vmin, vmax=vmax)
+    if colorbar:
+        plt.colorbar(image, ax=ax, label=value)
     if grid.size <= 144:
-        finite = grid[np.isfinite(grid)]
-        middle = float(finite.mean()) if len(finite) else 0.0
+        low, high = image.get_clim()
+        middle = 0.5 * (low + high)  # viridis is dark below the middle of its scale
         for (i, j), v in np.ndenumerate(grid):
             if np.isfinite(v):
-                ax.text(j, i, f"{v:.3g}", ha="center", va="center", fontsize=8,
+                ax.text(j, i, f"{v:.3g}", ha="center", va="center", fontsize=9 if grid.shape[1] <= 8 else 8,
                         color="white" if v < middle else "black")
     for j, i in failed:
         ax.plot(j, i, "rx", ms=14, mew=2)
@@ -363,7 +367,8 @@ def sweep_lines(df: Any, x: str, value: str, hue: str | None = None, ax: Axes | 
 
 def sweep_figure(df: Any, axes: Sequence[str], value: str) -> Any:
     """The chart ``tribo sweep --plot`` draws: lines over one axis; a map over two; for more, one map of the
-    first two per combination of the others (at most 12)."""
+    first two per combination of the others (at most 12), two to a row on one colour scale with one colour
+    bar, so that the maps compare and read at page width."""
     axes = list(axes)
     if len(axes) == 1:
         fig, ax = plt.subplots(figsize=(7.0, 4.5), layout="constrained")
@@ -373,14 +378,22 @@ def sweep_figure(df: Any, axes: Sequence[str], value: str) -> Any:
     panels = [((), df)] if not rest else list(df.groupby(rest, sort=True))
     if len(panels) > 12:
         raise ValueError(f"{len(panels)} combinations of {', '.join(rest)}: more than 12 maps; plot a selection")
-    cols = min(3, len(panels))
+    cols = min(2, len(panels))
     rows = -(-len(panels) // cols)
-    fig, grid = plt.subplots(rows, cols, figsize=(6.0 * cols, 4.5 * rows), layout="constrained", squeeze=False)
+    fig, grid = plt.subplots(rows, cols, figsize=(4.6 * cols + 1.0, 3.4 * rows + 0.4), layout="constrained",
+                             squeeze=False)
+    values = np.array([float(v) for v in df[value] if v is not None], dtype=float)
+    finite = values[np.isfinite(values)]
+    limits = (float(finite.min()), float(finite.max())) if len(finite) else None
     for ax, (name, part) in zip(grid.flat, panels):
-        sweep_map(part, axes[0], axes[1], value, ax=ax)
+        sweep_map(part, axes[0], axes[1], value, ax=ax, limits=limits, colorbar=not rest)
         if rest:
             names = name if isinstance(name, tuple) else (name,)
-            ax.set_title(", ".join(f"{k} = {v}" for k, v in zip(rest, names)), fontsize=9)
+            # The axis names without their table (``solver.qp_tol`` → ``qp_tol``): the title stays on one line.
+            ax.set_title(", ".join(f"{k.split('.')[-1]} = {v}" for k, v in zip(rest, names)), fontsize=10)
     for ax in list(grid.flat)[len(panels):]:
         ax.set_visible(False)
+    if rest:
+        fig.colorbar(grid[0, 0].images[0], ax=grid, label=value, shrink=0.8)
+        fig.suptitle(f"{value} over {axes[0]} × {axes[1]}", fontsize=11)
     return fig

@@ -104,3 +104,31 @@ def test_history_tractions_say_what_moves_and_which_way_positions_run() -> None:
     labels = [line.get_label() for line in plot.history_tractions(moved, [1]).get_lines()]
     assert f"λ_t, step 1 (Q = {moved.tangential_force[1]:.3g})" in labels, labels
     plt.close("all")
+
+
+def test_sweep_maps_share_one_scale_two_to_a_row() -> None:
+    """Issue 38: the sweep maps were unreadable at page width (three to a row, a colour bar each, each on
+    its own scale). Over three axes: two maps to a row, one colour scale and one colour bar, short titles;
+    a case that did not converge is crossed."""
+    import itertools
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import pandas as pd
+
+    from tribo.plot import sweep_figure
+
+    rows = [{"friction.mu": mu, "material.poisson": nu, "solver.qp_tol": tol, "iterations": i,
+             "status": "converged" if i < 17 else "max_iterations"}
+            for i, (mu, nu, tol) in enumerate(itertools.product([0.1, 0.3], [0.2, 0.3, 0.45], [1e-12, 1e-10, 1e-8]))]
+    fig = sweep_figure(pd.DataFrame(rows), ["friction.mu", "material.poisson", "solver.qp_tol"], "iterations")
+    maps = [ax for ax in fig.axes if ax.images]
+    assert len(maps) == 3 and len({ax.get_position().x0 for ax in maps}) == 2, "two to a row"
+    assert {ax.images[0].get_clim() for ax in maps} == {(0.0, 17.0)}, "one scale: the values of all maps"
+    assert len(fig.axes) == 4 + 1, "three maps, the hidden fourth and one colour bar"
+    assert [ax.get_title() for ax in maps] == [f"qp_tol = {t}" for t in (1e-12, 1e-10, 1e-08)]
+    crossed = [line for ax in maps for line in ax.lines if line.get_marker() == "x"]
+    assert len(crossed) == 1
+    plt.close(fig)
