@@ -255,3 +255,13 @@ def test_sweeps(tmp_path: Path) -> None:
         assert cmp["force_rel_max"] < 5e-6, cmp
     assert res["compare_coulomb"]["same_iterations"] == 8
     assert all(r["converged"] == r["cases"] for r in res["overhead"])
+
+
+def test_scene_messages(tmp_path: Path) -> None:
+    """Study 16 smoke: tribo's message names the key and lists the choices in every mistake it measures."""
+    rows = study("study_scene_messages").main(["--smoke", "--out", str(tmp_path)])
+    for ext in ("md", "csv"):
+        assert (tmp_path / f"scene_messages.{ext}").stat().st_size > 0
+    assert len(rows) == 6 and all(r["tribo_names_key"] for r in rows)
+    assert all(r["tribo_lists_choices"] in (True, None) for r in rows)
+    assert all(r["pydantic"] != "(accepted)" or r["mistake"] == "integer beyond a float" for r in rows)
