@@ -15,9 +15,10 @@ toward the abscissae where the initial gap is at most 2δ; for a flat obstacle, 
 
 from __future__ import annotations
 
+import contextlib
 import math
 import tomllib
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -272,7 +273,8 @@ class Scene:
     ) -> Adaptive:
         """Builds (unless given) and solves adaptively with the ``[adapt]`` table's settings."""
         problem = problem if problem is not None else self.build()
-        return problem.solve_adaptive(progress=progress, **self.adapt_kwargs(), **self.solve_kwargs())
+        with _adapt_keys():
+            return problem.solve_adaptive(progress=progress, **self.adapt_kwargs(), **self.solve_kwargs())
 
     def adapt_kwargs(self) -> dict[str, Any]:
         """The ``[adapt]`` table's keywords of the adaptive solve (``write_levels`` is ``tribo run``'s)."""
@@ -345,8 +347,9 @@ class Scene:
         problem = problem if problem is not None else self.build()
         c = self.history_columns()
         kw = {**self.adapt_kwargs(), **self.solve_kwargs()}
-        return problem.solve_history_adaptive(c["approach"], c["shift"], c["load_factor"],
-                                              displacements=c["displacements"] or None, progress=progress, **kw)
+        with _adapt_keys():
+            return problem.solve_history_adaptive(c["approach"], c["shift"], c["load_factor"],
+                                                  displacements=c["displacements"] or None, progress=progress, **kw)
 
     def to_dict(self) -> dict[str, Any]:
         """The scene as plain data (for the JSON summary)."""
@@ -410,3 +413,18 @@ def scene_path(name: str) -> Path:
 def demo_scene_path() -> Path:
     """Path of the built-in demo scene shipped in the package."""
     return scene_path("demo")
+
+
+@contextlib.contextmanager
+def _adapt_keys() -> Iterator[None]:
+    """The core's refusal of an adaptive setting (``adapt_tol``, …, which it checks when the loop starts) as a
+    ``SceneError`` naming the scene key (``adapt.tol``), the core's words kept (issue 37)."""
+    try:
+        yield
+    except TriboError as e:
+        name = str(getattr(e, "details", {}).get("name", ""))
+        if not name.startswith("adapt_"):
+            raise
+        key = f"adapt.{name.removeprefix('adapt_')}"
+        what = e.details.get("what", str(e))
+        raise SceneError(f"scene key '{key}' = {e.details.get('value')}: {what}", key) from e

@@ -611,3 +611,17 @@ def test_run_reports_its_time_and_peak_memory(tmp_path: Path) -> None:
     _, summary, vm_hwm_mib = run()
     del ballast
     assert summary["process_peak_memory_mb"] <= vm_hwm_mib
+
+
+def test_a_bad_adaptive_setting_names_the_scene_key(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """Issue 37: ``[adapt] tol = 0`` was refused naming the core's setting ``adapt_tol``; the scene's
+    reader and ``tribo run`` name the scene key ``adapt.tol`` (the core's check and words, converted)."""
+    path = tmp_path / "a.toml"
+    for edit, key in (("tol = 0.0", "adapt.tol"), ("tol = 0.05\ntheta = 1.5", "adapt.theta"),
+                      ("tol = 0.05\nmax_unknowns = 10", "adapt.max_unknowns")):
+        path.write_text(ADAPT_SCENE.replace("tol = 0.05", edit), encoding="utf-8")
+        with pytest.raises(SceneError, match=f"scene key '{key}'") as e:
+            load_scene(path).solve_adaptive()
+        assert e.value.details == {"key": key}
+        assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 1
+        assert f"tribo: error: scene key '{key}'" in capsys.readouterr().err
