@@ -3,8 +3,8 @@
 
 The source is this folder: the user guide (``guide/``), the method, the API and command-line reference, the
 gallery (``gallery/``, run by sphinx-gallery) and every study page (``*.md`` beside this file, with their
-charts). The Rust crate documentation, when ``cargo doc -p tribo --no-deps`` has built it, is copied to
-``rust/`` of the site.
+charts). The Rust crate documentation (``cargo doc -p tribo --no-deps``, which the build runs when it is
+missing) is copied to ``rust/`` of the site; a ``rust`` link to no page of it fails the build.
 """
 
 from __future__ import annotations
@@ -42,8 +42,8 @@ autodoc_default_options = {"members": True, "undoc-members": False, "show-inheri
 html_theme = "furo"
 html_title = f"tribo {release}"
 html_static_path: list[str] = []
-# The crate documentation (``cargo doc -p tribo --no-deps``), copied into ``rust/`` of the site when it has
-# been built (``tribo_docs`` does the copy once the HTML is written); the ``rust`` role links into it.
+# The crate documentation (``cargo doc -p tribo --no-deps``, run by ``tribo_docs`` when it is missing), copied
+# into ``rust/`` of the site once the HTML is written; the ``rust`` role links into it (a broken link fails).
 tribo_rust_doc = str(ROOT / "target" / "doc")
 sphinx_gallery_conf = {
     "examples_dirs": "gallery",

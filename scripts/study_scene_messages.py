@@ -18,6 +18,7 @@ from __future__ import annotations
 import copy
 import csv
 import math
+import re
 import sys
 import tomllib
 from collections.abc import Callable
@@ -146,8 +147,12 @@ def run(smoke: bool, out: Path) -> list[dict[str, Any]]:
         score = {}
         for who, text, shown in (("tribo", today, today), ("pydantic", theirs, theirs.split(" [input_value=")[0])):
             score[f"{who}_names_key"] = key in text
-            score[f"{who}_lists_choices"] = CHOICES[key] in shown if is_name else None
-            score[f"{who}_shows_value"] = VALUES[name] in text if name in VALUES else None
+            # Searched with the key and the value taken out: a choice inside the misspelled key ("obstacle" in
+            # "obstacles") is no choice listed, nor is "0" inside a range's bound.
+            rest = shown.replace(key.split(".")[-1], " ")
+            score[f"{who}_lists_choices"] = CHOICES[key] in rest if is_name else None
+            score[f"{who}_shows_value"] = (re.search(rf"(?<![\w.]){re.escape(VALUES[name])}(?![\w.])", text) is not None
+                                           if name in VALUES else None)
         rows.append({"mistake": name, "key": key, "tribo": today, "pydantic": theirs, "pydantic_errors": n, **score})
         print(f"{name}: tribo: {today}\n    pydantic ({n}): {theirs}")
     with (out / "scene_messages.csv").open("w", newline="", encoding="utf-8") as f:

@@ -85,6 +85,16 @@ def rust_role(name: str, rawtext: str, text: str, lineno: int, inliner: Any, opt
     return [nodes.reference(rawtext, label, refuri=prefix + target)], []
 
 
+def purge_rust_links(app: Sphinx, env: Any, docname: str) -> None:
+    """Forgets the ``rust`` links of a page read again (an incremental build)."""
+    env.tribo_rust_links = {link for link in getattr(env, "tribo_rust_links", set()) if link[0] != docname}
+
+
+def merge_rust_links(app: Sphinx, env: Any, docnames: Any, other: Any) -> None:
+    """Keeps the ``rust`` links a parallel reader found."""
+    env.tribo_rust_links = getattr(env, "tribo_rust_links", set()) | getattr(other, "tribo_rust_links", set())
+
+
 def copy_rust_doc(app: Sphinx, exception: Exception | None) -> None:
     """Copies the crate documentation into ``rust/`` of an HTML build, running ``cargo doc -p tribo --no-deps``
     first when it has not been built; fails the build when it cannot be made or a ``rust`` link points at no
@@ -104,6 +114,8 @@ def copy_rust_doc(app: Sphinx, exception: Exception | None) -> None:
             subprocess.run(["cargo", "doc", "-p", "tribo", "--no-deps"], cwd=root, check=True, capture_output=True)
         except (OSError, subprocess.CalledProcessError) as e:
             raise ExtensionError(f"the crate documentation is not in {source} and cargo doc failed: {e}") from e
+        if not (source / "tribo" / "index.html").is_file():  # CARGO_TARGET_DIR elsewhere, say
+            raise ExtensionError(f"cargo doc ran, but the crate documentation is not in {source}")
     shutil.copytree(source, Path(app.outdir) / "rust", dirs_exist_ok=True)
     links = getattr(app.env, "tribo_rust_links", set())
     broken = sorted(f"{page}: {target}" for page, target in links if not (source / target).is_file())
@@ -117,4 +129,6 @@ def setup(app: Sphinx) -> dict[str, Any]:
     app.add_role("rust", rust_role)
     app.add_config_value("tribo_rust_doc", "", "html")
     app.connect("build-finished", copy_rust_doc)
+    app.connect("env-purge-doc", purge_rust_links)
+    app.connect("env-merge-info", merge_rust_links)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

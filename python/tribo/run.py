@@ -134,26 +134,22 @@ def bodies(problem: Problem, solution: Solution) -> list[dict[str, Any]]:
 
 def run_history(
     scene: Scene, problem: Problem, out: Path, *, plots: bool = True, fields: bool = True
-) -> tuple[Problem, History, list[Path], str | None]:
+) -> tuple[Problem, History, list[Path], AdaptiveHistory | None]:
     """Solves the scene's ``[history]`` with a progress bar over the steps and writes its outputs; with an
-    ``[adapt]`` table, adaptively (a log line per level, then the history on the last mesh, and
-    ``adapt.csv``/``adapt.png``). Returns the problem the history was solved on, the history, the files and
-    why the adaptive loop stopped (None without ``[adapt]``)."""
+    ``[adapt]`` table, adaptively (a log line per level, then the history on the last mesh). Returns the
+    problem the history was solved on, the history, the files and the adaptive run (None without
+    ``[adapt]``), whose ``adapt.csv``/``adapt.png`` the caller writes once the solve is timed."""
     from tqdm import tqdm
 
     n_steps = len(scene.history_steps()[0])
     clock = time.perf_counter()
     files: list[Path] = []
-    stop = None
+    adaptive: AdaptiveHistory | None = None
     if scene.has_adapt:
         adaptive = scene.solve_history_adaptive(problem, progress=_level_progress)
         log.info("adaptive history stopped (%s) after %d levels", adaptive.stop, len(adaptive.levels))
         warn_adapt_stop(scene, adaptive)
-        problem, history, stop = adaptive.problem, adaptive.history, adaptive.stop
-        if fields:
-            files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
-            if scene.get("adapt", "write_levels", False):
-                files += write_levels(out, adaptive, **scene.solve_kwargs())
+        problem, history = adaptive.problem, adaptive.history
     else:
         with tqdm(total=n_steps, desc="steps", unit="step", disable=not log.isEnabledFor(logging.INFO)) as bar:
 
@@ -172,7 +168,7 @@ def run_history(
     if fields:
         files = write_history(out, problem, history, plots=plots, plot_steps=scene.get("history", "plot_steps"),
                               every=scene.get("history", "write_every")) + files
-    return problem, history, files, stop
+    return problem, history, files, adaptive
 
 
 def _level_progress(unknowns: int, relative: float, seconds: float) -> None:
@@ -225,7 +221,9 @@ def run_scene(
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", SceneWarning)
         if scene.has_history:
-            problem, history, history_files, adapt_stop = run_history(scene, problem, out, plots=plots, fields=fields)
+            problem, history, history_files, adapted = run_history(scene, problem, out, plots=plots, fields=fields)
+            adapt_stop = adapted.stop if adapted is not None else None
+            adaptive: Adaptive | AdaptiveHistory | None = adapted
             # The step that failed if one did (its status then sets the exit code), else the last one.
             last = history.failed if history.failed is not None else (history.solutions[-1] if len(history) else None)
             if last is None:
@@ -233,8 +231,9 @@ def run_scene(
             solution = last
             warn_solution(problem, solution)
         elif scene.has_adapt:
-            adaptive = run_adaptive(scene, problem)
-            problem, solution, adapt_stop = adaptive.problem, adaptive.solution, adaptive.stop
+            static = run_adaptive(scene, problem)
+            problem, solution, adapt_stop = static.problem, static.solution, static.stop
+            adaptive = static
             if scene.get("estimate", "error_bars", False):
                 log.info("solving the last level again with its error bars")
                 solution = problem.solve(error_bars=True, **scene.solve_kwargs())
@@ -242,7 +241,7 @@ def run_scene(
             history_files = []
             warn_solution(problem, solution)
         else:
-            history_files, adapt_stop = [], None
+            history_files, adapt_stop, adaptive = [], None, None
             problem, solution = scene.solve(problem, progress=_progress, on_phase=_phase)
     warned = []
     for w in caught:
@@ -254,7 +253,7 @@ def run_scene(
     seconds = time.perf_counter() - clock
     log.info("solve ended: %s after %.2f s", solution.report.status, seconds)
     clock = time.perf_counter()
-    if fields and scene.has_adapt and not scene.has_history:
+    if fields and adaptive is not None:
         history_files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
         if scene.get("adapt", "write_levels", False):
             history_files += write_levels(out, adaptive, **scene.solve_kwargs())

@@ -425,6 +425,9 @@ def _adapt_keys() -> Iterator[None]:
         name = str(getattr(e, "details", {}).get("name", ""))
         if not name.startswith("adapt_"):
             raise
-        key = f"adapt.{name.removeprefix('adapt_')}"
+        # The core names the steps of `on` adapt_steps; the other names are the scene keys' own.
+        key = "adapt.on" if name == "adapt_steps" else f"adapt.{name.removeprefix('adapt_')}"
         what = e.details.get("what", str(e))
-        raise SceneError(f"scene key '{key}' = {e.details.get('value')}: {what}", key) from e
+        value = e.details.get("value")
+        shown = "" if value is None else f" = {int(value) if float(value).is_integer() else value}"
+        raise SceneError(f"scene key '{key}'{shown}: {what}", key) from e

@@ -216,7 +216,8 @@ def json_schema() -> dict[str, Any]:
                "properties": {"kind": {"enum": list(SUPPORT_KINDS)}, "edge_set": {"type": "string"}, "x": _NUMBER,
                               "y": _NUMBER}}
     supports = {"type": "array", "items": support, "description": _description("bodies.supports")}
-    tables["supports"] = {"oneOf": [tables["supports"], {**supports, "minItems": 1}]}
+    # The reader takes an empty list too (a body held by the contact alone), so the schema does.
+    tables["supports"] = {"oneOf": [tables["supports"], supports]}
     body = _table("bodies", BODY_KEYS)
     body["properties"] |= {t: _table(f"bodies.{t}", keys) for t, keys in BODY_TABLES.items()} | {"supports": supports}
     body["required"] = ["name", "material", "supports"]

@@ -618,11 +618,15 @@ def test_a_bad_adaptive_setting_names_the_scene_key(tmp_path: Path, capsys: pyte
     """Issue 37: ``[adapt] tol = 0`` was refused naming the core's setting ``adapt_tol``; the scene's
     reader and ``tribo run`` name the scene key ``adapt.tol`` (the core's check and words, converted)."""
     path = tmp_path / "a.toml"
-    for edit, key in (("tol = 0.0", "adapt.tol"), ("tol = 0.05\ntheta = 1.5", "adapt.theta"),
-                      ("tol = 0.05\nmax_unknowns = 10", "adapt.max_unknowns")):
-        path.write_text(ADAPT_SCENE.replace("tol = 0.05", edit), encoding="utf-8")
+    history = "[friction]\nmu = 0.3\n[history]\nshift = [0.0, 0.004]\nsteps = 2\n"
+    for edit, key, more in (("tol = 0.0", "adapt.tol", ""), ("tol = 0.05\ntheta = 1.5", "adapt.theta", ""),
+                            ("tol = 0.05\nmax_unknowns = 10", "adapt.max_unknowns", ""),
+                            ('tol = 0.05\nstop_on = "hierarchical"', "adapt.stop_on", history),
+                            ("tol = 0.05\non = [9]", "adapt.on", history)):
+        path.write_text(ADAPT_SCENE.replace("tol = 0.05", edit) + more, encoding="utf-8")
+        scene = load_scene(path)
         with pytest.raises(SceneError, match=f"scene key '{key}'") as e:
-            load_scene(path).solve_adaptive()
-        assert e.value.details == {"key": key}
+            scene.solve_history_adaptive() if scene.has_history else scene.solve_adaptive()
+        assert e.value.details == {"key": key} and "None" not in str(e.value) and ".0:" not in str(e.value)
         assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 1
         assert f"tribo: error: scene key '{key}'" in capsys.readouterr().err

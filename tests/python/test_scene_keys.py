@@ -47,6 +47,14 @@ def test_the_scene_key_table_means_every_key_and_is_the_generated_one() -> None:
 
 
 
+def test_an_empty_supports_list_meets_the_schema_as_the_reader_takes_it() -> None:
+    """``supports = []`` (held by the contact alone) is read; the schema flagged it (minItems 1)."""
+    data = tomllib.loads((SCENES[0].parent / "demo.toml").read_text(encoding="utf-8"))
+    data["supports"] = []
+    parse_scene(data)
+    assert not list(validator().iter_errors(data))
+
+
 def test_the_json_schema_is_shipped_as_made_and_valid() -> None:
     """scene.schema.json is a valid draft 2020-12 schema, the one ``json_schema()`` makes (regenerate it:
     python -m tribo.scene_keys python/tribo/scene.schema.json), and describes every key."""

@@ -44,8 +44,8 @@
 //!
 //! (infinite where `q_R ≥ 1`, the enrichment not reducing the difference, or where the second enriched
 //! solve did not converge or could not be made, the memory budget say: the estimate then says nothing, and
-//! the error bars stand; an end whose `d_R` is within the accuracy of the solves, `fp_tol ‖λ_f‖`, measures
-//! nothing and stays in the rest). `d_R / (1 − q_R)` is the triangle inequality
+//! the error bars stand; an end whose `d_R` is within the accuracy of the solves, `min(fp_tol, 1e-8) ‖λ_f‖`,
+//! measures nothing and stays in the rest). `d_R / (1 − q_R)` is the triangle inequality
 //! `e_H ≤ d + e_f` with the measured q, a bound where the second enrichment reduces the error as the first
 //! did; it is pessimistic where the two errors point apart (on the block q_R = 0.85–0.87 on every level,
 //! and the estimate 2.3–3.4 times the truth). The adaptive stop reads the smaller of this estimate and the
@@ -150,6 +150,9 @@ impl EndReduction {
         }
     }
 }
+
+/// The largest relative difference at an end of Γ_C that counts as the solves' noise (the default `fp_tol`).
+const NOISE: f64 = 1e-8;
 
 /// `η_hier` from the difference `d` on all of Γ_C and the parts measured at its ends (the module
 /// documentation): `(4 (d² − Σ d_R²) + Σ (d_R / (1 − max(q_R, ½)))²)^½`. An end whose difference is at most
@@ -315,7 +318,9 @@ impl Problem {
             log::warn!("the second enrichment at the ends of Γ_C failed ({e}): no estimate there");
             vec![EndReduction { difference: f64::NAN, reduction: f64::INFINITY }]
         });
-        let estimate = combine(difference, &ends, settings.fp.tol * norm);
+        // The solves' accuracy, not looser than the default fp_tol whatever fp_tol was asked: a loose fp_tol
+        // must not leave a singular end to the factor 2, which is below the truth there.
+        let estimate = combine(difference, &ends, settings.fp.tol.min(NOISE) * norm);
         let error_bars = Some(ErrorBars {
             normal_force: 2.0 * (solution.normal_force - answer.normal_force).abs(),
             tangential_force: 2.0 * (solution.tangential_force - answer.tangential_force).abs(),

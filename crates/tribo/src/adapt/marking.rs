@@ -57,7 +57,7 @@ pub(crate) fn mark(indicators: &[f64], theta: f64, marking: Marking) -> Vec<usiz
             for t in order {
                 let tied = out.last().is_some_and(|&last: &usize| indicators[t] >= indicators[last] * (1.0 - TIE));
                 // The cut is protected from rounding like the ties: a sum that reaches θ of the total
-                // only up to rounding (θ = 0.8 of 0.5 + 0.3 + 0.2) reaches it.
+                // only up to rounding (0.5 + 0.3 · (1 − 1e-15) of 1.0 at θ = 0.8) reaches it.
                 if sum >= theta * total * (1.0 - TIE) && !tied {
                     break;
                 }

@@ -279,7 +279,8 @@ impl Problem {
 
     /// That `parts` split `mesh` into one range of nodes and one of triangles per body, in order, each
     /// triangle on nodes of its own body, and that each body's range begins with this problem's nodes of
-    /// that body at their places (as [`Problem::refined`] keeps them): `mesh` refines this problem's.
+    /// that body at their places (as [`Problem::refined`] keeps them). That is what a refinement of this
+    /// problem's mesh keeps; it does not check that each triangle lies in a triangle of this mesh.
     ///
     /// # Errors
     /// [`Error::BadMaterial`] saying which of these fails.
