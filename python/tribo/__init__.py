@@ -16,11 +16,12 @@ if matplotlib is installed, plots (``tribo.plot``, not imported here).
 
 import os as _os
 
-# The compiled module allocates with mimalloc. Told never to return freed pages to the system, it reuses
-# them instead of faulting in fresh ones at every level of an adaptive loop: Hertz to 0.3 % in 0.35-0.40 s
-# against 0.41-0.65 s (docs/STUDIES.md, study 6). The process keeps its peak memory until it exits; a
-# user's own MIMALLOC_PURGE_DELAY wins.
-_os.environ.setdefault("MIMALLOC_PURGE_DELAY", "-1")
+# The compiled module allocates with mimalloc. It keeps freed pages for a quarter of a second before it
+# returns them to the system: long enough that the next level of an adaptive loop reuses them instead of
+# faulting in fresh ones (the kernel zeroing fresh pages was 16 % of a loop's time), short enough that a
+# large solve does not hold what it freed at its peak (1M unknowns: 1.08 times the Rust peak, 1.37 times
+# when pages were never returned; docs/python_memory.md, study 17). A user's own MIMALLOC_PURGE_DELAY wins.
+_os.environ.setdefault("MIMALLOC_PURGE_DELAY", "250")
 
 from tribo._tribo import (
     STATE_NAMES,

@@ -265,3 +265,15 @@ def test_scene_messages(tmp_path: Path) -> None:
     assert len(rows) == 6 and all(r["tribo_names_key"] for r in rows)
     assert all(r["tribo_lists_choices"] in (True, None) for r in rows)
     assert all(r["pydantic"] != "(accepted)" or r["mistake"] == "integer beyond a float" for r in rows)
+
+
+def test_python_memory(tmp_path: Path) -> None:
+    """Study 17 smoke: the Rust example and the Python runs solve the same problem, each measured in its process."""
+    rows = study("study_python_memory").main(["--smoke", "--out", str(tmp_path)])
+    for ext in ("md", "csv"):
+        assert (tmp_path / f"python_memory.{ext}").stat().st_size > 0
+    assert [r["run"] for r in rows[1:]] == ["Python, as shipped", "Python, MIMALLOC_PURGE_DELAY=-1",
+                                            "Python, MIMALLOC_PURGE_DELAY=0"]
+    assert len({r["unknowns"] for r in rows}) == 1 and all(r["status"] == "converged" for r in rows)
+    assert all(0 < r["peak_mb"] < 1000 and r["peak_over_rust"] == r["peak_mb"] / rows[0]["peak_mb"] for r in rows)
+    assert "MIMALLOC_PURGE_DELAY=250" in (tmp_path / "python_memory.md").read_text()
