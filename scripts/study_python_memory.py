@@ -107,18 +107,11 @@ def run(smoke: bool, out: Path) -> list[dict[str, Any]]:
         ["run", "allocator", "unknowns", "status", "Problem (s)", "solve (s)", "peak MB", "kB per unknown",
          "peak / Rust's"],
         [[r[h] for h in HEADERS] for r in rows])
-    (out / "python_memory.md").write_text("\n".join([
-        "# Study 17: the peak memory of a large solve, Python against Rust",
-        "",
-        f"{__doc__.split(chr(10) + chr(10))[1]}",
-        "",
+    sl.write_page(
+        out / "python_memory.md", "Study 17: the peak memory of a large solve, Python against Rust", __doc__,
         f"Regenerate with `python scripts/study_python_memory.py` (NX = {nx}; one run of each; `import tribo` "
         f"sets `MIMALLOC_PURGE_DELAY={delay}` unless the user set it). `import tribo` alone (the interpreter, "
-        f"numpy and the module) peaks at {imported:.0f} MB.",
-        "",
-        table,
-        "",
-    ]))
+        f"numpy and the module) peaks at {imported:.0f} MB.", table)
     return rows
 
 

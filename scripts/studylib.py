@@ -260,6 +260,12 @@ def write_csv(path: Path, headers: Sequence[str], rows: Sequence[Sequence[Any]])
             f.write(",".join(f"{v:.6g}" if isinstance(v, float) else str(v) for v in r) + "\n")
 
 
+def write_page(path: Path, title: str, doc: str, regenerate: str, table: str) -> None:
+    """A study's Markdown page: its title, what it measures (the second paragraph of its docstring), how to
+    regenerate it and what it found, then its table."""
+    path.write_text("\n\n".join([f"# {title}", doc.split("\n\n")[1], regenerate, table]) + "\n")
+
+
 def pyplot() -> Any:
     import matplotlib
 

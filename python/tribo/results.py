@@ -295,8 +295,10 @@ class History(_Record):
             NaN when nothing touches.
         stick_zone: (first, last) abscissa of the multiplier dofs that stick, per converged step, (K, 2);
             NaN when none sticks.
-        stick_slip_boundaries: per converged step, the abscissae of the stick–slip boundaries (midpoints
-            between a dof that sticks and a neighbour that slips).
+        stick_slip_boundaries: the abscissae of the stick–slip boundaries (midpoints between a dof that
+            sticks and a neighbour that slips) of every converged step, in step order: one array however
+            long the history (``stick_slip_boundaries[stick_slip_steps == k]`` are those of step k).
+        stick_slip_steps: the step (0-based) of each of ``stick_slip_boundaries``.
         gross_sliding: per converged step, True when the contact slides as a whole (something touches and
             every dof in contact slips: ``|Q| = μP`` for Coulomb friction).
         step_seconds: wall time of each step solved (the converged ones, then the failed one), in seconds.
@@ -323,7 +325,8 @@ class History(_Record):
     separation_count: _Ints
     contact_zone: _Floats
     stick_zone: _Floats
-    stick_slip_boundaries: list[_Floats]
+    stick_slip_boundaries: _Floats
+    stick_slip_steps: _Ints
     gross_sliding: npt.NDArray[np.bool_]
     step_seconds: _Floats
     factorizations: int

@@ -18,6 +18,7 @@ the two cannot disagree.
 
 from __future__ import annotations
 
+import functools
 import json
 import sys
 from collections.abc import Callable
@@ -146,7 +147,13 @@ def rows() -> list[tuple[str, str, str, str, str, str]]:
 
 def _meaning(name: str) -> tuple[str, str, str]:
     meaning, unit, default = MEANINGS[name]
-    return meaning, unit, default if default is not None else _show(solver_defaults()[name.split(".")[-1]])
+    return meaning, unit, default if default is not None else _show(_core_defaults()[name.split(".")[-1]])
+
+
+@functools.cache
+def _core_defaults() -> dict[str, Any]:
+    """The core's defaults (``tribo.solver_defaults()``), read once for the whole table."""
+    return solver_defaults()
 
 
 def _show(value: object) -> str:

@@ -38,7 +38,14 @@ def test_arrays_have_one_entry_per_step(problem: tribo.Problem) -> None:
     for a in (h.normal_force, h.tangential_force, h.stick_count, h.slip_count, h.separation_count, h.step_seconds):
         assert a.shape == (6,)
     assert h.contact_zone.shape == (6, 2) and h.stick_zone.shape == (6, 2)
-    assert len(h.stick_slip_boundaries) == 6
+    # The stick-slip boundaries of all steps in one table: midpoints between a dof that sticks and one that slips.
+    steps, bounds = h.stick_slip_steps, h.stick_slip_boundaries
+    assert steps.shape == bounds.shape and bounds.size > 0 and (np.diff(steps) >= 0).all()
+    stick, slip = tribo.STATE_NAMES.index("stick"), tribo.STATE_NAMES.index("slip")
+    for k in range(6):
+        st, x = h.solution(k).states, h.solution(k).multiplier_abscissae
+        change = ((st[:-1] == stick) & (st[1:] == slip)) | ((st[:-1] == slip) & (st[1:] == stick))
+        np.testing.assert_array_equal(bounds[steps == k], 0.5 * (x[:-1] + x[1:])[change])
     np.testing.assert_array_equal(h.shift, s)
     assert (h.stick_count + h.slip_count + h.separation_count == problem.n_multipliers).all()
     # The drag loads tangentially and Q stays within μP.

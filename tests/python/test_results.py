@@ -48,7 +48,8 @@ def history(**kw: Any) -> tribo.History:
         tangential_force=np.full(2, 0.2), error_estimate=np.full(2, 0.1), traction_error=np.full(2, 0.05),
         stick_count=np.ones(2, dtype=np.int64), slip_count=np.ones(2, dtype=np.int64),
         separation_count=np.ones(2, dtype=np.int64), contact_zone=np.array([[0.5, 1.0], [np.nan, np.nan]]),
-        stick_zone=np.array([[0.5, 0.5], [np.nan, np.nan]]), stick_slip_boundaries=[np.array([0.75]), np.zeros(0)],
+        stick_zone=np.array([[0.5, 0.5], [np.nan, np.nan]]), stick_slip_boundaries=np.array([0.75]),
+        stick_slip_steps=np.zeros(1, dtype=np.int64),
         gross_sliding=np.zeros(2, dtype=bool), step_seconds=np.full(2, 0.01), factorizations=1, setup_seconds=0.02,
     )
     return tribo.History(**{**fields, **kw})
@@ -81,7 +82,7 @@ def test_results_pickle_and_compare_as_data() -> None:
     assert solution(lambda_n=np.array([0.0, 2.0, 1.5])) != solution()
     assert solution(states=np.array([0, 1, 2], dtype=np.int64)) != solution()
     assert solution(report=report(iterations=3)) != solution()
-    assert history(stick_slip_boundaries=[np.array([0.75]), np.array([0.5])]) != history()
+    assert history(stick_slip_boundaries=np.array([0.5])) != history()
     assert solution() != "a solution"
     with pytest.raises(TypeError):
         hash(solution())

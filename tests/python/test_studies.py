@@ -277,3 +277,13 @@ def test_python_memory(tmp_path: Path) -> None:
     assert len({r["unknowns"] for r in rows}) == 1 and all(r["status"] == "converged" for r in rows)
     assert all(0 < r["peak_mb"] < 1000 and r["peak_over_rust"] == r["peak_mb"] / rows[0]["peak_mb"] for r in rows)
     assert "MIMALLOC_PURGE_DELAY=250" in (tmp_path / "python_memory.md").read_text()
+
+
+def test_history_memory(tmp_path: Path) -> None:
+    """Study 18 smoke: each history measured in its own process, its estimate linear in the steps."""
+    rows = study("study_history_memory").main(["--smoke", "--out", str(tmp_path)])
+    for ext in ("md", "csv"):
+        assert (tmp_path / f"history_memory.{ext}").stat().st_size > 0
+    assert [r["steps"] for r in rows] == [4000, 8000] and all(r["status"] == "converged" for r in rows)
+    assert all(300 < r["estimate_per_step_bytes"] < 1000 and r["growth_mb"] >= 0 for r in rows)
+    assert math.isclose(rows[1]["estimate_mb"], 2 * rows[0]["estimate_mb"], rel_tol=0.02)

@@ -1,8 +1,10 @@
 //! numpy arrays ↔ Rust vectors, with shape and dtype checks that name the argument, and setting values.
 //! A bad argument raises the exception of the category given (`ErrorCategory::Mesh` for mesh arrays…).
 
+use std::borrow::Cow;
+
 use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyArray1, PyArrayDyn, PyArrayMethods};
+use numpy::{IntoPyArray, PyArrayDyn, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyInt};
 use tribo::error::ErrorCategory;
@@ -105,9 +107,9 @@ pub fn frozen<T>(a: Bound<'_, T>) -> PyResult<Py<PyAny>> {
     Ok(a.into_any().unbind())
 }
 
-/// A read-only 1D array.
-pub fn vec1<T: numpy::Element + Copy>(py: Python<'_>, v: &[T]) -> PyResult<Py<PyAny>> {
-    frozen(PyArray1::from_slice(py, v))
+/// A read-only 1D array: a `Vec` handed over without a copy (a long history's series), a slice copied.
+pub fn vec1<'a, T: numpy::Element + Copy + 'a>(py: Python<'_>, v: impl Into<Cow<'a, [T]>>) -> PyResult<Py<PyAny>> {
+    frozen(v.into().into_owned().into_pyarray(py))
 }
 
 /// A read-only (n, K) array from rows.

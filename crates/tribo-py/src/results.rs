@@ -10,7 +10,7 @@ use crate::convert::{mat, pairs, vec1};
 
 /// `Report` as a dict.
 fn report<'py>(py: Python<'py>, r: &tribo::Report) -> PyResult<Bound<'py, PyDict>> {
-    let ints = |v: &[u32]| vec1(py, &v.iter().map(|&i| i64::from(i)).collect::<Vec<_>>());
+    let ints = |v: &[u32]| vec1(py, v.iter().map(|&i| i64::from(i)).collect::<Vec<_>>());
     let d = PyDict::new(py);
     for (name, v) in r.scalars() {
         match v {
@@ -39,7 +39,7 @@ pub fn solution<'py>(py: Python<'py>, s: &tribo::Solution) -> PyResult<Bound<'py
     d.set_item("stress", mat(py, &s.stress)?)?;
     d.set_item("nodal_stress", mat(py, &s.nodal_stress)?)?;
     d.set_item("reactions", pairs(py, &s.reactions)?)?;
-    d.set_item("states", vec1(py, &s.states.iter().map(|&s| s.code() as i8).collect::<Vec<_>>())?)?;
+    d.set_item("states", vec1(py, s.states.iter().map(|&s| s.code() as i8).collect::<Vec<_>>())?)?;
     for (name, v) in s.vectors() {
         d.set_item(name, vec1(py, v)?)?;
     }
@@ -55,25 +55,22 @@ pub fn solution<'py>(py: Python<'py>, s: &tribo::Solution) -> PyResult<Bound<'py
 
 /// `History` as a dict: its solutions as dicts, and the per-step series the core derives from them.
 pub fn history<'py>(py: Python<'py>, h: &tribo::History) -> PyResult<Bound<'py, PyDict>> {
-    let count = |state| vec1(py, &h.count(state).into_iter().map(|c| c as i64).collect::<Vec<_>>());
-    let boundaries = h.stick_slip_boundaries().iter().map(|b| vec1(py, b)).collect::<PyResult<Vec<_>>>()?;
+    let count = |state| vec1(py, h.count(state).into_iter().map(|c| c as i64).collect::<Vec<_>>());
+    let (boundary_steps, boundaries) = h.stick_slip_table();
     let d = PyDict::new(py);
-    d.set_item("status", h.status.name())?;
-    d.set_item("ended_at", h.ended_at)?;
+    d.set_item("status", h.status.name()).and(d.set_item("ended_at", h.ended_at))?;
     d.set_item("solutions", h.solutions.iter().map(|s| solution(py, s)).collect::<PyResult<Vec<_>>>()?)?;
-    d.set_item("kept", vec1(py, &h.kept.iter().map(|&k| k as i64).collect::<Vec<_>>())?)?;
+    d.set_item("kept", vec1(py, h.kept.iter().map(|&k| k as i64).collect::<Vec<_>>())?)?;
     d.set_item("failed", h.failed.as_deref().map(|s| solution(py, s)).transpose()?)?;
-    for (name, v) in h.series() {
-        d.set_item(name, vec1(py, &v)?)?;
-    }
+    h.series().into_iter().try_for_each(|(name, v)| d.set_item(name, vec1(py, v)?))?;
     d.set_item("stick_count", count(ContactState::Stick)?)?;
     d.set_item("slip_count", count(ContactState::Slip)?)?;
     d.set_item("separation_count", count(ContactState::Separation)?)?;
     d.set_item("contact_zone", mat(py, &h.extent(|s| s != ContactState::Separation))?)?;
     d.set_item("stick_zone", mat(py, &h.extent(|s| s == ContactState::Stick))?)?;
-    d.set_item("stick_slip_boundaries", boundaries)?;
-    d.set_item("gross_sliding", vec1(py, &h.gross_sliding())?)?;
-    d.set_item("factorizations", h.factorizations)?;
-    d.set_item("setup_seconds", h.setup_seconds)?;
+    d.set_item("stick_slip_steps", vec1(py, boundary_steps.into_iter().map(|k| k as i64).collect::<Vec<_>>())?)?;
+    d.set_item("stick_slip_boundaries", vec1(py, boundaries)?)?;
+    d.set_item("gross_sliding", vec1(py, h.gross_sliding())?)?;
+    d.set_item("factorizations", h.factorizations).and(d.set_item("setup_seconds", h.setup_seconds))?;
     Ok(d)
 }

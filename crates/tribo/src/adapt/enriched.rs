@@ -79,7 +79,7 @@ use crate::mesh::refine::bisect;
 use crate::problem::Problem;
 use crate::results::{ContactState, ErrorBars, Solution, SolveStatus, Zone};
 use crate::settings::friction::{Friction, Threshold};
-use crate::settings::{Bisection, SolverSettings};
+use crate::settings::{Bisection, FixedPointSettings, SolverSettings};
 use crate::solve::Observer;
 
 /// The hierarchical estimate of one solve ([`Problem::estimate_hierarchical`]).
@@ -152,7 +152,7 @@ impl EndReduction {
 }
 
 /// The largest relative difference at an end of Γ_C that counts as the solves' noise (the default `fp_tol`).
-const NOISE: f64 = 1e-8;
+const NOISE: f64 = FixedPointSettings::DEFAULT_TOL;
 
 /// `η_hier` from the difference `d` on all of Γ_C and the parts measured at its ends (the module
 /// documentation): `(4 (d² − Σ d_R²) + Σ (d_R / (1 − max(q_R, ½)))²)^½`. An end whose difference is at most

@@ -153,11 +153,14 @@ pub struct FixedPointSettings {
 
 impl Default for FixedPointSettings {
     fn default() -> Self {
-        Self { tol: 1e-8, max_iter: 100, relaxation: 1.0 }
+        Self { tol: Self::DEFAULT_TOL, max_iter: 100, relaxation: 1.0 }
     }
 }
 
 impl FixedPointSettings {
+    /// The default `tol` (`fp_tol`).
+    pub const DEFAULT_TOL: f64 = 1e-8;
+
     /// Checks the ranges.
     ///
     /// # Errors

@@ -129,9 +129,9 @@ impl StepRecord {
         }
     }
 
-    /// Bytes a record of a problem with `q` multiplier dofs takes.
+    /// Bytes a record of a problem with `q` multiplier dofs takes (its states allocated in words).
     pub fn bytes(q: usize) -> usize {
-        std::mem::size_of::<Self>() + q * std::mem::size_of::<ContactState>()
+        size_of::<Self>() + (q * size_of::<ContactState>()).next_multiple_of(8)
     }
 }
 
@@ -196,27 +196,57 @@ impl History {
     /// Per converged step, the stick–slip boundaries: the midpoints between neighbouring multiplier dofs
     /// of which one sticks and the other slips.
     pub fn stick_slip_boundaries(&self) -> Vec<Vec<f64>> {
-        self.records
-            .iter()
-            .map(|s| {
-                let pairs = s.states.windows(2).zip(self.multiplier_abscissae.windows(2));
-                pairs
-                    .filter(|(st, _)| {
-                        matches!(
-                            (st[0], st[1]),
-                            (ContactState::Stick, ContactState::Slip) | (ContactState::Slip, ContactState::Stick)
-                        )
-                    })
-                    .map(|(_, x)| 0.5 * (x[0] + x[1]))
-                    .collect()
+        self.records.iter().map(|r| self.boundaries_of(r).collect()).collect()
+    }
+
+    /// The stick–slip boundaries of every converged step as one table, in step order: the step (0-based)
+    /// of each boundary and its abscissa (as [`History::stick_slip_boundaries`] places it). Two arrays
+    /// whatever the number of steps, as the bindings hand them over.
+    pub fn stick_slip_table(&self) -> (Vec<usize>, Vec<f64>) {
+        let rows = self.records.iter().enumerate().flat_map(|(k, r)| self.boundaries_of(r).map(move |x| (k, x)));
+        rows.unzip()
+    }
+
+    fn boundaries_of<'a>(&'a self, record: &'a StepRecord) -> impl Iterator<Item = f64> + 'a {
+        let pairs = record.states.windows(2).zip(self.multiplier_abscissae.windows(2));
+        pairs
+            .filter(|(st, _)| {
+                matches!(
+                    (st[0], st[1]),
+                    (ContactState::Stick, ContactState::Slip) | (ContactState::Slip, ContactState::Stick)
+                )
             })
-            .collect()
+            .map(|(_, x)| 0.5 * (x[0] + x[1]))
+    }
+
+    /// About how many bytes a history of `steps` on `problem` holds when it ends, keeping the solution of
+    /// every `keep_every`-th step and of the last ([`SolverSettings::keep_every`]): those solutions
+    /// ([`Solution::estimated_bytes`]), and per step its [`StepRecord`] (the states included), its
+    /// [`LoadStep`] twice (the caller's and the history's copy), its wall time, and the per-step series a
+    /// reader takes from it at once, as the bindings and the files do: the eight of [`History::series`],
+    /// the three counts, the two zones' ends, the gross-sliding flag and two stick–slip boundaries (a step
+    /// has as many as its stick zone has ends). The memory budget of a history is checked against it
+    /// before any step runs (`docs/history_memory.md` measures it against the peak of long histories).
+    pub fn estimated_bytes(problem: &crate::Problem, steps: &[LoadStep], keep_every: usize) -> f64 {
+        let kept = kept_solutions(steps.len(), keep_every);
+        let load_steps: usize = steps.iter().map(|s| size_of::<LoadStep>() + 8 * s.displacements.len()).sum();
+        // 8 series + 3 counts + 4 zone ends + 2 × (step, abscissa) of the boundaries, and the flag.
+        let per_step = StepRecord::bytes(problem.n_multipliers()) + 8 + (8 + 3 + 4 + 4) * 8 + 1;
+        Solution::estimated_bytes(problem) as f64 * kept as f64
+            + 2.0 * load_steps as f64
+            + per_step as f64 * steps.len() as f64
     }
 
     /// The kept solution of step `k` (0-based), if it was kept.
     pub fn solution_of(&self, k: usize) -> Option<&Solution> {
         self.kept.binary_search(&k).ok().map(|i| &self.solutions[i])
     }
+}
+
+/// How many solutions a history of `steps` steps keeps at most: steps 0, k, 2k, … (`k = keep_every`) and
+/// the last.
+pub(crate) fn kept_solutions(steps: usize, keep_every: usize) -> usize {
+    (steps.div_ceil(keep_every.max(1)) + 1).min(steps)
 }
 
 impl Condensed<'_> {

@@ -84,23 +84,20 @@ impl Condensed<'_> {
     }
 }
 
-/// A history keeps one [`StepRecord`](history::StepRecord) per step and the solutions of every
-/// `keep_every`-th step and of its last: their bytes must fit the memory budget before any step runs.
+/// A history's bytes ([`History::estimated_bytes`](history::History::estimated_bytes)) must fit the memory
+/// budget before any step runs.
 fn history_fits(problem: &Problem, steps: &[LoadStep], settings: &SolverSettings) -> Result<()> {
-    let per_step = Solution::estimated_bytes(problem);
-    let kept = steps.len().div_ceil(settings.keep_every.max(1)) + 1;
-    let record = history::StepRecord::bytes(problem.n_multipliers());
-    let needed = per_step as f64 * kept.min(steps.len()) as f64 + record as f64 * steps.len() as f64;
+    let needed = history::History::estimated_bytes(problem, steps, settings.keep_every);
     if needed > settings.memory_budget as f64 {
+        let kept = history::kept_solutions(steps.len(), settings.keep_every);
+        let solution = Solution::estimated_bytes(problem);
+        let per_step = (needed - (kept * solution) as f64) / steps.len() as f64;
         return Err(Error::MemoryBudget {
             what: format!(
-                "a history of {} steps keeping {} solutions (about {} bytes each on this mesh, keep_every = {}) \
-                 and a record of {} bytes per step",
+                "a history of {} steps keeping {kept} solutions (about {solution} bytes each on this mesh, \
+                 keep_every = {}) and about {per_step:.0} bytes per step (its record, step and series)",
                 steps.len(),
-                kept.min(steps.len()),
-                per_step,
                 settings.keep_every,
-                record
             ),
             needed,
             budget: settings.memory_budget as f64,

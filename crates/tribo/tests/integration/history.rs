@@ -4,8 +4,8 @@
 use std::ops::ControlFlow;
 
 use tribo::{
-    ContactState, Error, Friction, LoadStep, MultiplierPoints, MultiplierSpace, Solution, SolveStatus, SolverSettings,
-    StepProgress, Threshold,
+    ContactState, Error, Friction, History, LoadStep, MultiplierPoints, MultiplierSpace, Solution, SolveStatus,
+    SolverSettings, StepProgress, Threshold,
 };
 use tribo_testkit::{block_problem, hertz_mesh, hertz_problem, hertz_scene, hertz_spec};
 
@@ -153,21 +153,36 @@ fn interrupted_and_refused_histories() {
     // By default every step's solution is kept: a history that cannot fit the memory budget is refused
     // before any step (a million steps abort the process otherwise), and so is one just over a small
     // budget. Keeping every k-th solution (and the last) fits it.
-    let per_step = Solution::estimated_bytes(&problem);
-    let record = tribo::StepRecord::bytes(problem.n_multipliers());
     let long = vec![LoadStep::new(s.approach, 0.0); 1_000_000];
     let e = problem.solve_history(&coulomb, &long, &SolverSettings::default(), None).unwrap_err();
     assert!(matches!(e, Error::MemoryBudget { .. }), "{e}");
+    // A step keeping its solution: the solution, its record, its step and its series.
+    let per_step = History::estimated_bytes(&problem, &long[..1], 1);
+    let record = tribo::StepRecord::bytes(problem.n_multipliers()) as f64;
+    assert!(per_step > Solution::estimated_bytes(&problem) as f64 + record);
     let budget = SolverSettings { memory_budget: 1 << 20, ..Default::default() };
-    let fit = (1 << 20) / (per_step + record);
+    let fit = ((1 << 20) as f64 / per_step) as usize;
     let many = vec![LoadStep::new(s.approach, 0.0); fit + 1];
     let e = problem.solve_history(&coulomb, &many, &budget, None).unwrap_err();
-    let needed = ((fit + 1) * (per_step + record)) as f64;
+    let needed = History::estimated_bytes(&problem, &many, 1);
+    assert!(needed == (fit + 1) as f64 * per_step && needed > (1 << 20) as f64);
     assert!(matches!(e, Error::MemoryBudget { needed: n, .. } if n == needed), "{e}");
     assert!(problem.solve_history(&coulomb, &many[..fit], &budget, None).is_ok());
     let sparse = SolverSettings { keep_every: fit + 1, ..budget };
     let h = problem.solve_history(&coulomb, &many, &sparse, None).unwrap();
     assert_eq!((h.kept.as_slice(), h.records.len()), ([0, fit].as_slice(), fit + 1));
+    // D21: the estimate counts what the finished history holds and what a reader takes from it at once.
+    let (n, state) = (h.records.len(), size_of::<ContactState>());
+    let records: usize = h.records.iter().map(|r| size_of::<tribo::StepRecord>() + r.states.len() * state).sum();
+    let series: usize = h.series().iter().map(|(_, v)| 8 * v.len()).sum::<usize>() + 3 * 8 * n + 2 * 16 * n + n;
+    let (at, x) = h.stick_slip_table();
+    let held =
+        (h.solutions.len() * Solution::estimated_bytes(&problem) + records + 2 * many.len() * size_of::<LoadStep>())
+            + 8 * h.step_seconds.len()
+            + series
+            + 8 * (at.len() + x.len());
+    let estimate = History::estimated_bytes(&problem, &many, fit + 1);
+    assert!(estimate >= held as f64 && estimate <= 1.5 * held as f64, "{estimate} for {held} bytes held");
     // The estimate is the size of a solution's fields (a step's report adds a few hundred bytes).
     let h = problem.solve_history(&coulomb, &steps[..1], &SolverSettings::default(), None).unwrap();
     let sol = &h.solutions[0];
@@ -176,7 +191,8 @@ fn interrupted_and_refused_histories() {
         + 3 * sol.nodal_stress.len()
         + sol.reactions.len()
         + sol.vectors().iter().map(|(_, v)| v.len()).sum::<usize>();
-    assert!((8 * floats + 512..8 * floats + 4096).contains(&per_step), "{per_step} for {floats} floats");
+    let solution = Solution::estimated_bytes(&problem);
+    assert!((8 * floats + 512..8 * floats + 4096).contains(&solution), "{solution} for {floats} floats");
 }
 
 /// `keep_every = k` keeps the solutions of steps 0, k, 2k, … and the last, each bit for bit that of the
@@ -204,6 +220,11 @@ fn keep_every_keeps_what_is_asked() {
     }
     assert_eq!(sparse.stick_slip_boundaries(), full.stick_slip_boundaries());
     assert!(sparse.stick_slip_boundaries()[4].len() == 2, "{:?}", sparse.stick_slip_boundaries()[4]);
+    // The same boundaries as one table, in step order.
+    let (at, x) = sparse.stick_slip_table();
+    let of = |k: usize| at.iter().zip(&x).filter(|(&s, _)| s == k).map(|(_, &v)| v).collect::<Vec<_>>();
+    assert_eq!((0..10).map(of).collect::<Vec<_>>(), sparse.stick_slip_boundaries());
+    assert!(at.windows(2).all(|w| w[0] <= w[1]));
     assert_eq!(sparse.gross_sliding(), [vec![false; 9], vec![true]].concat());
     for (sol, &k) in sparse.solutions.iter().zip(&sparse.kept) {
         assert_eq!(sol.displacement, full.solutions[k].displacement, "step {k}");
