@@ -84,6 +84,30 @@ def _compiled_arguments(arguments: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
+def _adapt_args(tol: float | None, max_unknowns: int | None, theta: float | None, marking: str | None,
+                bisection: str | None, stop_on: str | None, max_levels: int | None,
+                algebraic: float | None) -> tuple[Any, ...]:
+    """The adaptive keywords as the compiled module takes them."""
+    return (tol, max_unknowns, theta, (marking, bisection, stop_on), max_levels, algebraic)
+
+
+def check_adapt(
+    *,
+    tol: float | None = None,
+    max_unknowns: int | None = None,
+    theta: float | None = None,
+    marking: str | None = None,
+    bisection: str | None = None,
+    max_levels: int | None = None,
+    algebraic: float | None = None,
+    stop_on: str | None = None,
+) -> None:
+    """Checks the keywords of ``Problem.solve_adaptive`` as the core does when its loop starts, without a
+    problem (a scene's ``[adapt]`` is checked so when it is read): ``SettingsError`` naming the first bad one.
+    ``max_unknowns`` is checked against the first mesh when the loop starts."""
+    _tribo.check_adapt(_adapt_args(tol, max_unknowns, theta, marking, bisection, stop_on, max_levels, algebraic))
+
+
 @dataclass(frozen=True)
 class Body:
     """One elastic body of a two-body problem (``Problem.two_bodies``): its mesh, material (plane strain)
@@ -360,7 +384,7 @@ class Problem(_tribo.Problem):
             "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
             "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
         }
-        adapt = (tol, max_unknowns, theta, (marking, bisection, stop_on), max_levels, algebraic)
+        adapt = _adapt_args(tol, max_unknowns, theta, marking, bisection, stop_on, max_levels, algebraic)
         solution, problem, levels, stop, meshes = self._adapt(options, adapt)
         return Adaptive(solution=Solution.from_dict(solution), problem=problem, levels=levels, stop=stop, meshes=meshes)  # type: ignore[arg-type]
 
@@ -403,7 +427,7 @@ class Problem(_tribo.Problem):
             "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
             "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
         }
-        adapt = (tol, max_unknowns, theta, (marking, bisection, stop_on), max_levels, algebraic)
+        adapt = _adapt_args(tol, max_unknowns, theta, marking, bisection, stop_on, max_levels, algebraic)
         history, problem, levels, stop, meshes = self._adapt(options, adapt, steps, list(on or []))
         return AdaptiveHistory(
             history=self._history(steps, history), problem=problem, levels=levels, stop=stop, meshes=meshes  # type: ignore[arg-type]

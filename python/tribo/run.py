@@ -133,17 +133,17 @@ def bodies(problem: Problem, solution: Solution) -> list[dict[str, Any]]:
 
 
 def run_history(
-    scene: Scene, problem: Problem, out: Path, *, plots: bool = True, fields: bool = True
-) -> tuple[Problem, History, list[Path], AdaptiveHistory | None]:
-    """Solves the scene's ``[history]`` with a progress bar over the steps and writes its outputs; with an
-    ``[adapt]`` table, adaptively (a log line per level, then the history on the last mesh). Returns the
-    problem the history was solved on, the history, the files and the adaptive run (None without
-    ``[adapt]``), whose ``adapt.csv``/``adapt.png`` the caller writes once the solve is timed."""
+    scene: Scene, problem: Problem, *, fields: bool = True
+) -> tuple[Problem, History, AdaptiveHistory | None]:
+    """Solves the scene's ``[history]`` with a progress bar over the steps; with an ``[adapt]`` table,
+    adaptively (a log line per level, then the history on the last mesh). Returns the problem the history
+    was solved on, the history and the adaptive run (None without ``[adapt]``); the caller writes their files
+    (``write_history``, ``write_adaptive``) once the solve is timed. ``fields=False`` keeps the last
+    solution only (no step files will be written)."""
     from tqdm import tqdm
 
     n_steps = len(scene.history_steps()[0])
     clock = time.perf_counter()
-    files: list[Path] = []
     adaptive: AdaptiveHistory | None = None
     if scene.has_adapt:
         adaptive = scene.solve_history_adaptive(problem, progress=_level_progress)
@@ -165,10 +165,7 @@ def run_history(
     sliding = np.flatnonzero(history.gross_sliding)
     if len(sliding):
         log.info("gross sliding (every contact dof slips, |Q| = μP) at %d steps, first at step %d", len(sliding), sliding[0])
-    if fields:
-        files = write_history(out, problem, history, plots=plots, plot_steps=scene.get("history", "plot_steps"),
-                              every=scene.get("history", "write_every")) + files
-    return problem, history, files, adaptive
+    return problem, history, adaptive
 
 
 def _level_progress(unknowns: int, relative: float, seconds: float) -> None:
@@ -221,7 +218,7 @@ def run_scene(
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", SceneWarning)
         if scene.has_history:
-            problem, history, history_files, adapted = run_history(scene, problem, out, plots=plots, fields=fields)
+            problem, history, adapted = run_history(scene, problem, fields=fields)
             adapt_stop = adapted.stop if adapted is not None else None
             adaptive: Adaptive | AdaptiveHistory | None = adapted
             # The step that failed if one did (its status then sets the exit code), else the last one.
@@ -238,10 +235,10 @@ def run_scene(
                 log.info("solving the last level again with its error bars")
                 solution = problem.solve(error_bars=True, **scene.solve_kwargs())
                 warn_missing_error_bars(solution)
-            history_files = []
+            history = None
             warn_solution(problem, solution)
         else:
-            history_files, adapt_stop, adaptive = [], None, None
+            history, adapt_stop, adaptive = None, None, None
             problem, solution = scene.solve(problem, progress=_progress, on_phase=_phase)
     warned = []
     for w in caught:
@@ -253,6 +250,10 @@ def run_scene(
     seconds = time.perf_counter() - clock
     log.info("solve ended: %s after %.2f s", solution.report.status, seconds)
     clock = time.perf_counter()
+    history_files: list[Path] = []
+    if fields and history is not None:
+        history_files += write_history(out, problem, history, plots=plots, plot_steps=scene.get("history", "plot_steps"),
+                                       every=scene.get("history", "write_every"))
     if fields and adaptive is not None:
         history_files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
         if scene.get("adapt", "write_levels", False):

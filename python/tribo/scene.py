@@ -29,7 +29,7 @@ import numpy as np
 from tribo._tribo import Mesh, Obstacle, Support, TriboError
 from tribo.checks import warn_missing_error_bars, warn_solution
 from tribo.io import read_mesh
-from tribo.problem import Body, Problem
+from tribo.problem import Body, Problem, check_adapt
 from tribo.results import Adaptive, AdaptiveHistory, History, Solution
 # The schema's names, importable from here as before the split (``X as X``: re-exported).
 from tribo.scene_schema import CHOICES as CHOICES
@@ -370,13 +370,19 @@ def _support(entry: Mapping[str, Any]) -> Support:
 
 
 def parse_scene(data: Mapping[str, Any], base_dir: Path | None = None) -> Scene:
-    """Checks a scene given as a dict (as tomllib returns it): unknown keys and bad types are errors."""
-    return Scene(
+    """Checks a scene given as a dict (as tomllib returns it): unknown keys and bad types are errors, and so
+    are ``[adapt]`` settings the core refuses (before any mesh is made; ``adapt.on`` and ``max_unknowns``
+    against the steps and the first mesh when the loop starts)."""
+    scene = Scene(
         sections=check_scene(data),
         title=str(data.get("title", "")),
         description=str(data.get("description", "")),
         base_dir=base_dir if base_dir is not None else Path.cwd(),
     )
+    if scene.has_adapt:
+        with _adapt_keys():
+            check_adapt(**{k: v for k, v in scene.adapt_kwargs().items() if k != "on"})
+    return scene
 
 
 def load_scene(path: str | Path) -> Scene:
@@ -417,8 +423,8 @@ def demo_scene_path() -> Path:
 
 @contextlib.contextmanager
 def _adapt_keys() -> Iterator[None]:
-    """The core's refusal of an adaptive setting (``adapt_tol``, …, which it checks when the loop starts) as a
-    ``SceneError`` naming the scene key (``adapt.tol``), the core's words kept (issue 37)."""
+    """The core's refusal of an adaptive setting (``adapt_tol``, …, which it checks when the scene is read and
+    when the loop starts) as a ``SceneError`` naming the scene key (``adapt.tol``), the core's words kept."""
     try:
         yield
     except TriboError as e:

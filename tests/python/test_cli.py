@@ -615,8 +615,9 @@ def test_run_reports_its_time_and_peak_memory(tmp_path: Path) -> None:
 
 
 def test_a_bad_adaptive_setting_names_the_scene_key(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    """Issue 37: ``[adapt] tol = 0`` was refused naming the core's setting ``adapt_tol``; the scene's
-    reader and ``tribo run`` name the scene key ``adapt.tol`` (the core's check and words, converted)."""
+    """Issue 37: ``[adapt] tol = 0`` was refused naming the core's setting ``adapt_tol``, after meshing; the
+    scene's reader refuses it and ``tribo run`` names the scene key ``adapt.tol`` (the core's check and words,
+    converted)."""
     path = tmp_path / "a.toml"
     history = "[friction]\nmu = 0.3\n[history]\nshift = [0.0, 0.004]\nsteps = 2\n"
     for edit, key, more in (("tol = 0.0", "adapt.tol", ""), ("tol = 0.05\ntheta = 1.5", "adapt.theta", ""),
@@ -624,8 +625,11 @@ def test_a_bad_adaptive_setting_names_the_scene_key(tmp_path: Path, capsys: pyte
                             ('tol = 0.05\nstop_on = "hierarchical"', "adapt.stop_on", history),
                             ("tol = 0.05\non = [9]", "adapt.on", history)):
         path.write_text(ADAPT_SCENE.replace("tol = 0.05", edit) + more, encoding="utf-8")
-        scene = load_scene(path)
         with pytest.raises(SceneError, match=f"scene key '{key}'") as e:
+            # tol and theta when the scene is read, before any mesh; the steps and the first mesh's size
+            # when the loop starts.
+            scene = load_scene(path)
+            assert key in ("adapt.max_unknowns", "adapt.stop_on", "adapt.on"), f"{key} passed the reader"
             scene.solve_history_adaptive() if scene.has_history else scene.solve_adaptive()
         assert e.value.details == {"key": key} and "None" not in str(e.value) and ".0:" not in str(e.value)
         assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 1

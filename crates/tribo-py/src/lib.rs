@@ -76,6 +76,12 @@ fn format_number(x: f64, digits: usize) -> String {
     format!("{:.*}", digits.min(17), tribo::Num(x)) // Num prints ≤ 17 digits; > u16::MAX would panic
 }
 
+/// Checks `solve_adaptive`'s keywords before any mesh is made (`tribo.scene` reads `[adapt]` with it).
+#[pyfunction]
+fn check_adapt(a: problem::AdaptArgs) -> PyResult<()> {
+    problem::adapt_settings(a).map(drop)
+}
+
 #[pymodule]
 fn _tribo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
@@ -96,5 +102,6 @@ fn _tribo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(solver_settings, m)?)?;
     m.add_function(wrap_pyfunction!(choices, m)?)?;
     m.add_function(wrap_pyfunction!(format_number, m)?)?;
+    m.add_function(wrap_pyfunction!(check_adapt, m)?)?;
     Ok(())
 }

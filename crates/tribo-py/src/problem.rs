@@ -147,7 +147,14 @@ fn load_steps(steps: &Bound<'_, PyAny>) -> PyResult<Vec<LoadStep>> {
 }
 
 /// `solve_adaptive`'s tol, max_unknowns, theta, (marking, bisection, stop_on), max_levels, algebraic (None: default).
-type AdaptArgs = (Option<f64>, Option<usize>, Option<f64>, [Option<String>; 3], Option<usize>, Option<f64>);
+pub type AdaptArgs = (Option<f64>, Option<usize>, Option<f64>, [Option<String>; 3], Option<usize>, Option<f64>);
+
+/// The core's adaptive settings from `solve_adaptive`'s keywords, checked (`SettingsError` naming the setting).
+pub fn adapt_settings(a: AdaptArgs) -> PyResult<AdaptSettings> {
+    let (tol, max_unknowns, theta, [marking, bisection, stop_on], max_levels, algebraic) = a;
+    let k = tribo::AdaptKeywords { tol, max_unknowns, theta, marking, bisection, max_levels, algebraic, stop_on };
+    AdaptSettings::from_keywords(k).map_err(to_pyerr)
+}
 
 /// The keywords of a solve as core values: the friction law, the settings (γ0 among them) and the
 /// callbacks. `tribo.Problem.solve` and `solve_history` (Python) spell them out and pass them as one dict.
@@ -375,9 +382,7 @@ impl PyProblem {
         on: Vec<usize>,
     ) -> PyResult<Bound<'py, PyTuple>> {
         let o = SolveOptions::new(options, "(unknowns, relative, seconds)")?;
-        let (tol, max_unknowns, theta, [marking, bisection, stop_on], max_levels, algebraic) = a;
-        let k = tribo::AdaptKeywords { tol, max_unknowns, theta, marking, bisection, max_levels, algebraic, stop_on };
-        let adapt = AdaptSettings::from_keywords(k).map_err(to_pyerr)?;
+        let adapt = adapt_settings(a)?;
         let steps = steps.map(load_steps).transpose()?;
         let mut error = None;
         let result = py.detach(|| {
