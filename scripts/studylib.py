@@ -16,6 +16,7 @@ pushed `approach` into the block (−2, 2) × (−2, 0), clamped at the bottom, 
 from __future__ import annotations
 
 import argparse
+import csv
 import math
 import time
 from collections.abc import Callable, Sequence
@@ -254,10 +255,11 @@ def effectivity_summary(effectivity: Sequence[float], in_contact: Sequence[int])
 
 
 def write_csv(path: Path, headers: Sequence[str], rows: Sequence[Sequence[Any]]) -> None:
-    with open(path, "w") as f:
-        f.write(",".join(headers) + "\n")
-        for r in rows:
-            f.write(",".join(f"{v:.6g}" if isinstance(v, float) else str(v) for v in r) + "\n")
+    """Floats to 6 significant digits; a value holding a comma is quoted (the csv module's dialect)."""
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(headers)
+        w.writerows([f"{v:.6g}" if isinstance(v, float) else str(v) for v in r] for r in rows)
 
 
 def write_page(path: Path, title: str, doc: str, regenerate: str, table: str) -> None:

@@ -132,3 +132,26 @@ def test_the_python_guide_quotes_the_adaptive_study_as_measured() -> None:
     levels = [r for r in _rows("adaptive_levels.csv") if int(r["in_contact"]) >= 10]
     ratios = [float(r["relative"]) / float(r["error"]) for r in levels]
     assert f"by {min(ratios):.1f} to {max(ratios):.1f} over the {len(levels)} levels" in text
+
+
+def test_the_docs_quote_the_memory_studies_as_measured() -> None:
+    """Studies 17 and 18 (issue 37): the peaks and ratios quoted by STUDIES.md, measured.md and the history
+    guide are those of docs/python_memory.csv and docs/history_memory.csv."""
+    pages = {name: " ".join((DOCS / name).read_text(encoding="utf-8").split())
+             for name in ("STUDIES.md", "measured.md", "guide/histories.md")}
+    rust, shipped, never, at_once = _rows("python_memory.csv")
+    quoted = (f"{float(shipped['peak_mb']):.0f} MB from Python and {float(rust['peak_mb']):.0f} MB from Rust "
+              f"({float(shipped['peak_over_rust']):.2f} times)")
+    assert quoted in pages["STUDIES.md"], quoted
+    assert f"never returning them, the Python peak was {float(never['peak_mb']):.0f} MB" in pages["STUDIES.md"]
+    assert f"{float(at_once['peak_mb']):.0f} MB ({float(at_once['peak_over_rust']):.2f} times)" in pages["STUDIES.md"]
+    assert (f"at {float(rust['peak_mb']):.0f} MB from Rust and {float(shipped['peak_mb']):.0f} MB from Python "
+            f"({float(shipped['peak_over_rust']):.2f} times" in pages["measured.md"])
+    long = [r for r in _rows("history_memory.csv") if int(r["steps"]) >= 30_000]
+    ratios = [float(r["growth_over_estimate"]) for r in long]
+    span, rounded = f"{min(ratios):.2f}–{max(ratios):.2f} times", f"{min(ratios):.1f}–{max(ratios):.1f} times"
+    assert span in pages["STUDIES.md"] and f"within {span} its measured growth" in pages["measured.md"], span
+    assert f"within {rounded} the measured growth" in pages["guide/histories.md"], rounded
+    last = long[-1]
+    assert (f"grows the Python process by {float(last['growth_mb']):.0f} MB ({float(last['growth_per_step_bytes']):.0f} "
+            f"bytes per step" in pages["STUDIES.md"])

@@ -287,3 +287,16 @@ def test_history_memory(tmp_path: Path) -> None:
     assert [r["steps"] for r in rows] == [4000, 8000] and all(r["status"] == "converged" for r in rows)
     assert all(300 < r["estimate_per_step_bytes"] < 1000 and r["growth_mb"] >= 0 for r in rows)
     assert math.isclose(rows[1]["estimate_mb"], 2 * rows[0]["estimate_mb"], rel_tol=0.02)
+
+
+def test_every_study_table_reads_as_a_table() -> None:
+    """Every CSV under docs/ has as many fields in each row as in its header when read as CSV (pandas reads
+    them so); a value holding a comma ("adaptive, hierarchical stop") is quoted, which it was not."""
+    import csv
+
+    tables = sorted((SCRIPTS.parent / "docs").glob("*.csv"))
+    assert len(tables) > 10
+    for path in tables:
+        with open(path, newline="") as f:
+            widths = {len(row) for row in csv.reader(f)}
+        assert len(widths) == 1, f"{path.name}: rows of {sorted(widths)} fields"
