@@ -10,12 +10,13 @@ purge delay in ``PURGE_DELAYS`` (``MIMALLOC_PURGE_DELAY`` set by hand: -1 never 
 the setting before this study).
 
     python scripts/study_python_memory.py            # NX = 1000: docs/python_memory.{md,csv}
-    python scripts/study_python_memory.py --smoke --out /tmp/x
+    python scripts/study_python_memory.py --smoke --out /tmp/x   # NX = 40, the Rust row only if its example is built
 """
 
 from __future__ import annotations
 
 import json
+import math
 import os
 import re
 import subprocess
@@ -27,6 +28,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import studylib as sl  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
+EXAMPLE = ROOT / "target" / "release" / "examples" / "scale"
 PURGE_DELAYS = ("-1", "0")  # besides the shipped setting: never purge (the former one), purge at once
 HEADERS = ["run", "allocator", "unknowns", "status", "problem_seconds", "solve_seconds", "peak_mb",
            "kb_per_unknown", "peak_over_rust"]
@@ -54,10 +56,16 @@ print(json.dumps(dict(unknowns=problem.n_free, status=solution.report.status, pr
 """
 
 
-def rust_run(nx: int) -> dict[str, Any]:
-    """The Rust example's numbers: `Problem::new` and solve times, the peak before its reference Cholesky."""
-    out = subprocess.run(["cargo", "run", "--release", "-q", "-p", "tribo", "--example", "scale", "--", str(nx)],
-                         cwd=ROOT, check=True, capture_output=True, text=True).stdout
+def rust_run(nx: int, build: bool) -> dict[str, Any] | None:
+    """The Rust example's numbers: `Problem::new` and solve times, the peak before its reference Cholesky.
+    Without ``build`` (the smoke run), the example already built, or None (a release build takes minutes)."""
+    if build:
+        command = ["cargo", "run", "--release", "-q", "-p", "tribo", "--example", "scale", "--", str(nx)]
+    elif EXAMPLE.is_file():
+        command = [str(EXAMPLE), str(nx)]
+    else:
+        return None
+    out = subprocess.run(command, cwd=ROOT, check=True, capture_output=True, text=True).stdout
     number = r"\s+([0-9.]+)"
     peak = re.search(r"peak ([0-9.]+) MB = ", out)
     unknowns = re.search(r"unknowns (\d+), multipliers \d+, status (\w+)", out)
@@ -96,10 +104,11 @@ def shipped() -> tuple[str, float]:
 
 def run(smoke: bool, out: Path) -> list[dict[str, Any]]:
     nx = 40 if smoke else 1000
-    rows = [rust_run(nx), python_run(nx, None)] + [python_run(nx, d) for d in PURGE_DELAYS]
+    rust = rust_run(nx, build=not smoke)
+    rows = ([rust] if rust else []) + [python_run(nx, None)] + [python_run(nx, d) for d in PURGE_DELAYS]
     for r in rows:
         r["kb_per_unknown"] = r["peak_mb"] * 1024 / r["unknowns"]
-        r["peak_over_rust"] = r["peak_mb"] / rows[0]["peak_mb"]
+        r["peak_over_rust"] = r["peak_mb"] / rust["peak_mb"] if rust else math.nan
     delay, imported = shipped()
     out.mkdir(parents=True, exist_ok=True)
     sl.write_csv(out / "python_memory.csv", HEADERS, [[r[h] for h in HEADERS] for r in rows])

@@ -272,10 +272,13 @@ def test_python_memory(tmp_path: Path) -> None:
     rows = study("study_python_memory").main(["--smoke", "--out", str(tmp_path)])
     for ext in ("md", "csv"):
         assert (tmp_path / f"python_memory.{ext}").stat().st_size > 0
-    assert [r["run"] for r in rows[1:]] == ["Python, as shipped", "Python, MIMALLOC_PURGE_DELAY=-1",
-                                            "Python, MIMALLOC_PURGE_DELAY=0"]
+    # The Rust row when its example is built (the smoke run does not start a release build of minutes).
+    rust = [r for r in rows if r["run"].startswith("Rust")]
+    assert [r["run"] for r in rows[len(rust):]] == ["Python, as shipped", "Python, MIMALLOC_PURGE_DELAY=-1",
+                                                    "Python, MIMALLOC_PURGE_DELAY=0"]
     assert len({r["unknowns"] for r in rows}) == 1 and all(r["status"] == "converged" for r in rows)
-    assert all(0 < r["peak_mb"] < 1000 and r["peak_over_rust"] == r["peak_mb"] / rows[0]["peak_mb"] for r in rows)
+    assert all(0 < r["peak_mb"] < 1000 for r in rows)
+    assert all(r["peak_over_rust"] == r["peak_mb"] / rust[0]["peak_mb"] for r in rows) if rust else True
     assert "MIMALLOC_PURGE_DELAY=250" in (tmp_path / "python_memory.md").read_text()
 
 
