@@ -81,6 +81,7 @@ def history_table(history: History) -> dict[str, np.ndarray]:
         "gross_sliding": history.gross_sliding.astype(int),
         "error_estimate": history.error_estimate,
         "traction_error": history.traction_error,
+        "traction_error_hierarchical": history.traction_error_hierarchical,
     }
 
 

@@ -418,8 +418,9 @@ class Problem(_tribo.Problem):
         steps ``on`` (0-based indices; default all) are; the loop stops when the largest relative estimate
         over those steps is at most ``tol``. Returns an AdaptiveHistory with the ``history`` on the last
         mesh, its ``problem``, every level (each with the estimate of its worst step) and the stop reason.
-        The adaptive keywords are those of ``solve_adaptive``, but a history stops on the bound: ``stop_on=
-        'hierarchical'`` is a SettingsError naming ``adapt_stop_on``. Levels start their steps from rest, as a
+        The adaptive keywords are those of ``solve_adaptive``; with ``stop_on='hierarchical'`` the whole history
+        is solved again on the enriched mesh where the loop computes the estimate, and every step carries its
+        own (``Problem::estimate_history_hierarchical`` in the crate). Levels start their steps from rest, as a
         history does, not from the previous level.
         """
         steps = self._steps(approach, shift, load_factor, displacements)

@@ -288,6 +288,9 @@ class History(_Record):
         tangential_force: total tangential force ∫λ_t per converged step.
         error_estimate: the error estimate η (energy norm) per converged step.
         traction_error: the relative traction error estimate per converged step (NaN where nothing touches).
+        traction_error_hierarchical: the hierarchical estimate of the relative traction error per converged step
+            (NaN where it was not computed: ``solve_history_adaptive(stop_on='hierarchical')`` computes it on
+            the levels where it may stop the loop).
         stick_count: multiplier dofs that stick, per converged step.
         slip_count: multiplier dofs that slip, per converged step.
         separation_count: multiplier dofs separated from the obstacle, per converged step.
@@ -320,6 +323,7 @@ class History(_Record):
     tangential_force: _Floats
     error_estimate: _Floats
     traction_error: _Floats
+    traction_error_hierarchical: _Floats
     stick_count: _Ints
     slip_count: _Ints
     separation_count: _Ints

@@ -94,13 +94,24 @@ def test_stopping_on_the_hierarchical_estimate_reports_it() -> None:
         off_centre().solve_adaptive(stop_on="sharpest")  # type: ignore[arg-type]
 
 
-def test_a_history_refuses_the_hierarchical_stop() -> None:
-    """A loading history stops on the bound: ``stop_on='hierarchical'`` is a SettingsError naming the setting
-    (it was a TypeError, reported by ``tribo run`` as an internal error); ``'bound'`` is accepted."""
-    with pytest.raises(tribo.SettingsError, match="adapt_stop_on"):
-        off_centre().solve_history_adaptive(0.01, [0.0, 0.001], mu=0.3, tol=0.5, stop_on="hierarchical")
-    out = off_centre().solve_history_adaptive(0.01, [0.0, 0.001], mu=0.3, tol=0.5, stop_on="bound")
-    assert out.stop in ("tolerance", "max_unknowns") and len(out.history) == 2
+def test_a_history_stops_on_the_hierarchical_estimate() -> None:
+    """A loading history stops on the hierarchical estimate as a static solve does: the levels where the loop
+    computed it read the smaller of it and the bound, every step of the history handed back carries its own
+    (the per-step series too), and the run ends on fewer unknowns than the same run stopping on the bound."""
+    shift = [0.0, 0.001, 0.002]
+    sharp = off_centre().solve_history_adaptive(0.01, shift, mu=0.3, tol=0.05, stop_on="hierarchical")
+    bound = off_centre().solve_history_adaptive(0.01, shift, mu=0.3, tol=0.05, stop_on="bound")
+    assert sharp.stop == bound.stop == "tolerance" and len(sharp.history) == 3
+    estimated = [lv for lv in sharp.levels if np.isfinite(lv.estimate["traction_hierarchical_relative"])]
+    assert estimated and sharp.levels[-1].relative <= 0.05
+    for lv in estimated:
+        est = lv.estimate
+        assert lv.relative == min(est["traction_hierarchical_relative"], est["traction_relative"])
+    for solution in sharp.history.solutions:
+        assert np.isfinite(solution.report.estimate["traction_hierarchical_relative"])
+    assert sharp.problem.n_free < bound.problem.n_free
+    with pytest.raises(tribo.SettingsError, match="stop_on"):
+        off_centre().solve_history_adaptive(0.01, shift, mu=0.3, stop_on="sharpest")  # type: ignore[arg-type]
 
 
 def test_all_edge_bisection_takes_fewer_levels_to_the_same_tolerance() -> None:

@@ -622,14 +622,13 @@ def test_a_bad_adaptive_setting_names_the_scene_key(tmp_path: Path, capsys: pyte
     history = "[friction]\nmu = 0.3\n[history]\nshift = [0.0, 0.004]\nsteps = 2\n"
     for edit, key, more in (("tol = 0.0", "adapt.tol", ""), ("tol = 0.05\ntheta = 1.5", "adapt.theta", ""),
                             ("tol = 0.05\nmax_unknowns = 10", "adapt.max_unknowns", ""),
-                            ('tol = 0.05\nstop_on = "hierarchical"', "adapt.stop_on", history),
                             ("tol = 0.05\non = [9]", "adapt.on", history)):
         path.write_text(ADAPT_SCENE.replace("tol = 0.05", edit) + more, encoding="utf-8")
         with pytest.raises(SceneError, match=f"scene key '{key}'") as e:
             # tol and theta when the scene is read, before any mesh; the steps and the first mesh's size
             # when the loop starts.
             scene = load_scene(path)
-            assert key in ("adapt.max_unknowns", "adapt.stop_on", "adapt.on"), f"{key} passed the reader"
+            assert key in ("adapt.max_unknowns", "adapt.on"), f"{key} passed the reader"
             scene.solve_history_adaptive() if scene.has_history else scene.solve_adaptive()
         assert e.value.details == {"key": key} and "None" not in str(e.value) and ".0:" not in str(e.value)
         assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 1

@@ -112,26 +112,16 @@ fn observe_with<A: for<'py> pyo3::call::PyCallArgs<'py>>(
     error: &mut Option<PyErr>,
 ) -> ControlFlow<()> {
     Python::attach(|py| {
-        let stop = match callback.map(|f| f.call1(py, args)) {
-            // False or any other false value (numpy.False_, 0) stops; None (no return) goes on.
-            Some(Ok(r)) if r.is_none(py) => false,
-            Some(Ok(r)) => match r.bind(py).is_truthy() {
-                Ok(truthy) => !truthy,
-                Err(e) => {
-                    *error = Some(e);
-                    true
-                }
-            },
-            Some(Err(e)) => {
-                *error = Some(e);
-                true
-            }
-            None => false,
-        };
+        // False or any other false value (numpy.False_, 0) stops; None (no return) goes on.
+        let call = |f: &Py<PyAny>| f.call1(py, args).and_then(|r| Ok(!r.is_none(py) && !r.bind(py).is_truthy()?));
+        let stop = callback.map(call).transpose().unwrap_or_else(|e| {
+            *error = Some(e);
+            Some(true)
+        });
         if let Err(e) = py.check_signals() {
             error.get_or_insert(e);
         }
-        if stop || error.is_some() {
+        if stop == Some(true) || error.is_some() {
             ControlFlow::Break(())
         } else {
             ControlFlow::Continue(())

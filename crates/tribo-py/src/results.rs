@@ -40,14 +40,10 @@ pub fn solution<'py>(py: Python<'py>, s: &tribo::Solution) -> PyResult<Bound<'py
     d.set_item("nodal_stress", mat(py, &s.nodal_stress)?)?;
     d.set_item("reactions", pairs(py, &s.reactions)?)?;
     d.set_item("states", vec1(py, s.states.iter().map(|&s| s.code() as i8).collect::<Vec<_>>())?)?;
-    for (name, v) in s.vectors() {
-        d.set_item(name, vec1(py, v)?)?;
-    }
+    s.vectors().into_iter().try_for_each(|(name, v)| d.set_item(name, vec1(py, v)?))?;
     d.set_item("contact_force", (s.contact_force[0], s.contact_force[1]))?;
     d.set_item("obstacle_motion", (s.obstacle_motion[0], s.obstacle_motion[1]))?;
-    for (name, v) in s.scalars() {
-        d.set_item(name, v)?;
-    }
+    s.scalars().into_iter().try_for_each(|(name, v)| d.set_item(name, v))?;
     d.set_item("kkt", s.kkt.named().into_py_dict(py)?)?;
     d.set_item("report", report(py, &s.report)?)?;
     Ok(d)

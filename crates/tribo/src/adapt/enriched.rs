@@ -129,11 +129,11 @@ fn width_bar(coarse: Option<Zone>, enriched: Option<Zone>) -> f64 {
 }
 
 /// The part of the estimate at one end of Γ_C in contact (the module documentation).
-struct EndReduction {
+pub(super) struct EndReduction {
     /// `‖λ_H − λ_f‖` on the end's region R.
-    difference: f64,
+    pub(super) difference: f64,
     /// The measured reduction `q = ‖λ_f − λ_ff‖_R / ‖λ_H − λ_f‖_R`.
-    reduction: f64,
+    pub(super) reduction: f64,
 }
 
 impl EndReduction {
@@ -152,13 +152,13 @@ impl EndReduction {
 }
 
 /// The largest relative difference at an end of Γ_C that counts as the solves' noise (the default `fp_tol`).
-const NOISE: f64 = FixedPointSettings::DEFAULT_TOL;
+pub(super) const NOISE: f64 = FixedPointSettings::DEFAULT_TOL;
 
 /// `η_hier` from the difference `d` on all of Γ_C and the parts measured at its ends (the module
 /// documentation): `(4 (d² − Σ d_R²) + Σ (d_R / (1 − max(q_R, ½)))²)^½`. An end whose difference is at most
 /// `noise` (the accuracy to which the solves determine λ) measures nothing: its q is a ratio of rounding, and
 /// it is left in the rest of Γ_C, where the factor 2 keeps it below the noise's double.
-fn combine(difference: f64, ends: &[EndReduction], noise: f64) -> f64 {
+pub(super) fn combine(difference: f64, ends: &[EndReduction], noise: f64) -> f64 {
     // A NaN difference (an end that could not be measured) stays among the ends.
     let measured = || ends.iter().filter(|e| e.difference > noise || e.difference.is_nan());
     let at_ends: f64 = measured().map(|e| e.difference.powi(2)).filter(|d| d.is_finite()).sum();
@@ -249,7 +249,7 @@ fn touching_span(problem: &Problem, solution: &Solution) -> Option<(f64, f64)> {
 /// The span of the multiplier dofs of `solution` not in separation, 0 when nothing touches: the width of
 /// the strip [`Problem::estimate_hierarchical`] enriches ([`Solution::contact_width`] less the half cells
 /// at its ends).
-fn touching_width(problem: &Problem, solution: &Solution) -> f64 {
+pub(super) fn touching_width(problem: &Problem, solution: &Solution) -> f64 {
     touching_span(problem, solution).map_or(0.0, |(lo, hi)| hi - lo)
 }
 
@@ -352,59 +352,72 @@ impl Problem {
         friction: &Friction,
         settings: &SolverSettings,
     ) -> Result<Vec<EndReduction>> {
+        let regions = self.end_regions(solution);
+        if regions.is_empty() {
+            return Ok(Vec::new());
+        }
+        let near = self.near_ends(enriched, &regions);
+        let friction = self.carried_friction(friction, enriched);
+        // The first enrichment's factorization is not needed again: the second solve does not hold both.
+        enriched.forget_factorization();
+        let (twice, again) = enriched.solve_enriched(answer, &near, &friction, settings)?;
+        let converged = again.report.status == SolveStatus::Converged;
+        Ok(self.reductions(&regions, (solution, (enriched, answer)), converged.then_some((&twice, &again))))
+    }
+
+    /// At each region R of `regions`: `d_R = ‖λ_H − λ_f‖_R` and `q_R = ‖λ_f − λ_ff‖_R / d_R` (infinite when
+    /// the second enrichment `twice` did not converge: it measures nothing). Regions with `d_R = 0` are left out.
+    pub(super) fn reductions(
+        &self,
+        regions: &[[f64; 2]],
+        (solution, (enriched, answer)): (&Solution, (&Problem, &Solution)),
+        twice: Option<(&Problem, &Solution)>,
+    ) -> Vec<EndReduction> {
+        let mut out = Vec::new();
+        for &[lo, hi] in regions {
+            let (d1, _) = multiplier_difference_on(self, solution, enriched, answer, lo, hi);
+            let d2 = twice.map_or(f64::INFINITY, |(p, s)| multiplier_difference_on(enriched, answer, p, s, lo, hi).0);
+            if d1 > 0.0 {
+                out.push(EndReduction { difference: d1, reduction: d2 / d1 });
+            }
+        }
+        out
+    }
+
+    /// The regions R (the two cells of T_H at an end of Γ_C) at each end whose multiplier dof touches in
+    /// `solution` (not in separation); none on a T_H of fewer than 4 cells.
+    pub(super) fn end_regions(&self, solution: &Solution) -> Vec<[f64; 2]> {
         let xi = &self.multipliers.xi;
         let dofs = self.multipliers.dof_abscissae();
-        let (Some(&first), Some(&last)) = (xi.first(), xi.last()) else {
-            return Ok(Vec::new());
-        };
         let touches = |x: f64| {
             let nearest = dofs.iter().enumerate().min_by(|a, b| (a.1 - x).abs().total_cmp(&(b.1 - x).abs()));
             nearest.is_some_and(|(k, _)| solution.states.get(k).is_some_and(|c| *c != ContactState::Separation))
         };
         // Two cells at each end, apart from each other (a T_H of fewer than 4 cells is not measured).
-        if xi.len() < 5 {
-            return Ok(Vec::new());
-        }
         let n = xi.len();
-        let regions: Vec<[f64; 2]> = [(first, [first, xi[2]]), (last, [xi[n - 3], last])]
+        if n < 5 {
+            return Vec::new();
+        }
+        [(xi[0], [xi[0], xi[2]]), (xi[n - 1], [xi[n - 3], xi[n - 1]])]
             .into_iter()
             .filter(|(end, _)| touches(*end))
             .map(|(_, region)| region)
-            .collect();
-        if regions.is_empty() {
-            return Ok(Vec::new());
-        }
-        // One second enrichment for both ends: the triangles within a region's length of its end point.
+            .collect()
+    }
+
+    /// The triangles of `enriched` (this problem enriched) within a region's length of its end of Γ_C, for
+    /// the regions of [`Problem::end_regions`].
+    pub(super) fn near_ends(&self, enriched: &Problem, regions: &[[f64; 2]]) -> Vec<usize> {
+        let xi = &self.multipliers.xi;
         let near_an_end = |v: usize| {
             let p = enriched.mesh.points()[v];
             regions.iter().any(|r| {
-                let end = if r[0] == first { first } else { last };
+                let end = if r[0] == xi[0] { xi[0] } else { xi[xi.len() - 1] };
                 distance(p, self.contact.point_at(end)) <= r[1] - r[0]
             })
         };
-        let near: Vec<usize> = enriched
-            .mesh
-            .triangles()
-            .iter()
-            .enumerate()
-            .filter(|(_, t)| t.iter().any(|&v| near_an_end(v)))
-            .map(|(t, _)| t)
-            .collect();
-        let friction = self.carried_friction(friction, enriched);
-        // The first enrichment's factorization is not needed again: the second solve does not hold both.
-        enriched.forget_factorization();
-        let (twice, again) = enriched.solve_enriched(answer, &near, &friction, settings)?;
-        let mut out = Vec::new();
-        for [lo, hi] in regions {
-            let (d1, _) = multiplier_difference_on(self, solution, enriched, answer, lo, hi);
-            let (d2, _) = multiplier_difference_on(enriched, answer, &twice, &again, lo, hi);
-            if d1 > 0.0 {
-                // A second enrichment that did not converge measures nothing: no estimate there.
-                let converged = again.report.status == SolveStatus::Converged;
-                out.push(EndReduction { difference: d1, reduction: if converged { d2 / d1 } else { f64::INFINITY } });
-            }
-        }
-        Ok(out)
+        let triangles = enriched.mesh.triangles().iter().enumerate();
+        triangles.filter(|(_, t)| t.iter().any(|&v| near_an_end(v))).map(|(t, _)| t).collect()
     }
 
     /// Solves (as [`Problem::solve`]) and, when the solve converged, adds the hierarchical estimate and
@@ -449,24 +462,31 @@ impl Problem {
         friction: &Friction,
         settings: &SolverSettings,
     ) -> Result<(Problem, Solution)> {
-        let ratio = super::multipliers::ratio(&self.multipliers.xi, &self.contact);
-        let refined = bisect(&self.mesh, marked, Bisection::AllEdges)?;
-        let enriched = super::next_problem(self, &[solution], refined, ratio)?;
+        let enriched = self.enriched(&[solution], marked)?;
         let start = [self.carried(&solution.lambda_n, &enriched), self.carried(&solution.lambda_t, &enriched)].concat();
         let friction = self.carried_friction(friction, &enriched);
         let answer = super::solve_level(&enriched, &friction, settings, Some(&start))?;
         Ok((enriched, answer))
     }
 
+    /// This problem with the triangles `marked` bisected on all three edges (and the conforming closure), T_H
+    /// refined where the FE edges under it were (keeping this problem's ratio H/h) where any of `solutions`
+    /// touches or may touch.
+    pub(super) fn enriched(&self, solutions: &[&Solution], marked: &[usize]) -> Result<Problem> {
+        let ratio = super::multipliers::ratio(&self.multipliers.xi, &self.contact);
+        let refined = bisect(&self.mesh, marked, Bisection::AllEdges)?;
+        super::next_problem(self, solutions, refined, ratio)
+    }
+
     /// The W_H function of this problem's dof values `v` at the multiplier dofs of `to` (a problem on the
     /// same Γ_C line).
-    fn carried(&self, v: &[f64], to: &Problem) -> Vec<f64> {
+    pub(super) fn carried(&self, v: &[f64], to: &Problem) -> Vec<f64> {
         to.multipliers.dof_abscissae().iter().map(|&x| self.multipliers.evaluate(v, x)).collect()
     }
 
     /// `friction` for the problem `to`: a Tresca threshold given per dof carried as the W_H function it
     /// defines.
-    fn carried_friction(&self, friction: &Friction, to: &Problem) -> Friction {
+    pub(super) fn carried_friction(&self, friction: &Friction, to: &Problem) -> Friction {
         match friction {
             Friction::Tresca(Threshold::PerDof(g)) => Friction::Tresca(Threshold::PerDof(self.carried(g, to))),
             other => other.clone(),

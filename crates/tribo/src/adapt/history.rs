@@ -3,12 +3,15 @@
 //! then the one solved on the last mesh. A stick zone that moves, or a contact zone that grows, is
 //! refined for every step it passes through, on one mesh.
 
-use super::{AdaptStop, Level, LevelObserver, Start};
+use std::time::Instant;
+
+use super::enriched::{combine, near_contact, touching_width, EndReduction, Hierarchical, NOISE};
+use super::{multiplier_difference, AdaptStop, Level, LevelObserver, Sharp, Start};
 use crate::error::{Error, Result};
 use crate::problem::Problem;
-use crate::results::Solution;
+use crate::results::{Solution, SolveStatus};
 use crate::settings::friction::Friction;
-use crate::settings::{AdaptSettings, SolverSettings, StopOn};
+use crate::settings::{AdaptSettings, SolverSettings};
 use crate::solve::history::{History, LoadStep};
 
 /// The result of an adaptive history: the problem on the last mesh, the history solved on it, and
@@ -46,12 +49,6 @@ impl Problem {
         observer: Option<LevelObserver<'_>>,
     ) -> Result<AdaptiveHistory> {
         self.check_adaptive(friction, settings, adapt)?;
-        if adapt.stop_on == StopOn::Hierarchical {
-            return Err(Error::BadSettingValue {
-                name: "adapt_stop_on",
-                what: "'hierarchical' is not yet available for a loading history: it stops on 'bound'".into(),
-            });
-        }
         if settings.keep_every != 1 {
             return Err(Error::BadSetting {
                 name: "keep_every",
@@ -85,8 +82,135 @@ impl Problem {
             }
         });
         let ended = |h: &History| (h.status, h.solutions.iter().map(|s| s.report.iterations).sum());
+        let estimate = |p: &Problem, h: &History| p.estimate_history_hierarchical(h, friction, settings);
+        // Only the finite estimates: a step without one reads its bound.
+        let store = |h: &mut History, estimates: &[Hierarchical]| {
+            for (i, e) in estimates.iter().enumerate().filter(|(_, e)| e.relative.is_finite()) {
+                let (Some(&k), Some(solution)) = (h.kept.get(i), h.solutions.get_mut(i)) else { continue };
+                e.store(solution);
+                if let Some(record) = h.records.get_mut(k) {
+                    record.estimate = solution.report.estimate;
+                }
+            }
+        };
+        let sharp = Sharp { estimate: &estimate, store: &store };
         let (problem, history, levels, stop) =
-            self.adapt_loop(settings, adapt, observer, &solve, &read, &ended, None)?;
+            self.adapt_loop(settings, adapt, observer, &solve, &read, &ended, Some(&sharp))?;
         Ok(AdaptiveHistory { problem, history, levels, stop })
+    }
+
+    /// The hierarchical estimate of the traction error of every kept step of `history`, a history of this
+    /// problem solved with `friction` (in the order of [`History::kept`]): as [`Problem::estimate_hierarchical`]
+    /// for one solve, with the whole history solved on the enriched mesh (friction depends on the path, so a
+    /// step cannot be enriched alone). The mesh is enriched within one contact width of the contact zone of
+    /// every kept step (the whole mesh when no step has two multiplier dofs touching); where an end of Γ_C
+    /// touches in a step, the history is solved once more on the mesh enriched again at the ends, and that
+    /// step's reduction there is measured. Each step's enriched solve starts from its own multipliers when
+    /// every step was kept. The steps solved are the converged ones of `history`; the estimates carry the
+    /// enriched history's status, and a step it did not reach has a NaN estimate.
+    ///
+    /// # Errors
+    /// Those of [`crate::mesh::refine::bisect`], of the enriched problem and of its history
+    /// ([`Problem::solve_history`]).
+    pub fn estimate_history_hierarchical(
+        &self,
+        history: &History,
+        friction: &Friction,
+        settings: &SolverSettings,
+    ) -> Result<Vec<Hierarchical>> {
+        let clock = Instant::now();
+        let mut strip = vec![false; self.mesh.n_triangles()];
+        for s in &history.solutions {
+            let width = touching_width(self, s);
+            if width > 0.0 {
+                near_contact(self, s, width).into_iter().for_each(|t| strip[t] = true);
+            }
+        }
+        let whole = !strip.contains(&true);
+        let marked: Vec<usize> = (0..strip.len()).filter(|&t| whole || strip[t]).collect();
+        let (enriched, answer) = self.solve_enriched_history(history, &marked, friction, settings)?;
+        let regions: Vec<Vec<[f64; 2]>> = history.solutions.iter().map(|s| self.end_regions(s)).collect();
+        let mut union: Vec<[f64; 2]> = regions.iter().flatten().copied().collect();
+        union.sort_by(|a, b| a[0].total_cmp(&b[0]));
+        union.dedup();
+        let twice = if answer.status == SolveStatus::Converged && !union.is_empty() {
+            let near = self.near_ends(&enriched, &union);
+            let friction = self.carried_friction(friction, &enriched);
+            // The first enrichment's factorization is not needed again: the second history does not hold both.
+            enriched.forget_factorization();
+            let twice = enriched.solve_enriched_history(&answer, &near, &friction, settings);
+            Some(twice.inspect_err(|e| {
+                log::warn!("the second enrichment at the ends of Γ_C failed ({e}): no estimate there");
+            }))
+        } else {
+            None
+        };
+        let seconds = clock.elapsed().as_secs_f64();
+        let estimate = |(i, &k): (usize, &usize)| {
+            let solution = &history.solutions[i];
+            let unknowns = enriched.n_free;
+            let Some(fine) = answer.solution_of(k) else {
+                let (difference, norm, estimate, relative) = (f64::NAN, f64::NAN, f64::NAN, f64::NAN);
+                let (status, end_reductions, error_bars) = (answer.status, Vec::new(), None);
+                return Hierarchical {
+                    difference,
+                    norm,
+                    estimate,
+                    relative,
+                    unknowns,
+                    status,
+                    seconds,
+                    end_reductions,
+                    error_bars,
+                };
+            };
+            let (difference, norm) = multiplier_difference(self, solution, &enriched, fine);
+            let ends = match &twice {
+                None => Vec::new(),
+                Some(Err(_)) => vec![EndReduction { difference: f64::NAN, reduction: f64::INFINITY }],
+                Some(Ok((p, h))) => {
+                    let again = h.solution_of(k).filter(|_| h.status == SolveStatus::Converged);
+                    self.reductions(&regions[i], (solution, (&enriched, fine)), again.map(|a| (p, a)))
+                }
+            };
+            let estimate = combine(difference, &ends, settings.fp.tol.min(NOISE) * norm);
+            Hierarchical {
+                difference,
+                norm,
+                estimate,
+                relative: if norm > 0.0 { estimate / norm } else { f64::NAN },
+                unknowns,
+                status: answer.status,
+                seconds,
+                end_reductions: ends.iter().map(|e| e.reduction).collect(),
+                error_bars: None,
+            }
+        };
+        Ok(history.kept.iter().enumerate().map(estimate).collect())
+    }
+
+    /// The converged steps of `history` solved on this problem with the triangles `marked` bisected on all
+    /// three edges (and the conforming closure), T_H refined where the FE edges under it were (keeping this
+    /// problem's ratio H/h), every step kept; step k starts from step k's multipliers when every step was kept.
+    fn solve_enriched_history(
+        &self,
+        history: &History,
+        marked: &[usize],
+        friction: &Friction,
+        settings: &SolverSettings,
+    ) -> Result<(Problem, History)> {
+        let solutions: Vec<&Solution> = history.solutions.iter().collect();
+        let enriched = self.enriched(&solutions, marked)?;
+        let steps = &history.steps[..history.records.len()];
+        let carry =
+            |s: &&Solution| [self.carried(&s.lambda_n, &enriched), self.carried(&s.lambda_t, &enriched)].concat();
+        let starts: Vec<Vec<f64>> =
+            if history.kept.len() == steps.len() { solutions.iter().map(carry).collect() } else { Vec::new() };
+        let friction = self.carried_friction(friction, &enriched);
+        let every = SolverSettings { keep_every: 1, ..*settings };
+        let condensed = enriched.condense_with(every.stabilization, every.condensation, every.memory_budget)?;
+        let answer = condensed.solve_history_from(&friction, steps, &every, None, &starts)?;
+        drop(condensed);
+        Ok((enriched, answer))
     }
 }

@@ -137,9 +137,10 @@ impl StepRecord {
 
 impl History {
     /// The per-step series of numbers by name: the approach, shift and load factor of every step asked
-    /// for, the total forces, the error estimate η and the relative traction estimate of the converged steps,
-    /// and the wall time of each step solved.
-    pub fn series(&self) -> [(&'static str, Vec<f64>); 8] {
+    /// for, the total forces, the error estimate η, the relative traction estimate (the bound) and the
+    /// hierarchical one (NaN where it was not computed: an adaptive history stopping on it computes it on
+    /// some levels) of the converged steps, and the wall time of each step solved.
+    pub fn series(&self) -> [(&'static str, Vec<f64>); 9] {
         let step = |f: fn(&LoadStep) -> f64| self.steps.iter().map(f).collect();
         let record = |f: fn(&StepRecord) -> f64| self.records.iter().map(f).collect();
         [
@@ -150,6 +151,7 @@ impl History {
             ("tangential_force", self.tangential_force()),
             ("error_estimate", record(|r| r.estimate.total)),
             ("traction_error", record(|r| r.estimate.traction_relative)),
+            ("traction_error_hierarchical", record(|r| r.estimate.traction_hierarchical_relative.unwrap_or(f64::NAN))),
             ("step_seconds", self.step_seconds.clone()),
         ]
     }
@@ -223,15 +225,15 @@ impl History {
     /// every `keep_every`-th step and of the last ([`SolverSettings::keep_every`]): those solutions
     /// ([`Solution::estimated_bytes`]), and per step its [`StepRecord`] (the states included), its
     /// [`LoadStep`] twice (the caller's and the history's copy), its wall time, and the per-step series a
-    /// reader takes from it at once, as the bindings and the files do: the eight of [`History::series`],
+    /// reader takes from it at once, as the bindings and the files do: the nine of [`History::series`],
     /// the three counts, the two zones' ends, the gross-sliding flag and two stick–slip boundaries (a step
     /// has as many as its stick zone has ends). The memory budget of a history is checked against it
     /// before any step runs (`docs/history_memory.md` measures it against the peak of long histories).
     pub fn estimated_bytes(problem: &crate::Problem, steps: &[LoadStep], keep_every: usize) -> f64 {
         let kept = kept_solutions(steps.len(), keep_every);
         let load_steps: usize = steps.iter().map(|s| size_of::<LoadStep>() + 8 * s.displacements.len()).sum();
-        // 8 series + 3 counts + 4 zone ends + 2 × (step, abscissa) of the boundaries, and the flag.
-        let per_step = StepRecord::bytes(problem.n_multipliers()) + 8 + (8 + 3 + 4 + 4) * 8 + 1;
+        // 9 series + 3 counts + 4 zone ends + 2 × (step, abscissa) of the boundaries, and the flag.
+        let per_step = StepRecord::bytes(problem.n_multipliers()) + 8 + (9 + 3 + 4 + 4) * 8 + 1;
         Solution::estimated_bytes(problem) as f64 * kept as f64
             + 2.0 * load_steps as f64
             + per_step as f64 * steps.len() as f64

@@ -194,19 +194,83 @@ fn a_stop_on_max_unknowns_keeps_the_hierarchical_estimate() {
     assert!(out.solution.kkt.max() <= bound, "converged to fp_tol: {:?}", out.solution.kkt);
 }
 
-/// A loading history does not stop on the hierarchical estimate yet: it says so, by name.
+/// A history of one step from rest is the static problem (its data bit for bit): its hierarchical estimate
+/// is the static one, to the accuracy of the solves, on adaptive Hertz with Coulomb friction (no end of Γ_C
+/// touches) and on an adaptive level of the block (both ends touch: the second enrichment measures the
+/// reduction there).
 #[test]
-fn a_history_refuses_the_hierarchical_stop() {
-    let (problem, mu) = tribo_testkit::block_problem(8, 2);
-    let steps = [LoadStep::new(0.01, 0.0)];
-    let adapt = AdaptSettings { stop_on: StopOn::Hierarchical, ..Default::default() };
-    let friction = Friction::Coulomb { mu };
-    match problem.solve_history_adaptive(&friction, &steps, &SolverSettings::default(), &adapt, &[], None) {
-        Err(Error::BadSettingValue { name, what }) => assert!(name == "adapt_stop_on" && what.contains("history")),
-        other => panic!("{other:?}"),
+fn a_one_step_history_is_estimated_as_the_static_problem() -> Result<()> {
+    let hertz = off_centre_problem();
+    let adapt = AdaptSettings { tol: 0.2, max_unknowns: 3_000, ..Default::default() };
+    let coulomb = Friction::Coulomb { mu: 0.3 };
+    let settings = SolverSettings::default();
+    let level = hertz.solve_adaptive(&coulomb, &settings, &adapt, None)?;
+    let (block, mu) = tribo_testkit::block_problem(8, 2);
+    let block_friction = Friction::Coulomb { mu };
+    let adapt = AdaptSettings { tol: 1e-6, max_unknowns: 1_200, ..Default::default() };
+    let block = block.solve_adaptive(&block_friction, &settings, &adapt, None)?;
+    for (problem, friction, ends) in [(&level.problem, coulomb, 0), (&block.problem, block_friction, 2)] {
+        let obstacle = &problem.spec.obstacle;
+        let steps = [LoadStep::new(obstacle.approach, obstacle.shift)];
+        let solution = problem.solve(&friction, &settings, None)?;
+        let history = problem.solve_history(&friction, &steps, &settings, None)?;
+        let one = problem.estimate_hierarchical(&solution, &friction, &settings)?;
+        let each = problem.estimate_history_hierarchical(&history, &friction, &settings)?;
+        println!("static {one:?}\nhistory {each:?}");
+        assert_eq!(each.len(), 1);
+        let h = &each[0];
+        assert_eq!((h.status, one.status), (SolveStatus::Converged, SolveStatus::Converged));
+        assert_eq!((h.unknowns, h.end_reductions.len(), one.end_reductions.len()), (one.unknowns, ends, ends));
+        assert!(one.relative.is_finite() && one.relative > 0.0, "{one:?}");
+        assert!((h.relative - one.relative).abs() <= 1e-6 * one.relative, "{} against {}", h.relative, one.relative);
+        for (a, b) in h.end_reductions.iter().zip(&one.end_reductions) {
+            assert!((a - b).abs() <= 1e-6 * b.abs(), "reductions {a} and {b}");
+        }
     }
+    Ok(())
+}
+
+/// A Cattaneo–Mindlin history (pressed, then dragged under partial slip) stops on the hierarchical
+/// estimate: the levels where the loop computed it read the smaller of it and the bound, every kept step
+/// and its record carry it, and the run ends on fewer unknowns than the same run stopping on the bound.
+#[test]
+fn a_history_stops_on_the_hierarchical_estimate() -> Result<()> {
+    let problem = off_centre_problem();
+    let steps: Vec<LoadStep> = [0.0, 0.001, 0.002].iter().map(|&s| LoadStep::new(0.01, s)).collect();
+    let friction = Friction::Coulomb { mu: 0.3 };
+    let settings = SolverSettings::default();
+    let mut runs = Vec::new();
+    for stop_on in [StopOn::Hierarchical, StopOn::Bound] {
+        let adapt = AdaptSettings { tol: 0.05, max_unknowns: 200_000, stop_on, ..Default::default() };
+        runs.push(problem.solve_history_adaptive(&friction, &steps, &settings, &adapt, &[], None)?);
+    }
+    let (sharp, bound) = (&runs[0], &runs[1]);
+    assert_eq!((sharp.stop, bound.stop), (AdaptStop::Tolerance, AdaptStop::Tolerance));
+    let last = sharp.levels.last().expect("levels");
+    let estimated: Vec<&Level> =
+        sharp.levels.iter().filter(|l| l.estimate.traction_hierarchical_relative.is_some()).collect();
+    println!(
+        "{} levels, {} estimated, last {} unknowns (bound: {})",
+        sharp.levels.len(),
+        estimated.len(),
+        last.unknowns,
+        bound.problem.n_free
+    );
+    assert!(!estimated.is_empty() && last.relative <= 0.05);
+    for l in estimated {
+        let e = &l.estimate;
+        let r = e.traction_hierarchical_relative.expect("estimated");
+        assert!(r.is_finite() && r > 0.0 && l.relative == r.min(e.traction_relative), "{e:?}");
+    }
+    for (solution, &k) in sharp.history.solutions.iter().zip(&sharp.history.kept) {
+        let e = &solution.report.estimate;
+        assert_eq!(&sharp.history.records[k].estimate, e, "step {k}: the record carries the step's estimate");
+        assert!(e.traction_hierarchical_relative.is_some_and(f64::is_finite), "step {k}: {e:?}");
+    }
+    assert!(sharp.problem.n_free < bound.problem.n_free, "{} against {}", sharp.problem.n_free, bound.problem.n_free);
     let named = AdaptKeywords { stop_on: Some("sharpest".into()), ..Default::default() };
     assert!(matches!(AdaptSettings::from_keywords(named), Err(Error::UnknownChoice { .. })));
+    Ok(())
 }
 
 /// Coulomb friction, with coarse fixed points stopped at a tenth of the previous level's estimate and
