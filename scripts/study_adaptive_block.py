@@ -69,7 +69,7 @@ def run(smoke: bool, out: Path) -> list[dict[str, Any]]:
         timed_row("graded 0.3", h, lambda h=h: tribo.Mesh.graded_rectangle(
             *BOX, side="bottom", segment=BOX[0], h_min=h, h_max=0.1, growth=0.3))
     for tol in TOLS[:3] if smoke else TOLS:
-        timed_row("adaptive", tol, lambda: uniform(8), tol=tol)
+        timed_row("adaptive", tol, lambda: uniform(8), tol=tol, stop_on="bound")
     write(rows, out)
     return rows
 

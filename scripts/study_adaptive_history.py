@@ -89,14 +89,15 @@ def run(smoke: bool, out: Path) -> list[dict[str, Any]]:
     start = tribo.Mesh.rectangle(*sl.BOX, 8, 4)
     for tol in TOLS[:2] if smoke else TOLS:
         clock = time.perf_counter()
-        a = problem(start).solve_history_adaptive(cm.APPROACH, s, mu=cm.MU, tol=tol)
+        a = problem(start).solve_history_adaptive(cm.APPROACH, s, mu=cm.MU, tol=tol, stop_on="bound")
         seconds = time.perf_counter() - clock
         rows.append(dict(family="adaptive", h_min=math.nan, tol=tol, n_free=a.problem.n_free,
                          q=a.problem.n_multipliers, levels=len(a.levels), seconds=seconds,
                          ca_error=cm.stick_ratio(a.history)[2], ca_ref=against_reference(a.history),
                          relative=a.levels[-1].relative, status=a.stop))
     for levels in [4, 6] if smoke else LEVELS:
-        a = problem(start).solve_history_adaptive(cm.APPROACH, s, mu=cm.MU, tol=1e-9, max_levels=levels)
+        a = problem(start).solve_history_adaptive(cm.APPROACH, s, mu=cm.MU, tol=1e-9, max_levels=levels,
+                                                 stop_on="bound")
         sol = a.history.solutions[-1]
         rows.append(dict(family="levels", h_min=math.nan, tol=math.nan, n_free=a.problem.n_free,
                          q=a.problem.n_multipliers, levels=len(a.levels), seconds=sum(x.seconds for x in a.levels),

@@ -64,7 +64,7 @@ def scenes(smoke: bool) -> Iterator[tuple[str, float, Make]]:
         mesh = sl.uniform_mesh(nx)
         yield "uniform", 4.0 / nx, lambda law, m=mesh: hertz(m, law)
     for tol in ([0.2] if smoke else TOLS):
-        a = hertz(tribo.Mesh.rectangle(*sl.BOX, 8, 4), "frictionless").solve_adaptive(tol=tol)
+        a = hertz(tribo.Mesh.rectangle(*sl.BOX, 8, 4), "frictionless").solve_adaptive(tol=tol, stop_on="bound")
         k = len(a.levels) - 1
         yield "adaptive", tol, lambda law, a=a, k=k: a.level_problem(k)
     for nx in ([32] if smoke else BLOCK):

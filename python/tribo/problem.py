@@ -360,16 +360,17 @@ class Problem(_tribo.Problem):
         last ``solution``, the ``problem`` on the last mesh, every level and the reason it stopped.
 
         The relative estimate is that of the contact tractions (λ in L²(Γ_C)) when something touches, of
-        the energy while nothing does. By default (``stop_on='bound'``) it is the residual bound, above the
-        true error but pessimistically (on Hertz by 3 on coarse meshes and up to 24 on fine ones,
-        docs/STUDIES.md, study 6): the answer is usually several times more accurate than ``tol``. With
-        ``stop_on='hierarchical'`` it is the hierarchical estimate 2‖λ_H − λ_f‖ / ‖λ_f‖ (λ_f the answer
-        enriched near the contact zone, ``report.estimate["traction_hierarchical_relative"]``; where the
-        contact zone reaches an end of Γ_C, its reduction there is measured by a second enrichment): within a
-        factor of about 1–2 of the true error, not a guaranteed bound, read with the bound if that is smaller
-        (it is where the traction is singular at a corner, docs/beyond_hertz.md), computed on the levels near ``tol``
-        with at least 10 multiplier dofs in contact at the cost of a solve of about 2.6 times their unknowns
-        (static solves only). Marking is Dörfler's with ``theta`` (default 0.5), or the maximum
+        the energy while nothing does. By default (``stop_on='hierarchical'``) it is the smaller of the residual
+        bound and the hierarchical estimate 2‖λ_H − λ_f‖ / ‖λ_f‖ (λ_f the answer enriched near the contact zone,
+        ``report.estimate["traction_hierarchical_relative"]``; where the contact zone reaches an end of Γ_C,
+        its reduction there is measured by a second enrichment): within a factor of about 1–2 of the true
+        error, not a guaranteed bound (the bound is the smaller where the traction is singular at a corner,
+        docs/beyond_hertz.md), computed on the levels near ``tol`` with at least 10 multiplier dofs in contact
+        at the cost of a solve of about 2.6 times their unknowns; the answer's true error then ends at
+        0.3–0.75 ``tol`` (docs/tol_table.md). With ``stop_on='bound'`` it is the residual bound alone, above
+        the true error but pessimistically (on Hertz by 3 on coarse meshes and up to 24 on fine ones,
+        docs/STUDIES.md, study 6): the answer is usually many times more accurate than ``tol``, at many times
+        the unknowns. Marking is Dörfler's with ``theta`` (default 0.5), or the maximum
         strategy (``marking='maximum'``); a marked triangle is bisected on all three edges into four
         (``bisection='all_edges'``, the default: fewer levels) or on its refinement edge only
         (``'refinement_edge'``); ``max_levels`` (default 40) bounds the levels. A level's Coulomb

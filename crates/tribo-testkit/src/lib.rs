@@ -124,7 +124,12 @@ pub fn adaptive_case(name: &str) -> Result<AdaptiveCase> {
             }
         },
     };
-    let adapt = AdaptSettings { tol: 1e-9, max_unknowns: REFERENCE_UNKNOWNS, ..AdaptSettings::default() };
+    let adapt = AdaptSettings {
+        tol: 1e-9,
+        max_unknowns: REFERENCE_UNKNOWNS,
+        stop_on: StopOn::Bound,
+        ..AdaptSettings::default()
+    };
     let run = coarse.solve_adaptive(&friction, &SolverSettings::default(), &adapt, None)?;
     let reference_source = format!(
         "the adaptive loop from the coarse start to {} unknowns ({} levels, stopped on {}; its bound {:.2e})",

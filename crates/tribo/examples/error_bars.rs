@@ -66,7 +66,7 @@ fn main() -> Result<()> {
     for (k, (name, _)) in QUANTITIES.iter().enumerate() {
         println!("  {name} = {:.6e}, known to about {:.1e}", exact[k], floor[k]);
     }
-    let adapt = AdaptSettings { tol: 1e-5, max_unknowns, ..AdaptSettings::default() };
+    let adapt = AdaptSettings { tol: 1e-5, max_unknowns, stop_on: StopOn::Bound, ..AdaptSettings::default() };
     let run = coarse.solve_adaptive(&friction, &settings, &adapt, None)?;
     let mut header = "level unknowns in-contact seconds(solve, enriched) | tractions: true error, strip/true \
                       whole/true bound/true smaller/true"

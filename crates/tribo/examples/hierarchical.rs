@@ -28,7 +28,7 @@ fn main() -> Result<()> {
     let (reference, rsol) = case.reference;
     let settings = SolverSettings::default();
     println!("{name}: reference {} ({})", case.reference_source, rsol.report.status);
-    let adapt = AdaptSettings { tol: 1e-4, max_unknowns: 80_000, ..AdaptSettings::default() };
+    let adapt = AdaptSettings { tol: 1e-4, max_unknowns: 80_000, stop_on: StopOn::Bound, ..AdaptSettings::default() };
     let run = coarse.solve_adaptive(&friction, &settings, &adapt, None)?;
     println!(
         "level unknowns in-contact true-error bound/true | whole mesh: d/true e_f/e_H unknowns seconds | \

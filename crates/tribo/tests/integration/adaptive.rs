@@ -327,7 +327,8 @@ fn a_history_adapts_on_its_worst_step() {
     let friction = Friction::Coulomb { mu: 0.3 };
     let steps: Vec<LoadStep> =
         (0..6).map(|k| LoadStep::new(problem.spec.obstacle.approach, 0.0008 * k as f64)).collect();
-    let adapt = AdaptSettings { tol: 0.2, max_unknowns: 60_000, ..Default::default() };
+    // The bound (a fine enough last mesh for the stick zones; the hierarchical stop has its own test).
+    let adapt = AdaptSettings { tol: 0.2, max_unknowns: 60_000, stop_on: StopOn::Bound, ..Default::default() };
     let out = problem
         .solve_history_adaptive(&friction, &steps, &SolverSettings::default(), &adapt, &[], None)
         .expect("adapts");
@@ -377,7 +378,8 @@ fn a_history_adapts_on_its_worst_step() {
 #[test]
 fn a_warm_level_takes_the_saddle_point_system() {
     let settings = SolverSettings::default();
-    let adapt = AdaptSettings { tol: 0.08, ..Default::default() };
+    // Stopping on the bound: the last level is large enough for the choice to matter.
+    let adapt = AdaptSettings { tol: 0.08, stop_on: StopOn::Bound, ..Default::default() };
     let out = off_centre_problem().solve_adaptive(&Friction::Frictionless, &settings, &adapt, None).expect("adapts");
     assert!(out.problem.n_free > 10_000, "the level is large enough for the choice to matter");
     assert_eq!(out.solution.report.condensation, Condensation::Saddle);
@@ -404,7 +406,8 @@ fn a_warm_level_takes_the_saddle_point_system() {
 #[test]
 fn a_coulomb_fixed_point_weighs_the_partial_factorization_higher() {
     let settings = SolverSettings::default();
-    let adapt = AdaptSettings { tol: 0.06, ..Default::default() };
+    // Stopping on the bound: a last level whose dense block is a little too large for the saddle point.
+    let adapt = AdaptSettings { tol: 0.06, stop_on: StopOn::Bound, ..Default::default() };
     let out = off_centre_problem().solve_adaptive(&Friction::Frictionless, &settings, &adapt, None).expect("adapts");
     let mut spec = out.problem.spec.clone();
     spec.multiplier_points = MultiplierPoints::Abscissae(out.problem.multipliers.xi.clone());

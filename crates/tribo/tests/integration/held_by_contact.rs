@@ -420,7 +420,8 @@ fn a_punch_held_by_the_contact_refines_adaptively() {
     ];
     let gap = ObstacleShape::Parabola { center: 0.0, radius: 1.0 };
     let problem = Problem::two_bodies(bodies, pair("lower.top", "upper.bottom", gap), [0.0, 0.0]).unwrap();
-    let adapt = AdaptSettings { tol: 0.15, max_unknowns: 100_000, ..Default::default() };
+    // Stopping on the bound, which refines deep enough for the loop's work to show.
+    let adapt = AdaptSettings { tol: 0.15, max_unknowns: 100_000, stop_on: StopOn::Bound, ..Default::default() };
     let out = problem.solve_adaptive(&Friction::Frictionless, &SolverSettings::default(), &adapt, None).unwrap();
     assert_eq!(out.stop, AdaptStop::Tolerance);
     assert_eq!(out.problem.dofs.n_floating(), 1);
