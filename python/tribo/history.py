@@ -10,7 +10,8 @@ writes its results:
 * ``history.csv``: per step, the obstacle's approach and shift, the load factor, the prescribed
   displacement components the history moves (one column each, named 'set.x'/'set.y'), the normal and
   tangential contact forces, the stick/slip/separation counts, the extents of the contact and stick
-  zones, and the step's error estimate η and relative traction estimate;
+  zones, and the step's error estimate η, relative traction estimate (the bound) and hierarchical estimate
+  (``traction_error_hierarchical``, NaN where the adaptive loop did not compute it);
 * ``history_loop.png``: the tangential force Q against the obstacle's tangential position s (for a
   fretting cycle, the hysteresis loop), and ``history_tractions.png``: λ_t against ±μλ_n at chosen steps.
 

@@ -159,13 +159,15 @@ pub(super) const NOISE: f64 = FixedPointSettings::DEFAULT_TOL;
 /// `noise` (the accuracy to which the solves determine λ) measures nothing: its q is a ratio of rounding, and
 /// it is left in the rest of Γ_C, where the factor 2 keeps it below the noise's double.
 pub(super) fn combine(difference: f64, ends: &[EndReduction], noise: f64) -> f64 {
+    // Squared in units of the difference, so that no unit of stress under- or overflows (defect D27).
+    let unit = if difference > 0.0 && difference.is_finite() { difference } else { 1.0 };
     // A NaN difference (an end that could not be measured) stays among the ends.
     let measured = || ends.iter().filter(|e| e.difference > noise || e.difference.is_nan());
-    let at_ends: f64 = measured().map(|e| e.difference.powi(2)).filter(|d| d.is_finite()).sum();
+    let at_ends: f64 = measured().map(|e| (e.difference / unit).powi(2)).filter(|d| d.is_finite()).sum();
     // Clamped without `max`, which would turn a NaN difference into 0.
-    let rest = difference.powi(2) - at_ends;
+    let rest = (difference / unit).powi(2) - at_ends;
     let rest = if rest < 0.0 { 0.0 } else { rest };
-    (4.0 * rest + measured().map(|e| e.estimate().powi(2)).sum::<f64>()).sqrt()
+    unit * (4.0 * rest + measured().map(|e| (e.estimate() / unit).powi(2)).sum::<f64>()).sqrt()
 }
 
 fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -201,18 +203,23 @@ pub fn multiplier_difference_on(
             p.multipliers.evaluate(v, x)
         }
     };
+    // Squared in units of the largest |λ|, so that no unit of stress overflows or underflows the squares
+    // (defect D27); the values are linear in λ.
+    let values = [&sa.lambda_n, &sa.lambda_t, &sb.lambda_n, &sb.lambda_t];
+    let scale = values.iter().flat_map(|v| v.iter()).fold(0.0_f64, |m, x| m.max(x.abs()));
+    let scale = if scale > 0.0 && scale.is_finite() { scale } else { 1.0 };
     let (mut diff, mut norm) = (0.0, 0.0);
     for w in breaks.windows(2) {
         let (half, mid) = (0.5 * (w[1] - w[0]), 0.5 * (w[0] + w[1]));
         for &(g, wg) in &GAUSS2 {
             let x = mid + half * g;
-            let (na, ta) = (at(a, &sa.lambda_n, x), at(a, &sa.lambda_t, x));
-            let (nb, tb) = (at(b, &sb.lambda_n, x), at(b, &sb.lambda_t, x));
+            let (na, ta) = (at(a, &sa.lambda_n, x) / scale, at(a, &sa.lambda_t, x) / scale);
+            let (nb, tb) = (at(b, &sb.lambda_n, x) / scale, at(b, &sb.lambda_t, x) / scale);
             diff += wg * half * ((na - nb).powi(2) + (ta - tb).powi(2));
             norm += wg * half * (nb * nb + tb * tb);
         }
     }
-    (diff.sqrt(), norm.sqrt())
+    (scale * diff.sqrt(), scale * norm.sqrt())
 }
 
 /// The triangles within `width` of the contact zone of `solution` (the span of the multiplier dofs not in
@@ -519,5 +526,15 @@ mod tests {
         // An end within the solves' accuracy measures nothing: it stays in the rest (2 d).
         assert_eq!(combine(5.0, &[end(1e-9, 3.0)], 1e-8), 10.0);
         assert!(combine(f64::NAN, &[], 0.0).is_nan());
+    }
+
+    #[test]
+    fn the_estimate_scales_with_the_multipliers_at_any_magnitude() {
+        // Defect D27: its squares underflowed to 0 for multipliers of about 1e-300 (E and the motion × 1e-150).
+        let at = |by: f64| combine(5.0 * by, &[end(4.0 * by, 0.75)], 0.0) / by;
+        let one = at(1.0);
+        for by in [1e-300, 1e-160, 1e160, 1e300] {
+            assert!((at(by) / one - 1.0).abs() < 1e-12, "× {by:e}: {}", at(by));
+        }
     }
 }

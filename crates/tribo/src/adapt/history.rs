@@ -107,7 +107,11 @@ impl Problem {
     /// touches in a step, the history is solved once more on the mesh enriched again at the ends, and that
     /// step's reduction there is measured. Each step's enriched solve starts from its own multipliers when
     /// every step was kept. The steps solved are the converged ones of `history`; the estimates carry the
-    /// enriched history's status, and a step it did not reach has a NaN estimate.
+    /// enriched history's status, and a step it did not reach has a NaN estimate. Every step of the enriched
+    /// histories is kept (about 2.6 times the unknowns of `history`'s): each must fit the memory budget less
+    /// the histories already held ([`History::estimated_bytes`]), or the estimate is refused with
+    /// [`Error::MemoryBudget`] (the adaptive loop then reads the bound). No estimate for a history
+    /// without a converged step.
     ///
     /// # Errors
     /// Those of [`crate::mesh::refine::bisect`], of the enriched problem and of its history
@@ -119,6 +123,9 @@ impl Problem {
         settings: &SolverSettings,
     ) -> Result<Vec<Hierarchical>> {
         let clock = Instant::now();
+        if history.records.is_empty() {
+            return Ok(Vec::new());
+        }
         let mut strip = vec![false; self.mesh.n_triangles()];
         for s in &history.solutions {
             let width = touching_width(self, s);
@@ -128,7 +135,10 @@ impl Problem {
         }
         let whole = !strip.contains(&true);
         let marked: Vec<usize> = (0..strip.len()).filter(|&t| whole || strip[t]).collect();
-        let (enriched, answer) = self.solve_enriched_history(history, &marked, friction, settings)?;
+        // The enriched histories keep every step while this one is held: each must fit what the budget leaves.
+        let steps = &history.steps[..history.records.len()];
+        let held = History::estimated_bytes(self, steps, 1);
+        let (enriched, answer) = self.solve_enriched_history(history, &marked, friction, settings, held)?;
         let regions: Vec<Vec<[f64; 2]>> = history.solutions.iter().map(|s| self.end_regions(s)).collect();
         let mut union: Vec<[f64; 2]> = regions.iter().flatten().copied().collect();
         union.sort_by(|a, b| a[0].total_cmp(&b[0]));
@@ -138,7 +148,8 @@ impl Problem {
             let friction = self.carried_friction(friction, &enriched);
             // The first enrichment's factorization is not needed again: the second history does not hold both.
             enriched.forget_factorization();
-            let twice = enriched.solve_enriched_history(&answer, &near, &friction, settings);
+            let held = held + History::estimated_bytes(&enriched, steps, 1);
+            let twice = enriched.solve_enriched_history(&answer, &near, &friction, settings, held);
             Some(twice.inspect_err(|e| {
                 log::warn!("the second enrichment at the ends of Γ_C failed ({e}): no estimate there");
             }))
@@ -167,7 +178,11 @@ impl Problem {
             let (difference, norm) = multiplier_difference(self, solution, &enriched, fine);
             let ends = match &twice {
                 None => Vec::new(),
-                Some(Err(_)) => vec![EndReduction { difference: f64::NAN, reduction: f64::INFINITY }],
+                // Not measured where this step touches an end: no estimate there.
+                Some(Err(_)) if !regions[i].is_empty() => {
+                    vec![EndReduction { difference: f64::NAN, reduction: f64::INFINITY }]
+                }
+                Some(Err(_)) => Vec::new(),
                 Some(Ok((p, h))) => {
                     let again = h.solution_of(k).filter(|_| h.status == SolveStatus::Converged);
                     self.reductions(&regions[i], (solution, (&enriched, fine)), again.map(|a| (p, a)))
@@ -192,12 +207,14 @@ impl Problem {
     /// The converged steps of `history` solved on this problem with the triangles `marked` bisected on all
     /// three edges (and the conforming closure), T_H refined where the FE edges under it were (keeping this
     /// problem's ratio H/h), every step kept; step k starts from step k's multipliers when every step was kept.
+    /// The memory budget is what `settings` gives less the `held` bytes of the histories kept meanwhile.
     fn solve_enriched_history(
         &self,
         history: &History,
         marked: &[usize],
         friction: &Friction,
         settings: &SolverSettings,
+        held: f64,
     ) -> Result<(Problem, History)> {
         let solutions: Vec<&Solution> = history.solutions.iter().collect();
         let enriched = self.enriched(&solutions, marked)?;
@@ -207,7 +224,8 @@ impl Problem {
         let starts: Vec<Vec<f64>> =
             if history.kept.len() == steps.len() { solutions.iter().map(carry).collect() } else { Vec::new() };
         let friction = self.carried_friction(friction, &enriched);
-        let every = SolverSettings { keep_every: 1, ..*settings };
+        let memory_budget = (settings.memory_budget as f64 - held).max(0.0) as usize;
+        let every = SolverSettings { keep_every: 1, memory_budget, ..*settings };
         let condensed = enriched.condense_with(every.stabilization, every.condensation, every.memory_budget)?;
         let answer = condensed.solve_history_from(&friction, steps, &every, None, &starts)?;
         drop(condensed);

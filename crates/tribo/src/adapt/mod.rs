@@ -67,7 +67,7 @@
 //! A refinement that would exceed `max_unknowns` is not made; the loop then stops with the last level
 //! and says so ([`AdaptStop::MaxUnknowns`]), as it does at `max_levels` or when a level does not converge.
 
-mod enriched;
+pub mod enriched;
 mod history;
 mod marking;
 mod multipliers;
@@ -307,9 +307,8 @@ impl Problem {
                             );
                             Vec::new()
                         });
-                        // The largest over the solutions (NaN, nothing touching in an enriched answer, as infinite).
-                        let largest = hs.iter().map(|h| if h.relative.is_nan() { f64::INFINITY } else { h.relative });
-                        let largest = largest.fold(0.0, f64::max);
+                        // For the log: the largest finite estimate over the solutions.
+                        let largest = hs.iter().map(|h| h.relative).filter(|r| r.is_finite()).fold(0.0, f64::max);
                         let reductions: Vec<f64> = hs.iter().flat_map(|h| h.end_reductions.iter().copied()).collect();
                         let (unknowns, seconds) = hs.first().map_or((0, 0.0), |h| (h.unknowns, h.seconds));
                         if hs.is_empty() {
@@ -320,6 +319,8 @@ impl Problem {
                                 levels.len(),
                                 h.status
                             );
+                            // Not tried again before the unknowns have grown fourfold.
+                            measured = Some((f64::INFINITY, level.unknowns));
                         } else if hs.iter().all(|h| !h.relative.is_finite()) {
                             log::info!(
                                 "level {}: the enrichment does not reduce the error at an end of Γ_C (reductions \
@@ -337,7 +338,9 @@ impl Problem {
                             );
                             (sharp.store)(&mut answer, &hs);
                             level = new_level(&problem, read(&answer), ended(&answer).0);
-                            measured = Some((largest / bound, level.unknowns));
+                            // What the level reads over the bound: a step without an estimate (nothing touches,
+                            // or not among those read) does not hold the ratio at infinity.
+                            measured = Some((level.relative / bound, level.unknowns));
                         }
                     }
                 }

@@ -111,7 +111,7 @@ pub struct ErrorEstimate {
     /// The hierarchical estimate of the traction error in L²(Γ_C) (λ_f the answer of the problem enriched
     /// near the contact zone by the adaptive loop with [`crate::settings::StopOn::Hierarchical`], or on the
     /// whole mesh by [`crate::Problem::solve_with_error_bars`]): `2 ‖λ_H − λ_f‖`, with the reduction
-    /// measured instead of assumed where the contact zone reaches an end of Γ_C (`crate::adapt::enriched`
+    /// measured instead of assumed where the contact zone reaches an end of Γ_C ([`crate::adapt::enriched`]
     /// derives it). Sharp where the bound ζ is pessimistic, but not a guaranteed bound; infinite where
     /// a measured reduction is 1 or more (no estimate). `None` unless it was computed (NaN by
     /// [`Self::named`]).
@@ -124,8 +124,8 @@ pub struct ErrorEstimate {
 }
 
 /// Estimates of the errors of what users read, each from the answer λ_H and the answer λ_f of the problem
-/// enriched on the whole mesh ([`crate::Problem::estimate_error_bars`]; `crate::adapt::enriched` derives them): the
-/// absolute errors of [`crate::Solution::normal_force`], [`crate::Solution::tangential_force`],
+/// enriched on the whole mesh ([`crate::Problem::estimate_error_bars`]; [`crate::adapt::enriched`] derives
+/// them): the absolute errors of [`crate::Solution::normal_force`], [`crate::Solution::tangential_force`],
 /// [`crate::Solution::contact_width`] and [`crate::Solution::stick_width`]. Like the hierarchical traction
 /// estimate, sharp but not guaranteed bounds.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]

@@ -79,8 +79,10 @@ pub struct AdaptKeywords {
 /// When the adaptive loop stops and how it marks and refines.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AdaptSettings {
-    /// The relative estimated error at which to stop: of the contact tractions
-    /// ([`crate::results::ErrorEstimate::traction_relative`]) when something touches, of the energy
+    /// The relative estimated error at which to stop: of the contact tractions when something touches (the
+    /// estimate [`AdaptSettings::stop_on`] names: by default the smaller of
+    /// [`crate::results::ErrorEstimate::traction_hierarchical_relative`], where the loop computed it, and
+    /// [`crate::results::ErrorEstimate::traction_relative`]), of the energy
     /// ([`crate::results::ErrorEstimate::energy_relative`]) when nothing does. Default 0.01.
     pub tol: f64,
     /// The most unknowns a level may have: a refinement that would exceed it is not made, and the loop

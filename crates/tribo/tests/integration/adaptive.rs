@@ -41,7 +41,8 @@ fn the_loop_finds_an_unknown_contact_zone() {
     let problem = off_centre_problem();
     let first = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
     assert!(first.normal_force == 0.0 && first.report.estimate.contact > 0.0, "no node touches at first");
-    let adapt = AdaptSettings { tol: 0.05, max_unknowns: 60_000, ..Default::default() };
+    // The bound: above the true error (the default stop reads the sharper hierarchical estimate, not a bound).
+    let adapt = AdaptSettings { tol: 0.05, max_unknowns: 60_000, stop_on: StopOn::Bound, ..Default::default() };
     let mut seen = Vec::new();
     let mut observer = |level: &Level| {
         seen.push(level.unknowns);
@@ -226,6 +227,28 @@ fn a_one_step_history_is_estimated_as_the_static_problem() -> Result<()> {
         for (a, b) in h.end_reductions.iter().zip(&one.end_reductions) {
             assert!((a - b).abs() <= 1e-6 * b.abs(), "reductions {a} and {b}");
         }
+    }
+    Ok(())
+}
+
+/// Defect D27 on the hierarchical path: the L²(Γ_C) difference of two multipliers scales with them at any
+/// magnitude (its squares are taken in units of the largest |λ|; they overflowed beyond about 1e154).
+#[test]
+fn the_multiplier_difference_scales_with_the_multipliers() -> Result<()> {
+    let problem = tribo_testkit::hertz_problem(0.02, 0.01, 0.0, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    let solution = problem.solve(&Friction::Coulomb { mu: 0.3 }, &SolverSettings::default(), None)?;
+    let scaled = |s: &Solution, by: f64| {
+        let mut s = s.clone();
+        s.lambda_n.iter_mut().chain(s.lambda_t.iter_mut()).for_each(|v| *v *= by);
+        s
+    };
+    let other = scaled(&solution, 1.1);
+    let (d, n) = tribo::adapt::multiplier_difference(&problem, &solution, &problem, &other);
+    assert!(d > 0.0 && (d / n - 0.1 / 1.1).abs() < 1e-12, "{d} {n}");
+    for by in [1e-300, 1e-200, 1e200, 1e300] {
+        let (ds, ns) =
+            tribo::adapt::multiplier_difference(&problem, &scaled(&solution, by), &problem, &scaled(&other, by));
+        assert!((ds / (by * d) - 1.0).abs() < 1e-12 && (ns / (by * n) - 1.0).abs() < 1e-12, "× {by}: {ds} {ns}");
     }
     Ok(())
 }
@@ -523,7 +546,8 @@ fn a_stop_on_max_unknowns_hands_back_an_answer_converged_to_fp_tol() {
     let problem =
         tribo_testkit::hertz_problem(0.01, 0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
     let (friction, settings) = (Friction::Coulomb { mu: 0.3 }, SolverSettings::default());
-    let adapt = AdaptSettings { tol: 1e-3, max_unknowns: 5_000, ..Default::default() };
+    // The bound: no level computes the hierarchical estimate, which solves a level strictly before it.
+    let adapt = AdaptSettings { tol: 1e-3, max_unknowns: 5_000, stop_on: StopOn::Bound, ..Default::default() };
     let out = problem.solve_adaptive(&friction, &settings, &adapt, None).expect("adapts");
     assert_eq!(out.stop, AdaptStop::MaxUnknowns);
     let sol = &out.solution;

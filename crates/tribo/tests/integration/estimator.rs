@@ -221,7 +221,7 @@ fn at_the_ends_of_gamma_c_in_contact_the_reduction_is_measured() {
     use tribo::adapt::multiplier_difference;
     let (coarse, mu) = tribo_testkit::block_problem(8, 2);
     let (friction, settings) = (Friction::Coulomb { mu }, SolverSettings::default());
-    let adapt = AdaptSettings { tol: 1e-9, max_unknowns: 120_000, ..Default::default() };
+    let adapt = AdaptSettings { tol: 1e-9, max_unknowns: 120_000, stop_on: StopOn::Bound, ..Default::default() };
     let reference = coarse.solve_adaptive(&friction, &settings, &adapt, None).expect("adapts");
     let level = reference.levels.iter().find(|l| l.unknowns >= 1_000).expect("a level of 1000 unknowns");
     let problem = coarse.on_level(level).expect("the level's problem");
