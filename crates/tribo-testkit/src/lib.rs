@@ -141,6 +141,29 @@ pub fn adaptive_case(name: &str) -> Result<AdaptiveCase> {
     Ok(AdaptiveCase { friction, reference: (run.problem, run.solution), reference_source, coarse })
 }
 
+/// The header of the `tol` tables of studies 13 and 13b (the examples `tol_table` and `history_tol`).
+pub const TOL_TABLE_HEADER: &str = "stop_on tol | true error  true/tol  unknowns  seconds | cheapest level reaching \
+     tol: unknowns seconds | time / cheapest | stop";
+
+/// A row of the `tol` tables: the stop and the asked `tol`, the true error reached, the run's unknowns and
+/// seconds, the cheapest level of the run whose true error is at most `tol` (unknowns, seconds to reach it)
+/// if any, and why the run stopped.
+pub fn tol_table_row(
+    (stop_on, tol): (StopOn, f64),
+    achieved: f64,
+    (unknowns, total): (usize, f64),
+    cheapest: Option<(usize, f64)>,
+    stop: AdaptStop,
+) -> String {
+    let (cn, ct) = cheapest.unwrap_or((0, f64::NAN));
+    format!(
+        "{:>12} {tol:<5} | {achieved:.3e} {:>8.3} {unknowns:>9} {total:>8.3} | {cn:>9} {ct:>8.3} | {:>6.2} | {stop}",
+        stop_on.as_str(),
+        achieved / tol,
+        total / ct,
+    )
+}
+
 /// The largest reference [`adaptive_case`] builds by the adaptive loop.
 pub const REFERENCE_UNKNOWNS: usize = 500_000;
 

@@ -47,10 +47,7 @@ fn main() -> Result<()> {
         pairs.map(|(s, r)| multiplier_difference(p, s, &reference, r)).map(|(e, n)| e / n).collect()
     };
     let worst = |errors: &[f64]| errors.iter().copied().fold(0.0, f64::max);
-    println!(
-        "stop_on tol | true error  true/tol  unknowns  seconds | cheapest level reaching tol: unknowns seconds \
-         | time / cheapest | stop"
-    );
+    println!("{}", tribo_testkit::TOL_TABLE_HEADER);
     let mut estimated = Vec::new();
     for stop_on in stops {
         for tol in [0.05, 0.02, 0.01, 0.005] {
@@ -80,14 +77,9 @@ fn main() -> Result<()> {
                     estimated.push((level.unknowns, worst(&errors), sharp / worst(&errors), ratios));
                 }
             }
-            let (cn, ct) = cheapest.unwrap_or((0, f64::NAN));
             println!(
-                "{:>12} {tol:<5} | {achieved:.3e} {:>8.3} {:>9} {total:>8.3} | {cn:>9} {ct:>8.3} | {:>6.2} | {}",
-                stop_on.as_str(),
-                achieved / tol,
-                run.problem.n_free,
-                total / ct,
-                run.stop
+                "{}",
+                tribo_testkit::tol_table_row((stop_on, tol), achieved, (run.problem.n_free, total), cheapest, run.stop)
             );
         }
     }

@@ -27,10 +27,7 @@ fn main() -> Result<()> {
         let (e, n) = multiplier_difference(p, s, &reference, &rsol);
         e / n
     };
-    println!(
-        "stop_on tol | true error  true/tol  unknowns  seconds | cheapest level reaching tol: unknowns seconds \
-         | time / cheapest | stop"
-    );
+    println!("{}", tribo_testkit::TOL_TABLE_HEADER);
     let mut effectivities = Vec::new();
     for stop_on in [StopOn::Bound, StopOn::Hierarchical] {
         for tol in [0.05, 0.02, 0.01, 0.005] {
@@ -55,14 +52,9 @@ fn main() -> Result<()> {
                     effectivities.push((level.unknowns, truth, sharp / truth, e.traction_relative / truth));
                 }
             }
-            let (cn, ct) = cheapest.map_or((0, f64::NAN), |(n, t)| (n, t));
             println!(
-                "{:>12} {tol:<5} | {achieved:.3e} {:>8.3} {:>9} {total:>8.3} | {cn:>9} {ct:>8.3} | {:>6.2} | {}",
-                stop_on.as_str(),
-                achieved / tol,
-                run.problem.n_free,
-                total / ct,
-                run.stop
+                "{}",
+                tribo_testkit::tol_table_row((stop_on, tol), achieved, (run.problem.n_free, total), cheapest, run.stop)
             );
         }
     }

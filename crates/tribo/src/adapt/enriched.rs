@@ -152,7 +152,7 @@ impl EndReduction {
 }
 
 /// The largest relative difference at an end of Γ_C that counts as the solves' noise (the default `fp_tol`).
-pub(super) const NOISE: f64 = FixedPointSettings::DEFAULT_TOL;
+const NOISE: f64 = FixedPointSettings::DEFAULT_TOL;
 
 /// `η_hier` from the difference `d` on all of Γ_C and the parts measured at its ends (the module
 /// documentation): `(4 (d² − Σ d_R²) + Σ (d_R / (1 − max(q_R, ½)))²)^½`. An end whose difference is at most
@@ -168,6 +168,14 @@ pub(super) fn combine(difference: f64, ends: &[EndReduction], noise: f64) -> f64
     let rest = (difference / unit).powi(2) - at_ends;
     let rest = if rest < 0.0 { 0.0 } else { rest };
     unit * (4.0 * rest + measured().map(|e| (e.estimate() / unit).powi(2)).sum::<f64>()).sqrt()
+}
+
+/// `η_hier` and `η_hier / ‖λ_f‖` (NaN when `norm` is 0) from the difference and the norm on Γ_C and the
+/// parts measured at the ends ([`combine`]), the noise being the solves' accuracy: `fp_tol`, never looser
+/// than the default (a loose `fp_tol` must not leave a singular end to the factor 2, below the truth there).
+pub(super) fn estimate_of(difference: f64, norm: f64, ends: &[EndReduction], fp_tol: f64) -> (f64, f64) {
+    let estimate = combine(difference, ends, fp_tol.min(NOISE) * norm);
+    (estimate, if norm > 0.0 { estimate / norm } else { f64::NAN })
 }
 
 fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -325,9 +333,7 @@ impl Problem {
             log::warn!("the second enrichment at the ends of Γ_C failed ({e}): no estimate there");
             vec![EndReduction { difference: f64::NAN, reduction: f64::INFINITY }]
         });
-        // The solves' accuracy, not looser than the default fp_tol whatever fp_tol was asked: a loose fp_tol
-        // must not leave a singular end to the factor 2, which is below the truth there.
-        let estimate = combine(difference, &ends, settings.fp.tol.min(NOISE) * norm);
+        let (estimate, relative) = estimate_of(difference, norm, &ends, settings.fp.tol);
         let error_bars = Some(ErrorBars {
             normal_force: 2.0 * (solution.normal_force - answer.normal_force).abs(),
             tangential_force: 2.0 * (solution.tangential_force - answer.tangential_force).abs(),
@@ -338,7 +344,7 @@ impl Problem {
             difference,
             norm,
             estimate,
-            relative: if norm > 0.0 { estimate / norm } else { f64::NAN },
+            relative,
             unknowns: enriched.n_free,
             status: answer.report.status,
             seconds: clock.elapsed().as_secs_f64(),

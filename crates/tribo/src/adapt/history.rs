@@ -5,7 +5,7 @@
 
 use std::time::Instant;
 
-use super::enriched::{combine, near_contact, touching_width, EndReduction, Hierarchical, NOISE};
+use super::enriched::{estimate_of, near_contact, touching_width, EndReduction, Hierarchical};
 use super::{multiplier_difference, AdaptStop, Level, LevelObserver, Sharp, Start};
 use crate::error::{Error, Result};
 use crate::problem::Problem;
@@ -188,12 +188,12 @@ impl Problem {
                     self.reductions(&regions[i], (solution, (&enriched, fine)), again.map(|a| (p, a)))
                 }
             };
-            let estimate = combine(difference, &ends, settings.fp.tol.min(NOISE) * norm);
+            let (estimate, relative) = estimate_of(difference, norm, &ends, settings.fp.tol);
             Hierarchical {
                 difference,
                 norm,
                 estimate,
-                relative: if norm > 0.0 { estimate / norm } else { f64::NAN },
+                relative,
                 unknowns,
                 status: answer.status,
                 seconds,
