@@ -17,8 +17,10 @@
 * ``result.vtu``, ``result_contact.vtu``, ``result_multipliers.vtu``: for ParaView; for two bodies also
   ``result.vtm``, a multiblock of one file per body (``result_<name>.vtu``), the contact fields on the
   secondary side;
-* ``contact_normal.png``, ``contact_tangential.png``, ``von_mises.png``, ``von_mises_contact.png``
-  (when matplotlib is installed; ``--no-plots`` skips them).
+* with ``--plots`` (when matplotlib is installed): ``contact_normal.png``, ``contact_tangential.png``,
+  ``von_mises.png``, ``von_mises_contact.png`` and the charts of a history or an adaptive loop. Without it
+  the run writes the data files only: a plot takes about a third of a second and matplotlib a second to load,
+  more than many solves (``docs/output_cost.md``).
 
 The run prints the status, the forces and the estimated error of the solve.
 
@@ -26,7 +28,8 @@ The run prints the status, the forces and the estimated error of the solve.
 Dask (``tribo.sweep``): ``DIR/results.parquet``, ``DIR/results.csv``, ``DIR/cases/<hash>/`` per case and,
 with ``--plot COLUMN``, ``DIR/sweep_COLUMN.png``; exit 0 when every case converged, 3 when one did not.
 
-``tribo demo [--out DIR]`` runs the built-in scene (``tribo/scenes/demo.toml``) into ``tribo-demo-out``.
+``tribo demo [--out DIR] [--no-plots]`` runs the built-in scene (``tribo/scenes/demo.toml``) into
+``tribo-demo-out``, with its plots.
 
 Progress (the condensation's time, then per QP: fixed-point iteration, change of λ_n, QP iterations and
 time) is logged to stderr; a scene that is probably not what was meant (``tribo.checks``) prints a line
@@ -208,7 +211,8 @@ def build_parser() -> argparse.ArgumentParser:
     run = sub.add_parser("run", help="solve a TOML scene and write its results")
     run.add_argument("scene", type=Path, help="scene file (TOML)")
     run.add_argument("--out", type=Path, required=True, help="output directory")
-    run.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
+    run.add_argument("--plots", action=argparse.BooleanOptionalAction, default=False,
+                     help="draw the PNG plots too (default: the data files only, for ParaView, pandas, JSON)")
     sw = sub.add_parser("sweep", help="run a scene over axes of parameters on Dask (pip install 'tribo[sweep]')")
     sw.add_argument("scene", type=Path, help="scene file (TOML)")
     sw.add_argument("--set", dest="axes", action="append", default=[], metavar="KEY=V1,V2,…",
@@ -225,7 +229,8 @@ def build_parser() -> argparse.ArgumentParser:
                     help="draw COLUMN over the axes into sweep_COLUMN.png (repeat)")
     demo = sub.add_parser("demo", help="run the built-in demo scene")
     demo.add_argument("--out", type=Path, default=Path("tribo-demo-out"), help="output directory (tribo-demo-out)")
-    demo.add_argument("--no-plots", action="store_true", help="skip the PNG plots")
+    demo.add_argument("--plots", action=argparse.BooleanOptionalAction, default=True,
+                      help="draw the PNG plots (default: yes)")
     return parser
 
 
@@ -241,7 +246,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         if args.command == "sweep":
             return _sweep(args)
-        return _run(scene, args.out, not args.no_plots)
+        return _run(scene, args.out, args.plots)
     except KeyboardInterrupt:
         print("tribo: interrupted", file=sys.stderr)
         return 130

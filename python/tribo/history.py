@@ -25,7 +25,9 @@ from __future__ import annotations
 import csv
 import logging
 import math
+import os
 from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import Any
 from xml.sax.saxutils import quoteattr
@@ -41,6 +43,8 @@ __all__ = ["MAX_VTU_STEPS", "history_table", "vtu_steps", "write_history", "writ
 
 # The most steps whose VTU files a history writes unless told otherwise (three files per step).
 MAX_VTU_STEPS = 200
+# The most threads writing a history's step files at once (never more than the cores).
+WRITERS = 8
 
 log = logging.getLogger("tribo")
 
@@ -115,10 +119,15 @@ def write_history(out: str | Path, problem: Problem, history: History, *, plots:
                  len(history), vtu_every(len(history), every))
     if steps:
         (out / "steps").mkdir(exist_ok=True)
-    for k in steps:
-        vtu = write_vtu(out / "steps" / f"step_{k:04d}.vtu", problem, history.solution(k), per_body=False)
-        for part, p in zip(series, vtu, strict=True):
-            part.append(p)
+
+    def write(k: int) -> list[Path]:
+        return write_vtu(out / "steps" / f"step_{k:04d}.vtu", problem, history.solution(k), per_body=False)
+
+    # A step's files are mostly zlib compression, which releases the GIL: the steps are written side by side.
+    with ThreadPoolExecutor(max_workers=min(WRITERS, os.cpu_count() or 1)) as pool:
+        for vtu in pool.map(write, steps):
+            for part, p in zip(series, vtu, strict=True):
+                part.append(p)
     files = [p for part in series for p in part]
     for name, part in zip(("result", "result_contact", "result_multipliers"), series, strict=True):
         files.append(write_pvd(out / f"{name}.pvd", part, steps))

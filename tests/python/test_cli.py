@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import tribo
-from tribo.cli import main
+from tribo.cli import build_parser, main
 from tribo.scene import SceneError, demo_scene_path, load_scene, parse_scene
 
 SCENE = """
@@ -93,6 +93,28 @@ def test_run_scene_subprocess(tmp_path: Path) -> None:
     assert summary["friction"] == "tresca" and summary["space"] == "P0"
     assert summary["gamma0"] == pytest.approx(0.3 * summary["gamma0_bound"])
     assert not (tmp_path / "o" / "contact_normal.png").exists()
+
+
+def test_run_draws_plots_only_when_asked(tmp_path: Path) -> None:
+    """Issue 38 (output cost): `tribo run` writes the data files by default, the plots with --plots; the files
+    it lists are the files it wrote, and the VTU file written beside the others is whole."""
+    import meshio
+
+    scene = tmp_path / "tresca.toml"
+    scene.write_text(SCENE)
+    plots = ["contact_normal.png", "contact_tangential.png", "von_mises.png", "von_mises_contact.png"]
+    for args, drawn in (([], False), (["--plots"], True), (["--no-plots"], False)):
+        out = tmp_path / f"o{len(args)}{drawn}"
+        assert main(["-q", "run", str(scene), "--out", str(out), *args]) == 0
+        assert all((out / name).is_file() == drawn for name in plots)
+        written = sorted(f.name for f in out.iterdir())
+        assert written == sorted(["summary.json", "contact.csv", "contact_nodes.csv", "contact_edges.csv", "result.vtu",
+                                  "result_contact.vtu", "result_multipliers.vtu", *(plots if drawn else [])])
+        assert len(meshio.read(out / "result.vtu").cells_dict["triangle"]) == json.loads(
+            (out / "summary.json").read_text())["mesh"]["triangles"]
+    # The demo draws its plots unless told not to.
+    assert build_parser().parse_args(["demo"]).plots and not build_parser().parse_args(["demo", "--no-plots"]).plots
+    assert not build_parser().parse_args(["run", "s.toml", "--out", "o"]).plots
 
 
 def test_scene_friction_levels() -> None:
@@ -406,7 +428,7 @@ def test_run_adapts_a_scene_with_an_adapt_table(tmp_path: Path) -> None:
 
     path = tmp_path / "a.toml"
     path.write_text(ADAPT_SCENE, encoding="utf-8")
-    assert main(["run", str(path), "--out", str(tmp_path / "o")]) == 0
+    assert main(["run", str(path), "--out", str(tmp_path / "o"), "--plots"]) == 0
     with (tmp_path / "o" / "adapt.csv").open(encoding="utf-8") as f:
         assert f.readline().startswith("# stop: tolerance")
         rows = list(csv.DictReader(f))

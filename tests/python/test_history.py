@@ -196,7 +196,7 @@ def _small_fretting(tmp_path: Path, extra: str = "") -> str:
 def test_run_writes_a_time_series(tmp_path: Path) -> None:
     _small_fretting(tmp_path)
     out = tmp_path / "out"
-    assert main(["-q", "run", str(tmp_path / "fretting.toml"), "--out", str(out)]) == 0
+    assert main(["-q", "run", str(tmp_path / "fretting.toml"), "--out", str(out), "--plots"]) == 0
     pvd = ET.parse(out / "result.pvd").getroot()
     files = [d.get("file") for d in pvd.iter("DataSet")]
     assert files == [f"steps/step_{k:04d}.vtu" for k in range(7)]

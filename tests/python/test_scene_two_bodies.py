@@ -85,7 +85,7 @@ def test_run_writes_one_file_per_body_and_a_multiblock(tmp_path: Path) -> None:
 
 def test_the_two_body_fretting_scene_traces_a_loop(tmp_path: Path) -> None:
     out = tmp_path / "out"
-    assert main(["-q", "run", str(scene_path("fretting_two_bodies")), "--out", str(out)]) == 0
+    assert main(["-q", "run", str(scene_path("fretting_two_bodies")), "--out", str(out), "--plots"]) == 0
     with (out / "history.csv").open(encoding="utf-8") as f:
         rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
     assert len(rows) == 34

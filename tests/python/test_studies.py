@@ -292,6 +292,17 @@ def test_history_memory(tmp_path: Path) -> None:
     assert math.isclose(rows[1]["estimate_mb"], 2 * rows[0]["estimate_mb"], rel_tol=0.02)
 
 
+def test_output_cost(tmp_path: Path) -> None:
+    """Study 19 smoke: one `tribo run` in its own process, its logged solve and writing times and its files read."""
+    rows = study("study_output_cost").main(["--smoke", "--out", str(tmp_path)])
+    for ext in ("md", "csv"):
+        assert (tmp_path / f"output_cost.{ext}").stat().st_size > 0
+    (row,) = rows
+    assert row["plots"] == "no" and row["files"] == 8 and row["megabytes"] > 0 and row["unknowns"] > 0
+    assert 0 <= row["write_seconds"] <= row["run_seconds"] and 0 < row["solve_seconds"] < row["run_seconds"]
+    assert row["share"] == row["write_seconds"] / row["run_seconds"]
+
+
 def test_every_study_table_reads_as_a_table() -> None:
     """Every CSV under docs/ has as many fields in each row as in its header when read as CSV (pandas reads
     them so); a value holding a comma ("adaptive, hierarchical stop") is quoted, which it was not."""
