@@ -4,7 +4,7 @@ The demo: a cylinder indenting a block with Coulomb friction
 
 ``tribo demo`` runs ``scenes/demo.toml``: a rigid cylinder (R = 1) pushed 0.01 into a block and shifted
 0.004 along it, Coulomb friction μ = 0.3, the mesh refined adaptively until the estimated error of the
-contact tractions is below 10 %. The same from Python, with the contact pressure and the friction stress
+contact tractions is below 1 %. The same from Python, with the contact pressure and the friction stress
 against its bound μλ_n.
 """
 

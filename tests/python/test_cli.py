@@ -67,6 +67,17 @@ def test_demo_scene_runs_in_process(tmp_path: Path, capsys: pytest.CaptureFixtur
     assert summary["stick_width"] == pytest.approx(s1 - s0, rel=0.05) and 0 < s0 < s1 < c1
     for name in ("contact.csv", "result.vtu", "result_contact.vtu", "contact_normal.png", "von_mises.png"):
         assert (tmp_path / "demo" / name).stat().st_size > 0
+    # Issue 36, item 3: the demo prints its error bars, and those of P and Q cover the reference values its
+    # description states (466k unknowns, graded).
+    assert re.search(r"P = 0\.8546\d* ± 0\.002\d*, Q = ", out.out), out.out
+    said = re.findall(r"(P|Q) = (−?[0-9.]+) ± ([0-9.]+) where the reference has (−?[0-9.]+)|"
+                      r"(Q) = (−?[0-9.]+) ± ([0-9.]+) \(reference (−?[0-9.]+)\)",
+                      " ".join(load_scene(demo_scene_path()).description.split()))
+    stated = {m[0] or m[4]: [float(v.replace("−", "-")) for v in (m[1:4] if m[0] else m[5:8])] for m in said}
+    for name, key in (("P", "normal_force"), ("Q", "tangential_force")):
+        value, bar, reference = stated[name]
+        assert summary[key] == pytest.approx(value, abs=1e-4) and est[f"{key}_error"] == pytest.approx(bar, rel=0.05)
+        assert abs(summary[key] - reference) <= est[f"{key}_error"]
 
 
 def test_demo_scene_is_the_documented_one() -> None:
@@ -93,6 +104,19 @@ def test_run_scene_subprocess(tmp_path: Path) -> None:
     assert summary["friction"] == "tresca" and summary["space"] == "P0"
     assert summary["gamma0"] == pytest.approx(0.3 * summary["gamma0_bound"])
     assert not (tmp_path / "o" / "contact_normal.png").exists()
+
+
+def test_run_says_how_to_get_error_bars(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """A solve without error bars says how to ask for them; with them, it prints them instead."""
+    scene = tmp_path / "tresca.toml"
+    scene.write_text(SCENE)
+    assert main(["-q", "run", str(scene), "--out", str(tmp_path / "o")]) == 0
+    printed = capsys.readouterr().out
+    assert "set error_bars = true in [estimate]" in printed and " ± " not in printed
+    scene.write_text(SCENE + "[estimate]\nerror_bars = true\n")
+    assert main(["-q", "run", str(scene), "--out", str(tmp_path / "b")]) == 0
+    printed = capsys.readouterr().out
+    assert "set error_bars" not in printed and re.search(r"P = [0-9.e+-]+ ± [0-9.e+-]+, Q = ", printed)
 
 
 def test_run_draws_plots_only_when_asked(tmp_path: Path) -> None:
