@@ -74,7 +74,7 @@
 //! Study 14 (`docs/error_bars.md`, the example `error_bars`) measures their effectivity against a reference.
 
 use crate::contact::mortar::GAUSS2;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::mesh::refine::bisect;
 use crate::problem::Problem;
 use crate::results::{ContactState, ErrorBars, Solution, SolveStatus, Zone};
@@ -184,7 +184,8 @@ fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
 
 /// The L²(Γ_C) norms of `λ_a − λ_b` and of `λ_b`, normal and tangential together, for the multipliers
 /// of two problems on one Γ_C line (each on its own T_H): Gauss on the union of both T_H's points,
-/// exact for piecewise linear multipliers. Beyond a T_H a multiplier is 0.
+/// exact for piecewise linear multipliers. Beyond a T_H a multiplier is 0. NaN where a solution is not of its
+/// problem (fewer values than the problem's multiplier dofs).
 pub fn multiplier_difference(a: &Problem, sa: &Solution, b: &Problem, sb: &Solution) -> (f64, f64) {
     multiplier_difference_on(a, sa, b, sb, f64::NEG_INFINITY, f64::INFINITY)
 }
@@ -467,7 +468,8 @@ impl Problem {
     /// `solution`'s multipliers.
     ///
     /// # Errors
-    /// Those of [`crate::mesh::refine::bisect`], of the new problem and of its solve.
+    /// [`Error::BadSetting`] named `solution` when `solution` is not of this problem; those of
+    /// [`crate::mesh::refine::bisect`], of the new problem and of its solve.
     pub fn solve_enriched(
         &self,
         solution: &Solution,
@@ -475,11 +477,39 @@ impl Problem {
         friction: &Friction,
         settings: &SolverSettings,
     ) -> Result<(Problem, Solution)> {
+        self.check_solution_of(solution)?;
         let enriched = self.enriched(&[solution], marked)?;
         let start = [self.carried(&solution.lambda_n, &enriched), self.carried(&solution.lambda_t, &enriched)].concat();
         let friction = self.carried_friction(friction, &enriched);
         let answer = super::solve_level(&enriched, &friction, settings, Some(&start))?;
         Ok((enriched, answer))
+    }
+
+    /// Refuses `solution` when it is not a solution of this problem (its multiplier dofs, Γ_C nodes or
+    /// displacements are not as many as this problem's): the estimates read it at this problem's dofs.
+    ///
+    /// # Errors
+    /// [`Error::BadSetting`] named `solution`.
+    pub(super) fn check_solution_of(&self, solution: &Solution) -> Result<()> {
+        let (q, nodes, dofs) = (self.n_multipliers(), self.contact.node_xi.len(), 2 * self.mesh.n_nodes());
+        let multipliers = [solution.lambda_n.len(), solution.lambda_t.len(), solution.states.len()];
+        if multipliers.iter().all(|&n| n == q)
+            && solution.node_abscissae.len() == nodes
+            && solution.displacement.len() == dofs
+        {
+            return Ok(());
+        }
+        Err(Error::BadSetting {
+            name: "solution",
+            value: solution.lambda_n.len() as f64,
+            what: format!(
+                "is not a solution of this problem: it has {} multiplier dofs, {} Γ_C nodes and {} displacements, \
+                 the problem {q}, {nodes} and {dofs}",
+                solution.lambda_n.len(),
+                solution.node_abscissae.len(),
+                solution.displacement.len()
+            ),
+        })
     }
 
     /// This problem with the triangles `marked` bisected on all three edges (and the conforming closure), T_H

@@ -114,7 +114,8 @@ impl Problem {
     /// without a converged step.
     ///
     /// # Errors
-    /// Those of [`crate::mesh::refine::bisect`], of the enriched problem and of its history
+    /// [`Error::BadSetting`] named `history` or `solution` when `history` is not a history of this problem;
+    /// those of [`crate::mesh::refine::bisect`], of the enriched problem and of its history
     /// ([`Problem::solve_history`]).
     pub fn estimate_history_hierarchical(
         &self,
@@ -126,6 +127,7 @@ impl Problem {
         if history.records.is_empty() {
             return Ok(Vec::new());
         }
+        self.check_history_of(history)?;
         let mut strip = vec![false; self.mesh.n_triangles()];
         for s in &history.solutions {
             let width = touching_width(self, s);
@@ -202,6 +204,28 @@ impl Problem {
             }
         };
         Ok(history.kept.iter().enumerate().map(estimate).collect())
+    }
+
+    /// Refuses a history that is not of this problem: its solutions ([`Problem::check_solution_of`]), and
+    /// its records, kept steps and solutions as many as one another say.
+    fn check_history_of(&self, history: &History) -> Result<()> {
+        let kept_fit =
+            history.kept.len() == history.solutions.len() && history.kept.iter().all(|&k| k < history.records.len());
+        if history.records.len() > history.steps.len() || !kept_fit {
+            return Err(Error::BadSetting {
+                name: "history",
+                value: history.records.len() as f64,
+                what: format!(
+                    "is not a history as solve_history returns it: {} records of {} steps, {} kept steps for {} \
+                     solutions",
+                    history.records.len(),
+                    history.steps.len(),
+                    history.kept.len(),
+                    history.solutions.len()
+                ),
+            });
+        }
+        history.solutions.iter().try_for_each(|s| self.check_solution_of(s))
     }
 
     /// The converged steps of `history` solved on this problem with the triangles `marked` bisected on all

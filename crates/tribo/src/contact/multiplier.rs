@@ -149,11 +149,12 @@ impl MultiplierMesh {
         }
     }
 
-    /// Value at `xi` of the multiplier with dof values `values`.
+    /// Value at `xi` of the multiplier with dof values `values` (NaN where `values` lacks a dof it needs: a
+    /// vector of another multiplier mesh).
     pub fn evaluate(&self, values: &[f64], xi: f64) -> f64 {
         let k = self.xi.partition_point(|&x| x <= xi).clamp(1, self.n_segments()) - 1;
         let (b, nb) = self.basis(k, xi);
-        b[..nb].iter().map(|&(j, v)| v * values[j]).sum()
+        b[..nb].iter().map(|&(j, v)| v * values.get(j).copied().unwrap_or(f64::NAN)).sum()
     }
 }
 

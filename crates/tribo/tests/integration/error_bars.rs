@@ -70,3 +70,49 @@ fn bars_come_only_from_the_whole_mesh_and_only_when_asked_for() {
     assert_eq!((nothing.normal_force, nothing.contact_width(), nothing.contact_zone()), (0.0, 0.0, None));
     assert_eq!([bars.normal_force, bars.tangential_force, bars.contact_width, bars.stick_width], [0.0; 4]);
 }
+
+/// A solution or a history of another problem is refused by name, never read at this problem's dofs (the
+/// enriched problem indexed its multipliers and Γ_C nodes: a solution of a coarser problem panicked); the
+/// difference of two problems' multipliers with a mismatched solution reads NaN.
+#[test]
+fn a_solution_of_another_problem_is_refused() {
+    use tribo::adapt::{multiplier_difference, Hierarchical};
+    let (problem, friction) = partial_slip();
+    let settings = SolverSettings::default();
+    let s = tribo_testkit::hertz_scene();
+    let coarse =
+        tribo_testkit::hertz_problem(0.08, s.approach, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    let theirs = coarse.solve(&friction, &settings, None).expect("solves");
+    assert_ne!(coarse.n_multipliers(), problem.n_multipliers());
+    let refused = |r: Result<Hierarchical>| match r {
+        Err(Error::BadSetting { name: "solution", what, .. }) => {
+            assert!(what.contains("not a solution of this problem"))
+        }
+        other => panic!("expected BadSetting(solution), got {other:?}"),
+    };
+    refused(problem.estimate_hierarchical(&theirs, &friction, &settings));
+    refused(problem.estimate_error_bars(&theirs, &friction, &settings));
+    let all: Vec<usize> = (0..problem.mesh.n_triangles()).collect();
+    assert!(matches!(
+        problem.solve_enriched(&theirs, &all, &friction, &settings),
+        Err(Error::BadSetting { name: "solution", .. })
+    ));
+    // A frictionless solution of the same problem is its own (λ_t of zeros): accepted.
+    let own = problem.solve(&Friction::Frictionless, &settings, None).expect("solves");
+    assert!(problem.estimate_hierarchical(&own, &Friction::Frictionless, &settings).is_ok());
+    // Histories: another problem's, and one whose parts do not fit together.
+    let steps = [LoadStep::new(s.approach, 0.002)];
+    let history = coarse.solve_history(&friction, &steps, &settings, None).expect("solves");
+    match problem.estimate_history_hierarchical(&history, &friction, &settings) {
+        Err(Error::BadSetting { name: "solution", .. }) => {}
+        other => panic!("expected BadSetting(solution), got {other:?}"),
+    }
+    let mut broken = problem.solve_history(&friction, &steps, &settings, None).expect("solves");
+    broken.kept.push(7);
+    match problem.estimate_history_hierarchical(&broken, &friction, &settings) {
+        Err(Error::BadSetting { name: "history", .. }) => {}
+        other => panic!("expected BadSetting(history), got {other:?}"),
+    }
+    let (d, n) = multiplier_difference(&problem, &theirs, &coarse, &theirs);
+    assert!(d.is_nan() && n.is_finite());
+}
