@@ -11,13 +11,16 @@
 //! at most X with the time the run took to reach it; then, per level where the hierarchical estimate was
 //! computed, its effectivity (estimate over true error) beside the bound's.
 //!
-//! `cargo run --release -p tribo --example tol_table [CASE]` (a few minutes: the reference solve and the
-//! re-solves of the levels are most of it).
+//! `cargo run --release -p tribo --example tol_table [CASE [STOPS]]` (a few minutes: the reference solve and
+//! the re-solves of the levels are most of it; STOPS a comma-separated list of `bound`, `hierarchical`, both
+//! by default).
 use tribo::adapt::multiplier_difference;
 use tribo::*;
 
 fn main() -> Result<()> {
     let name = std::env::args().nth(1).unwrap_or_else(|| "hertz".into());
+    let stops = std::env::args().nth(2).unwrap_or_else(|| "bound,hierarchical".into());
+    let stops: Vec<StopOn> = stops.split(',').map(|s| Choice::parse(s.trim())).collect::<Result<_>>()?;
     let case = tribo_testkit::adaptive_case(&name)?;
     let (friction, coarse) = (case.friction, case.coarse);
     let (reference, rsol) = case.reference;
@@ -29,7 +32,7 @@ fn main() -> Result<()> {
     };
     println!("{}", tribo_testkit::TOL_TABLE_HEADER);
     let mut effectivities = Vec::new();
-    for stop_on in [StopOn::Bound, StopOn::Hierarchical] {
+    for stop_on in stops {
         for tol in [0.05, 0.02, 0.01, 0.005] {
             let adapt = AdaptSettings { tol, stop_on, max_unknowns: 400_000, ..AdaptSettings::default() };
             let run = coarse.solve_adaptive(&friction, &settings, &adapt, None)?;

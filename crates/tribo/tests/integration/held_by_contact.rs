@@ -378,6 +378,40 @@ fn a_history_that_unloads_a_body_held_by_the_contact_says_why_it_stops() {
     }
 }
 
+/// Defect D30: a block held only by the contact (pressed by a traction, no support), dragged by the obstacle
+/// (μ = 0.3, no tangential load), follows the obstacle in one static solve; as a history of two or three steps
+/// its last step ended `stagnated`, the change of λ_n between two QPs at clarabel's noise (3e-8 to 2e-6) while
+/// the iterate met Coulomb's law to 5e-12. It converges now, to the static answer; a fixed point that cycles
+/// is still reported (`hertz.rs`, `a_cycling_fixed_point_is_reported_as_stagnated`).
+#[test]
+fn a_history_drags_a_body_held_by_the_contact_as_the_static_solve_does() {
+    let problem = block_on_foundation(vec![], [0.0, -2.0]);
+    let (coulomb, settings) = (Friction::Coulomb { mu: 0.3 }, SolverSettings::default());
+    let dragged = |s: f64| LoadStep::new(0.0, s);
+    let static_problem = Problem::new(
+        problem.mesh.clone(),
+        ProblemSpec { obstacle: Obstacle { shift: 0.002, ..problem.spec.obstacle.clone() }, ..problem.spec.clone() },
+    )
+    .unwrap();
+    let alone = static_problem.solve(&coulomb, &settings, None).unwrap();
+    assert_eq!(alone.report.status, SolveStatus::Converged);
+    let mean_ux = |s: &Solution| s.displacement.iter().step_by(2).sum::<f64>() / (s.displacement.len() / 2) as f64;
+    assert!((mean_ux(&alone) - 0.002).abs() <= 1e-9, "the block follows the obstacle: {}", mean_ux(&alone));
+    for shifts in [vec![0.0, 0.002], vec![0.0, 0.001, 0.002]] {
+        let steps: Vec<LoadStep> = shifts.iter().map(|&s| dragged(s)).collect();
+        let history = problem.solve_history(&coulomb, &steps, &settings, None).unwrap();
+        assert_eq!(history.status, SolveStatus::Converged, "{shifts:?}");
+        let last = history.solutions.last().unwrap();
+        assert!(last.kkt.max() <= settings.fp.tol, "{:?}", last.kkt);
+        assert!((mean_ux(last) - 0.002).abs() <= 1e-9, "{shifts:?}: {}", mean_ux(last));
+        let scale = max_abs(&alone.lambda_n);
+        for (a, b) in [(&last.lambda_n, &alone.lambda_n), (&last.lambda_t, &alone.lambda_t)] {
+            let d = a.iter().zip(b).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()));
+            assert!(d <= 1e-5 * scale, "{shifts:?}: λ differs from the static answer by {d:e}");
+        }
+    }
+}
+
 /// A frictionless history that ramps the load is path independent: each step equals the static solve of
 /// its load (the equilibrium's load scales with the step's load factor).
 #[test]
