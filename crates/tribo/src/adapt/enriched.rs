@@ -256,7 +256,7 @@ pub fn near_contact(problem: &Problem, solution: &Solution, width: f64) -> Vec<u
 
 /// The first and last abscissae of the multiplier dofs of `solution` not in separation
 /// ([`Solution::states`]: an interior-point answer has no exact zeros), `None` when nothing touches.
-fn touching_span(problem: &Problem, solution: &Solution) -> Option<(f64, f64)> {
+pub(super) fn touching_span(problem: &Problem, solution: &Solution) -> Option<(f64, f64)> {
     let dofs = problem.multipliers.dof_abscissae();
     let touching = dofs.iter().zip(&solution.states).filter(|(_, c)| **c != ContactState::Separation);
     touching.fold(None, |span, (&x, _)| Some(span.map_or((x, x), |(lo, hi): (f64, f64)| (lo.min(x), hi.max(x)))))

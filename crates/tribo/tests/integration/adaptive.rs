@@ -231,6 +231,27 @@ fn a_one_step_history_is_estimated_as_the_static_problem() -> Result<()> {
     Ok(())
 }
 
+/// A step of a history with one multiplier dof touching has no contact width to enrich within: as for a
+/// static solve, the whole mesh is enriched (it gave no strip of its own, and its estimate read the other
+/// steps' strips).
+#[test]
+fn a_history_step_touching_at_one_dof_enriches_the_whole_mesh() -> Result<()> {
+    let problem = tribo_testkit::hertz_problem(0.04, 0.01, 0.0, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    let (friction, settings) = (Friction::Coulomb { mu: 0.3 }, SolverSettings::default());
+    let steps = [LoadStep::new(1e-3, 0.0), LoadStep::new(0.01, 0.0)];
+    let history = problem.solve_history(&friction, &steps, &settings, None)?;
+    assert_eq!(history.status, SolveStatus::Converged);
+    let touching = |s: &Solution| s.states.iter().filter(|c| **c != ContactState::Separation).count();
+    let counts: Vec<usize> = history.solutions.iter().map(touching).collect();
+    assert!(counts[0] == 1 && counts[1] >= 5, "touching dofs per step: {counts:?}");
+    let whole = problem.estimate_hierarchical(&history.solutions[0], &friction, &settings)?;
+    let strip = problem.estimate_hierarchical(&history.solutions[1], &friction, &settings)?;
+    assert!(whole.unknowns > 3 * problem.n_free && strip.unknowns < whole.unknowns, "{whole:?} {strip:?}");
+    let each = problem.estimate_history_hierarchical(&history, &friction, &settings)?;
+    assert!(each.iter().all(|h| h.unknowns == whole.unknowns), "{each:?}");
+    Ok(())
+}
+
 /// Defect D27 on the hierarchical path: the L²(Γ_C) difference of two multipliers scales with them at any
 /// magnitude (its squares are taken in units of the largest |λ|; they overflowed beyond about 1e154).
 #[test]
