@@ -8,8 +8,8 @@ mesh is the refined one):
   stops on (of the contact tractions, or of the energy while nothing touches), the estimate η with its
   bulk, Γ_C, contact and friction parts, the traction bound and (where ``stop_on = "hierarchical"``
   computed it) the hierarchical traction estimate, the level's seconds and status;
-* ``adapt.png``: the relative estimate, the bound and the hierarchical estimate, and η against the
-  unknowns (log-log), with the tolerance;
+* ``adapt.png`` (``tribo run --plots``): the relative estimate, the bound and the hierarchical estimate,
+  and η against the unknowns (log-log), with the tolerance;
 * ``levels/level_NNN.vtu`` and ``adapt.pvd`` (``write_levels``, only with the scene's ``[adapt]
   write_levels = true``: the loop keeps no level's solution, so each level is solved again, to full
   tolerance, for a history the whole history with its last step written; it costs about what the loop

@@ -10,7 +10,7 @@
   (``process_peak_memory_mb``, MiB, Linux's VmHWM; null where the platform does not report it),
   warnings, and the conventions (n, t, the direction of ξ, the signs of λ_t, of the shift and of the
   forces);
-* ``adapt.csv`` and ``adapt.png`` for a scene with ``[adapt]`` (the outputs above are then the last
+* ``adapt.csv`` (and with ``--plots`` ``adapt.png``) for a scene with ``[adapt]`` (the outputs above are then the last
   level's, on its refined mesh; see ``tribo.adaptive``), and with ``write_levels = true`` the level series
   ``levels/level_NNN.vtu`` with ``adapt.pvd``;
 * ``contact.csv`` (per multiplier dof), ``contact_nodes.csv``, ``contact_edges.csv``: the contact fields;

@@ -12,8 +12,9 @@ writes its results:
   tangential contact forces, the stick/slip/separation counts, the extents of the contact and stick
   zones, and the step's error estimate η, relative traction estimate (the bound) and hierarchical estimate
   (``traction_error_hierarchical``, NaN where the adaptive loop did not compute it);
-* ``history_loop.png``: the tangential force Q against the obstacle's tangential position s (for a
-  fretting cycle, the hysteresis loop), and ``history_tractions.png``: λ_t against ±μλ_n at chosen steps.
+* with ``tribo run --plots``, ``history_loop.png``: the tangential force Q against the obstacle's
+  tangential position s (for a fretting cycle, the hysteresis loop), and ``history_tractions.png``: λ_t
+  against ±μλ_n at chosen steps.
 
 Conventions: s is the obstacle's position along the tangent t = (−n₂, n₁) of Γ_C (n the outward normal),
 Q = ∫λ_t is the tangential force along t, and abscissae run as ``tribo.checks.abscissa_description`` says
@@ -123,11 +124,17 @@ def write_history(out: str | Path, problem: Problem, history: History, *, plots:
     def write(k: int) -> list[Path]:
         return write_vtu(out / "steps" / f"step_{k:04d}.vtu", problem, history.solution(k), per_body=False)
 
-    # A step's files are mostly zlib compression, which releases the GIL: the steps are written side by side.
-    with ThreadPoolExecutor(max_workers=min(WRITERS, os.cpu_count() or 1)) as pool:
-        for vtu in pool.map(write, steps):
-            for part, p in zip(series, vtu, strict=True):
-                part.append(p)
+    # A step's files are mostly zlib compression, which releases the GIL: the steps are written side by side,
+    # on the cores this process may use; after an error (or Ctrl-C) the steps not begun are not written.
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    with ThreadPoolExecutor(max_workers=min(WRITERS, cores)) as pool:
+        try:
+            for vtu in pool.map(write, steps):
+                for part, p in zip(series, vtu, strict=True):
+                    part.append(p)
+        except BaseException:
+            pool.shutdown(cancel_futures=True)
+            raise
     files = [p for part in series for p in part]
     for name, part in zip(("result", "result_contact", "result_multipliers"), series, strict=True):
         files.append(write_pvd(out / f"{name}.pvd", part, steps))

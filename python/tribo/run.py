@@ -288,19 +288,22 @@ def _import_beside(modules: Sequence[str]) -> threading.Thread:
     """Imports ``modules`` in a thread (started here); a module that cannot be imported is left to its writer,
     which says so when it needs it. Join the thread before writing."""
 
+    # Only what is not loaded yet: a caller's own pyplot (and its backend) is left alone.
+    missing = [name for name in modules if name not in sys.modules]
+
     def load() -> None:
-        if "matplotlib.pyplot" in modules:
+        if "matplotlib.pyplot" in missing:
             try:
                 import matplotlib
 
                 matplotlib.use("Agg")
-            except ImportError:
-                pass
-        for name in modules:
+            except Exception as e:  # noqa: BLE001 - the writer says so when it needs the module
+                log.debug("matplotlib not loaded ahead: %s", e)
+        for name in missing:
             try:
                 importlib.import_module(name)
-            except ImportError:
-                pass
+            except Exception as e:  # noqa: BLE001 - the writer says so when it needs the module
+                log.debug("%s not loaded ahead: %s", name, e)
 
     thread = threading.Thread(target=load, name="tribo-imports", daemon=True)
     thread.start()

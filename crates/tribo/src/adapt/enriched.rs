@@ -184,8 +184,8 @@ fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
 
 /// The L²(Γ_C) norms of `λ_a − λ_b` and of `λ_b`, normal and tangential together, for the multipliers
 /// of two problems on one Γ_C line (each on its own T_H): Gauss on the union of both T_H's points,
-/// exact for piecewise linear multipliers. Beyond a T_H a multiplier is 0. NaN where a solution is not of its
-/// problem (fewer values than the problem's multiplier dofs).
+/// exact for piecewise linear multipliers. Beyond a T_H a multiplier is 0. NaN (both) where a solution is not of
+/// its problem (not as many multiplier values as the problem's dofs).
 pub fn multiplier_difference(a: &Problem, sa: &Solution, b: &Problem, sb: &Solution) -> (f64, f64) {
     multiplier_difference_on(a, sa, b, sb, f64::NEG_INFINITY, f64::INFINITY)
 }
@@ -199,6 +199,12 @@ pub fn multiplier_difference_on(
     lo: f64,
     hi: f64,
 ) -> (f64, f64) {
+    // A solution of another problem (its multipliers not as many as the problem's) has no difference here.
+    let fits =
+        |p: &Problem, s: &Solution| s.lambda_n.len() == p.n_multipliers() && s.lambda_t.len() == p.n_multipliers();
+    if !fits(a, sa) || !fits(b, sb) {
+        return (f64::NAN, f64::NAN);
+    }
     let (xa, xb) = (&a.multipliers.xi, &b.multipliers.xi);
     let mut breaks: Vec<f64> = xa.iter().chain(xb).copied().filter(|x| *x > lo && *x < hi).collect();
     breaks.extend([lo, hi].into_iter().filter(|x| x.is_finite()));
@@ -256,23 +262,33 @@ pub fn near_contact(problem: &Problem, solution: &Solution, width: f64) -> Vec<u
 
 /// The first and last abscissae of the multiplier dofs of `solution` not in separation
 /// ([`Solution::states`]: an interior-point answer has no exact zeros), `None` when nothing touches.
-pub(super) fn touching_span(problem: &Problem, solution: &Solution) -> Option<(f64, f64)> {
+fn touching_span(problem: &Problem, solution: &Solution) -> Option<(f64, f64)> {
     let dofs = problem.multipliers.dof_abscissae();
     let touching = dofs.iter().zip(&solution.states).filter(|(_, c)| **c != ContactState::Separation);
     touching.fold(None, |span, (&x, _)| Some(span.map_or((x, x), |(lo, hi): (f64, f64)| (lo.min(x), hi.max(x)))))
 }
 
-/// The span of the multiplier dofs of `solution` not in separation, 0 when nothing touches: the width of
-/// the strip [`Problem::estimate_hierarchical`] enriches ([`Solution::contact_width`] less the half cells
-/// at its ends).
-pub(super) fn touching_width(problem: &Problem, solution: &Solution) -> f64 {
-    touching_span(problem, solution).map_or(0.0, |(lo, hi)| hi - lo)
+/// The width of the strip [`Problem::estimate_hierarchical`] (and a history's estimate, for each step)
+/// enriches for `solution`: the span of the multiplier dofs not in separation ([`Solution::contact_width`]
+/// less the half cells at its ends), or where one dof touches, the span of the T_H points on either side of
+/// it (a window of two cells; the whole mesh, which it took before, costs 4 times the unknowns, for every
+/// step of a history); `None` when nothing touches.
+pub(super) fn strip_width(problem: &Problem, solution: &Solution) -> Option<f64> {
+    let (lo, hi) = touching_span(problem, solution)?;
+    if hi > lo {
+        return Some(hi - lo);
+    }
+    let xi = &problem.multipliers.xi;
+    let below = xi[xi.partition_point(|&x| x < lo).saturating_sub(1)];
+    let above = xi[xi.partition_point(|&x| x <= hi).min(xi.len() - 1)];
+    Some(above - below)
 }
 
 impl Problem {
     /// The hierarchical estimate of the traction error of `solution`, a solve of this problem with
     /// `friction` (see the module documentation): the problem enriched within one contact width of the
-    /// contact zone (the whole mesh when fewer than two multiplier dofs touch), solved with `settings`
+    /// contact zone (within the two T_H cells around a single dof touching; the whole mesh when none
+    /// touches), solved with `settings`
     /// from `solution`'s multipliers. A Tresca threshold given per dof is carried to the enriched T_H as
     /// the W_H function it defines.
     ///
@@ -284,9 +300,10 @@ impl Problem {
         friction: &Friction,
         settings: &SolverSettings,
     ) -> Result<Hierarchical> {
-        let width = touching_width(self, solution);
-        let marked =
-            if width > 0.0 { near_contact(self, solution, width) } else { (0..self.mesh.n_triangles()).collect() };
+        let marked = match strip_width(self, solution) {
+            Some(width) => near_contact(self, solution, width),
+            None => (0..self.mesh.n_triangles()).collect(),
+        };
         Ok(Hierarchical { error_bars: None, ..self.estimate_hierarchical_on(solution, &marked, friction, settings)? })
     }
 

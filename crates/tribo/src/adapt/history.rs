@@ -5,7 +5,7 @@
 
 use std::time::Instant;
 
-use super::enriched::{estimate_of, near_contact, touching_span, EndReduction, Hierarchical};
+use super::enriched::{estimate_of, near_contact, strip_width, EndReduction, Hierarchical};
 use super::{multiplier_difference, AdaptStop, Level, LevelObserver, Sharp, Start};
 use crate::error::{Error, Result};
 use crate::problem::Problem;
@@ -103,10 +103,10 @@ impl Problem {
     /// problem solved with `friction` (in the order of [`History::kept`]): as [`Problem::estimate_hierarchical`]
     /// for one solve, with the whole history solved on the enriched mesh (friction depends on the path, so a
     /// step cannot be enriched alone). The mesh is enriched within one contact width of the contact zone of
-    /// every kept step (the whole mesh when a step has one multiplier dof touching, or none touches); where an
-    /// end of Γ_C touches in a step, the history is solved once more on the mesh enriched again at the ends,
-    /// and that step's reduction there is measured. Each step's enriched solve starts from its own multipliers when
-    /// every step was kept. The steps solved are the converged ones of `history`; the estimates carry the
+    /// every kept step (for a step with one multiplier dof touching, within the two T_H cells around it; the
+    /// whole mesh when no step touches); where an end of Γ_C touches in a step, the history is solved once more
+    /// on the mesh enriched again at the ends, and that step's reduction there is measured. Each step's
+    /// enriched solve starts from its own multipliers when every step was kept. The steps solved are the converged ones of `history`; the estimates carry the
     /// enriched history's status, and a step it did not reach has a NaN estimate. Every step of the enriched
     /// histories is kept (about 2.6 times the unknowns of `history`'s): each must fit the memory budget less
     /// the histories already held ([`History::estimated_bytes`]), or the estimate is refused with
@@ -129,16 +129,13 @@ impl Problem {
         }
         self.check_history_of(history)?;
         let mut strip = vec![false; self.mesh.n_triangles()];
-        // A step with one multiplier dof touching has no width to take: as for a static solve, the whole mesh.
-        let mut whole = false;
         for s in &history.solutions {
-            match touching_span(self, s) {
-                Some((lo, hi)) if hi > lo => near_contact(self, s, hi - lo).into_iter().for_each(|t| strip[t] = true),
-                Some(_) => whole = true,
-                None => {}
+            // A step with one multiplier dof touching takes the two T_H cells around it.
+            if let Some(width) = strip_width(self, s) {
+                near_contact(self, s, width).into_iter().for_each(|t| strip[t] = true);
             }
         }
-        let whole = whole || !strip.contains(&true);
+        let whole = !strip.contains(&true);
         let marked: Vec<usize> = (0..strip.len()).filter(|&t| whole || strip[t]).collect();
         // The enriched histories keep every step while this one is held: each must fit what the budget leaves.
         let steps = &history.steps[..history.records.len()];

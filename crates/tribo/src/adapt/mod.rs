@@ -345,7 +345,7 @@ impl Problem {
                     }
                 }
             }
-            let stop = if level.status != SolveStatus::Converged {
+            let mut stop = if level.status != SolveStatus::Converged {
                 Some(AdaptStop::NotConverged)
             } else if level.estimate.total == 0.0 {
                 // Before the tolerance: a relative estimate of 0 / 0 is no accuracy reached (defect D28).
@@ -360,9 +360,12 @@ impl Problem {
                 None
             };
             if stop.is_some() && !strict {
-                // The answer handed back is converged to fp_tol, from the loose one.
+                // The answer handed back is converged to fp_tol, from the loose one; if it is not, the loop says so.
                 answer = solve(&problem, settings, Start::Answer(&answer))?;
                 level = new_level(&problem, read(&answer), ended(&answer).0);
+                if level.status != SolveStatus::Converged {
+                    stop = Some(AdaptStop::NotConverged);
+                }
             }
             let next = match stop {
                 Some(_) => None,

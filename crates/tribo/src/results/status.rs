@@ -16,7 +16,8 @@ pub enum SolveStatus {
     MaxIterations,
     /// The change of λ_n made no new minimum for [`crate::solve::STAGNATION_WINDOW`] iterations: the
     /// fixed point cycles, or it has reached the accuracy to which the QP determines λ (see the residual
-    /// history; a tighter `qp.tol` or a finer mesh may help).
+    /// history; a tighter `qp.tol` or a finer mesh may help). One whose smallest change is within √qp_tol
+    /// and whose last iterate meets Coulomb's law to `fp_tol` is [`SolveStatus::Converged`].
     Stagnated,
     /// The observer asked to stop after the given fixed-point iteration (0 = the initial QP).
     Interrupted {

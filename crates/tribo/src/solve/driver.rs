@@ -240,19 +240,23 @@ impl Condensed<'_> {
         if residual > f64::EPSILON.sqrt() {
             return Err(Error::SingularStiffness { residual });
         }
-        // A fixed point that stagnated (made no new smallest change for STAGNATION_WINDOW iterations) may still
-        // end on an answer: its last iterate meets Coulomb's law with its own λ_n (the KKT residuals take the friction bound μ λ_n of the answer,
-        // not the frozen bound of its QP) to within fp_tol. The change of λ_n between two QPs then measures the
-        // QPs' noise, not a distance from a solution (defect D30: a block held only by the contact, dragged
-        // by the obstacle in a history, stagnated at changes of 3e-8 to 2e-6 with KKT residuals of 5e-12).
-        // A fixed point that cycles ends on an iterate whose λ_n is not its bound's: its residuals say so. One
-        // stopped by its cap (`max_iterations`) was still progressing, and says so.
-        let stagnated = solution.report.status == SolveStatus::Stagnated;
+        // A fixed point that stagnated (no new smallest change for STAGNATION_WINDOW iterations) within what
+        // the QPs resolve of λ (its smallest change at most √qp_tol, the accuracy `converged` grants the KKT
+        // residuals) may still end on an answer: its last iterate meets Coulomb's law with its own λ_n (the
+        // KKT residuals take the friction bound μ λ_n of the answer, not the frozen bound of its QP) to
+        // within fp_tol. The change of λ_n between two QPs then measures the QPs' noise, not a distance from a
+        // solution (defect D30: a block held only by the contact, dragged by the obstacle in a history,
+        // stagnated at changes of 3e-8 to 2e-6 with KKT residuals of 5e-12). A fixed point that cycles
+        // makes larger changes, and one stopped by its cap (`max_iterations`) was still progressing: both
+        // are reported as they ended.
+        let smallest = solution.report.residual_history.iter().copied().fold(f64::INFINITY, f64::min);
+        let stagnated = solution.report.status == SolveStatus::Stagnated && smallest <= settings.qp.tol.sqrt();
         if stagnated && solution.all_finite() && solution.kkt.max() <= settings.fp.tol {
             log::info!(
-                "the fixed point stagnated after {} iterations, its last iterate meeting Coulomb's law to {} \
-                 (fp_tol {}): converged",
+                "the fixed point stagnated after {} iterations (smallest change {}), its last iterate meeting \
+                 Coulomb's law to {} (fp_tol {}): converged",
                 solution.report.iterations,
+                Num(smallest),
                 Num(solution.kkt.max()),
                 Num(settings.fp.tol)
             );
