@@ -234,3 +234,32 @@ def test_long_histories_write_a_bounded_series(tmp_path: Path) -> None:
     bad = text.replace("write_every = 3", "write_every = 0")
     with pytest.raises(SceneError, match="write_every"):
         parse_scene(tomllib.loads(bad))
+
+
+def test_a_step_file_that_cannot_be_written_ends_the_writing(problem: tribo.Problem, tmp_path: Path,
+                                                              monkeypatch: pytest.MonkeyPatch) -> None:
+    """The step files are written side by side; the first error reaches the caller as it was raised, and the
+    steps not begun by then are not written (a history of 40 steps, the fourth failing, one writer: it
+    wrote all 40 before the queued steps were cancelled)."""
+    import tribo.history as th
+
+    history = problem.solve_history(0.01, np.linspace(0.0, 0.002, 40), mu=0.3)
+    written = th.write_vtu
+    begun: list[int] = []
+
+    def failing(path: Path, *args: object, **kwargs: object) -> list[Path]:
+        k = int(Path(path).stem.split("_")[1])
+        begun.append(k)
+        if k == 3:
+            raise OSError(28, "No space left on device", str(path))
+        return written(path, *args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(th, "write_vtu", failing)
+    monkeypatch.setattr(th, "WRITERS", 1)
+    with pytest.raises(OSError, match="No space left"):
+        th.write_history(tmp_path, problem, history, plots=False)
+    # The writer may have begun the next step before the error reached the caller; none after it.
+    assert begun[:4] == [0, 1, 2, 3] and len(begun) <= 5
+    names = sorted(p.name for p in (tmp_path / "steps").glob("step_[0-9][0-9][0-9][0-9].vtu"))
+    assert names == [f"step_{k:04d}.vtu" for k in begun if k != 3]
+    assert not (tmp_path / "history.csv").exists() and not (tmp_path / "result.pvd").exists()
