@@ -125,16 +125,13 @@ def write_history(out: str | Path, problem: Problem, history: History, *, plots:
         return write_vtu(out / "steps" / f"step_{k:04d}.vtu", problem, history.solution(k), per_body=False)
 
     # A step's files are mostly zlib compression, which releases the GIL: the steps are written side by side,
-    # on the cores this process may use; after an error (or Ctrl-C) the steps not begun are not written.
+    # on the cores this process may use. After an error (or Ctrl-C) the steps not begun are not written:
+    # `map` cancels them when its iterator is left.
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
     with ThreadPoolExecutor(max_workers=min(WRITERS, cores)) as pool:
-        try:
-            for vtu in pool.map(write, steps):
-                for part, p in zip(series, vtu, strict=True):
-                    part.append(p)
-        except BaseException:
-            pool.shutdown(cancel_futures=True)
-            raise
+        for vtu in pool.map(write, steps):
+            for part, p in zip(series, vtu, strict=True):
+                part.append(p)
     files = [p for part in series for p in part]
     for name, part in zip(("result", "result_contact", "result_multipliers"), series, strict=True):
         files.append(write_pvd(out / f"{name}.pvd", part, steps))

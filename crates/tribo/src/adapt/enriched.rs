@@ -241,13 +241,11 @@ pub fn multiplier_difference_on(
 /// separation), the distance taken from a triangle's nearest vertex to that segment of the Γ_C line. All
 /// triangles when `width` is infinite; none when nothing touches.
 pub fn near_contact(problem: &Problem, solution: &Solution, width: f64) -> Vec<usize> {
-    let m = &problem.multipliers;
-    let Some((lo, hi)) = touching_span(problem, solution) else {
+    let Some(span) = touching_span(problem, solution) else {
         return Vec::new();
     };
     // The zone reaches the neighbouring T_H points (a P1 multiplier is not zero up to them).
-    let lo = m.xi[m.xi.partition_point(|&x| x < lo).saturating_sub(1)];
-    let hi = m.xi[m.xi.partition_point(|&x| x <= hi).min(m.xi.len() - 1)];
+    let (lo, hi) = neighbouring_points(problem, span);
     let pts = problem.mesh.points();
     let distance = |v: usize| problem.contact.distance_to_span(pts[v], lo, hi);
     problem
@@ -278,19 +276,22 @@ pub(super) fn strip_width(problem: &Problem, solution: &Solution) -> Option<f64>
     if hi > lo {
         return Some(hi - lo);
     }
-    let xi = &problem.multipliers.xi;
-    let below = xi[xi.partition_point(|&x| x < lo).saturating_sub(1)];
-    let above = xi[xi.partition_point(|&x| x <= hi).min(xi.len() - 1)];
+    let (below, above) = neighbouring_points(problem, (lo, hi));
     Some(above - below)
+}
+
+/// The T_H points on either side of the span `(lo, hi)` of multiplier dofs (the span's ends at T_H's ends).
+fn neighbouring_points(problem: &Problem, (lo, hi): (f64, f64)) -> (f64, f64) {
+    let xi = &problem.multipliers.xi;
+    (xi[xi.partition_point(|&x| x < lo).saturating_sub(1)], xi[xi.partition_point(|&x| x <= hi).min(xi.len() - 1)])
 }
 
 impl Problem {
     /// The hierarchical estimate of the traction error of `solution`, a solve of this problem with
     /// `friction` (see the module documentation): the problem enriched within one contact width of the
     /// contact zone (within the two T_H cells around a single dof touching; the whole mesh when none
-    /// touches), solved with `settings`
-    /// from `solution`'s multipliers. A Tresca threshold given per dof is carried to the enriched T_H as
-    /// the W_H function it defines.
+    /// touches), solved with `settings` from `solution`'s multipliers. A Tresca threshold given per dof is
+    /// carried to the enriched T_H as the W_H function it defines.
     ///
     /// # Errors
     /// Those of [`Problem::solve_enriched`].

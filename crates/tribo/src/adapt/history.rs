@@ -106,8 +106,9 @@ impl Problem {
     /// every kept step (for a step with one multiplier dof touching, within the two T_H cells around it; the
     /// whole mesh when no step touches); where an end of Γ_C touches in a step, the history is solved once more
     /// on the mesh enriched again at the ends, and that step's reduction there is measured. Each step's
-    /// enriched solve starts from its own multipliers when every step was kept. The steps solved are the converged ones of `history`; the estimates carry the
-    /// enriched history's status, and a step it did not reach has a NaN estimate. Every step of the enriched
+    /// enriched solve starts from its own multipliers when every step was kept. The steps solved are the
+    /// converged ones of `history`; the estimates carry the enriched history's status, and a step it did not
+    /// reach has a NaN estimate. Every step of the enriched
     /// histories is kept (about 2.6 times the unknowns of `history`'s): each must fit the memory budget less
     /// the histories already held ([`History::estimated_bytes`]), or the estimate is refused with
     /// [`Error::MemoryBudget`] (the adaptive loop then reads the bound). No estimate for a history
