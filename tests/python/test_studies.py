@@ -302,12 +302,44 @@ def test_output_cost(tmp_path: Path) -> None:
     assert 0 <= row["write_seconds"] <= row["run_seconds"] and 0 < row["solve_seconds"] < row["run_seconds"]
 
 
+def test_plot_tol_table(tmp_path: Path) -> None:
+    """Study 13 from its runs' files: each run's ratios and verdicts, each level counted once, the outliers named."""
+    folder = tmp_path / "in"
+    folder.mkdir()
+    runs = ["case,stop_on,tol,true_error,unknowns,seconds,levels,cheapest_unknowns,cheapest_seconds,stop",
+            "hertz,hierarchical,0.05,0.02,1000,0.3,5,800,0.1,tolerance",  # 0.4 X, 3x the cheapest
+            "hertz,hierarchical,0.02,0.015,2000,0.4,6,2000,0.4,tolerance",  # 0.75 X, 1x
+            "hertz,hierarchical,0.01,0.011,3000,0.5,7,,,tolerance"]  # above X: no adequate level
+    levels = ["case,stop_on,tol,level,unknowns,seconds,step,in_contact,true_error,hierarchical,bound",
+              "hertz,hierarchical,0.05,4,800,0.1,,12,0.03,0.045,0.3",  # 1.5
+              "hertz,hierarchical,0.02,4,800,0.1,,12,0.03,0.045,0.3",  # the same level in another run
+              "hertz,hierarchical,0.05,5,1000,0.1,,20,0.02,0.05,0.3",  # 2.5: outside
+              "hertz,hierarchical,0.05,1,100,0.1,,3,0.2,0.1,0.8",  # 0.5, but fewer than 10 dofs in contact
+              "hertz,hierarchical,0.05,0,50,0.1,,0,0.3,,0.9",  # no estimate: not a level of the table
+              "hertz,hierarchical,0.05,7,2600,0.1,,40,nan,0.03,0.2"]  # no true error: not a level either
+    (folder / "hertz.csv").write_text("\n".join(runs) + "\n")
+    (folder / "hertz_levels.csv").write_text("\n".join(levels) + "\n")
+    res = study("plot_tol_table").main(["--csv-dir", str(folder), "--out", str(tmp_path)])
+    verdicts = [(r["in_band"], r["in_time"]) for r in res["runs"]]
+    assert verdicts == [(True, False), (True, True), (False, False)], verdicts
+    assert [r["unknowns"] for r in res["effectivity"]["hertz"]] == [100, 800, 1000]
+    md = (tmp_path / "tol_table.md").read_text()
+    assert "2 of 3 runs in [X/3, X] (0.40–1.10); outside: hertz at 0.01: 1.100." in md, md
+    assert "1 of 2 runs within 2×" in md and "1 of 2 levels (of a history, steps) in [1, 2] (1.50–2.50)" in md, md
+    assert "Outside: hertz 1 (2.50)." in md and (tmp_path / "tol_table.png").stat().st_size > 0
+    assert "| hertz | 2 | 1.50–2.50 | 10.00–15.00 |" in md, md
+    # A row cut short (a run killed while writing) is named, not read as numbers.
+    (folder / "hertz_levels.csv").write_text("\n".join(levels[:2] + ["hertz,hierarchical,0.05,4"]) + "\n")
+    with pytest.raises(ValueError, match="hertz_levels.csv, line 3: not as many fields as the header"):
+        study("plot_tol_table").main(["--csv-dir", str(folder), "--out", str(tmp_path)])
+
+
 def test_every_study_table_reads_as_a_table() -> None:
     """Every CSV under docs/ has as many fields in each row as in its header when read as CSV (pandas reads
     them so); a value holding a comma ("adaptive, hierarchical stop") is quoted, which it was not."""
     import csv
 
-    tables = sorted((SCRIPTS.parent / "docs").glob("*.csv"))
+    tables = sorted((SCRIPTS.parent / "docs").rglob("*.csv"))
     assert len(tables) > 10
     for path in tables:
         with open(path, newline="") as f:

@@ -164,6 +164,96 @@ pub fn tol_table_row(
     )
 }
 
+/// Where the examples `tol_table` and `history_tol` write their CSV files by default: `docs/tol_table` of the
+/// repository.
+pub fn tol_table_dir() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/tol_table")
+}
+
+/// The header of a `tol` table's runs file (`CASE-STOP.csv`, one row per run: [`tol_table_csv`]).
+pub const TOL_RUNS_HEADER: &str =
+    "case,stop_on,tol,true_error,unknowns,seconds,levels,cheapest_unknowns,cheapest_seconds,stop";
+
+/// The header of a `tol` table's levels file (`CASE-STOP_levels.csv`, one row per level, or per step of a level of a
+/// history: [`LevelRow`]).
+pub const TOL_LEVELS_HEADER: &str =
+    "case,stop_on,tol,level,unknowns,seconds,step,in_contact,true_error,hierarchical,bound";
+
+/// Creates `dir` and the runs and levels files of the `tol` table of `case` stopping on `stop_on` in it
+/// (`CASE-STOP.csv`, `CASE-STOP_levels.csv`: the runs of one stop do not overwrite the other's), their headers
+/// written.
+///
+/// # Errors
+/// When `dir` or a file cannot be made.
+pub fn tol_table_files(
+    dir: &std::path::Path,
+    case: &str,
+    stop_on: StopOn,
+) -> std::io::Result<(std::fs::File, std::fs::File)> {
+    use std::io::Write;
+    std::fs::create_dir_all(dir)?;
+    let create = |name: String, header: &str| -> std::io::Result<std::fs::File> {
+        let mut file = std::fs::File::create(dir.join(name))?;
+        writeln!(file, "{header}")?;
+        Ok(file)
+    };
+    let stem = format!("{case}-{}", stop_on.as_str());
+    Ok((create(format!("{stem}.csv"), TOL_RUNS_HEADER)?, create(format!("{stem}_levels.csv"), TOL_LEVELS_HEADER)?))
+}
+
+/// A run's row of the runs file ([`TOL_RUNS_HEADER`]): as [`tol_table_row`], with the run's levels; the
+/// cheapest columns empty where no level reached `tol`.
+pub fn tol_table_csv(
+    case: &str,
+    (stop_on, tol): (StopOn, f64),
+    achieved: f64,
+    (unknowns, total, levels): (usize, f64, usize),
+    cheapest: Option<(usize, f64)>,
+    stop: AdaptStop,
+) -> String {
+    let (cn, ct) = cheapest.map_or((String::new(), String::new()), |(n, t)| (n.to_string(), format!("{t:.6}")));
+    format!("{case},{},{tol},{achieved:.6e},{unknowns},{total:.6},{levels},{cn},{ct},{stop}", stop_on.as_str())
+}
+
+/// A level's row of the levels file ([`TOL_LEVELS_HEADER`]).
+#[derive(Debug, Clone, Copy)]
+pub struct LevelRow {
+    /// The level's index in its run.
+    pub level: usize,
+    /// Its unknowns.
+    pub unknowns: usize,
+    /// Its seconds (the hierarchical solves included).
+    pub seconds: f64,
+    /// The step of a history (`None`: a static solve, or the level's worst step of a history).
+    pub step: Option<usize>,
+    /// Multiplier dofs not in separation.
+    pub in_contact: usize,
+    /// The relative L²(Γ_C) error of λ against the case's reference.
+    pub true_error: f64,
+    /// The relative hierarchical estimate where it was computed.
+    pub hierarchical: Option<f64>,
+    /// The relative bound.
+    pub bound: f64,
+}
+
+impl LevelRow {
+    /// The row, for the run of `case` stopping on `stop_on` at `tol`.
+    pub fn csv(&self, case: &str, stop_on: StopOn, tol: f64) -> String {
+        let step = self.step.map_or(String::new(), |s| s.to_string());
+        let sharp = self.hierarchical.map_or(String::new(), |h| format!("{h:.6e}"));
+        format!(
+            "{case},{},{tol},{},{},{:.6},{step},{},{:.6e},{sharp},{:.6e}",
+            stop_on.as_str(),
+            self.level,
+            self.unknowns,
+            self.seconds,
+            self.in_contact,
+            self.true_error,
+            self.bound
+        )
+    }
+}
+
 /// The largest reference [`adaptive_case`] builds by the adaptive loop.
 pub const REFERENCE_UNKNOWNS: usize = 500_000;
 

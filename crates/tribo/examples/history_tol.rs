@@ -17,17 +17,26 @@
 //!
 //! `cargo run --release -p tribo --example history_tol [SHIFTS [STOPS]]` (SHIFTS: comma-separated, after the
 //! first step at s = 0, or `default`; STOPS: `bound,hierarchical` by default). The hierarchical runs take a
-//! few minutes on two cores; the bound's go to 300k–400k unknowns at 1 % and 0.5 % (half an hour).
+//! few minutes on two cores; the bound's go to 300k–400k unknowns at 1 % and 0.5 % (half an hour). It writes
+//! the runs to `OUT/hertz-coulomb-history-STOP.csv` and the levels solved again (with every step's estimates
+//! where they were computed) to `OUT/hertz-coulomb-history-STOP_levels.csv`, one pair per stop (`history_tol
+//! SHIFTS STOPS OUT`, OUT `docs/tol_table` by default), read by `python scripts/plot_tol_table.py`.
+use std::io::Write;
+
 use tribo::adapt::multiplier_difference;
 use tribo::*;
 
-fn main() -> Result<()> {
+/// The case's name in the `tol` table's files.
+const CASE: &str = "hertz-coulomb-history";
+
+fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let shifts: Vec<f64> = match std::env::args().nth(1).filter(|s| s != "default") {
         Some(s) => s.split(',').map(|x| x.trim().parse().expect("shifts are numbers")).collect(),
         None => vec![0.001, 0.002, 0.003, 0.004],
     };
     let stops = std::env::args().nth(2).unwrap_or_else(|| "bound,hierarchical".into());
     let stops: Vec<StopOn> = stops.split(',').map(|s| Choice::parse(s.trim())).collect::<Result<_>>()?;
+    let out = std::env::args().nth(3).map_or_else(tribo_testkit::tol_table_dir, std::path::PathBuf::from);
     let steps: Vec<LoadStep> = std::iter::once(0.0).chain(shifts).map(|s| LoadStep::new(0.01, s)).collect();
     let case = tribo_testkit::adaptive_hertz_case(0.0, 0.3, MultiplierSpace::P1)?;
     let (friction, coarse, reference) = (case.friction, case.coarse, case.reference.0);
@@ -50,6 +59,7 @@ fn main() -> Result<()> {
     println!("{}", tribo_testkit::TOL_TABLE_HEADER);
     let mut estimated = Vec::new();
     for stop_on in stops {
+        let (mut runs, mut levels) = tribo_testkit::tol_table_files(&out, CASE, stop_on)?;
         for tol in [0.05, 0.02, 0.01, 0.005] {
             let adapt = AdaptSettings { tol, stop_on, max_unknowns: 400_000, ..AdaptSettings::default() };
             let run = coarse.solve_history_adaptive(&friction, &steps, &settings, &adapt, &[], None)?;
@@ -57,7 +67,7 @@ fn main() -> Result<()> {
             let total: f64 = run.levels.iter().map(|l| l.seconds).sum();
             let (mut cheapest, mut elapsed) = (None, 0.0);
             let keep = stop_on == StopOn::Hierarchical && tol == 0.005;
-            for level in &run.levels {
+            for (k, level) in run.levels.iter().enumerate() {
                 elapsed += level.seconds;
                 let sharp = level.estimate.traction_hierarchical_relative;
                 if cheapest.is_some() && !(keep && sharp.is_some()) {
@@ -69,8 +79,31 @@ fn main() -> Result<()> {
                 if cheapest.is_none() && worst(&errors) <= tol {
                     cheapest = Some((level.unknowns, elapsed));
                 }
+                let touching = |s: &Solution| s.states.iter().filter(|c| **c != ContactState::Separation).count();
+                let row = tribo_testkit::LevelRow {
+                    level: k,
+                    unknowns: level.unknowns,
+                    seconds: level.seconds,
+                    step: None,
+                    in_contact: h.solutions.iter().map(touching).max().unwrap_or(0),
+                    true_error: worst(&errors),
+                    hierarchical: sharp,
+                    bound: level.estimate.traction_relative,
+                };
+                writeln!(levels, "{}", row.csv(CASE, stop_on, tol))?;
                 if let (true, Some(sharp)) = (keep, sharp) {
                     let each = p.estimate_history_hierarchical(&h, &friction, &settings)?;
+                    for (i, ((e, s), t)) in each.iter().zip(&h.solutions).zip(&errors).enumerate() {
+                        let row = tribo_testkit::LevelRow {
+                            step: Some(i),
+                            in_contact: touching(s),
+                            true_error: *t,
+                            hierarchical: Some(e.relative),
+                            bound: s.report.estimate.traction_relative,
+                            ..row
+                        };
+                        writeln!(levels, "{}", row.csv(CASE, stop_on, tol))?;
+                    }
                     let ratios: Vec<(f64, f64)> = (each.iter().zip(&h.solutions).zip(&errors))
                         .map(|((e, s), t)| (e.relative / t, s.report.estimate.traction_relative / t))
                         .collect();
@@ -81,6 +114,12 @@ fn main() -> Result<()> {
                 "{}",
                 tribo_testkit::tol_table_row((stop_on, tol), achieved, (run.problem.n_free, total), cheapest, run.stop)
             );
+            let sizes = (run.problem.n_free, total, run.levels.len());
+            writeln!(
+                runs,
+                "{}",
+                tribo_testkit::tol_table_csv(CASE, (stop_on, tol), achieved, sizes, cheapest, run.stop)
+            )?;
         }
     }
     println!("levels of the hierarchical run at tol 0.005 where it computed the estimate:");

@@ -11,16 +11,21 @@
 //! at most X with the time the run took to reach it; then, per level where the hierarchical estimate was
 //! computed, its effectivity (estimate over true error) beside the bound's.
 //!
-//! `cargo run --release -p tribo --example tol_table [CASE [STOPS]]` (a few minutes: the reference solve and
-//! the re-solves of the levels are most of it; STOPS a comma-separated list of `bound`, `hierarchical`, both
-//! by default).
+//! `cargo run --release -p tribo --example tol_table [CASE [STOPS [OUT]]]` (a few minutes: the reference solve
+//! and the re-solves of the levels are most of it; STOPS a comma-separated list of `bound`, `hierarchical`, both
+//! by default). It writes the runs to `OUT/CASE-STOP.csv` and every level of every run to
+//! `OUT/CASE-STOP_levels.csv`, one pair per stop (OUT `docs/tol_table` by default), from which
+//! `python scripts/plot_tol_table.py` writes `docs/tol_table.md`.
+use std::io::Write;
+
 use tribo::adapt::multiplier_difference;
 use tribo::*;
 
-fn main() -> Result<()> {
+fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let name = std::env::args().nth(1).unwrap_or_else(|| "hertz".into());
     let stops = std::env::args().nth(2).unwrap_or_else(|| "bound,hierarchical".into());
     let stops: Vec<StopOn> = stops.split(',').map(|s| Choice::parse(s.trim())).collect::<Result<_>>()?;
+    let out = std::env::args().nth(3).map_or_else(tribo_testkit::tol_table_dir, std::path::PathBuf::from);
     let case = tribo_testkit::adaptive_case(&name)?;
     let (friction, coarse) = (case.friction, case.coarse);
     let (reference, rsol) = case.reference;
@@ -33,6 +38,7 @@ fn main() -> Result<()> {
     println!("{}", tribo_testkit::TOL_TABLE_HEADER);
     let mut effectivities = Vec::new();
     for stop_on in stops {
+        let (mut runs, mut levels) = tribo_testkit::tol_table_files(&out, &name, stop_on)?;
         for tol in [0.05, 0.02, 0.01, 0.005] {
             let adapt = AdaptSettings { tol, stop_on, max_unknowns: 400_000, ..AdaptSettings::default() };
             let run = coarse.solve_adaptive(&friction, &settings, &adapt, None)?;
@@ -40,7 +46,7 @@ fn main() -> Result<()> {
             let total: f64 = run.levels.iter().map(|l| l.seconds).sum();
             let mut cheapest = None;
             let mut elapsed = 0.0;
-            for level in &run.levels {
+            for (k, level) in run.levels.iter().enumerate() {
                 elapsed += level.seconds;
                 let p = coarse.on_level(level)?;
                 let sol = p.solve(&friction, &settings, None)?;
@@ -49,6 +55,18 @@ fn main() -> Result<()> {
                     cheapest = Some((level.unknowns, elapsed));
                 }
                 let e = &level.estimate;
+                let touching = sol.states.iter().filter(|c| **c != ContactState::Separation).count();
+                let row = tribo_testkit::LevelRow {
+                    level: k,
+                    unknowns: level.unknowns,
+                    seconds: level.seconds,
+                    step: None,
+                    in_contact: touching,
+                    true_error: truth,
+                    hierarchical: e.traction_hierarchical_relative,
+                    bound: e.traction_relative,
+                };
+                writeln!(levels, "{}", row.csv(&name, stop_on, tol))?;
                 let sharp =
                     e.traction_hierarchical_relative.filter(|_| stop_on == StopOn::Hierarchical && tol == 0.005);
                 if let Some(sharp) = sharp {
@@ -59,6 +77,12 @@ fn main() -> Result<()> {
                 "{}",
                 tribo_testkit::tol_table_row((stop_on, tol), achieved, (run.problem.n_free, total), cheapest, run.stop)
             );
+            let sizes = (run.problem.n_free, total, run.levels.len());
+            writeln!(
+                runs,
+                "{}",
+                tribo_testkit::tol_table_csv(&name, (stop_on, tol), achieved, sizes, cheapest, run.stop)
+            )?;
         }
     }
     println!("levels of the hierarchical run at tol 0.005 where it computed the estimate:");
