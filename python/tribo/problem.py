@@ -367,7 +367,7 @@ class Problem(_tribo.Problem):
         error, not a guaranteed bound (the bound is the smaller where the traction is singular at a corner,
         docs/beyond_hertz.md), computed on the levels near ``tol`` with at least 10 multiplier dofs in contact
         at the cost of a solve of about 2.6 times their unknowns; the answer's true error then ended at
-        0.32–0.74 ``tol`` in 15 of 16 runs measured, 1.0004 ``tol`` in one (docs/tol_table.md). With ``stop_on='bound'`` it is the residual bound alone, above
+        0.333–0.705 ``tol`` in 31 of 32 runs of eight cases (docs/tol_table.md). With ``stop_on='bound'`` it is the residual bound alone, above
         the true error but pessimistically (on Hertz by 3 on coarse meshes and up to 24 on fine ones,
         docs/STUDIES.md, study 6): the answer is usually many times more accurate than ``tol``, at many times
         the unknowns. Marking is Dörfler's with ``theta`` (default 0.5), or the maximum

@@ -58,11 +58,14 @@
 //! [`crate::results::ErrorEstimate`]. In a loading history the whole history is solved on the enriched
 //! mesh (friction depends on the path: a step cannot be enriched alone), and each kept step gets its own
 //! estimate ([`Problem::estimate_history_hierarchical`]); the level reads its worst step, each step the
-//! smaller of its two estimates. Measured (study 13, `docs/tol_table.md`, adaptive Hertz centred,
-//! off-centre and Coulomb, `tol` = 5 %, 2 %, 1 %, 0.5 %): the true error ends at 0.36–0.74 `tol` in 10 of
-//! 12 runs (1.0004 and 0.317 in the other two), where the bound ends at 0.04–0.16 `tol`; a Cattaneo–Mindlin
-//! history of five steps (study 13b, the example `history_tol`) ends at 0.49–0.63 `tol`, every step's
-//! estimate 1.26–1.86 times its true error on every level where it was computed.
+//! smaller of its two estimates. Measured (study 13, `docs/tol_table.md`, generated from the examples
+//! `tol_table` and `history_tol`: one-body Hertz centred, off-centre and Coulomb, a Cattaneo–Mindlin
+//! history, P0 multipliers, the block, two-body Hertz frictionless and Coulomb; `tol` = 5 %, 2 %, 1 %,
+//! 0.5 %): the true error ends at 0.333–0.705 `tol` in 31 of 32 runs (centred Hertz at 5 % at 0.333, just
+//! below a third), where the bound ends at 0.04–0.15 `tol`; the estimate is 1.11–2.06 times the true error
+//! on every level of the one-body Hertz cases where it was computed (P0 and every step of the history's
+//! included), 1.31–2.04 on two bodies, 2.33–4.88 on the block, where the bound is the smaller and stops the
+//! loop.
 //!
 //! A refinement that would exceed `max_unknowns` is not made; the loop then stops with the last level
 //! and says so ([`AdaptStop::MaxUnknowns`]), as it does at `max_levels` or when a level does not converge.
