@@ -105,7 +105,8 @@ class Report(_Record):
             hierarchical estimate (2‖λ_H − λ_f‖, the reduction measured where the contact zone reaches an end
             of Γ_C) and its ratio to ‖λ_f‖ (sharp but not a bound; inf where a measured reduction is 1 or
             more: no estimate; NaN unless an adaptive solve with ``stop_on='hierarchical'`` or
-            ``solve(error_bars=True)`` computed it); from the
+            ``solve(error_bars=True)`` computed it; on the enriched answer ``stop_on='enriched'`` hands back,
+            ‖λ_H − λ_f‖, the estimate of that answer's own error); from the
             same enriched solve, the error bars ``normal_force_error``, ``tangential_force_error``,
             ``contact_width_error`` and ``stick_width_error`` (estimated absolute errors of those quantities
             of the Solution, NaN unless computed). Empty for a report built without one.
@@ -384,7 +385,9 @@ class Level(_Record):
         estimate: the level's a posteriori estimate (the keys of ``Report.estimate``).
         relative: the relative estimate the stopping test reads: of the contact tractions, or of the
             energy while nothing touches (inf when the body has not moved yet).
-        seconds: wall time of the level (building the problem, solving, estimating, marking, refining).
+        seconds: wall time of the level (building the problem, solving, estimating, marking, refining); 0 for
+            the enriched answer ``stop_on='enriched'`` hands back as the last level (solved as the estimate of
+            the level before it, whose seconds count it).
         status: how the level's solve ended.
     """
 

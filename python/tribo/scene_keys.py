@@ -101,8 +101,9 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
     "adapt.algebraic": ("A coarse level's fixed point stops at this fraction of the previous level's estimate",
                         "—", "0.1"),
     "adapt.stop_on": ("The estimate `tol` is read against: the smaller of the bound and the hierarchical "
-                      "estimate (sharp, not a bound), or the bound alone (safe, pessimistic)", "—",
-                      '`"hierarchical"`'),
+                      "estimate (sharp, not a bound), or the bound alone (safe, pessimistic); `\"enriched\"` as "
+                      "the hierarchical one, and the answer enriched for a level's estimate is handed back where "
+                      "its own estimate meets `tol`", "—", '`"hierarchical"`'),
     "adapt.on": ("With `[history]`: the steps whose indicators mark", "—", "every step"),
     "adapt.write_levels": ("`tribo run` also writes every level, solved again (`levels/`, `adapt.pvd`)", "—",
                            "false"),

@@ -63,7 +63,8 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     fixed point stops at that fraction of the previous level's estimate), ``stop_on`` (``"hierarchical"``,
     the default: the smaller of the residual bound and the sharp hierarchical estimate, not a guaranteed
     bound, at the cost of an enriched solve on the levels near ``tol``; ``"bound"``: the residual bound alone,
-    safe but pessimistic). The core checks the values. With a
+    safe but pessimistic; ``"enriched"``: as ``"hierarchical"``, handing back the enriched answer where its own
+    estimate meets ``tol``). The core checks the values. With a
     ``[history]``, every level solves the whole history (``Problem.solve_history_adaptive``) and is refined on
     the largest indicators over the steps ``on`` (a list of step numbers; default all of them), and the
     history's outputs are those of the last mesh. ``write_levels`` (true/false, default false): ``tribo run``

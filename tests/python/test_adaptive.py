@@ -116,6 +116,25 @@ def test_a_history_stops_on_the_hierarchical_estimate() -> None:
         off_centre().solve_history_adaptive(0.01, shift, mu=0.3, stop_on="sharpest")  # type: ignore[arg-type]
 
 
+def test_the_enriched_answer_is_handed_back_from_python_and_a_scene() -> None:
+    """``stop_on='enriched'``: a static loop and a history hand back the answer enriched for the last estimated
+    level where its own estimate meets ``tol``: the last level has no time of its own, more unknowns than the one
+    before, and its estimate is the answer's; the history's every step carries it."""
+    out = off_centre().solve_adaptive(tol=0.05, stop_on="enriched")
+    last, before = out.levels[-1], out.levels[-2]
+    assert out.stop == "tolerance" and last.seconds == 0.0 and before.seconds > 0.0
+    assert last.unknowns == out.problem.n_free > before.unknowns
+    sharp = out.solution.report.estimate["traction_hierarchical_relative"]
+    assert 0 < sharp <= 0.05 and last.relative == min(sharp, out.solution.report.estimate["traction_relative"])
+    default = off_centre().solve_adaptive(tol=0.05)
+    assert len(default.levels) >= len(out.levels) - 1
+    history = off_centre().solve_history_adaptive(0.01, [0.0, 0.001], mu=0.3, tol=0.05, stop_on="enriched")
+    assert history.stop == "tolerance" and history.levels[-1].seconds == 0.0
+    assert history.levels[-1].unknowns == history.problem.n_free
+    for solution in history.history.solutions:
+        assert np.isfinite(solution.report.estimate["traction_hierarchical_relative"])
+
+
 def test_all_edge_bisection_takes_fewer_levels_to_the_same_tolerance() -> None:
     """Both bisections reach the tolerance; all three edges of a marked triangle (the default) grows each level
     more, so the loop needs fewer levels (the shapes of the children are checked in the core's tests)."""

@@ -82,18 +82,27 @@ impl Problem {
             }
         });
         let ended = |h: &History| (h.status, h.solutions.iter().map(|s| s.report.iterations).sum());
-        let estimate = |p: &Problem, h: &History| p.estimate_history_hierarchical(h, friction, settings);
+        let estimate = |p: &Problem, h: &History| p.history_hierarchical_and_enriched(h, friction, settings);
         // Only the finite estimates: a step without one reads its bound.
-        let store = |h: &mut History, estimates: &[Hierarchical]| {
-            for (i, e) in estimates.iter().enumerate().filter(|(_, e)| e.relative.is_finite()) {
+        let store_with = |h: &mut History, estimates: &[Hierarchical], enriched: bool| {
+            // Estimate i is of kept step i; both histories keep every step (keep_every is 1 here, and 1 in the
+            // enriched history).
+            debug_assert_eq!(h.kept.len(), estimates.len(), "every step kept");
+            for (i, e) in estimates.iter().enumerate() {
                 let (Some(&k), Some(solution)) = (h.kept.get(i), h.solutions.get_mut(i)) else { continue };
-                e.store(solution);
+                match enriched {
+                    false if e.relative.is_finite() => e.store(solution),
+                    true if e.enriched_relative.is_finite() => e.store_enriched(solution),
+                    _ => continue,
+                }
                 if let Some(record) = h.records.get_mut(k) {
                     record.estimate = solution.report.estimate;
                 }
             }
         };
-        let sharp = Sharp { estimate: &estimate, store: &store };
+        let store = |h: &mut History, estimates: &[Hierarchical]| store_with(h, estimates, false);
+        let store_enriched = |h: &mut History, estimates: &[Hierarchical]| store_with(h, estimates, true);
+        let sharp = Sharp { estimate: &estimate, store: &store, store_enriched: &store_enriched };
         let (problem, history, levels, stop) =
             self.adapt_loop(settings, adapt, observer, &solve, &read, &ended, Some(&sharp))?;
         Ok(AdaptiveHistory { problem, history, levels, stop })
@@ -124,9 +133,20 @@ impl Problem {
         friction: &Friction,
         settings: &SolverSettings,
     ) -> Result<Vec<Hierarchical>> {
+        Ok(self.history_hierarchical_and_enriched(history, friction, settings)?.0)
+    }
+
+    /// [`Problem::estimate_history_hierarchical`], with the enriched problem and its history (`None` for a
+    /// history without records).
+    pub(super) fn history_hierarchical_and_enriched(
+        &self,
+        history: &History,
+        friction: &Friction,
+        settings: &SolverSettings,
+    ) -> Result<super::Estimated<History>> {
         let clock = Instant::now();
         if history.records.is_empty() {
-            return Ok(Vec::new());
+            return Ok((Vec::new(), None));
         }
         self.check_history_of(history)?;
         let mut strip = vec![false; self.mesh.n_triangles()];
@@ -171,6 +191,8 @@ impl Problem {
                     norm,
                     estimate,
                     relative,
+                    enriched_estimate: f64::NAN,
+                    enriched_relative: f64::NAN,
                     unknowns,
                     status,
                     seconds,
@@ -191,12 +213,15 @@ impl Problem {
                     self.reductions(&regions[i], (solution, (&enriched, fine)), again.map(|a| (p, a)))
                 }
             };
-            let (estimate, relative) = estimate_of(difference, norm, &ends, settings.fp.tol);
+            let [(estimate, relative), (enriched_estimate, enriched_relative)] =
+                estimate_of(difference, norm, &ends, settings.fp.tol);
             Hierarchical {
                 difference,
                 norm,
                 estimate,
                 relative,
+                enriched_estimate,
+                enriched_relative,
                 unknowns,
                 status: answer.status,
                 seconds,
@@ -204,7 +229,8 @@ impl Problem {
                 error_bars: None,
             }
         };
-        Ok(history.kept.iter().enumerate().map(estimate).collect())
+        let estimates = history.kept.iter().enumerate().map(estimate).collect();
+        Ok((estimates, Some((enriched, answer))))
     }
 
     /// Refuses a history that is not of this problem: its solutions ([`Problem::check_solution_of`]), and

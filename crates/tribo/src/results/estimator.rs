@@ -113,7 +113,9 @@ pub struct ErrorEstimate {
     /// whole mesh by [`crate::Problem::solve_with_error_bars`]): `2 ‖λ_H − λ_f‖`, with the reduction
     /// measured instead of assumed where the contact zone reaches an end of Γ_C ([`crate::adapt::enriched`]
     /// derives it). Sharp where the bound ζ is pessimistic, but not a guaranteed bound; infinite where
-    /// a measured reduction is 1 or more (no estimate). `None` unless it was computed (NaN by
+    /// a measured reduction is 1 or more (no estimate). On the enriched answer an adaptive loop with
+    /// [`crate::settings::StopOn::Enriched`] hands back, the estimate of that answer's own error, `‖λ_H − λ_f‖`
+    /// (λ_H the level's answer it enriched; [`crate::adapt`]). `None` unless it was computed (NaN by
     /// [`Self::named`]).
     pub traction_hierarchical: Option<f64>,
     /// `traction_hierarchical / ‖λ_f‖` in L²(Γ_C) (`None` unless computed).

@@ -170,6 +170,105 @@ fn stopping_on_the_hierarchical_estimate_ends_near_the_asked_accuracy() {
     }
 }
 
+/// With `stop_on = "enriched"`, where the answer of a level's enriched problem has an estimate of its own
+/// (half the level's: `‖λ_H − λ_f‖` against `2 ‖λ_H − λ_f‖`, both over `‖λ_f‖`) within `tol`, the loop hands it
+/// back as one more level: converged to `fp_tol`, nested in the level before it, solved again alike, closer to
+/// Hertz than that level's answer, and reached no later than the default stop.
+#[test]
+fn the_enriched_answer_is_handed_back_where_its_estimate_meets_tol() -> Result<()> {
+    let problem = off_centre_problem();
+    let (friction, settings) = (Friction::Frictionless, SolverSettings::default());
+    let tol = 0.02;
+    let adapt = AdaptSettings { tol, stop_on: StopOn::Enriched, max_unknowns: 200_000, ..Default::default() };
+    let mut heard = Vec::new();
+    let mut observer = |level: &Level| {
+        heard.push(level.unknowns);
+        std::ops::ControlFlow::Continue(())
+    };
+    let out = problem.solve_adaptive(&friction, &settings, &adapt, Some(&mut observer))?;
+    let [.., coarse, fine] = &out.levels[..] else { panic!("at least two levels") };
+    let (h, f) = (coarse.estimate.traction_hierarchical_relative, fine.estimate.traction_hierarchical_relative);
+    println!(
+        "{} levels: {} unknowns, {h:?}; handed back {} unknowns, {f:?}",
+        out.levels.len(),
+        coarse.unknowns,
+        fine.unknowns
+    );
+    assert_eq!(out.stop, AdaptStop::Tolerance);
+    let (h, f) = (h.expect("the level before is estimated"), f.expect("the enriched answer carries its estimate"));
+    assert!(h > tol && f <= tol, "{h} {f}");
+    assert!((f - h / 2.0).abs() <= 1e-12 * h, "no end of Γ_C touches: half the level's estimate");
+    assert_eq!((fine.seconds, fine.status, out.problem.n_free), (0.0, SolveStatus::Converged, fine.unknowns));
+    assert!(coarse.seconds > 0.0 && fine.unknowns > coarse.unknowns);
+    assert_eq!(heard, out.levels.iter().map(|l| l.unknowns).collect::<Vec<_>>(), "the observer heard every level");
+    let bound = Solution::accuracy_bound(settings.qp.tol, out.solution.report.qp_inaccurate, settings.fp.tol);
+    assert!(out.solution.kkt.max() <= bound, "converged to fp_tol: {:?}", out.solution.kkt);
+    // Nested: the enriched mesh begins with the level's nodes; solved again on it, the answer is the same.
+    assert_eq!(&fine.mesh.points()[..coarse.mesh.n_nodes()], coarse.mesh.points());
+    let again = problem.on_level(fine)?.solve(&friction, &settings, None)?;
+    let (d, n) = tribo::adapt::multiplier_difference(&out.problem, &out.solution, &out.problem, &again);
+    assert!(d <= 1e-6 * n, "{d} of {n}");
+    let before = problem.on_level(coarse)?;
+    let at_coarse = before.solve(&friction, &settings, None)?;
+    let (e_fine, e_coarse) = (hertz_error(&out.problem, &out.solution), hertz_error(&before, &at_coarse));
+    println!("error against Hertz: {e_coarse:.3e} on the level, {e_fine:.3e} handed back");
+    assert!(e_fine < e_coarse);
+    // The default stop computes the same levels up to `coarse` and goes on from there.
+    let default = AdaptSettings { stop_on: StopOn::Hierarchical, ..adapt };
+    let sharp = problem.solve_adaptive(&friction, &settings, &default, None)?;
+    assert!(
+        sharp.levels.len() >= out.levels.len() - 1 && sharp.levels[out.levels.len() - 2].unknowns == coarse.unknowns
+    );
+    Ok(())
+}
+
+/// The enriched answer is not handed back beyond `max_unknowns` or `max_levels`, nor with P0 multipliers
+/// (first order everywhere: no margin); an observer that stops the loop at the level before it gets that level,
+/// and is not called again.
+#[test]
+fn the_enriched_answer_keeps_to_the_limits_and_the_observer() -> Result<()> {
+    let problem = off_centre_problem();
+    let (friction, settings) = (Friction::Frictionless, SolverSettings::default());
+    let adapt = AdaptSettings { tol: 0.02, stop_on: StopOn::Enriched, max_unknowns: 200_000, ..Default::default() };
+    let free = problem.solve_adaptive(&friction, &settings, &adapt, None)?;
+    let [.., coarse, fine] = &free.levels[..] else { panic!("levels") };
+    assert_eq!(fine.seconds, 0.0, "handed back");
+    // Limits just below what the hand-back needs: the loop goes on as the default stop does.
+    let narrow = [
+        AdaptSettings { max_unknowns: fine.unknowns - 1, ..adapt },
+        AdaptSettings { max_levels: free.levels.len() - 1, ..adapt },
+    ];
+    for limited in narrow {
+        let out = problem.solve_adaptive(&friction, &settings, &limited, None)?;
+        assert!(out.levels.iter().all(|l| l.seconds > 0.0) && out.problem.n_free <= limited.max_unknowns);
+        assert!(out.levels.len() <= limited.max_levels, "{} levels", out.levels.len());
+    }
+    // P0 multipliers: never handed back.
+    let mut spec = tribo_testkit::hertz_spec(0.01, 0.0, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P0);
+    spec.obstacle.shape = ObstacleShape::Circle { center: CENTER, radius: 1.0 };
+    let p0 = Problem::new(rectangle([-2.0, 2.0], [-2.0, 0.0], 8, 4, Diagonal::Right)?, spec)?;
+    let out = p0.solve_adaptive(&friction, &settings, &adapt, None)?;
+    assert!(out.levels.iter().all(|l| l.seconds > 0.0) && out.stop == AdaptStop::Tolerance);
+    // Stopped by the observer at the level whose enriched answer would have been handed back.
+    let mut calls = 0;
+    let mut observer = |level: &Level| {
+        calls += 1;
+        if level.unknowns == coarse.unknowns {
+            std::ops::ControlFlow::Break(())
+        } else {
+            std::ops::ControlFlow::Continue(())
+        }
+    };
+    let out = problem.solve_adaptive(&friction, &settings, &adapt, Some(&mut observer))?;
+    assert_eq!(
+        (calls, out.levels.len(), out.problem.n_free),
+        (free.levels.len() - 1, free.levels.len() - 1, coarse.unknowns)
+    );
+    let met = coarse.relative <= adapt.tol;
+    assert_eq!(out.stop, if met { AdaptStop::Tolerance } else { AdaptStop::Interrupted });
+    Ok(())
+}
+
 /// A Coulomb loop stopping on the hierarchical estimate that hits `max_unknowns` hands back the level it
 /// estimated, with the estimate: that level's answer was converged to `fp_tol` before its enriched solve, so
 /// it is not solved again (which dropped the estimate). The observer heard the level that is handed back.

@@ -217,7 +217,7 @@ fn the_choice_registry_lists_every_option() {
     assert_eq!(registry["qp_method"], QpMethod::names());
     assert_eq!(registry["bisection"], ["all_edges", "refinement_edge"]);
     assert_eq!(registry["marking"], Marking::names());
-    assert_eq!(registry["stop_on"], ["bound", "hierarchical"]);
+    assert_eq!(registry["stop_on"], ["bound", "hierarchical", "enriched"]);
     for name in &registry["condensation"] {
         assert_eq!(Condensation::parse(name).map(Condensation::as_str), Ok(*name));
     }
