@@ -16,6 +16,9 @@ its time the run's time up to and including it.
         cargo run --release -p tribo --example tol_table $c hierarchical; done
     cargo run --release -p tribo --example history_tol default hierarchical
     for c in hertz hertz@0.3 hertz-coulomb; do cargo run --release -p tribo --example tol_table $c bound; done
+    for c in hertz hertz@0.3 hertz-coulomb two-body two-body-coulomb block; do
+        cargo run --release -p tribo --example tol_table $c enriched; done
+    cargo run --release -p tribo --example history_tol default enriched
     python scripts/plot_tol_table.py
 """
 
@@ -116,22 +119,29 @@ def _range(values: list[float]) -> str:
     return f"{min(values):.2f}–{max(values):.2f}" if values else "–"
 
 
-def summary(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, Any]]]) -> str:
-    """What the tables show, counted from them."""
+def summary(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, Any]]],
+            effectivity_levels: list[dict[str, Any]]) -> str:
+    """What the tables show, counted from them (``effectivity_levels``: every level row, for the enriched answers
+    handed back)."""
     lines = []
-    sharp = [r for r in runs if r["stop_on"] == "hierarchical"]
-    if sharp:
+    for stop, what in (("hierarchical", "stopping on the hierarchical estimate** (the default)"),
+                       ("enriched", "handing back the enriched answer** (`stop_on = \"enriched\"`)")):
+        sharp = [r for r in runs if r["stop_on"] == stop]
+        if not sharp:
+            continue
         band = [r for r in sharp if r["in_band"]]
         out = ", ".join(f"{r['case']} at {r['tol']:g}: {r['ratio']:.3f}" for r in sharp if not r["in_band"])
-        lines.append(f"* **True error over X, stopping on the hierarchical estimate** (the default): {len(band)} of "
-                     f"{len(sharp)} runs in [X/3, X] ({_range([r['ratio'] for r in sharp])})"
-                     + (f"; outside: {out}." if out else "."))
         timed = [r for r in sharp if math.isfinite(r["time_ratio"])]
         fast = [r for r in timed if r["in_time"]]
-        lines.append(f"* **Time over the cheapest adequate level**: {len(fast)} of {len(timed)} runs within "
-                     f"{TIME:g}× ({_range([r['time_ratio'] for r in timed])}); the loop stops only on a level whose "
-                     "estimate is at most X, so where the first adequate level's true error is above X over the "
-                     "effectivity, it pays another level and its estimate (each about twice the level's unknowns).")
+        lines.append(f"* **True error over X, {what}: {len(band)} of {len(sharp)} runs in [X/3, X] "
+                     f"({_range([r['ratio'] for r in sharp])})" + (f"; outside: {out}" if out else "")
+                     + f". Time over the cheapest adequate level: {len(fast)} of {len(timed)} runs within {TIME:g}× "
+                     f"({_range([r['time_ratio'] for r in timed])}).")
+    if any(r["stop_on"] == "hierarchical" for r in runs):
+        lines.append("* The default stop ends only on a level whose estimate is at most X, so where the first adequate "
+                     "level's true error is above X over the effectivity, it pays another level and its estimate "
+                     "(each about twice the level's unknowns); handing back the enriched answer, whose estimate is "
+                     "half the level's, stops at that level or before it wherever the effectivity is at most 2.")
     bound = [r for r in runs if r["stop_on"] == "bound"]
     if bound:
         lines.append(f"* **Stopping on the bound** (`stop_on = \"bound\"`): true error over X "
@@ -150,18 +160,38 @@ def summary(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, An
                      f"contact: {len(inside)} of {len(resolved)} levels (of a history, steps) in [1, 2] "
                      f"({_range([r['effectivity'] for r in resolved])}); the bound's "
                      f"{_range([r['bound_effectivity'] for r in resolved])}" + (f". Outside: {out}." if out else "."))
+    handed = handed_back(effectivity_levels)
+    if handed:
+        inside = [r for r in handed if EFFECTIVITY[0] <= r["effectivity"] <= EFFECTIVITY[1]]
+        lines.append(f"* **The enriched answers handed back** carry `‖λ_H − λ_f‖`, the estimate of their own error: "
+                     f"{_range([r['effectivity'] for r in handed])} times it ({len(inside)} of {len(handed)} in "
+                     "[1, 2]): where the enrichment removes more than half of the coarse error, it overestimates.")
     return "\n".join(lines) + "\n"
+
+
+def handed_back(levels: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """The enriched answers handed back (a level of no time of its own: `Level::seconds`), each once, with the
+    effectivity of the estimate they carry."""
+    seen: dict[tuple[str, float], dict[str, Any]] = {}
+    for r in levels:
+        if (r["stop_on"] == "enriched" and r["seconds"] == 0 and r["step"] == "" and r["hierarchical"] is not None
+                and r["true_error"] is not None and math.isfinite(r["true_error"]) and r["true_error"] > 0):
+            seen.setdefault((r["case"], r["unknowns"]), {**r, "effectivity": r["hierarchical"] / r["true_error"]})
+    return sorted(seen.values(), key=lambda r: (order(r["case"]), r["unknowns"]))
 
 
 def chart(runs: list[dict[str, Any]], path: Path) -> None:
     plt = sl.pyplot()
     fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True)
-    sharp = [r for r in runs if r["stop_on"] == "hierarchical"]
-    for case in sorted({r["case"] for r in sharp}, key=order):
-        rows = [r for r in sharp if r["case"] == case]
-        x = [100 * r["tol"] for r in rows]
-        a.plot(x, [r["ratio"] for r in rows], "o-", label=case)
-        b.plot(x, [r["time_ratio"] for r in rows], "o-", label=case)
+    for stop, style in (("hierarchical", "o-"), ("enriched", "s--")):
+        sharp = [r for r in runs if r["stop_on"] == stop]
+        for k, case in enumerate(sorted({r["case"] for r in sharp}, key=order)):
+            rows = [r for r in sharp if r["case"] == case]
+            x = [100 * r["tol"] for r in rows]
+            colour = f"C{list(CASES).index(case) if case in CASES else k}"
+            label = case if stop == "hierarchical" else f"{case}, enriched"
+            a.plot(x, [r["ratio"] for r in rows], style, color=colour, label=label)
+            b.plot(x, [r["time_ratio"] for r in rows], style, color=colour, label=label)
     a.axhspan(*BAND, color="0.9", zorder=0)
     b.axhline(TIME, color="0.5", ls="--")
     for ax in (a, b):
@@ -172,12 +202,13 @@ def chart(runs: list[dict[str, Any]], path: Path) -> None:
     a.set_title("the answer's true error (band: [X/3, X])")
     b.set_ylabel("run time / time to the cheapest adequate level")
     b.set_title(f"the time (line: {TIME:g}×)")
-    a.legend(fontsize=7)
+    a.legend(fontsize=6, ncol=2)
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
 
-def page(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, Any]]]) -> str:
+def page(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, Any]]],
+         levels: list[dict[str, Any]]) -> str:
     """The page: what is measured, how to regenerate it, what it shows, the tables."""
     doc = __doc__ or ""
     scenes = "\n".join(f"* `{c}`: {CASES.get(c, c)}" for c in sorted({r["case"] for r in runs}, key=order))
@@ -202,14 +233,15 @@ def page(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, Any]]
         "# Study 13: does `tol` mean what it says?", doc.split("\n\n")[1],
         "Regenerate with the commands below (from 15 seconds per case, one-body Hertz, to 6 minutes, the block, on "
         "two cores: the references and the solves of every level again are most of it; the timings of the machine "
-        "of the studies vary by tens of percent between runs; the bound's runs are those of the Hertz cases):"
+        "of the studies vary by tens of percent between runs; the bound's runs are those of the Hertz cases, and "
+        "`stop_on = \"enriched\"` hands nothing back with P0 multipliers):"
         "\n\n```bash\n"
         + doc.split("\n\n")[2].replace("    ", "", 1).replace("\n    ", "\n").strip() + "\n```",
         "**Scenes** (their coarse starts and references: `tribo_testkit::adaptive_case`, "
         "`tribo_testkit::adaptive_hertz_case`). The Hertz cases' reference is the same scene on a graded mesh of "
         "466k unknowns; the others' the adaptive loop run to 500k unknowns. Where a run ends near the reference's "
         "own error (about 3e-4 to 8e-4 on the Hertz cases), a \"true error\" is partly the reference's.\n\n" + scenes,
-        "## What it shows\n\n" + summary(runs, effectivity), "![tol table](tol_table.png)",
+        "## What it shows\n\n" + summary(runs, effectivity, levels), "![tol table](tol_table.png)",
         "## The runs\n\n" + table,
         "## Effectivity of the estimates\n\nEvery level where the loop computed the hierarchical estimate, in any "
         "run of the case (once each).\n\n" + eff])
@@ -226,9 +258,9 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
     runs = run_rows(raw_runs)
     effectivity = effectivity_rows(levels)
     args.out.mkdir(parents=True, exist_ok=True)
-    (args.out / "tol_table.md").write_text(page(runs, effectivity) + "\n", encoding="utf-8")
+    (args.out / "tol_table.md").write_text(page(runs, effectivity, levels) + "\n", encoding="utf-8")
     chart(runs, args.out / "tol_table.png")
-    return {"runs": runs, "effectivity": effectivity}
+    return {"runs": runs, "effectivity": effectivity, "handed_back": handed_back(levels)}
 
 
 if __name__ == "__main__":

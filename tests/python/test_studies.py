@@ -319,15 +319,23 @@ def test_plot_tol_table(tmp_path: Path) -> None:
               "hertz,hierarchical,0.05,7,2600,0.1,,40,nan,0.03,0.2"]  # no true error: not a level either
     (folder / "hertz.csv").write_text("\n".join(runs) + "\n")
     (folder / "hertz_levels.csv").write_text("\n".join(levels) + "\n")
+    # stop_on = "enriched": its handed-back answer is the level of no time of its own.
+    (folder / "hertz-enriched.csv").write_text(runs[0] + "\nhertz,enriched,0.05,0.01,2500,0.2,6,1000,0.2,tolerance\n")
+    (folder / "hertz-enriched_levels.csv").write_text(
+        levels[0] + "\nhertz,enriched,0.05,5,1000,0.2,,20,0.02,0.05,0.3\nhertz,enriched,0.05,6,2500,0,,40,0.01,0.03,0.2\n")
     res = study("plot_tol_table").main(["--csv-dir", str(folder), "--out", str(tmp_path)])
-    verdicts = [(r["in_band"], r["in_time"]) for r in res["runs"]]
-    assert verdicts == [(True, False), (True, True), (False, False)], verdicts
+    verdicts = [(r["stop_on"], r["in_band"], r["in_time"]) for r in res["runs"]]
+    assert verdicts == [("hierarchical", True, False), ("hierarchical", True, True), ("hierarchical", False, False),
+                        ("enriched", False, True)], verdicts
+    assert [(r["unknowns"], r["effectivity"]) for r in res["handed_back"]] == [(2500, 3.0)]
     assert [r["unknowns"] for r in res["effectivity"]["hertz"]] == [100, 800, 1000]
     md = (tmp_path / "tol_table.md").read_text()
     assert "2 of 3 runs in [X/3, X] (0.40–1.10); outside: hertz at 0.01: 1.100." in md, md
     assert "1 of 2 runs within 2×" in md and "1 of 2 levels (of a history, steps) in [1, 2] (1.50–2.50)" in md, md
     assert "Outside: hertz 1 (2.50)." in md and (tmp_path / "tol_table.png").stat().st_size > 0
     assert "| hertz | 2 | 1.50–2.50 | 10.00–15.00 |" in md, md
+    assert "handing back the enriched answer** (`stop_on = \"enriched\"`): 0 of 1 runs in [X/3, X] (0.20–0.20)" in md
+    assert "the estimate of their own error: 3.00–3.00 times it (0 of 1 in [1, 2])" in md, md
     # A row cut short (a run killed while writing) is named, not read as numbers.
     (folder / "hertz_levels.csv").write_text("\n".join(levels[:2] + ["hertz,hierarchical,0.05,4"]) + "\n")
     with pytest.raises(ValueError, match="hertz_levels.csv, line 3: not as many fields as the header"):
