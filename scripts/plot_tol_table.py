@@ -85,7 +85,9 @@ def order(case: str) -> tuple[int, str]:
 def run_rows(runs: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """Each run with its ratios and whether it meets the issue's two conditions."""
     out = []
-    for r in sorted(runs, key=lambda r: (order(r["case"]), r["stop_on"] != "hierarchical", -r["tol"])):
+    stops = ("hierarchical", "enriched", "bound")
+    rank = {s: k for k, s in enumerate(stops)}
+    for r in sorted(runs, key=lambda r: (order(r["case"]), rank.get(r["stop_on"], len(stops)), -r["tol"])):
         ratio = r["true_error"] / r["tol"]
         cheap = r["cheapest_seconds"]
         time = r["seconds"] / cheap if cheap is not None and cheap > 0 else math.nan

@@ -368,9 +368,10 @@ class Problem(_tribo.Problem):
         docs/beyond_hertz.md), computed on the levels near ``tol`` with at least 10 multiplier dofs in contact
         at the cost of a solve of about 2.6 times their unknowns; the answer's true error then ended at
         0.333–0.705 ``tol`` in 31 of 32 runs of eight cases (docs/tol_table.md). With ``stop_on='enriched'`` the
-        loop also hands back the answer of a level's enriched problem where its own estimate (half the level's)
-        meets ``tol`` (P1 multipliers): one level sooner as a rule, a more accurate answer, an estimate less sharp
-        (docs/tol_table.md measures both). With ``stop_on='bound'`` it is the residual bound alone, above
+        loop also hands back the answer of a level's enriched problem where its own estimate (half the level's
+        away from the ends of Γ_C in contact) meets ``tol`` (P1 multipliers; a history's enriched history alike;
+        ``progress``'s return value is not read for that last level): one level sooner as a rule, a more
+        accurate answer, an estimate less sharp (docs/tol_table.md measures both). With ``stop_on='bound'`` it is the residual bound alone, above
         the true error but pessimistically (on Hertz by 3 on coarse meshes and up to 24 on fine ones,
         docs/STUDIES.md, study 6): the answer is usually many times more accurate than ``tol``, at many times
         the unknowns. Marking is Dörfler's with ``theta`` (default 0.5), or the maximum

@@ -116,7 +116,7 @@ def test_a_history_stops_on_the_hierarchical_estimate() -> None:
         off_centre().solve_history_adaptive(0.01, shift, mu=0.3, stop_on="sharpest")  # type: ignore[arg-type]
 
 
-def test_the_enriched_answer_is_handed_back_from_python_and_a_scene() -> None:
+def test_the_enriched_answer_is_handed_back_from_python() -> None:
     """``stop_on='enriched'``: a static loop and a history hand back the answer enriched for the last estimated
     level where its own estimate meets ``tol``: the last level has no time of its own, more unknowns than the one
     before, and its estimate is the answer's; the history's every step carries it."""

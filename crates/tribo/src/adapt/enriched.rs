@@ -162,7 +162,7 @@ impl EndReduction {
         // Not `max`, which would turn a NaN reduction into ½.
         let q = if self.reduction < 0.5 { 0.5 } else { self.reduction };
         if q < 1.0 {
-            self.difference * answer.factor(q)
+            answer.bound(self.difference, q)
         } else {
             f64::INFINITY
         }
@@ -179,11 +179,11 @@ pub(super) enum Answer {
 }
 
 impl Answer {
-    /// The factor of the difference for a reduction `q < 1`.
-    fn factor(self, q: f64) -> f64 {
+    /// The bound of the error from a difference `d` and a reduction `q < 1`: `d / (1 − q)` or `d q / (1 − q)`.
+    fn bound(self, d: f64, q: f64) -> f64 {
         match self {
-            Answer::Coarse => 1.0 / (1.0 - q),
-            Answer::Enriched => q / (1.0 - q),
+            Answer::Coarse => d / (1.0 - q),
+            Answer::Enriched => d * q / (1.0 - q),
         }
     }
 }
@@ -196,7 +196,7 @@ const NOISE: f64 = FixedPointSettings::DEFAULT_TOL;
 /// the enriched answer `((d² − Σ d_R²) + Σ (d_R q / (1 − q))²)^½` with `q = max(q_R, ½)` (the factor
 /// ½ / (1 − ½) = 1 on the rest). An end whose difference is at most `noise` (the accuracy to which the solves
 /// determine λ) measures nothing: its q is a ratio of rounding, and it is left in the rest of Γ_C, where the
-/// factor 2 keeps it below the noise's double.
+/// factor 2 (1 for the enriched answer) keeps it within twice the noise.
 pub(super) fn combine_for(answer: Answer, difference: f64, ends: &[EndReduction], noise: f64) -> f64 {
     // Squared in units of the difference, so that no unit of stress under- or overflows (defect D27).
     let unit = if difference > 0.0 && difference.is_finite() { difference } else { 1.0 };
@@ -207,7 +207,9 @@ pub(super) fn combine_for(answer: Answer, difference: f64, ends: &[EndReduction]
     let rest = (difference / unit).powi(2) - at_ends;
     let rest = if rest < 0.0 { 0.0 } else { rest };
     let ends: f64 = measured().map(|e| (e.estimate(answer) / unit).powi(2)).sum();
-    unit * (answer.factor(0.5).powi(2) * rest + ends).sqrt()
+    // The rest takes q = ½: 4 d² for the coarse answer, d² for the enriched one.
+    let weight = if answer == Answer::Coarse { 4.0 } else { 1.0 };
+    unit * (weight * rest + ends).sqrt()
 }
 
 /// `η_hier` and `η_hier / ‖λ_f‖` (NaN when `norm` is 0) from the difference and the norm on Γ_C and the

@@ -86,8 +86,11 @@ impl Problem {
         // Only the finite estimates: a step without one reads its bound.
         let store_with = |h: &mut History, estimates: &[Hierarchical], enriched: bool| {
             // Estimate i is of kept step i; both histories keep every step (keep_every is 1 here, and 1 in the
-            // enriched history).
-            debug_assert_eq!(h.kept.len(), estimates.len(), "every step kept");
+            // enriched history): estimates that do not fit them are not written.
+            if h.kept.len() != estimates.len() {
+                log::warn!("{} estimates for {} kept steps: not stored", estimates.len(), h.kept.len());
+                return;
+            }
             for (i, e) in estimates.iter().enumerate() {
                 let (Some(&k), Some(solution)) = (h.kept.get(i), h.solutions.get_mut(i)) else { continue };
                 match enriched {

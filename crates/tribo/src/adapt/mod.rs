@@ -69,26 +69,22 @@
 //!
 //! # The enriched answer handed back (`stop_on = "enriched"`)
 //! The hierarchical estimate of level k solves the problem enriched near the contact zone; that answer λ_f is
-//! the better one (its error `e_f = q e_H`, q the reduction of the saturation assumption), and under the same
-//! assumption (`q ≤ ½`) `‖λ_H − λ_f‖` bounds it: `e_f ≤ q (e_f + d) ⇒ e_f ≤ q d / (1 − q) ≤ d`
-//! ([`Hierarchical::enriched_estimate`], with the reduction measured at the ends of Γ_C in contact as for
-//! λ_H). With [`StopOn::Enriched`] and P1 multipliers, where that estimate (or the enriched answer's own
-//! bound, if smaller) is at most `tol`, the loop stops
-//! there and hands back the enriched problem and its answer, recorded as one more level (its `seconds` 0: it
-//! was solved as the estimate of the level before it, whose seconds count it). Since `‖λ_H − λ_f‖` is half
-//! the estimate of λ_H, this stops at the first level whose own estimate is at most `2 tol`: wherever that
-//! estimate's effectivity is at most 2, at the cheapest level whose true error is at most `tol` or before it,
-//! so the loop no longer pays the level after the cheapest adequate one and its estimate (study 13,
-//! `docs/tol_table.md`, measures both estimates against references). The enriched answer converged to
-//! `fp_tol` (it is solved with the caller's settings). Its estimate is no sharper than λ_H's: where the
-//! enrichment removes more than half of the error (`q < ½`), `d` overestimates `e_f` by up to `1 / (2q)` times
-//! what `2d` overestimates `e_H` by. P0 multipliers converge to first order everywhere, so their reduction is
-//! about ½ on the whole of Γ_C and leaves no margin: there the enriched answer is not handed back (measured on
-//! the P0 `tol` runs of adaptive Hertz before it was excluded, its estimate was 0.72–1.07 times its error).
-//! Measured (study 13, 28 runs of seven cases): within twice the time of the cheapest adequate level in 25
-//! (1.00 in all but the block's, whose estimates are the dearest), in [X/3, X] in 19: on two bodies the
-//! enrichment removes more than half of the error and the answer ends at 0.12–0.29 X; the enriched answers'
-//! estimate is 1.01–7.16 times their error.
+//! the better one (`e_f = q e_H`), and under the same assumption (`q ≤ ½`) `d = ‖λ_H − λ_f‖` bounds its error:
+//! `e_f ≤ q (e_f + d) ⇒ e_f ≤ q d / (1 − q) ≤ d` ([`Hierarchical::enriched_estimate`]; `q_R d_R / (1 − q_R)` at
+//! the ends of Γ_C measured as for λ_H). With [`StopOn::Enriched`], P1 multipliers, and within `max_unknowns`
+//! and `max_levels`, where that estimate (or λ_f's own bound, if smaller) is at most `tol`, the loop hands back
+//! the enriched problem and its answer as one more level (`seconds` 0: solved as the estimate of the level
+//! before it, whose seconds count it; its strip bisected on all three edges whatever `bisection`). Away from
+//! measured ends d is half the estimate of λ_H, so the loop stops at the first estimated level whose own
+//! estimate is at most `2 tol`: wherever its effectivity is at most 2, at the cheapest level whose true error
+//! is at most `tol` or before it, without the level after it and its estimate. λ_f is converged to `fp_tol`
+//! (solved with the caller's settings). Its estimate is less sharp than λ_H's: where the enrichment removes
+//! more than half of the error (`q < ½`), d overestimates `e_f` `1 / (2q)` times as much as 2d does `e_H`.
+//! P0 multipliers converge to first order everywhere: their reduction is about ½, no margin, and λ_f is not
+//! handed back (its estimate was 0.72–1.07 times its error on the P0 `tol` runs of adaptive Hertz). Measured
+//! (study 13, `docs/tol_table.md`, 28 runs of seven cases): within twice the time of the cheapest adequate
+//! level in 25 (1.00 in all but the block's, whose estimates are the dearest), in [X/3, X] in 19: on two
+//! bodies the answer ends at 0.12–0.29 X; the enriched answers' estimate is 1.01–7.16 times their error.
 //!
 //! A refinement that would exceed `max_unknowns` is not made; the loop then stops with the last level
 //! and says so ([`AdaptStop::MaxUnknowns`]), as it does at `max_levels` or when a level does not converge.

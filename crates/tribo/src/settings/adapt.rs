@@ -51,10 +51,12 @@ pub enum StopOn {
     #[default]
     Hierarchical,
     /// As [`StopOn::Hierarchical`], and where the answer of the problem enriched for a level's estimate has
-    /// an estimate of its own error (`‖λ_H − λ_f‖`, half the level's) at most `tol`, that answer is handed back
-    /// as one more level (P1 multipliers; see [`crate::adapt`]): the loop stops at the cheapest level whose
-    /// true error is within `tol` or before it wherever the level's estimate is within twice its error, and
-    /// the answer is the more accurate one, often by more than `tol / 3` (study 13 measures both stops).
+    /// an estimate of its own error (`‖λ_H − λ_f‖`, half the level's away from the ends of Γ_C in contact) at
+    /// most `tol`, that answer is handed back as one more level (P1 multipliers, within `max_unknowns` and
+    /// `max_levels`; its strip bisected on all edges whatever `bisection`; see [`crate::adapt`]): the loop
+    /// stops at the cheapest level whose true error is within `tol` or before it wherever the level's estimate
+    /// is within twice its error, and the answer is the more accurate one, often by more than `tol / 3` (study
+    /// 13 measures both stops).
     Enriched,
 }
 

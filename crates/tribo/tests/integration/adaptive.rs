@@ -234,6 +234,18 @@ fn the_enriched_answer_keeps_to_the_limits_and_the_observer() -> Result<()> {
     let [.., coarse, fine] = &free.levels[..] else { panic!("levels") };
     assert_eq!(fine.seconds, 0.0, "handed back");
     // Limits just below what the hand-back needs: the loop goes on as the default stop does.
+    let wide = [
+        AdaptSettings { max_unknowns: fine.unknowns, ..adapt },
+        AdaptSettings { max_levels: free.levels.len(), ..adapt },
+    ];
+    for limited in wide {
+        let out = problem.solve_adaptive(&friction, &settings, &limited, None)?;
+        assert_eq!(
+            (out.levels.len(), out.problem.n_free),
+            (free.levels.len(), fine.unknowns),
+            "at the limits: handed back"
+        );
+    }
     let narrow = [
         AdaptSettings { max_unknowns: fine.unknowns - 1, ..adapt },
         AdaptSettings { max_levels: free.levels.len() - 1, ..adapt },
@@ -249,6 +261,9 @@ fn the_enriched_answer_keeps_to_the_limits_and_the_observer() -> Result<()> {
     let p0 = Problem::new(rectangle([-2.0, 2.0], [-2.0, 0.0], 8, 4, Diagonal::Right)?, spec)?;
     let out = p0.solve_adaptive(&friction, &settings, &adapt, None)?;
     assert!(out.levels.iter().all(|l| l.seconds > 0.0) && out.stop == AdaptStop::Tolerance);
+    // The last level's enriched answer had an estimate (half the level's) within tol: P1 would have handed it back.
+    let h = out.levels.last().and_then(|l| l.estimate.traction_hierarchical_relative).expect("estimated");
+    assert!(h / 2.0 <= adapt.tol, "{h}");
     // Stopped by the observer at the level whose enriched answer would have been handed back.
     let mut calls = 0;
     let mut observer = |level: &Level| {
