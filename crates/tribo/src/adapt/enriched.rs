@@ -207,9 +207,8 @@ pub(super) fn combine_for(answer: Answer, difference: f64, ends: &[EndReduction]
     let rest = (difference / unit).powi(2) - at_ends;
     let rest = if rest < 0.0 { 0.0 } else { rest };
     let ends: f64 = measured().map(|e| (e.estimate(answer) / unit).powi(2)).sum();
-    // The rest takes q = ½: 4 d² for the coarse answer, d² for the enriched one.
-    let weight = if answer == Answer::Coarse { 4.0 } else { 1.0 };
-    unit * (weight * rest + ends).sqrt()
+    // The rest takes q = ½: 4 d² for the coarse answer, d² for the enriched one (both exact in floating point).
+    unit * (answer.bound(1.0, 0.5).powi(2) * rest + ends).sqrt()
 }
 
 /// `η_hier` and `η_hier / ‖λ_f‖` (NaN when `norm` is 0) from the difference and the norm on Γ_C and the
