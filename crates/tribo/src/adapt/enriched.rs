@@ -21,10 +21,19 @@
 //! `e_f = q e_H ≤ q (d + e_f)`, so `e_f ≤ q d / (1 − q) ≤ d` ([`Hierarchical::enriched_estimate`]); the adaptive
 //! loop hands λ_f back where this meets its tolerance with `stop_on = "enriched"` ([`crate::adapt`]).
 //!
+//! Where the enrichment removes more than half of the error (two bodies: q = 0.22–0.65) this overestimates
+//! e_f, up to 7 times. Measuring q as at the ends of Γ_C (below) does not mend it: the example
+//! `measured_reduction` (`docs/measured_reduction.csv`) enriched λ_f once more on every level of adaptive
+//! Hertz and two-body Hertz (484–122k unknowns) and found `‖λ_f − λ_ff‖ / ‖λ_H − λ_f‖` = 0.07–0.40 on the
+//! whole strip and 0.01–0.31 locally, where the cells carrying half of `‖λ_H − λ_f‖²` are, against a true
+//! `e_f / e_H` of 0.18–0.67: `d q̂ / (1 − q̂)` fell to 0.09–1.34 (strip) and 0.03–0.97 (local) times e_f. The
+//! error left in λ_f lies where neither enrichment refines (the body away from Γ_C), so a further strip does
+//! not see it, and a q measured there is no bound.
+//!
 //! It is no guaranteed bound: where the enrichment removes less than half of the error, it falls below the
 //! truth: a contact edge that the enriched mesh still places in the wrong cell (the coarsest meshes); P0
-//! multipliers, first order everywhere, sit at the limit (0.73–1.32 on adaptive Hertz, study 15,
-//! `docs/beyond_hertz.md`).
+//! multipliers, first order everywhere, sit near the limit (1.11–1.61 on adaptive Hertz from 560 unknowns,
+//! studies 14 and 15, `docs/error_bars.md`; an earlier marking gave 0.73 and 0.92 on its two coarsest levels).
 //!
 //! Measured against a reference of 466k unknowns on adaptive Hertz (study 12, `docs/hierarchical.md`,
 //! levels with at least 10 multiplier dofs in contact, 320–74k unknowns): 0.98–2.22 times the true error
