@@ -277,6 +277,33 @@ def pyplot() -> Any:
     return plt
 
 
+def csv_study_args(doc: str | None, folder: str, argv: list[str] | None = None) -> argparse.Namespace:
+    """The command line of a study drawn from the CSV files of a Rust example: ``--csv-dir`` (default
+    ``docs/<folder>``) and ``--out`` (default docs/)."""
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--csv-dir", type=Path, default=DOCS / folder, help=f"input (default docs/{folder})")
+    ap.add_argument("--out", type=Path, default=DOCS, help="output directory (default docs/)")
+    return ap.parse_args(argv)
+
+
+def read_csv_rows(path: Path) -> list[dict[str, str]]:
+    """The rows of a CSV file as dicts by its header; a row cut short (a run killed while writing) or too long is
+    an error naming the file and the line."""
+    with open(path, newline="") as f:
+        reader = csv.DictReader(f)
+        rows = []
+        for r in reader:
+            if None in r or None in r.values():
+                raise ValueError(f"{path.name}, line {reader.line_num}: not as many fields as the header")
+            rows.append(r)
+    return rows
+
+
+def commands_block(doc: str) -> str:
+    """The third paragraph of a study's docstring (its indented commands) as a bash code block."""
+    return "```bash\n" + doc.split("\n\n")[2].replace("    ", "", 1).replace("\n    ", "\n").strip() + "\n```"
+
+
 def cli(run: Callable[[bool, Path], Any], doc: str | None, argv: list[str] | None = None) -> Any:
     """The command line every study shares: ``--smoke`` (tiny configuration) and ``--out DIR``."""
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)

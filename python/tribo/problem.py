@@ -365,7 +365,7 @@ class Problem(_tribo.Problem):
         ``report.estimate["traction_hierarchical_relative"]``; where the contact zone reaches an end of Γ_C,
         its reduction there is measured by a second enrichment): within a factor of about 1–2 of the true
         error, not a guaranteed bound (the bound is the smaller where the traction is singular at a corner,
-        docs/beyond_hertz.md), computed on the levels near ``tol`` with at least 10 multiplier dofs in contact
+        docs/error_bars.md), computed on the levels near ``tol`` with at least 10 multiplier dofs in contact
         at the cost of a solve of about 2.6 times their unknowns; the answer's true error then ended at
         0.333–0.705 ``tol`` in 31 of 32 runs of eight cases (docs/tol_table.md). With ``stop_on='enriched'`` the
         loop also hands back the answer of a level's enriched problem where its own estimate (half the level's

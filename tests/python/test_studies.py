@@ -313,7 +313,7 @@ def test_plot_tol_table(tmp_path: Path) -> None:
     levels = ["case,stop_on,tol,level,unknowns,seconds,step,in_contact,true_error,hierarchical,bound",
               "hertz,hierarchical,0.05,4,800,0.1,,12,0.03,0.045,0.3",  # 1.5
               "hertz,hierarchical,0.02,4,800,0.1,,12,0.03,0.045,0.3",  # the same level in another run
-              "hertz,hierarchical,0.05,5,1000,0.1,,20,0.02,0.05,0.3",  # 2.5: outside
+              "hertz,hierarchical,0.05,5,1000,0.1,,20,0.02,0.05,0.03",  # 2.5: outside (the bound 1.5)
               "hertz,hierarchical,0.05,1,100,0.1,,3,0.2,0.1,0.8",  # 0.5, but fewer than 10 dofs in contact
               "hertz,hierarchical,0.05,0,50,0.1,,0,0.3,,0.9",  # no estimate: not a level of the table
               "hertz,hierarchical,0.05,7,2600,0.1,,40,nan,0.03,0.2"]  # no true error: not a level either
@@ -333,13 +333,43 @@ def test_plot_tol_table(tmp_path: Path) -> None:
     assert "2 of 3 runs in [X/3, X] (0.40–1.10); outside: hertz at 0.01: 1.100." in md, md
     assert "1 of 2 runs within 2×" in md and "1 of 2 levels (of a history, steps) in [1, 2] (1.50–2.50)" in md, md
     assert "Outside: hertz 1 (2.50)." in md and (tmp_path / "tol_table.png").stat().st_size > 0
-    assert "| hertz | 2 | 1.50–2.50 | 10.00–15.00 |" in md, md
+    # The stop reads the smaller of the two: the bound (0.3 / 0.2 = 1.5) where the hierarchical estimate is larger.
+    assert "the smaller of the hierarchical estimate and the bound (both are reported): 2 of 2 levels in [1, 2] " \
+           "(1.50–1.50)." in md, md
+    assert "| hertz | 2 | 1.50–2.50 | 1.50–10.00 | 1.50–1.50 |" in md, md
     assert "handing back the enriched answer** (`stop_on = \"enriched\"`): 0 of 1 runs in [X/3, X] (0.20–0.20)" in md
     assert "the estimate of their own error: 3.00–3.00 times it (0 of 1 in [1, 2])" in md, md
     # A row cut short (a run killed while writing) is named, not read as numbers.
     (folder / "hertz_levels.csv").write_text("\n".join(levels[:2] + ["hertz,hierarchical,0.05,4"]) + "\n")
     with pytest.raises(ValueError, match="hertz_levels.csv, line 3: not as many fields as the header"):
         study("plot_tol_table").main(["--csv-dir", str(folder), "--out", str(tmp_path)])
+
+
+def test_plot_error_bars(tmp_path: Path) -> None:
+    """Studies 14 and 15 from the example's files: each effectivity, a true error within twice its floor not
+    counted, what the stop reads the smaller of the strip's estimate and the bound, the strip's file apart."""
+    folder = tmp_path / "in"
+    folder.mkdir()
+    header = ("case,level,unknowns,in_contact,solve_seconds,enriched_seconds,traction_true,traction_strip,"
+              "traction_whole,traction_bound,P_true,P_bar,P_floor,Q_true,Q_bar,Q_floor,contact_width_true,"
+              "contact_width_bar,contact_width_floor,stick_width_true,stick_width_bar,stick_width_floor")
+    rows = ["hertz,6,500,12,0.01,0.05,0.1,0.15,0.16,0.5,0.02,0.03,0,0,0,0,0.01,0.02,0.001,0,0,0.001",
+            # the strip's estimate above the bound: the stop reads the bound (1.2); P within twice its floor
+            "hertz,7,8000,30,1.0,4.0,0.05,0.08,0.075,0.06,0.001,0.004,0.0006,0,0,0,0.004,0.002,0.001,0,0,0.001"]
+    (folder / "hertz.csv").write_text("\n".join([header, *rows]) + "\n")
+    (folder / "hertz-strip.csv").write_text(header + "\n" + rows[0].replace(",0.02,0.03,0,", ",0.02,0.01,0,") + "\n")
+    res = study("plot_error_bars").main(["--csv-dir", str(folder), "--out", str(tmp_path)])
+    assert res == {"cases": ["hertz"], "strip": ["hertz-strip"]}
+    md = (tmp_path / "error_bars.md").read_text()
+    assert "**The bars of the forces**: 1.50–1.50 (1 of 1 in [1, 2])" in md, md
+    assert "**The bars of the widths**: 0.50–2.00 (1 of 2 in [1, 2]); below 1: hertz at 8000 (0.50)." in md, md
+    assert "P's bar 0.50–0.50 (0 of 1 in [1, 2])" in md, md
+    assert "**What the adaptive stop reads** (the smaller of the strip's estimate and the bound): 1.20–1.50" in md, md
+    assert "the enriched solve of the bars took 4.0–4.0 times" in md and "| hertz | 7 | 8000 | 30 |" in md, md
+    assert "1.00e-03, ~" in md and (tmp_path / "error_bars.png").stat().st_size > 0
+    (folder / "hertz.csv").write_text("\n".join([header, rows[0][:40]]) + "\n")
+    with pytest.raises(ValueError, match="hertz.csv, line 2: not as many fields as the header"):
+        study("plot_error_bars").main(["--csv-dir", str(folder), "--out", str(tmp_path)])
 
 
 def test_every_study_table_reads_as_a_table() -> None:

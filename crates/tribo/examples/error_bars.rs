@@ -20,8 +20,12 @@
 //! reference (its own enriched solve, 4 times its unknowns; skipped, and the floor of the forces taken as 0,
 //! with `SKIP` = 1).
 //!
-//! `cargo run --release -p tribo --example error_bars [CASE] [MAX_UNKNOWNS] [STRIP] [SKIP]` (a few minutes:
-//! the reference solve and the re-solves of the levels are most of it).
+//! `cargo run --release -p tribo --example error_bars [CASE] [MAX_UNKNOWNS] [STRIP] [SKIP] [OUT]` (a few
+//! minutes: the reference solve and the re-solves of the levels are most of it). Every level counted is also
+//! written to `OUT/CASE.csv` (`OUT/CASE-strip.csv` with `STRIP` = 1; OUT `docs/error_bars` by default), from
+//! which `python scripts/plot_error_bars.py` writes `docs/error_bars.md` (studies 14 and 15).
+use std::io::Write;
+
 use tribo::adapt::{multiplier_difference, near_contact};
 use tribo::results::ErrorBars;
 use tribo::*;
@@ -41,12 +45,24 @@ fn bar(b: &ErrorBars, k: usize) -> f64 {
     [b.normal_force, b.tangential_force, b.contact_width, b.stick_width][k]
 }
 
-fn main() -> Result<()> {
+/// The header of `OUT/CASE.csv`: per level, the true relative error of λ and its estimates (relative), then
+/// per quantity its true error (absolute), its bar and how well the reference knows it (`floor`).
+const HEADER: &str = "case,level,unknowns,in_contact,solve_seconds,enriched_seconds,traction_true,\
+                      traction_strip,traction_whole,traction_bound,P_true,P_bar,P_floor,Q_true,Q_bar,Q_floor,\
+                      contact_width_true,contact_width_bar,contact_width_floor,stick_width_true,stick_width_bar,\
+                      stick_width_floor";
+
+fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let arg = |k: usize, default: f64| std::env::args().nth(k).and_then(|s| s.parse().ok()).unwrap_or(default);
     let name = std::env::args().nth(1).unwrap_or_else(|| "hertz".into());
     let max_unknowns = arg(2, 80_000.0) as usize;
     let strip = arg(3, 0.0) > 0.0;
     let skip_reference_bars = arg(4, 0.0) > 0.0;
+    let dir = || std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/error_bars");
+    let out = std::env::args().nth(5).map_or_else(dir, std::path::PathBuf::from);
+    std::fs::create_dir_all(&out)?;
+    let mut csv = std::fs::File::create(out.join(format!("{name}{}.csv", if strip { "-strip" } else { "" })))?;
+    writeln!(csv, "{HEADER}")?;
     let case = tribo_testkit::adaptive_case(&name)?;
     let (friction, coarse) = (case.friction, case.coarse);
     let (reference, rsol) = case.reference;
@@ -92,7 +108,7 @@ fn main() -> Result<()> {
         } else {
             p.estimate_error_bars(&sol, &friction, &settings)?
         };
-        let bars = h.error_bars.expect("the whole mesh or the strip, with bars");
+        let bars = h.error_bars.ok_or("the whole mesh or the strip gives bars")?;
         let mut line = format!("{level:>3} {:>7} {in_contact:>5} {solve_seconds:.2} {:.2}", p.n_free, h.seconds);
         let (e, norm) = multiplier_difference(&p, &sol, &reference, &rsol);
         let truth = e / norm;
@@ -100,6 +116,10 @@ fn main() -> Result<()> {
         let bound = sol.report.estimate.traction_relative;
         let estimates = [sharp, h.relative, bound, sharp.min(bound)];
         line += &format!(" | {truth:.2e}");
+        let mut row = format!("{name},{level},{},{in_contact},{solve_seconds:.6},{:.6}", p.n_free, h.seconds);
+        for v in [truth, sharp, h.relative, bound] {
+            row += &format!(",{v:.6e}");
+        }
         for (k, estimate) in estimates.iter().enumerate() {
             tractions[k].push((level, estimate / truth));
             line += &format!(" {:>5.2}", estimate / truth);
@@ -107,6 +127,7 @@ fn main() -> Result<()> {
         for (k, (_, value)) in QUANTITIES.iter().enumerate() {
             let truth = (value(&sol) - exact[k]).abs();
             let b = bar(&bars, k);
+            row += &format!(",{truth:.6e},{b:.6e},{:.6e}", floor[k]);
             if truth <= 2.0 * floor[k] {
                 line += &format!(" | {truth:.2e} ~ {b:.2e}");
             } else {
@@ -116,6 +137,7 @@ fn main() -> Result<()> {
             }
         }
         println!("{line}");
+        writeln!(csv, "{row}")?;
     }
     let traction_names = [
         "tractions, hierarchical (strip)",

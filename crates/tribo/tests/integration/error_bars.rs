@@ -14,8 +14,9 @@ fn partial_slip() -> (Problem, Friction) {
 
 /// Each bar is at least the error of its quantity against the answer on the mesh refined twice more
 /// everywhere (h / 4: its own error is about 1/16 of the forces' and 1/4 of the widths'); a force's bar is at
-/// most three times its error (the saturation argument gives 1.5, study 14 measures 1.39–2.25), while a
-/// width's may be more (its error is quantized by the dof spacing: study 14 measures up to 13) and is at
+/// most three times its error (the saturation argument gives 1.5, studies 14 and 15 measure 1.29–2.81,
+/// the largest where the true error nears the reference's own), while a width's may be more (its error is
+/// quantized by the dof spacing: up to 32 in `docs/error_bars.md`) and is at
 /// least the resolution of its zone. The traction estimate of the same enriched solve comes with them.
 #[test]
 fn the_error_bars_hold_the_answer_of_a_finer_mesh() {
