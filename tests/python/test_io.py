@@ -131,6 +131,44 @@ def test_vtu_round_trip(tmp_path: Path, space: str) -> None:
     np.testing.assert_array_equal(data["state"], s.states)
 
 
+def test_vtu_files_are_compressed_at_level_1_by_tribo_only(
+    tmp_path: Path, hertz: tribo.Problem, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """tribo's VTU files are zlib-compressed at level 1 (study 19: most of the writing is compression); what
+    meshio compresses outside tribo's writers, in another thread while they write or after them, keeps
+    zlib's default level."""
+    import threading
+    import types
+    import zlib
+
+    import tribo.io
+    from meshio.vtu import _vtu
+
+    s = hertz.solve()
+    levels: list[tuple[str, int]] = []
+
+    def compress(data: bytes, level: int = zlib.Z_DEFAULT_COMPRESSION) -> bytes:
+        levels.append((threading.current_thread().name, level))
+        if len(levels) == 1:  # while tribo writes, another thread compresses through meshio's module
+            t = threading.Thread(target=_vtu.zlib.compress, args=(b"theirs",), name="theirs")
+            t.start()
+            t.join()
+        return zlib.compress(data, level)
+
+    write_vtu(tmp_path / "first.vtu", hertz, s)
+    assert _vtu.zlib is not zlib  # the stand-in
+    monkeypatch.setattr(tribo.io, "zlib", types.SimpleNamespace(compress=compress))
+    write_vtu(tmp_path / "result.vtu", hertz, s)
+    _vtu.zlib.compress(b"after")
+    monkeypatch.undo()
+    ours = [level for name, level in levels[:-1] if name != "theirs"]
+    assert len(ours) > 10 and set(ours) == {1}
+    assert ("theirs", zlib.Z_DEFAULT_COMPRESSION) in levels
+    assert levels[-1] == (threading.current_thread().name, zlib.Z_DEFAULT_COMPRESSION)
+    m = meshio.read(tmp_path / "result.vtu")
+    np.testing.assert_allclose(m.points[:, :2], hertz.mesh.points)
+
+
 def test_contact_csv(tmp_path: Path, hertz: tribo.Problem) -> None:
     s = hertz.solve(mu=0.3)
     paths = write_contact_csv(tmp_path, hertz, s)
