@@ -14,6 +14,7 @@
 //!   on random problems;
 //! * `outputs`: what a reader gets back (global forces, plane-strain stress, current gap, formatted
 //!   numbers, the condensation's progress);
+//! * `rigid_motion`: a scene turned and moved gives the same tractions and the turned fields;
 //! * `supports`: rollers and prescribed displacements: patch tests, the half Hertz model against the full one;
 //! * `two_bodies`: two elastic bodies in contact (patch test, action and reaction, the rigid limit, Hertz);
 //! * `estimator`: the a posteriori estimate (what it sees, and how it tracks the true error of λ_n);
@@ -38,6 +39,7 @@ mod moved_supports;
 mod outputs;
 mod patch;
 mod paths;
+mod rigid_motion;
 mod supports;
 mod two_bodies;
 
