@@ -51,7 +51,7 @@ def load(folder: Path) -> dict[str, list[dict[str, Any]]]:
         rows = []
         for r in sl.read_csv_rows(path):
             row: dict[str, Any] = {k: (v if k == "case" else float(v)) for k, v in r.items()}
-            row["traction_read"] = min(row["traction_strip"], row["traction_bound"])
+            row["traction_read"] = sl.smaller(row["traction_strip"], row["traction_bound"])
             for t in TRACTIONS:
                 row[f"{t}_effectivity"] = row[t] / row["traction_true"]
             for q in QUANTITIES:
@@ -165,8 +165,8 @@ def page(files: dict[str, list[dict[str, Any]]], strip: dict[str, list[dict[str,
         "bisection) and why P needs the whole mesh: under a prescribed approach P's error is that of the body's "
         "compliance, `P_H − P = ‖u − u_h‖²_a / δ` in a linear problem, of order h² where the energy error is of "
         "order h, so the bar overestimates by about `2 (1 − ¼) = 1.5`.",
-        "Regenerate with the commands below (a few minutes per case on two cores, the references and the solves of "
-        "every level again most of it; read times as orders of magnitude):\n\n" + sl.commands_block(doc),
+        "Regenerate with the commands below (one to a few minutes per case on two cores, the references and the "
+        "solves of every level again most of it; read times as orders of magnitude):\n\n" + sl.commands_block(doc),
         "**Scenes** (their coarse starts and references: `tribo_testkit::adaptive_case`): the Hertz cases' "
         "reference is the same scene on a graded mesh of 466k unknowns, the others' the adaptive loop run to 500k "
         "unknowns. `~` marks a true error within twice what the reference knows (not counted).\n\n" + scenes,

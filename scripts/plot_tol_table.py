@@ -104,13 +104,24 @@ def effectivity_rows(levels: list[dict[str, Any]]) -> dict[str, list[dict[str, A
                 continue
             seen.setdefault((r["unknowns"], r["step"]), {
                 **r, "effectivity": r["hierarchical"] / r["true_error"], "bound_effectivity": r["bound"] / r["true_error"],
-                "read_effectivity": min(r["hierarchical"], r["bound"]) / r["true_error"]})
+                "read_effectivity": sl.smaller(r["hierarchical"], r["bound"]) / r["true_error"]})
         out[case] = sorted(seen.values(), key=lambda r: (r["unknowns"], r["step"]))
     return out
 
 
 def _range(values: list[float]) -> str:
     return f"{min(values):.2f}–{max(values):.2f}" if values else "–"
+
+
+def _counted(levels: list[dict[str, Any]], key: str) -> tuple[int, str]:
+    """How many of ``levels`` have ``key`` within [1, 2], and those outside listed by case."""
+    outside: dict[str, list[float]] = {}
+    for r in levels:
+        if not EFFECTIVITY[0] <= r[key] <= EFFECTIVITY[1]:
+            outside.setdefault(r["case"], []).append(r[key])
+    listed = ", ".join(f"{case} {len(e)} ({_range(e)})" if len(e) > 1 else f"{case} 1 ({e[0]:.2f})"
+                       for case, e in outside.items())
+    return len(levels) - sum(map(len, outside.values())), listed
 
 
 def summary(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, Any]]],
@@ -143,27 +154,15 @@ def summary(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, An
                      f"{_range([r['time_ratio'] for r in bound if math.isfinite(r['time_ratio'])])}.")
     resolved = [r for rows in effectivity.values() for r in rows if r["in_contact"] >= MIN_IN_CONTACT]
     if resolved:
-        inside = [r for r in resolved if EFFECTIVITY[0] <= r["effectivity"] <= EFFECTIVITY[1]]
-        outside: dict[str, list[float]] = {}
-        for r in resolved:
-            if r not in inside:
-                outside.setdefault(r["case"], []).append(r["effectivity"])
-        out = ", ".join(f"{case} {len(e)} ({_range(e)})" if len(e) > 1 else f"{case} 1 ({e[0]:.2f})"
-                        for case, e in outside.items())
+        inside, out = _counted(resolved, "effectivity")
         lines.append(f"* **Effectivity of the hierarchical estimate** from {MIN_IN_CONTACT} multiplier dofs in "
-                     f"contact: {len(inside)} of {len(resolved)} levels (of a history, steps) in [1, 2] "
+                     f"contact: {inside} of {len(resolved)} levels (of a history, steps) in [1, 2] "
                      f"({_range([r['effectivity'] for r in resolved])}); the bound's "
                      f"{_range([r['bound_effectivity'] for r in resolved])}" + (f". Outside: {out}." if out else "."))
-        read = [r["read_effectivity"] for r in resolved]
-        inside_read = [e for e in read if EFFECTIVITY[0] <= e <= EFFECTIVITY[1]]
-        outside_read: dict[str, list[float]] = {}
-        for r in resolved:
-            if not EFFECTIVITY[0] <= r["read_effectivity"] <= EFFECTIVITY[1]:
-                outside_read.setdefault(r["case"], []).append(r["read_effectivity"])
-        out = ", ".join(f"{case} {len(e)} ({_range(e)})" for case, e in outside_read.items())
+        inside, out = _counted(resolved, "read_effectivity")
         lines.append(f"* **What the stop reads**, the smaller of the hierarchical estimate and the bound (both are "
-                     f"reported): {len(inside_read)} of {len(read)} levels in [1, 2] ({_range(read)})"
-                     + (f". Outside: {out}." if out else "."))
+                     f"reported): {inside} of {len(resolved)} levels in [1, 2] "
+                     f"({_range([r['read_effectivity'] for r in resolved])})" + (f". Outside: {out}." if out else "."))
     handed = handed_back(effectivity_levels)
     if handed:
         inside = [r for r in handed if EFFECTIVITY[0] <= r["effectivity"] <= EFFECTIVITY[1]]
@@ -232,7 +231,8 @@ def page(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, Any]]
                          _range([r["bound_effectivity"] for r in resolved]),
                          _range([r["read_effectivity"] for r in resolved]), listed])
     eff = sl.markdown_table(["case", f"levels with ≥ {MIN_IN_CONTACT} dofs in contact", "hierarchical / true",
-                             "bound / true", "the smaller / true (what the stop reads)", "every level computed (a history: sN its step N): unknowns: "
+                             "bound / true", "the smaller / true (what the stop reads)",
+                             "every level computed (a history: sN its step N): unknowns: "
                              "hierarchical / true (bound / true)"], per_case)
     return "\n\n".join([
         "# Study 13: does `tol` mean what it says?", doc.split("\n\n")[1],

@@ -299,6 +299,12 @@ def read_csv_rows(path: Path) -> list[dict[str, str]]:
     return rows
 
 
+def smaller(a: float, b: float) -> float:
+    """The smaller of two estimates as the adaptive stop takes it (Rust's ``f64::min``): a NaN one (not computed)
+    gives way to the other."""
+    return b if math.isnan(a) else a if math.isnan(b) else min(a, b)
+
+
 def commands_block(doc: str) -> str:
     """The third paragraph of a study's docstring (its indented commands) as a bash code block."""
     return "```bash\n" + doc.split("\n\n")[2].replace("    ", "", 1).replace("\n    ", "\n").strip() + "\n```"

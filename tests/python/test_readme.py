@@ -143,7 +143,7 @@ def test_the_docs_quote_the_memory_studies_as_measured() -> None:
     quoted = (f"{float(shipped['peak_mb']):.0f} MB from Python and {float(rust['peak_mb']):.0f} MB from Rust "
               f"({float(shipped['peak_over_rust']):.2f} times)")
     assert quoted in pages["STUDIES.md"], quoted
-    assert f"never returning them, the Python peak was {float(never['peak_mb']):.0f} MB" in pages["STUDIES.md"]
+    assert f"never returning them gives a Python peak of {float(never['peak_mb']):.0f} MB" in pages["STUDIES.md"]
     assert f"{float(at_once['peak_mb']):.0f} MB ({float(at_once['peak_over_rust']):.2f} times)" in pages["STUDIES.md"]
     assert (f"at {float(rust['peak_mb']):.0f} MB from Rust and {float(shipped['peak_mb']):.0f} MB from Python "
             f"({float(shipped['peak_over_rust']):.2f} times" in pages["measured.md"])
@@ -155,3 +155,28 @@ def test_the_docs_quote_the_memory_studies_as_measured() -> None:
     last = long[-1]
     assert (f"grows the Python process by {float(last['growth_mb']):.0f} MB ({float(last['growth_per_step_bytes']):.0f} "
             f"bytes per step" in pages["STUDIES.md"])
+
+
+def test_the_docs_quote_the_error_bar_and_tol_studies_as_generated() -> None:
+    """Studies 13–15 (issue 36): the ranges and counts the guide, STUDIES.md and measured.md quote are those the
+    scripts compute from docs/error_bars/ and docs/tol_table/ (the pages themselves are generated from them)."""
+    import importlib
+    import sys
+
+    sys.path.insert(0, str(README.parent / "scripts"))
+    bars, tol = importlib.import_module("plot_error_bars"), importlib.import_module("plot_tol_table")
+    pages = {name: " ".join((DOCS / name).read_text(encoding="utf-8").split())
+             for name in ("STUDIES.md", "measured.md", "guide/python.md")}
+    files = {k: v for k, v in bars.load(DOCS / "error_bars").items() if not k.endswith("-strip")}
+    every = [r for rows in files.values() for r in rows]
+    forces = [r[f"{q}_effectivity"] for r in every for q in ("P", "Q") if r[f"{q}_effectivity"] is not None]
+    inside = sum(1 <= e <= 2 for e in forces)
+    quoted = f"{min(forces):.2f}–{max(forces):.2f} times the true error ({inside} of {len(forces)} bars in [1, 2]"
+    assert quoted in pages["guide/python.md"], quoted
+    assert f"{min(forces):.2f}–{max(forces):.2f} times their true error" in pages["STUDIES.md"]
+    _, levels = tol.load(DOCS / "tol_table")
+    resolved = [r for rows in tol.effectivity_rows(levels).values() for r in rows if r["in_contact"] >= 10]
+    read = [r["read_effectivity"] for r in resolved]
+    quoted = f"{sum(1 <= e <= 2 for e in read)} of the {len(read)} levels of study 13"
+    assert quoted in pages["guide/python.md"], quoted
+    assert f"{sum(1 <= e <= 2 for e in read)} of {len(read)} levels" in pages["measured.md"]

@@ -10,9 +10,9 @@
 //! error of its quantity against the case's reference (for Hertz a graded mesh of 466k unknowns, study 12's;
 //! else the adaptive loop run to 500k unknowns): the normal force P, the tangential force Q, the width of the
 //! contact zone and of the stick zone. The traction estimates are compared with the true relative L²(Γ_C)
-//! error of λ: the hierarchical estimate the adaptive stop reads (`Problem::estimate_hierarchical`, the
-//! strip), the same from the whole mesh (the enriched solve of the bars), the bound (`traction_relative`), and
-//! the smaller of the strip's and the bound (what the adaptive stop reads).
+//! error of λ: the hierarchical estimate the adaptive stop computes (`Problem::estimate_hierarchical`, the
+//! strip), the same from the enriched solve of the bars (the whole mesh; the strip with `STRIP` = 1), the bound
+//! (`traction_relative`), and the smaller of the strip's and the bound (what the adaptive stop reads).
 //! Printed per level: each true error and the effectivity (estimate over true error); then per quantity the
 //! smallest and largest effectivity, and the levels where it fell below 1. The reference's own errors bound
 //! how small a true error can be read: a true error below twice the reference's resolution of that quantity
@@ -22,8 +22,9 @@
 //!
 //! `cargo run --release -p tribo --example error_bars [CASE] [MAX_UNKNOWNS] [STRIP] [SKIP] [OUT]` (a few
 //! minutes: the reference solve and the re-solves of the levels are most of it). Every level counted is also
-//! written to `OUT/CASE.csv` (`OUT/CASE-strip.csv` with `STRIP` = 1; OUT `docs/error_bars` by default), from
-//! which `python scripts/plot_error_bars.py` writes `docs/error_bars.md` (studies 14 and 15).
+//! written to `OUT/CASE.csv` (`OUT/CASE-strip.csv` with `STRIP` = 1; OUT `docs/error_bars` by default; the
+//! file takes its name only when the run completes), from which `python scripts/plot_error_bars.py` writes
+//! `docs/error_bars.md` (studies 14 and 15).
 use std::io::Write;
 
 use tribo::adapt::{multiplier_difference, near_contact};
@@ -47,6 +48,7 @@ fn bar(b: &ErrorBars, k: usize) -> f64 {
 
 /// The header of `OUT/CASE.csv`: per level, the true relative error of λ and its estimates (relative), then
 /// per quantity its true error (absolute), its bar and how well the reference knows it (`floor`).
+/// `traction_whole` is the estimate of the bars' enriched solve: the whole mesh, or the strip with `STRIP` = 1.
 const HEADER: &str = "case,level,unknowns,in_contact,solve_seconds,enriched_seconds,traction_true,\
                       traction_strip,traction_whole,traction_bound,P_true,P_bar,P_floor,Q_true,Q_bar,Q_floor,\
                       contact_width_true,contact_width_bar,contact_width_floor,stick_width_true,stick_width_bar,\
@@ -60,10 +62,13 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let skip_reference_bars = arg(4, 0.0) > 0.0;
     let dir = || std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/error_bars");
     let out = std::env::args().nth(5).map_or_else(dir, std::path::PathBuf::from);
-    std::fs::create_dir_all(&out)?;
-    let mut csv = std::fs::File::create(out.join(format!("{name}{}.csv", if strip { "-strip" } else { "" })))?;
-    writeln!(csv, "{HEADER}")?;
     let case = tribo_testkit::adaptive_case(&name)?;
+    // Written under a temporary name, renamed when the run completes: a run cut short leaves no CSV to plot.
+    std::fs::create_dir_all(&out)?;
+    let done = out.join(format!("{name}{}.csv", if strip { "-strip" } else { "" }));
+    let partial = done.with_extension("csv.partial");
+    let mut csv = std::fs::File::create(&partial)?;
+    writeln!(csv, "{HEADER}")?;
     let (friction, coarse) = (case.friction, case.coarse);
     let (reference, rsol) = case.reference;
     let settings = SolverSettings::default();
@@ -139,6 +144,8 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
         println!("{line}");
         writeln!(csv, "{row}")?;
     }
+    drop(csv);
+    std::fs::rename(&partial, &done)?;
     let traction_names = [
         "tractions, hierarchical (strip)",
         "tractions, hierarchical (whole mesh)",

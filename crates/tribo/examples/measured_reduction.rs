@@ -10,8 +10,9 @@
 //! and (b) of the whole strip again (below 40k unknowns), with `d q̂ / (1 − q̂)` over e_f (the effectivity the
 //! enriched answer's estimate would have).
 //!
-//! `cargo run --release -p tribo --example measured_reduction [CASES [OUT]]` (CASES comma-separated, `hertz,two-body` by
-//! default; about a minute each) writes `OUT/measured_reduction.csv` (OUT `docs` by default).
+//! `cargo run --release -p tribo --example measured_reduction [CASES [OUT]]` (CASES comma-separated,
+//! `hertz,two-body` by default; about a minute each) writes all of them into `OUT/measured_reduction.csv` (OUT
+//! `docs` by default).
 use std::io::Write;
 
 use tribo::adapt::{multiplier_difference, multiplier_difference_on, near_contact};
@@ -21,12 +22,16 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let names = std::env::args().nth(1).unwrap_or_else(|| "hertz,two-body".into());
     let docs = || std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs");
     let out = std::env::args().nth(2).map_or_else(docs, std::path::PathBuf::from);
-    let mut csv = std::fs::File::create(out.join("measured_reduction.csv"))?;
+    // Every case into one file, renamed when all are done: a run cut short leaves the last complete file.
+    let (done, partial) = (out.join("measured_reduction.csv"), out.join("measured_reduction.csv.partial"));
+    let mut csv = std::fs::File::create(&partial)?;
     writeln!(csv, "case,unknowns,true_error,enriched_true_error,q_true,difference,q_local,q_strip")?;
     for name in names.split(',') {
         println!("{name}");
         probe(name.trim(), &mut csv)?;
     }
+    drop(csv);
+    std::fs::rename(&partial, &done)?;
     Ok(())
 }
 

@@ -21,8 +21,8 @@
 //! `e_f = q e_H ≤ q (d + e_f)`, so `e_f ≤ q d / (1 − q) ≤ d` ([`Hierarchical::enriched_estimate`]); the adaptive
 //! loop hands λ_f back where this meets its tolerance with `stop_on = "enriched"` ([`crate::adapt`]).
 //!
-//! Where the enrichment removes more than half of the error (two bodies: q = 0.22–0.65) this overestimates
-//! e_f, up to 7 times. Measuring q as at the ends of Γ_C (below) does not mend it: the example
+//! Where the enrichment removes much more than half of the error (two bodies: q = 0.22–0.42 on 9 of 10
+//! levels) this overestimates e_f, up to 7 times. Measuring q as at the ends of Γ_C (below) does not mend it: the example
 //! `measured_reduction` (`docs/measured_reduction.csv`) enriched λ_f once more on every level of adaptive
 //! Hertz and two-body Hertz (484–122k unknowns) and found `‖λ_f − λ_ff‖ / ‖λ_H − λ_f‖` = 0.07–0.40 on the
 //! whole strip and 0.01–0.31 locally, where the cells carrying half of `‖λ_H − λ_f‖²` are, against a true
@@ -33,7 +33,7 @@
 //! It is no guaranteed bound: where the enrichment removes less than half of the error, it falls below the
 //! truth: a contact edge that the enriched mesh still places in the wrong cell (the coarsest meshes); P0
 //! multipliers, first order everywhere, sit near the limit (1.11–1.61 on adaptive Hertz from 560 unknowns,
-//! studies 14 and 15, `docs/error_bars.md`; an earlier marking gave 0.73 and 0.92 on its two coarsest levels).
+//! studies 14 and 15, `docs/error_bars.md`).
 //!
 //! Measured against a reference of 466k unknowns on adaptive Hertz (study 12, `docs/hierarchical.md`,
 //! levels with at least 10 multiplier dofs in contact, 320–74k unknowns): 0.98–2.22 times the true error
@@ -61,8 +61,8 @@
 //! measures nothing and stays in the rest). `d_R / (1 − q_R)` is the triangle inequality
 //! `e_H ≤ d + e_f` with the measured q, a bound where the second enrichment reduces the error as the first
 //! did; it is pessimistic where the two errors point apart (on the block q_R = 0.85–0.87 on every level,
-//! and the estimate 2.3–3.4 times the truth). The adaptive stop reads the smaller of this estimate and the
-//! bound (on the block the bound, 1.84–1.98 times the truth),
+//! and the estimate 2.33–3.22 times the truth up to 63k unknowns, `docs/error_bars.md`). The adaptive stop
+//! reads the smaller of this estimate and the bound (on the block the bound, 1.84–1.96 times the truth there),
 //! so it ends within the accuracy asked either way. The second enrichment costs a solve as large as the
 //! first (the first's factorization freed before it is made); it is made only where an end touches.
 //!

@@ -46,14 +46,18 @@ fn largest(v: &[f64]) -> f64 {
 
 /// The moved answer against the unmoved one, turned by `r`: the worst relative difference of the tractions
 /// (matched by the point of Γ_C they sit at), forces, displacements and reactions.
-fn departure(r: [f64; 2], (p, s): (&Problem, &Solution), (pm, sm): (&Problem, &Solution)) -> f64 {
-    // Dof k of the unmoved problem sits at the moved abscissa `xi`; the moved dofs in the same or reversed order.
+fn departure((r, c): ([f64; 2], [f64; 2]), (p, s): (&Problem, &Solution), (pm, sm): (&Problem, &Solution)) -> f64 {
+    // The moved dofs are the unmoved ones in the same or the reversed order: the first dof's point, moved,
+    // lies before the last one's on the moved Γ_C or after it.
     let dofs = p.multipliers.dof_abscissae();
-    let moved_dofs = pm.multipliers.dof_abscissae();
-    let same_way = moved_dofs.first() < moved_dofs.last()
-        && pm.contact.abscissa(moved_point(r, [0.0; 2], p.contact.point_at(dofs[0])))
-            < pm.contact.abscissa(moved_point(r, [0.0; 2], p.contact.point_at(dofs[dofs.len() - 1])));
+    assert_eq!(dofs.len(), pm.multipliers.dof_abscissae().len());
+    let moved_xi = |k: usize| pm.contact.abscissa(moved_point(r, c, p.contact.point_at(dofs[k])));
+    let same_way = moved_xi(0) < moved_xi(dofs.len() - 1);
     let matched = |k: usize| if same_way { k } else { dofs.len() - 1 - k };
+    let moved_dofs = pm.multipliers.dof_abscissae();
+    for k in 0..dofs.len() {
+        assert!((moved_dofs[matched(k)] - moved_xi(k)).abs() <= 1e-9, "dof {k} matched to where it went");
+    }
     let lambda = largest(&s.lambda_n).max(largest(&s.lambda_t));
     let mut worst = 0.0_f64;
     for k in 0..dofs.len() {
@@ -73,7 +77,9 @@ fn departure(r: [f64; 2], (p, s): (&Problem, &Solution), (pm, sm): (&Problem, &S
     worst
 }
 
-/// Both answers converged, and the moved one departs from the turned unmoved one by at most 1e-10.
+/// Both answers converged, and the moved one departs from the turned unmoved one by at most 1e-10 (issue 39's
+/// bar; moving the coordinates by |c| ≤ 2300 perturbs the geometry by about ε |c| / h_min ≈ 2.5e-11 relative
+/// on the mesh of h_min = 0.02, and the solves are exact on their active sets; measured 3.4e-12).
 fn check(angle: f64, c: [f64; 2], friction: &Friction, shift: f64) {
     let f = [0.3, -1.0];
     let settings = SolverSettings::default();
@@ -83,7 +89,7 @@ fn check(angle: f64, c: [f64; 2], friction: &Friction, shift: f64) {
     assert_eq!((s.report.status, sm.report.status), (SolveStatus::Converged, SolveStatus::Converged));
     let slipping = s.states.iter().filter(|c| **c == ContactState::Slip).count();
     assert!(shift == 0.0 || slipping > 0, "the Coulomb case slips somewhere");
-    let d = departure([angle.cos(), angle.sin()], (&p, &s), (&pm, &sm));
+    let d = departure(([angle.cos(), angle.sin()], c), (&p, &s), (&pm, &sm));
     assert!(d <= 1e-10, "angle {angle}, translation {c:?}, {friction:?}: departs by {d:e}");
 }
 
