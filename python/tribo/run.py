@@ -102,6 +102,7 @@ def summary(
         "n_free": problem.n_free,
         "n_multipliers": problem.n_multipliers,
         "space": problem.space,
+        "model": problem.model,
         "normal_force": solution.normal_force,
         "tangential_force": solution.tangential_force,
         "contact_force": list(solution.contact_force),

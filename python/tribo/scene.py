@@ -229,6 +229,7 @@ class Scene:
                 self.mesh(),
                 young=self.get("material", "young"),
                 poisson=self.get("material", "poisson"),
+                model=self.get("material", "model"),
                 clamped=self.get("supports", "clamped"),
                 supports=self.supports(),
                 contact=self.get("contact", "edge_set"),

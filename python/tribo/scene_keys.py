@@ -39,7 +39,7 @@ _BODY = {
 }
 _MATERIAL = {
     "young": ("Young's modulus E (*required*)", "stress", "—"),
-    "poisson": ("Poisson's ratio ν (*required*; plane strain)", "—", "—"),
+    "poisson": ("Poisson's ratio ν (*required*)", "—", "—"),
 }
 _GRID = {
     "grading": ('Where a rectangle is refined: `"auto"` toward where contact can occur, `"none"` (uniform, size '
@@ -52,6 +52,8 @@ _GRID = {
 MEANINGS: dict[str, tuple[str, str, str | None]] = {
     **{f"body.{k}": v for k, v in _BODY.items()},
     **{f"material.{k}": v for k, v in _MATERIAL.items()},
+    "material.model": ('`"plane_strain"` (a long body) or `"plane_stress"` (a thin plate, forces per unit '
+                       "thickness; one body, ν in (−1/2, 1/2))", "—", None),
     "supports.clamped": ("The edge sets held fixed (u = 0); or `[[supports]]` entries with `kind` (`clamp`, "
                          "`roller`, `displacement` with `x`/`y`) and `edge_set`", "—", "— (*required*, one form)"),
     "loads.body_force": ("The body force f per unit area, in global axes", "stress / length", "[0, 0]"),

@@ -9,7 +9,7 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     (a path relative to the scene file), whose named line sets are the edge sets. One of the two is
     required. A rectangle has the edge sets ``bottom``, ``right``, ``top``, ``left``.
 ``[material]``
-    ``young``, ``poisson`` (*required*): plane strain.
+    ``young``, ``poisson`` (*required*); ``model``: ``"plane_strain"`` (default) or ``"plane_stress"``.
 ``[supports]`` or ``[[supports]]`` (*required*, one of the two forms)
     ``[supports]`` with ``clamped``: an edge set name or a list of names (u = 0 there). Or a list of
     ``[[supports]]`` entries, each with ``kind`` and ``edge_set``: ``kind = "clamp"`` (u = 0),
@@ -328,7 +328,7 @@ def _setting_checker(spec: dict[str, Any]) -> Checker:
 
 SCHEMA: dict[str, dict[str, Checker]] = {
     "body": {"x": _range, "y": _range, "mesh": _string},
-    "material": {"young": _number, "poisson": _number},
+    "material": {"young": _number, "poisson": _number, "model": _choice(*CHOICES["model"])},
     "supports": {"clamped": _names},
     "loads": {"body_force": _pair, "tractions": _pairs},
     "contact": {"edge_set": _string, "secondary": _string, "primary": _string, "gap": _shape},

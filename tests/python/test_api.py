@@ -320,3 +320,27 @@ def test_condensation_paths_agree(hertz: tribo.Problem) -> None:
         assert factorizations.shape == steps.shape and np.all(factorizations <= steps)
         if path == "saddle":
             assert factorizations.sum() < steps.sum()
+
+
+def test_plane_stress_is_plane_strain_with_the_equivalent_material() -> None:
+    """`model="plane_stress"` (issue 41): the same answer as plane strain with E' = E (1 + 2ν) / (1 + ν)² and
+    ν' = ν / (1 + ν) (the core's derivation, `tribo::fem::elasticity`), σ_zz = 0, the model reported and kept
+    by the adaptive levels; a name the core does not know is refused with the choices; ν near ½ warns of locking
+    only in plane strain."""
+    young, nu = 200.0, 0.3
+    stress = hertz_problem(young=young, poisson=nu, model="Plane_Stress", shift=0.004)
+    strain = hertz_problem(young=young * (1 + 2 * nu) / (1 + nu) ** 2, poisson=nu / (1 + nu), shift=0.004)
+    assert (stress.model, strain.model) == ("plane_stress", "plane_strain")
+    a, b = stress.solve(mu=0.3), strain.solve(mu=0.3)
+    assert a.report.status == b.report.status == "converged"
+    np.testing.assert_allclose(a.displacement, b.displacement, rtol=0, atol=1e-10 * np.abs(b.displacement).max())
+    np.testing.assert_allclose(a.lambda_n, b.lambda_n, rtol=0, atol=1e-10 * np.abs(b.lambda_n).max())
+    assert np.all(a.stress_zz == 0.0) and np.abs(b.stress_zz).max() > 0
+    adaptive = stress.solve_adaptive(tol=0.2)
+    assert adaptive.problem.model == "plane_stress"
+    with pytest.raises(tribo.SettingsError, match="plane_strain, plane_stress"):
+        hertz_problem(model="plane")
+    near_half = hertz_problem(poisson=0.495, model="plane_stress")
+    assert not [r for r in tribo.check_solution(near_half, near_half.solve()) if "lock" in r]
+    locking = hertz_problem(poisson=0.495)
+    assert [r for r in tribo.check_solution(locking, locking.solve()) if "lock" in r]

@@ -15,6 +15,7 @@ import pytest
 
 import tribo
 from tribo.cli import build_parser, main
+from tribo.run import run_scene
 from tribo.scene import SceneError, demo_scene_path, load_scene, parse_scene
 
 SCENE = """
@@ -181,6 +182,7 @@ def load_toml(text: str) -> dict:  # type: ignore[type-arg]
         (lambda d: d["friction"].update(mu=0.3), "exclude each other"),
         (lambda d: d["solver"].update(qp_max_iter=1.5), "scene key 'solver.qp_max_iter' must be an integer"),
         (lambda d: d["discretization"].update(grading="some"), "scene key 'discretization.grading'"),
+        (lambda d: d["material"].update(model="plane"), "'material.model' must be one of 'plane_strain', 'plane_stress'"),
     ],
 )
 def test_scene_errors_name_the_key(edit, message: str) -> None:  # type: ignore[no-untyped-def]
@@ -189,6 +191,21 @@ def test_scene_errors_name_the_key(edit, message: str) -> None:  # type: ignore[
     with pytest.raises(SceneError, match=message.replace("(", r"\(")) as info:
         parse_scene(d)
     assert isinstance(info.value, tribo.TriboError)
+
+
+def test_a_plane_stress_scene_runs_and_says_so(tmp_path: Path) -> None:
+    """`[material] model = "plane_stress"` (issue 41): the run's summary names the model and its VTU file has
+    σ_zz = 0; the same scene in plane strain has σ_zz ≠ 0."""
+    import meshio
+
+    for model, zero in (("plane_stress", True), ("plane_strain", False)):
+        d = load_toml(SCENE)
+        d["material"]["model"] = model
+        out = tmp_path / model
+        run_scene(parse_scene(d), out, plots=False)
+        assert json.loads((out / "summary.json").read_text())["model"] == model
+        szz = meshio.read(out / "result.vtu").cell_data["sigma_zz"][0]
+        assert bool(np.all(szz == 0.0)) is zero
 
 
 def test_scene_build_errors(tmp_path: Path) -> None:

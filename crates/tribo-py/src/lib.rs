@@ -34,7 +34,7 @@ fn value<'py>(py: Python<'py>, v: &SettingValue) -> PyResult<Bound<'py, PyAny>> 
 }
 
 /// The core's defaults, as a dict of the keyword names `Problem` and `Problem.solve` take: how γ0 is
-/// chosen (gamma0_fraction), every solver setting (see `solver_settings()`), multiplier_ratio and space.
+/// chosen (gamma0_fraction), every solver setting (see `solver_settings()`), multiplier_ratio, space, model.
 #[pyfunction]
 fn solver_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let defaults = SolverSettings::keyword_defaults().into_iter().chain(ProblemSpec::keyword_defaults());

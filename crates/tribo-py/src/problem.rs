@@ -215,7 +215,7 @@ impl PyProblem {
     #[pyo3(signature = (
         mesh, *, young = None, poisson = None, contact, clamped = None, supports = None, obstacle = None, approach = None,
         shift = None, tractions = None, body_force = None, multiplier_ratio = None, multiplier_size = None,
-        multiplier_points = None, space = None, primary = None,
+        multiplier_points = None, space = None, primary = None, model = None,
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -236,6 +236,7 @@ impl PyProblem {
         multiplier_points: Option<&Bound<'_, PyAny>>,
         space: Option<&str>,
         primary: Option<String>,
+        model: Option<&str>,
     ) -> PyResult<PyClassInitializer<Self>> {
         let obstacle = obstacle.map_or_else(|| Py::new(py, PyObstacle::checked(ObstacleShape::Flat)?), Ok)?;
         let shape = obstacle.get().shape.clone();
@@ -248,12 +249,13 @@ impl PyProblem {
         };
         let points = MultiplierPoints::from_keywords(multiplier_ratio, multiplier_size, points).map_err(to_pyerr)?;
         let space = space.map_or(Ok(MultiplierSpace::default()), MultiplierSpace::parse).map_err(to_pyerr)?;
+        let model_given = model.map(tribo::Model::parse).transpose().map_err(to_pyerr)?;
         let body_force = body_force.map_or(Ok([0.0, 0.0]), |b| pair(b, "body_force", Settings))?;
         take_gap_error();
         let p = if let Some(primary) = &primary {
-            // Two bodies (`tribo.Problem.two_bodies`): `mesh` is their list, each with its own material,
-            // supports and tractions; they move through their supports.
-            let given = [young.is_some(), poisson.is_some(), clamped.is_some(), supports.is_some()];
+            // Two bodies (`tribo.Problem.two_bodies`, plane strain): `mesh` is their list, each with its own
+            // material, supports and tractions; they move through their supports.
+            let given = [young.is_some(), poisson.is_some(), clamped.is_some(), supports.is_some(), model.is_some()];
             if given.into_iter().chain([tractions.is_some(), approach.is_some(), shift.is_some()]).any(|g| g) {
                 return Err(PyTypeError::new_err("with primary=, material, supports and tractions are per body"));
             }
@@ -267,6 +269,7 @@ impl PyProblem {
             let (supports, tractions) = loads((supports.unwrap_or_default(), tractions.unwrap_or_default()));
             let spec = ProblemSpec {
                 material: Material { young, poisson },
+                model: model_given.unwrap_or_default(),
                 clamped: clamped.unwrap_or_default(),
                 supports,
                 body_force,

@@ -288,6 +288,7 @@ pub fn hertz_spec(approach: f64, shift: f64, points: MultiplierPoints, space: Mu
     let s = hertz_scene();
     ProblemSpec {
         material: s.material,
+        model: Model::PlaneStrain,
         clamped: vec!["bottom".into()],
         supports: vec![],
         body_force: [0.0, 0.0],
@@ -319,6 +320,7 @@ pub fn block_problem(nx: usize, ny: usize) -> (Problem, f64) {
     let mesh = rectangle(pair(&t, "body", "x"), pair(&t, "body", "y"), nx, ny, Diagonal::Right).expect("valid");
     let spec = ProblemSpec {
         material: Material { young: n("material", "young"), poisson: n("material", "poisson") },
+        model: Model::PlaneStrain,
         clamped: vec![t["supports"]["clamped"].as_str().expect("one set").to_string()],
         supports: vec![],
         body_force: [0.0, 0.0],

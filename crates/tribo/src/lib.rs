@@ -1,6 +1,6 @@
 //! # tribo — 2D frictional contact with the stabilized Lagrange multiplier method
 //!
-//! tribo solves the contact of a linear elastic body (plane strain, small strain, P1 triangles) with a
+//! tribo solves the contact of a linear elastic body (plane strain or stress, small strain, P1 triangles) with a
 //! rigid obstacle along a straight boundary Γ_C, with Coulomb friction, by the stabilized Lagrange
 //! multiplier method of Barbosa and Hughes as extended to Coulomb friction by V. Lleras. The multipliers
 //! λ_H = (λ_Hn, λ_Ht) live on their own 1D mesh T_H of Γ_C (P0 or continuous P1) whose points need not be
@@ -136,7 +136,7 @@ pub use contact::multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace}
 pub use contact::obstacle::{GapFunction, Obstacle, ObstacleShape};
 pub use contact::ContactBoundary;
 pub use error::{Error, Num, Result};
-pub use fem::elasticity::{Material, Materials};
+pub use fem::elasticity::{Material, Materials, Model};
 pub use fem::supports::{Dofs, NodeSupport, Support};
 pub use mesh::generate::{graded_rectangle, rectangle, Diagonal, Grading, Side};
 pub use mesh::Mesh;
@@ -213,6 +213,7 @@ pub fn choice_registry() -> Vec<(&'static str, Vec<&'static str>)> {
         ("side", Side::names()),
         ("diagonal", Diagonal::names()),
         ("space", MultiplierSpace::names()),
+        ("model", Model::names()),
         ("friction", FrictionLaw::names()),
         ("state", ContactState::names()),
         ("status", SolveStatus::NAMES.to_vec()),

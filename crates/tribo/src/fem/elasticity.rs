@@ -1,13 +1,90 @@
-//! Plane-strain isotropic linear elasticity with P1 triangles.
+//! Isotropic linear elasticity with P1 triangles, in plane strain or plane stress ([`Model`]).
 //!
 //! Degrees of freedom are interleaved: dof `2 i` is the x displacement of node `i`, dof `2 i + 1` its y
 //! displacement. Stresses use Voigt order `(σ_xx, σ_yy, σ_xy)` and strains `(ε_xx, ε_yy, 2 ε_xy)`.
+//!
+//! # Plane stress through its plane-strain equivalent
+//! In plane stress (σ_zz = 0) the in-plane law is `C_σ = E / (1 − ν²) [[1, ν, 0], [ν, 1, 0], [0, 0, (1 − ν)/2]]`.
+//! The plane-strain law of `E' = E (1 + 2ν) / (1 + ν)²` and `ν' = ν / (1 + ν)` is the same matrix: its shear
+//! modulus `E' / (2 (1 + ν'))` is `E / (2 (1 + ν))`, its ratio `C₁₂ / C₁₁ = ν' / (1 − ν')` is ν, and its
+//! `C₁₁ = E' (1 − ν') / ((1 + ν') (1 − 2ν'))` is `E / (1 − ν²)`. So everything in-plane (the stiffness, the
+//! stresses, the Barbosa–Hughes operators and the admissible γ0, the estimates, whose contact modulus
+//! `E' / (1 − ν'²)` is then `E`, the plane-stress E* of Hertz) is computed from [`Model::in_plane`]'s material,
+//! and only the out-of-plane stress and von Mises read the model ([`Model::sigma_zz`], [`Model::von_mises`]).
+//! The equivalent has a positive `E'` only for ν > −1/2: plane stress takes ν in (−1/2, 1/2).
 
 use faer::sparse::{SparseColMat, Triplet};
 use nalgebra::{Matrix3, SMatrix, Vector3};
 
+use crate::choice::named_choice;
 use crate::error::{Error, Num, Result};
 use crate::mesh::Mesh;
+
+/// What the out-of-plane direction is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Model {
+    /// Plane strain (ε_zz = 0): a long body, or one held between rigid walls.
+    #[default]
+    PlaneStrain,
+    /// Plane stress (σ_zz = 0): a thin plate loaded in its plane (forces per unit thickness).
+    PlaneStress,
+}
+
+named_choice!(Model, "model", { Model::PlaneStrain => "plane_strain", Model::PlaneStress => "plane_stress" });
+
+impl Model {
+    /// The plane-strain material with `material`'s in-plane law under this model (the module documentation):
+    /// `material` itself in plane strain, `(E (1 + 2ν) / (1 + ν)², ν / (1 + ν))` in plane stress.
+    pub fn in_plane(self, material: Material) -> Material {
+        match self {
+            Model::PlaneStrain => material,
+            Model::PlaneStress => {
+                let (e, nu) = (material.young, material.poisson);
+                Material { young: e * (1.0 + 2.0 * nu) / ((1.0 + nu) * (1.0 + nu)), poisson: nu / (1.0 + nu) }
+            }
+        }
+    }
+
+    /// [`Model::in_plane`] for every region of `materials`.
+    pub fn in_plane_all(self, materials: &Materials) -> Materials {
+        let in_plane = materials.materials.iter().map(|m| self.in_plane(*m)).collect();
+        Materials { materials: in_plane, region: materials.region.clone() }
+    }
+
+    /// Checks `material` under this model: [`Material::validate`], and in plane stress ν > −1/2 (the
+    /// equivalent's E' is positive only there: the module documentation).
+    ///
+    /// # Errors
+    /// [`Error::BadMaterial`] naming the constant.
+    pub fn validate(self, material: &Material) -> Result<()> {
+        material.validate()?;
+        let nu = material.poisson;
+        if self == Model::PlaneStress && 1.0 + 2.0 * nu < f64::EPSILON.sqrt() {
+            return Err(Error::BadMaterial {
+                what: format!("Poisson's ratio must lie in (-1/2, 1/2) in plane stress, got {nu}"),
+            });
+        }
+        self.in_plane(*material).validate()
+    }
+
+    /// The out-of-plane stress of the in-plane stress `s` of `material`: `ν (σ_xx + σ_yy)` in plane strain,
+    /// 0 in plane stress.
+    pub fn sigma_zz(self, material: &Material, s: [f64; 3]) -> f64 {
+        match self {
+            Model::PlaneStrain => material.sigma_zz(s),
+            Model::PlaneStress => 0.0,
+        }
+    }
+
+    /// The von Mises stress of the in-plane stress `s` of `material` with its out-of-plane stress
+    /// ([`Model::sigma_zz`]).
+    pub fn von_mises(self, material: &Material, s: [f64; 3]) -> f64 {
+        match self {
+            Model::PlaneStrain => material.von_mises(s),
+            Model::PlaneStress => von_mises_with(s, 0.0),
+        }
+    }
+}
 
 /// The material of each triangle: a [`Material`] is the same everywhere, [`Materials`] gives each region
 /// (the bodies of a two-body problem) its own.
@@ -47,7 +124,7 @@ impl MaterialField for Materials {
 /// Strain-displacement matrix of one P1 triangle: `ε = B v_T`, with `v_T` the 6 local dofs.
 pub type StrainDisplacement = SMatrix<f64, 3, 6>;
 
-/// Isotropic material in plane strain.
+/// Isotropic material (its law in plane strain; in plane stress through [`Model::in_plane`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Material {
     /// Young's modulus E > 0.
@@ -106,14 +183,20 @@ impl Material {
     /// Von Mises stress of a plane-strain stress state (σ_zz = ν (σ_xx + σ_yy)), computed on the stresses
     /// divided by the largest of them so that no square overflows.
     pub fn von_mises(&self, s: [f64; 3]) -> f64 {
-        let m = s.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        if m == 0.0 || !m.is_finite() {
-            return if m == 0.0 { 0.0 } else { f64::NAN };
-        }
-        let [a, b, c] = s.map(|v| v / m);
-        let szz = self.poisson * (a + b);
-        m * (0.5 * ((a - b).powi(2) + (b - szz).powi(2) + (szz - a).powi(2)) + 3.0 * c * c).sqrt()
+        von_mises_with(s, self.poisson)
     }
+}
+
+/// Von Mises stress of the in-plane stress `s` with `σ_zz = k (σ_xx + σ_yy)` (k = ν in plane strain, 0 in plane
+/// stress), computed on the stresses divided by the largest of them so that no square overflows.
+fn von_mises_with(s: [f64; 3], k: f64) -> f64 {
+    let m = s.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    if m == 0.0 || !m.is_finite() {
+        return if m == 0.0 { 0.0 } else { f64::NAN };
+    }
+    let [a, b, c] = s.map(|v| v / m);
+    let szz = k * (a + b);
+    m * (0.5 * ((a - b).powi(2) + (b - szz).powi(2) + (szz - a).powi(2)) + 3.0 * c * c).sqrt()
 }
 
 /// Local dof indices of triangle `tri` (interleaved x, y per node).

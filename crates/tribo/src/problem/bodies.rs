@@ -24,7 +24,7 @@ use std::ops::Range;
 use crate::contact::multiplier::{MultiplierPoints, MultiplierSpace};
 use crate::contact::obstacle::{Obstacle, ObstacleShape};
 use crate::error::{Error, Result};
-use crate::fem::elasticity::{Material, Materials};
+use crate::fem::elasticity::{Material, Materials, Model};
 use crate::fem::supports::Support;
 use crate::mesh::Mesh;
 use crate::problem::{Problem, ProblemSpec};
@@ -153,6 +153,8 @@ impl Problem {
         let mesh = Mesh::new(points, triangles, edge_sets)?;
         let spec = ProblemSpec {
             material: bodies[s].material,
+            // Two bodies are in plane strain (plane stress is a one-body model for now).
+            model: Model::PlaneStrain,
             clamped: bodies.iter().flat_map(|b| b.clamped.iter().map(|c| format!("{}.{c}", b.name))).collect(),
             supports: bodies.iter().flat_map(|b| b.supports.iter().map(|x| renamed(x, &b.name))).collect(),
             body_force,

@@ -30,7 +30,7 @@ use crate::contact::pair::PrimarySide;
 use crate::contact::ContactBoundary;
 use crate::error::{Error, Result};
 use crate::fem::assemble::{assemble, LinearSystem};
-use crate::fem::elasticity::{Material, Materials};
+use crate::fem::elasticity::{Material, Materials, Model};
 use crate::fem::supports::{Dofs, NodeSupport, Support};
 use crate::mesh::Mesh;
 use condense::FactorCache;
@@ -41,6 +41,8 @@ use condense::FactorCache;
 pub struct ProblemSpec {
     /// Material.
     pub material: Material,
+    /// Plane strain or plane stress ([`Model`], plane strain by default).
+    pub model: Model,
     /// Names of the clamped edge sets (u = 0): shorthand for [`Support::Clamp`] entries of `supports`.
     pub clamped: Vec<String>,
     /// Further Dirichlet conditions: rollers (symmetry lines) and prescribed displacements (see
@@ -116,6 +118,9 @@ pub struct Problem {
     /// The material of every triangle (`spec.material` everywhere for one body; per body for two, the
     /// secondary's being `spec.material`).
     pub materials: Materials,
+    /// The plane-strain materials with their in-plane law under `spec.model` ([`Model::in_plane`]): the
+    /// stiffness, the stresses and the estimates read these; `materials` themselves under plane strain.
+    pub in_plane: Materials,
     /// The primary side of a two-body contact pair ([`crate::contact::pair`]); `None` against the rigid
     /// obstacle.
     pub primary: Option<PrimarySide>,
@@ -151,9 +156,10 @@ impl Problem {
     ) -> Result<Self> {
         let clock = Instant::now();
         for m in &materials.materials {
-            m.validate()?;
+            spec.model.validate(m)?;
         }
-        spec.material.validate()?;
+        spec.model.validate(&spec.material)?;
+        let in_plane = spec.model.in_plane_all(&materials);
         spec.obstacle.validate()?;
         // A piece that holds a node of a contact side may be held by the contact alone.
         let mut on_contact = vec![false; mesh.n_nodes()];
@@ -175,7 +181,7 @@ impl Problem {
             part.unknowns = dofs.nodes[part.nodes.clone()].iter().map(count).sum();
         }
         let LinearSystem { k_matrix, f_free, f_full } =
-            assemble(&mesh, &materials, spec.body_force, &spec.tractions, &dofs)?;
+            assemble(&mesh, &in_plane, spec.body_force, &spec.tractions, &dofs)?;
         let assembly = clock.elapsed().as_secs_f64();
 
         let clock = Instant::now();
@@ -217,8 +223,9 @@ impl Problem {
         let h_t: Vec<f64> = contact.edges.iter().map(|e| mesh.diameter(e.triangle)).collect();
         let mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &spec.obstacle)?;
         let primary = primary.map(|set| PrimarySide::new(&mesh, &contact, set, &multipliers)).transpose()?;
-        let contact_stress = ContactStress::new(&mesh, &spec.material, &contact);
-        let gamma0_bound = admissible_gamma0(&mesh, &spec.material, &contact);
+        let secondary = spec.model.in_plane(spec.material);
+        let contact_stress = ContactStress::new(&mesh, &secondary, &contact);
+        let gamma0_bound = admissible_gamma0(&mesh, &secondary, &contact);
         let contact_matrices = clock.elapsed().as_secs_f64();
         Ok(Self {
             mesh,
@@ -236,6 +243,7 @@ impl Problem {
             contact_stress,
             gamma0_bound,
             materials,
+            in_plane,
             primary,
             bodies,
             timings: SetupTimings { assembly, contact_matrices },
@@ -309,7 +317,7 @@ impl ProblemSpec {
 
     /// The defaults of the keywords a problem is built from, besides the required ones, as the Python
     /// binding and the scene files name them: the multiplier points (`multiplier_ratio`, or
-    /// `multiplier_size`; see [`MultiplierPoints::from_keywords`]) and the multiplier `space`.
+    /// `multiplier_size`; see [`MultiplierPoints::from_keywords`]), the multiplier `space` and the `model`.
     pub fn keyword_defaults() -> Vec<(&'static str, crate::settings::SettingValue)> {
         use crate::choice::Choice;
         use crate::settings::SettingValue;
@@ -319,6 +327,7 @@ impl ProblemSpec {
             MultiplierPoints::Abscissae(_) | MultiplierPoints::Points(_) => None,
         };
         let space = ("space", SettingValue::Name(MultiplierSpace::default().as_str().to_string()));
-        points.into_iter().chain([space]).collect()
+        let model = ("model", SettingValue::Name(Model::default().as_str().to_string()));
+        points.into_iter().chain([space, model]).collect()
     }
 }

@@ -12,7 +12,7 @@
 
 use crate::contact::multiplier::{MultiplierPoints, MultiplierSpace};
 use crate::contact::obstacle::{Obstacle, ObstacleShape};
-use crate::fem::elasticity::Material;
+use crate::fem::elasticity::{Material, Model};
 use crate::fem::supports::Support;
 use crate::problem::ProblemSpec;
 
@@ -25,6 +25,7 @@ impl ProblemSpec {
     pub fn new(material: Material, contact: impl Into<String>) -> Self {
         Self {
             material,
+            model: Model::default(),
             clamped: Vec::new(),
             supports: Vec::new(),
             body_force: [0.0, 0.0],
@@ -34,6 +35,13 @@ impl ProblemSpec {
             multiplier_points: MultiplierPoints::default(),
             multiplier_space: MultiplierSpace::default(),
         }
+    }
+
+    /// Sets the model: plane strain (the default) or plane stress.
+    #[must_use]
+    pub fn model(mut self, model: Model) -> Self {
+        self.model = model;
+        self
     }
 
     /// Clamps the edge sets `sets` too (u = 0 there).
@@ -110,9 +118,11 @@ mod tests {
             .obstacle(ObstacleShape::Parabola { center: 0.1, radius: 2.0 })
             .approach(0.01)
             .shift(0.002)
-            .multipliers(MultiplierPoints::RatioToFe(2.0), MultiplierSpace::P0);
+            .multipliers(MultiplierPoints::RatioToFe(2.0), MultiplierSpace::P0)
+            .model(Model::PlaneStress);
         let literal = ProblemSpec {
             material,
+            model: Model::PlaneStress,
             clamped: vec!["bottom".into()],
             supports: vec![Support::roller("left")],
             body_force: [0.0, -1.0],
@@ -130,6 +140,6 @@ mod tests {
         let plain = ProblemSpec::new(material, "top");
         assert!(plain.clamped.is_empty() && plain.supports.is_empty() && plain.tractions.is_empty());
         assert_eq!((plain.obstacle.approach, plain.obstacle.shift, plain.body_force), (0.0, 0.0, [0.0, 0.0]));
-        assert!(matches!(plain.obstacle.shape, ObstacleShape::Flat));
+        assert!(matches!(plain.obstacle.shape, ObstacleShape::Flat) && plain.model == Model::PlaneStrain);
     }
 }

@@ -99,11 +99,14 @@ impl Solution {
         let (problem, condensed) = (condensed.problem(), condensed.factor());
         let q = condensed.q();
         let mesh = &problem.mesh;
-        let (material, materials) = (&problem.spec.material, &problem.materials);
+        // The stresses and the estimates read the in-plane law; σ_zz and von Mises the model.
+        let (model, user) = (problem.spec.model, &problem.materials);
+        let material = &model.in_plane(problem.spec.material);
+        let materials = &problem.in_plane;
         let displacement = problem.dofs.expand_with(u_free, loading.lifting(problem));
         let stress = element_stresses(mesh, materials, &displacement);
-        let von_mises = stress.iter().enumerate().map(|(t, s)| materials.at(t).von_mises(*s)).collect();
-        let stress_zz = stress.iter().enumerate().map(|(t, s)| materials.at(t).sigma_zz(*s)).collect();
+        let von_mises = stress.iter().enumerate().map(|(t, s)| model.von_mises(user.at(t), *s)).collect();
+        let stress_zz = stress.iter().enumerate().map(|(t, s)| model.sigma_zz(user.at(t), *s)).collect();
         let nodal_stress = crate::fem::elasticity::recovered_stress(mesh, &stress);
         // The recovered stress is averaged over each node's triangles, all of one body (bodies share no
         // node), so the node's material is that of any of them.
@@ -114,7 +117,7 @@ impl Solution {
             }
         }
         let nodal_von_mises =
-            nodal_stress.iter().zip(&node_material).map(|(s, &t)| materials.at(t).von_mises(*s)).collect();
+            nodal_stress.iter().zip(&node_material).map(|(s, &t)| model.von_mises(user.at(t), *s)).collect();
         // Reactions K u − f on all dofs (zero up to round-off on free dofs), K u from the stresses.
         let mut reactions = internal_forces(mesh, &stress);
         for (r, f) in reactions.iter_mut().zip(&loading.f_full) {

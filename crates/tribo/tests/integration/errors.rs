@@ -12,6 +12,7 @@ fn square() -> Mesh {
 fn spec() -> ProblemSpec {
     ProblemSpec {
         material: Material { young: 100.0, poisson: 0.3 },
+        model: Model::PlaneStrain,
         clamped: vec!["top".into()],
         supports: vec![],
         body_force: [0.0, -1.0],

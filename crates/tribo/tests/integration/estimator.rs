@@ -11,6 +11,7 @@ fn an_obstacle_penetrating_between_nodes_is_seen() {
     let mesh = rectangle([0.0, 1.0], [0.0, 1.0], 4, 4, Diagonal::Right).expect("valid");
     let spec = ProblemSpec {
         material: Material { young: 1.0, poisson: 0.3 },
+        model: Model::PlaneStrain,
         clamped: vec!["bottom".into()],
         supports: vec![],
         body_force: [0.0, 0.0],

@@ -155,6 +155,7 @@ proptest! {
         let (contact, clamped) = ("bottom", "top");
         let spec = ProblemSpec {
             material: Material { young, poisson },
+            model: Model::PlaneStrain,
             clamped: vec![clamped.into()],
             supports: vec![],
             body_force: [load.0, load.1],
@@ -191,6 +192,7 @@ proptest! {
         let mesh = rectangle([0.0, 1.0], [-1.0, 0.0], nx, nx, Diagonal::Right).expect("valid");
         let spec = ProblemSpec {
             material: Material { young: 10f64.powi(young_exp), poisson },
+            model: Model::PlaneStrain,
             clamped: vec!["bottom".into()],
             supports: vec![],
             body_force: [0.0, 0.0],

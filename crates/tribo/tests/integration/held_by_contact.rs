@@ -28,6 +28,7 @@ fn block_on_foundation(supports: Vec<Support>, traction: [f64; 2]) -> Problem {
     let mesh = rectangle([0.0, 2.0], [0.0, 1.0], 8, 4, Diagonal::Alternating).unwrap();
     let spec = ProblemSpec {
         material: Material { young: E, poisson: NU },
+        model: Model::PlaneStrain,
         clamped: vec![],
         supports,
         body_force: [0.0, 0.0],

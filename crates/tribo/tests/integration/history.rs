@@ -352,6 +352,7 @@ fn histories_keep_the_lifting_of_prescribed_displacements() {
     let mesh = tribo::rectangle([0.0, 2.0], [0.0, 1.0], 16, 8, tribo::Diagonal::Right).unwrap();
     let spec = tribo::ProblemSpec {
         material: tribo::Material { young: 1.0, poisson: 0.3 },
+        model: tribo::Model::PlaneStrain,
         clamped: vec![],
         supports: vec![tribo::Support::displacement("top", Some(0.0), Some(-0.01))],
         body_force: [0.0, 0.0],

@@ -240,6 +240,7 @@ fn a_slab_pressed_by_a_prescribed_displacement_satisfies_the_discrete_problem() 
     let push = 0.002;
     let spec = ProblemSpec {
         material: Material { young: 200.0, poisson: 0.3 },
+        model: Model::PlaneStrain,
         clamped: vec![],
         supports: vec![Support::roller("left"), Support::displacement("top", Some(push * s), Some(-push * c))],
         body_force: [0.0, 0.0],

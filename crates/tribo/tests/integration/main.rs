@@ -14,6 +14,7 @@
 //!   on random problems;
 //! * `outputs`: what a reader gets back (global forces, plane-strain stress, current gap, formatted
 //!   numbers, the condensation's progress);
+//! * `plane_stress`: plane stress as plane strain with the equivalent material, σ_zz = 0, Hertz with E* = E;
 //! * `rigid_motion`: a scene turned and moved gives the same tractions and the turned fields;
 //! * `supports`: rollers and prescribed displacements: patch tests, the half Hertz model against the full one;
 //! * `two_bodies`: two elastic bodies in contact (patch test, action and reaction, the rigid limit, Hertz);
@@ -39,6 +40,7 @@ mod moved_supports;
 mod outputs;
 mod patch;
 mod paths;
+mod plane_stress;
 mod rigid_motion;
 mod supports;
 mod two_bodies;

@@ -106,6 +106,7 @@ fn active_set_and_clarabel_agree_on_the_patch_and_the_checkerboard_mesh() {
     // The patch square pushed onto a flat obstacle and dragged (stick and slip along the edge).
     let spec = ProblemSpec {
         material: Material { young: 1000.0, poisson: 0.25 },
+        model: Model::PlaneStrain,
         clamped: vec!["top".into()],
         supports: vec![],
         body_force: [0.0, 0.0],

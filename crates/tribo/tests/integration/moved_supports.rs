@@ -151,6 +151,7 @@ fn supports_that_push_gamma_c_into_the_obstacle_are_refused() {
     let mesh = tribo::rectangle([0.0, 2.0], [0.0, 1.0], 8, 4, tribo::Diagonal::Right).unwrap();
     let spec = |approach: f64| tribo::ProblemSpec {
         material: tribo::Material { young: 1.0, poisson: 0.3 },
+        model: tribo::Model::PlaneStrain,
         clamped: vec!["left".into(), "right".into()],
         supports: vec![],
         body_force: [0.0, 0.0],

@@ -12,6 +12,7 @@ fn square(contact: &str, clamped: &str) -> Problem {
     let mesh = rectangle([0.0, 1.0], [0.0, 1.0], 8, 8, Diagonal::Right).unwrap();
     let spec = ProblemSpec {
         material: Material { young: 1.0, poisson: 0.3 },
+        model: Model::PlaneStrain,
         clamped: vec![clamped.into()],
         supports: vec![],
         body_force: [0.0, 0.0],
@@ -202,6 +203,7 @@ fn the_choice_registry_lists_every_option() {
         "diagonal",
         "friction",
         "marking",
+        "model",
         "qp_kkt_solver",
         "qp_method",
         "side",
@@ -218,19 +220,22 @@ fn the_choice_registry_lists_every_option() {
     assert_eq!(registry["bisection"], ["all_edges", "refinement_edge"]);
     assert_eq!(registry["marking"], Marking::names());
     assert_eq!(registry["stop_on"], ["bound", "hierarchical", "enriched"]);
+    assert_eq!(registry["model"], ["plane_strain", "plane_stress"]);
     for name in &registry["condensation"] {
         assert_eq!(Condensation::parse(name).map(Condensation::as_str), Ok(*name));
     }
 }
 
-/// The defaults of the keywords a problem is built from give back the default multiplier points and
-/// space.
+/// The defaults of the keywords a problem is built from give back the default multiplier points, space and
+/// model.
 #[test]
 fn problem_keyword_defaults_give_back_the_defaults() {
     let defaults = ProblemSpec::keyword_defaults();
     let ratio = match defaults.as_slice() {
-        [("multiplier_ratio", SettingValue::Float(r)), ("space", SettingValue::Name(space))] => {
+        [("multiplier_ratio", SettingValue::Float(r)), ("space", SettingValue::Name(space)), ("model", SettingValue::Name(model))] =>
+        {
             assert_eq!(MultiplierSpace::parse(space), Ok(MultiplierSpace::default()));
+            assert_eq!(Model::parse(model), Ok(Model::default()));
             *r
         }
         other => panic!("{other:?}"),

@@ -28,6 +28,7 @@ fn patch_problem(
     let tractions = vec![("left".to_string(), [-sxx, -sxy]), ("right".to_string(), [sxx, sxy])];
     let spec = ProblemSpec {
         material: Material { young: E, poisson: NU },
+        model: Model::PlaneStrain,
         clamped: vec!["top".into()],
         supports: vec![],
         body_force: [0.0, 0.0],
@@ -175,6 +176,7 @@ fn constant_strain_without_contact_is_reproduced() {
             for stab in [Stabilization::None, Stabilization::Fraction(0.5)] {
                 let spec = ProblemSpec {
                     material: Material { young: E, poisson: 0.0 },
+                    model: Model::PlaneStrain,
                     clamped: vec!["left".into()],
                     supports: vec![],
                     body_force: [0.0, 0.0],

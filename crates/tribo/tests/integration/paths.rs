@@ -132,6 +132,7 @@ impl Case {
         };
         let spec = ProblemSpec {
             material: Material { young: self.young, poisson: self.poisson },
+            model: Model::PlaneStrain,
             clamped: vec!["bottom".into()],
             supports: vec![],
             body_force: [0.0, 0.0],
@@ -370,6 +371,7 @@ fn the_answer_does_not_depend_on_the_units() {
     let problem = |young: f64, approach: f64, base: f64| {
         let spec = ProblemSpec {
             material: Material { young, poisson: 0.3 },
+            model: Model::PlaneStrain,
             clamped: vec![],
             supports: vec![Support::displacement("bottom", Some(0.0), Some(base))],
             body_force: [0.0, 0.0],
@@ -434,6 +436,7 @@ fn subnormal_data_are_refused_by_name() {
     let mesh = rectangle([-1.0, 1.0], [-1.0, 0.0], 4, 2, Diagonal::Right).expect("valid");
     let spec = |approach: f64, shift: f64, base: f64| ProblemSpec {
         material: Material { young: 1.0, poisson: 0.3 },
+        model: Model::PlaneStrain,
         clamped: vec![],
         supports: vec![Support::displacement("bottom", Some(0.0), Some(base))],
         body_force: [0.0, 0.0],

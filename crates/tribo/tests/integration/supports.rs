@@ -20,6 +20,7 @@ fn rel_diff(a: &[f64], b: &[f64]) -> f64 {
 fn spec(supports: Vec<Support>, poisson: f64) -> ProblemSpec {
     ProblemSpec {
         material: Material { young: 100.0, poisson },
+        model: Model::PlaneStrain,
         clamped: vec![],
         supports,
         body_force: [0.0, 0.0],
