@@ -677,12 +677,17 @@ def test_run_reports_its_time_and_peak_memory(tmp_path: Path) -> None:
     peak, seconds = summary["process_peak_memory_mb"], summary["wall_seconds"]
     assert 0.0 < seconds < 120.0
     assert re.search(rf"{seconds:.3g} s \(factorization .* s, QPs .* s\), peak memory {peak:.0f} MiB", stdout)
-    # An interpreter with numpy and the extension loaded holds tens of MiB; the high-water mark only rises.
-    assert 20.0 < peak <= vm_hwm_mib
+    # An interpreter with numpy and the extension loaded holds tens of MiB. The high-water mark read later is
+    # the larger, up to Linux's bookkeeping: VmHWM is max(hiwater_rss, rss), hiwater_rss is recorded when memory
+    # is unmapped (not when the allocator hands pages back with madvise, as mimalloc does) and rss counts each
+    # thread's pages in batches of 64 (256 KiB per thread; the writers run in threads), so a later read may fall
+    # short (by 44 KiB once in CI). 1 MiB covers that and still tells apart the parent's 64 MiB below.
+    slack = 1.0
+    assert 20.0 < peak <= vm_hwm_mib + slack
     ballast = np.ones(64 << 20, dtype=np.uint8)  # this process's peak: 64 MiB above the child's
     _, summary, vm_hwm_mib = run()
     del ballast
-    assert summary["process_peak_memory_mb"] <= vm_hwm_mib
+    assert summary["process_peak_memory_mb"] <= vm_hwm_mib + slack
 
 
 def test_a_bad_adaptive_setting_names_the_scene_key(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
