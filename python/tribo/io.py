@@ -9,8 +9,8 @@ Writing: ``write_vtu("out/result.vtu", problem, solution)`` writes three files, 
 * ``result.vtu``: the body, with point data ``displacement`` (3 components), ``reaction``,
   ``stress_recovered`` (σ_xx, σ_yy, σ_xy per node: the area-weighted mean of the cell stresses around it,
   ``Solution.nodal_stress``) and ``von_mises_recovered``, and cell
-  data ``stress``, the full symmetric 3 × 3 stress tensor of plane strain (9 components, which ParaView
-  reads as a tensor: σ_xz = σ_yz = 0 and σ_zz = ν (σ_xx + σ_yy)), its components ``sigma_xx``,
+  data ``stress``, the full symmetric 3 × 3 stress tensor (9 components, which ParaView reads as a tensor:
+  σ_xz = σ_yz = 0 and σ_zz = ν (σ_xx + σ_yy) in plane strain, 0 in plane stress), its components ``sigma_xx``,
   ``sigma_yy``, ``sigma_xy``, ``sigma_zz``, ``von_mises``, ``error_indicator`` (the a posteriori η_K),
   ``traction_indicator`` (ζ_K, each triangle's part of the estimated error of the contact tractions) and
   ``body`` (0, or for two bodies the body's index in ``problem.bodies``); for two bodies, ``u_n`` and
@@ -434,8 +434,8 @@ def _write_vtm(path: Path, names: Sequence[str], files: Sequence[Path]) -> Path:
 
 
 def stress_tensor(solution: Solution) -> npt.NDArray[np.float64]:
-    """The full symmetric stress tensor of plane strain per triangle, (T, 3, 3): the in-plane components,
-    σ_zz = ν (σ_xx + σ_yy) (from the core) and σ_xz = σ_yz = 0."""
+    """The full symmetric stress tensor per triangle, (T, 3, 3): the in-plane components, σ_zz (from the core:
+    ν (σ_xx + σ_yy) in plane strain, 0 in plane stress) and σ_xz = σ_yz = 0."""
     s = solution.stress
     t = np.zeros((len(s), 3, 3))
     t[:, 0, 0], t[:, 1, 1], t[:, 2, 2] = s[:, 0], s[:, 1], solution.stress_zz

@@ -116,16 +116,16 @@ def _edge_steps(solution: Solution, values: npt.NDArray[np.float64]) -> tuple[An
 
 
 def hertz_pressure(problem: Problem, solution: Solution) -> tuple[np.ndarray, np.ndarray] | None:
-    """The plane-strain Hertz pressure of the computed normal force for a circle or parabola (rigid, on an
-    elastic half-plane: a² = 4PR/(πE*), E* = E/(1 − ν²), p = (2P/(πa)) √(1 − (ξ − c)²/a²)), as (ξ, p) over
-    the contact width; between two bodies, for the combined modulus 1/E* = Σ (1 − ν_i²)/E_i of their
-    materials. None for other gaps or without contact."""
+    """The 2D Hertz pressure of the computed normal force for a circle or parabola (rigid, on an elastic
+    half-plane: a² = 4PR/(πE*), E* = E/(1 − ν²) in plane strain and E in plane stress, p = (2P/(πa))
+    √(1 − (ξ − c)²/a²)), as (ξ, p) over the contact width; between two bodies (plane strain), for the combined
+    modulus 1/E* = Σ (1 − ν_i²)/E_i of their materials. None for other gaps or without contact."""
     o = problem.obstacle
     p_total = solution.normal_force
     if o.radius is None or o.center is None or not p_total > 0.0:
         return None
     if problem.primary is None:
-        e_star = problem.young / (1.0 - problem.poisson**2)
+        e_star = problem.young / (1.0 - problem.poisson**2 if problem.model == "plane_strain" else 1.0)
     else:  # the two bodies' (name, mesh, young, poisson, …) as given to Problem.two_bodies
         e_star = 1.0 / sum((1.0 - body[3] ** 2) / body[2] for body in problem._source)
     a = math.sqrt(4.0 * p_total * o.radius / (math.pi * e_star))

@@ -336,6 +336,9 @@ def test_plane_stress_is_plane_strain_with_the_equivalent_material() -> None:
     np.testing.assert_allclose(a.displacement, b.displacement, rtol=0, atol=1e-10 * np.abs(b.displacement).max())
     np.testing.assert_allclose(a.lambda_n, b.lambda_n, rtol=0, atol=1e-10 * np.abs(b.lambda_n).max())
     assert np.all(a.stress_zz == 0.0) and np.abs(b.stress_zz).max() > 0
+    # The energy norm and the estimates read the in-plane law too (E' and ν' rounded apart by an ulp or so).
+    assert stress.energy_norm(a.displacement) == pytest.approx(strain.energy_norm(b.displacement), rel=1e-10)
+    assert a.report.estimate["energy_relative"] == pytest.approx(b.report.estimate["energy_relative"], rel=1e-8)
     adaptive = stress.solve_adaptive(tol=0.2)
     assert adaptive.problem.model == "plane_stress"
     with pytest.raises(tribo.SettingsError, match="plane_strain, plane_stress"):

@@ -52,6 +52,16 @@ def test_normal_plot_shows_the_hertz_pressure_of_the_same_force(hertz: tribo.Pro
     flat = tribo.Problem(tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 4, 4), young=1.0, poisson=0.3,
                          clamped="bottom", contact="top", obstacle=tribo.Obstacle.flat(), approach=0.01)
     assert plot.hertz_pressure(flat, flat.solve()) is None
+    # In plane stress the contact modulus is E: the half-width a = √(4PR/(πE)).
+    from conftest import hertz_problem
+
+    stress = hertz_problem(model="plane_stress")
+    solved = stress.solve()
+    xi, p = plot.hertz_pressure(stress, solved)  # type: ignore[misc]
+    radius = stress.obstacle.radius
+    assert radius is not None
+    a = np.sqrt(4 * solved.normal_force * radius / (np.pi * stress.young))
+    assert (xi[-1] - xi[0]) / 2 == pytest.approx(a, rel=1e-12)
 
 
 def test_plot_titles_name_who_exerts_the_force() -> None:

@@ -418,9 +418,9 @@ impl PyProblem {
         Ok(PyArray1::from_vec(py, x.iter().map(|&x| self.inner.multipliers.evaluate(&v, x)).collect()))
     }
 
-    /// The energy norm sqrt(uᵀ K u) of a nodal displacement `u` (N, 2), K of this mesh and material (no supports).
+    /// The energy norm sqrt(uᵀ K u) of a nodal displacement `u` (N, 2), K of this mesh, material and model.
     fn energy_norm(&self, u: &Bound<'_, PyAny>) -> PyResult<f64> {
         let u = floats(u, "u", &[Some(self.inner.mesh.n_nodes()), Some(2)], Settings)?;
-        Ok(tribo::elasticity::energy_norm(&self.inner.mesh, &self.inner.materials, &u))
+        Ok(tribo::elasticity::energy_norm(&self.inner.mesh, &self.inner.in_plane, &u))
     }
 }

@@ -51,20 +51,32 @@ impl Model {
         Materials { materials: in_plane, region: materials.region.clone() }
     }
 
-    /// Checks `material` under this model: [`Material::validate`], and in plane stress ν > −1/2 (the
-    /// equivalent's E' is positive only there: the module documentation).
+    /// Checks `material` under this model: [`Material::validate`], and in plane stress `1 + 2ν ≥ √ε` (the
+    /// equivalent's E' is positive only for ν > −1/2: the module documentation) and an equivalent whose stiffness
+    /// is a normal float, each said in the user's E and ν.
     ///
     /// # Errors
     /// [`Error::BadMaterial`] naming the constant.
     pub fn validate(self, material: &Material) -> Result<()> {
         material.validate()?;
-        let nu = material.poisson;
-        if self == Model::PlaneStress && 1.0 + 2.0 * nu < f64::EPSILON.sqrt() {
+        let (e, nu) = (material.young, material.poisson);
+        let margin = f64::EPSILON.sqrt();
+        if self == Model::PlaneStress && 1.0 + 2.0 * nu < margin {
             return Err(Error::BadMaterial {
-                what: format!("Poisson's ratio must lie in (-1/2, 1/2) in plane stress, got {nu}"),
+                what: format!(
+                    "Poisson's ratio must lie in (-1/2, 1/2) in plane stress (1 + 2ν at least √ε = {}), got {nu}",
+                    Num(margin)
+                ),
             });
         }
-        self.in_plane(*material).validate()
+        self.in_plane(*material).validate().map_err(|_| Error::BadMaterial {
+            what: format!(
+                "Young's modulus {} with ν = {nu} gives a plane-stress stiffness E (1 + 2ν) / (1 + ν)² of {}, \
+                 not a positive, finite, normal float",
+                Num(e),
+                Num(self.in_plane(*material).young)
+            ),
+        })
     }
 
     /// The out-of-plane stress of the in-plane stress `s` of `material`: `ν (σ_xx + σ_yy)` in plane strain,
@@ -150,7 +162,7 @@ impl Material {
         }
         let nu = self.poisson;
         if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
-            return bad(format!("Poisson's ratio must lie in (-1, 0.5) in plane strain, got {nu}"));
+            return bad(format!("Poisson's ratio must lie in (-1, 0.5), got {nu}"));
         }
         let margin = f64::EPSILON.sqrt();
         if 1.0 - 2.0 * nu < margin || 1.0 + nu < margin {

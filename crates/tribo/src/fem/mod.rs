@@ -1,4 +1,4 @@
-//! The finite element side of the body: P1 plane-strain elasticity element by element ([`elasticity`]:
+//! The finite element side of the body: P1 elasticity (plane strain or stress) element by element ([`elasticity`]:
 //! B, the element stiffness, loads, stresses, internal forces), the global assembly on the unknowns
 //! ([`assemble`]), the Dirichlet conditions ([`supports`]:
 //! clamps, rollers, prescribed displacements, combined per node), the unknowns they leave

@@ -6,7 +6,8 @@
 //! # The indicator
 //! With σ_h = σ(u_h) constant on each triangle (so `div σ_h = 0` there), h_K the diameter of K and
 //! h_E = |E| the length of an edge, every term is a residual of one equation of the problem, measured
-//! in the units of `stress² × area` (so that `η² / E*` is an energy, E* = E / (1 − ν²)):
+//! in the units of `stress² × area` (so that `η² / E*` is an energy, E* = E / (1 − ν²) of the in-plane material:
+//! E itself in plane stress):
 //!
 //! * **bulk** (the equilibrium (2.1) and the boundary conditions (2.4)):
 //!   `h_K² ‖f‖²_K` (body load), `½ h_E ‖[σ_h n]‖²_E` on each interior edge (half to each side),

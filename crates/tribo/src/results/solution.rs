@@ -16,10 +16,10 @@ pub struct Solution {
     pub displacement: Vec<f64>,
     /// Constant stress (σ_xx, σ_yy, σ_xy) per triangle.
     pub stress: Vec<[f64; 3]>,
-    /// The out-of-plane stress σ_zz = ν (σ_xx + σ_yy) of plane strain per triangle (with
+    /// The out-of-plane stress per triangle: ν (σ_xx + σ_yy) in plane strain, 0 in plane stress (with
     /// [`Solution::stress`], the full symmetric stress tensor; σ_xz = σ_yz = 0).
     pub stress_zz: Vec<f64>,
-    /// Von Mises stress per triangle (plane strain).
+    /// Von Mises stress per triangle (with that σ_zz).
     pub von_mises: Vec<f64>,
     /// The recovered stress (σ_xx, σ_yy, σ_xy) per node: the area-weighted mean of the cell stresses
     /// around it ([`crate::fem::elasticity::recovered_stress`]), for plots and files.
