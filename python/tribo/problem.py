@@ -187,8 +187,9 @@ class Problem(_tribo.Problem):
     ``Problem(mesh, *, young, poisson, contact, clamped=None, supports=None, obstacle=None, approach=None,
     shift=None, tractions=None, body_force=None, multiplier_ratio=None, multiplier_size=None,
     multiplier_points=None, space=None, model=None)``: the body (a Mesh, Young's modulus and Poisson's ratio;
-    model 'plane_strain', the default, or 'plane_stress': a thin plate, forces per unit thickness), its supports (edge sets clamped, or a list of Support), its loads (tractions: a dict edge set ->
-    (tx, ty); body_force (fx, fy)), Γ_C (the edge set `contact`) and the obstacle with its motion (an
+    model 'plane_strain', the default, or 'plane_stress': a thin plate, forces per unit thickness), its
+    supports (edge sets clamped, or a list of Support), its loads (tractions: a dict edge set -> (tx, ty);
+    body_force (fx, fy)), Γ_C (the edge set `contact`) and the obstacle with its motion (an
     Obstacle or a callable gap(xi), the approach δ and the tangential shift s), and the multiplier mesh T_H
     (at most one of multiplier_ratio H/h, multiplier_size H and multiplier_points; space 'P0' or 'P1').
     """
