@@ -78,12 +78,12 @@ _BARS = (("P", "normal_force"), ("Q", "tangential_force"), ("contact width", "co
          ("stick width", "stick_width"))
 
 
-def _run(scene_path: Path, out: Path, plots: bool) -> int:
+def _run(scene_path: Path, out: Path, plots: bool, all_files: bool = False) -> int:
     if out.exists() and not out.is_dir():
         return _error(f"--out {out} exists and is not a directory")
     try:
         scene = load_scene(scene_path)
-        problem, solution, files = run_scene(scene, out, plots=plots)
+        problem, solution, files = run_scene(scene, out, plots=plots, all_files=all_files)
     except TriboError as e:
         context = "; ".join([type(e).__name__, *getattr(e, "__notes__", [])])
         return _error(f"{e} ({context})")
@@ -216,6 +216,9 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--out", type=Path, required=True, help="output directory")
     run.add_argument("--plots", action=argparse.BooleanOptionalAction, default=False,
                      help="draw the PNG plots too (default: the data files only, for ParaView, pandas, JSON)")
+    run.add_argument("--all-files", action="store_true",
+                     help="write every level of an adaptive run (each solved again, into levels/) and every step "
+                          "of a history (default: the last level, and up to 200 steps)")
     sw = sub.add_parser("sweep", help="run a scene over axes of parameters on Dask (pip install 'tribo[sweep]')")
     sw.add_argument("scene", type=Path, help="scene file (TOML)")
     sw.add_argument("--set", dest="axes", action="append", default=[], metavar="KEY=V1,V2,…",
@@ -249,7 +252,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         if args.command == "sweep":
             return _sweep(args)
-        return _run(scene, args.out, args.plots)
+        return _run(scene, args.out, args.plots, getattr(args, "all_files", False))
     except KeyboardInterrupt:
         print("tribo: interrupted", file=sys.stderr)
         return 130

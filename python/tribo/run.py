@@ -137,13 +137,14 @@ def bodies(problem: Problem, solution: Solution) -> list[dict[str, Any]]:
 
 
 def run_history(
-    scene: Scene, problem: Problem, *, fields: bool = True
+    scene: Scene, problem: Problem, *, fields: bool = True, every: int | None = None
 ) -> tuple[Problem, History, AdaptiveHistory | None]:
     """Solves the scene's ``[history]`` with a progress bar over the steps; with an ``[adapt]`` table,
     adaptively (a log line per level, then the history on the last mesh). Returns the problem the history
     was solved on, the history and the adaptive run (None without ``[adapt]``); the caller writes their files
     (``write_history``, ``write_adaptive``) once the solve is timed. ``fields=False`` keeps the last
-    solution only (no step files will be written)."""
+    solution only (no step files will be written); ``every``: the steps whose files will be written (every k-th
+    and the last; by default the scene's ``[history] write_every``, else ``tribo.history.vtu_every``'s)."""
     from tqdm import tqdm
 
     n_steps = len(scene.history_steps()[0])
@@ -162,8 +163,8 @@ def run_history(
                 bar.set_postfix_str(status)
 
             # Only the solutions whose VTU files are written are kept (every step's forces and states are).
-            every = vtu_every(n_steps, scene.get("history", "write_every")) if fields else max(n_steps, 1)
-            problem, history = scene.solve_history(problem, progress=progress, keep_every=every)
+            keep = vtu_every(n_steps, every or scene.get("history", "write_every")) if fields else max(n_steps, 1)
+            problem, history = scene.solve_history(problem, progress=progress, keep_every=keep)
     seconds = time.perf_counter() - clock
     log.info("history ended: %s after %d of %d steps, %.2f s", history.status, len(history), n_steps, seconds)
     sliding = np.flatnonzero(history.gross_sliding)
@@ -195,10 +196,12 @@ def warn_adapt_stop(scene: Scene, adaptive: Adaptive | AdaptiveHistory) -> None:
 
 
 def run_scene(
-    scene: Scene, out: Path, *, plots: bool = True, fields: bool = True
+    scene: Scene, out: Path, *, plots: bool = True, fields: bool = True, all_files: bool = False
 ) -> tuple[Problem, Solution, list[Path]]:
     """Solves a scene and writes every output into ``out``; returns the problem, solution and files.
-    ``fields=False`` writes ``summary.json`` only (no CSV, VTU, history or level files, no plots).
+    ``fields=False`` writes ``summary.json`` only (no CSV, VTU, history or level files, no plots);
+    ``all_files=True`` writes every level of an adaptive run (as ``[adapt] write_levels = true``) and every
+    step of a history (as ``[history] write_every = 1``), which ``tribo run --all-files`` asks for.
 
     For a scene with a ``[history]``, the solution is that of the last converged step, and the history's
     outputs (``tribo.history``) are written beside the summary; for a scene with ``[adapt]``, the problem
@@ -206,6 +209,7 @@ def run_scene(
     ``adapt.csv``/``adapt.png`` (``tribo.adaptive``) are written beside them."""
     out.mkdir(parents=True, exist_ok=True)
     clock = time.perf_counter()
+    every = 1 if all_files else scene.get("history", "write_every")
     log.info("scene: %s", scene.title or "(untitled)")
     problem = scene.build()
     # The writers' libraries load while the solve runs (it releases the GIL): a second to import matplotlib,
@@ -225,7 +229,7 @@ def run_scene(
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", SceneWarning)
         if scene.has_history:
-            problem, history, adapted = run_history(scene, problem, fields=fields)
+            problem, history, adapted = run_history(scene, problem, fields=fields, every=every)
             adapt_stop = adapted.stop if adapted is not None else None
             adaptive: Adaptive | AdaptiveHistory | None = adapted
             # The step that failed if one did (its status then sets the exit code), else the last one.
@@ -265,10 +269,10 @@ def run_scene(
         if fields and history is not None:
             history_files += write_history(out, problem, history, plots=plots,
                                            plot_steps=scene.get("history", "plot_steps"),
-                                           every=scene.get("history", "write_every"))
+                                           every=every)
         if fields and adaptive is not None:
             history_files += write_adaptive(out, adaptive, tol=scene.get("adapt", "tol"), plots=plots)
-            if scene.get("adapt", "write_levels", False):
+            if all_files or scene.get("adapt", "write_levels", False):
                 history_files += write_levels(out, adaptive, **scene.solve_kwargs())
         files = []
         path = out / "summary.json"

@@ -493,6 +493,11 @@ def test_run_adapts_a_scene_with_an_adapt_table(tmp_path: Path) -> None:
     assert files == [f"levels/level_{k:03d}.vtu" for k in range(len(rows))]
     for f, row in zip(files, rows, strict=True):
         assert len(meshio.read(tmp_path / "o" / str(f)).cells_dict["triangle"]) == int(row["triangles"])
+    # `tribo run --all-files` writes them too, the scene unchanged.
+    path.write_text(ADAPT_SCENE, encoding="utf-8")
+    assert main(["-q", "run", str(path), "--out", str(tmp_path / "all"), "--all-files"]) == 0
+    written = [d.get("file") for d in ET.parse(tmp_path / "all" / "adapt.pvd").getroot().iter("DataSet")]
+    assert written == files and all((tmp_path / "all" / str(f)).is_file() for f in files)
 
 
 def _read(estimate: dict[str, Any]) -> float:

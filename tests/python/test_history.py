@@ -231,6 +231,10 @@ def test_long_histories_write_a_bounded_series(tmp_path: Path) -> None:
     files = [d.get("file") for d in ET.parse(out / "result.pvd").getroot().iter("DataSet")]
     assert files == ["steps/step_0000.vtu", "steps/step_0003.vtu", "steps/step_0006.vtu"]
     assert len((out / "history.csv").read_text(encoding="utf-8").splitlines()) == 2 + 7
+    # `tribo run --all-files` writes every step whatever the scene says.
+    assert main(["-q", "run", str(tmp_path / "fretting.toml"), "--out", str(tmp_path / "all"), "--all-files"]) == 0
+    files = [d.get("file") for d in ET.parse(tmp_path / "all" / "result.pvd").getroot().iter("DataSet")]
+    assert files == [f"steps/step_{k:04d}.vtu" for k in range(7)]
     bad = text.replace("write_every = 3", "write_every = 0")
     with pytest.raises(SceneError, match="write_every"):
         parse_scene(tomllib.loads(bad))

@@ -298,7 +298,7 @@ def test_output_cost(tmp_path: Path) -> None:
     for ext in ("md", "csv"):
         assert (tmp_path / f"output_cost.{ext}").stat().st_size > 0
     (row,) = rows
-    assert row["plots"] == "no" and row["files"] == 8 and row["megabytes"] > 0 and row["unknowns"] > 0
+    assert row["files_asked"] == "data" and row["files"] == 8 and row["megabytes"] > 0 and row["unknowns"] > 0
     assert 0 <= row["write_seconds"] <= row["run_seconds"] and 0 < row["solve_seconds"] < row["run_seconds"]
 
 
