@@ -4,11 +4,14 @@ cannot drift from it:
 * ``cli-help``: the help of ``tribo`` and of each of its commands (``tribo.cli.build_parser``);
 * ``solver-settings``: every solver setting with its kind and default (the core's table);
 * the role ``rust``: a link into the crate documentation that ``cargo doc -p tribo --no-deps`` builds and
-  that is copied into ``rust/`` of the site once it is written (``{rust}`label <tribo/index.html>```).
+  that is copied into ``rust/`` of the site once it is written (``{rust}`label <tribo/index.html>```);
+* Rust examples shown as rustdoc shows them: the lines a doctest hides (``# Ok::<(), tribo::Error>(())``, which
+  the crate compiles the guide's example with) are left out of the page.
 """
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 from docutils import nodes
@@ -123,12 +126,34 @@ def copy_rust_doc(app: Sphinx, exception: Exception | None) -> None:
         raise ExtensionError(f"rust links to no page of the crate documentation: {broken}")
 
 
+RUST_BLOCK = re.compile(r"^```rust[^\n]*\n.*?^```", re.M | re.S)
+
+
+def hide_rust_lines(text: str) -> str:
+    """The Markdown ``text`` with the lines rustdoc hides in its ``rust`` fences left out: ``# `` followed by
+    code, or a lone ``#`` (``##`` stands for a shown ``#``)."""
+
+    def block(m: re.Match[str]) -> str:
+        lines = m[0].split("\n")
+        kept = [line.replace("##", "#", 1) if line.lstrip().startswith("##") else line for line in lines[1:-1]
+                if not (line.lstrip() == "#" or line.lstrip().startswith("# "))]
+        return "\n".join([lines[0], *kept, lines[-1]])
+
+    return RUST_BLOCK.sub(block, text)
+
+
+def source_read(app: Sphinx, docname: str, source: list[str]) -> None:
+    if app.env.doc2path(docname).suffix == ".md":
+        source[0] = hide_rust_lines(source[0])
+
+
 def setup(app: Sphinx) -> dict[str, Any]:
     app.add_directive("solver-settings", SolverSettings)
     app.add_directive("cli-help", CliHelp)
     app.add_role("rust", rust_role)
     app.add_config_value("tribo_rust_doc", "", "html")
     app.connect("build-finished", copy_rust_doc)
+    app.connect("source-read", source_read)
     app.connect("env-purge-doc", purge_rust_links)
     app.connect("env-merge-info", merge_rust_links)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

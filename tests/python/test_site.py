@@ -45,6 +45,17 @@ def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return out
 
 
+def test_rust_examples_show_what_rustdoc_shows(site: Path) -> None:
+    """The Rust guide's example is the crate's doctest: the line that doctest hides (its ``Ok``) is not shown."""
+    import html
+    import re
+
+    text = html.unescape(re.sub(r"<[^>]+>", "", (site / "guide" / "rust.html").read_text(encoding="utf-8")))
+    assert "let problem = Problem::new(mesh, spec)?;" in text
+    assert "Ok::<(), tribo::Error>(())" not in text and "Ok::<(), tribo::Error>(())" in (DOCS / "guide" / "rust.md").read_text(
+        encoding="utf-8")
+
+
 class _Links(HTMLParser):
     def __init__(self) -> None:
         super().__init__()
