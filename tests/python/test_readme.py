@@ -7,6 +7,7 @@ from __future__ import annotations
 import re
 import tomllib
 from pathlib import Path
+from typing import Any
 
 from tribo.scene import load_scene, parse_scene, scene_path
 
@@ -180,3 +181,353 @@ def test_the_docs_quote_the_error_bar_and_tol_studies_as_generated() -> None:
     quoted = f"{sum(1 <= e <= 2 for e in read)} of the {len(read)} levels of study 13"
     assert quoted in pages["guide/python.md"], quoted
     assert f"{sum(1 <= e <= 2 for e in read)} of {len(read)} levels" in pages["measured.md"]
+
+
+def _page(name: str) -> str:
+    """A page of docs/ (``guide/x.md`` for the guide's), its whitespace normalised so a phrase may wrap."""
+    return " ".join((DOCS / name).read_text(encoding="utf-8").split())
+
+
+def _script(name: str):  # noqa: ANN202 - a module of scripts/
+    import importlib
+    import sys
+
+    sys.path.insert(0, str(README.parent / "scripts"))
+    return importlib.import_module(name)
+
+
+def _pct(x: float, digits: int = 1) -> str:
+    """A fraction as the pages write it: 0.0264 -> "2.6 %"."""
+    return f"{x:.{digits}%}".replace("%", " %")
+
+
+def _span(values: list[float], fmt: str) -> str:
+    return f"{min(values):{fmt}}–{max(values):{fmt}}"
+
+
+def test_the_docs_quote_the_tol_table_as_generated() -> None:
+    """Study 13 (issue 38): the sentences of the Python guide, measured.md and STUDIES.md on the `tol` runs (the
+    hierarchical stop, the bound, the enriched answer handed back) count and span what plot_tol_table reads from
+    docs/tol_table/."""
+    tol = _script("plot_tol_table")
+    guide, measured, studies = _page("guide/python.md"), _page("measured.md"), _page("STUDIES.md")
+    raw, levels = tol.load(DOCS / "tol_table")
+    runs = tol.run_rows(raw)
+    by = {s: [r for r in runs if r["stop_on"] == s] for s in ("hierarchical", "bound", "enriched")}
+    sharp, bound, enriched = by["hierarchical"], by["bound"], by["enriched"]
+    # The default stop against the bound: the true error over X and the unknowns the bound costs more.
+    ratios = [r["ratio"] for r in sharp]
+    unknowns = {(r["case"], r["tol"]): r["unknowns"] for r in sharp}
+    more = [r["unknowns"] / unknowns[(r["case"], r["tol"])] for r in bound]
+    quoted = (f"ends with a true error of {_span(ratios, '.3f')} of `tol` in {sum(r['in_band'] for r in sharp)} of "
+              f"{len(sharp)} runs, where the bound ends at {_span([r['ratio'] for r in bound], '.2f')} of it with "
+              f"{_span(more, '.0f')} times the unknowns")
+    assert quoted in guide, quoted
+    quoted = (f"{sum(r['in_band'] for r in sharp)} of {len(sharp)} runs end in [X/3, X] over eight cases "
+              f"({_span(ratios, '.3f')} X")
+    assert quoted in measured, quoted
+    timed = [r["time_ratio"] for r in sharp]
+    quoted = f"in {sum(r['in_time'] for r in sharp)} of {len(sharp)} ({min(timed):.2f}–{max(timed):.1f} times"
+    assert quoted in measured, quoted
+    quoted = (f"end at {_span([r['ratio'] for r in bound], '.2f')} X in "
+              f"{_span([r['time_ratio'] for r in bound], '.0f')} times that time")
+    assert quoted in measured and quoted in studies, quoted
+    # The effectivity of the hierarchical estimate, per kind of case.
+    eff = {case: [r for r in rows if r["in_contact"] >= tol.MIN_IN_CONTACT]
+           for case, rows in tol.effectivity_rows(levels).items()}
+    one = [r["effectivity"] for c in ("hertz", "hertz@0.3", "hertz-coulomb", "hertz-coulomb-history", "hertz-p0")
+           for r in eff[c]]
+    two = [r["effectivity"] for c in ("two-body", "two-body-coulomb") for r in eff[c]]
+    quoted = (f"its effectivity is {_span(one, '.2f')} on one-body Hertz, histories and P0 multipliers and "
+              f"{_span(two, '.2f')} on two bodies")
+    assert quoted in guide, quoted
+    block = eff["block"]
+    quoted = (f"it is {_span([r['effectivity'] for r in block], '.2f')} times the true error and the bound, "
+              f"{_span([r['bound_effectivity'] for r in block], '.2f')}, is the smaller")
+    assert quoted in guide, quoted
+    history = [r["ratio"] for r in sharp if r["case"] == "hertz-coulomb-history"]
+    quoted = (f"ends at {_span(history, '.2f')} of `tol`, every step's estimate "
+              f"{_span([r['effectivity'] for r in eff['hertz-coulomb-history']], '.2f')} times its true error")
+    assert quoted in guide, quoted
+    # The enriched answer handed back: at the cheapest adequate level's time but on the block, and two bodies
+    # below X/3 where the enrichment removed more than half of the coarse error.
+    at_cheapest = [r for r in enriched if f"{r['time_ratio']:.2f}" == "1.00"]
+    others = {r["case"] for r in enriched if r not in at_cheapest}
+    assert others == {"block"}, others
+    two_body = [r for r in enriched if r["case"].startswith("two-body")]
+    below = [r["ratio"] for r in two_body if r["ratio"] < tol.BAND[0]]
+    in_band = sum(r["in_band"] for r in enriched)
+    quoted = (f"{len(at_cheapest)} of {len(enriched)} runs end at the cheapest adequate level's time, all but the "
+              f"block's {len(enriched) - len(at_cheapest)}, and {sum(r['in_time'] for r in enriched)} within twice it; "
+              f"{in_band} of {len(enriched)} in [X/3, X], the two-body answers {_span(below, '.2f')} of `tol` in "
+              f"{len(below)} of {len(two_body)}")
+    assert quoted in guide, quoted
+    quoted = (f"{in_band} of {len(enriched)} in [X/3, X] (two bodies {_span(below, '.2f')} X in {len(below)} of "
+              f"{len(two_body)}")
+    assert quoted in measured, quoted
+    (odd,) = [r["ratio"] for r in two_body if r["ratio"] >= tol.BAND[0]]
+    quoted = (f"on two bodies the answer is {1 / max(below):.1f}–{1 / min(below):.0f} times more accurate than X in "
+              f"{len(below)} of {len(two_body)} runs, {1 / odd:.1f} times in the eighth")
+    assert quoted in studies, quoted
+    late = [r["time_ratio"] for r in enriched if r["case"] == "block"]
+    quoted = (f"{sum(r['in_time'] for r in enriched)} of {len(enriched)} runs within twice that time (1.00 but on the "
+              f"block, {_span(late, '.2f')})")
+    assert quoted in measured, quoted
+
+
+def test_the_history_guide_quotes_the_memory_estimate_per_step() -> None:
+    """Study 18: the bytes a history step costs by the budget's estimate, as the history guide quotes them."""
+    longest = max(_rows("history_memory.csv"), key=lambda r: int(r["steps"]))  # the fixed part shared out least
+    quoted = (f"about {round(float(longest['estimate_per_step_bytes']), -1):.0f} bytes per step for "
+              f"{longest['multipliers']} multiplier dofs")
+    assert quoted in _page("guide/histories.md"), quoted
+
+
+def test_the_sweep_guide_quotes_the_sweep_overhead_as_measured() -> None:
+    """Study 10: the overhead of a sweep on a fresh and on a running cluster, in the sweep guide and STUDIES.md,
+    are those of docs/sweep.csv."""
+    guide, studies = _page("guide/sweeps.md"), _page("STUDIES.md")
+
+    def took(ms: float) -> str:
+        return f"{ms:.0f} ms" if ms < 100 else f"{ms / 1000:.2f} s"
+
+    small, medium, large = sorted(_rows("sweep.csv"), key=lambda r: float(r["per_case_ms"]))
+    fresh = {id(r): f"{float(r['wall_over_serial']):.2f}×" for r in (small, medium, large)}
+    running = {id(r): f"{float(r['running_over_serial']):.2f}×" for r in (small, medium, large)}
+    quoted = [f"{medium['cases']} cases of {took(float(medium['per_case_ms']))} cost {fresh[id(medium)]} their serial sum",
+              f"and {running[id(medium)]} on a running one",
+              f"{large['cases']} cases of {took(float(large['per_case_ms']))}, {fresh[id(large)]} and {running[id(large)]}",
+              f"{small['cases']} cases of {took(float(small['per_case_ms']))}, {fresh[id(small)]} and {running[id(small)]}"]
+    for q in quoted:
+        assert q in guide, q
+    quoted = [f"{medium['cases']} Hertz cases of {took(float(medium['per_case_ms']))} "
+              f"({int(medium['unknowns']) / 1000:.1f}k unknowns) take {fresh[id(medium)]} their serial sum",
+              f"{large['cases']} cases of {took(float(large['per_case_ms']))} ({int(large['unknowns']) / 1000:.0f}k "
+              f"unknowns) {fresh[id(large)]} and {running[id(large)]}",
+              f"{small['cases']} cases of {took(float(small['per_case_ms']))} {fresh[id(small)]} and {running[id(small)]}"]
+    for q in quoted:
+        assert q in studies, q
+
+
+def test_the_docs_quote_the_output_cost_as_measured() -> None:
+    """Study 19 (issue 38): what `tribo run` writes and how long it takes, in measured.md and getting-started.md,
+    is docs/output_cost.csv (output_cost.md is generated from it)."""
+    rows = _rows("output_cost.csv")
+
+    def row(case: str, asked: str) -> dict[str, float]:
+        (r,) = [r for r in rows if r["case"].startswith(case) and r["files_asked"] == asked]
+        return {k: float(v) for k, v in r.items() if k not in ("case", "files_asked")}
+
+    demo, demo_plots, demo_all = (row("demo", a) for a in ("data", "data + plots", "everything"))
+    hist, hist_plots = row("history", "data"), row("history", "data + plots")
+    adapt, adapt_plots, adapt_all = (row("adaptive history", a) for a in ("data", "data + plots", "everything"))
+    (steps,) = {int(re.search(r"(\d+) steps", r["case"])[1]) for r in rows if r["case"].startswith("history")}
+    (adapt_steps,) = {int(re.search(r"(\d+) steps", r["case"])[1]) for r in rows if r["case"].startswith("adaptive")}
+    text = _page("measured.md")
+    quoted = [
+        f"The demo (adaptive, {demo['unknowns'] / 1000:.1f}k unknowns, with its error bars) writes {demo['files']:.0f} "
+        f"files ({demo['megabytes']:.1f} MB) in {demo['write_seconds']:.2f} s of a {demo['run_seconds']:.1f}-s run "
+        f"({_pct(demo['share'])}); its plots take {demo_plots['write_seconds'] - demo['write_seconds']:.1f} s more",
+        f"{demo_all['files']:.0f} files ({demo_all['megabytes']:.1f} MB) in {demo_all['write_seconds']:.1f} s.",
+        f"A {steps}-step history writes {hist['files']:.0f} files ({hist['megabytes']:.0f} MB) in "
+        f"{hist['write_seconds']:.2f} s after a {hist['solve_seconds']:.2f}-s solve",
+        f"an adaptive {adapt_steps}-step history ({adapt['unknowns'] / 1000:.0f}k unknowns) {adapt['files']:.0f} files "
+        f"({adapt['megabytes']:.0f} MB) in {adapt['write_seconds']:.2f} s after a {adapt['solve_seconds']:.1f}-s solve "
+        f"({_pct(adapt['share'])} of the run), everything {adapt_all['files']:.0f} files ({adapt_all['megabytes']:.0f} MB) "
+        f"in {adapt_all['write_seconds']:.1f} s"]
+    for q in quoted:
+        assert q in text, q
+    plots = [p["write_seconds"] - d["write_seconds"] for d, p in ((hist, hist_plots), (adapt, adapt_plots))]
+    quoted = (f"drawing the demo's {demo_plots['files'] - demo['files']:.0f} plots adds "
+              f"{demo_plots['write_seconds'] - demo['write_seconds']:.1f} s to its writing, and a history's plots "
+              f"{_span(plots, '.1f')} s")
+    assert quoted in _page("getting-started.md"), quoted
+
+
+def test_the_docs_quote_the_cost_study_as_measured() -> None:
+    """Study 4: the table of measured.md (the whole Coulomb solve and its ratio to a Cholesky of K), the two-body
+    cost and the peak memory of STUDIES.md, are those of docs/cost.csv, each to the digits the page gives."""
+    cost = _script("plot_cost")
+    rows = [r for r in cost.load(DOCS / "cost.csv") if r["status"] == "converged"]
+    text = (DOCS / "measured.md").read_text(encoding="utf-8")
+    table = re.findall(r"^\| (Hertz, uniform|Hertz, graded|block on a foundation)[^|]*\| ([\d.]+)k \| ([\d.]+) s \| "
+                       r"([\d.]+) \| ([^|]+) \|$", text, flags=re.M)
+    assert len(table) == 7, table
+    family = {"Hertz, uniform": "uniform", "Hertz, graded": "graded", "block on a foundation": "block"}
+    by = {"partial factorization": "schur", "not formed (saddle)": "saddle"}
+
+    def same(value: float, quoted: str) -> bool:
+        digits = len(quoted.partition(".")[2])
+        return f"{value:.{digits}f}" == quoted
+
+    for scene, n, total, ratio, path in table:
+        (r,) = [r for r in rows if r["family"] == family[scene] and r["friction"] == "coulomb"
+                and abs(r["n_free"] / 1000 / float(n) - 1) < 0.02]
+        assert same(r["total"], total) and same(r["ratio"], ratio), (scene, n, r["total"], r["ratio"])
+        assert r["condensation"] == by[path.strip()], (scene, n, r["condensation"])
+    graded = [r for r in rows if r["family"] == "graded" and r["friction"] == "coulomb" and r["n_free"] >= cost.FROM]
+    assert f"like n^{cost.exponent(graded, 'total'):.2f} on the graded one" in " ".join(text.split())
+    measured = " ".join(text.split())
+    kb = {fam: [1024.0 * r["peak_mb"] / r["n_free"] for r in rows if r["family"] == fam and r["n_free"] >= 10_000]
+          for fam in cost.FAMILIES}
+    assert f"a solve peaks at {_span([k for v in kb.values() for k in v], '.1f')} kB per unknown" in measured
+    studies = _page("STUDIES.md")
+    largest = {fam: max((r for r in rows if r["family"] == fam), key=lambda r: r["n_free"]) for fam in cost.FAMILIES}
+    quoted = (f"{_span(kb['uniform'], '.1f')} kB per unknown on uniform meshes ({largest['uniform']['peak_mb']:.0f} MB "
+              f"at {largest['uniform']['n_free'] / 1000:.0f}k), {_span(kb['block'], '.1f')} kB on the block "
+              f"({largest['block']['peak_mb']:.0f} MB at {largest['block']['n_free'] / 1000:.0f}k), "
+              f"{_span(kb['graded'], '.1f')} kB on graded meshes ({largest['graded']['peak_mb']:.0f} MB at "
+              f"{largest['graded']['n_free'] / 1000:.0f}k) and {_span(kb['two_bodies'], '.1f')} kB for two bodies "
+              f"({largest['two_bodies']['peak_mb']:.0f} MB at {largest['two_bodies']['n_free'] / 1000:.0f}k)")
+    assert quoted in studies, quoted
+
+    def at(fam: str, n: float, friction: str) -> dict[str, Any]:
+        return min((r for r in rows if r["family"] == fam and r["friction"] == friction),
+                   key=lambda r: abs(r["n_free"] - n))
+
+    times = {(fam, n): tuple(at(fam, n, f)["total"] for f in ("frictionless", "coulomb"))
+             for fam, n in (("two_bodies", 16_500), ("graded", 15_000), ("two_bodies", 48_600), ("graded", 55_000))}
+    quoted = (f"{times['two_bodies', 16_500][0]:.2f} s frictionless and {times['two_bodies', 16_500][1]:.2f} s Coulomb "
+              f"at 16.5k (one body at 15k: {times['graded', 15_000][0]:.2f} s, {times['graded', 15_000][1]:.2f} s), "
+              f"{times['two_bodies', 48_600][0]:.2f} s and {times['two_bodies', 48_600][1]:.2f} s at 48.6k (one body "
+              f"at 55k: {times['graded', 55_000][0]:.2f} s, {times['graded', 55_000][1]:.2f} s)")
+    assert quoted in studies, quoted
+    two = max((r for r in rows if r["family"] == "two_bodies" and r["friction"] == "coulomb"), key=lambda r: r["n_free"])
+    one = max((r for r in rows if r["family"] == "graded" and r["friction"] == "coulomb"), key=lambda r: r["n_free"])
+    quoted = (f"At {two['n_free'] / 1000:.1f}k the two-body Coulomb solve takes {two['total']:.2f} s, {two['ratio']:.1f} "
+              f"Cholesky solves of K, of which the QPs take {two['qp']:.2f} s; the graded one-body family at "
+              f"{one['n_free'] / 1000:.0f}k takes {one['total']:.2f} s ({one['ratio']:.1f}×)")
+    assert quoted in studies, quoted
+    uniform = [r for r in rows if r["family"] == "uniform" and r["friction"] == "coulomb"]
+    block = [r for r in rows if r["family"] == "block" and r["friction"] == "coulomb"]
+    small = min(uniform, key=lambda r: r["n_free"])
+    rest = [r["ratio"] for r in uniform if r is not small]
+    quoted = (f"{_span(rest, '.1f')} over the uniform sizes from {sorted(r['n_free'] for r in uniform)[1] / 1000:.1f}k "
+              f"unknowns on ({small['ratio']:.1f} at {small['n_free'] / 1000:.1f}k)")
+    assert quoted in studies, quoted
+    assert f"{_span([r['ratio'] for r in block], '.1f')} over its sizes" in studies
+
+
+def test_studies_quotes_the_adaptive_and_work_precision_studies_as_measured() -> None:
+    """Studies 2, 6 and 6b: the adaptive runs, the hand-graded meshes they are held against, the work-precision
+    table and the unknowns and time a 5 % error needs, in STUDIES.md and measured.md, are those of
+    docs/adaptive.csv, adaptive_history.csv and work_precision.csv (the crossings as the study computes them)."""
+    studies, measured = _page("STUDIES.md"), _page("measured.md")
+    rows = _rows("adaptive.csv")
+
+    def runs(center: str, family: str) -> list[dict[str, str]]:
+        return [r for r in rows if r["center"] == center and r["family"] == family]
+
+    def cheapest(rs: list[dict[str, str]], within: float) -> list[dict[str, str]]:
+        """The runs that stop on the level with the fewest unknowns reaching ``within`` (several tols may)."""
+        n = min(int(r["n_free"]) for r in rs if float(r["error"]) <= within)
+        return [r for r in rs if int(r["n_free"]) == n]
+
+    def seconds(rs: list[dict[str, str]], fmt: str) -> str:
+        s = sorted({f"{float(r['seconds']):{fmt}}" for r in rs}, key=float)
+        return s[0] if len(s) == 1 else f"{s[0]}–{s[-1]}"
+
+    one = cheapest(runs("0", "adaptive"), 0.01)
+    graded = cheapest(runs("0", "graded 0.15"), 0.01)
+    quoted = (f"adaptive reaches 1 % ({_pct(float(one[0]['error']), 2)}) at {int(one[0]['n_free']) / 1000:.1f}k "
+              f"unknowns in {seconds(one, '.3f')} s, all {one[0]['levels']} levels included; the best hand-graded mesh "
+              f"(growth 0.15, graded toward [−0.3, 0.3]) needs {int(graded[0]['n_free']) / 1000:.1f}k unknowns and "
+              f"{seconds(graded, '.3f')} s")
+    assert quoted in studies, quoted
+    fine = cheapest(runs("0", "adaptive"), 0.003)
+    met = "is met" if max(float(r["seconds"]) for r in fine) < 0.5 else "is not met"
+    quoted = (f"0.3 % in under 0.5 s {met}:** {_pct(float(fine[0]['error']), 2)} at "
+              f"{int(fine[0]['n_free']) / 1000:.1f}k unknowns takes {seconds(fine, '.2f')} s ({fine[0]['levels']} levels")
+    assert quoted in studies, quoted
+    off, off_fine = cheapest(runs("0.3", "adaptive"), 0.01), cheapest(runs("0.3", "adaptive"), 0.003)
+    quoted = (f"adaptive gets {_pct(float(off[0]['error']), 2)} at {int(off[0]['n_free']) / 1000:.1f}k unknowns in "
+              f"{seconds(off, '.2f')} s, and {_pct(float(off_fine[0]['error']), 2)} at "
+              f"{int(off_fine[0]['n_free']) / 1000:.1f}k in {seconds(off_fine, '.2f')} s")
+    assert quoted in studies, quoted
+    last = max((r for r in _rows("adaptive_history.csv") if r["family"] == "adaptive"), key=lambda r: float(r["seconds"]))
+    assert f"the adaptive run to tol {last['tol']} takes {float(last['seconds']):.1f} s" in studies
+    # Work-precision: the table of the best configuration and the 5 % crossings.
+    wp = _script("study_work_precision")
+    points = [{k: (float(v) if k not in ("friction", "family", "space", "status") else v) for k, v in r.items()}
+              for r in _rows("work_precision.csv")]
+
+    def series(friction: str, space: str = "P1", ratio: float = 1.0, theta: float = 0.5) -> list[dict[str, Any]]:
+        return [r for r in points if r["friction"] == friction and r["family"] == "graded" and r["space"] == space
+                and r["ratio"] == ratio and r["theta"] == theta]
+
+    for r in series("frictionless"):
+        row = (f"| {r['h']:g} | {r['n_free']:.0f} | {r['hertz_l2']:.3f} | {r['energy']:.3f} | "
+               f"{1000 * r['seconds']:.2g} ms |")
+        assert row in studies, row
+
+    def needs(friction: str, **kw: float) -> tuple[float, float]:
+        key = "hertz_l2" if friction == "frictionless" else "ref_l2"
+        rs = series(friction, **kw)
+        return wp.crossing(rs, key, wp.TARGET, "n_free"), 1000 * wp.crossing(rs, key, wp.TARGET, "seconds")
+
+    (n, ms), (nc, msc) = needs("frictionless"), needs("coulomb")
+    assert f"5 % λ_n error needs ≈ {n / 1000:.1f}k unknowns / {ms:.1f} ms" in studies
+    assert f"at ≈ {nc / 1000:.1f}k unknowns / {msc:.0f} ms (graded P1, θ = 0.5)" in studies
+    assert f"λ_n reaches 5 % at {n / 1000:.2f}k unknowns (frictionless) and {nc / 1000:.2f}k (Coulomb" in studies
+    (n9, _), (nc9, _) = needs("frictionless", theta=0.9), needs("coulomb", theta=0.9)
+    (h2, _), (h2_9, _) = needs("frictionless", ratio=0.5), needs("frictionless", ratio=0.5, theta=0.9)
+    (n0, _), (p0, _) = needs("frictionless", theta=0.0), needs("frictionless", space="P0")
+    quoted = (f"(5 % at {n9 / 1000:.2f}k against {n / 1000:.2f}k unknowns; Coulomb {nc9 / 1000:.2f}k against "
+              f"{nc / 1000:.2f}k; H = h/2 at 0.9 × needs {h2_9 / 1000:.2f}k against {h2 / 1000:.2f}k at 0.5 ×); P0 needs "
+              f"{_pct(p0 / n - 1, 0)} more unknowns ({p0 / 1000:.1f}k)")
+    assert quoted in studies, quoted
+    assert f"γ0 = 0 with H = h costs about the same ({n0 / 1000:.2f}k unknowns for 5 %)" in studies
+    (nc0, _), (pc0, _) = needs("coulomb", theta=0.0), needs("coulomb", space="P0")
+    quoted = (f"5 % L2 error of λ_n needs ≈ {n / 1000:.1f}k unknowns ({ms:.1f} ms) frictionless and {nc / 1000:.1f}k "
+              f"({msc:.0f} ms) Coulomb with P1, H = h, γ0 = 0.5 × bound ({n9 / 1000:.1f}k and {nc9 / 1000:.1f}k at 0.9 × "
+              f"bound, {n0 / 1000:.1f}k and {nc0 / 1000:.1f}k at γ0 = 0), against {p0 / 1000:.1f}k and "
+              f"{pc0 / 1000:.1f}k for P0")
+    assert quoted in measured, quoted
+
+
+def test_the_docs_quote_the_stability_and_friction_studies_as_measured() -> None:
+    """Studies 1a, 1c, 5 and 7: the checkerboard's total variation, the fixed point's iterations with and without
+    relaxation, a fretting cycle's dissipation and the sizes of the path-choice scenes, as the pages quote them."""
+    studies, measured = _page("STUDIES.md"), _page("measured.md")
+    tv = {(r["space"], r["H/h"], r["theta"]): float(r["TV ratio"]) for r in _rows("checkerboard.csv")}
+    quoted = (f"total variation {tv['P1', '0.5', '0']:.0f}× and {tv['P1', '0.25', '0']:.0f}× the Hertz one at H = h/2 "
+              f"and h/4 on a uniform mesh of h = 0.05, {tv['P1', '1', '0']:.1f}× with matching meshes); γ0 = 0.5 × bound "
+              f"brings it to {tv['P1', '0.5', '0.5']:.1f}× and {tv['P1', '0.25', '0.5']:.1f}×")
+    assert quoted in measured, quoted
+    cm = [r for r in _rows("cattaneo_mindlin.csv") if r["nu"] == "0.45"]
+    finest = min(cm, key=lambda r: float(r["h_min"]))
+    assert f"a fretting cycle's dissipation within {_pct(abs(float(finest['work_error'])))}" in measured
+    work = [100 * abs(float(r["work_error"])) for r in cm]
+    quoted = f"within **{_span(work, '.0f')} %** at ν = 0.45 ({_pct(float(finest['work_error']))} at the finest mesh)"
+    assert quoted.replace("-", "−") in studies, quoted
+    n = [float(r["n_free"]) for r in _rows("paths.csv")]
+    small, large = f"{min(n) / 1000:.0f}k", f"{max(n) / 1000:.0f}k"
+    assert f"Over {len(n)} uniform, graded, adaptive and full-contact scenes from {small} to {large}" in measured
+    assert f"over {len(n)} scenes and both laws (uniform, graded, adaptive, full contact; {small}–{large}" in studies
+    fp = [r for r in _rows("coulomb_fixed_point.csv") if r["h_min"] == "0.01" and r["mu"] != "0"]
+    plain = {(r["nu"], r["mu"], r["qp_tol"]): int(r["iterations"]) for r in fp if r["omega"] == "1"}
+    at_nu0 = {float(r["mu"]): int(r["iterations"]) for r in fp if r["omega"] == "1" and r["nu"] == "0"}
+    at_045 = [int(r["iterations"]) for r in fp if r["omega"] == "1" and r["nu"] == "0.45"]
+    quoted = (f"ν = 0, {at_nu0[min(at_nu0)]} → {at_nu0[max(at_nu0)]} for μ = {min(at_nu0):g} → {max(at_nu0):g}, "
+              f"and are {min(at_045)}–{max(at_045)} at ν = 0.45)")
+    assert quoted in studies, quoted
+    relaxed = {w: [int(r["iterations"]) for r in fp if r["omega"] == w] for w in ("0.5", "0.25")}
+    assert f"({_span(relaxed['0.5'], 'd')} iterations at ω = 0.5, {_span(relaxed['0.25'], 'd')} at ω = 0.25)" in studies
+    more = {w: [int(r["iterations"]) / plain[(r["nu"], r["mu"], r["qp_tol"])] for r in fp if r["omega"] == w]
+            for w in ("0.5", "0.25")}
+    quoted = f"{_span(more['0.5'], '.3g')} times as many at ω = 0.5, {_span(more['0.25'], '.3g')} times at ω = 0.25"
+    assert quoted in studies, quoted
+
+
+def test_the_docs_quote_the_two_body_cost_as_measured() -> None:
+    """Study 8: the time per unknown of a two-body solve over the one-body solve on the lower mesh, as
+    plot_two_bodies computes it from docs/two_bodies.csv (solves of 10 ms or more)."""
+    rows = [{k: (v if k in ("pair", "coulomb_status") else float(v)) for k, v in r.items()}
+            for r in _rows("two_bodies.csv")]
+    ratio = {law: [(r[f"{law}_s"] / r["n_free"]) / (r[f"one_body_{law}_s"] / r["one_body_n"]) for r in rows
+                   if r[f"one_body_{law}_s"] >= 0.01] for law in ("frictionless", "coulomb")}
+    every = ratio["frictionless"] + ratio["coulomb"]
+    assert f"Two elastic bodies cost {_span(every, '.1f')} times the time per unknown of one body" in _page("measured.md")
+    quoted = (f"a two-body solve takes {_span(ratio['frictionless'], '.1f')} times the time per unknown of the one-body "
+              f"solve on the lower mesh alone (frictionless) and {_span(ratio['coulomb'], '.1f')} times with Coulomb")
+    assert quoted in _page("STUDIES.md"), quoted
