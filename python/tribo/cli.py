@@ -91,8 +91,10 @@ def _run(scene_path: Path, out: Path, plots: bool, all_files: bool = False) -> i
         return _error(f"cannot write the results into {out}: {e.strerror or e} ({e.filename or out})")
     r = solution.report
     print(f"{scene.title or scene_path}")
+    steps = {"newton": "Newton steps", "fixed_point": "fixed-point iterations"}.get(str(r.coulomb_method), "iterations")
+    fallback = " after Newton did not converge" if r.coulomb_fallback else ""
     print(
-        f"  status {r.status} ({solution.friction}, {r.iterations} fixed-point iterations), "
+        f"  status {r.status} ({solution.friction}, {r.iterations} {steps}{fallback}), "
         f"normal force {solution.normal_force:.6g}, tangential force {solution.tangential_force:.6g}, "
         f"max KKT residual {solution.kkt_max:.2e}"
     )

@@ -8,7 +8,7 @@ be built without a solve:
 >>> import numpy as np
 >>> report = Report(status="converged", interrupted_iteration=None, failed_iteration=None,
 ...                 failure_reason=None, iterations=0, residual_history=np.zeros(0),
-...                 qp_iterations=np.array([7]), qp_factorizations=np.array([1]), qp_methods=["active_set"],
+...                 coulomb_method=None, coulomb_fallback=False, qp_iterations=np.array([7]), qp_factorizations=np.array([1]), qp_methods=["active_set"],
 ...                 qp_fallbacks=0, condensation="columns", qp_inaccurate=0, gamma0=0.0, gamma0_bound=1.0,
 ...                 reused_factorization=False, timings={"qp": 0.001})
 >>> report.converged
@@ -78,8 +78,15 @@ class Report(_Record):
         failed_iteration: for 'qp_failed', the fixed-point iteration at which a QP failed (0 = the
             initial QP), else None.
         failure_reason: for 'qp_failed', the QP solver's status, else None.
-        iterations: fixed-point iterations (0 for frictionless and Tresca).
-        residual_history: relative change of λ_n after each fixed-point iteration.
+        iterations: iterations of the Coulomb method that answered: fixed-point iterations (a QP each) or
+            Newton steps (a dense LU solve each); 0 for frictionless and Tresca.
+        residual_history: after each fixed-point iteration, the relative change of λ_n; for Newton, the relative
+            merit ‖C‖ / ‖λ_n‖ before each step and the one it ended on.
+        coulomb_method: the Coulomb method that answered, 'fixed_point' or 'newton' (the ``coulomb`` setting
+            chooses; 'auto' is Newton, and the fixed point where Newton did not converge); None for
+            frictionless and Tresca.
+        coulomb_fallback: True when ``coulomb='auto'`` tried Newton, which did not converge, and the fixed
+            point answered.
         qp_iterations: iterations of each QP: interior-point iterations (clarabel) or steps (active set).
         qp_factorizations: factorizations among each QP's active-set steps (dense Cholesky of the free
             block, or sparse LDLᵀ of the saddle-point system): the other steps updated or bordered a
@@ -118,6 +125,8 @@ class Report(_Record):
     failure_reason: str | None
     iterations: int
     residual_history: _Floats
+    coulomb_method: Literal["fixed_point", "newton"] | None
+    coulomb_fallback: bool
     qp_iterations: _Ints
     qp_factorizations: _Ints
     qp_methods: list[Literal["clarabel", "active_set"]]

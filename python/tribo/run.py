@@ -89,6 +89,8 @@ def summary(
         "friction": solution.friction,
         "mu": solution.mu,
         "iterations": r.iterations,
+        "coulomb_method": r.coulomb_method,
+        "coulomb_fallback": r.coulomb_fallback,
         "residual_history": r.residual_history.tolist(),
         "qp_iterations": r.qp_iterations.tolist(),
         "qp_factorizations": r.qp_factorizations.tolist(),

@@ -118,6 +118,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
     "solver.fp_tol": ("The Coulomb fixed point stops when λ_n changes by less than this, relatively", "—", None),
     "solver.fp_max_iter": ("The iteration cap of the Coulomb fixed point", "—", None),
     "solver.fp_relaxation": ("The relaxation ω ∈ (0, 1] of the fixed point", "—", None),
+    "solver.coulomb": ("The Coulomb method: the fixed point (the reference), semismooth Newton, or Newton "
+                       "falling back to the fixed point", "—", None),
     "solver.memory_budget": ("The bytes a solve may take (factorization, dense parts, a history's solutions)",
                              "bytes", "what the process may still allocate"),
     "solver.condensation": ("How H is formed", "—", None),

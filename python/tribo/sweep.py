@@ -86,7 +86,9 @@ COLUMNS: dict[str, str] = {
     "adapt_stop": "why the adaptive loop stopped (tolerance, exact, max_unknowns, …); empty without [adapt]",
     "failure": "why a case did not converge or failed (empty when it converged)",
     "friction": "the friction law the solve used",
-    "iterations": "fixed-point iterations (of the last step of a history)",
+    "iterations": "iterations of the Coulomb method: fixed-point iterations or Newton steps (of the last step of a "
+                  "history)",
+    "coulomb_method": "the Coulomb method that answered (fixed_point or newton; empty without Coulomb friction)",
     "normal_force": "the normal resultant of the contact pressure",
     "tangential_force": "the tangential resultant",
     "contact_extent": "the length of Γ_C between the first and last multiplier dof in contact (stick or slip)",
@@ -319,6 +321,7 @@ def _row(summary: Mapping[str, Any], solution: Any) -> dict[str, Any]:
         "failure": failure,
         "friction": summary["friction"],
         "iterations": summary["iterations"],
+        "coulomb_method": summary["coulomb_method"] or "",
         "normal_force": summary["normal_force"],
         "tangential_force": summary["tangential_force"],
         "contact_extent": _extent(solution.multiplier_abscissae, states != 0),

@@ -531,3 +531,25 @@ def test_the_docs_quote_the_two_body_cost_as_measured() -> None:
     quoted = (f"a two-body solve takes {_span(ratio['frictionless'], '.1f')} times the time per unknown of the one-body "
               f"solve on the lower mesh alone (frictionless) and {_span(ratio['coulomb'], '.1f')} times with Coulomb")
     assert quoted in _page("STUDIES.md"), quoted
+
+
+def test_the_docs_quote_the_coulomb_map_as_generated() -> None:
+    """Study 20 (issue 40): the friction guide's and the changelog's numbers on the two Coulomb methods, read from
+    docs/coulomb_map.csv through plot_coulomb_map's own summary."""
+    cmap = _script("plot_coulomb_map")
+    s = cmap.summary(cmap.load(DOCS / "coulomb_map.csv"))
+    its = {m: s[("hertz", m)]["iterations"] for m in cmap.METHODS}
+    held = [v for (f, m), v in s.items() if f.startswith("held block") and m == "newton"]
+    failed = [x for v in held for x in v["failed"]]
+    problems = sum(v["problems"] for v in held)
+    fixed_point_held = [v for (f, m), v in s.items() if f.startswith("held block") and m == "fixed_point"]
+    assert all(v["converged"] == v["problems"] for v in fixed_point_held), "the fixed point solved all of them"
+    said = (f"on Hertz, Newton takes {its['newton'][0]}–{its['newton'][-1]} steps where the fixed point takes "
+            f"{its['fixed_point'][0]}–{its['fixed_point'][-1]} iterations")
+    mus, nus = max(mu for _, mu, _ in failed), min(nu for nu, _, _ in failed)
+    held_said = f"did not converge on {len(failed)} of {problems} problems (μ ≤ {mus:g} with ν ≥ {nus:g})"
+    for page in ("guide/friction.md", "changelog.md"):
+        text = _page(page)
+        assert said in text, (page, said)
+    assert held_said in _page("guide/friction.md"), held_said
+    assert f"{len(failed)} of {problems} problems (μ ≤ {mus:g}, ν ≥ {nus:g})" in _page("changelog.md")

@@ -17,7 +17,8 @@ from tribo.problem import history_steps
 def report(**kw: Any) -> tribo.Report:
     fields: dict[str, Any] = dict(
         status="converged", interrupted_iteration=None, failed_iteration=None, failure_reason=None, iterations=2,
-        residual_history=np.array([0.1, 1e-9]), qp_iterations=np.array([9, 3, 1]), qp_factorizations=np.array([1, 0, 0]),
+        residual_history=np.array([0.1, 1e-9]), coulomb_method="fixed_point", coulomb_fallback=False,
+        qp_iterations=np.array([9, 3, 1]), qp_factorizations=np.array([1, 0, 0]),
         qp_methods=["active_set"] * 3, qp_fallbacks=0, condensation="columns", qp_inaccurate=0, gamma0=0.0,
         gamma0_bound=9.29e-4, reused_factorization=False, timings={"qp": 0.002},
     )

@@ -398,3 +398,27 @@ def test_every_study_table_reads_as_a_table() -> None:
         with open(path, newline="") as f:
             widths = {len(row) for row in csv.reader(f)}
         assert len(widths) == 1, f"{path.name}: rows of {sorted(widths)} fields"
+
+
+def test_plot_coulomb_map(tmp_path: Path) -> None:
+    """Study 20 from its CSV: per scene and method the problems converged, the iterations, the largest difference
+    where both converged, and which did not converge."""
+    csv = tmp_path / "map_in.csv"
+    lines = ["scene,n_free,q,nu,load_fraction,mu,method,status,iterations,seconds,normal_force,tangential_force,kkt,"
+             "lambda_difference"]
+    for nu in (0.0, 0.3):
+        for mu in (0.1, 1.0):
+            both = not (nu == 0.3 and mu == 0.1)
+            diff = 1e-8 * (1 + mu) if both else float("nan")
+            lines.append(f"hertz,100,10,{nu},nan,{mu},fixed_point,converged,{int(10 * mu) + 3},0.01,1,0.1,1e-12,{diff}")
+            status = "converged" if both else "stagnated"
+            lines.append(f"hertz,100,10,{nu},nan,{mu},newton,{status},{2 if both else 9},0.001,1,0.1,1e-14,{diff}")
+    csv.write_text("\n".join(lines) + "\n")
+    res = study("plot_coulomb_map").main(["--csv", str(csv), "--out", str(tmp_path)])
+    assert (tmp_path / "coulomb_map.png").is_file()
+    fp, nw = res[("hertz", "fixed_point")], res[("hertz", "newton")]
+    assert (fp["problems"], fp["converged"], fp["iterations"]) == (4, 4, [4, 4, 13, 13])
+    assert (nw["converged"], nw["iterations"], nw["failed"]) == (3, [2, 2, 2], [(0.3, 0.1, "stagnated")])
+    assert fp["difference"] == nw["difference"] == 2e-8
+    page = (tmp_path / "coulomb_map.md").read_text()
+    assert "| hertz | newton | 3 of 4 | 2–2 | 2 | 2.0e-08 | ν 0.3 μ 0.1: stagnated |" in page

@@ -45,7 +45,8 @@
 //!    conditions are (3.2)). The problem keeps that factorization for the next solve with the same γ0.
 //! 3. [`Condensed::solve`] ([`solve`]) solves one QP (frictionless, Tresca) or iterates the fixed point
 //!    `g ↦ λ_Hn(g)` of Definition 1 (Coulomb), each step a box-constrained QP over 2q unknowns whose
-//!    matrix never changes. [`Problem::solve`] does steps 2 and 3 in one call.
+//!    matrix never changes; beside it, a semismooth Newton method solves the Coulomb problem with the
+//!    friction bound following λ_n ([`CoulombMethod`]). [`Problem::solve`] does steps 2 and 3 in one call.
 //! 4. The displacement is recovered with one more solve; [`Solution`] carries every field, the contact
 //!    state per multiplier dof, the discrete KKT residuals, the a posteriori error indicator η_K
 //!    ([`results::ErrorEstimate`]: bulk, Γ_C, contact and friction residuals, and the estimated error of
@@ -77,7 +78,7 @@
 //!   saddle-point system, and the working set that picks among them);
 //! * [`problem`] (a [`Problem`], its condensed form [`Condensed`], the load case) → [`results`]
 //!   ([`Solution`], [`Report`], the KKT residuals, the error estimate) → [`solve`] (the entry points, the
-//!   driver, the fixed point, histories, progress) → [`adapt`] (adaptive refinement).
+//!   driver, the fixed point and the Newton method, histories, progress) → [`adapt`] (adaptive refinement).
 //!
 //! The module paths of the earlier flat layout (`tribo::mortar`, `tribo::supports`, `tribo::solution`, …)
 //! still resolve, hidden from this documentation.
@@ -90,6 +91,11 @@
 //! * H. J. C. Barbosa, T. J. R. Hughes, *The finite element method with Lagrange multipliers on the
 //!   boundary: circumventing the Babuška–Brezzi condition*, Computer Methods in Applied Mechanics and
 //!   Engineering 85(1), 109–128, 1991: the stabilization.
+//! * The semismooth Newton method for Coulomb friction ([`CoulombMethod::Newton`]): S. Hüeber, G. Stadler,
+//!   B. I. Wohlmuth, *A primal–dual active set algorithm for three-dimensional contact problems with Coulomb
+//!   friction*, SIAM Journal on Scientific Computing 30(2), 572–596, 2008; P. Alart, A. Curnier, *A mixed
+//!   formulation for frictional contact problems prone to Newton like solution methods*, Computer Methods in
+//!   Applied Mechanics and Engineering 92(3), 353–375, 1991.
 //! * The hierarchical traction estimate ([`Problem::estimate_hierarchical`]): R. E. Bank, A. Weiser, *Some a
 //!   posteriori error estimators for elliptic partial differential equations*, Mathematics of Computation
 //!   44(170), 283–301, 1985; R. E. Bank, R. K. Smith, *A posteriori error estimates based on hierarchical
@@ -149,8 +155,8 @@ pub use qp::{QpOutcome, QpStatus};
 pub use results::{ContactState, KktResiduals, Report, Solution, SolveStatus, Timings};
 pub use settings::friction::{Friction, FrictionLaw, Threshold};
 pub use settings::{
-    AdaptKeywords, AdaptSettings, Bisection, Condensation, FixedPointSettings, KktSolver, Marking, QpMethod,
-    QpSettings, SettingInfo, SettingKind, SettingValue, SolverSettings, Stabilization, StopOn,
+    AdaptKeywords, AdaptSettings, Bisection, Condensation, CoulombMethod, FixedPointSettings, KktSolver, Marking,
+    QpMethod, QpSettings, SettingInfo, SettingKind, SettingValue, SolverSettings, Stabilization, StopOn,
 };
 pub use solve::history::LoadStep;
 pub use solve::history::{History, StepObserver, StepProgress, StepRecord};

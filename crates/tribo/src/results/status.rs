@@ -4,7 +4,7 @@
 use crate::choice::named_choice;
 use crate::results::ErrorEstimate;
 use crate::settings::friction::FrictionLaw;
-use crate::settings::{Condensation, QpMethod};
+use crate::settings::{Condensation, CoulombMethod, QpMethod};
 
 /// How a solve ended. Not an error: a solve that did not converge still returns its last iterate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -129,10 +129,17 @@ pub struct Report {
     pub friction: FrictionLaw,
     /// The Coulomb coefficient μ (`None` unless the law is Coulomb).
     pub mu: Option<f64>,
-    /// Fixed-point iterations (0 for frictionless and Tresca).
+    /// Iterations of the Coulomb method that answered: fixed-point iterations (one QP each) or Newton steps
+    /// (one dense LU each); 0 for frictionless and Tresca.
     pub iterations: usize,
-    /// Relative change of λ_n after each fixed-point iteration.
+    /// After each iteration: the relative change of λ_n (fixed point) or the relative merit `‖C‖ / ‖λ_n‖`
+    /// before the step (Newton; the last entry the merit it ended with).
     pub residual_history: Vec<f64>,
+    /// The Coulomb method that answered ([`CoulombMethod::FixedPoint`] or [`CoulombMethod::Newton`]); `None`
+    /// for frictionless and Tresca.
+    pub coulomb_method: Option<CoulombMethod>,
+    /// True when [`CoulombMethod::Auto`] tried Newton, which did not converge, and the fixed point answered.
+    pub coulomb_fallback: bool,
     /// Iterations of each QP: interior-point iterations (clarabel) or steps (active set), including a
     /// failed active-set attempt before clarabel.
     pub qp_iterations: Vec<u32>,
@@ -179,7 +186,7 @@ pub enum Scalar {
 
 impl Report {
     /// The report's scalars by name, as the Python binding and summary files name them.
-    pub fn scalars(&self) -> [(&'static str, Scalar); 11] {
+    pub fn scalars(&self) -> [(&'static str, Scalar); 13] {
         use crate::choice::Choice;
         use Scalar::{Bool, Count, Float, Missing, Name};
         let (interrupted, failed, reason) = match self.status {
@@ -193,6 +200,8 @@ impl Report {
             ("failed_iteration", failed),
             ("failure_reason", reason),
             ("iterations", Count(self.iterations)),
+            ("coulomb_method", self.coulomb_method.map_or(Missing, |m| Name(m.as_str()))),
+            ("coulomb_fallback", Bool(self.coulomb_fallback)),
             ("qp_fallbacks", Count(self.qp_fallbacks)),
             ("condensation", Name(self.condensation.as_str())),
             ("qp_inaccurate", Count(self.qp_inaccurate)),

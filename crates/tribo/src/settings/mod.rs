@@ -90,6 +90,29 @@ named_choice!(Condensation, "condensation", {
     Condensation::Saddle => "saddle",
 });
 
+/// Which method solves the Coulomb problem (3.1) once its first QP is solved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum CoulombMethod {
+    /// The fixed point of Φ_H (Definition 1 of the paper, `solve/fixed_point.rs`): one Tresca QP per
+    /// iteration, the friction bound frozen at the previous λ_n. The reference.
+    #[default]
+    FixedPoint,
+    /// The semismooth Newton method on Γ_C (`solve/newton.rs`, derived there): the friction bound follows λ_n
+    /// inside each step, each step a dense LU solve on the dofs in contact. Measured in study 20
+    /// (`docs/coulomb_map.md`): fewer iterations than the fixed point on Hertz, but it does not converge on
+    /// some problems of a body held only by the contact at small μ.
+    Newton,
+    /// Newton, and the fixed point from the same start where Newton does not converge (the report says which
+    /// answered: [`crate::Report::coulomb_method`]).
+    Auto,
+}
+
+named_choice!(CoulombMethod, "Coulomb method", {
+    CoulombMethod::FixedPoint => "fixed_point",
+    CoulombMethod::Newton => "newton",
+    CoulombMethod::Auto => "auto",
+});
+
 /// Settings of the QP solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct QpSettings {
@@ -180,8 +203,10 @@ pub struct SolverSettings {
     pub stabilization: Stabilization,
     /// The QP solver.
     pub qp: QpSettings,
-    /// The Coulomb fixed point.
+    /// The Coulomb fixed point; its `tol` and `max_iter` are Newton's too.
     pub fp: FixedPointSettings,
+    /// The Coulomb method. Default [`CoulombMethod::FixedPoint`].
+    pub coulomb: CoulombMethod,
     /// Bytes a solve may take for its factorization (the sparse Cholesky factor of A and its workspace,
     /// checked after the symbolic analysis, before anything of that size is allocated) and, each on its
     /// own, for its dense parts (columns of H, the dense QP) and for the solutions a loading history
@@ -204,6 +229,7 @@ impl Default for SolverSettings {
             stabilization: Stabilization::default(),
             qp: QpSettings::default(),
             fp: FixedPointSettings::default(),
+            coulomb: CoulombMethod::default(),
             memory_budget: default_memory_budget(),
             condensation: Condensation::default(),
             keep_every: 1,

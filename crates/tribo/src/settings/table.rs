@@ -2,7 +2,7 @@
 //! [`SolverSettings::table`], generated from one declaration (`settings_table!` at the end), and the
 //! value types that cross to Python and scene files ([`SettingValue`], [`SettingKind`], [`SettingInfo`]).
 
-use super::{Condensation, KktSolver, QpMethod, SolverSettings, Stabilization};
+use super::{Condensation, CoulombMethod, KktSolver, QpMethod, SolverSettings, Stabilization};
 use crate::choice::Choice;
 use crate::error::{Error, Result};
 
@@ -145,6 +145,7 @@ macro_rules! choice_field {
 choice_field!(KktSolver);
 choice_field!(QpMethod);
 choice_field!(Condensation);
+choice_field!(CoulombMethod);
 
 /// The table of settings: flat name, field path, field type.
 macro_rules! settings_table {
@@ -197,6 +198,7 @@ settings_table! {
     "fp_tol" => fp.tol: f64;
     "fp_max_iter" => fp.max_iter: usize;
     "fp_relaxation" => fp.relaxation: f64;
+    "coulomb" => coulomb: CoulombMethod;
     "memory_budget" => memory_budget: usize;
     "condensation" => condensation: Condensation;
     "keep_every" => keep_every: usize;

@@ -12,7 +12,7 @@ use crate::qp::working_set::ContactQp;
 use crate::qp::{QpOutcome, QpStatus};
 use crate::results::{ErrorEstimate, Report, Solution, SolveStatus, Timings};
 use crate::settings::friction::Friction;
-use crate::settings::{Condensation, QpMethod, SolverSettings};
+use crate::settings::{Condensation, CoulombMethod, QpMethod, SolverSettings};
 use crate::solve::progress::{Observer, Phase, Progress};
 
 /// What the QP phase produced: multipliers (2q), the tangential bound used, status, history.
@@ -60,6 +60,49 @@ impl QpPhase {
         self.book(out);
         if let Some(s) = qp_failed(0, out.status) {
             self.status = s;
+        }
+    }
+}
+
+impl Condensed<'_> {
+    /// The Coulomb problem from `phase.lambda` by the method `settings.coulomb` asks for; returns the method that
+    /// answered and whether [`CoulombMethod::Auto`] fell back to the fixed point.
+    ///
+    /// # Errors
+    /// QP errors of the fixed point.
+    fn coulomb(
+        &self,
+        mu: f64,
+        settings: &SolverSettings,
+        loading: &LoadCase,
+        phase: &mut QpPhase,
+        notify: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+    ) -> Result<(CoulombMethod, bool)> {
+        match settings.coulomb {
+            CoulombMethod::FixedPoint => {
+                self.fixed_point(mu, settings, loading, phase, notify)?;
+                Ok((CoulombMethod::FixedPoint, false))
+            }
+            CoulombMethod::Newton => {
+                self.newton(mu, settings, loading, phase, notify)?;
+                Ok((CoulombMethod::Newton, false))
+            }
+            CoulombMethod::Auto => {
+                let start = (phase.lambda.clone(), phase.alpha.clone());
+                self.newton(mu, settings, loading, phase, notify)?;
+                if matches!(phase.status, SolveStatus::Converged | SolveStatus::Interrupted { .. }) {
+                    return Ok((CoulombMethod::Newton, false));
+                }
+                log::info!(
+                    "newton ended {} after {} steps: the fixed point solves the problem from the same start",
+                    phase.status,
+                    phase.iterations
+                );
+                ((phase.lambda, phase.alpha), phase.iterations, phase.status) = (start, 0, SolveStatus::Converged);
+                phase.history.clear();
+                self.fixed_point(mu, settings, loading, phase, notify)?;
+                Ok((CoulombMethod::FixedPoint, true))
+            }
         }
     }
 }
@@ -163,9 +206,11 @@ impl Condensed<'_> {
                 phase.record_single_qp(factor, &out, &mut notify);
             }
         }
+        let (mut coulomb_method, mut coulomb_fallback) = (None, false);
         if let (Friction::Coulomb { mu }, SolveStatus::Converged) = (&friction, phase.status) {
             // (not after an interrupted or failed initial QP)
-            self.fixed_point(*mu, settings, loading, &mut phase, &mut notify)?;
+            let (method, fallback) = self.coulomb(*mu, settings, loading, &mut phase, &mut notify)?;
+            (coulomb_method, coulomb_fallback) = (Some(method), fallback);
         }
         // Columns of H computed on demand during the QPs count as condensation, not QP time.
         let condensation_during = factor.condensation_seconds() - condensation_before;
@@ -193,6 +238,8 @@ impl Condensed<'_> {
             mu,
             iterations: phase.iterations,
             residual_history: phase.history,
+            coulomb_method,
+            coulomb_fallback,
             qp_iterations: phase.qp_iterations,
             qp_factorizations: phase.qp_factorizations,
             qp_methods: phase.qp_methods,
@@ -214,7 +261,9 @@ impl Condensed<'_> {
         // forces must determine it. A fixed point that stagnated or ran out of iterations on such a body is
         // checked too: where nothing presses the body against the contact (a history unloading it), the
         // undetermined position is why it did not converge, and that is the answer to give (defect D31).
-        let undecided = matches!(phase.status, SolveStatus::Stagnated | SolveStatus::MaxIterations);
+        // (Newton's last iterate of a solve that did not converge need not be near the answer: it proves nothing.)
+        let undecided = matches!(phase.status, SolveStatus::Stagnated | SolveStatus::MaxIterations)
+            && coulomb_method != Some(CoulombMethod::Newton);
         if phase.status == SolveStatus::Converged || (undecided && !loading.rigid.load.is_empty()) {
             let bound = (!matches!(friction, Friction::Frictionless)).then_some(threshold.as_slice());
             // The scale of λ: the answer's and the linear term's; for a fixed point that did not converge, also

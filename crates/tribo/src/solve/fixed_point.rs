@@ -18,6 +18,30 @@ use crate::solve::progress::Progress;
 /// stagnated: a contraction, however slow, makes a new minimum every iteration.
 pub const STAGNATION_WINDOW: usize = 10;
 
+/// Watches a sequence (the changes of a fixed point, the merits of Newton's steps) for [`STAGNATION_WINDOW`]
+/// values in a row without a new smallest one.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Stagnation {
+    best: f64,
+    since: usize,
+}
+
+impl Stagnation {
+    pub(super) fn new() -> Self {
+        Self { best: f64::INFINITY, since: 0 }
+    }
+
+    /// Takes the next value; true when the last [`STAGNATION_WINDOW`] made no new minimum.
+    pub(super) fn stalled(&mut self, value: f64) -> bool {
+        if value < self.best {
+            (self.best, self.since) = (value, 0);
+        } else {
+            self.since += 1;
+        }
+        self.since >= STAGNATION_WINDOW
+    }
+}
+
 impl Condensed<'_> {
     pub(super) fn fixed_point(
         &self,
@@ -42,7 +66,7 @@ impl Condensed<'_> {
         )?
         .with_sparse(self.sparse_qps());
         phase.status = SolveStatus::MaxIterations;
-        let (mut best, mut since_best) = (f64::INFINITY, 0);
+        let mut stagnation = Stagnation::new();
         for it in 1..=fp.max_iter {
             let out = qp.solve()?;
             phase.book(&out);
@@ -74,14 +98,9 @@ impl Condensed<'_> {
             }
             // A converging fixed point keeps making new minima of the change; one that cycles, or that
             // has reached the accuracy to which the QP determines λ, does not.
-            if change < best {
-                (best, since_best) = (change, 0);
-            } else {
-                since_best += 1;
-                if since_best >= STAGNATION_WINDOW {
-                    phase.status = SolveStatus::Stagnated;
-                    break;
-                }
+            if stagnation.stalled(change) {
+                phase.status = SolveStatus::Stagnated;
+                break;
             }
             let w = fp.relaxation;
             for (gj, lj) in g.iter_mut().zip(&phase.lambda[..q]) {
@@ -96,7 +115,7 @@ impl Condensed<'_> {
 
 /// The Euclidean norm, scaled by the largest entry first so that its squares neither underflow (λ of
 /// 1e-200, where every square is 0 and a relative change would read 0) nor overflow.
-fn euclidean(v: impl Iterator<Item = f64> + Clone) -> f64 {
+pub(super) fn euclidean(v: impl Iterator<Item = f64> + Clone) -> f64 {
     let m = v.clone().fold(0.0_f64, |m, x| m.max(x.abs()));
     if m == 0.0 || !m.is_finite() {
         return m;

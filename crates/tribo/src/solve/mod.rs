@@ -4,12 +4,14 @@
 //!
 //! The four public entry points are here, each validating its input once: [`Condensed::solve`],
 //! [`Problem::solve`], [`Condensed::solve_history`] and [`Problem::solve_history`]. The driver of one
-//! solve is `driver`, the fixed point `fixed_point`, histories [`history`], and the progress reports
+//! solve is `driver`, the fixed point `fixed_point`, the semismooth Newton method beside it [`newton`] (its
+//! derivation), histories [`history`], and the progress reports
 //! [`Progress`] and [`StepProgress`].
 
 mod driver;
 mod fixed_point;
 pub mod history;
+pub mod newton;
 mod progress;
 
 pub use fixed_point::STAGNATION_WINDOW;

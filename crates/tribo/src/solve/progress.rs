@@ -17,6 +17,10 @@ pub enum Phase {
     Condensation,
     /// A QP answered: the initial one (iteration 0) or a fixed-point iteration.
     Qp,
+    /// A step of the semismooth Newton method ([`crate::CoulombMethod::Newton`]): `iteration` is the step,
+    /// `change` the relative merit `‖C‖ / ‖λ_n‖` before it, `qp_iterations` the size of its linear system and
+    /// `qp_seconds` its wall time.
+    Newton,
 }
 
 /// Progress of a solve, reported once after the condensation and after every QP.

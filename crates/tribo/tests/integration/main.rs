@@ -10,6 +10,8 @@
 //! * `history`: loading histories (the incremental problem against the static one, the path, sliding);
 //! * `moved_supports`: histories that move prescribed displacements (moving the body is moving the obstacle);
 //! * `methods`: the active-set method against clarabel, QP by QP, on every scene above;
+//! * `coulomb_newton`: the semismooth Newton method against the fixed point (Hertz over μ and ν, a body held
+//!   only by the contact, a history), `auto` and its fallback;
 //! * `paths`: every solver path (QP method, condensation, working set, KKT solver) to the unique answer,
 //!   on random problems;
 //! * `outputs`: what a reader gets back (global forces, plane-strain stress, current gap, formatted
@@ -25,6 +27,7 @@
 //! Scenes and measures shared with the benches and examples come from the `tribo-testkit` crate.
 
 mod adaptive;
+mod coulomb_newton;
 mod error_bars;
 mod errors;
 mod estimator;

@@ -49,6 +49,10 @@
 //!
 //! Round-off adds `64 ε_mach √n` relative to the size of what is compared.
 //!
+//! The semismooth Newton method (`coulomb = newton`, on the default path) is held to the Coulomb bound
+//! above where it converges, its own residual measured as the fixed point's is: by one more evaluation of
+//! Φ_H, the Tresca problem with the bounds μ λ_n of its answer.
+//!
 //! A path may end `qp_failed` only when the active-set method is forced (it cannot certify a QP whose
 //! free block is singular: λ not unique), and a Coulomb fixed point `stagnated` or `max_iterations` only
 //! where λ_n is not unique; every other path converges.
@@ -349,8 +353,40 @@ proptest! {
             prop_assert!(df <= allowed_f, "forces differ by {:e} (allowed {:e}): {}", df, allowed_f, what);
             worst[2] = worst[2].max(df / allowed_f.max(f64::MIN_POSITIVE));
         }
+        // The semismooth Newton method beside the fixed point (issue 40), on the default path. Its answer λ_N
+        // is held to the fixed point's bound: its own residual is measured as the fixed point's is, by one more
+        // evaluation of Φ_H: the Tresca problem with the bounds μ λ_N,n, whose λ_n is Φ_H(λ_N,n).
+        let mut newton = "";
+        if let (Friction::Coulomb { mu }, true) = (&friction, coulomb && unique) {
+            let path = (QpSettings::default(), Condensation::Auto);
+            let nw_settings = SolverSettings { coulomb: CoulombMethod::Newton, ..settings(path) };
+            let sol = problem.solve(&friction, &nw_settings, None).expect("solves");
+            prop_assert_eq!(sol.report.coulomb_method, Some(CoulombMethod::Newton));
+            newton = "Newton did not converge";
+            if sol.report.status == SolveStatus::Converged {
+                newton = "Newton converged";
+                let bounds: Vec<f64> = sol.lambda_n.iter().map(|l| mu * l.max(0.0)).collect();
+                let phi = problem.solve(&Friction::Tresca(Threshold::PerDof(bounds)), &settings(path), None)
+                    .expect("solves");
+                prop_assert_eq!(phi.report.status, SolveStatus::Converged);
+                let a = answer(&sol, &path);
+                let change = phi.lambda_n.iter().zip(&sol.lambda_n).map(|(x, y)| (x - y).powi(2)).sum::<f64>().sqrt();
+                let l = {
+                    let r = &reference.report.residual_history;
+                    if r.len() >= 2 && r[r.len() - 2] > 0.0 { r[r.len() - 1] / r[r.len() - 2] } else { 0.0 }
+                };
+                prop_assume!(l < 1.0);
+                let own = (2.0 * answer(&phi, &path).slack / min).sqrt() + change;
+                let theirs = (2.0 * reference_answer.slack / min).sqrt()
+                    + reference.report.residual_history.last().copied().unwrap_or(0.0) * sup(&reference.lambda_n) * (k as f64).sqrt();
+                let allowed = (own + theirs) / (1.0 - l) + floor * sup(lambda_ref) * (k as f64).sqrt();
+                let dist = a.nu.iter().zip(lambda_ref).map(|(x, y)| (x - y).powi(2)).sum::<f64>().sqrt();
+                prop_assert!(dist <= allowed, "Newton's λ differs by {:e} (allowed {:e}) on {:?}", dist, allowed, case);
+                worst[1] = worst[1].max(dist / allowed);
+            }
+        }
         eprintln!(
-            "{} q = {}, λ unique: {lambda_unique}: {} paths, {refused} refused (forced active set) or not converged (λ_n not unique); largest \
+            "{newton} {} q = {}, λ unique: {lambda_unique}: {} paths, {refused} refused (forced active set) or not converged (λ_n not unique); largest \
              (difference / allowed): objective {:.1e}, λ {:.1e}, forces {:.1e}",
             friction.law().as_str(), condensed.q(), answers.len(), worst[0], worst[1], worst[2]
         );

@@ -1,0 +1,113 @@
+//! Study 20 (issue 40): which Coulomb method converges where. The fixed point of Φ_H (the reference) and the
+//! semismooth Newton method solve the same problems over the friction coefficient μ and a second axis that
+//! drives the fixed point's contraction, Poisson's ratio ν (at ν = 0 the normal and tangential problems
+//! couple the most), on two scenes:
+//!
+//! * `hertz`: the Hertz scene (`tribo_testkit::hertz_problem`, graded, h_min 0.01) with the cylinder pushed
+//!   0.01 and shifted 0.004: displacement control;
+//! * `held block`: a block (0, 2) × (0, 1) held only by the contact, pressed onto a flat foundation by a
+//!   traction (τ, −1) on its top: force control, τ a fraction (`load_fraction`) of what holds the block,
+//!   min(μ, 1) (friction, and its overturning: the moment τ · 1 · 2 about a bottom corner against the
+//!   pressure's 2 · 1).
+//!
+//! Per problem and method: the status, the iterations (QPs of the fixed point, dense LU solves of Newton),
+//! the wall time of the solve (the factorization reused), the forces and KKT residual, and where both
+//! converged the largest difference of their multipliers relative to the largest λ_n.
+//!
+//! `cargo run --release -p tribo --example coulomb_map [OUT.csv]` (default docs/coulomb_map.csv).
+use std::io::Write;
+use std::time::Instant;
+
+use tribo::*;
+use tribo_testkit::{hertz_mesh, hertz_spec};
+
+const MUS: [f64; 9] = [0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0];
+const HEADER: &str =
+    "scene,n_free,q,nu,load_fraction,mu,method,status,iterations,seconds,normal_force,tangential_force,kkt,lambda_difference";
+
+fn solve(problem: &Problem, mu: f64, method: CoulombMethod) -> Result<(Solution, f64)> {
+    let settings = SolverSettings { coulomb: method, ..Default::default() };
+    let clock = Instant::now();
+    let sol = problem.solve(&Friction::Coulomb { mu }, &settings, None)?;
+    Ok((sol, clock.elapsed().as_secs_f64()))
+}
+
+fn sup_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
+}
+
+/// Solves `problem` with both methods and writes their rows; a solve that returns an error is a row with
+/// the error's kind as its status.
+fn compare(
+    csv: &mut impl Write,
+    scene: &str,
+    problem: &Problem,
+    [nu, fraction, mu]: [f64; 3],
+) -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let _ = solve(problem, mu, CoulombMethod::FixedPoint); // the factorization, once
+    let runs: Vec<(&str, Result<(Solution, f64)>)> =
+        [("fixed_point", CoulombMethod::FixedPoint), ("newton", CoulombMethod::Newton)]
+            .into_iter()
+            .map(|(name, method)| (name, solve(problem, mu, method)))
+            .collect();
+    let converged = |r: &Result<(Solution, f64)>| matches!(r, Ok((s, _)) if s.report.status == SolveStatus::Converged);
+    let diff = match (&runs[0].1, &runs[1].1) {
+        (Ok((a, _)), Ok((b, _))) if converged(&runs[0].1) && converged(&runs[1].1) => {
+            let scale = a.lambda_n.iter().fold(0.0_f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+            sup_diff(&a.lambda_n, &b.lambda_n).max(sup_diff(&a.lambda_t, &b.lambda_t)) / scale
+        }
+        _ => f64::NAN,
+    };
+    for (name, run) in &runs {
+        let (status, its, t, p, qf, kkt) = match run {
+            Ok((s, t)) => (
+                s.report.status.name().to_string(),
+                s.report.iterations,
+                *t,
+                s.normal_force,
+                s.tangential_force,
+                s.kkt.max(),
+            ),
+            Err(e) => (format!("error: {}", e.kind()), 0, f64::NAN, f64::NAN, f64::NAN, f64::NAN),
+        };
+        println!(
+            "{scene:>10} ν {nu:<4} τ {fraction:<4} μ {mu:<4} {name:>11}: {status:>14} {its:>3} its {t:.4} s  P {p:.6} Q {qf:.6} KKT {kkt:.1e} dλ {diff:.1e}"
+        );
+        writeln!(
+            csv,
+            "{scene},{},{},{nu},{fraction},{mu},{name},{status},{its},{t},{p},{qf},{kkt},{diff}",
+            problem.n_free,
+            problem.n_multipliers()
+        )?;
+    }
+    Ok(())
+}
+
+fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
+    let out = std::env::args().nth(1).unwrap_or_else(|| "docs/coulomb_map.csv".into());
+    let partial = format!("{out}.partial");
+    let mut csv = std::io::BufWriter::new(std::fs::File::create(&partial)?);
+    writeln!(csv, "{HEADER}")?;
+    for nu in [0.0, 0.2, 0.3, 0.45] {
+        let mut spec = hertz_spec(0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+        spec.material.poisson = nu;
+        let hertz = Problem::new(hertz_mesh(0.01), spec)?;
+        for mu in MUS {
+            compare(&mut csv, "hertz", &hertz, [nu, f64::NAN, mu])?;
+        }
+    }
+    for nu in [0.0, 0.2, 0.3, 0.45] {
+        for fraction in [0.5, 0.9] {
+            for mu in MUS {
+                let mesh = rectangle([0.0, 2.0], [0.0, 1.0], 40, 20, Diagonal::Alternating)?;
+                let spec = ProblemSpec::new(Material { young: 100.0, poisson: nu }, "bottom")
+                    .traction("top", [fraction * mu.min(1.0), -1.0]);
+                compare(&mut csv, "held block", &Problem::new(mesh, spec)?, [nu, fraction, mu])?;
+            }
+        }
+    }
+    csv.flush()?;
+    drop(csv);
+    std::fs::rename(&partial, &out)?;
+    Ok(())
+}

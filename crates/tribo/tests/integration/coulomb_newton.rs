@@ -1,0 +1,189 @@
+//! The semismooth Newton method for Coulomb friction beside the fixed point (issue 40), the fixed point the
+//! reference: both give the same answer wherever both converge (on the random problems of `paths`, and here
+//! on Hertz over μ and ν, a body held only by the contact and a history), to the bound the fixed point's
+//! contraction gives: an answer whose evaluation of Φ_H moves λ_n by δ lies within δ / (1 − L) of the fixed
+//! point, L the contraction measured from the fixed point's last changes. `auto` answers by Newton, and by the
+//! fixed point where Newton does not converge, and the report says which; the setting has one flat name.
+
+use std::ops::ControlFlow;
+
+use tribo::*;
+use tribo_testkit::{hertz_mesh, hertz_spec};
+
+fn settings(coulomb: CoulombMethod) -> SolverSettings {
+    SolverSettings { coulomb, ..Default::default() }
+}
+
+fn norm(v: impl Iterator<Item = f64>) -> f64 {
+    v.map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// ‖Φ_H(λ_n) − λ_n‖₂ for the answer `sol` of a Coulomb problem with coefficient `mu`: the change one more
+/// fixed-point iteration would make (Φ_H(λ_n) is the λ_n of the Tresca problem with the bounds μ λ_n).
+fn change(problem: &Problem, mu: f64, sol: &Solution) -> f64 {
+    let bounds = sol.lambda_n.iter().map(|l| mu * l.max(0.0)).collect();
+    let phi = problem.solve(&Friction::Tresca(Threshold::PerDof(bounds)), &SolverSettings::default(), None).unwrap();
+    assert_eq!(phi.report.status, SolveStatus::Converged);
+    norm(phi.lambda_n.iter().zip(&sol.lambda_n).map(|(a, b)| a - b))
+}
+
+/// The contraction L of the fixed point measured from its last two changes.
+fn contraction(fixed_point: &Solution) -> f64 {
+    let r = &fixed_point.report.residual_history;
+    r[r.len() - 1] / r[r.len() - 2]
+}
+
+/// Solves `problem` by both methods and checks the same answer: the Euclidean distance of the multipliers
+/// within (δ_N + δ_F) / (1 − L), each δ measured by one more evaluation of Φ_H (plus the QPs' tolerance,
+/// `qp_tol` times the size of λ, for the Tresca QP that measures it), and u within that distance's image.
+fn same_answer(problem: &Problem, mu: f64, what: &str) -> (Solution, Solution) {
+    let coulomb = Friction::Coulomb { mu };
+    let fp = problem.solve(&coulomb, &settings(CoulombMethod::FixedPoint), None).unwrap();
+    let nw = problem.solve(&coulomb, &settings(CoulombMethod::Newton), None).unwrap();
+    assert_eq!(fp.report.status, SolveStatus::Converged, "{what}: the fixed point");
+    assert_eq!(nw.report.status, SolveStatus::Converged, "{what}: Newton");
+    assert_eq!(fp.report.coulomb_method, Some(CoulombMethod::FixedPoint));
+    assert_eq!(nw.report.coulomb_method, Some(CoulombMethod::Newton));
+    assert!(!fp.report.coulomb_fallback && !nw.report.coulomb_fallback);
+    // Newton's answer satisfies (3.1) as a converged answer must, to what the tolerances justify.
+    assert!(nw.kkt.max() <= Solution::accuracy_bound(1e-12, 0, FixedPointSettings::default().tol), "{what}");
+    let l = contraction(&fp);
+    assert!(l < 1.0, "{what}: the fixed point contracts ({l})");
+    let size = norm(fp.lambda_n.iter().chain(&fp.lambda_t).copied());
+    // What a QP determines λ to: qp_tol · κ(H) relative (`QpSettings::tol`).
+    let kappa = tribo_testkit::condition_number(&problem.condense(Stabilization::default()).unwrap());
+    let qp = 1e-12 * kappa * size;
+    let allowed = (change(problem, mu, &nw) + change(problem, mu, &fp) + 2.0 * qp) / (1.0 - l);
+    let dist =
+        norm(fp.lambda_n.iter().zip(&nw.lambda_n).chain(fp.lambda_t.iter().zip(&nw.lambda_t)).map(|(a, b)| a - b));
+    assert!(dist <= allowed, "{what}: λ differ by {dist:e} (allowed {allowed:e})");
+    let du = fp.displacement.iter().zip(&nw.displacement).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    let u = fp.displacement.iter().fold(0.0_f64, |m, a| m.max(a.abs()));
+    eprintln!(
+        "{what}: fixed point {} iterations, Newton {} steps; λ differ by {dist:.1e} (allowed {allowed:.1e}), u by {:.1e}",
+        fp.report.iterations,
+        nw.report.iterations,
+        du / u
+    );
+    (fp, nw)
+}
+
+#[test]
+fn newton_and_the_fixed_point_agree_on_hertz_over_mu_and_nu() {
+    for nu in [0.0, 0.3, 0.45] {
+        let mut spec = hertz_spec(0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+        spec.material.poisson = nu;
+        let problem = Problem::new(hertz_mesh(0.04), spec).unwrap();
+        for mu in [0.1, 0.3, 1.0, 2.0] {
+            let (fp, nw) = same_answer(&problem, mu, &format!("Hertz ν = {nu}, μ = {mu}"));
+            // Newton's history: the relative merit before each step and the one it ended on.
+            assert_eq!(nw.report.residual_history.len(), nw.report.iterations + 1);
+            assert!(nw.report.residual_history.last().unwrap() <= &FixedPointSettings::default().tol);
+            assert_eq!(nw.states.len(), fp.states.len());
+        }
+    }
+}
+
+/// A block (0, 2) × (0, 1) held only by the contact, pressed onto a flat foundation by a traction (τ, −1).
+fn held_block(nu: f64, tau: f64) -> Problem {
+    let mesh = rectangle([0.0, 2.0], [0.0, 1.0], 20, 10, Diagonal::Alternating).unwrap();
+    let spec = ProblemSpec::new(Material { young: 100.0, poisson: nu }, "bottom").traction("top", [tau, -1.0]);
+    Problem::new(mesh, spec).unwrap()
+}
+
+#[test]
+fn newton_solves_a_body_held_only_by_the_contact() {
+    // Force control: the rigid motion α is an unknown of Newton's system beside λ, the body's equilibrium
+    // (E R)ᵀ λ = Rᵀ f a row of it.
+    let problem = held_block(0.3, 0.15);
+    let (fp, nw) = same_answer(&problem, 0.3, "held block");
+    assert!((nw.tangential_force - 0.3).abs() <= 1e-10 && (nw.normal_force - 2.0).abs() <= 1e-10);
+    assert!(nw.states.contains(&ContactState::Stick) && nw.states.contains(&ContactState::Slip));
+    let du = fp.displacement.iter().zip(&nw.displacement).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(du <= 1e-6 * fp.displacement.iter().fold(0.0_f64, |m, a| m.max(a.abs())), "the rigid motion too: {du:e}");
+}
+
+#[test]
+fn auto_takes_the_fixed_point_where_newton_does_not_converge_and_says_so() {
+    // Measured (study 20): on the held block at ν = 0.3 and μ = 0.05, Newton's states cycle and it stagnates.
+    let problem = held_block(0.3, 0.045);
+    let coulomb = Friction::Coulomb { mu: 0.05 };
+    let newton = problem.solve(&coulomb, &settings(CoulombMethod::Newton), None).unwrap();
+    assert_ne!(newton.report.status, SolveStatus::Converged, "the case Newton fails on");
+    assert_eq!(newton.report.coulomb_method, Some(CoulombMethod::Newton));
+    let auto = problem.solve(&coulomb, &settings(CoulombMethod::Auto), None).unwrap();
+    let fixed_point = problem.solve(&coulomb, &settings(CoulombMethod::FixedPoint), None).unwrap();
+    assert_eq!(auto.report.status, SolveStatus::Converged);
+    assert_eq!((auto.report.coulomb_method, auto.report.coulomb_fallback), (Some(CoulombMethod::FixedPoint), true));
+    assert_eq!(auto.lambda_n, fixed_point.lambda_n, "the fixed point from the same start");
+    assert_eq!(auto.report.residual_history, fixed_point.report.residual_history);
+    // Where Newton converges, auto is Newton.
+    let hertz =
+        Problem::new(hertz_mesh(0.04), hertz_spec(0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1))
+            .unwrap();
+    let friction = Friction::Coulomb { mu: 0.3 };
+    let auto = hertz.solve(&friction, &settings(CoulombMethod::Auto), None).unwrap();
+    let newton = hertz.solve(&friction, &settings(CoulombMethod::Newton), None).unwrap();
+    assert_eq!((auto.report.coulomb_method, auto.report.coulomb_fallback), (Some(CoulombMethod::Newton), false));
+    assert_eq!(auto.lambda_t, newton.lambda_t);
+    // Frictionless and Tresca name no Coulomb method.
+    let tresca =
+        hertz.solve(&Friction::Tresca(Threshold::Uniform(0.1)), &settings(CoulombMethod::Newton), None).unwrap();
+    assert_eq!((tresca.report.coulomb_method, tresca.report.iterations), (None, 0));
+}
+
+#[test]
+fn a_history_by_newton_follows_the_fixed_point_step_by_step() {
+    let problem =
+        Problem::new(hertz_mesh(0.04), hertz_spec(0.01, 0.0, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1))
+            .unwrap();
+    let mu = 0.3;
+    let steps: Vec<LoadStep> =
+        [0.0, 0.002, 0.004, 0.002, -0.002, -0.004].iter().map(|&s| LoadStep::new(0.01, s)).collect();
+    let coulomb = Friction::Coulomb { mu };
+    let kappa = tribo_testkit::condition_number(&problem.condense(Stabilization::default()).unwrap());
+    let fp = problem.solve_history(&coulomb, &steps, &settings(CoulombMethod::FixedPoint), None).unwrap();
+    let nw = problem.solve_history(&coulomb, &steps, &settings(CoulombMethod::Newton), None).unwrap();
+    assert_eq!((fp.solutions.len(), nw.solutions.len()), (steps.len(), steps.len()));
+    for (k, (a, b)) in fp.solutions.iter().zip(&nw.solutions).enumerate() {
+        assert_eq!(b.report.status, SolveStatus::Converged, "step {k}");
+        assert_eq!(b.report.coulomb_method, Some(CoulombMethod::Newton));
+        // Each step's answer is that step's Coulomb problem's (the previous step's slip in its data): both
+        // answers within the bound of the fixed point's contraction, δ read from the step's own changes.
+        let r = &a.report.residual_history;
+        let l = if r.len() >= 2 { r[r.len() - 1] / r[r.len() - 2] } else { 0.0 };
+        let size = norm(a.lambda_n.iter().copied());
+        let allowed = (2.0 * r.last().unwrap() * size + 2.0 * 1e-12 * kappa * size) / (1.0 - l.min(0.99));
+        let dist =
+            norm(a.lambda_n.iter().zip(&b.lambda_n).chain(a.lambda_t.iter().zip(&b.lambda_t)).map(|(x, y)| x - y));
+        assert!(dist <= allowed, "step {k}: λ differ by {dist:e} (allowed {allowed:e})");
+    }
+}
+
+#[test]
+fn the_setting_has_one_name_and_newton_reports_its_steps() {
+    let mut s = SolverSettings::default();
+    assert_eq!(s.get("coulomb"), Some(SettingValue::Name("fixed_point".into())));
+    s.set("coulomb", SettingValue::Name("newton".into())).unwrap();
+    assert_eq!(s.coulomb, CoulombMethod::Newton);
+    let e = s.set("coulomb", SettingValue::Name("newtons".into())).unwrap_err();
+    assert!(e.to_string().contains("fixed_point, newton, auto"), "{e}");
+    let info = SolverSettings::table().into_iter().find(|i| i.name == "coulomb").unwrap();
+    assert_eq!(info.kind, SettingKind::Choice(vec!["fixed_point", "newton", "auto"]));
+    // Each step is reported to the observer, which may stop the solve.
+    let problem =
+        Problem::new(hertz_mesh(0.04), hertz_spec(0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1))
+            .unwrap();
+    let mut seen = Vec::new();
+    let mut observer = |p: &Progress| {
+        if p.phase == Phase::Newton {
+            seen.push((p.iteration, p.change));
+            return ControlFlow::Break(());
+        }
+        ControlFlow::Continue(())
+    };
+    let sol = problem.solve(&Friction::Coulomb { mu: 1.0 }, &s, Some(&mut observer)).unwrap();
+    assert_eq!(sol.report.status, SolveStatus::Interrupted { iteration: 1 });
+    assert_eq!(seen.len(), 1);
+    assert_eq!(seen[0], (1, sol.report.residual_history[0]));
+}

@@ -1,0 +1,116 @@
+"""Study 20 — which Coulomb method converges where: the fixed point of Φ_H and the semismooth Newton method.
+
+docs/coulomb_map.csv is written by the Rust example `cargo run --release -p tribo --example coulomb_map` (its
+documentation gives the scenes: Hertz shifted along its top under displacement control, and a block held only by
+the contact under force control, over μ and Poisson's ratio ν); this script writes docs/coulomb_map.md (per scene
+and method: how many problems converged, the iterations, the largest difference of the two answers) and
+docs/coulomb_map.png (the iterations over μ × ν, a cross where a method did not converge).
+
+    cargo run --release -p tribo --example coulomb_map && python scripts/plot_coulomb_map.py
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from pathlib import Path
+from typing import Any
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import studylib as sl  # noqa: E402
+
+METHODS = ("fixed_point", "newton")
+TEXT = ("scene", "method", "status")
+
+
+def load(path: Path) -> list[dict[str, Any]]:
+    return [{k: (v if k in TEXT else float(v)) for k, v in r.items()} for r in sl.read_csv_rows(path)]
+
+
+def family(r: dict[str, Any]) -> str:
+    """The scene and its load: `hertz`, or `held block, τ = 0.5 min(μ, 1)`."""
+    return r["scene"] if math.isnan(r["load_fraction"]) else f"{r['scene']}, τ = {r['load_fraction']:g} min(μ, 1)"
+
+
+def summary(rows: list[dict[str, Any]]) -> dict[tuple[str, str], dict[str, Any]]:
+    """Per (family, method): problems, converged, iterations of the converged (min, max, median), and the largest
+    difference of the two methods' λ where both converged."""
+    out: dict[tuple[str, str], dict[str, Any]] = {}
+    for f in dict.fromkeys(family(r) for r in rows):
+        for m in METHODS:
+            rs = [r for r in rows if family(r) == f and r["method"] == m]
+            its = sorted(int(r["iterations"]) for r in rs if r["status"] == "converged")
+            diffs = [r["lambda_difference"] for r in rs if not math.isnan(r["lambda_difference"])]
+            out[(f, m)] = dict(problems=len(rs), converged=len(its), iterations=its,
+                               failed=[(r["nu"], r["mu"], r["status"]) for r in rs if r["status"] != "converged"],
+                               difference=max(diffs) if diffs else math.nan)
+    return out
+
+
+def run(csv_path: Path, out: Path) -> dict[tuple[str, str], dict[str, Any]]:
+    rows = load(csv_path)
+    out.mkdir(parents=True, exist_ok=True)
+    s = summary(rows)
+    table = []
+    for (f, m), v in s.items():
+        its = v["iterations"]
+        table.append([f, m, f"{v['converged']} of {v['problems']}",
+                      f"{its[0]}–{its[-1]}" if its else "—", its[len(its) // 2] if its else "—",
+                      f"{v['difference']:.1e}",
+                      "; ".join(f"ν {nu:g} μ {mu:g}: {st}" for nu, mu, st in v["failed"]) or "—"])
+    md = ["# Study 20: which Coulomb method converges where\n\n",
+          "Regenerate with `cargo run --release -p tribo --example coulomb_map && python scripts/plot_coulomb_map.py`;"
+          " every number is in `coulomb_map.csv`. Each problem is solved by the fixed point of Φ_H (one Tresca QP "
+          "per iteration, the reference) and by the semismooth Newton method (one dense LU solve per step), over μ "
+          "from 0.05 to 2 and Poisson's ratio ν from 0 (the normal and tangential problems couple the most) to "
+          "0.45. `hertz`: the Hertz scene (graded, h_min 0.01) with the cylinder pushed 0.01 and shifted 0.004, "
+          "displacement control. `held block`: a block (0, 2) × (0, 1) held only by the contact (no support), "
+          "pressed onto a flat foundation by a traction (τ, −1), force control, τ a fraction of min(μ, 1) (beyond "
+          "τ = μ it slides, beyond τ = 1 it overturns). The difference is the largest |Δλ| of the two answers "
+          "relative to the largest λ_n, where both converged: the fixed point stops at a relative change of "
+          "`fp_tol` = 1e-8.\n\n",
+          sl.markdown_table(["scene", "method", "converged", "iterations", "median", "largest difference",
+                             "not converged (ν, μ: status)"], table), "\n"]
+    (out / "coulomb_map.md").write_text("".join(md))
+    families = list(dict.fromkeys(family(r) for r in rows))
+    plt = sl.pyplot()
+    fig, axes = plt.subplots(len(METHODS), len(families), figsize=(4.2 * len(families), 7.0), squeeze=False,
+                             layout="constrained")
+    top = max(int(r["iterations"]) for r in rows)
+    for j, f in enumerate(families):
+        nus = sorted({r["nu"] for r in rows if family(r) == f})
+        mus = sorted({r["mu"] for r in rows if family(r) == f})
+        for i, m in enumerate(METHODS):
+            ax = axes[i][j]
+            grid = [[math.nan] * len(mus) for _ in nus]
+            for r in rows:
+                if family(r) == f and r["method"] == m:
+                    a, b = nus.index(r["nu"]), mus.index(r["mu"])
+                    grid[a][b] = r["iterations"] if r["status"] == "converged" else math.nan
+                    if r["status"] != "converged":
+                        ax.plot(b, a, "kx", ms=9)
+                    else:
+                        ax.text(b, a, f"{int(r['iterations'])}", ha="center", va="center", fontsize=7)
+            image = ax.imshow(grid, origin="lower", aspect="auto", cmap="viridis", vmin=0, vmax=top)
+            ax.set_xticks(range(len(mus)), [f"{v:g}" for v in mus], fontsize=7)
+            ax.set_yticks(range(len(nus)), [f"{v:g}" for v in nus], fontsize=7)
+            ax.set_xlabel("μ")
+            ax.set_ylabel("ν")
+            ax.set_title(f"{f}\n{m.replace('_', ' ')}", fontsize=9)
+    fig.colorbar(image, ax=axes, label="iterations (×: not converged)", shrink=0.8)
+    fig.savefig(out / "coulomb_map.png", dpi=85)
+    plt.close(fig)
+    return s
+
+
+def main(argv: list[str] | None = None) -> dict[tuple[str, str], dict[str, Any]]:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--csv", type=Path, default=sl.DOCS / "coulomb_map.csv")
+    ap.add_argument("--out", type=Path, default=sl.DOCS)
+    args = ap.parse_args(argv)
+    return run(args.csv, args.out)
+
+
+if __name__ == "__main__":
+    main()
