@@ -22,6 +22,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import studylib as sl  # noqa: E402
 
 FAMILIES = ("uniform", "graded", "block", "two_bodies")
+# The friction laws of the runs: Coulomb by the fixed point (`coulomb`) and by the semismooth Newton method
+# (`coulomb_newton`, issue 40).
+FRICTIONS = ("frictionless", "coulomb", "coulomb_newton")
 # The graded family's accurate regime starts here (unknowns).
 FROM = 7000
 
@@ -52,7 +55,7 @@ def rate_label(rate: float) -> str:
 def run(csv_path: Path, out: Path) -> dict[str, Any]:
     rows = load(csv_path)
     out.mkdir(parents=True, exist_ok=True)
-    groups = [(fam, fr) for fam in FAMILIES for fr in ("frictionless", "coulomb")
+    groups = [(fam, fr) for fam in FAMILIES for fr in FRICTIONS
               if any(r["family"] == fam and r["friction"] == fr for r in rows)]
     fits: dict[tuple[str, str, str], float] = {}
     md = ["# Study 4: cost per phase\n\n",
@@ -72,7 +75,7 @@ def run(csv_path: Path, out: Path) -> dict[str, Any]:
     md.append(sl.markdown_table(["mesh", "friction"] + [name for _, name in PHASES], table))
     # The accurate regime: the graded family from about 7k unknowns on, where the contact work dominates.
     graded = [(fr, [r for r in rows if r["family"] == "graded" and r["friction"] == fr
-                    and r["status"] == "converged" and r["n_free"] >= FROM]) for fr in ("frictionless", "coulomb")]
+                    and r["status"] == "converged" and r["n_free"] >= FROM]) for fr in FRICTIONS]
     graded = [(fr, rs) for fr, rs in graded if len(rs) >= 2]
     if graded:
         md.append(f"\nWhole solve on the graded family from {FROM // 1000}k unknowns on: "
@@ -99,7 +102,7 @@ def run(csv_path: Path, out: Path) -> dict[str, Any]:
 
     plt = sl.pyplot()
     families = sorted({fam for fam, _ in groups}, key=FAMILIES.index)
-    frictions = sorted({fr for _, fr in groups}, key=["frictionless", "coulomb"].index)
+    frictions = sorted({fr for _, fr in groups}, key=FRICTIONS.index)
     fig, axes = plt.subplots(len(frictions), len(families), figsize=(5.2 * len(families), 4.4 * len(frictions)),
                              sharey=True, squeeze=False)
     for ax in axes.flat:

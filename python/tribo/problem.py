@@ -284,7 +284,8 @@ class Problem(_tribo.Problem):
         enriched solve did not converge.
 
         ``progress``, if given, is called as progress(iteration, change, qp_iterations, qp_seconds) after
-        every QP; returning False (any false value but None: 0, ``numpy.False_``) stops the solve (status
+        every QP (and, with ``coulomb='newton'``, after every Newton step: its number, the relative merit
+        before it, the size of its linear system and its seconds); returning False (any false value but None: 0, ``numpy.False_``) stops the solve (status
         'interrupted', with the last iterate), raising
         stops it and propagates. ``on_phase``, if given, is called as on_phase(phase, seconds) when a
         phase before the QPs ends: 'condensation' (A = K − G factorized or reused, c and possibly all of H

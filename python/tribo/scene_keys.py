@@ -115,7 +115,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
     "solver.qp_working_set": ("Solve each QP on the dofs near the contact zone first (false: all of Γ_C)", "—",
                               None),
     "solver.qp_method": ("The QP method: clarabel, the active-set method, or chosen", "—", None),
-    "solver.fp_tol": ("The Coulomb fixed point stops when λ_n changes by less than this, relatively", "—", None),
+    "solver.fp_tol": ("The Coulomb fixed point stops when λ_n changes by less than this, relatively (Newton: when "
+                      "‖C‖ / ‖λ_n‖ is)", "—", None),
     "solver.fp_max_iter": ("The iteration cap of the Coulomb fixed point", "—", None),
     "solver.fp_relaxation": ("The relaxation ω ∈ (0, 1] of the fixed point", "—", None),
     "solver.coulomb": ("The Coulomb method: the fixed point (the reference), semismooth Newton, or Newton "

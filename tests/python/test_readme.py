@@ -547,7 +547,7 @@ def test_the_docs_quote_the_coulomb_map_as_generated() -> None:
     said = (f"on Hertz, Newton takes {its['newton'][0]}–{its['newton'][-1]} steps where the fixed point takes "
             f"{its['fixed_point'][0]}–{its['fixed_point'][-1]} iterations")
     mus, nus = max(mu for _, mu, _ in failed), min(nu for nu, _, _ in failed)
-    held_said = f"did not converge on {len(failed)} of {problems} problems (μ ≤ {mus:g} with ν ≥ {nus:g})"
+    held_said = f"did not converge on {len(failed)} of {problems} problems (all at μ ≤ {mus:g} and ν ≥ {nus:g})"
     for page in ("guide/friction.md", "changelog.md"):
         text = _page(page)
         assert said in text, (page, said)

@@ -26,7 +26,8 @@
 //! `setup_mb` after the problem is built, `peak_mb` after the solve (the problem included, the Cholesky
 //! reference after it): what a run needs at most.
 //!
-//! Every mesh is solved frictionless (one QP) and with Coulomb friction, each in its own process (so each
+//! Every mesh is solved frictionless (one QP) and with Coulomb friction, by the fixed point (`coulomb`) and by
+//! the semismooth Newton method (`coulomb_newton`, issue 40), each in its own process (so each
 //! pays for its own assembly and factorization); the Coulomb solve is no longer timed on finer meshes of a
 //! family once it did not converge or took more than MAX_SECONDS / 2.
 //!
@@ -106,9 +107,12 @@ fn case(family: &str, index: usize, friction: &str) -> Result<()> {
     let problem = build()?;
     let setup = clock.elapsed().as_secs_f64();
     let setup_mb = peak_mb();
-    let law = if friction == "coulomb" { Friction::Coulomb { mu: 0.3 } } else { Friction::Frictionless };
+    let law = if friction.starts_with("coulomb") { Friction::Coulomb { mu: 0.3 } } else { Friction::Frictionless };
+    // `coulomb_newton`: the semismooth Newton method instead of the fixed point (issue 40).
+    let coulomb = if friction == "coulomb_newton" { CoulombMethod::Newton } else { CoulombMethod::FixedPoint };
+    let settings = SolverSettings { coulomb, ..Default::default() };
     let clock = Instant::now();
-    let sol = problem.solve(&law, &SolverSettings::default(), None)?;
+    let sol = problem.solve(&law, &settings, None)?;
     let total = setup + clock.elapsed().as_secs_f64();
     let solve_mb = peak_mb();
     let chol = cholesky_seconds(&problem, if problem.n_free < 50_000 { 3 } else { 1 });
@@ -175,7 +179,8 @@ fn main() -> Result<()> {
         let mut coulomb_on = true;
         for index in 0..problems(family).len() {
             let mut slowest: f64 = 0.0;
-            let frictions: &[&str] = if coulomb_on { &["frictionless", "coulomb"] } else { &["frictionless"] };
+            let frictions: &[&str] =
+                if coulomb_on { &["frictionless", "coulomb", "coulomb_newton"] } else { &["frictionless"] };
             for friction in frictions {
                 // Each case in a fresh process: its own factorization, and a peak memory of its own.
                 let out = std::process::Command::new(&me)
@@ -194,7 +199,7 @@ fn main() -> Result<()> {
                 let fields: Vec<&str> = row.split(',').collect();
                 let total: f64 = fields[14].parse().unwrap_or(f64::INFINITY);
                 slowest = slowest.max(total);
-                if *friction == "coulomb" && (fields[5] != "converged" || total > max_seconds / 2.0) {
+                if friction.starts_with("coulomb") && (fields[5] != "converged" || total > max_seconds / 2.0) {
                     println!("{family}: the Coulomb solve is not timed on finer meshes ({}, {total:.1} s)", fields[5]);
                     coulomb_on = false;
                 }

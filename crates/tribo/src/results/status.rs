@@ -12,14 +12,16 @@ use crate::settings::{Condensation, CoulombMethod, QpMethod};
 pub enum SolveStatus {
     /// Every QP solved and (Coulomb) the fixed point converged.
     Converged,
-    /// The fixed point reached its iteration cap.
+    /// The fixed point (or the Newton method) reached its iteration cap.
     MaxIterations,
     /// The change of λ_n made no new minimum for [`crate::solve::STAGNATION_WINDOW`] iterations: the
     /// fixed point cycles, or it has reached the accuracy to which the QP determines λ (see the residual
     /// history; a tighter `qp.tol` or a finer mesh may help). One whose smallest change is within √qp_tol
-    /// and whose last iterate meets Coulomb's law to `fp_tol` is [`SolveStatus::Converged`].
+    /// and whose last iterate meets Coulomb's law to `fp_tol` is [`SolveStatus::Converged`]. The Newton method
+    /// ends so when its merit makes no new minimum for as many steps, or when the linear system of a step is
+    /// singular (the log says which).
     Stagnated,
-    /// The observer asked to stop after the given fixed-point iteration (0 = the initial QP).
+    /// The observer asked to stop after the given fixed-point iteration or Newton step (0 = the initial QP).
     Interrupted {
         /// Fixed-point iteration.
         iteration: usize,

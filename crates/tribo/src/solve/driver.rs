@@ -65,44 +65,23 @@ impl QpPhase {
 }
 
 impl Condensed<'_> {
-    /// The Coulomb problem from `phase.lambda` by the method `settings.coulomb` asks for; returns the method that
-    /// answered and whether [`CoulombMethod::Auto`] fell back to the fixed point.
+    /// The Coulomb problem from `phase.lambda` by `method` (the fixed point or Newton).
     ///
     /// # Errors
-    /// QP errors of the fixed point.
+    /// QP errors of the fixed point; [`Error::MemoryBudget`] from Newton.
     fn coulomb(
         &self,
         mu: f64,
+        method: CoulombMethod,
         settings: &SolverSettings,
         loading: &LoadCase,
         phase: &mut QpPhase,
         notify: &mut dyn FnMut(Progress) -> ControlFlow<()>,
-    ) -> Result<(CoulombMethod, bool)> {
-        match settings.coulomb {
-            CoulombMethod::FixedPoint => {
-                self.fixed_point(mu, settings, loading, phase, notify)?;
-                Ok((CoulombMethod::FixedPoint, false))
-            }
-            CoulombMethod::Newton => {
-                self.newton(mu, settings, loading, phase, notify)?;
-                Ok((CoulombMethod::Newton, false))
-            }
-            CoulombMethod::Auto => {
-                let start = (phase.lambda.clone(), phase.alpha.clone());
-                self.newton(mu, settings, loading, phase, notify)?;
-                if matches!(phase.status, SolveStatus::Converged | SolveStatus::Interrupted { .. }) {
-                    return Ok((CoulombMethod::Newton, false));
-                }
-                log::info!(
-                    "newton ended {} after {} steps: the fixed point solves the problem from the same start",
-                    phase.status,
-                    phase.iterations
-                );
-                ((phase.lambda, phase.alpha), phase.iterations, phase.status) = (start, 0, SolveStatus::Converged);
-                phase.history.clear();
-                self.fixed_point(mu, settings, loading, phase, notify)?;
-                Ok((CoulombMethod::FixedPoint, true))
-            }
+    ) -> Result<()> {
+        if method == CoulombMethod::Newton {
+            self.newton(mu, settings, loading, phase, notify)
+        } else {
+            self.fixed_point(mu, settings, loading, phase, notify)
         }
     }
 }
@@ -128,9 +107,58 @@ impl Condensed<'_> {
     /// Solves the load case `loading` (validated friction and settings). `start` (2q), if given, is the
     /// answer of a nearby load case (the previous step of a history): the QPs start from it, and a
     /// Coulomb fixed point starts from its λ_n instead of the frictionless one.
+    ///
+    /// A Coulomb problem is solved by the method `settings.coulomb` names; [`CoulombMethod::Auto`] takes Newton and,
+    /// where its answer is not `converged` once checked (its KKT residuals and fields, below) or it exceeds the
+    /// memory budget, solves the load case again by the fixed point.
     pub(crate) fn solve_loading(
         &self,
         friction: &Friction,
+        settings: &SolverSettings,
+        loading: &LoadCase,
+        start: Option<&[f64]>,
+        mut observer: Option<Observer<'_>>,
+    ) -> Result<Solution> {
+        let method = if settings.coulomb == CoulombMethod::FixedPoint {
+            CoulombMethod::FixedPoint
+        } else {
+            CoulombMethod::Newton
+        };
+        // A reborrow of the observer for the first attempt (the `dyn`'s lifetime shortened with it).
+        #[allow(clippy::option_as_ref_deref)]
+        let again = observer.as_mut().map(|o| -> Observer<'_> { &mut **o });
+        let first = self.solve_loading_by(friction, method, settings, loading, start, again);
+        let auto = settings.coulomb == CoulombMethod::Auto;
+        let fell = match &first {
+            Ok(s) => {
+                s.report.coulomb_method == Some(CoulombMethod::Newton)
+                    && !matches!(s.report.status, SolveStatus::Converged | SolveStatus::Interrupted { .. })
+            }
+            Err(Error::MemoryBudget { .. }) => true,
+            Err(_) => false,
+        };
+        if !(auto && fell) {
+            return first;
+        }
+        match &first {
+            Ok(s) => log::info!(
+                "newton ended {} after {} steps: the fixed point solves the problem from the same start",
+                s.report.status,
+                s.report.iterations
+            ),
+            Err(e) => log::info!("newton: {e}: the fixed point solves the problem"),
+        }
+        let mut solution =
+            self.solve_loading_by(friction, CoulombMethod::FixedPoint, settings, loading, start, observer)?;
+        solution.report.coulomb_fallback = true;
+        Ok(solution)
+    }
+
+    /// [`Condensed::solve_loading`] with the Coulomb method `method` (the fixed point or Newton).
+    fn solve_loading_by(
+        &self,
+        friction: &Friction,
+        method: CoulombMethod,
         settings: &SolverSettings,
         loading: &LoadCase,
         start: Option<&[f64]>,
@@ -206,11 +234,10 @@ impl Condensed<'_> {
                 phase.record_single_qp(factor, &out, &mut notify);
             }
         }
-        let (mut coulomb_method, mut coulomb_fallback) = (None, false);
+        let coulomb_method = matches!(friction, Friction::Coulomb { .. }).then_some(method);
         if let (Friction::Coulomb { mu }, SolveStatus::Converged) = (&friction, phase.status) {
             // (not after an interrupted or failed initial QP)
-            let (method, fallback) = self.coulomb(*mu, settings, loading, &mut phase, &mut notify)?;
-            (coulomb_method, coulomb_fallback) = (Some(method), fallback);
+            self.coulomb(*mu, method, settings, loading, &mut phase, &mut notify)?;
         }
         // Columns of H computed on demand during the QPs count as condensation, not QP time.
         let condensation_during = factor.condensation_seconds() - condensation_before;
@@ -239,7 +266,7 @@ impl Condensed<'_> {
             iterations: phase.iterations,
             residual_history: phase.history,
             coulomb_method,
-            coulomb_fallback,
+            coulomb_fallback: false,
             qp_iterations: phase.qp_iterations,
             qp_factorizations: phase.qp_factorizations,
             qp_methods: phase.qp_methods,
@@ -299,7 +326,10 @@ impl Condensed<'_> {
         // makes larger changes, and one stopped by its cap (`max_iterations`) was still progressing: both
         // are reported as they ended.
         let smallest = solution.report.residual_history.iter().copied().fold(f64::INFINITY, f64::min);
-        let stagnated = solution.report.status == SolveStatus::Stagnated && smallest <= settings.qp.tol.sqrt();
+        // (The fixed point's only: Newton's merit at the point it hands back is already its last entry.)
+        let stagnated = solution.report.status == SolveStatus::Stagnated
+            && smallest <= settings.qp.tol.sqrt()
+            && method == CoulombMethod::FixedPoint;
         if stagnated && solution.all_finite() && solution.kkt.max() <= settings.fp.tol {
             log::info!(
                 "the fixed point stagnated after {} iterations (smallest change {}), its last iterate meeting \

@@ -292,7 +292,7 @@ impl Condensed<'_> {
             history.step_seconds.push(seconds);
             let status = solution.report.status;
             log::info!(
-                "step {}/{}: {status}, {} fixed-point iterations, {seconds:.3} s",
+                "step {}/{}: {status}, {} iterations of the Coulomb method, {seconds:.3} s",
                 k + 1,
                 steps.len(),
                 solution.report.iterations

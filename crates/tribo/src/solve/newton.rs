@@ -43,9 +43,8 @@
 //! Far from the solution the states may cycle. Each step is therefore taken as a direction d from λ and
 //! damped by a backtracking line search on the merit `‖C‖₂` (d is a descent direction wherever C is
 //! differentiable): the step `α d` with the largest α = 1, ½, ¼, … ≥ 1/64 that decreases the merit; where
-//! none does, the full step (its states may still be the right ones). A method that makes no new smallest
-//! merit for [`STAGNATION_WINDOW`](crate::solve::STAGNATION_WINDOW) steps ends `stagnated`, and one that reaches `fp_max_iter` steps
-//! `max_iterations`; [`crate::CoulombMethod::Auto`] then hands the problem to the fixed point.
+//! none does, the full step (its states may still be the right ones). Where the method does not converge
+//! (below), [`crate::CoulombMethod::Auto`] hands the problem to the fixed point.
 //!
 //! # Where it is solved
 //! Only the dofs that can be in contact take part, as in the QPs ([`crate::qp::working_set`]): the dofs
@@ -55,9 +54,13 @@
 //! elsewhere and H is symmetric), computed once from the factor of A and kept ([`crate::Factor`]).
 //!
 //! # Stopping
-//! The step ends `converged` when `‖C‖₂ ≤ fp_tol ‖λ_n‖₂`, or when it is at the QPs' noise level
-//! (`qp_tol` times [`crate::Factor::lambda_scale`]), and no dof outside the set would press. Each step
-//! reports `‖C‖₂ / ‖λ_n‖₂` as its change ([`crate::Report::residual_history`]).
+//! The method ends `converged` at a point with `‖C‖₂ ≤ fp_tol ‖λ_n‖₂`, or at the QPs' noise level (`qp_tol`
+//! times [`crate::Factor::lambda_scale`]), where no dof outside the set would press. It ends `stagnated` when
+//! its merit made no new minimum for [`STAGNATION_WINDOW`](crate::solve::STAGNATION_WINDOW) steps, or when the
+//! linear system of a step is singular (its solution not finite, on the pieces of C and on those of λ), and
+//! `max_iterations` when the point after `fp_max_iter` steps is not a solution. Each evaluated point's relative
+//! merit `‖C‖₂ / ‖λ_n‖₂` is recorded ([`crate::Report::residual_history`]): the last entry is that of the
+//! point handed back. The columns of H and the dense system count against `memory_budget`.
 //!
 //! Reference: S. Hüeber, G. Stadler, B. I. Wohlmuth, *A primal–dual active set algorithm for
 //! three-dimensional contact problems with Coulomb friction*, SIAM J. Sci. Comput. 30 (2008) 572–596;
@@ -70,7 +73,7 @@ use std::time::Instant;
 use faer::linalg::solvers::{PartialPivLu, Solve};
 use faer::Mat;
 
-use crate::error::{Num, Result};
+use crate::error::{Error, Num, Result};
 use crate::problem::load_case::LoadCase;
 use crate::problem::Condensed;
 use crate::results::SolveStatus;
@@ -106,6 +109,8 @@ enum Pass {
     Grow(Vec<usize>),
     /// The point is a zero of C to the tolerance: its merit.
     Converged(f64),
+    /// The point's merit, above the tolerance, when no step is to be taken (the iteration cap).
+    Evaluated(f64),
     /// The damped step's point (λ, then α) and the merit before it, the size of its linear system and the
     /// length taken.
     Step { x: Vec<f64>, merit: f64, size: usize, length: f64 },
@@ -139,7 +144,11 @@ impl Condensed<'_> {
     /// The Coulomb problem with friction coefficient `mu` by the semismooth Newton method, from
     /// `phase.lambda` (the first QP's answer, or a nearby problem's) and, for bodies held only by the contact,
     /// `phase.alpha`. Ends with `phase.status` converged, stagnated or max_iterations (or interrupted),
-    /// `phase.lambda` and `phase.alpha` its last iterate.
+    /// `phase.lambda` and `phase.alpha` its last iterate (the one whose merit ends `phase.history`, but after an
+    /// interruption: the step just taken).
+    ///
+    /// # Errors
+    /// [`Error::MemoryBudget`] when the columns of H and the dense system it needs exceed `memory_budget`.
     pub(super) fn newton(
         &self,
         mu: f64,
@@ -166,17 +175,33 @@ impl Condensed<'_> {
         phase.status = SolveStatus::MaxIterations;
         let mut stagnation = Stagnation::new();
         let mut steps = 0;
-        while steps < settings.fp.max_iter {
+        loop {
             let clock = Instant::now();
             let cols: Vec<usize> = set.iter().flat_map(|&j| [j, q + j]).collect();
+            // The columns of H it forms (kept by the factor) and its dense system, within the memory budget as the
+            // QPs' dense parts are.
+            let k = (cols.len() + eq.r()) as f64;
+            let needed = 8.0 * (cols.len() as f64 * (2 * q) as f64 + k * k);
+            if needed > settings.memory_budget as f64 {
+                return Err(Error::MemoryBudget {
+                    what: format!(
+                        "the Newton method's columns of H and its dense system over {k} unknowns (2q = {})",
+                        2 * q
+                    ),
+                    needed,
+                    budget: settings.memory_budget as f64,
+                });
+            }
             let norm = euclidean(x[..q].iter().copied());
             let relative = |merit: f64| if norm > 0.0 { merit / norm } else { merit };
             let tolerance = (settings.fp.tol * norm).max(noise);
+            // At the cap the last point is only evaluated: converged or not.
+            let last = steps == settings.fp.max_iter;
             let pass = factor.with_columns(&cols, |all| {
                 let col = |k: usize| all[k].as_deref().expect("computed");
-                step(&eq, &set, &col, &x, &member, [pressing, tolerance], steps == 0)
+                step(&eq, &set, &col, &x, &member, [pressing, tolerance], [steps == 0, last])
             });
-            let (merit, size) = match pass {
+            let (next, merit, size, length) = match pass {
                 Pass::Grow(dofs) => {
                     log::debug!("newton: {} dofs outside the set would press; the set grows", dofs.len());
                     grow(&mut set, &mut member, &dofs);
@@ -187,26 +212,34 @@ impl Condensed<'_> {
                     phase.history.push(relative(merit));
                     break;
                 }
+                Pass::Evaluated(merit) => {
+                    phase.history.push(relative(merit));
+                    break;
+                }
                 Pass::Singular(merit) => {
                     log::warn!(
-                        "newton: the linear system of step {} is singular (λ is not unique on these states?)",
+                        "newton: the linear system of step {} is singular (λ is not unique on these states?): stagnated",
                         steps + 1
                     );
                     phase.history.push(relative(merit));
                     phase.status = SolveStatus::Stagnated;
                     break;
                 }
-                Pass::Step { x: next, merit, size, length } => {
-                    if length < 1.0 {
-                        log::debug!("newton: step {} damped to {}", steps + 1, Num(length));
-                    }
-                    x = next;
-                    (merit, size)
-                }
+                Pass::Step { x: next, merit, size, length } => (next, merit, size, length),
             };
+            phase.history.push(relative(merit));
+            // A method that makes no new smallest merit for STAGNATION_WINDOW steps stops on the point it has (the
+            // merit just recorded is that point's).
+            if stagnation.stalled(merit) {
+                phase.status = SolveStatus::Stagnated;
+                break;
+            }
+            if length < 1.0 {
+                log::debug!("newton: step {} damped to {}", steps + 1, Num(length));
+            }
+            x = next;
             steps += 1;
             phase.iterations = steps;
-            phase.history.push(relative(merit));
             let progress = Progress {
                 phase: Phase::Newton,
                 condensation_seconds: factor.factorization_seconds + factor.condensation_seconds(),
@@ -217,10 +250,6 @@ impl Condensed<'_> {
             };
             if notify(progress).is_break() {
                 phase.status = SolveStatus::Interrupted { iteration: steps };
-                break;
-            }
-            if stagnation.stalled(merit) {
-                phase.status = SolveStatus::Stagnated;
                 break;
             }
         }
@@ -256,7 +285,7 @@ fn step<'c>(
     x: &[f64],
     member: &[bool],
     [pressing, tolerance]: [f64; 2],
-    first: bool,
+    [first, last]: [bool; 2],
 ) -> Pass {
     let (q, mu, r_count) = (eq.q, eq.mu, eq.r());
     let unknowns: Vec<usize> = set.iter().flat_map(|&j| [j, q + j]).collect();
@@ -282,6 +311,9 @@ fn step<'c>(
     let here = point(eq, set, &rho, x, r);
     if here.merit <= tolerance {
         return Pass::Converged(here.merit);
+    }
+    if last {
+        return Pass::Evaluated(here.merit);
     }
     // The pieces of the point itself: in contact where λ presses, sticking where λ_t is inside the bound. The
     // first step of a body held only by the contact takes them (a frictionless start's r_t does not yet feel

@@ -51,7 +51,8 @@
 //!
 //! The semismooth Newton method (`coulomb = newton`, on the default path) is held to the Coulomb bound
 //! above where it converges, its own residual measured as the fixed point's is: by one more evaluation of
-//! Φ_H, the Tresca problem with the bounds μ λ_n of its answer.
+//! Φ_H, the Tresca problem with the bounds μ λ_n of its answer. Where it does not converge it is only counted
+//! (the printout says so per case): study 20 maps where it fails.
 //!
 //! A path may end `qp_failed` only when the active-set method is forced (it cannot certify a QP whose
 //! free block is singular: λ not unique), and a Coulomb fixed point `stagnated` or `max_iterations` only
