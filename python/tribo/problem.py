@@ -271,8 +271,9 @@ class Problem(_tribo.Problem):
         qp_kkt_solver, qp_working_set, qp_method, fp_tol, fp_max_iter, fp_relaxation, coulomb, memory_budget,
         condensation, keep_every); unset ones take the core's defaults. ``coulomb`` chooses the Coulomb
         method: 'fixed_point' (the default and the reference), 'newton' (the semismooth Newton method on
-        Γ_C: the friction bound follows λ_n inside each step) or 'auto' (Newton, and the fixed point where
-        Newton does not converge); ``report.coulomb_method`` says which answered.
+        Γ_C: the friction bound follows λ_n inside each step) or 'auto' (the fixed point where H is not formed,
+        else Newton, and the fixed point where Newton does not converge); ``report.coulomb_method`` says which
+        answered.
 
         ``error_bars=True`` also solves the problem enriched on the whole mesh (every triangle bisected,
         T_H halved: about 4 times the unknowns, twice where the contact reaches an end of Γ_C) and adds to ``report.estimate`` the hierarchical traction

@@ -119,8 +119,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
                       "‖C‖ / ‖λ_n‖ is)", "—", None),
     "solver.fp_max_iter": ("The iteration cap of the Coulomb fixed point", "—", None),
     "solver.fp_relaxation": ("The relaxation ω ∈ (0, 1] of the fixed point", "—", None),
-    "solver.coulomb": ("The Coulomb method: the fixed point (the reference), semismooth Newton, or Newton "
-                       "falling back to the fixed point", "—", None),
+    "solver.coulomb": ("The Coulomb method: the fixed point (the reference), semismooth Newton, or auto (the "
+                       "fixed point where H is not formed, else Newton falling back to the fixed point)", "—", None),
     "solver.memory_budget": ("The bytes a solve may take (factorization, dense parts, a history's solutions)",
                              "bytes", "what the process may still allocate"),
     "solver.condensation": ("How H is formed", "—", None),

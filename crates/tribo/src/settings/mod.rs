@@ -102,8 +102,10 @@ pub enum CoulombMethod {
     /// (`docs/coulomb_map.md`): fewer iterations than the fixed point on Hertz, but it does not converge on
     /// some problems of a body held only by the contact at small μ.
     Newton,
-    /// Newton, and the fixed point from the same start where Newton does not converge (the report says which
-    /// answered: [`crate::Report::coulomb_method`]).
+    /// The fixed point where H is not formed (the QPs solve the sparse saddle-point system: Newton would form
+    /// the columns of H, measured 5–11 times the fixed point's time in study 4); elsewhere Newton, and the fixed
+    /// point from the same start where Newton does not converge (the report says which answered:
+    /// [`crate::Report::coulomb_method`]).
     Auto,
 }
 

@@ -108,9 +108,12 @@ impl Condensed<'_> {
     /// answer of a nearby load case (the previous step of a history): the QPs start from it, and a
     /// Coulomb fixed point starts from its λ_n instead of the frictionless one.
     ///
-    /// A Coulomb problem is solved by the method `settings.coulomb` names; [`CoulombMethod::Auto`] takes Newton and,
-    /// where its answer is not `converged` once checked (its KKT residuals and fields, below) or it exceeds the
-    /// memory budget, solves the load case again by the fixed point.
+    /// A Coulomb problem is solved by the method `settings.coulomb` names. [`CoulombMethod::Auto`] takes the fixed
+    /// point where the QPs solve the sparse saddle-point system (H not formed: Newton would form the columns of H
+    /// the contact zone needs, 5–11 times the fixed point's time on the graded meshes of 55k–109k unknowns in
+    /// study 4), and elsewhere Newton and, where its answer is not `converged`
+    /// once checked (its KKT residuals and fields, below) or it exceeds the memory budget, the fixed point
+    /// solving the load case again.
     pub(crate) fn solve_loading(
         &self,
         friction: &Friction,
@@ -119,10 +122,10 @@ impl Condensed<'_> {
         start: Option<&[f64]>,
         mut observer: Option<Observer<'_>>,
     ) -> Result<Solution> {
-        let method = if settings.coulomb == CoulombMethod::FixedPoint {
-            CoulombMethod::FixedPoint
-        } else {
-            CoulombMethod::Newton
+        let method = match settings.coulomb {
+            CoulombMethod::Auto if self.sparse_qps() => CoulombMethod::FixedPoint,
+            CoulombMethod::FixedPoint => CoulombMethod::FixedPoint,
+            CoulombMethod::Newton | CoulombMethod::Auto => CoulombMethod::Newton,
         };
         // A reborrow of the observer for the first attempt (the `dyn`'s lifetime shortened with it).
         #[allow(clippy::option_as_ref_deref)]

@@ -159,6 +159,14 @@ fn auto_takes_the_fixed_point_where_newton_does_not_converge_and_says_so() {
     let newton = hertz.solve(&friction, &settings(CoulombMethod::Newton), None).unwrap();
     assert_eq!((auto.report.coulomb_method, auto.report.coulomb_fallback), (Some(CoulombMethod::Newton), false));
     assert_eq!(auto.lambda_t, newton.lambda_t);
+    // Where the QPs solve the saddle-point system (H not formed), auto takes the fixed point.
+    let saddle = SolverSettings { condensation: Condensation::Saddle, ..settings(CoulombMethod::Auto) };
+    let on_saddle = hertz.solve(&friction, &saddle, None).unwrap();
+    assert_eq!(on_saddle.report.condensation, Condensation::Saddle);
+    assert_eq!(
+        (on_saddle.report.coulomb_method, on_saddle.report.coulomb_fallback),
+        (Some(CoulombMethod::FixedPoint), false)
+    );
     // Frictionless and Tresca name no Coulomb method.
     let tresca =
         hertz.solve(&Friction::Tresca(Threshold::Uniform(0.1)), &settings(CoulombMethod::Newton), None).unwrap();
