@@ -236,3 +236,50 @@ fn the_setting_has_one_name_and_newton_reports_its_steps() {
     assert_eq!(seen.len(), 1);
     assert_eq!(seen[0], (1, sol.report.residual_history[0]));
 }
+
+/// The hidden campaign's D25 (issues 37, 40): forced clarabel and the active-set method gave two `converged`
+/// Coulomb answers 0.48 % apart on a problem with P0 multipliers, ν = 0 and γ0 = ½ bound. On that configuration
+/// (Hertz, ν = 0, P0, γ0 = ½ bound, μ up to 2, the shift up to 0.008) three paths give one answer today: the
+/// fixed point with every QP by clarabel, the fixed point by the active-set method, and Newton, each within the
+/// contraction bound of the others (δ of each answer measured by one more evaluation of Φ_H; measured: at most
+/// 1.6e-9 apart relative in Q over this grid and over 400 random small blocks of the path test's kind).
+#[test]
+fn d25_three_paths_give_one_answer() {
+    for h_min in [0.04, 0.02] {
+        for (mu, shift) in [(0.3, 0.004), (1.0, 0.008), (2.0, 0.004)] {
+            let mut spec = hertz_spec(0.01, shift, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P0);
+            spec.material.poisson = 0.0;
+            let problem = Problem::new(hertz_mesh(h_min), spec).unwrap();
+            let friction = Friction::Coulomb { mu };
+            let with = |method: QpMethod, coulomb: CoulombMethod| SolverSettings {
+                stabilization: Stabilization::Fraction(0.5),
+                qp: QpSettings { method, ..Default::default() },
+                coulomb,
+                ..Default::default()
+            };
+            let answers: Vec<Solution> = [
+                with(QpMethod::Clarabel, CoulombMethod::FixedPoint),
+                with(QpMethod::ActiveSet, CoulombMethod::FixedPoint),
+                with(QpMethod::Auto, CoulombMethod::Newton),
+            ]
+            .iter()
+            .map(|s| problem.solve(&friction, s, None).unwrap())
+            .collect();
+            let what = format!("h_min {h_min}, μ {mu}, shift {shift}");
+            assert!(answers.iter().all(|s| s.report.status == SolveStatus::Converged), "{what}");
+            let l = contraction(&answers[0]).max(contraction(&answers[1]));
+            assert!(l < 1.0, "{what}: the fixed point contracts ({l})");
+            let kappa = tribo_testkit::condition_number(&problem.condense(Stabilization::Fraction(0.5)).unwrap());
+            let size = norm(answers[0].lambda_n.iter().chain(&answers[0].lambda_t).copied());
+            let delta: Vec<f64> = answers.iter().map(|s| change(&problem, mu, s) + 1e-12 * kappa * size).collect();
+            for (i, j) in [(0, 1), (0, 2), (1, 2)] {
+                let (a, b) = (&answers[i], &answers[j]);
+                let dist = norm(
+                    a.lambda_n.iter().zip(&b.lambda_n).chain(a.lambda_t.iter().zip(&b.lambda_t)).map(|(x, y)| x - y),
+                );
+                let allowed = (delta[i] + delta[j]) / (1.0 - l);
+                assert!(dist <= allowed, "{what}: answers {i} and {j} differ by {dist:e} (allowed {allowed:e})");
+            }
+        }
+    }
+}
