@@ -50,8 +50,8 @@ def test_good_scene_has_no_warnings(hertz: tribo.Problem) -> None:
         warnings.simplefilter("error")
         problem, solution = load_scene(demo_scene_path()).solve()
     assert check_solution(problem, solution) == []
-    # The coarsest Hertz mesh of the tests has 4 dofs in contact, where λ_n is 35 % off the Hertz
-    # pressure (README, "Hertz"): the warning is right there.
+    # The shipped Hertz scene (h_min = 0.04) shifted has 4 dofs in contact, where λ_n is about a quarter off the
+    # Hertz pressure (the Python guide measures it): the warning is right there.
     assert "only 4 multiplier dofs" in check_solution(hertz, hertz.solve(mu=0.3))[0]
 
 

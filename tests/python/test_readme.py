@@ -564,3 +564,83 @@ def test_the_docs_quote_the_coulomb_map_as_generated() -> None:
         assert said in text, (page, said)
     assert held_said in _page("guide/friction.md"), held_said
     assert f"{len(failed)} of {problems} problems (μ ≤ {mus:g}, ν ≥ {nus:g})" in _page("changelog.md")
+
+
+def test_the_sweep_guide_quotes_study_10s_coulomb_map_as_generated() -> None:
+    """Issue 38: the case count and wall time the sweep guide gives for study 1c's one command are those of the
+    table scripts/study_sweeps.py writes into docs/sweep.md (on the 2-core machine it names)."""
+    sweep = _page("sweep.md")
+    assert "Wall times on the 2-core machine" in sweep
+    row = re.search(r"\| 1c Coulomb fixed point \| `scenes/coulomb_map\.toml` \| (\d+) \| ([\d.]+) \|", sweep)
+    assert row, "docs/sweep.md has no row for study 1c"
+    quoted = f"({row[1]} cases in {float(row[2]):.0f} s on 2 cores)"
+    assert quoted in _page("guide/sweeps.md"), quoted
+
+
+def _hertz_l2(problem: Any, solution: Any, e_star: float) -> float:
+    """The relative L2 error of λ_n against the Hertz pressure of the computed force, as the Rust testkit's
+    ``hertz_l2_error_with``: 8-point Gauss on every segment of the union of T_H, the FE nodes of Γ_C and ±a."""
+    import math
+
+    import numpy as np
+
+    obstacle = problem.obstacle
+    a = math.sqrt(4.0 * solution.normal_force * obstacle.radius / (math.pi * e_star))
+    p_max, c = 2.0 * solution.normal_force / (math.pi * a), obstacle.center
+    breaks = np.unique(np.r_[problem.multiplier_abscissae, solution.node_abscissae, c - a, c + a])
+    x, w = np.polynomial.legendre.leggauss(8)
+    mid, half = 0.5 * (breaks[1:] + breaks[:-1]), 0.5 * (breaks[1:] - breaks[:-1])
+    xi, weight = (mid[:, None] + half[:, None] * x).ravel(), (half[:, None] * w).ravel()
+    p = p_max * np.sqrt(np.clip(1.0 - ((xi - c) / a) ** 2, 0.0, None))
+    lam = problem.evaluate_multiplier(solution.lambda_n, xi)
+    return math.sqrt(float((weight * (lam - p) ** 2).sum() / (weight * p**2).sum()))
+
+
+def test_the_python_guide_quotes_the_scene_warnings_measurements() -> None:
+    """Issue 38: the readings the Python guide gives for two scene warnings are those of the scenes it names,
+    solved here: the dofs in contact and the λ_n error of the shipped Hertz scene (fewer than 10 dofs), and λ_n
+    against the Hertz pressure of each ν on the Hertz scene graded to h_min = 0.00125 (P1 locking near ν = ½)."""
+    import warnings
+
+    import numpy as np
+
+    import tribo
+    from conftest import BLOCK, GRADING, hertz_problem
+    from tribo.checks import MIN_CONTACT_DOFS
+
+    guide = _page("guide/python.md")
+    scene = load_scene(scene_path("hertz"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", tribo.SceneWarning)  # the warning the sentence explains
+        problem, solution = scene.solve()
+    k = int(np.count_nonzero(solution.states != 0))
+    assert 0 < k < MIN_CONTACT_DOFS and scene.get("discretization", "h_min") == 0.04
+    young, nu = scene.get("material", "young"), scene.get("material", "poisson")
+    error = _hertz_l2(problem, solution, young / (1.0 - nu**2))
+    quoted = f"the shipped Hertz scene, `hertz.toml` at h_min = 0.04, has {k} and a λ_n {_pct(error, 0)} off"
+    assert quoted in guide, quoted
+    h_min, growth = 0.00125, 0.1
+    mesh = tribo.Mesh.graded_rectangle(BLOCK["x"], BLOCK["y"], **{**GRADING, "h_min": h_min, "growth": growth})
+    errors, unknowns = {}, set()
+    for poisson in (0.3, 0.49, 0.499):
+        locked = hertz_problem(mesh, poisson=poisson)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", tribo.SceneWarning)
+            s = locked.solve()
+        assert s.report.status == "converged"
+        errors[poisson], unknowns = _hertz_l2(locked, s, young / (1.0 - poisson**2)), unknowns | {locked.n_free}
+    (n,) = unknowns
+    quoted = (f"the Hertz scene graded to h_min = {h_min:g} at growth {growth:g}, {n / 1000:.0f}k unknowns: λ_n "
+              f"{_pct(errors[0.49])} off the Hertz pressure of its ν in L2 at ν = 0.49, {_pct(errors[0.499], 0)} at "
+              f"0.499, against {_pct(errors[0.3], 2)} at 0.3")
+    assert quoted in guide, quoted
+    # The locking warning users see quotes the same measurement.
+    from tribo.checks import check_solution
+
+    said = (f"Hertz at {n / 1000:.0f}k unknowns: {_pct(errors[0.49])} at ν = 0.49, {_pct(errors[0.499], 0)} at "
+            "0.499")
+    locked = hertz_problem(mesh, poisson=0.49)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", tribo.SceneWarning)
+        reasons = check_solution(locked, locked.solve())
+    assert any(said in r for r in reasons), (said, reasons)
