@@ -4,7 +4,8 @@ docs/coulomb_map.csv is written by the Rust example `cargo run --release -p trib
 documentation gives the scenes: Hertz shifted along its top under displacement control, and a block held only by
 the contact under force control, over μ and Poisson's ratio ν); this script writes docs/coulomb_map.md (per scene
 and method: how many problems converged, the iterations, the largest difference of the two answers) and
-docs/coulomb_map.png (the iterations over μ × ν, a cross where a method did not converge).
+docs/coulomb_map.png (the iterations over μ × ν, a cross where a method did not converge, a grey square where the
+problem has no solution).
 
     cargo run --release -p tribo --example coulomb_map && python scripts/plot_coulomb_map.py
 """
@@ -21,7 +22,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import studylib as sl  # noqa: E402
 
 METHODS = ("fixed_point", "newton")
-TEXT = ("scene", "method", "status")
+TEXT = ("scene", "method", "status", "solvable")
 
 
 def load(path: Path) -> list[dict[str, Any]]:
@@ -34,17 +35,20 @@ def family(r: dict[str, Any]) -> str:
 
 
 def summary(rows: list[dict[str, Any]]) -> dict[tuple[str, str], dict[str, Any]]:
-    """Per (family, method): problems, converged, iterations of the converged (min, max, median), and the largest
-    difference of the two methods' λ where both converged."""
+    """Per (family, method), over the problems that have a solution: problems, converged, iterations of the
+    converged (min, max, median), which did not converge, and the largest difference of the two methods' λ where
+    both converged; and how the method ended the problems that have none (`unsolvable`)."""
     out: dict[tuple[str, str], dict[str, Any]] = {}
     for f in dict.fromkeys(family(r) for r in rows):
         for m in METHODS:
-            rs = [r for r in rows if family(r) == f and r["method"] == m]
+            every = [r for r in rows if family(r) == f and r["method"] == m]
+            rs = [r for r in every if r["solvable"] == "true"]
             its = sorted(int(r["iterations"]) for r in rs if r["status"] == "converged")
             diffs = [r["lambda_difference"] for r in rs if not math.isnan(r["lambda_difference"])]
             out[(f, m)] = dict(problems=len(rs), converged=len(its), iterations=its,
                                failed=[(r["nu"], r["mu"], r["status"]) for r in rs if r["status"] != "converged"],
-                               difference=max(diffs) if diffs else math.nan)
+                               difference=max(diffs) if diffs else math.nan,
+                               unsolvable=[(r["nu"], r["mu"], r["status"]) for r in every if r["solvable"] != "true"])
     return out
 
 
@@ -55,10 +59,12 @@ def run(csv_path: Path, out: Path) -> dict[tuple[str, str], dict[str, Any]]:
     table = []
     for (f, m), v in s.items():
         its = v["iterations"]
+        ends = sorted({st for _, _, st in v["unsolvable"]})
         table.append([f, m, f"{v['converged']} of {v['problems']}",
                       f"{its[0]}–{its[-1]}" if its else "—", its[len(its) // 2] if its else "—",
                       f"{v['difference']:.1e}",
-                      "; ".join(f"ν {nu:g} μ {mu:g}: {st}" for nu, mu, st in v["failed"]) or "—"])
+                      "; ".join(f"ν {nu:g} μ {mu:g}: {st}" for nu, mu, st in v["failed"]) or "—",
+                      f"{len(v['unsolvable'])}: {', '.join(ends)}" if v["unsolvable"] else "—"])
     md = ["# Study 20: which Coulomb method converges where\n\n",
           "Regenerate with `cargo run --release -p tribo --example coulomb_map && python scripts/plot_coulomb_map.py`;"
           " every number is in `coulomb_map.csv`. Each problem is solved by the fixed point of Φ_H (one Tresca QP "
@@ -67,11 +73,15 @@ def run(csv_path: Path, out: Path) -> dict[tuple[str, str], dict[str, Any]]:
           "0.45. `hertz`: the Hertz scene (graded, h_min 0.01) with the cylinder pushed 0.01 and shifted 0.004, "
           "displacement control. `held block`: a block (0, 2) × (0, 1) held only by the contact (no support), "
           "pressed onto a flat foundation by a traction (τ, −1), force control, τ a fraction of min(μ, 1) (beyond "
-          "τ = μ it slides, beyond τ = 1 it overturns). The difference is the largest |Δλ| of the two answers "
+          "τ = μ it slides, beyond τ = 1 it overturns; the discrete problem, whose P1 multipliers put the pressure at "
+          "best on the last dof with its centroid h/3 from the corner, has no solution beyond τ = 1 − h/3 = 0.983 on "
+          "these meshes: both methods must fail there, and the last column says how each ended those problems). The "
+          "difference is the largest |Δλ| of the two answers "
           "relative to the largest λ_n, where both converged: the fixed point stops at a relative change of "
           "`fp_tol` = 1e-8.\n\n",
-          sl.markdown_table(["scene", "method", "converged", "iterations", "median", "largest difference",
-                             "not converged (ν, μ: status)"], table), "\n"]
+          sl.markdown_table(["scene", "method", "converged (of the problems with a solution)", "iterations",
+                             "median", "largest difference", "not converged (ν, μ: status)",
+                             "problems without a solution: how they ended"], table), "\n"]
     (out / "coulomb_map.md").write_text("".join(md))
     families = list(dict.fromkeys(family(r) for r in rows))
     plt = sl.pyplot()
@@ -88,6 +98,8 @@ def run(csv_path: Path, out: Path) -> dict[tuple[str, str], dict[str, Any]]:
                 if family(r) == f and r["method"] == m:
                     a, b = nus.index(r["nu"]), mus.index(r["mu"])
                     grid[a][b] = r["iterations"] if r["status"] == "converged" else math.nan
+                    if r["solvable"] != "true":
+                        ax.plot(b, a, "s", color="0.6", ms=11)  # no solution: both must fail
                     if r["status"] != "converged":
                         ax.plot(b, a, "kx", ms=9)
                     else:
@@ -98,7 +110,7 @@ def run(csv_path: Path, out: Path) -> dict[tuple[str, str], dict[str, Any]]:
             ax.set_xlabel("μ")
             ax.set_ylabel("ν")
             ax.set_title(f"{f}\n{m.replace('_', ' ')}", fontsize=9)
-    fig.colorbar(image, ax=axes, label="iterations (×: not converged)", shrink=0.8)
+    fig.colorbar(image, ax=axes, label="iterations (×: not converged; grey square: no solution)", shrink=0.8)
     fig.savefig(out / "coulomb_map.png", dpi=85)
     plt.close(fig)
     return s

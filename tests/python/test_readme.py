@@ -564,6 +564,12 @@ def test_the_docs_quote_the_coulomb_map_as_generated() -> None:
         assert said in text, (page, said)
     assert held_said in _page("guide/friction.md"), held_said
     assert f"{len(failed)} of {problems} problems (μ ≤ {mus:g}, ν ≥ {nus:g})" in _page("changelog.md")
+    # Where the block overturns, how each method ends, as both pages say.
+    ends = {m: {st for (f, mm), v in s.items() if f.startswith("held block") and mm == m for _, _, st in v["unsolvable"]}
+            for m in cmap.METHODS}
+    assert ends == {"fixed_point": {"qp_failed"}, "newton": {"stagnated"}}, ends
+    for page in ("guide/friction.md", "changelog.md"):
+        assert "the fixed point's first QP ends `qp_failed`" in _page(page) and "Newton `stagnated`" in _page(page)
 
 
 def test_the_sweep_guide_quotes_study_10s_coulomb_map_as_generated() -> None:

@@ -404,15 +404,19 @@ def test_plot_coulomb_map(tmp_path: Path) -> None:
     """Study 20 from its CSV: per scene and method the problems converged, the iterations, the largest difference
     where both converged, and which did not converge."""
     csv = tmp_path / "map_in.csv"
-    lines = ["scene,n_free,q,nu,load_fraction,mu,method,status,iterations,seconds,normal_force,tangential_force,kkt,"
-             "lambda_difference"]
+    lines = ["scene,n_free,q,nu,load_fraction,mu,solvable,method,status,iterations,seconds,normal_force,"
+             "tangential_force,kkt,lambda_difference"]
     for nu in (0.0, 0.3):
         for mu in (0.1, 1.0):
             both = not (nu == 0.3 and mu == 0.1)
             diff = 1e-8 * (1 + mu) if both else float("nan")
-            lines.append(f"hertz,100,10,{nu},nan,{mu},fixed_point,converged,{int(10 * mu) + 3},0.01,1,0.1,1e-12,{diff}")
+            lines.append(f"hertz,100,10,{nu},nan,{mu},true,fixed_point,converged,{int(10 * mu) + 3},0.01,1,0.1,1e-12,"
+                         f"{diff}")
             status = "converged" if both else "stagnated"
-            lines.append(f"hertz,100,10,{nu},nan,{mu},newton,{status},{2 if both else 9},0.001,1,0.1,1e-14,{diff}")
+            lines.append(f"hertz,100,10,{nu},nan,{mu},true,newton,{status},{2 if both else 9},0.001,1,0.1,1e-14,{diff}")
+    # A problem without a solution: counted apart, with how each method ended it.
+    lines.append("hertz,100,10,0.45,nan,2.0,false,fixed_point,qp_failed,1,0.01,1,0,1,nan")
+    lines.append("hertz,100,10,0.45,nan,2.0,false,newton,stagnated,12,0.01,1,0,1,nan")
     csv.write_text("\n".join(lines) + "\n")
     res = study("plot_coulomb_map").main(["--csv", str(csv), "--out", str(tmp_path)])
     assert (tmp_path / "coulomb_map.png").is_file()
@@ -421,4 +425,5 @@ def test_plot_coulomb_map(tmp_path: Path) -> None:
     assert (nw["converged"], nw["iterations"], nw["failed"]) == (3, [2, 2, 2], [(0.3, 0.1, "stagnated")])
     assert fp["difference"] == nw["difference"] == 2e-8
     page = (tmp_path / "coulomb_map.md").read_text()
-    assert "| hertz | newton | 3 of 4 | 2–2 | 2 | 2.0e-08 | ν 0.3 μ 0.1: stagnated |" in page
+    assert "| hertz | newton | 3 of 4 | 2–2 | 2 | 2.0e-08 | ν 0.3 μ 0.1: stagnated | 1: stagnated |" in page
+    assert fp["unsolvable"] == [(0.45, 2.0, "qp_failed")]
