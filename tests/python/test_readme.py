@@ -550,26 +550,22 @@ def test_the_docs_quote_the_coulomb_map_as_generated() -> None:
     cmap = _script("plot_coulomb_map")
     s = cmap.summary(cmap.load(DOCS / "coulomb_map.csv"))
     its = {m: s[("hertz", m)]["iterations"] for m in cmap.METHODS}
-    held = [v for (f, m), v in s.items() if f.startswith("held block") and m == "newton"]
-    failed = [x for v in held for x in v["failed"]]
-    problems = sum(v["problems"] for v in held)
-    fixed_point_held = [v for (f, m), v in s.items() if f.startswith("held block") and m == "fixed_point"]
-    assert all(v["converged"] == v["problems"] for v in fixed_point_held), "the fixed point solved all of them"
+    held = {m: [v for (f, mm), v in s.items() if f.startswith("held block") and mm == m] for m in cmap.METHODS}
+    problems = sum(v["problems"] for v in held["newton"])
+    assert all(v["converged"] == v["problems"] for m in cmap.METHODS for v in held[m]), "both solve all of them"
+    ranges = {m: _span([i for v in held[m] for i in v["iterations"]], "d") for m in cmap.METHODS}
     said = (f"on Hertz, Newton takes {its['newton'][0]}–{its['newton'][-1]} steps where the fixed point takes "
             f"{its['fixed_point'][0]}–{its['fixed_point'][-1]} iterations")
-    mus, nus = max(mu for _, mu, _ in failed), min(nu for nu, _, _ in failed)
-    held_said = f"did not converge on {len(failed)} of {problems} problems (all at μ ≤ {mus:g} and ν ≥ {nus:g})"
     for page in ("guide/friction.md", "changelog.md"):
         text = _page(page)
         assert said in text, (page, said)
-    assert held_said in _page("guide/friction.md"), held_said
-    assert f"{len(failed)} of {problems} problems (μ ≤ {mus:g}, ν ≥ {nus:g})" in _page("changelog.md")
+        assert f"all {problems} problems that have a solution, Newton in {ranges['newton']} steps" in text, page
+        assert f"the fixed point in {ranges['fixed_point']} iterations" in text, page
     # Where the block overturns, how each method ends, as both pages say.
-    ends = {m: {st for (f, mm), v in s.items() if f.startswith("held block") and mm == m for _, _, st in v["unsolvable"]}
-            for m in cmap.METHODS}
-    assert ends == {"fixed_point": {"qp_failed"}, "newton": {"stagnated"}}, ends
+    ends = {m: {st for v in held[m] for _, _, st in v["unsolvable"]} for m in cmap.METHODS}
+    assert ends == {"fixed_point": {"qp_failed"}, "newton": {"qp_failed"}}, ends
     for page in ("guide/friction.md", "changelog.md"):
-        assert "the fixed point's first QP ends `qp_failed`" in _page(page) and "Newton `stagnated`" in _page(page)
+        assert "(no discrete solution) both end `qp_failed`" in _page(page), page
 
 
 def test_the_sweep_guide_quotes_study_10s_coulomb_map_as_generated() -> None:
