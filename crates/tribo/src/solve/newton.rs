@@ -227,8 +227,15 @@ impl Condensed<'_> {
                     phase.history.push(relative(merit));
                     break;
                 }
-                Pass::Singular(merit) => {
-                    phase.history.push(relative(merit));
+                Pass::Singular(merit) => (None, merit, 0, 0.0),
+                Pass::Step { x: next, merit, size, length } => (Some(next), merit, size, length),
+            };
+            phase.history.push(relative(merit));
+            // A singular step, or no new smallest merit for STAGNATION_WINDOW steps: a restart from one fixed-point
+            // iteration, or the end on the point it has (the merit just recorded is that point's).
+            let next = match next {
+                Some(next) if !stagnation.stalled(merit) => next,
+                stalled => {
                     if restarts < RESTARTS {
                         restarts += 1;
                         let Some(next) = self.fixed_point_step(mu, settings, loading, phase, &x, steps)? else { break };
@@ -237,30 +244,13 @@ impl Condensed<'_> {
                         stagnation = Stagnation::new();
                         continue;
                     }
-                    log::warn!(
-                        "newton: the linear system of step {} is singular (λ is not unique on these states?): stagnated",
-                        steps + 1
-                    );
+                    if stalled.is_none() {
+                        log::warn!("newton: the linear system of step {} is singular (λ not unique there?)", steps + 1);
+                    }
                     phase.status = SolveStatus::Stagnated;
                     break;
                 }
-                Pass::Step { x: next, merit, size, length } => (next, merit, size, length),
             };
-            phase.history.push(relative(merit));
-            // A method that makes no new smallest merit for STAGNATION_WINDOW steps stops on the point it has (the
-            // merit just recorded is that point's).
-            if stagnation.stalled(merit) {
-                if restarts < RESTARTS {
-                    restarts += 1;
-                    let Some(next) = self.fixed_point_step(mu, settings, loading, phase, &x, steps)? else { break };
-                    x = next;
-                    grow(&mut set, &mut member, &nonzero(q, &x));
-                    stagnation = Stagnation::new();
-                    continue;
-                }
-                phase.status = SolveStatus::Stagnated;
-                break;
-            }
             if length < 1.0 {
                 log::debug!("newton: step {} damped to {}", steps + 1, Num(length));
             }
