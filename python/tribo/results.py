@@ -76,15 +76,16 @@ class Report(_Record):
         interrupted_iteration: for 'interrupted', the fixed-point iteration after which the solve
             stopped, else None.
         failed_iteration: for 'qp_failed', the fixed-point iteration at which a QP failed (0 = the
-            initial QP), else None.
+            initial QP; for Newton, the QP of a restart after that many steps less one), else None.
         failure_reason: for 'qp_failed', the QP solver's status, else None.
         iterations: iterations of the Coulomb method that answered: fixed-point iterations (a QP each) or
             Newton steps (a dense LU solve each); 0 for frictionless and Tresca.
         residual_history: after each fixed-point iteration, the relative change of λ_n; for Newton, the relative
-            merit ‖C‖ / ‖λ_n‖ before each step and the one it ended on.
+            merit ‖C‖ / ‖λ_n‖ of each point it evaluated: before each step, at each restart from one fixed-point
+            iteration (its QP booked in ``qp_methods`` after the first) and the point it ended on.
         coulomb_method: the Coulomb method that answered, 'fixed_point' or 'newton' (the ``coulomb`` setting
-            chooses; 'auto' is Newton, and the fixed point where Newton did not converge); None for
-            frictionless and Tresca.
+            chooses; 'auto' is the fixed point where H is not formed (``condensation == 'saddle'``), else Newton,
+            and the fixed point where Newton did not converge); None for frictionless and Tresca.
         coulomb_fallback: True when ``coulomb='auto'`` tried Newton, which did not converge, and the fixed
             point answered.
         qp_iterations: iterations of each QP: interior-point iterations (clarabel) or steps (active set).

@@ -18,15 +18,16 @@ pub enum SolveStatus {
     /// fixed point cycles, or it has reached the accuracy to which the QP determines λ (see the residual
     /// history; a tighter `qp.tol` or a finer mesh may help). One whose smallest change is within √qp_tol
     /// and whose last iterate meets Coulomb's law to `fp_tol` is [`SolveStatus::Converged`]. The Newton method
-    /// ends so when its merit makes no new minimum for as many steps, or when the linear system of a step is
-    /// singular (the log says which).
+    /// ends so when, after its restarts, its merit makes no new minimum for as many steps, or the linear system of
+    /// a step is singular (the log says which).
     Stagnated,
     /// The observer asked to stop after the given fixed-point iteration or Newton step (0 = the initial QP).
     Interrupted {
         /// Fixed-point iteration.
         iteration: usize,
     },
-    /// A QP failed at the given fixed-point iteration (0 = the initial QP).
+    /// A QP failed at the given fixed-point iteration (0 = the initial QP; for Newton, the QP of a restart
+    /// after `iteration − 1` steps).
     QpFailed {
         /// Fixed-point iteration.
         iteration: usize,
@@ -135,7 +136,8 @@ pub struct Report {
     /// (one dense LU each); 0 for frictionless and Tresca.
     pub iterations: usize,
     /// After each iteration: the relative change of λ_n (fixed point) or the relative merit `‖C‖ / ‖λ_n‖`
-    /// before the step (Newton; the last entry the merit it ended with).
+    /// of each point Newton evaluated (before each step, at each restart, and the point it ended on: `iterations`
+    /// + restarts + 1 entries, the restarts' QPs booked in `qp_methods` after the first).
     pub residual_history: Vec<f64>,
     /// The Coulomb method that answered ([`CoulombMethod::FixedPoint`] or [`CoulombMethod::Newton`]); `None`
     /// for frictionless and Tresca.

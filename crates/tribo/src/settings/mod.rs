@@ -98,9 +98,10 @@ pub enum CoulombMethod {
     #[default]
     FixedPoint,
     /// The semismooth Newton method on Γ_C (`solve/newton.rs`, derived there): the friction bound follows λ_n
-    /// inside each step, each step a dense LU solve on the dofs in contact. Measured in study 20
-    /// (`docs/coulomb_map.md`): fewer iterations than the fixed point on Hertz, but it does not converge on
-    /// some problems of a body held only by the contact at small μ.
+    /// inside each step, each step a dense LU solve on the dofs in contact, restarting from one fixed-point
+    /// iteration where it stalls. Measured in study 20 (`docs/coulomb_map.md`): fewer iterations than the fixed
+    /// point on Hertz, as many on a body held only by the contact; it forms the columns of H the contact zone
+    /// needs, which the fixed point's saddle-point path does not (study 4).
     Newton,
     /// The fixed point where H is not formed (the QPs solve the sparse saddle-point system: Newton would form
     /// the columns of H, measured 5–11 times the fixed point's time in study 4); elsewhere Newton, and the fixed

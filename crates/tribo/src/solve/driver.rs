@@ -137,7 +137,9 @@ impl Condensed<'_> {
                 s.report.coulomb_method == Some(CoulombMethod::Newton)
                     && !matches!(s.report.status, SolveStatus::Converged | SolveStatus::Interrupted { .. })
             }
-            Err(Error::MemoryBudget { .. }) => true,
+            Err(Error::MemoryBudget { what, .. }) => {
+                method == CoulombMethod::Newton && what.starts_with("the Newton method")
+            }
             Err(_) => false,
         };
         if !(auto && fell) {

@@ -63,8 +63,8 @@
 //! The method ends `converged` at a point with `‖C‖₂ ≤ fp_tol ‖λ_n‖₂`, or at the QPs' noise level (`qp_tol`
 //! times [`crate::Factor::lambda_scale`]), where no dof outside the set would press. It ends `stagnated` when
 //! it stalls after its restarts (its merit made no new minimum, or the linear system of a step is singular: its
-//! solution not finite, on the pieces of C and on those of λ), `qp_failed` when a restart's QP fails (a problem
-//! with no solution: the fixed point's first QP fails there too), and `max_iterations` when the point after
+//! solution not finite, on the pieces of C and on those of λ), `qp_failed` when a restart's QP fails (as on a
+//! problem with no solution, where the fixed point's first QP fails too), and `max_iterations` when the point after
 //! `fp_max_iter` steps is not a solution. Each evaluated point's relative
 //! merit `‖C‖₂ / ‖λ_n‖₂` is recorded ([`crate::Report::residual_history`]): the last entry is that of the
 //! point handed back. The columns of H and the dense system count against `memory_budget`.
@@ -192,7 +192,8 @@ impl Condensed<'_> {
             // The columns of H it forms (kept by the factor) and its dense system, within the memory budget as the
             // QPs' dense parts are.
             let k = (cols.len() + eq.r()) as f64;
-            let needed = 8.0 * (cols.len() as f64 * (2 * q) as f64 + k * k);
+            // (The LU copies the k × k system into its factors: twice k² values.)
+            let needed = 8.0 * (cols.len() as f64 * (2 * q) as f64 + 2.0 * k * k);
             if needed > settings.memory_budget as f64 {
                 return Err(Error::MemoryBudget {
                     what: format!(
@@ -280,7 +281,7 @@ impl Condensed<'_> {
 impl Condensed<'_> {
     /// One iteration of the fixed point from the point `x` (λ, then α): the Tresca QP with the bounds μ λ_n of
     /// `x`, started from it; returns its answer as the new point, or `None` when the QP failed (after `steps`
-    /// Newton steps: `phase.status` says so, as the fixed point's would).
+    /// Newton steps: `phase.status` says so, as the fixed point's would, at iteration `steps + 1`).
     fn fixed_point_step(
         &self,
         mu: f64,
@@ -304,7 +305,7 @@ impl Condensed<'_> {
         .solve()?;
         phase.book(&out);
         log::debug!("newton: stalled after {steps} steps; one fixed-point iteration restarts it");
-        if let Some(failed) = qp_failed(steps, out.status) {
+        if let Some(failed) = qp_failed(steps + 1, out.status) {
             phase.status = failed;
             return Ok(None);
         }
