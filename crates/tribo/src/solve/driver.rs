@@ -65,6 +65,23 @@ impl QpPhase {
 }
 
 impl Condensed<'_> {
+    /// The Γ_C QP of `loading` with the tangential `bounds` (none: frictionless), started from `start`, on this
+    /// condensation's path (the saddle-point system or columns of H): the one constructor of every QP a solve
+    /// makes (the first one, the fixed point's, Newton's restarts).
+    ///
+    /// # Errors
+    /// [`Error::BadThreshold`] for bad bounds.
+    pub(super) fn contact_qp<'s>(
+        &'s self,
+        loading: &'s LoadCase,
+        bounds: Option<&[f64]>,
+        settings: &SolverSettings,
+        start: Option<&[f64]>,
+    ) -> Result<ContactQp<'s>> {
+        let qp = ContactQp::new(self.factor(), loading.qp_data(), bounds, &settings.qp, settings.memory_budget, start)?;
+        Ok(qp.with_sparse(self.sparse_qps()))
+    }
+
     /// The Coulomb problem from `phase.lambda` by `method` (the fixed point or Newton).
     ///
     /// # Errors
@@ -206,7 +223,6 @@ impl Condensed<'_> {
             alpha: vec![0.0; loading.rigid.load.len()],
         };
         problem.check_held_by_contact(&loading.rigid, !matches!(friction, Friction::Frictionless))?;
-        let budget = settings.memory_budget;
         let condensed = Progress {
             phase: Phase::Condensation,
             condensation_seconds: factor.factorization_seconds + factor.condensation_seconds(),
@@ -224,17 +240,13 @@ impl Condensed<'_> {
             }
             (Friction::Frictionless | Friction::Coulomb { .. }, _) => {
                 // Coulomb starts from the frictionless λ_n.
-                let out = ContactQp::new(factor, loading.qp_data(), None, &settings.qp, budget, start)?
-                    .with_sparse(self.sparse_qps())
-                    .solve()?;
+                let out = self.contact_qp(loading, None, settings, start)?.solve()?;
                 phase.lambda[..q].copy_from_slice(&out.nu);
                 phase.record_single_qp(factor, &out, &mut notify);
             }
             (Friction::Tresca(_), _) => {
                 phase.bound = friction.tresca_bounds(q);
-                let out = ContactQp::new(factor, loading.qp_data(), Some(&phase.bound), &settings.qp, budget, start)?
-                    .with_sparse(self.sparse_qps())
-                    .solve()?;
+                let out = self.contact_qp(loading, Some(&phase.bound), settings, start)?.solve()?;
                 phase.lambda.copy_from_slice(&out.nu);
                 phase.record_single_qp(factor, &out, &mut notify);
             }

@@ -8,7 +8,6 @@ use std::ops::ControlFlow;
 use crate::error::Result;
 use crate::problem::load_case::LoadCase;
 use crate::problem::Condensed;
-use crate::qp::working_set::ContactQp;
 use crate::results::SolveStatus;
 use crate::settings::SolverSettings;
 use crate::solve::driver::{qp_failed, QpPhase};
@@ -56,15 +55,7 @@ impl Condensed<'_> {
         let mut g: Vec<f64> = phase.lambda[..q].to_vec();
         let bound: Vec<f64> = g.iter().map(|v| mu * v.max(0.0)).collect();
         // Warm start: the frictionless λ_n with λ_t = 0.
-        let mut qp = ContactQp::new(
-            self.factor(),
-            loading.qp_data(),
-            Some(&bound),
-            &settings.qp,
-            settings.memory_budget,
-            Some(&phase.lambda),
-        )?
-        .with_sparse(self.sparse_qps());
+        let mut qp = self.contact_qp(loading, Some(&bound), settings, Some(&phase.lambda))?;
         phase.status = SolveStatus::MaxIterations;
         let mut stagnation = Stagnation::new();
         for it in 1..=fp.max_iter {

@@ -83,7 +83,6 @@ use faer::Mat;
 use crate::error::{Error, Num, Result};
 use crate::problem::load_case::LoadCase;
 use crate::problem::Condensed;
-use crate::qp::working_set::ContactQp;
 use crate::results::SolveStatus;
 use crate::settings::SolverSettings;
 use crate::solve::driver::qp_failed;
@@ -130,23 +129,30 @@ enum Pass {
 }
 
 /// The equations of one Coulomb problem: q, μ, the linear term c (2q) and, for bodies held only by the
-/// contact, `E R` (2q × r, column-major) and `Rᵀ f` (r).
+/// contact, `E R` (2q × r, column-major) and `Rᵀ f` (r), with the Euclidean norm of each column of `E R`.
 struct Equations<'a> {
     q: usize,
     mu: f64,
     c: &'a [f64],
     rigid: Option<(&'a [f64], &'a [f64])>,
+    e_r_norms: Vec<f64>,
 }
 
-impl Equations<'_> {
+impl<'a> Equations<'a> {
+    fn new(q: usize, mu: f64, c: &'a [f64], rigid: Option<(&'a [f64], &'a [f64])>) -> Self {
+        let mut eq = Self { q, mu, c, rigid, e_r_norms: Vec::new() };
+        eq.e_r_norms = (0..eq.r()).map(|m| euclidean(eq.e_r(m).iter().copied())).collect();
+        eq
+    }
+
     /// The number r of rigid motions α beside λ.
     fn r(&self) -> usize {
         self.rigid.map_or(0, |(_, load)| load.len())
     }
 
-    /// Column m of `E R`.
+    /// Column m < r of `E R` (empty without held bodies, where r = 0 and no caller asks).
     fn e_r(&self, m: usize) -> &[f64] {
-        let (e_r, _) = self.rigid.expect("held bodies");
+        let Some((e_r, _)) = self.rigid else { return &[] };
         &e_r[m * 2 * self.q..(m + 1) * 2 * self.q]
     }
 }
@@ -169,7 +175,7 @@ impl Condensed<'_> {
         notify: &mut dyn FnMut(Progress) -> ControlFlow<()>,
     ) -> Result<()> {
         let (q, factor) = (self.q(), self.factor());
-        let eq = Equations { q, mu, c: &loading.c, rigid: loading.qp_data().rigid };
+        let eq = Equations::new(q, mu, &loading.c, loading.qp_data().rigid);
         let noise = settings.qp.tol * factor.lambda_scale(eq.c);
         let c_s = eq.c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let pressing = settings.qp.tol.sqrt() * c_s;
@@ -210,6 +216,8 @@ impl Condensed<'_> {
             // At the cap the last point is only evaluated: converged or not.
             let last = steps == settings.fp.max_iter;
             let pass = factor.with_columns(&cols, |all| {
+                // `with_columns` has formed every column of `cols` before it calls this (a column solve can fail
+                // only on the partial factorization, which forms all of H up front), and `step` asks for no other.
                 let col = |k: usize| all[k].as_deref().expect("computed");
                 step(&eq, &set, &col, &x, &member, [pressing, tolerance], [steps == 0, last])
             });
@@ -293,16 +301,7 @@ impl Condensed<'_> {
     ) -> Result<Option<Vec<f64>>> {
         let q = self.q();
         let bound: Vec<f64> = x[..q].iter().map(|v| mu * v.max(0.0)).collect();
-        let out = ContactQp::new(
-            self.factor(),
-            loading.qp_data(),
-            Some(&bound),
-            &settings.qp,
-            settings.memory_budget,
-            Some(&x[..2 * q]),
-        )?
-        .with_sparse(self.sparse_qps())
-        .solve()?;
+        let out = self.contact_qp(loading, Some(&bound), settings, Some(&x[..2 * q]))?.solve()?;
         phase.book(&out);
         log::debug!("newton: stalled after {steps} steps; one fixed-point iteration restarts it");
         if let Some(failed) = qp_failed(steps + 1, out.status) {
@@ -494,8 +493,7 @@ fn point(eq: &Equations<'_>, set: &[usize], rho: &[[f64; 2]], x: &[f64], r: Vec<
     }
     if let Some((_, load)) = eq.rigid {
         for (m, b) in load.iter().enumerate() {
-            let g = eq.e_r(m);
-            let size = euclidean(g.iter().copied());
+            let (g, size) = (eq.e_r(m), eq.e_r_norms[m]);
             let held: f64 = g.iter().zip(&x[..2 * q]).map(|(e, l)| e * l).sum();
             parts.push(if size > 0.0 { (held - b) / size } else { 0.0 });
         }
