@@ -17,7 +17,7 @@ use nalgebra::Matrix3;
 use crate::contact::operators::traction_components;
 use crate::contact::ContactBoundary;
 use crate::error::{check_setting, Error, Result};
-use crate::fem::elasticity::Material;
+use crate::fem::elasticity::{Material, MaterialField};
 use crate::mesh::Mesh;
 use crate::settings::Stabilization;
 
@@ -58,24 +58,38 @@ impl Gamma0Bound {
 
 /// The admissible bound on γ0 (see the module documentation).
 ///
-/// The eigenproblem is solved for the material scaled to E = 1 (C is proportional to E), so neither a
-/// huge nor a tiny Young's modulus overflows it; the bound is then divided by E.
-pub fn admissible_gamma0(mesh: &Mesh, material: &Material, contact: &ContactBoundary) -> Gamma0Bound {
-    let unit = Material { young: 1.0, poisson: material.poisson };
+/// Each contact triangle has its own material (a coated body's differ): its bound is computed with its
+/// C. The eigenproblem is solved for the material scaled to E = 1 (C is proportional to E), so neither a
+/// huge nor a tiny Young's modulus overflows it; each triangle's bound is then divided by its E, and γ0
+/// (one constant on Γ_C) must stay below the smallest.
+pub fn admissible_gamma0(mesh: &Mesh, materials: &impl MaterialField, contact: &ContactBoundary) -> Gamma0Bound {
     let (a_n, a_t) = traction_components(contact);
     let p: Matrix3<f64> = a_n * a_n.transpose() + a_t * a_t.transpose();
-    // C(E = 1) is positive definite for a validated ν; its Cholesky factor exists.
-    let lam = match unit.elasticity_matrix().cholesky() {
-        Some(c) => {
-            let l = c.l();
-            (l.transpose() * p * l).symmetric_eigenvalues().max()
+    // λ_max(Lᵀ P L) of C(E = 1), by Poisson's ratio: the materials of Γ_C's triangles are few.
+    let mut by_poisson: Vec<(f64, f64)> = Vec::new();
+    let mut lam = |poisson: f64| {
+        if let Some(&(_, l)) = by_poisson.iter().find(|(nu, _)| *nu == poisson) {
+            return l;
         }
-        None => f64::NAN,
+        // C(E = 1) is positive definite for a validated ν; its Cholesky factor exists.
+        let l = match (Material { young: 1.0, poisson }).elasticity_matrix().cholesky() {
+            Some(c) => {
+                let l = c.l();
+                (l.transpose() * p * l).symmetric_eigenvalues().max()
+            }
+            None => f64::NAN,
+        };
+        by_poisson.push((poisson, l));
+        l
     };
     let (value, triangle) = contact
         .edges
         .iter()
-        .map(|e| (mesh.area(e.triangle) / (mesh.diameter(e.triangle) * e.length * lam), e.triangle))
+        .map(|e| {
+            let m = materials.at(e.triangle);
+            let shape = mesh.area(e.triangle) / (mesh.diameter(e.triangle) * e.length * lam(m.poisson));
+            (shape / m.young, e.triangle)
+        })
         .fold((f64::INFINITY, 0), |best, cur| if cur.0 < best.0 { cur } else { best });
-    Gamma0Bound { value: value / material.young, triangle }
+    Gamma0Bound { value, triangle }
 }

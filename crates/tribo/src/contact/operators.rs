@@ -15,7 +15,7 @@ use nalgebra::{SVector, Vector3};
 use crate::contact::mortar::MortarMatrices;
 use crate::contact::pair::PrimarySide;
 use crate::contact::ContactBoundary;
-use crate::fem::elasticity::{element_dofs, strain_displacement, Material};
+use crate::fem::elasticity::{element_dofs, strain_displacement, MaterialField};
 use crate::mesh::Mesh;
 
 /// Voigt vectors `a` with `a · σ = σ_n` and `a · σ = σ_t` (σ = (σ_xx, σ_yy, σ_xy)).
@@ -39,14 +39,14 @@ pub struct ContactStress {
 }
 
 impl ContactStress {
-    /// The stress operators of every contact edge.
-    pub fn new(mesh: &Mesh, material: &Material, contact: &ContactBoundary) -> Self {
-        let c = material.elasticity_matrix();
+    /// The stress operators of every contact edge, each with the material of its triangle.
+    pub fn new(mesh: &Mesh, materials: &impl MaterialField, contact: &ContactBoundary) -> Self {
         let (a_n, a_t) = traction_components(contact);
         let ops = contact
             .edges
             .iter()
             .map(|e| {
+                let c = materials.at(e.triangle).elasticity_matrix();
                 let bt = strain_displacement(mesh, e.triangle).transpose();
                 [bt * (c * a_n), bt * (c * a_t)]
             })

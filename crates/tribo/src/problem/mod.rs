@@ -146,6 +146,42 @@ impl Problem {
         Self::build(mesh, spec, materials, None, bodies)
     }
 
+    /// [`Problem::new`] for a body of several materials (a coating on a substrate, layers, a bonded insert):
+    /// triangle `t` is of `materials.materials[materials.region[t]]`. The stiffness, the stresses, the contact
+    /// stresses of the stabilization and the admissible γ0 (each contact triangle's with its own material,
+    /// [`crate::contact::gamma0`]) and the estimates read each triangle's material; adaptive refinement gives
+    /// the halves of a triangle its material. An interface between materials should follow edges of the
+    /// mesh: a triangle has one material. `spec.material` is replaced by the material under Γ_C's first edge
+    /// (the contact side's, as a two-body problem's is its secondary's).
+    ///
+    /// # Errors
+    /// [`Error::BadMaterial`] for no material, a region per triangle missing, or a region beyond the
+    /// materials; each material checked under `spec.model`; as [`Problem::new`].
+    pub fn with_materials(mesh: Mesh, mut spec: ProblemSpec, materials: Materials) -> Result<Self> {
+        let (n, regions) = (materials.materials.len(), &materials.region);
+        let refuse = |what: String| Err(Error::BadMaterial { what });
+        if n == 0 {
+            return refuse("a body of several materials needs at least one material".to_string());
+        }
+        if regions.len() != mesh.n_triangles() {
+            return refuse(format!(
+                "{} regions given for {} triangles (one per triangle)",
+                regions.len(),
+                mesh.n_triangles()
+            ));
+        }
+        if let Some((t, r)) = regions.iter().enumerate().find(|(_, &r)| r >= n) {
+            return refuse(format!("triangle {t} is of region {r}, beyond the {n} materials given"));
+        }
+        if let Some(&[a, b]) = mesh.edge_set(&spec.contact).ok().and_then(|edges| edges.first()) {
+            if let Some(t) = mesh.boundary_triangle(a, b) {
+                spec.material = materials.materials[regions[t]];
+            }
+        }
+        let bodies = vec![bodies::BodyPart::whole("body", &mesh)];
+        Self::build(mesh, spec, materials, None, bodies)
+    }
+
     /// [`Problem::new`] with per-triangle materials and, for two bodies, the primary contact set.
     fn build(
         mesh: Mesh,
@@ -223,9 +259,9 @@ impl Problem {
         let h_t: Vec<f64> = contact.edges.iter().map(|e| mesh.diameter(e.triangle)).collect();
         let mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &spec.obstacle)?;
         let primary = primary.map(|set| PrimarySide::new(&mesh, &contact, set, &multipliers)).transpose()?;
-        let secondary = spec.model.in_plane(spec.material);
-        let contact_stress = ContactStress::new(&mesh, &secondary, &contact);
-        let gamma0_bound = admissible_gamma0(&mesh, &secondary, &contact);
+        // Γ_C's triangles with their own materials (one body's, the secondary's for two, a coating's).
+        let contact_stress = ContactStress::new(&mesh, &in_plane, &contact);
+        let gamma0_bound = admissible_gamma0(&mesh, &in_plane, &contact);
         let contact_matrices = clock.elapsed().as_secs_f64();
         Ok(Self {
             mesh,

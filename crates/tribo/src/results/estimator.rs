@@ -7,7 +7,8 @@
 //! With σ_h = σ(u_h) constant on each triangle (so `div σ_h = 0` there), h_K the diameter of K and
 //! h_E = |E| the length of an edge, every term is a residual of one equation of the problem, measured
 //! in the units of `stress² × area` (so that `η² / E*` is an energy, E* = E / (1 − ν²) of the in-plane material:
-//! E itself in plane stress):
+//! E itself in plane stress; each triangle's own where a body has several materials, and the relative energy
+//! estimate reads `Σ_K η_K² / E*_K`):
 //!
 //! * **bulk** (the equilibrium (2.1) and the boundary conditions (2.4)):
 //!   `h_K² ‖f‖²_K` (body load), `½ h_E ‖[σ_h n]‖²_E` on each interior edge (half to each side),
@@ -77,7 +78,7 @@ use crate::contact::mortar::{common_refinement, GAUSS2};
 use crate::contact::multiplier::MultiplierMesh;
 use crate::contact::pair::PrimarySide;
 use crate::contact::ContactBoundary;
-use crate::fem::elasticity::{Material, Materials};
+use crate::fem::elasticity::{Material, MaterialField, Materials};
 use crate::fem::supports::{Dofs, NodeSupport};
 use crate::mesh::Mesh;
 
@@ -175,8 +176,7 @@ impl ErrorEstimate {
 /// What the estimator reads of a problem and its solution.
 pub(crate) struct EstimatorInput<'a> {
     pub mesh: &'a Mesh,
-    /// The secondary body's material (E* of the contact terms) and every triangle's.
-    pub material: &'a Material,
+    /// Every triangle's material (E* of a contact edge's terms is its triangle's).
     pub materials: &'a Materials,
     /// The primary side of a two-body pair: its contact edges carry the traction `+λ` (action and
     /// reaction), not a Neumann datum.
@@ -328,14 +328,12 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
         (times(input.lambda_n, ks), times(input.lambda_t, ks), times(input.threshold, ks));
     let gap = |xi: f64| (input.gap)(xi) * ku;
     let young = |m: &Material| Material { young: m.young * ke, ..*m };
-    let material = young(input.material);
     let materials = Materials {
         materials: input.materials.materials.iter().map(young).collect(),
         region: input.materials.region.clone(),
     };
     let scaled = EstimatorInput {
         mesh: input.mesh,
-        material: &material,
         materials: &materials,
         primary: input.primary,
         dofs: input.dofs,
@@ -371,7 +369,11 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
 fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEstimate) {
     let mesh = input.mesh;
     let pts = mesh.points();
-    let e_star = input.material.young / (1.0 - input.material.poisson.powi(2));
+    // E* = E / (1 − ν²) of triangle t's (in-plane) material.
+    let e_star = |t: usize| {
+        let m = input.materials.at(t);
+        m.young / (1.0 - m.poisson.powi(2))
+    };
     let mut parts = vec![Parts::default(); mesh.n_triangles()];
 
     // Body load.
@@ -475,6 +477,7 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
         };
         let (mut gc, mut comp, mut cone, mut diss, mut lam, mut ncp) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
         // c = E* / h_E turns a displacement into a traction at the scale of the edge.
+        let e_star = e_star(e.triangle);
         let c = e_star / e.length;
         let half = 0.5 * (piece.b - piece.a);
         for (x, w) in GAUSS3 {
@@ -521,7 +524,7 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
         }
         // As squares of products: E*² alone overflows for E* beyond 1e154, and ∞ · 0 where nothing
         // penetrates would be NaN (defect D29).
-        let root = pen.sqrt();
+        let (root, e_star) = (pen.sqrt(), e_star(e.triangle));
         parts[e.triangle].contact += (e_star * root).powi(2) / e.length;
         conditions[e.triangle] += (e_star / e.length * root).powi(2);
     }
@@ -541,13 +544,15 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
     let total = |f: fn(&Parts) -> f64| parts.iter().map(f).sum::<f64>().sqrt();
     let energy = crate::fem::elasticity::energy_norm(mesh, input.materials, input.displacement);
     let eta_total = total(Parts::sum);
+    // η² / E* is an energy: each triangle's part over its own E* (one E* for a body of one material).
+    let eta_energy = parts.iter().enumerate().map(|(t, p)| p.sum() / e_star(t)).sum::<f64>().sqrt();
     let estimate = ErrorEstimate {
         total: eta_total,
         bulk: total(|p| p.bulk),
         gamma_c: total(|p| p.gamma_c),
         contact: total(|p| p.contact),
         friction: total(|p| p.friction),
-        energy_relative: if eta_total == 0.0 { 0.0 } else { eta_total / (e_star.sqrt() * energy) },
+        energy_relative: if eta_total == 0.0 { 0.0 } else { eta_energy / energy },
         traction: zeta2.sqrt(),
         // ‖λ‖ estimated by the smaller of ‖λ_H‖ and ‖σ_h n‖: a checkerboard inflates ‖λ_H‖ and would
         // hide its own error behind it.

@@ -101,7 +101,6 @@ impl Solution {
         let mesh = &problem.mesh;
         // The stresses and the estimates read the in-plane law; σ_zz and von Mises the model.
         let (model, user) = (problem.spec.model, &problem.materials);
-        let material = &model.in_plane(problem.spec.material);
         let materials = &problem.in_plane;
         let displacement = problem.dofs.expand_with(u_free, loading.lifting(problem));
         let stress = element_stresses(mesh, materials, &displacement);
@@ -109,7 +108,8 @@ impl Solution {
         let stress_zz = stress.iter().enumerate().map(|(t, s)| model.sigma_zz(user.at(t), *s)).collect();
         let nodal_stress = crate::fem::elasticity::recovered_stress(mesh, &stress);
         // The recovered stress is averaged over each node's triangles, all of one body (bodies share no
-        // node), so the node's material is that of any of them.
+        // node), so the node's material is that of any of them (at an interface of two materials of one
+        // body, the last triangle's: the averaged stress smears the interface anyway).
         let mut node_material = vec![0usize; mesh.n_nodes()];
         for (t, tri) in mesh.triangles().iter().enumerate() {
             for &v in tri {
@@ -154,7 +154,6 @@ impl Solution {
         let gap_at = |xi: f64| spec.obstacle.initial_gap(xi) - spec.obstacle.approach + moved;
         let input = EstimatorInput {
             mesh,
-            material,
             materials,
             primary: problem.primary.as_ref(),
             dofs: &problem.dofs,

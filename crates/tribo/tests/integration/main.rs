@@ -22,6 +22,7 @@
 //! * `two_bodies`: two elastic bodies in contact (patch test, action and reaction, the rigid limit, Hertz);
 //! * `estimator`: the a posteriori estimate (what it sees, and how it tracks the true error of λ_n);
 //! * `error_bars`: the error bars of the forces and zone widths against a finer mesh, only when asked for;
+//! * `materials`: bodies of several materials (the layered block exact, γ0 from Γ_C's materials, adaptive layers);
 //! * `layout`: the house rules of the crate (the layer table of its folders, file sizes).
 //!
 //! Scenes and measures shared with the benches and examples come from the `tribo-testkit` crate.
@@ -38,6 +39,7 @@ mod history;
 mod invariants;
 mod kkt;
 mod layout;
+mod materials;
 mod methods;
 mod moved_supports;
 mod outputs;
