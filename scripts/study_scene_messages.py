@@ -60,6 +60,10 @@ STRICT = ConfigDict(extra="forbid")
 
 
 def _type(check: Callable[..., Any]) -> Any:
+    if check.__name__ == "_regions":
+        region = create_model("Region", __config__=STRICT, young=(Num, ...), poisson=(Num, ...),
+                              group=(StrictStr | None, None), box=(Annotated[list[Num], Field(min_length=4, max_length=4)] | None, None))
+        return list[region]
     schema = getattr(check, "json_schema", None)
     if schema is not None and "enum" in schema:
         return Literal[tuple(schema["enum"])]

@@ -145,6 +145,10 @@ class ProblemData:
     @property
     def poisson(self) -> float: ...
     @property
+    def materials(self) -> list[tuple[float, float]]: ...
+    @property
+    def regions(self) -> _Ints: ...
+    @property
     def contact(self) -> str: ...
     @property
     def clamped(self) -> list[str]: ...
@@ -191,8 +195,8 @@ class Problem(ProblemData):
         cls,
         mesh: Mesh | Sequence[tuple[str, Mesh, float, float, list[str], list[Support], list[tuple[str, tuple[float, float]]]]],
         *,
-        young: float | None = None,
-        poisson: float | None = None,
+        materials: Sequence[tuple[float, float]] | None = None,
+        regions: _ArrayLike | None = None,
         contact: str,
         clamped: Sequence[str] | None = None,
         supports: Sequence[Support] | None = None,
@@ -222,9 +226,7 @@ class Problem(ProblemData):
             tuple[
                 tuple[int, int, int, list[tuple[str, float]], float, float],
                 str,
-                list[tuple[int, int, int, int]],
-                Mesh,
-                _Floats1,
+                tuple[list[tuple[int, int, int, int]], Mesh, _Floats1, _Ints],
             ]
         ],
         str,

@@ -116,10 +116,11 @@ def check_solution(problem: Problem, solution: Solution) -> list[str]:
             "strain (check the units)"
         )
     reasons += _held_contact(problem) + _cut_zone(problem, solution)
-    if problem.poisson >= MAX_POISSON and problem.model == "plane_strain":
+    nu = max([problem.poisson, *(m[1] for m in getattr(problem, "materials", ()))])  # a body of several materials
+    if nu >= MAX_POISSON and problem.model == "plane_strain":
         reasons.append(
-            f"ν = {problem.poisson:.6g} is close to ½: P1 triangles lock "
-            f"(λ/μ = {_g(2 * problem.poisson / (1 - 2 * problem.poisson))}), so the body is too stiff and the contact pressure and force are too large, by more than any "
+            f"ν = {nu:.6g} is close to ½: P1 triangles lock "
+            f"(λ/μ = {_g(2 * nu / (1 - 2 * nu))}), so the body is too stiff and the contact pressure and force are too large, by more than any "
             "estimate here shows (Hertz at 33k unknowns: 4.0 % at ν = 0.49, 17 % at 0.499); no refinement repairs it"
         )
     t = np.asarray(problem.contact_tangent)

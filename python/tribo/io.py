@@ -2,7 +2,9 @@
 
 Reading: triangles become the mesh (turned counter-clockwise where needed, nodes that no triangle uses
 dropped), line cells become named edge sets: Gmsh physical groups (``gmsh:physical`` tags, named by
-``field_data``; an unnamed group is called by its tag number), or else meshio's ``cell_sets``.
+``field_data``; an unnamed group is called by its tag number), or else meshio's ``cell_sets``. Named sets of
+triangles (physical surfaces) are read apart, as masks (``read_triangle_groups``): the regions of a body of
+several materials.
 
 Writing: ``write_vtu("out/result.vtu", problem, solution)`` writes three files, all with z = 0:
 
@@ -13,7 +15,8 @@ Writing: ``write_vtu("out/result.vtu", problem, solution)`` writes three files, 
   σ_xz = σ_yz = 0 and σ_zz = ν (σ_xx + σ_yy) in plane strain, 0 in plane stress), its components ``sigma_xx``,
   ``sigma_yy``, ``sigma_xy``, ``sigma_zz``, ``von_mises``, ``error_indicator`` (the a posteriori η_K),
   ``traction_indicator`` (ζ_K, each triangle's part of the estimated error of the contact tractions) and
-  ``body`` (0, or for two bodies the body's index in ``problem.bodies``); for two bodies, ``u_n`` and
+  ``body`` (0, or for two bodies the body's index in ``problem.bodies``) and ``material`` (each triangle's
+  index into ``problem.materials``: its region); for two bodies, ``u_n`` and
   ``slip`` below are the jump between them and the gap is the initial one between the two lines;
 * ``result_contact.vtu``: Γ_C as line cells through its FE nodes, with point data ``u_n``, ``slip``,
   ``gap`` (g = g0 − δ: where the obstacle is, along n), ``current_gap`` (g − u_n: 0 in contact) and
@@ -50,6 +53,8 @@ from tribo.results import Solution
 __all__ = [
     "mesh_from_meshio",
     "read_mesh",
+    "read_triangle_groups",
+    "triangle_groups",
     "write_vtu",
     "contact_tables",
     "write_contact_csv",
@@ -248,17 +253,10 @@ def _blank(path: Path) -> bool:
     return True
 
 
-def read_mesh(path: str | Path, *, edge_sets: Mapping[str, str] | None = None) -> Mesh:
-    """Reads any mesh meshio can read (Gmsh .msh, VTK, XDMF, MED…) into a tribo Mesh.
-
-    Every failure to read is a MeshError naming the file. meshio raises many exception types, prints to
-    stdout and stderr, calls ``sys.exit`` when no reader accepts a file, and loops forever on a TetGen
-    file that is empty or blank: a blank file is refused first, the rest is caught and meshio's output kept
-    for the message.
-    """
+def _read_meshio(path: Path) -> Any:
+    """The meshio mesh of a file; every failure to read is a MeshError naming the file (``read_mesh``)."""
     import meshio
 
-    path = Path(path)
     try:
         blank = path.is_file() and _blank(path)
     except OSError:
@@ -268,16 +266,62 @@ def read_mesh(path: str | Path, *, edge_sets: Mapping[str, str] | None = None) -
     said = io.StringIO()
     try:
         with contextlib.redirect_stdout(said), contextlib.redirect_stderr(said):
-            m = meshio.read(str(path))
+            return meshio.read(str(path))
     except (Exception, SystemExit) as e:
         output = " ".join(said.getvalue().split()).removeprefix("Error: ")
         reason = (str(e) if not isinstance(e, SystemExit) else "") or output or type(e).__name__
         raise _mesh_error(f"cannot read mesh file {path}: {reason}", "UnreadableFile", path=str(path)) from e
+
+
+def read_mesh(path: str | Path, *, edge_sets: Mapping[str, str] | None = None) -> Mesh:
+    """Reads any mesh meshio can read (Gmsh .msh, VTK, XDMF, MED…) into a tribo Mesh.
+
+    Every failure to read is a MeshError naming the file. meshio raises many exception types, prints to
+    stdout and stderr, calls ``sys.exit`` when no reader accepts a file, and loops forever on a TetGen
+    file that is empty or blank: a blank file is refused first, the rest is caught and meshio's output kept
+    for the message.
+    """
+    path = Path(path)
+    m = _read_meshio(path)
     try:
         return mesh_from_meshio(m, edge_sets=edge_sets)
     except MeshError as e:
         e.add_note(f"in mesh file {path}")
         raise
+
+
+def triangle_groups(m: Any) -> dict[str, npt.NDArray[np.bool_]]:
+    """The named sets of triangles of a ``meshio.Mesh``, each as a mask over the triangles of the tribo Mesh
+    that ``mesh_from_meshio`` makes of it (the triangle blocks in file order): Gmsh physical surfaces
+    (``gmsh:physical`` tags of triangles, named by ``field_data``; an unnamed group by its tag number), or
+    else meshio's ``cell_sets``. For a body of several materials: ``regions[groups["coating"]] = 1``."""
+    blocks = [k for k, b in enumerate(m.cells) if b.type == "triangle"]
+    offsets = np.cumsum([0] + [len(m.cells[k].data) for k in blocks])
+    groups: dict[str, npt.NDArray[np.bool_]] = {}
+    physical = m.cell_data.get("gmsh:physical")
+    if physical is not None:
+        names = {int(td[0]): name for name, td in m.field_data.items() if len(td) >= 2 and int(td[1]) == 2}
+        tags = np.concatenate([np.asarray(physical[k]).reshape(-1) for k in blocks] or [np.zeros(0, np.int64)])
+        for tag in np.unique(tags):
+            groups[names.get(int(tag), str(int(tag)))] = tags == tag
+        return groups
+    for name, per_block in getattr(m, "cell_sets", {}).items():
+        mask = np.zeros(int(offsets[-1]), dtype=bool)
+        for k, start in zip(blocks, offsets[:-1]):
+            idx = per_block[k]
+            if idx is not None and len(idx) > 0:
+                idx = np.asarray(idx)
+                if not np.issubdtype(idx.dtype, np.integer) or idx.min() < 0 or idx.max() >= len(m.cells[k].data):
+                    raise _mesh_error(f"cell set '{name}' refers to triangles outside its block", "BadCellSet", name=name)
+                mask[start + idx] = True
+        if mask.any():
+            groups[name] = mask
+    return groups
+
+
+def read_triangle_groups(path: str | Path) -> dict[str, npt.NDArray[np.bool_]]:
+    """``triangle_groups`` of a mesh file, over the triangles of ``read_mesh(path)``."""
+    return triangle_groups(_read_meshio(Path(path)))
 
 
 # meshio's VTU writer compresses each array with the ``zlib`` module at zlib's default level (6) and has no
@@ -360,6 +404,9 @@ def write_vtu(path: str | Path, problem: Problem, solution: Solution, *, per_bod
             "traction_indicator": [solution.traction_estimator],
             # Which body each triangle belongs to (0 for one body; two bodies in the order given).
             "body": [np.repeat(np.arange(len(problem.bodies)), [s[3] - s[2] for _, s, _ in problem.bodies])],
+            # The material of each triangle: an index into problem.materials (a coating's, a layer's; per body
+            # for two).
+            "material": [np.asarray(problem.regions)],
         },
     )
     n = len(solution.node_abscissae)

@@ -72,10 +72,39 @@ def _loads(clamped: Any, supports: Any, tractions: Any) -> dict[str, Any]:
     return out
 
 
+def _materials(arguments: dict[str, Any]) -> dict[str, Any]:
+    """The material keywords as the compiled constructor takes them: ``young`` and ``poisson`` as one material,
+    or ``materials`` (pairs (E, ν)) with ``regions`` (each triangle's index into them), never both; nothing for
+    two bodies (``primary``), whose materials are their own."""
+    young, poisson, materials, regions = (arguments.get(k) for k in ("young", "poisson", "materials", "regions"))
+    out: dict[str, Any] = {}
+    if materials is None and regions is None:
+        if arguments.get("primary") is None:
+            for key, value in (("young", young), ("poisson", poisson)):
+                if value is None:
+                    raise TypeError(f"Problem() missing required keyword argument: '{key}'")
+            out["materials"] = [(young, poisson)]
+        elif young is not None or poisson is not None:
+            out["materials"] = []  # refused by the compiled constructor: with primary=, the material is per body
+        return out
+    if materials is None or regions is None or young is not None or poisson is not None:
+        raise _settings_error("several materials take materials=[(E, ν), …] and regions= together, without young "
+                              "and poisson")
+    try:
+        m = np.asarray(materials, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise _settings_error(f"materials must be pairs (E, ν), got {materials!r}") from e
+    if m.ndim != 2 or m.shape[1] != 2 or m.shape[0] == 0:
+        raise _settings_error(f"materials must be one or more pairs (E, ν), shape (n, 2), got shape {m.shape}")
+    return {"materials": [(float(e), float(nu)) for e, nu in m], "regions": regions}
+
+
 def _compiled_arguments(arguments: dict[str, Any]) -> dict[str, Any]:
     """The keywords of ``Problem`` as the compiled constructor takes them: the loads as lists
-    (``_loads``) and a callable gap as ``Obstacle.function``."""
-    out = {**arguments, **_loads(arguments.get("clamped"), arguments.get("supports"), arguments.get("tractions"))}
+    (``_loads``), several materials as ``_materials`` checks them, and a callable gap as ``Obstacle.function``."""
+    loads = _loads(arguments.get("clamped"), arguments.get("supports"), arguments.get("tractions"))
+    out = {k: v for k, v in {**arguments, **loads}.items() if k not in ("young", "poisson")}
+    out.update(_materials(arguments))
     obstacle = arguments.get("obstacle")
     if obstacle is not None and not isinstance(obstacle, _tribo.Obstacle):
         if not callable(obstacle):
@@ -186,8 +215,11 @@ class Problem(_tribo.Problem):
 
     ``Problem(mesh, *, young, poisson, contact, clamped=None, supports=None, obstacle=None, approach=None,
     shift=None, tractions=None, body_force=None, multiplier_ratio=None, multiplier_size=None,
-    multiplier_points=None, space=None, model=None)``: the body (a Mesh, Young's modulus and Poisson's ratio;
-    model 'plane_strain', the default, or 'plane_stress': a thin plate, forces per unit thickness), its
+    multiplier_points=None, space=None, model=None, materials=None, regions=None)``: the body (a Mesh, Young's
+    modulus and Poisson's ratio, or for a body of several materials, a coating on a substrate say, ``materials``
+    [(E, ν), …] and ``regions``, the index of each triangle's material, from ``tribo.io.read_regions`` or the
+    triangles' centroids; model 'plane_strain', the default, or 'plane_stress': a thin plate, forces per unit
+    thickness), its
     supports (edge sets clamped, or a list of Support), its loads (tractions: a dict edge set -> (tx, ty);
     body_force (fx, fy)), Γ_C (the edge set `contact`) and the obstacle with its motion (an
     Obstacle or a callable gap(xi), the approach δ and the tangential shift s), and the multiplier mesh T_H
@@ -468,27 +500,33 @@ class Problem(_tribo.Problem):
 
     def _adapt(
         self, options: dict[str, Any], adapt: tuple[Any, ...], *history: Any
-    ) -> tuple[Any, Problem, list[Level], str, list[tuple[_tribo.Mesh, npt.NDArray[np.float64], Any]]]:
+    ) -> tuple[Any, Problem, list[Level], str, list[tuple[_tribo.Mesh, npt.NDArray[np.float64], Any, Any]]]:
         """The compiled adaptive loop: its answer, the Problem of the last mesh, the levels as Level
         records, the stop, and each level's mesh with its T_H points and its bodies' spans."""
         answer, levels, stop = self._solve_adaptive(options, adapt, *history)
         records = [
             Level(unknowns=u, multipliers=q, triangles=t, estimate=dict(e), relative=r, seconds=s, status=st)  # type: ignore[arg-type]
-            for ((u, q, t, e, r, s), st, _, _, _) in levels
+            for ((u, q, t, e, r, s), st, _) in levels
         ]
-        meshes = [(mesh, xi, spans) for (_, _, spans, mesh, xi) in levels]
+        meshes = [(mesh, xi, spans, regions) for (_, _, (spans, mesh, xi, regions)) in levels]
         return answer, self.on_mesh(*meshes[-1]), records, stop, meshes
 
     def on_mesh(
-        self, mesh: _tribo.Mesh, multiplier_points: npt.ArrayLike, bodies: Sequence[Sequence[int]] | None = None
+        self, mesh: _tribo.Mesh, multiplier_points: npt.ArrayLike, bodies: Sequence[Sequence[int]] | None = None,
+        regions: npt.ArrayLike | None = None,
     ) -> Problem:
         """This problem (materials, supports, loads, obstacle or contact pair, multiplier space) on another
         mesh with the multiplier mesh T_H through ``multiplier_points`` (abscissae on Γ_C): how an adaptive
         solve hands back the problem of a level. For two bodies ``mesh`` is the two joined, as in
         ``problem.mesh``, and ``bodies`` gives each body's [first node, end, first triangle, end] in it (as
-        ``problem.bodies``; default this problem's)."""
+        ``problem.bodies``; default this problem's). A body of several materials needs the ``regions`` of
+        the new mesh's triangles (an adaptive level's are its own)."""
         arguments = {**self._arguments, "multiplier_ratio": None, "multiplier_size": None}
         arguments["multiplier_points"] = multiplier_points
+        if self._arguments.get("materials") is not None:
+            if regions is None:
+                raise _settings_error("a body of several materials needs the regions of the new mesh's triangles")
+            arguments["regions"] = regions
         if self.primary is None:
             return Problem(mesh, **arguments)
         spans = [s for _, s, _ in self.bodies] if bodies is None else bodies

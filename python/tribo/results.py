@@ -421,7 +421,7 @@ class _Levels(_Record):
     problem: Any
     levels: list[Level]
     stop: AdaptStop
-    meshes: list[tuple[Any, _Floats, list[list[int]]]] = dataclasses.field(default_factory=list)
+    meshes: list[tuple[Any, _Floats, list[list[int]], Any]] = dataclasses.field(default_factory=list)
 
     def level_problem(self, level: int) -> Any:
         """The Problem of level ``level`` (its mesh and T_H, the rest as ``problem``), to look at it or solve
@@ -445,8 +445,9 @@ class Adaptive(_Levels):
             (the next refinement would have exceeded it), 'max_levels', 'not_converged' (a level's solve
             did not converge), 'exact' (the estimate is zero) or 'interrupted' (the progress callback
             returned False).
-        meshes: each level's Mesh, T_H points and bodies' spans in the mesh (as ``problem.bodies``:
-            [first node, end, first triangle, end] per body); ``level_problem(k)`` builds level k's Problem.
+        meshes: each level's Mesh, T_H points, bodies' spans in the mesh (as ``problem.bodies``:
+            [first node, end, first triangle, end] per body) and triangles' regions (as ``problem.regions``);
+            ``level_problem(k)`` builds level k's Problem.
     """
 
     solution: Solution
@@ -465,8 +466,9 @@ class AdaptiveHistory(_Levels):
         levels: every level, the first (the given mesh) included; a level's estimate is that of its step
             (among those adapted on) with the largest relative estimate.
         stop: why the loop stopped, as ``Adaptive.stop``.
-        meshes: each level's Mesh, T_H points and bodies' spans in the mesh (as ``problem.bodies``:
-            [first node, end, first triangle, end] per body); ``level_problem(k)`` builds level k's Problem.
+        meshes: each level's Mesh, T_H points, bodies' spans in the mesh (as ``problem.bodies``:
+            [first node, end, first triangle, end] per body) and triangles' regions (as ``problem.regions``);
+            ``level_problem(k)`` builds level k's Problem.
     """
 
     history: History

@@ -28,7 +28,7 @@ import numpy as np
 
 from tribo._tribo import Mesh, Obstacle, Support, TriboError
 from tribo.checks import warn_missing_error_bars, warn_solution
-from tribo.io import read_mesh
+from tribo.io import read_mesh, read_triangle_groups
 from tribo.problem import Body, Problem, check_adapt
 from tribo.results import Adaptive, AdaptiveHistory, History, Solution
 # The schema's names, importable from here as before the split (``X as X``: re-exported).
@@ -211,6 +211,38 @@ class Scene:
                             tractions=entry.get("loads", {}).get("tractions")))
         return out
 
+    def materials(self, mesh: Mesh) -> dict[str, Any]:
+        """The material keywords of ``Problem``: ``young`` and ``poisson`` of ``[material]``, or with
+        ``[[material.regions]]`` the materials (``[material]`` first) and each triangle's region: the last
+        entry whose ``group`` (a physical surface of ``[body] mesh``) or ``box`` (by its centroid) holds it."""
+        entries = self.get("material", "regions") or []
+        base = (self.get("material", "young"), self.get("material", "poisson"))
+        if not entries:
+            return {"young": base[0], "poisson": base[1]}
+        centroids = np.asarray(mesh.points)[np.asarray(mesh.triangles)].mean(axis=1)
+        regions = np.zeros(mesh.n_triangles, dtype=np.int64)
+        groups: dict[str, Any] | None = None
+        for k, entry in enumerate(entries):
+            key = f"material.regions[{k}]"
+            if "group" in entry:
+                if "mesh" not in self.sections.get("body", {}):
+                    raise SceneError(f"scene key '{key}.group' needs a mesh file with physical surfaces ([body] "
+                                     "mesh); a rectangle's regions are boxes", f"{key}.group")
+                groups = read_triangle_groups(self.base_dir / self.get("body", "mesh")) if groups is None else groups
+                if entry["group"] not in groups:
+                    raise SceneError(f"scene key '{key}.group': the mesh file has no physical surface "
+                                     f"{entry['group']!r} (it has: {', '.join(sorted(groups)) or 'none'})",
+                                     f"{key}.group")
+                inside = groups[entry["group"]]
+            else:
+                x0, y0, x1, y1 = entry["box"]
+                inside = ((centroids[:, 0] >= x0) & (centroids[:, 0] <= x1) & (centroids[:, 1] >= y0)
+                          & (centroids[:, 1] <= y1))
+            if not inside.any():
+                raise SceneError(f"scene key '{key}' holds no triangle of the mesh", key)
+            regions[inside] = k + 1
+        return {"materials": [base, *((e["young"], e["poisson"]) for e in entries)], "regions": regions}
+
     def build(self) -> Problem:
         """The mesh and the problem the scene describes."""
         o = self.sections.get("obstacle", {})
@@ -225,10 +257,10 @@ class Scene:
                     gap=obstacle, body_force=loads.get("body_force"), multiplier_ratio=d.get("multiplier_ratio"),
                     multiplier_size=d.get("multiplier_size"), space=d.get("space"),
                 )
+            mesh = self.mesh()
             return Problem(
-                self.mesh(),
-                young=self.get("material", "young"),
-                poisson=self.get("material", "poisson"),
+                mesh,
+                **self.materials(mesh),
                 model=self.get("material", "model"),
                 clamped=self.get("supports", "clamped"),
                 supports=self.supports(),

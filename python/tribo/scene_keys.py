@@ -52,6 +52,10 @@ _GRID = {
 MEANINGS: dict[str, tuple[str, str, str | None]] = {
     **{f"body.{k}": v for k, v in _BODY.items()},
     **{f"material.{k}": v for k, v in _MATERIAL.items()},
+    "material.regions": ("Parts of the body of other materials (`[[material.regions]]`): each `young`, `poisson` and "
+                         "`group` (a physical surface of the mesh file) or `box = [x0, y0, x1, y1]` (the triangles "
+                         "whose centroid lies in it); a later one holds where two overlap", "—",
+                         "none: all of `[material]`"),
     "material.model": ('`"plane_strain"` (a long body) or `"plane_stress"` (a thin plate, forces per unit '
                        "thickness; one body, ν in (−1/2, 1/2))", "—", None),
     "supports.clamped": ("The edge sets held fixed (u = 0); or `[[supports]]` entries with `kind` (`clamp`, "

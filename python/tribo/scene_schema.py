@@ -9,7 +9,10 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     (a path relative to the scene file), whose named line sets are the edge sets. One of the two is
     required. A rectangle has the edge sets ``bottom``, ``right``, ``top``, ``left``.
 ``[material]``
-    ``young``, ``poisson`` (*required*); ``model``: ``"plane_strain"`` (default) or ``"plane_stress"``.
+    ``young``, ``poisson`` (*required*); ``model``: ``"plane_strain"`` (default) or ``"plane_stress"``;
+    ``[[material.regions]]``: parts of the body of other materials, each with ``young``, ``poisson`` and
+    ``group`` (a physical surface of the mesh file) or ``box = [x0, y0, x1, y1]`` (the triangles whose
+    centroid lies in it; put the interface on a grid line), a later one holding where two overlap.
 ``[supports]`` or ``[[supports]]`` (*required*, one of the two forms)
     ``[supports]`` with ``clamped``: an edge set name or a list of names (u = 0 there). Or a list of
     ``[[supports]]`` entries, each with ``kind`` and ``edge_set``: ``kind = "clamp"`` (u = 0),
@@ -107,12 +110,32 @@ Top-level ``title`` and ``description`` are free text. An unknown key or a value
 
 from __future__ import annotations
 
-import math
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from typing import Any
 
 from tribo._tribo import MAX_CELLS as _MAX_CELLS
-from tribo._tribo import TriboError, choices, solver_settings
+from tribo._tribo import choices, solver_settings
+from tribo.scene_values import (
+    MAX_HISTORY_STEPS,
+    Checker,
+    SceneError,
+    _boolean,
+    _choice,
+    _count,
+    _counts,
+    _every,
+    _grading,
+    _names,
+    _number,
+    _numbers,
+    _pair,
+    _pairs,
+    _path,
+    _paths,
+    _range,
+    _steps,
+    _string,
+)
 
 __all__ = [
     "BODY_KEYS",
@@ -143,162 +166,6 @@ RENAMED = {
 }
 
 
-class SceneError(TriboError):
-    """A scene file that cannot be read or has an unknown key or a bad value; the message names the key."""
-
-    def __init__(self, message: str, key: str | None = None) -> None:
-        super().__init__(message)
-        self.kind = "SceneError"
-        self.details: dict[str, Any] = {"key": key} if key is not None else {}
-
-
-# Value checkers: each returns the converted value or raises SceneError naming the key.
-Checker = Callable[[str, Any], Any]
-
-
-def _number(key: str, v: Any) -> float:
-    """A finite number.
-
-    TOML spells nan and inf, and an integer may be too large for a float: both are refused."""
-    if isinstance(v, bool) or not isinstance(v, (int, float)):
-        raise SceneError(f"scene key '{key}' must be a number, got {v!r}", key)
-    try:
-        x = float(v)
-    except OverflowError:  # an integer beyond the range of a float
-        x = math.inf
-    if not math.isfinite(x):
-        raise SceneError(f"scene key '{key}' must be a finite number, got {v!r}", key)
-    return x
-
-
-def _integer(key: str, v: Any) -> int:
-    if isinstance(v, bool) or not isinstance(v, int):
-        raise SceneError(f"scene key '{key}' must be an integer, got {v!r}", key)
-    return v
-
-
-def _count(largest: int) -> Checker:
-    def check(key: str, v: Any) -> int:
-        n = _integer(key, v)
-        if not 0 <= n <= largest:
-            raise SceneError(f"scene key '{key}' must be an integer in [0, {largest}], got {n}", key)
-        return n
-
-    check.__doc__ = f"An integer in [0, {largest}]."
-    check.json_schema = {"type": "integer", "minimum": 0, "maximum": largest}  # type: ignore[attr-defined]
-    return check
-
-
-def _boolean(key: str, v: Any) -> bool:
-    """true or false."""
-    if not isinstance(v, bool):
-        raise SceneError(f"scene key '{key}' must be true or false, got {v!r}", key)
-    return v
-
-
-def _string(key: str, v: Any) -> str:
-    """A string."""
-    if not isinstance(v, str):
-        raise SceneError(f"scene key '{key}' must be a string, got {v!r}", key)
-    return v
-
-
-def _pair(key: str, v: Any) -> tuple[float, float]:
-    """Two numbers [x, y]."""
-    if not (isinstance(v, list) and len(v) == 2):
-        raise SceneError(f"scene key '{key}' must be a list of two numbers, got {v!r}", key)
-    return (_number(key, v[0]), _number(key, v[1]))
-
-
-def _range(key: str, v: Any) -> tuple[float, float]:
-    """An interval [a, b] with a < b (a side of the rectangle)."""
-    a, b = _pair(key, v)
-    if not a < b:
-        raise SceneError(f"scene key '{key}' must be an increasing range [a, b] with a < b, got {v!r}", key)
-    return (a, b)
-
-
-def _numbers(key: str, v: Any) -> list[float]:
-    """A list of numbers."""
-    if not isinstance(v, list):
-        raise SceneError(f"scene key '{key}' must be a list of numbers, got {v!r}", key)
-    return [_number(key, x) for x in v]
-
-
-def _path(key: str, v: Any) -> float | list[float]:
-    """A number, or a list of at least two numbers (waypoints of a history path)."""
-    if isinstance(v, list):
-        if len(v) < 2:
-            raise SceneError(f"scene key '{key}' must be a number or a list of at least two waypoints, got {v!r}", key)
-        return _numbers(key, v)
-    return _number(key, v)
-
-
-def _counts(key: str, v: Any) -> int | list[int]:
-    """A positive step count, or a list of them (one per segment of a history path)."""
-    values = v if isinstance(v, list) else [v]
-    out = [_integer(key, x) for x in values]
-    if not out or any(not 1 <= n <= MAX_HISTORY_STEPS for n in out):
-        raise SceneError(f"scene key '{key}' must hold step counts in [1, {MAX_HISTORY_STEPS}], got {v!r}", key)
-    return out if isinstance(v, list) else out[0]
-
-
-def _every(key: str, v: Any) -> int:
-    """A positive integer: write every k-th step."""
-    n = _integer(key, v)
-    if n < 1:
-        raise SceneError(f"scene key '{key}' must be a positive integer (every k-th step), got {n}", key)
-    return n
-
-
-def _steps(key: str, v: Any) -> list[int]:
-    """A list of step indices (0-based)."""
-    if not isinstance(v, list) or any(isinstance(x, bool) or not isinstance(x, int) or x < 0 for x in v):
-        raise SceneError(f"scene key '{key}' must be a list of step numbers (integers ≥ 0), got {v!r}", key)
-    return list(v)
-
-
-def _names(key: str, v: Any) -> list[str]:
-    """An edge set name, or a list of names."""
-    if isinstance(v, str):
-        return [v]
-    if isinstance(v, list) and v and all(isinstance(x, str) for x in v):
-        return list(v)
-    raise SceneError(f"scene key '{key}' must be an edge set name or a non-empty list of names, got {v!r}", key)
-
-
-def _choice(*options: str) -> Checker:
-    def check(key: str, v: Any) -> str:
-        if v not in options:
-            raise SceneError(f"scene key '{key}' must be one of {', '.join(map(repr, options))}, got {v!r}", key)
-        return str(v)
-
-    check.__doc__ = f"One of {', '.join(map(repr, options))}."
-    check.json_schema = {"enum": list(options)}  # type: ignore[attr-defined]
-    return check
-
-
-def _grading(key: str, v: Any) -> str | tuple[float, float]:
-    """"auto", "none" or a segment [a, b] of the contact side."""
-    if isinstance(v, str):
-        return str(_choice("auto", "none")(key, v))
-    return _pair(key, v)
-
-
-def _pairs(key: str, v: Any) -> dict[str, tuple[float, float]]:
-    """A table edge_set = [tx, ty]."""
-    if not isinstance(v, dict):
-        raise SceneError(f"scene key '{key}' must be a table edge_set = [tx, ty]", key)
-    return {name: _pair(f"{key}.{name}", t) for name, t in v.items()}
-
-
-def _paths(key: str, v: Any) -> dict[str, float | list[float]]:
-    """A table of waypoint paths: prescribed displacement component → number or waypoints."""
-    if not isinstance(v, dict):
-        raise SceneError(f"scene key '{key}' must be a table \"set.x\" = waypoints", key)
-    return {name: _path(f"{key}.{name}", path) for name, path in v.items()}
-
-
 def _shape(key: str, v: Any) -> dict[str, Any]:
     """An obstacle shape as a table (the initial gap between two bodies): the keys of ``[obstacle]`` that
     describe a shape, checked as there."""
@@ -315,6 +182,49 @@ def _shape(key: str, v: Any) -> dict[str, Any]:
     return out
 
 
+def _regions(key: str, v: Any) -> list[dict[str, Any]]:
+    """A list of tables ``[[material.regions]]``: each a part of the body of another material, with ``young``,
+    ``poisson`` and where it lies, ``group`` (a physical surface of the mesh file) or ``box = [x0, y0, x1,
+    y1]`` (the triangles whose centroid lies in it).
+
+    The rest of the body is of ``[material]``; where two regions overlap, the later one holds."""
+    if not isinstance(v, list) or not all(isinstance(e, dict) for e in v):
+        raise SceneError(f"scene key '{key}' must be a list of tables [[{key}]], got {v!r}", key)
+    out = []
+    for k, entry in enumerate(v):
+        where = f"{key}[{k}]"
+        for name in entry:
+            if name not in ("young", "poisson", "group", "box"):
+                raise SceneError(f"scene key '{where}.{name}' is not known (known keys: young, poisson, group, "
+                                 "box)", f"{where}.{name}")
+        for name in ("young", "poisson"):
+            if name not in entry:
+                raise SceneError(f"scene key '{where}.{name}' is required", f"{where}.{name}")
+        if ("group" in entry) == ("box" in entry):
+            raise SceneError(f"scene key '{where}' needs one of group and box (where the material lies)", where)
+        region: dict[str, Any] = {name: _number(f"{where}.{name}", entry[name]) for name in ("young", "poisson")}
+        if "group" in entry:
+            region["group"] = _string(f"{where}.group", entry["group"])
+        else:
+            box = _numbers(f"{where}.box", entry["box"])
+            if len(box) != 4 or not (box[0] < box[2] and box[1] < box[3]):
+                raise SceneError(f"scene key '{where}.box' must be [x0, y0, x1, y1] with x0 < x1 and y0 < y1, got "
+                                 f"{entry['box']!r}", f"{where}.box")
+            region["box"] = box
+        out.append(region)
+    return out
+
+
+_regions.json_schema = {  # type: ignore[attr-defined]
+    "type": "array",
+    "items": {
+        "type": "object", "required": ["young", "poisson"], "additionalProperties": False,
+        "properties": {"young": {"type": "number"}, "poisson": {"type": "number"}, "group": {"type": "string"},
+                       "box": {"type": "array", "items": {"type": "number"}, "minItems": 4, "maxItems": 4}},
+    },
+}
+
+
 def _setting_checker(spec: dict[str, Any]) -> Checker:
     """The checker of one solver setting, from its kind in the core's table."""
     kind = spec["kind"]
@@ -329,7 +239,7 @@ def _setting_checker(spec: dict[str, Any]) -> Checker:
 
 SCHEMA: dict[str, dict[str, Checker]] = {
     "body": {"x": _range, "y": _range, "mesh": _string},
-    "material": {"young": _number, "poisson": _number, "model": _choice(*CHOICES["model"])},
+    "material": {"young": _number, "poisson": _number, "model": _choice(*CHOICES["model"]), "regions": _regions},
     "supports": {"clamped": _names},
     "loads": {"body_force": _pair, "tractions": _pairs},
     "contact": {"edge_set": _string, "secondary": _string, "primary": _string, "gap": _shape},
@@ -419,9 +329,6 @@ SHAPE_REQUIRED = {"flat": (), "circle": ("radius",), "parabola": ("radius",), "p
 # The most cells (nx · ny) a uniform rectangle may have: the limit of the core's Mesh.rectangle, checked here
 # before nx and ny are rounded to integers (an absurd h would overflow the binding's conversion).
 MAX_CELLS = _MAX_CELLS  # the core's limit (tribo.generate::MAX_CELLS)
-# The most steps a scene's history may have in all (each step keeps its solution in memory; the VTU files are
-# written for at most 200 of them unless write_every says otherwise).
-MAX_HISTORY_STEPS = 100_000
 
 
 def _check_obstacle(o: Mapping[str, Any], table: str = "obstacle") -> None:

@@ -18,7 +18,7 @@ use tribo::{
     Threshold,
 };
 
-use crate::convert::{callback, floats, pair, rows, setting_value, vec1};
+use crate::convert::{callback, floats, indices, pair, rows, setting_value, vec1};
 use crate::errors::to_pyerr;
 use crate::mesh::PyMesh;
 use crate::obstacle::{chain_gap_error, take_gap_error, PyObstacle};
@@ -36,10 +36,12 @@ pub struct ProblemData {
     approach: f64,
     /// Tangential shift s of the obstacle.
     shift: f64,
-    /// Young's modulus E.
+    /// Young's modulus E and Poisson's ratio ν (under Γ_C's first edge for several materials; the secondary's for two).
     young: f64,
-    /// Poisson's ratio ν.
     poisson: f64,
+    /// Every material (E, ν) by region, and the region of each triangle, (n_triangles,) int64.
+    materials: Vec<(f64, f64)>,
+    regions: Py<PyAny>,
     /// Name of the contact edge set.
     contact: String,
     /// Names of the clamped edge sets.
@@ -213,7 +215,7 @@ fn finish<T>(py: Python<'_>, result: tribo::Result<T>, error: Option<PyErr>) -> 
 impl PyProblem {
     #[new]
     #[pyo3(signature = (
-        mesh, *, young = None, poisson = None, contact, clamped = None, supports = None, obstacle = None, approach = None,
+        mesh, *, materials = None, regions = None, contact, clamped = None, supports = None, obstacle = None, approach = None,
         shift = None, tractions = None, body_force = None, multiplier_ratio = None, multiplier_size = None,
         multiplier_points = None, space = None, primary = None, model = None,
     ))]
@@ -221,8 +223,8 @@ impl PyProblem {
     fn new(
         py: Python<'_>,
         mesh: &Bound<'_, PyAny>,
-        young: Option<f64>,
-        poisson: Option<f64>,
+        materials: Option<Vec<(f64, f64)>>,
+        regions: Option<&Bound<'_, PyAny>>,
         contact: String,
         clamped: Option<Vec<String>>,
         supports: Option<Vec<PySupport>>,
@@ -255,7 +257,8 @@ impl PyProblem {
         let p = if let Some(primary) = &primary {
             // Two bodies (`tribo.Problem.two_bodies`, plane strain): `mesh` is their list, each with its own
             // material, supports and tractions; they move through their supports.
-            let given = [young.is_some(), poisson.is_some(), clamped.is_some(), supports.is_some(), model.is_some()];
+            let given =
+                [materials.is_some(), regions.is_some(), clamped.is_some(), supports.is_some(), model.is_some()];
             if given.into_iter().chain([tractions.is_some(), approach.is_some(), shift.is_some()]).any(|g| g) {
                 return Err(PyTypeError::new_err("with primary=, material, supports and tractions are per body"));
             }
@@ -264,11 +267,17 @@ impl PyProblem {
             let pair = tribo::ContactPair { secondary, primary, gap, multiplier_points, multiplier_space: space };
             py.detach(|| tribo::Problem::two_bodies([body(first), body(second)], pair, body_force))
         } else {
-            let missing = |k: &str| PyTypeError::new_err(format!("Problem() missing required keyword argument: '{k}'"));
-            let (young, poisson) = (young.ok_or_else(|| missing("young"))?, poisson.ok_or_else(|| missing("poisson"))?);
+            // One material or several (`tribo.Problem` gives `young`, `poisson` as one), each triangle's region.
+            let mesh_inner = mesh.cast::<PyMesh>()?.get().inner.clone();
+            let n = mesh_inner.n_triangles();
+            let region = regions.map_or(Ok(vec![0; n]), |r| indices(r, "regions", &[Some(n)], Settings))?;
+            let materials = materials.ok_or_else(|| PyTypeError::new_err("Problem() missing keyword 'materials'"))?;
+            let materials: Vec<Material> =
+                materials.into_iter().map(|(young, poisson)| Material { young, poisson }).collect();
             let (supports, tractions) = loads((supports.unwrap_or_default(), tractions.unwrap_or_default()));
             let spec = ProblemSpec {
-                material: Material { young, poisson },
+                // A placeholder where none is given: `with_materials` says so.
+                material: materials.first().copied().unwrap_or(Material { young: f64::NAN, poisson: 0.0 }),
                 model: model_given.unwrap_or_default(),
                 clamped: clamped.unwrap_or_default(),
                 supports,
@@ -279,8 +288,7 @@ impl PyProblem {
                 multiplier_points: points,
                 multiplier_space: space,
             };
-            let mesh_inner = mesh.cast::<PyMesh>()?.get().inner.clone();
-            py.detach(|| tribo::Problem::new(mesh_inner, spec))
+            py.detach(|| tribo::Problem::with_materials(mesh_inner, spec, tribo::Materials { materials, region }))
         }
         .map_err(|e| chain_gap_error(py, to_pyerr(e)))?;
         let (c, spec) = (&p.contact, &p.spec);
@@ -294,6 +302,8 @@ impl PyProblem {
             shift: spec.obstacle.shift,
             young: spec.material.young,
             poisson: spec.material.poisson,
+            materials: p.materials.materials.iter().map(|m| (m.young, m.poisson)).collect(),
+            regions: vec1(py, p.materials.region.iter().map(|&r| r as i64).collect::<Vec<_>>())?,
             contact: spec.contact.clone(),
             clamped: spec.clamped.clone(),
             supports: spec.supports.iter().map(|s| PySupport { inner: s.clone() }).collect(),
@@ -394,7 +404,10 @@ impl PyProblem {
         let level = |l: &Level| (l.unknowns, l.multipliers, l.triangles, l.estimate.named(), l.relative, l.seconds);
         let spans = |l: &Level| l.bodies.iter().map(|b| b.spans()).collect::<Vec<_>>();
         let mesh = |l: Level| {
-            Ok((level(&l), l.status.name(), spans(&l), PyMesh::from_core(py, l.mesh)?, vec1(py, &l.multiplier_mesh)?))
+            let (head, regions) =
+                ((level(&l), l.status.name()), l.regions.iter().map(|&r| r as i64).collect::<Vec<_>>());
+            let at = (spans(&l), PyMesh::from_core(py, l.mesh)?, vec1(py, &l.multiplier_mesh)?, vec1(py, regions)?);
+            Ok((head.0, head.1, at))
         };
         let levels = levels.into_iter().map(mesh).collect::<PyResult<Vec<_>>>()?;
         (answer, levels, stop.as_str()).into_pyobject(py)

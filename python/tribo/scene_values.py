@@ -1,0 +1,173 @@
+"""The value checkers of scene keys: each takes a key's name and its value (as ``tomllib`` reads it) and
+returns the converted value or raises ``SceneError`` naming the key. ``tribo.scene_schema`` assigns them to
+the keys; ``tribo.scene_keys`` reads their first lines and their JSON Schema."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+from tribo._tribo import TriboError
+
+__all__ = ["MAX_HISTORY_STEPS", "Checker", "SceneError"]
+
+# The most steps a scene's history may have in all (each step keeps its solution in memory; the VTU files are
+# written for at most 200 of them unless write_every says otherwise).
+MAX_HISTORY_STEPS = 100_000
+
+
+class SceneError(TriboError):
+    """A scene file that cannot be read or has an unknown key or a bad value; the message names the key."""
+
+    def __init__(self, message: str, key: str | None = None) -> None:
+        super().__init__(message)
+        self.kind = "SceneError"
+        self.details: dict[str, Any] = {"key": key} if key is not None else {}
+
+
+# Value checkers: each returns the converted value or raises SceneError naming the key.
+Checker = Callable[[str, Any], Any]
+
+
+def _number(key: str, v: Any) -> float:
+    """A finite number.
+
+    TOML spells nan and inf, and an integer may be too large for a float: both are refused."""
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        raise SceneError(f"scene key '{key}' must be a number, got {v!r}", key)
+    try:
+        x = float(v)
+    except OverflowError:  # an integer beyond the range of a float
+        x = math.inf
+    if not math.isfinite(x):
+        raise SceneError(f"scene key '{key}' must be a finite number, got {v!r}", key)
+    return x
+
+
+def _integer(key: str, v: Any) -> int:
+    if isinstance(v, bool) or not isinstance(v, int):
+        raise SceneError(f"scene key '{key}' must be an integer, got {v!r}", key)
+    return v
+
+
+def _count(largest: int) -> Checker:
+    def check(key: str, v: Any) -> int:
+        n = _integer(key, v)
+        if not 0 <= n <= largest:
+            raise SceneError(f"scene key '{key}' must be an integer in [0, {largest}], got {n}", key)
+        return n
+
+    check.__doc__ = f"An integer in [0, {largest}]."
+    check.json_schema = {"type": "integer", "minimum": 0, "maximum": largest}  # type: ignore[attr-defined]
+    return check
+
+
+def _boolean(key: str, v: Any) -> bool:
+    """true or false."""
+    if not isinstance(v, bool):
+        raise SceneError(f"scene key '{key}' must be true or false, got {v!r}", key)
+    return v
+
+
+def _string(key: str, v: Any) -> str:
+    """A string."""
+    if not isinstance(v, str):
+        raise SceneError(f"scene key '{key}' must be a string, got {v!r}", key)
+    return v
+
+
+def _pair(key: str, v: Any) -> tuple[float, float]:
+    """Two numbers [x, y]."""
+    if not (isinstance(v, list) and len(v) == 2):
+        raise SceneError(f"scene key '{key}' must be a list of two numbers, got {v!r}", key)
+    return (_number(key, v[0]), _number(key, v[1]))
+
+
+def _range(key: str, v: Any) -> tuple[float, float]:
+    """An interval [a, b] with a < b (a side of the rectangle)."""
+    a, b = _pair(key, v)
+    if not a < b:
+        raise SceneError(f"scene key '{key}' must be an increasing range [a, b] with a < b, got {v!r}", key)
+    return (a, b)
+
+
+def _numbers(key: str, v: Any) -> list[float]:
+    """A list of numbers."""
+    if not isinstance(v, list):
+        raise SceneError(f"scene key '{key}' must be a list of numbers, got {v!r}", key)
+    return [_number(key, x) for x in v]
+
+
+def _path(key: str, v: Any) -> float | list[float]:
+    """A number, or a list of at least two numbers (waypoints of a history path)."""
+    if isinstance(v, list):
+        if len(v) < 2:
+            raise SceneError(f"scene key '{key}' must be a number or a list of at least two waypoints, got {v!r}", key)
+        return _numbers(key, v)
+    return _number(key, v)
+
+
+def _counts(key: str, v: Any) -> int | list[int]:
+    """A positive step count, or a list of them (one per segment of a history path)."""
+    values = v if isinstance(v, list) else [v]
+    out = [_integer(key, x) for x in values]
+    if not out or any(not 1 <= n <= MAX_HISTORY_STEPS for n in out):
+        raise SceneError(f"scene key '{key}' must hold step counts in [1, {MAX_HISTORY_STEPS}], got {v!r}", key)
+    return out if isinstance(v, list) else out[0]
+
+
+def _every(key: str, v: Any) -> int:
+    """A positive integer: write every k-th step."""
+    n = _integer(key, v)
+    if n < 1:
+        raise SceneError(f"scene key '{key}' must be a positive integer (every k-th step), got {n}", key)
+    return n
+
+
+def _steps(key: str, v: Any) -> list[int]:
+    """A list of step indices (0-based)."""
+    if not isinstance(v, list) or any(isinstance(x, bool) or not isinstance(x, int) or x < 0 for x in v):
+        raise SceneError(f"scene key '{key}' must be a list of step numbers (integers ≥ 0), got {v!r}", key)
+    return list(v)
+
+
+def _names(key: str, v: Any) -> list[str]:
+    """An edge set name, or a list of names."""
+    if isinstance(v, str):
+        return [v]
+    if isinstance(v, list) and v and all(isinstance(x, str) for x in v):
+        return list(v)
+    raise SceneError(f"scene key '{key}' must be an edge set name or a non-empty list of names, got {v!r}", key)
+
+
+def _choice(*options: str) -> Checker:
+    def check(key: str, v: Any) -> str:
+        if v not in options:
+            raise SceneError(f"scene key '{key}' must be one of {', '.join(map(repr, options))}, got {v!r}", key)
+        return str(v)
+
+    check.__doc__ = f"One of {', '.join(map(repr, options))}."
+    check.json_schema = {"enum": list(options)}  # type: ignore[attr-defined]
+    return check
+
+
+def _grading(key: str, v: Any) -> str | tuple[float, float]:
+    """"auto", "none" or a segment [a, b] of the contact side."""
+    if isinstance(v, str):
+        return str(_choice("auto", "none")(key, v))
+    return _pair(key, v)
+
+
+def _pairs(key: str, v: Any) -> dict[str, tuple[float, float]]:
+    """A table edge_set = [tx, ty]."""
+    if not isinstance(v, dict):
+        raise SceneError(f"scene key '{key}' must be a table edge_set = [tx, ty]", key)
+    return {name: _pair(f"{key}.{name}", t) for name, t in v.items()}
+
+
+def _paths(key: str, v: Any) -> dict[str, float | list[float]]:
+    """A table of waypoint paths: prescribed displacement component → number or waypoints."""
+    if not isinstance(v, dict):
+        raise SceneError(f"scene key '{key}' must be a table \"set.x\" = waypoints", key)
+    return {name: _path(f"{key}.{name}", path) for name, path in v.items()}

@@ -1,0 +1,230 @@
+"""Bodies of several materials from Python: ``materials`` and ``regions`` (from centroids or a Gmsh file's
+physical surfaces), the layered block against its exact answer, levels that keep their layers, the VTU
+``material`` field read back with meshio, and the refusals."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import meshio
+import numpy as np
+import pytest
+
+import tribo
+from tribo.io import read_mesh, read_triangle_groups, write_vtu
+
+STIFF, SOFT = (1000.0, 0.25), (200.0, 0.35)
+
+
+def _centroids(mesh: tribo.Mesh) -> np.ndarray:
+    return np.asarray(mesh.points)[np.asarray(mesh.triangles)].mean(axis=1)
+
+
+def _layered(mesh: tribo.Mesh, regions: np.ndarray, **kw: object) -> tribo.Problem:
+    """The square on the flat, clamped on top, on rollers on its sides, pushed up 1e-3 by the obstacle."""
+    return tribo.Problem(mesh, materials=[STIFF, SOFT], regions=regions, contact="bottom", clamped="top",
+                         supports=[tribo.Support.roller("left"), tribo.Support.roller("right")], approach=1e-3, **kw)
+
+
+def _uniaxial(e: float, nu: float) -> float:
+    return e * (1 - nu) / ((1 + nu) * (1 - 2 * nu))
+
+
+def test_a_layered_block_is_exact_and_names_its_materials(tmp_path: Path) -> None:
+    mesh = tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 6, 6, diagonal="alternating")
+    regions = (_centroids(mesh)[:, 1] > 0.5).astype(np.int64)
+    problem = _layered(mesh, regions)
+    assert problem.materials == [STIFF, SOFT]
+    np.testing.assert_array_equal(problem.regions, regions)
+    assert (problem.young, problem.poisson) == STIFF, "the material on Γ_C"
+    solution = problem.solve(friction="coulomb", mu=0.3)
+    assert solution.report.status == "converged"
+    # Uniaxial strain: σ_yy = −p in both layers, δ = p (½ / M₁ + ½ / M₂); P1 holds it exactly. The QP's
+    # relative tolerance (1e-8) times the condition of this small H bounds what is left.
+    p = 1e-3 / (0.5 / _uniaxial(*STIFF) + 0.5 / _uniaxial(*SOFT))
+    np.testing.assert_allclose(solution.lambda_n, p, rtol=1e-6)
+    np.testing.assert_allclose(solution.stress[:, 1], -p, rtol=1e-6)
+    nu = np.array([STIFF[1], SOFT[1]])[regions]
+    np.testing.assert_allclose(solution.stress[:, 0], -p * nu / (1 - nu), rtol=1e-6)
+    # The VTU body file carries each triangle's material, read back with meshio.
+    write_vtu(tmp_path / "layered.vtu", problem, solution)
+    back = meshio.read(tmp_path / "layered.vtu")
+    np.testing.assert_array_equal(back.cell_data["material"][0], regions)
+
+
+def test_adaptive_levels_keep_their_layers() -> None:
+    mesh = tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 6, 6, diagonal="alternating")
+    regions = (_centroids(mesh)[:, 1] > 0.5).astype(np.int64)
+    problem = tribo.Problem(mesh, materials=[STIFF, SOFT], regions=regions, contact="bottom", clamped="top",
+                            obstacle=tribo.Obstacle.parabola(1.0, 0.5), approach=1e-3)
+    adaptive = problem.solve_adaptive(tol=0.01, max_levels=4)
+    assert len(adaptive.levels) == 4
+    for k in range(len(adaptive.levels)):
+        level = adaptive.level_problem(k)
+        np.testing.assert_array_equal(level.regions, _centroids(level.mesh)[:, 1] > 0.5)
+    assert adaptive.problem.materials == [STIFF, SOFT]
+    with pytest.raises(tribo.SettingsError, match="needs the regions"):
+        problem.on_mesh(adaptive.problem.mesh, adaptive.problem.multiplier_mesh)
+
+
+# The unit square of four triangles around its centre, the lower two in physical surface "coating" (3), the
+# upper two in "substrate" (4).
+MSH22 = """$MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+4
+1 1 "bottom"
+1 2 "top"
+2 3 "coating"
+2 4 "substrate"
+$EndPhysicalNames
+$Nodes
+5
+1 0 0 0
+2 1 0 0
+3 1 1 0
+4 0 1 0
+5 0.5 0.5 0
+$EndNodes
+$Elements
+6
+1 1 2 1 1 1 2
+2 1 2 2 3 3 4
+3 2 2 4 1 2 3 5
+4 2 2 3 1 1 2 5
+5 2 2 4 1 3 4 5
+6 2 2 3 1 4 1 5
+$EndElements
+"""
+
+
+def test_physical_surfaces_of_a_gmsh_file_are_the_regions(tmp_path: Path) -> None:
+    path = tmp_path / "coated.msh"
+    path.write_text(MSH22)
+    mesh, groups = read_mesh(path), read_triangle_groups(path)
+    assert sorted(groups) == ["coating", "substrate"]
+    np.testing.assert_array_equal(groups["coating"], [False, True, False, True])
+    assert not (groups["coating"] & groups["substrate"]).any() and (groups["coating"] | groups["substrate"]).all()
+    regions = np.zeros(mesh.n_triangles, dtype=np.int64)
+    regions[groups["substrate"]] = 1
+    problem = tribo.Problem(mesh, materials=[STIFF, SOFT], regions=regions, contact="bottom", clamped="top")
+    np.testing.assert_array_equal(problem.regions, [1, 0, 1, 0])
+    assert (problem.young, problem.poisson) == STIFF, "the coating lies under Γ_C"
+    # meshio's cell_sets (other formats) name triangles too.
+    m = meshio.read(path)
+    plain = meshio.Mesh(m.points, [("triangle", np.concatenate([b.data for b in m.cells if b.type == "triangle"]))],
+                        cell_sets={"coating": [np.array([1, 3])]})
+    np.testing.assert_array_equal(tribo.io.triangle_groups(plain)["coating"], [False, True, False, True])
+
+
+@pytest.mark.parametrize(
+    ("keywords", "error", "says"),
+    [
+        ({"materials": [STIFF]}, tribo.SettingsError, "together"),
+        ({"regions": [0] * 72}, tribo.SettingsError, "together"),
+        ({"materials": [STIFF], "regions": [0] * 72, "young": 1.0}, tribo.SettingsError, "without young"),
+        ({"materials": [], "regions": [0] * 72}, tribo.SettingsError, "one or more pairs"),
+        ({"materials": [[1.0, 0.3, 2.0]], "regions": [0] * 72}, tribo.SettingsError, "shape"),
+        ({"materials": [STIFF], "regions": [0] * 71}, tribo.SettingsError, "shape"),
+        ({"materials": [STIFF], "regions": [-1] + [0] * 71}, tribo.SettingsError, "non-negative"),
+        ({"materials": [STIFF], "regions": [0.5] * 72}, tribo.SettingsError, "integers"),
+        ({"materials": [STIFF], "regions": [1] * 72}, tribo.SettingsError, "beyond the 1 materials"),
+        ({"materials": [STIFF, (-5.0, 0.3)], "regions": [0] * 72}, tribo.SettingsError, "Young's modulus"),
+        ({"young": 1.0}, TypeError, "poisson"),
+    ],
+)
+def test_bad_materials_are_refused(keywords: dict[str, object], error: type[Exception], says: str) -> None:
+    mesh = tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 6, 6)
+    with pytest.raises(error, match=says):
+        tribo.Problem(mesh, contact="bottom", clamped="top", **keywords)  # type: ignore[arg-type]
+
+
+COATED_SCENE = """
+title = "Hertz on a coating"
+[body]
+x = [-2.0, 2.0]
+y = [-2.0, 0.0]
+[material]
+young = 200.0
+poisson = 0.3
+[[material.regions]]
+young = 600.0
+poisson = 0.25
+box = [-2.0, -0.25, 2.0, 0.0]
+[supports]
+clamped = "bottom"
+[contact]
+edge_set = "top"
+[obstacle]
+shape = "parabola"
+radius = 1.0
+approach = 0.01
+[discretization]
+h = 0.25
+h_min = 0.01
+[friction]
+mu = 0.3
+"""
+
+
+def test_a_scene_gives_its_regions_by_box_and_by_physical_surface(tmp_path: Path) -> None:
+    import tomllib
+
+    from tribo.run import run_scene
+    from tribo.scene import load_scene, parse_scene
+
+    scene = parse_scene(tomllib.loads(COATED_SCENE))
+    problem = scene.build()
+    assert problem.materials == [(200.0, 0.3), (600.0, 0.25)]
+    np.testing.assert_array_equal(problem.regions, _centroids(problem.mesh)[:, 1] > -0.25)
+    # The graded mesh has the interface on its edges: no triangle straddles it.
+    y = np.asarray(problem.mesh.points)[np.asarray(problem.mesh.triangles), 1]
+    assert ((y >= -0.25 - 1e-12).all(axis=1) | (y <= -0.25 + 1e-12).all(axis=1)).all()
+    assert (problem.young, problem.poisson) == (600.0, 0.25), "the coating lies under Γ_C"
+    # tribo run writes each triangle's material into the body file.
+    _, _, files = run_scene(scene, tmp_path / "out", plots=False)
+    body = meshio.read(next(f for f in files if f.name == "result.vtu"))
+    np.testing.assert_array_equal(body.cell_data["material"][0], problem.regions)
+    # A mesh file's physical surface: its triangles take the region's material.
+    (tmp_path / "coated.msh").write_text(MSH22)
+    (tmp_path / "file.toml").write_text("""
+[body]
+mesh = "coated.msh"
+[material]
+young = 200.0
+poisson = 0.3
+[[material.regions]]
+young = 50.0
+poisson = 0.4
+group = "substrate"
+[supports]
+clamped = "top"
+[contact]
+edge_set = "bottom"
+""")
+    problem = load_scene(tmp_path / "file.toml").build()
+    np.testing.assert_array_equal(problem.regions, [1, 0, 1, 0])
+
+
+@pytest.mark.parametrize(
+    ("region", "says"),
+    [
+        ('young = 1.0\npoisson = 0.3\ngroup = "coating"', "needs a mesh file"),
+        ("young = 1.0\npoisson = 0.3\nbox = [5.0, 5.0, 6.0, 6.0]", "holds no triangle"),
+        ('young = 1.0\npoisson = 0.3\nbox = [0.0, 0.0, 1.0, 1.0]\ngroup = "a"', "one of group and box"),
+        ("young = 1.0\nbox = [0.0, 0.0, 1.0, 1.0]", "'material.regions[0].poisson' is required"),
+        ("young = 1.0\npoisson = 0.3\nbox = [1.0, 0.0, 0.0, 1.0]", "x0 < x1"),
+        ("young = 1.0\npoisson = 0.3\nbox = [0.0, 0.0, 1.0]", "x0 < x1"),
+        ("young = 1.0\npoisson = 0.3\nbox = [0.0, 0.0, 1.0, 1.0]\nshape = 2", "'material.regions[0].shape' is not known"),
+    ],
+)
+def test_bad_regions_in_a_scene_are_scene_errors(region: str, says: str) -> None:
+    import tomllib
+
+    from tribo.scene import SceneError, parse_scene
+
+    text = COATED_SCENE.replace("young = 600.0\npoisson = 0.25\nbox = [-2.0, -0.25, 2.0, 0.0]", region)
+    with pytest.raises(SceneError, match=re.escape(says)):
+        parse_scene(tomllib.loads(text)).build()
