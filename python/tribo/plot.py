@@ -118,16 +118,18 @@ def _edge_steps(solution: Solution, values: npt.NDArray[np.float64]) -> tuple[An
 def hertz_pressure(problem: Problem, solution: Solution) -> tuple[np.ndarray, np.ndarray] | None:
     """The 2D Hertz pressure of the computed normal force for a circle or parabola (rigid, on an elastic
     half-plane: a² = 4PR/(πE*), E* = E/(1 − ν²) in plane strain and E in plane stress, p = (2P/(πa))
-    √(1 − (ξ − c)²/a²)), as (ξ, p) over the contact width; between two bodies (plane strain), for the combined
-    modulus 1/E* = Σ (1 − ν_i²)/E_i of their materials. None for other gaps or without contact."""
+    √(1 − (ξ − c)²/a²)), as (ξ, p) over the contact width; between two bodies, for the combined modulus
+    1/E* = Σ 1/E*_i of their materials. None for other gaps, without contact, or for a body of several materials."""
     o = problem.obstacle
     p_total = solution.normal_force
     if o.radius is None or o.center is None or not p_total > 0.0:
         return None
-    if problem.primary is None:
-        e_star = problem.young / (1.0 - problem.poisson**2 if problem.model == "plane_strain" else 1.0)
-    else:  # the two bodies' (name, mesh, young, poisson, …) as given to Problem.two_bodies
-        e_star = 1.0 / sum((1.0 - body[3] ** 2) / body[2] for body in problem._source)
+    per_body = problem._source if problem.primary is not None else [(None, None, problem.materials)]
+    if any(len(body[2]) > 1 for body in per_body):
+        return None  # a coated body: Hertz's half-plane is no reference (study 21 has one)
+    # Each body's one material (the two bodies' (name, mesh, materials, …) as given to Problem.two_bodies).
+    strain = problem.model == "plane_strain"
+    e_star = 1.0 / sum((1.0 - (nu**2 if strain else 0.0)) / e for body in per_body for e, nu in body[2])
     a = math.sqrt(4.0 * p_total * o.radius / (math.pi * e_star))
     xi = o.center + a * np.linspace(-1.0, 1.0, 201)
     return xi, 2.0 * p_total / (math.pi * a) * np.sqrt(np.clip(1.0 - ((xi - o.center) / a) ** 2, 0.0, None))

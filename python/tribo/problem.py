@@ -72,30 +72,31 @@ def _loads(clamped: Any, supports: Any, tractions: Any) -> dict[str, Any]:
     return out
 
 
-def _materials(arguments: dict[str, Any]) -> dict[str, Any]:
+def _materials(arguments: dict[str, Any], what: str = "Problem()") -> dict[str, Any]:
     """The material keywords as the compiled constructor takes them: ``young`` and ``poisson`` as one material,
     or ``materials`` (pairs (E, ν)) with ``regions`` (each triangle's index into them), never both; nothing for
     two bodies (``primary``), whose materials are their own."""
     young, poisson, materials, regions = (arguments.get(k) for k in ("young", "poisson", "materials", "regions"))
+    prefix = "" if what == "Problem()" else f"{what}: "
     out: dict[str, Any] = {}
     if materials is None and regions is None:
         if arguments.get("primary") is None:
             for key, value in (("young", young), ("poisson", poisson)):
                 if value is None:
-                    raise TypeError(f"Problem() missing required keyword argument: '{key}'")
+                    raise TypeError(f"{what} missing required keyword argument: '{key}'")
             out["materials"] = [(young, poisson)]
         elif young is not None or poisson is not None:
             out["materials"] = []  # refused by the compiled constructor: with primary=, the material is per body
         return out
     if materials is None or regions is None or young is not None or poisson is not None:
-        raise _settings_error("several materials take materials=[(E, ν), …] and regions= together, without young "
-                              "and poisson")
+        raise _settings_error(f"{prefix}several materials take materials=[(E, ν), …] and regions= together, "
+                              "without young and poisson")
     try:
         m = np.asarray(materials, dtype=np.float64)
     except (TypeError, ValueError) as e:
-        raise _settings_error(f"materials must be pairs (E, ν), got {materials!r}") from e
+        raise _settings_error(f"{prefix}materials must be pairs (E, ν), got {materials!r}") from e
     if m.ndim != 2 or m.shape[1] != 2 or m.shape[0] == 0:
-        raise _settings_error(f"materials must be one or more pairs (E, ν), shape (n, 2), got shape {m.shape}")
+        raise _settings_error(f"{prefix}materials must be one or more pairs (E, ν), shape (n, 2), got shape {m.shape}")
     return {"materials": [(float(e), float(nu)) for e, nu in m], "regions": regions}
 
 
@@ -139,21 +140,32 @@ def check_adapt(
 
 @dataclass(frozen=True)
 class Body:
-    """One elastic body of a two-body problem (``Problem.two_bodies``): its mesh, material (plane strain)
-    and supports and loads, with the edge set names of its own mesh (the problem calls them
-    ``'name.set'``)."""
+    """One elastic body of a two-body problem (``Problem.two_bodies``): its mesh, material (``young`` and
+    ``poisson``; or a coated body's ``materials`` [(E, ν), …] and ``regions``, each triangle's index into them)
+    and supports and loads, with the edge set names of its own mesh (the problem calls them ``'name.set'``)."""
 
     name: str
     mesh: _tribo.Mesh
-    young: float
-    poisson: float
+    young: float | None = None
+    poisson: float | None = None
     clamped: str | Sequence[str] | None = None
     supports: _tribo.Support | Sequence[_tribo.Support] | None = None
     tractions: Mapping[str, Any] | None = None
+    materials: Sequence[tuple[float, float]] | None = None
+    regions: npt.ArrayLike | None = None
 
     def _compiled(self) -> tuple[Any, ...]:
         loads = _loads(self.clamped, self.supports, self.tractions)
-        return (self.name, self.mesh, self.young, self.poisson, loads.get("clamped", []), loads.get("supports", []),
+        given = _materials({"young": self.young, "poisson": self.poisson, "materials": self.materials,
+                            "regions": self.regions}, what=f"Body {self.name!r}")
+        regions = given.get("regions")
+        if regions is not None:
+            r = np.asarray(regions)
+            if r.ndim != 1 or not (r.size == 0 or np.issubdtype(r.dtype, np.integer)) or (r < 0).any():
+                raise _settings_error(f"Body {self.name!r}: regions must be one non-negative integer per triangle, "
+                                      f"got {r.dtype} of shape {r.shape}")
+            regions = r.astype(np.int64).tolist()
+        return (self.name, self.mesh, given["materials"], regions, loads.get("clamped", []), loads.get("supports", []),
                 loads.get("tractions", []))
 
 
@@ -238,7 +250,7 @@ class Problem(_tribo.Problem):
 
     @property
     def model(self) -> str:
-        """``'plane_strain'`` or ``'plane_stress'`` (two bodies are in plane strain)."""
+        """``'plane_strain'`` or ``'plane_stress'``."""
         return str(self._arguments.get("model") or _tribo.solver_defaults()["model"]).lower()
 
     @classmethod
@@ -255,11 +267,13 @@ class Problem(_tribo.Problem):
         multiplier_size: float | None = None,
         multiplier_points: npt.ArrayLike | None = None,
         space: Literal["P0", "P1", "p0", "p1"] | None = None,
+        model: Literal["plane_strain", "plane_stress"] | None = None,
     ) -> Problem:
         """Two elastic bodies in contact along one straight line: ``secondary`` ('body.edge_set') carries
         the multipliers T_H and the stabilization, ``primary`` meets it with the opposite normal; ``gap``
         is the initial gap between them as an obstacle shape (flat: touching; a parabola for two curved
-        profiles). Each body has its own material, supports and tractions (``Body``); a motion its supports
+        profiles). Each body has its own material (or materials: a coated body), supports and tractions (``Body``);
+        ``model`` is both bodies' ('plane_strain', the default, or 'plane_stress': two thin plates); a motion its supports
         leave free is held by the contact alone (a punch pushed by a load); ``body_force`` acts on both. The problem solves, solves histories and plots
         as a one-body problem; ``bodies`` says where each body lies in ``mesh`` (the two joined, edge sets
         renamed 'body.set'); adaptive refinement bisects both bodies."""
@@ -269,7 +283,7 @@ class Problem(_tribo.Problem):
             [first._compiled(), second._compiled()],
             contact=secondary, primary=primary, obstacle=gap, body_force=body_force,
             multiplier_ratio=multiplier_ratio, multiplier_size=multiplier_size, multiplier_points=multiplier_points,
-            space=space,
+            space=space, model=model,
         )
 
     def __repr__(self) -> str:
@@ -532,7 +546,14 @@ class Problem(_tribo.Problem):
         spans = [s for _, s, _ in self.bodies] if bodies is None else bodies
         if len(spans) != 2:
             raise _contact_error(f"bodies must give the spans of the two bodies, got {len(spans)}")
-        compiled = [(b[0], _body_mesh(mesh, b[0], s), *b[2:]) for b, s in zip(self._source, spans, strict=True)]
+        if regions is None and any(b[3] is not None for b in self._source):
+            raise _settings_error("a body of several materials needs the regions of the new mesh's triangles")
+        compiled, offset = [], 0
+        for b, s in zip(self._source, spans, strict=True):
+            # Each body's regions from the joined mesh's (which index both bodies' materials, the first's first).
+            own = None if regions is None else (np.asarray(regions)[s[2]:s[3]] - offset).tolist()
+            compiled.append((b[0], _body_mesh(mesh, b[0], s), b[2], own if own is not None else b[3], *b[4:]))
+            offset += len(b[2])
         return Problem(compiled, **arguments)
 
     @property

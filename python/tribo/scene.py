@@ -205,30 +205,33 @@ class Scene:
                     "graded toward it", "contact.secondary"
                 )
             mesh = self._mesh(entry, entry.get("discretization", {}), side, where, f"{where}.discretization", side_key)
-            material = entry["material"]
-            out.append(Body(entry["name"], mesh, material["young"], material["poisson"],
+            out.append(Body(entry["name"], mesh, **self.materials(mesh, entry["material"], entry, f"{where}.material"),
                             supports=[_support(e) for e in entry["supports"]],
                             tractions=entry.get("loads", {}).get("tractions")))
         return out
 
-    def materials(self, mesh: Mesh) -> dict[str, Any]:
-        """The material keywords of ``Problem``: ``young`` and ``poisson`` of ``[material]``, or with
-        ``[[material.regions]]`` the materials (``[material]`` first) and each triangle's region: the last
-        entry whose ``group`` (a physical surface of ``[body] mesh``) or ``box`` (by its centroid) holds it."""
-        entries = self.get("material", "regions") or []
-        base = (self.get("material", "young"), self.get("material", "poisson"))
+    def materials(self, mesh: Mesh, material: Mapping[str, Any] | None = None, body: Mapping[str, Any] | None = None,
+                  where: str = "material") -> dict[str, Any]:
+        """The material keywords of ``Problem`` (or ``Body``): ``young`` and ``poisson`` of ``[material]`` (or a
+        body's ``material``), or with ``regions`` the materials (the table's own first) and each triangle's
+        region: the last entry whose ``group`` (a physical surface of the body's mesh file) or ``box`` (by its
+        centroid) holds it."""
+        material = self.sections.get("material", {}) if material is None else material
+        body = self.sections.get("body", {}) if body is None else body
+        entries = material.get("regions") or []
+        base = (material.get("young"), material.get("poisson"))
         if not entries:
             return {"young": base[0], "poisson": base[1]}
         centroids = np.asarray(mesh.points)[np.asarray(mesh.triangles)].mean(axis=1)
         regions = np.zeros(mesh.n_triangles, dtype=np.int64)
         groups: dict[str, Any] | None = None
         for k, entry in enumerate(entries):
-            key = f"material.regions[{k}]"
+            key = f"{where}.regions[{k}]"
             if "group" in entry:
-                if "mesh" not in self.sections.get("body", {}):
+                if "mesh" not in body:
                     raise SceneError(f"scene key '{key}.group' needs a mesh file with physical surfaces ([body] "
                                      "mesh); a rectangle's regions are boxes", f"{key}.group")
-                groups = read_triangle_groups(self.base_dir / self.get("body", "mesh")) if groups is None else groups
+                groups = read_triangle_groups(self.base_dir / body["mesh"]) if groups is None else groups
                 if entry["group"] not in groups:
                     raise SceneError(f"scene key '{key}.group': the mesh file has no physical surface "
                                      f"{entry['group']!r} (it has: {', '.join(sorted(groups)) or 'none'})",
@@ -256,6 +259,7 @@ class Scene:
                     first, second, secondary=self.get("contact", "secondary"), primary=self.get("contact", "primary"),
                     gap=obstacle, body_force=loads.get("body_force"), multiplier_ratio=d.get("multiplier_ratio"),
                     multiplier_size=d.get("multiplier_size"), space=d.get("space"),
+                    model=self.sections["bodies"]["entries"][0]["material"].get("model"),
                 )
             mesh = self.mesh()
             return Problem(

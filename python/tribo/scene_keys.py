@@ -134,6 +134,9 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
     "bodies.name": ("The body's name (*required*)", "—", "—"),
     **{f"bodies.{k}": v for k, v in _BODY.items()},
     **{f"bodies.material.{k}": v for k, v in _MATERIAL.items()},
+    "bodies.material.model": ('`"plane_strain"` or `"plane_stress"`: both bodies take the same', "—", None),
+    "bodies.material.regions": ("Parts of the body of other materials (`[[bodies.material.regions]]`), as "
+                                "`[[material.regions]]`", "—", "none: all of the body's `material`"),
     "bodies.loads.tractions": ("The traction per unit length on each named edge set of the body", "stress",
                                "none"),
     **{f"bodies.discretization.{k}": v for k, v in _GRID.items()},

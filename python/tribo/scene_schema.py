@@ -309,7 +309,7 @@ def describe_keys() -> list[tuple[str, str, str]]:
 # The keys of one [[bodies]] entry: plain values, and the sub-tables with their keys.
 BODY_KEYS: dict[str, Checker] = {"name": _string, "x": _range, "y": _range, "mesh": _string}
 BODY_TABLES: dict[str, dict[str, Checker]] = {
-    "material": {"young": _number, "poisson": _number},
+    "material": {"young": _number, "poisson": _number, "model": _choice(*CHOICES["model"]), "regions": _regions},
     "loads": {"tractions": _pairs},
     "discretization": {k: SCHEMA["discretization"][k] for k in ("grading", "h", "h_min", "growth", "diagonal")},
 }
@@ -397,6 +397,10 @@ def _check_two_bodies(data: Mapping[str, Any], sections: dict[str, dict[str, Any
                     f"scene key '{table}.{key}' does not apply to two bodies (see [[bodies]] in the scene format)",
                     f"{table}.{key}",
                 )
+    models = [b["material"].get("model", "plane_strain") for b in bodies]
+    if models[0] != models[1]:
+        raise SceneError(f"scene key 'bodies[1].material.model': both bodies take one model, got {models[0]!r} and "
+                         f"{models[1]!r}", "bodies[1].material.model")
     for key in ("secondary", "primary"):
         if key not in sections.get("contact", {}):
             raise SceneError(f"scene key 'contact.{key}' is required with [[bodies]] ('body.edge_set')", f"contact.{key}")

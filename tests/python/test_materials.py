@@ -228,3 +228,55 @@ def test_bad_regions_in_a_scene_are_scene_errors(region: str, says: str) -> None
     text = COATED_SCENE.replace("young = 600.0\npoisson = 0.25\nbox = [-2.0, -0.25, 2.0, 0.0]", region)
     with pytest.raises(SceneError, match=re.escape(says)):
         parse_scene(tomllib.loads(text)).build()
+
+
+def test_two_bodies_take_a_model_and_coated_bodies(tmp_path: Path) -> None:
+    """Two thin plates in plane stress (the pair's model), a coated body of a pair from Python and from a
+    scene, its regions kept by the adaptive levels of each body."""
+    import tomllib
+
+    from tribo.scene import SceneError, parse_scene, scene_path
+
+    def blocks(**lower: object) -> tuple[tribo.Body, tribo.Body]:
+        low = tribo.Mesh.rectangle((-2.0, 2.0), (-2.0, 0.0), 16, 8)
+        up = tribo.Mesh.rectangle((-2.0, 2.0), (0.0, 1.0), 16, 4)
+        first = tribo.Body("lower", low, clamped="bottom", **({"young": 200.0, "poisson": 0.3} | lower))
+        second = tribo.Body("upper", up, 70.0, 0.33, supports=[tribo.Support.displacement("top", y=-0.01),
+                                                                  tribo.Support.displacement("left", x=0.0)])
+        return first, second
+
+    pair = {"secondary": "lower.top", "primary": "upper.bottom", "gap": tribo.Obstacle.parabola(1.0)}
+    strain = tribo.Problem.two_bodies(*blocks(), **pair)
+    stress = tribo.Problem.two_bodies(*blocks(), **pair, model="plane_stress")
+    assert (strain.model, stress.model) == ("plane_strain", "plane_stress")
+    a, b = strain.solve(), stress.solve()
+    assert a.report.status == b.report.status == "converged"
+    assert b.normal_force < a.normal_force, "plane stress is the softer"
+    assert np.all(np.asarray(b.stress_zz) == 0.0)
+    low = blocks()[0].mesh
+    coat = (_centroids(low)[:, 1] > -0.25).astype(np.int64)
+    coated = tribo.Problem.two_bodies(*blocks(young=None, poisson=None, materials=[(200.0, 0.3), (600.0, 0.25)],
+                                              regions=coat), **pair)
+    assert coated.materials == [(200.0, 0.3), (600.0, 0.25), (70.0, 0.33)]
+    np.testing.assert_array_equal(coated.regions[: low.n_triangles], coat)
+    assert (coated.regions[low.n_triangles:] == 2).all()
+    assert (coated.young, coated.poisson) == (600.0, 0.25), "the secondary side's coating"
+    assert coated.solve().normal_force > a.normal_force, "the stiff coating carries more"
+    adaptive = coated.solve_adaptive(tol=0.05, max_levels=3)
+    for k in range(len(adaptive.levels)):
+        level = adaptive.level_problem(k)
+        n = level.bodies[0][1][3]
+        np.testing.assert_array_equal(level.regions[:n], _centroids(level.mesh)[:n, 1] > -0.25)
+    with pytest.raises(tribo.SettingsError, match="Body 'lower': several materials"):
+        blocks(materials=[(1.0, 0.3)])[0]._compiled()
+    # A scene: the lower body coated, both bodies in plane stress.
+    data = tomllib.loads(scene_path("hertz_two_bodies").read_text(encoding="utf-8").replace("h_min = 0.005",
+                                                                                              "h_min = 0.04"))
+    data["bodies"][0]["material"] |= {"model": "plane_stress",
+                                      "regions": [{"young": 600.0, "poisson": 0.25, "box": [-2.0, -0.25, 2.0, 0.0]}]}
+    data["bodies"][1]["material"]["model"] = "plane_stress"
+    problem = parse_scene(data).build()
+    assert problem.model == "plane_stress" and problem.materials == [(200.0, 0.3), (600.0, 0.25), (200.0, 0.3)]
+    data["bodies"][1]["material"]["model"] = "plane_strain"
+    with pytest.raises(SceneError, match="both bodies take one model"):
+        parse_scene(data)

@@ -96,14 +96,19 @@ fn loads(l: Loads) -> (Vec<tribo::Support>, Vec<(String, [f64; 2])>) {
     (l.0.into_iter().map(|s| s.inner).collect(), l.1.into_iter().map(|(set, (x, y))| (set, [x, y])).collect())
 }
 
-/// A body of `tribo.Body`: (name, mesh, young, poisson, clamped, supports, tractions).
-type BodyArgs = (String, Py<PyMesh>, f64, f64, Vec<String>, Vec<PySupport>, Vec<(String, (f64, f64))>);
+/// A body of `tribo.Body`: (name, mesh, materials, regions or None for one material, clamped, supports, tractions).
+type BodyArgs =
+    (String, Py<PyMesh>, Vec<(f64, f64)>, Option<Vec<usize>>, Vec<String>, Vec<PySupport>, Vec<(String, (f64, f64))>);
 
 fn body(b: BodyArgs) -> tribo::Body {
-    let (name, mesh, young, poisson, clamped, supports, tractions) = b;
-    let (supports, tractions) = loads((supports, tractions));
-    let material = Material { young, poisson };
-    tribo::Body { name, mesh: mesh.get().inner.clone(), material, clamped, supports, tractions }
+    let (name, mesh, materials, regions, clamped, supports, tractions) = b;
+    let (loads, mesh) = (loads((supports, tractions)), mesh.get().inner.clone());
+    let region = regions.unwrap_or_else(|| vec![0; mesh.n_triangles()]);
+    let materials = tribo::Materials {
+        materials: materials.into_iter().map(|(young, poisson)| Material { young, poisson }).collect(),
+        region,
+    };
+    tribo::Body { name, mesh, materials, clamped, supports: loads.0, tractions: loads.1 }
 }
 
 /// Calls the callback (if any) with `args` and checks for Ctrl-C: `Break` when the callback returned
@@ -255,16 +260,16 @@ impl PyProblem {
         let body_force = body_force.map_or(Ok([0.0, 0.0]), |b| pair(b, "body_force", Settings))?;
         take_gap_error();
         let p = if let Some(primary) = &primary {
-            // Two bodies (`tribo.Problem.two_bodies`, plane strain): `mesh` is their list, each with its own
-            // material, supports and tractions; they move through their supports.
-            let given =
-                [materials.is_some(), regions.is_some(), clamped.is_some(), supports.is_some(), model.is_some()];
+            // Two bodies (`tribo.Problem.two_bodies`): `mesh` is their list, each with its own materials, supports
+            // and tractions; they move through their supports.
+            let given = [materials.is_some(), regions.is_some(), clamped.is_some(), supports.is_some()];
             if given.into_iter().chain([tractions.is_some(), approach.is_some(), shift.is_some()]).any(|g| g) {
                 return Err(PyTypeError::new_err("with primary=, material, supports and tractions are per body"));
             }
             let [first, second]: [BodyArgs; 2] = mesh.extract()?;
             let (secondary, primary, gap, multiplier_points) = (contact.clone(), primary.clone(), shape, points);
-            let pair = tribo::ContactPair { secondary, primary, gap, multiplier_points, multiplier_space: space };
+            let (model, multiplier_space) = (model_given.unwrap_or_default(), space);
+            let pair = tribo::ContactPair { secondary, primary, gap, multiplier_points, multiplier_space, model };
             py.detach(|| tribo::Problem::two_bodies([body(first), body(second)], pair, body_force))
         } else {
             // One material or several (`tribo.Problem` gives `young`, `poisson` as one), each triangle's region.

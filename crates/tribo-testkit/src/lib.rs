@@ -436,6 +436,42 @@ pub fn two_body_shear(h_min: f64, lower: Material, upper: Material) -> Problem {
     two_blocks(h_min, lower, upper, vec![Support::displacement("top", Some(0.0), Some(0.0))], true)
 }
 
+/// The two blocks of [`two_body_hertz`] as values (the bodies, their pair), for a test to change before it builds
+/// the problem: the lower one clamped at its bottom, the upper one pushed down `delta` at its top (held in x at its
+/// left side), the lower top secondary, in plane strain.
+pub fn two_body_hertz_parts(h_min: f64, lower: Material, upper: Material, delta: f64) -> ([Body; 2], ContactPair) {
+    let top = Support::displacement("top", None, Some(-delta));
+    two_block_parts(h_min, lower, upper, vec![top, Support::displacement("left", Some(0.0), None)], true)
+}
+
+/// The bodies and the pair of [`two_blocks`].
+fn two_block_parts(
+    h_min: f64,
+    lower: Material,
+    upper: Material,
+    upper_supports: Vec<Support>,
+    lower_secondary: bool,
+) -> ([Body; 2], ContactPair) {
+    let body = |name: &str, upper_block: bool, material, supports| {
+        let mesh = graded_half(h_min, upper_block);
+        let materials = Materials::uniform(material, mesh.n_triangles());
+        Body { name: String::from(name), mesh, materials, clamped: vec![], supports, tractions: vec![] }
+    };
+    let bodies =
+        [body("lower", false, lower, vec![Support::clamp("bottom")]), body("upper", true, upper, upper_supports)];
+    let (secondary, primary) =
+        if lower_secondary { ("lower.top", "upper.bottom") } else { ("upper.bottom", "lower.top") };
+    let pair = ContactPair {
+        secondary: secondary.into(),
+        primary: primary.into(),
+        gap: ObstacleShape::Parabola { center: 0.0, radius: hertz_scene().radius },
+        multiplier_points: MultiplierPoints::RatioToFe(1.0),
+        multiplier_space: MultiplierSpace::P1,
+        model: Model::PlaneStrain,
+    };
+    (bodies, pair)
+}
+
 /// The two blocks of [`two_body_hertz`]: the lower one clamped at its bottom, the upper one held by
 /// `upper_supports`, the parabolic gap of the scene's radius, P1 multipliers on the secondary side's edges.
 ///
@@ -448,25 +484,7 @@ fn two_blocks(
     upper_supports: Vec<Support>,
     lower_secondary: bool,
 ) -> Problem {
-    let body = |name: &str, upper_block: bool, material, supports| Body {
-        name: String::from(name),
-        mesh: graded_half(h_min, upper_block),
-        material,
-        clamped: vec![],
-        supports,
-        tractions: vec![],
-    };
-    let bodies =
-        [body("lower", false, lower, vec![Support::clamp("bottom")]), body("upper", true, upper, upper_supports)];
-    let (secondary, primary) =
-        if lower_secondary { ("lower.top", "upper.bottom") } else { ("upper.bottom", "lower.top") };
-    let pair = ContactPair {
-        secondary: secondary.into(),
-        primary: primary.into(),
-        gap: ObstacleShape::Parabola { center: 0.0, radius: hertz_scene().radius },
-        multiplier_points: MultiplierPoints::RatioToFe(1.0),
-        multiplier_space: MultiplierSpace::P1,
-    };
+    let (bodies, pair) = two_block_parts(h_min, lower, upper, upper_supports, lower_secondary);
     // Dev-only scene, no user input: two blocks on one line with opposite normals, each held by its own
     // supports, are a valid pair by construction; a bad material is the calling test's own parameter.
     Problem::two_bodies(bodies, pair, [0.0, 0.0]).expect("a valid two-body scene")

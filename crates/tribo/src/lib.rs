@@ -207,6 +207,11 @@ pub struct ReadmeDoctests;
 #[doc = include_str!("../../../docs/guide/rust.md")]
 pub struct RustGuideDoctests;
 
+/// The Rust example of the two-body guide (`docs/guide/two-bodies.md`), compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/guide/two-bodies.md")]
+pub struct TwoBodiesGuideDoctests;
+
 /// Every named choice of the keyword surface (the Python binding, scene files), by the keyword that takes
 /// it: `side`, `diagonal`, `space`, `friction`, `state` (in the order of [`Choice::code`]), `status`
 /// ([`SolveStatus::NAMES`]), `marking` ([`Marking`]), `bisection` ([`Bisection`]), `stop_on` ([`StopOn`]) and every choice among the solver settings ([`SolverSettings::table`]), each

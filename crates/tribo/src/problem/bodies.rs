@@ -1,7 +1,8 @@
 //! Two elastic bodies in contact: each body is a value (mesh, material, supports, tractions), the pair
 //! names the secondary side (which carries T_H and the stabilization) and the primary side by
 //! `"body.edge_set"`. [`Problem::two_bodies`] joins the two meshes into one (nodes and triangles of the first
-//! body first, edge sets renamed `"body.set"`), gives each triangle its body's material and builds the
+//! body first, edge sets renamed `"body.set"`), gives each triangle its material (a body may have several:
+//! [`Body::materials`]), takes the pair's model (plane strain or plane stress) for both, and builds the
 //! problem of [`crate::contact::pair`]: everything downstream (condensation, QP, fixed point, histories)
 //! is that of one body.
 //!
@@ -24,7 +25,7 @@ use std::ops::Range;
 use crate::contact::multiplier::{MultiplierPoints, MultiplierSpace};
 use crate::contact::obstacle::{Obstacle, ObstacleShape};
 use crate::error::{Error, Result};
-use crate::fem::elasticity::{Material, Materials, Model};
+use crate::fem::elasticity::{Materials, Model};
 use crate::fem::supports::Support;
 use crate::mesh::Mesh;
 use crate::problem::{Problem, ProblemSpec};
@@ -37,8 +38,9 @@ pub struct Body {
     pub name: String,
     /// Mesh.
     pub mesh: Mesh,
-    /// Material.
-    pub material: Material,
+    /// Its materials and the region of each of its triangles ([`Materials::uniform`] for one material; several
+    /// for a coated body, as [`Problem::with_materials`]).
+    pub materials: Materials,
     /// Clamped edge sets.
     pub clamped: Vec<String>,
     /// Further supports.
@@ -61,6 +63,8 @@ pub struct ContactPair {
     pub multiplier_points: MultiplierPoints,
     /// Multiplier space.
     pub multiplier_space: MultiplierSpace,
+    /// The model of both bodies: plane strain (long bodies) or plane stress (thin plates).
+    pub model: Model,
 }
 
 /// Where a body lies in the problem's mesh.
@@ -121,6 +125,12 @@ impl Problem {
         if bodies[0].name == bodies[1].name {
             return Err(bad(format!("both bodies are named '{}'", bodies[0].name)));
         }
+        for b in &bodies {
+            Self::check_regions(&b.materials, b.mesh.n_triangles()).map_err(|e| match e {
+                Error::BadMaterial { what } => Error::BadMaterial { what: format!("body '{}': {what}", b.name) },
+                other => other,
+            })?;
+        }
         let side = |full: &str| -> Result<usize> {
             let (body, set) = full.split_once('.').ok_or_else(|| bad(format!("'{full}' is not 'body.edge_set'")))?;
             let k = bodies.iter().position(|b| b.name == body).ok_or_else(|| {
@@ -146,15 +156,20 @@ impl Problem {
             for (name, edges) in b.mesh.edge_sets() {
                 edge_sets.insert(format!("{}.{name}", b.name), edges.iter().map(|e| e.map(|i| i + n0)).collect());
             }
-            region.extend(std::iter::repeat_n(k, b.mesh.n_triangles()));
+            // Each body's regions index the materials of both, the first body's first.
+            let offset = if k == 0 { 0 } else { bodies[0].materials.materials.len() };
+            region.extend(b.materials.region.iter().map(|r| r + offset));
             let (nodes, triangles) = (n0..points.len(), t0..triangles.len());
             parts.push(BodyPart { name: b.name.clone(), nodes, triangles, unknowns: 0 });
         }
         let mesh = Mesh::new(points, triangles, edge_sets)?;
+        // The secondary side's material: that under its first edge (as a body of several materials has it).
+        let secondary = &bodies[s];
+        let set = &pair.secondary[secondary.name.len() + 1..];
+        let first = secondary.mesh.edge_set(set)?.first().and_then(|&[a, b]| secondary.mesh.boundary_triangle(a, b));
         let spec = ProblemSpec {
-            material: bodies[s].material,
-            // Two bodies are in plane strain (plane stress is a one-body model for now).
-            model: Model::PlaneStrain,
+            material: secondary.materials.materials[first.map_or(0, |t| secondary.materials.region[t])],
+            model: pair.model,
             clamped: bodies.iter().flat_map(|b| b.clamped.iter().map(|c| format!("{}.{c}", b.name))).collect(),
             supports: bodies.iter().flat_map(|b| b.supports.iter().map(|x| renamed(x, &b.name))).collect(),
             body_force,
@@ -167,7 +182,8 @@ impl Problem {
             multiplier_points: pair.multiplier_points.clone(),
             multiplier_space: pair.multiplier_space,
         };
-        let materials = Materials { materials: bodies.iter().map(|b| b.material).collect(), region };
+        let materials =
+            Materials { materials: bodies.iter().flat_map(|b| b.materials.materials.clone()).collect(), region };
         let spans: Vec<(String, Range<usize>)> = parts.iter().map(|p| (p.name.clone(), p.triangles.clone())).collect();
         Self::build(mesh, spec, materials, Some(&pair.primary), parts).map_err(|e| {
             // A piece neither its supports nor the contact hold: name the body and the free motion.

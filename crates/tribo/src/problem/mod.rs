@@ -158,21 +158,8 @@ impl Problem {
     /// [`Error::BadMaterial`] for no material, a region per triangle missing, or a region beyond the
     /// materials; each material checked under `spec.model`; as [`Problem::new`].
     pub fn with_materials(mesh: Mesh, mut spec: ProblemSpec, materials: Materials) -> Result<Self> {
-        let (n, regions) = (materials.materials.len(), &materials.region);
-        let refuse = |what: String| Err(Error::BadMaterial { what });
-        if n == 0 {
-            return refuse("a body of several materials needs at least one material".to_string());
-        }
-        if regions.len() != mesh.n_triangles() {
-            return refuse(format!(
-                "{} regions given for {} triangles (one per triangle)",
-                regions.len(),
-                mesh.n_triangles()
-            ));
-        }
-        if let Some((t, r)) = regions.iter().enumerate().find(|(_, &r)| r >= n) {
-            return refuse(format!("triangle {t} is of region {r}, beyond the {n} materials given"));
-        }
+        Self::check_regions(&materials, mesh.n_triangles())?;
+        let regions = &materials.region;
         if let Some(&[a, b]) = mesh.edge_set(&spec.contact).ok().and_then(|edges| edges.first()) {
             if let Some(t) = mesh.boundary_triangle(a, b) {
                 spec.material = materials.materials[regions[t]];
@@ -180,6 +167,25 @@ impl Problem {
         }
         let bodies = vec![bodies::BodyPart::whole("body", &mesh)];
         Self::build(mesh, spec, materials, None, bodies)
+    }
+
+    /// That `materials` has a material and a region in range for each of `n_triangles` triangles.
+    ///
+    /// # Errors
+    /// [`Error::BadMaterial`] saying which fails.
+    pub(crate) fn check_regions(materials: &Materials, n_triangles: usize) -> Result<()> {
+        let (n, regions) = (materials.materials.len(), &materials.region);
+        let refuse = |what: String| Err(Error::BadMaterial { what });
+        if n == 0 {
+            return refuse("a body of several materials needs at least one material".to_string());
+        }
+        if regions.len() != n_triangles {
+            return refuse(format!("{} regions given for {n_triangles} triangles (one per triangle)", regions.len()));
+        }
+        if let Some((t, r)) = regions.iter().enumerate().find(|(_, &r)| r >= n) {
+            return refuse(format!("triangle {t} is of region {r}, beyond the {n} materials given"));
+        }
+        Ok(())
     }
 
     /// [`Problem::new`] with per-triangle materials and, for two bodies, the primary contact set.

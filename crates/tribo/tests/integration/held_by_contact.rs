@@ -164,7 +164,8 @@ fn body(
     supports: Vec<Support>,
     tractions: Vec<(String, [f64; 2])>,
 ) -> Body {
-    Body { name: name.into(), mesh, material, clamped: vec![], supports, tractions }
+    let materials = Materials::uniform(material, mesh.n_triangles());
+    Body { name: name.into(), mesh, materials, clamped: vec![], supports, tractions }
 }
 
 fn pair(secondary: &str, primary: &str, gap: ObstacleShape) -> ContactPair {
@@ -174,6 +175,7 @@ fn pair(secondary: &str, primary: &str, gap: ObstacleShape) -> ContactPair {
         gap,
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
+        model: Model::PlaneStrain,
     }
 }
 

@@ -189,3 +189,73 @@ fn bad_regions_are_refused() {
         assert!(e.to_string().contains(says), "{e}");
     }
 }
+
+/// Two bodies in plane stress are two bodies in plane strain with each body's equivalent material
+/// ([`Model::in_plane`]): the same answer, bit for bit, as one body (`plane_stress.rs`).
+#[test]
+fn two_bodies_in_plane_stress_are_plane_strain_with_the_equivalent_materials() {
+    let (steel, aluminium) = (Material { young: 200.0, poisson: 0.3 }, Material { young: 70.0, poisson: 0.33 });
+    let (bodies, mut pair) = tribo_testkit::two_body_hertz_parts(0.02, steel, aluminium, 0.01);
+    pair.model = Model::PlaneStress;
+    let stress = Problem::two_bodies(bodies.clone(), pair.clone(), [0.0, 0.0]).expect("valid");
+    let equivalent = bodies.map(|mut b| {
+        b.materials.materials = b.materials.materials.iter().map(|m| Model::PlaneStress.in_plane(*m)).collect();
+        b
+    });
+    pair.model = Model::PlaneStrain;
+    let strain = Problem::two_bodies(equivalent, pair, [0.0, 0.0]).expect("valid");
+    assert_eq!(stress.spec.model, Model::PlaneStress);
+    let friction = Friction::Coulomb { mu: 0.3 };
+    let a = stress.solve(&friction, &SolverSettings::default(), None).expect("solves");
+    let b = strain.solve(&friction, &SolverSettings::default(), None).expect("solves");
+    assert_eq!(a.report.status, SolveStatus::Converged);
+    assert_eq!(a.displacement, b.displacement);
+    assert_eq!((&a.lambda_n, &a.lambda_t), (&b.lambda_n, &b.lambda_t));
+    assert!(a.stress_zz.iter().all(|s| *s == 0.0) && b.stress_zz.iter().any(|s| *s != 0.0));
+}
+
+/// Two-body Hertz in plane stress converges to the pressure of the plane-stress combined modulus
+/// 1/E* = 1/E₁ + 1/E₂, at the rate of the plane-strain test (`two_bodies.rs`: h_min divided by 4, the error at
+/// least halves), and ends nearer it than the plane-strain modulus's.
+#[test]
+fn two_body_hertz_in_plane_stress_converges_to_the_combined_modulus_e() {
+    let (steel, aluminium) = (Material { young: 200.0, poisson: 0.3 }, Material { young: 70.0, poisson: 0.33 });
+    let e_star = 1.0 / (1.0 / steel.young + 1.0 / aluminium.young);
+    let mut errors = Vec::new();
+    let mut last = None;
+    for h_min in [0.04, 0.01, 0.0025] {
+        let (bodies, mut pair) = tribo_testkit::two_body_hertz_parts(h_min, steel, aluminium, 0.01);
+        pair.model = Model::PlaneStress;
+        let problem = Problem::two_bodies(bodies, pair, [0.0, 0.0]).expect("valid");
+        let sol = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+        assert_eq!(sol.report.status, SolveStatus::Converged);
+        errors.push(tribo_testkit::hertz_l2_error_with(&problem, &sol, e_star));
+        last = Some((problem, sol));
+    }
+    eprintln!("two-body Hertz in plane stress: L2 errors {errors:?}");
+    assert!(errors[1] < 0.5 * errors[0] && errors[2] < 0.5 * errors[1], "{errors:?}");
+    let (problem, sol) = last.expect("three meshes");
+    let strain = tribo_testkit::combined_modulus(&steel, &aluminium);
+    assert!(tribo_testkit::hertz_l2_error_with(&problem, &sol, strain) > errors[2]);
+}
+
+/// A body of two bodies may be coated: its two layers of one material are the homogeneous body to round-off,
+/// and its regions are checked (naming the body).
+#[test]
+fn a_body_of_a_pair_may_have_several_materials() {
+    let steel = Material { young: 200.0, poisson: 0.3 };
+    let (bodies, pair) = tribo_testkit::two_body_hertz_parts(0.02, steel, steel, 0.01);
+    let plain = Problem::two_bodies(bodies.clone(), pair.clone(), [0.0, 0.0]).expect("valid");
+    let mut coated = bodies.clone();
+    coated[0].materials = Materials { materials: vec![steel, steel], region: layers(&coated[0].mesh, -0.25) };
+    assert!(coated[0].materials.region.contains(&1), "test set-up: a layer");
+    let layered = Problem::two_bodies(coated.clone(), pair.clone(), [0.0, 0.0]).expect("valid");
+    assert_eq!(layered.materials.materials.len(), 3);
+    let a = plain.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+    let b = layered.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+    let scale = a.lambda_n.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    assert!(a.lambda_n.iter().zip(&b.lambda_n).all(|(x, y)| (x - y).abs() <= 1e-13 * scale));
+    coated[1].materials.region.pop();
+    let e = Problem::two_bodies(coated, pair, [0.0, 0.0]).unwrap_err();
+    assert!(matches!(&e, Error::BadMaterial { what } if what.contains("body 'upper'")), "{e}");
+}

@@ -22,7 +22,8 @@ use tribo_testkit::{
 };
 
 fn body(name: &str, mesh: Mesh, material: Material, supports: Vec<Support>) -> Body {
-    Body { name: name.into(), mesh, material, clamped: vec![], supports, tractions: vec![] }
+    let materials = Materials::uniform(material, mesh.n_triangles());
+    Body { name: name.into(), mesh, materials, clamped: vec![], supports, tractions: vec![] }
 }
 
 fn pair(secondary: &str, primary: &str, gap: ObstacleShape, space: MultiplierSpace) -> ContactPair {
@@ -32,6 +33,7 @@ fn pair(secondary: &str, primary: &str, gap: ObstacleShape, space: MultiplierSpa
         gap,
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: space,
+        model: Model::PlaneStrain,
     }
 }
 
