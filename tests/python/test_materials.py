@@ -184,9 +184,22 @@ def test_a_scene_gives_its_regions_by_box_and_by_physical_surface(tmp_path: Path
     assert ((y >= -0.25 - 1e-12).all(axis=1) | (y <= -0.25 + 1e-12).all(axis=1)).all()
     assert (problem.young, problem.poisson) == (600.0, 0.25), "the coating lies under Γ_C"
     # tribo run writes each triangle's material into the body file.
-    _, _, files = run_scene(scene, tmp_path / "out", plots=False)
+    _, solution, files = run_scene(scene, tmp_path / "out", plots=False)
     body = meshio.read(next(f for f in files if f.name == "result.vtu"))
     np.testing.assert_array_equal(body.cell_data["material"][0], problem.regions)
+    # summary.json: per material, its triangles, area, largest von Mises stress and its part of the estimates.
+    import json
+
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    per = summary["materials"]
+    assert [(m["young"], m["poisson"]) for m in per] == [(200.0, 0.3), (600.0, 0.25)]
+    assert sum(m["triangles"] for m in per) == problem.mesh.n_triangles
+    assert per[1]["area"] == pytest.approx(4.0 * 0.25, rel=1e-12) and per[0]["area"] == pytest.approx(8.0 - 1.0)
+    von_mises = np.asarray(solution.von_mises)
+    assert max(m["max_von_mises"] for m in per) == von_mises.max()
+    assert per[1]["max_von_mises"] == von_mises[problem.regions == 1].max()
+    total = summary["estimate"]["total"]
+    assert sum(m["estimate"] ** 2 for m in per) == pytest.approx(total**2, rel=1e-12)
     # A mesh file's physical surface: its triangles take the region's material.
     (tmp_path / "coated.msh").write_text(MSH22)
     (tmp_path / "file.toml").write_text("""
