@@ -29,9 +29,15 @@ def load(path: Path) -> list[dict[str, Any]]:
     return [{k: (v if k in TEXT else float(v)) for k, v in r.items()} for r in sl.read_csv_rows(path)]
 
 
+# What τ is a fraction of, per block: min(μ, its overturning load W / (2H)).
+HOLDS = {"held block": "min(μ, 1)", "tall block": "min(μ, 1/12)"}
+
+
 def family(r: dict[str, Any]) -> str:
     """The scene and its load: `hertz`, or `held block, τ = 0.5 min(μ, 1)`."""
-    return r["scene"] if math.isnan(r["load_fraction"]) else f"{r['scene']}, τ = {r['load_fraction']:g} min(μ, 1)"
+    if math.isnan(r["load_fraction"]):
+        return str(r["scene"])
+    return f"{r['scene']}, τ = {r['load_fraction']:g} {HOLDS[r['scene']]}"
 
 
 def summary(rows: list[dict[str, Any]]) -> dict[tuple[str, str], dict[str, Any]]:
@@ -75,7 +81,9 @@ def run(csv_path: Path, out: Path) -> dict[tuple[str, str], dict[str, Any]]:
           "pressed onto a flat foundation by a traction (τ, −1), force control, τ a fraction of min(μ, 1) (beyond "
           "τ = μ it slides, beyond τ = 1 it overturns; the discrete problem, whose P1 multipliers put the pressure at "
           "best on the last dof with its centroid h/3 from the corner, has no solution beyond τ = 1 − h/3 = 0.983 on "
-          "these meshes: both methods must fail there, and the last column says how each ended those problems). The "
+          "these meshes: both methods must fail there, and the last column says how each ended those problems). "
+          "`tall block`: the block (0, 1) × (0, 6) loaded alike, τ a fraction of min(μ, W / (2H)) = min(μ, 1/12), "
+          "its overturning (the discrete limit (W / 2 − h / 3) / H = 0.0806 lies above both fractions). The "
           "difference is the largest |Δλ| of the two answers "
           "relative to the largest λ_n, where both converged: the fixed point stops at a relative change of "
           "`fp_tol` = 1e-8.\n\n",

@@ -568,6 +568,14 @@ def test_the_docs_quote_the_coulomb_map_as_generated() -> None:
     assert ends == {"fixed_point": {"qp_failed"}, "newton": {"qp_failed"}}, ends
     for page in ("guide/friction.md", "changelog.md"):
         assert "(no discrete solution) both end `qp_failed`" in _page(page), page
+    # The tall block: the fixed point solves all, Newton stagnates on some, as the guide and the changelog say.
+    tall = {m: [v for (f, mm), v in s.items() if f.startswith("tall block") and mm == m] for m in cmap.METHODS}
+    total = sum(v["problems"] for v in tall["fixed_point"])
+    assert all(v["converged"] == v["problems"] for v in tall["fixed_point"])
+    stalled = [st for v in tall["newton"] for _, _, st in v["failed"]]
+    assert set(stalled) == {"stagnated"}, stalled
+    assert f"stagnates on {len(stalled)} of {total} problems" in _page("guide/friction.md")
+    assert f"converges on all {total} problems; Newton stagnates on {len(stalled)}" in " ".join(_page("changelog.md").split())
 
 
 def test_the_sweep_guide_quotes_study_10s_coulomb_map_as_generated() -> None:

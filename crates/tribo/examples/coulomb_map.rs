@@ -13,6 +13,9 @@
 //!   (0.983 on these 40 × 20 meshes, h = 0.05); `solvable` says on which side a problem lies (and that it slides
 //!   at τ = μ).
 //!
+//! * `tall block`: the block (0, 1) × (0, 6), loaded alike, τ a fraction of min(μ, W / (2H)) = min(μ, 1/12)
+//!   (its overturning), where the tangential load turns into a moment six times as long.
+//!
 //! Per problem and method: the status, the iterations (QPs of the fixed point, dense LU solves of Newton),
 //! the wall time of the solve (the factorization reused), the forces and KKT residual, and where both
 //! converged the largest difference of their multipliers relative to the largest λ_n.
@@ -111,6 +114,23 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
                 let h = 2.0 / nx as f64; // the FE edges along Γ_C, and T_H with them
                 let solvable = tau < 1.0 - h / 3.0; // (τ < μ too: the fractions are below 1)
                 compare(&mut csv, "held block", &Problem::new(mesh, spec)?, [nu, fraction, mu], solvable)?;
+            }
+        }
+    }
+    // The tall block: (0, 1) × (0, 6), the same loading, τ a fraction of min(μ, W / (2H)) (it overturns sooner);
+    // the discrete problem has an answer for τ < (W / 2 − h / 3) / H (the pressure's resultant at most h/3 from the
+    // corner): 0.0806 on these meshes, above 0.9 · W / (2H) = 0.075.
+    for nu in [0.0, 0.2, 0.3, 0.45] {
+        for fraction in [0.5, 0.9] {
+            for mu in MUS {
+                let (nx, ny, width, height) = (20, 120, 1.0, 6.0);
+                let mesh = rectangle([0.0, width], [0.0, height], nx, ny, Diagonal::Alternating)?;
+                let tau = fraction * mu.min(width / (2.0 * height));
+                let spec =
+                    ProblemSpec::new(Material { young: 100.0, poisson: nu }, "bottom").traction("top", [tau, -1.0]);
+                let h = width / nx as f64;
+                let solvable = tau < (width / 2.0 - h / 3.0) / height;
+                compare(&mut csv, "tall block", &Problem::new(mesh, spec)?, [nu, fraction, mu], solvable)?;
             }
         }
     }

@@ -261,6 +261,28 @@ fn auto_falls_back_to_the_fixed_point_and_converges_where_newton_runs_out_of_ste
     assert_eq!(auto.lambda_t, fixed_point.lambda_t, "the fixed point from the same start");
 }
 
+/// Where Newton stagnates and the fixed point converges (study 20's tall block: (0, 1) × (0, 6) held only by the
+/// contact, μ = 0.1, τ = 0.075, near sliding (τ/μ = 0.75) and overturning (0.9 of W / (2H)) at once; every ν):
+/// Newton says `stagnated`, and `auto` answers by the fixed point, saying so.
+#[test]
+fn on_the_tall_block_newton_stagnates_and_auto_answers_by_the_fixed_point() {
+    let mesh = rectangle([0.0, 1.0], [0.0, 6.0], 20, 120, Diagonal::Alternating).unwrap();
+    let spec = ProblemSpec::new(Material { young: 100.0, poisson: 0.0 }, "bottom").traction("top", [0.075, -1.0]);
+    let problem = Problem::new(mesh, spec).unwrap();
+    let coulomb = Friction::Coulomb { mu: 0.1 };
+    let newton = problem.solve(&coulomb, &settings(CoulombMethod::Newton), None).unwrap();
+    assert_eq!(newton.report.status, SolveStatus::Stagnated);
+    let fixed_point = problem.solve(&coulomb, &settings(CoulombMethod::FixedPoint), None).unwrap();
+    assert_eq!(fixed_point.report.status, SolveStatus::Converged);
+    let auto = problem.solve(&coulomb, &settings(CoulombMethod::Auto), None).unwrap();
+    assert_eq!(
+        (auto.report.status, auto.report.coulomb_method),
+        (SolveStatus::Converged, Some(CoulombMethod::FixedPoint))
+    );
+    assert!(auto.report.coulomb_fallback);
+    assert!((auto.tangential_force.abs() - 0.075).abs() <= 1e-9, "it holds the load: {}", auto.tangential_force);
+}
+
 #[test]
 fn the_setting_has_one_name_and_newton_reports_its_steps() {
     let mut s = SolverSettings::default();
