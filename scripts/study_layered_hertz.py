@@ -20,7 +20,9 @@ The reference:
   u_z = ((1 − ν) Φ''' − (2 − ν) k² Φ') / (2 G k²), u_x = ((1 − ν) Φ'' + ν k² Φ) / (2 G k) (plane strain). The six
   conditions (σ_zz = −p̂ and σ_xz = 0 on the surface; σ_zz, σ_xz, u_z, u_x continuous at z = h) are solved as a
   6 × 6 linear system per k (``compliance``). For one material it is the half-space's 2 / (E* k); for a thick
-  layer the layer's, for a thin one the substrate's (all three tested in ``tests/python/test_studies.py``).
+  layer the layer's, for a thin one the substrate's, and on a rigid base the classical closed form of a bonded
+  layer, ``(κ sinh 2kh − 2kh) / (κ cosh 2kh + 2 (kh)² + 5 − 12ν + 8ν²)`` times 2 / (E* k), κ = 3 − 4ν (all four
+  tested in ``tests/python/test_studies.py``).
 * **The contact** is solved on a periodic grid (period ``L``, far beyond the contact) by the FFT boundary
   element method with the conjugate-gradient algorithm of Polonsky and Keer (Wear 231, 1999) under the load P
   (``contact``); the mean deflection is the rigid approach, so the half-plane's undefined constant drops out.
@@ -126,7 +128,7 @@ SUBSTRATE = (sl.YOUNG, sl.POISSON)
 THICKNESS = 0.25
 COATINGS = {"stiff coating (3 E)": (3 * sl.YOUNG, 0.25), "soft coating (E / 3)": (sl.YOUNG / 3, 0.35),
             "one material": SUBSTRATE}
-# The reference's grid: one period of 32 (160 contact half-widths and more) on 2^15 points (a / dx ≥ 60); 2^17
+# The reference's grid: one period of 32 (360 contact half-widths and more) on 2^15 points (a / dx ≥ 50); 2^17
 # points move the difference by at most 3e-4 (measured on the finest meshes).
 PERIOD, POINTS = 32.0, 2**15
 

@@ -193,7 +193,7 @@ class Problem(ProblemData):
 
     def __new__(
         cls,
-        mesh: Mesh | Sequence[tuple[str, Mesh, float, float, list[str], list[Support], list[tuple[str, tuple[float, float]]]]],
+        mesh: Mesh | Sequence[tuple[str, Mesh, list[tuple[float, float]], list[int] | None, list[str], list[Support], list[tuple[str, tuple[float, float]]]]],
         *,
         materials: Sequence[tuple[float, float]] | None = None,
         regions: _ArrayLike | None = None,

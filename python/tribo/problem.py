@@ -84,6 +84,8 @@ def _materials(arguments: dict[str, Any], what: str = "Problem()") -> dict[str, 
             for key, value in (("young", young), ("poisson", poisson)):
                 if value is None:
                     raise TypeError(f"{what} missing required keyword argument: '{key}'")
+                if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+                    raise TypeError(f"{what} argument '{key}' must be a real number, got {value!r}")
             out["materials"] = [(young, poisson)]
         elif young is not None or poisson is not None:
             out["materials"] = []  # refused by the compiled constructor: with primary=, the material is per body
@@ -93,7 +95,7 @@ def _materials(arguments: dict[str, Any], what: str = "Problem()") -> dict[str, 
                               "without young and poisson")
     try:
         m = np.asarray(materials, dtype=np.float64)
-    except (TypeError, ValueError) as e:
+    except (TypeError, ValueError, OverflowError) as e:
         raise _settings_error(f"{prefix}materials must be pairs (E, ν), got {materials!r}") from e
     if m.ndim != 2 or m.shape[1] != 2 or m.shape[0] == 0:
         raise _settings_error(f"{prefix}materials must be one or more pairs (E, ν), shape (n, 2), got shape {m.shape}")
@@ -229,8 +231,8 @@ class Problem(_tribo.Problem):
     shift=None, tractions=None, body_force=None, multiplier_ratio=None, multiplier_size=None,
     multiplier_points=None, space=None, model=None, materials=None, regions=None)``: the body (a Mesh, Young's
     modulus and Poisson's ratio, or for a body of several materials, a coating on a substrate say, ``materials``
-    [(E, ν), …] and ``regions``, the index of each triangle's material, from ``tribo.io.read_regions`` or the
-    triangles' centroids; model 'plane_strain', the default, or 'plane_stress': a thin plate, forces per unit
+    [(E, ν), …] and ``regions``, the index of each triangle's material, from ``tribo.io.read_triangle_groups``
+    or the triangles' centroids; model 'plane_strain', the default, or 'plane_stress': a thin plate, forces per unit
     thickness), its
     supports (edge sets clamped, or a list of Support), its loads (tractions: a dict edge set -> (tx, ty);
     body_force (fx, fy)), Γ_C (the edge set `contact`) and the obstacle with its motion (an
@@ -534,7 +536,8 @@ class Problem(_tribo.Problem):
         solve hands back the problem of a level. For two bodies ``mesh`` is the two joined, as in
         ``problem.mesh``, and ``bodies`` gives each body's [first node, end, first triangle, end] in it (as
         ``problem.bodies``; default this problem's). A body of several materials needs the ``regions`` of
-        the new mesh's triangles (an adaptive level's are its own)."""
+        the new mesh's triangles, indices into ``problem.materials`` (for two bodies the first body's materials,
+        then the second's; an adaptive level's are its own)."""
         arguments = {**self._arguments, "multiplier_ratio": None, "multiplier_size": None}
         arguments["multiplier_points"] = multiplier_points
         if self._arguments.get("materials") is not None:
@@ -551,7 +554,11 @@ class Problem(_tribo.Problem):
         compiled, offset = [], 0
         for b, s in zip(self._source, spans, strict=True):
             # Each body's regions from the joined mesh's (which index both bodies' materials, the first's first).
-            own = None if regions is None else (np.asarray(regions)[s[2]:s[3]] - offset).tolist()
+            own = None if regions is None else np.asarray(regions)[s[2]:s[3]] - offset
+            if own is not None and ((own < 0) | (own >= len(b[2]))).any():
+                raise _settings_error(f"regions of body {b[0]!r} must index its materials in problem.materials "
+                                      f"({offset} to {offset + len(b[2]) - 1})")
+            own = None if own is None else own.tolist()
             compiled.append((b[0], _body_mesh(mesh, b[0], s), b[2], own if own is not None else b[3], *b[4:]))
             offset += len(b[2])
         return Problem(compiled, **arguments)

@@ -107,7 +107,7 @@ class Report(_Record):
             the error estimate formed from u and λ).
         estimate: the a posteriori error estimate (see ``Solution.estimator``): ``total`` η and its parts
             ``bulk``, ``gamma_c``, ``contact``, ``friction`` (each the root of a sum of squares over the
-            triangles, in stress × length), ``energy_relative`` (η / (E* a(u_h, u_h))^½), ``traction``
+            triangles, in stress × length), ``energy_relative`` ((Σ η_K² / E*_K)^½ / a(u_h, u_h)^½, η / (E* a(u_h, u_h))^½ for one material), ``traction``
             (ζ, the estimate of ‖λ − λ_H‖ in L²(Γ_C), a bound) and ``traction_relative`` (ζ / ‖λ_H‖, NaN
             when nothing touches); ``traction_hierarchical`` and ``traction_hierarchical_relative``, the
             hierarchical estimate (2‖λ_H − λ_f‖, the reduction measured where the contact zone reaches an end

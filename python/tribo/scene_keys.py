@@ -57,7 +57,7 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
                          "whose centroid lies in it); a later one holds where two overlap", "—",
                          "none: all of `[material]`"),
     "material.model": ('`"plane_strain"` (a long body) or `"plane_stress"` (a thin plate, forces per unit '
-                       "thickness; one body, ν in (−1/2, 1/2))", "—", None),
+                       "thickness, ν in (−1/2, 1/2))", "—", None),
     "supports.clamped": ("The edge sets held fixed (u = 0); or `[[supports]]` entries with `kind` (`clamp`, "
                          "`roller`, `displacement` with `x`/`y`) and `edge_set`", "—", "— (*required*, one form)"),
     "loads.body_force": ("The body force f per unit area, in global axes", "stress / length", "[0, 0]"),

@@ -90,7 +90,8 @@ A scene has these tables (every key is optional unless marked *required*; see ``
 ``[[bodies]]``
     Two elastic bodies in contact, instead of ``[body]``, ``[material]``, ``[supports]`` and ``[obstacle]``.
     Exactly two entries, each with ``name`` (*required*), ``x``/``y`` or ``mesh`` as ``[body]``,
-    ``material = { young, poisson }`` (*required*), ``supports`` (*required*: a list of tables as the
+    ``material = { young, poisson }`` (*required*; ``model`` the same for both, and ``[[bodies.material.regions]]``
+    as ``[[material.regions]]``), ``supports`` (*required*: a list of tables as the
     ``[[supports]]`` entries; a motion they leave free is held by the contact, and ``[]`` leaves the body
     to the contact alone, e.g. a punch pushed by its ``loads``), ``loads = { tractions = { edge_set = [tx,
     ty] } }`` and ``discretization`` with the rectangle's keys (``grading``, ``h``, ``h_min``, ``growth``, ``diagonal``; ``grading = "auto"``
@@ -219,6 +220,7 @@ _regions.json_schema = {  # type: ignore[attr-defined]
     "type": "array",
     "items": {
         "type": "object", "required": ["young", "poisson"], "additionalProperties": False,
+        "oneOf": [{"required": ["group"]}, {"required": ["box"]}],
         "properties": {"young": {"type": "number"}, "poisson": {"type": "number"}, "group": {"type": "string"},
                        "box": {"type": "array", "items": {"type": "number"}, "minItems": 4, "maxItems": 4}},
     },

@@ -132,7 +132,9 @@ def test_physical_surfaces_of_a_gmsh_file_are_the_regions(tmp_path: Path) -> Non
         ({"materials": [STIFF], "regions": [0.5] * 72}, tribo.SettingsError, "integers"),
         ({"materials": [STIFF], "regions": [1] * 72}, tribo.SettingsError, "beyond the 1 materials"),
         ({"materials": [STIFF, (-5.0, 0.3)], "regions": [0] * 72}, tribo.SettingsError, "Young's modulus"),
+        ({"materials": [(10**400, 0.3)], "regions": [0] * 72}, tribo.SettingsError, "pairs"),
         ({"young": 1.0}, TypeError, "poisson"),
+        ({"young": "200", "poisson": 0.3}, TypeError, "'young' must be a real number"),
     ],
 )
 def test_bad_materials_are_refused(keywords: dict[str, object], error: type[Exception], says: str) -> None:
@@ -280,6 +282,9 @@ def test_two_bodies_take_a_model_and_coated_bodies(tmp_path: Path) -> None:
         level = adaptive.level_problem(k)
         n = level.bodies[0][1][3]
         np.testing.assert_array_equal(level.regions[:n], _centroids(level.mesh)[:n, 1] > -0.25)
+    # Regions index the joined materials: zeros for both bodies leave the second body's below its own.
+    with pytest.raises(tribo.SettingsError, match="regions of body 'upper' must index its materials"):
+        coated.on_mesh(coated.mesh, coated.multiplier_mesh, regions=np.zeros(coated.mesh.n_triangles, np.int64))
     with pytest.raises(tribo.SettingsError, match="Body 'lower': several materials"):
         blocks(materials=[(1.0, 0.3)])[0]._compiled()
     # A scene: the lower body coated, both bodies in plane stress.

@@ -431,7 +431,8 @@ def test_plot_coulomb_map(tmp_path: Path) -> None:
 
 def test_the_layered_reference_is_the_half_space_in_its_limits() -> None:
     """Study 21's reference: one material is the half-space's compliance 2 / (E* k); a layer whose thickness is
-    many wavelengths is the layer's, one far thinner the substrate's (to first order in kh); and its contact
+    many wavelengths is the layer's, one far thinner the substrate's (to first order in kh), one on a rigid base
+    the classical closed form (an independent derivation of the layer's conditions); and its contact
     of one material converges to Hertz's pressure at first order in the grid step (the square-root edge falls
     inside one cell)."""
     import numpy as np
@@ -444,9 +445,19 @@ def test_the_layered_reference_is_the_half_space_in_its_limits() -> None:
     thick = np.array([40.0, 100.0, 1000.0])  # k h
     np.testing.assert_allclose(lh.compliance(thick / 0.25, 0.25, coat, substrate) * thick / 0.25 * star(coat) / 2,
                                1.0, rtol=1e-12)
-    for kh in (1e-6, 1e-4, 1e-3):
+    for kh in (1e-6, 1e-4, 1e-3):  # the substrate's, to first order in kh
         deviation = lh.compliance(np.array([kh / 0.25]), 0.25, coat, substrate)[0] * kh / 0.25 * star(substrate) / 2 - 1
         assert abs(deviation) <= kh, (kh, deviation)
+    # On a rigid base (the substrate 1e8 times as stiff: its own compliance adds 1e-8 / closed of the layer's,
+    # at most 5e-7 here), the classical closed form of a layer bonded to a rigid base in plane strain, κ = 3 − 4ν:
+    # u k E* / 2 = (κ sinh 2kh − 2kh) / (κ cosh 2kh + 2 (kh)² + 5 − 12ν + 8ν²).
+    nu, kh = coat[1], np.array([0.05, 0.2, 0.5, 1.0, 2.0, 5.0])
+    kappa = 3 - 4 * nu
+    closed = (kappa * np.sinh(2 * kh) - 2 * kh) / (kappa * np.cosh(2 * kh) + 2 * kh**2 + 5 - 12 * nu + 8 * nu**2)
+    rigid = (1e8 * coat[0], coat[1])
+    share = 1e-8 / closed.min()
+    np.testing.assert_allclose(lh.compliance(kh / 0.25, 0.25, coat, rigid) * kh / 0.25 * star(coat) / 2, closed,
+                               rtol=2 * share)
     load, radius = 0.87, 1.0
     a = math.sqrt(4 * load * radius / (math.pi * star(substrate)))
     errors = []

@@ -115,8 +115,8 @@ pub struct Problem {
     pub contact_stress: ContactStress,
     /// Admissible bound on γ0 and the triangle that sets it.
     pub gamma0_bound: Gamma0Bound,
-    /// The material of every triangle (`spec.material` everywhere for one body; per body for two, the
-    /// secondary's being `spec.material`).
+    /// The material of every triangle, by region (`spec.material` everywhere for [`Problem::new`]; as given to
+    /// [`Problem::with_materials`]; for two bodies the first body's materials, then the second's).
     pub materials: Materials,
     /// The plane-strain materials with their in-plane law under `spec.model` ([`Model::in_plane`]): the
     /// stiffness, the stresses and the estimates read these; `materials` themselves under plane strain.

@@ -104,7 +104,8 @@ pub struct ErrorEstimate {
     pub contact: f64,
     /// The friction part: cone violation and dissipation gap.
     pub friction: f64,
-    /// `η / (E* a(u_h, u_h))^{1/2}`: the relative energy estimate (dimensionless).
+    /// `(Σ_K η_K² / E*_K)^{1/2} / a(u_h, u_h)^{1/2}` (`η / (E* a(u_h, u_h))^{1/2}` for one material): the
+    /// relative energy estimate (dimensionless).
     pub energy_relative: f64,
     /// `ζ`, the estimate of `‖λ − λ_H‖_{L²(Γ_C)}` (see the module documentation).
     pub traction: f64,

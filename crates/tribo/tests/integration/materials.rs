@@ -78,8 +78,10 @@ fn a_layered_block_compressed_through_the_contact_is_exact() {
     let p = delta / (0.5 / uniaxial(&stiff) + 0.5 / uniaxial(&soft));
     for space in [MultiplierSpace::P0, MultiplierSpace::P1] {
         let (mesh, spec) = compressed_square(delta, stiff, space);
-        let regions = layers(&mesh, 0.5);
-        let problem = Problem::with_materials(mesh, spec, Materials { materials: vec![stiff, soft], region: regions })
+        // The contact layer is the second material, not the spec's: a fallback to either would be seen.
+        let regions = layers(&mesh, 0.5).iter().map(|l| 1 - l).collect();
+        let spec = ProblemSpec { material: soft, ..spec };
+        let problem = Problem::with_materials(mesh, spec, Materials { materials: vec![soft, stiff], region: regions })
             .expect("valid");
         assert_eq!(problem.spec.material, stiff, "the contact side's material");
         for stab in [Stabilization::None, Stabilization::Fraction(0.5)] {
@@ -258,4 +260,42 @@ fn a_body_of_a_pair_may_have_several_materials() {
     coated[1].materials.region.pop();
     let e = Problem::two_bodies(coated, pair, [0.0, 0.0]).unwrap_err();
     assert!(matches!(&e, Error::BadMaterial { what } if what.contains("body 'upper'")), "{e}");
+}
+
+/// A Γ_C of two materials side by side (its left half stiff, its right half soft, γ0 > 0): the stabilization's
+/// contact stresses are each edge's own triangle's, σ_n(u_h) of the solution's element stresses to round-off,
+/// and the relative energy estimate weighs each triangle's η_K² by its own E*: `(Σ η_K² / E*_K)^½ / ‖u‖_A`.
+#[test]
+fn the_contact_stresses_and_the_estimate_read_each_triangles_material() {
+    let mesh = tribo_testkit::hertz_mesh(0.02);
+    let spec = tribo_testkit::hertz_spec(0.01, 0.002, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    let (soft, stiff) = (Material { young: 50.0, poisson: 0.35 }, Material { young: 600.0, poisson: 0.2 });
+    let halves: Vec<usize> = (0..mesh.n_triangles())
+        .map(|t| usize::from(mesh.vertices(t).iter().map(|p| p[0]).sum::<f64>() < 0.0))
+        .collect();
+    let problem =
+        Problem::with_materials(mesh, spec, Materials { materials: vec![soft, stiff], region: halves }).expect("valid");
+    let regions_on_contact: Vec<usize> =
+        problem.contact.edges.iter().map(|e| problem.materials.region[e.triangle]).collect();
+    assert!(regions_on_contact.contains(&0) && regions_on_contact.contains(&1), "test set-up: Γ_C of both");
+    let sol = problem.solve(&Friction::Coulomb { mu: 0.3 }, &SolverSettings::default(), None).expect("solves");
+    assert_eq!(sol.report.status, SolveStatus::Converged);
+    assert!(sol.report.gamma0 > 0.0);
+    let scale = sol.sigma_n.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    for (k, (ops, dofs)) in problem.contact_stress.ops.iter().zip(&problem.contact_stress.dofs).enumerate() {
+        let sigma_n: f64 = dofs.iter().zip(ops[0].iter()).map(|(&d, s)| s * sol.displacement[d]).sum();
+        assert!((sigma_n - sol.sigma_n[k]).abs() <= 1e-12 * scale, "edge {k}: {sigma_n} against {}", sol.sigma_n[k]);
+    }
+    let star = |m: &Material| m.young / (1.0 - m.poisson * m.poisson);
+    let weighted: f64 = (0..problem.mesh.n_triangles())
+        .map(|t| sol.estimator[t].powi(2) / star(&problem.in_plane.materials[problem.in_plane.region[t]]))
+        .sum();
+    let energy = tribo::elasticity::energy_norm(&problem.mesh, &problem.in_plane, &sol.displacement);
+    let expected = weighted.sqrt() / energy;
+    let got = sol.report.estimate.energy_relative;
+    assert!((got - expected).abs() <= 1e-12 * expected, "energy_relative {got} against {expected}");
+    // Not the secondary material's E* for all: the two differ here.
+    let single = (0..problem.mesh.n_triangles()).map(|t| sol.estimator[t].powi(2)).sum::<f64>().sqrt()
+        / (star(&problem.spec.material).sqrt() * energy);
+    assert!((got - single).abs() > 1e-3 * got, "{got} against one E*: {single}");
 }
