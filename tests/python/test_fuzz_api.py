@@ -446,3 +446,45 @@ def test_fuzz_settings_out_of_integer_range(setting: str, value: int) -> None:
 def test_fuzz_cell_counts_out_of_integer_range(argument: str, value: int) -> None:
     counts = {"nx": 2, "ny": 2, argument: value}
     outcome(lambda: tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), counts["nx"], counts["ny"]))
+
+
+# ----- several materials (issue 41): materials and regions -----
+
+@st.composite
+def materials_and_regions(draw: st.DrawFn) -> tuple[Any, Any]:
+    """Materials (pairs, often hostile, sometimes of the wrong shape or type) and regions (one index per
+    triangle of the 16-triangle rectangle, sometimes out of range, negative, of the wrong length, dtype or
+    rank)."""
+    sane = st.lists(st.tuples(st.floats(1.0, 1e4), st.floats(-0.45, 0.45)), min_size=1, max_size=3)
+    hostile = st.lists(st.tuples(reals(1.0, 1e4), reals(-0.5, 0.49)), min_size=0, max_size=3)
+    odd = st.sampled_from([None, "x", [[1.0]], [(1.0, 0.3, 2.0)], [(10**400, 0.3)], 1j, [("a", 0.3)]])
+    materials = draw(st.one_of(sane, sane, sane, hostile, odd))
+    length = draw(st.sampled_from([16, 16, 16, 16, 15, 17, 0]))
+    count = len(materials) if isinstance(materials, list) and materials else 1
+    regions = draw(st.one_of(
+        hnp.arrays(st.sampled_from([np.int64, np.int32, np.uint64]), length, elements=st.integers(0, count - 1)),
+        hnp.arrays(st.sampled_from([np.int64, np.int32, np.uint64]), length, elements=st.integers(0, count - 1)),
+        hnp.arrays(st.sampled_from([np.int64, np.int32, np.uint64]), length, elements=st.integers(0, 3)),
+        hnp.arrays(np.int64, length, elements=st.integers(-3, 2**40)),
+        hnp.arrays(np.float64, length, elements=st.floats(0.0, 2.0)),
+        st.sampled_from([None, "x", [[0] * 16], -1, [1.5] * 16]),
+    ))
+    return materials, regions
+
+
+@fuzz(300)
+@given(materials_and_regions())
+def test_fuzz_several_materials(args: tuple[Any, Any]) -> None:
+    """A body of several materials with hostile materials and regions: a TriboError, a TypeError, or an honest
+    solution."""
+    materials, regions = args
+    m = tribo.Mesh.rectangle((-2.0, 2.0), (-1.0, 0.0), 4, 2)
+    kw: dict[str, Any] = dict(clamped="bottom", contact="top", approach=0.01, obstacle=tribo.Obstacle.parabola(1.0))
+    problem = outcome(lambda: tribo.Problem(m, materials=materials, regions=regions, **kw), wrong_type=True)
+    if problem is None:
+        return event("refused: problem")
+    solution = outcome(lambda: problem.solve(mu=0.3))
+    if solution is None:
+        return event("refused: solve")
+    event(f"status: {solution.report.status}")
+    assert_honest(solution)

@@ -178,6 +178,45 @@ proptest! {
         }
     }
 
+    /// A body of several materials (issue 41): hostile materials (any number, hostile E and ν) and regions (any
+    /// length, indices in and out of range), any friction law and settings: a typed error or an honest solution.
+    #[test]
+    fn several_materials_are_an_error_or_an_honest_status(
+        materials in proptest::collection::vec((mostly(1.0..1e4), mostly(-0.5..0.49)), 0..4),
+        length in prop_oneof![6 => Just(32usize), 1 => 0usize..40],
+        raw in proptest::collection::vec(any::<u64>(), 40),
+        stray in prop_oneof![3 => Just(None), 1 => (0usize..40, prop_oneof![Just(usize::MAX), 3usize..10]).prop_map(Some)],
+        friction in any_friction(),
+        settings in any_settings(),
+    ) {
+        let mesh = rectangle([-2.0, 2.0], [-1.0, 0.0], 4, 4, Diagonal::Right).expect("valid");
+        let spec = ProblemSpec::new(Material { young: 1.0, poisson: 0.3 }, "top")
+            .clamped(["bottom"])
+            .obstacle(ObstacleShape::Parabola { center: 0.0, radius: 1.0 })
+            .approach(0.01);
+        // Regions in range of the materials drawn, but one stray index now and then.
+        let n = materials.len().max(1) as u64;
+        let mut region: Vec<usize> = raw.iter().map(|r| (r % n) as usize).take(length).collect();
+        if let Some((at, value)) = stray.filter(|(at, _)| *at < region.len()) {
+            region[at] = value;
+        }
+        let materials = Materials {
+            materials: materials.into_iter().map(|(young, poisson)| Material { young, poisson }).collect(),
+            region,
+        };
+        let Ok(problem) = Problem::with_materials(mesh, spec, materials) else {
+            note("materials: problem refused");
+            return Ok(());
+        };
+        match problem.solve(&friction, &settings, None) {
+            Ok(sol) => {
+                note(&format!("materials: {}", sol.report.status.name()));
+                assert_honest(&sol, &settings);
+            }
+            Err(_) => note("materials: solve refused"),
+        }
+    }
+
     /// Valid scenes with extreme but representable data (E from 1e-200 to 1e200, approaches and shifts
     /// over many decades, any μ): every run ends in an honest status.
     #[test]
