@@ -115,7 +115,7 @@ def check_solution(problem: Problem, solution: Solution) -> list[str]:
             f"extent along n ({_g(extent)}), more than {_g(MAX_APPROACH_FRACTION * 100)} %: beyond small "
             "strain (check the units)"
         )
-    reasons += _held_contact(problem) + _cut_zone(problem, solution)
+    reasons += _held_contact(problem) + _cut_zone(problem, solution) + _non_unique_multipliers(problem, solution)
     nu = max([problem.poisson, *(m[1] for m in getattr(problem, "materials", ()))])  # a body of several materials
     if nu >= MAX_POISSON and problem.model == "plane_strain":
         reasons.append(
@@ -168,6 +168,36 @@ def _held_contact(problem: Problem) -> list[str]:
                 "answer there (a support named on the wrong side?)"
             )
     return reasons
+
+
+def _non_unique_multipliers(problem: Problem, solution: Solution) -> list[str]:
+    """The classic method (γ0 = 0) with more multiplier dofs across the contact zone (from the first dof in contact
+    to the last) than FE nodes under them: the normal rows of B that those dofs test have at most one column per
+    FE node there, so H restricted to them is singular and λ_n need not be unique (the multipliers checkerboard,
+    study 1a). One body only (a primary side adds columns to B)."""
+    if solution.report.gamma0 != 0.0 or problem.primary is not None:
+        return []
+    active = np.flatnonzero(np.asarray(solution.states) != 0)
+    if len(active) == 0:
+        return []
+    points, nodes = np.asarray(problem.multiplier_mesh), np.asarray(problem.node_abscissae)
+    # The support of the dofs in contact: for P1 the cells beside each point, for P0 the cell itself.
+    first, last = int(active.min()), int(active.max())
+    lo = points[max(first - 1, 0)] if problem.space == "P1" else points[first]
+    hi = points[min(last + 1, len(points) - 1)] if problem.space == "P1" else points[last + 1]
+    # FE nodes whose hat function reaches inside (lo, hi).
+    left = np.concatenate([[nodes[0]], nodes[:-1]])
+    right = np.concatenate([nodes[1:], [nodes[-1]]])
+    under = int(np.count_nonzero((left < hi) & (right > lo)))
+    count = last - first + 1  # every dof between the first and the last in contact (a checkerboard's zeros too)
+    if count <= under:
+        return []
+    return [
+        f"γ0 = 0 (the classic method) with {count} multiplier dofs across the contact zone over {under} FE nodes under "
+        "them: H is singular there, so λ_n need not be unique (two QP methods may return two λ_n, and with "
+        "friction two displacements) and its oscillation is not the pressure's (the checkerboard of study 1a); use "
+        "γ0 > 0 (the default) or a multiplier mesh no finer than the FE edges (multiplier_ratio ≥ 1)"
+    ]
 
 
 def _cut_zone(problem: Problem, solution: Solution) -> list[str]:

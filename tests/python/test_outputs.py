@@ -134,6 +134,19 @@ def test_warning_nearly_incompressible() -> None:
     assert not [r for r in check_solution(below, below.solve()) if "close to ½" in r]
 
 
+def test_warning_classic_method_with_a_multiplier_mesh_finer_than_the_fe_edges() -> None:
+    """γ0 = 0 with T_H twice as fine as the FE edges (study 1a's checkerboard scene): more multiplier dofs across the
+    contact zone than FE nodes under them, so H is singular there; stabilized, or with H = h, no warning."""
+    mesh = tribo.Mesh.rectangle((-2.0, 2.0), (-2.0, 0.0), 80, 40)
+    def reasons(ratio: float, **solve: float) -> list[str]:
+        problem = tribo.Problem(mesh, young=200.0, poisson=0.3, clamped="bottom", contact="top",
+                                obstacle=tribo.Obstacle.circle(1.0), approach=0.05, multiplier_ratio=ratio)
+        return [r for r in check_solution(problem, problem.solve(**solve)) if "classic method" in r]
+    said = reasons(0.5, gamma0=0.0)
+    assert len(said) == 1 and "11 multiplier dofs across the contact zone over 7 FE nodes" in said[0], said
+    assert reasons(0.5) == [] and reasons(1.0, gamma0=0.0) == []
+
+
 def test_warning_shift_large_for_small_sliding(hertz: tribo.Problem) -> None:
     """A cylinder shifted by a third of its contact width: the answer's zone stays where it was. The demo's
     shift (3 % of the width) is no reason, nor any shift of a flat obstacle."""
