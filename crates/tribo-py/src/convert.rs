@@ -112,6 +112,11 @@ pub fn vec1<'a, T: numpy::Element + Copy + 'a>(py: Python<'_>, v: impl Into<Cow<
     frozen(v.into().into_owned().into_pyarray(py))
 }
 
+/// A read-only 1D int64 array of indices (node numbers, steps, regions, counts).
+pub fn ints(py: Python<'_>, v: impl IntoIterator<Item = usize>) -> PyResult<Py<PyAny>> {
+    vec1(py, v.into_iter().map(|i| i as i64).collect::<Vec<_>>())
+}
+
 /// A read-only (n, K) array from rows.
 pub fn mat<T: numpy::Element + Copy, const K: usize>(py: Python<'_>, r: &[[T; K]]) -> PyResult<Py<PyAny>> {
     frozen(Array2::from(r.to_vec()).into_pyarray(py))

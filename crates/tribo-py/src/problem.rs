@@ -18,7 +18,7 @@ use tribo::{
     Threshold,
 };
 
-use crate::convert::{callback, floats, indices, pair, rows, setting_value, vec1};
+use crate::convert::{callback, floats, indices, ints, pair, rows, setting_value, vec1};
 use crate::errors::to_pyerr;
 use crate::mesh::PyMesh;
 use crate::obstacle::{chain_gap_error, take_gap_error, PyObstacle};
@@ -101,13 +101,9 @@ type BodyArgs =
     (String, Py<PyMesh>, Vec<(f64, f64)>, Option<Vec<usize>>, Vec<String>, Vec<PySupport>, Vec<(String, (f64, f64))>);
 
 fn body(b: BodyArgs) -> tribo::Body {
-    let (name, mesh, materials, regions, clamped, supports, tractions) = b;
+    let (name, mesh, pairs, regions, clamped, supports, tractions) = b;
     let (loads, mesh) = (loads((supports, tractions)), mesh.get().inner.clone());
-    let region = regions.unwrap_or_else(|| vec![0; mesh.n_triangles()]);
-    let materials = tribo::Materials {
-        materials: materials.into_iter().map(|(young, poisson)| Material { young, poisson }).collect(),
-        region,
-    };
+    let materials = tribo::Materials::from_pairs(&pairs, regions, mesh.n_triangles());
     tribo::Body { name, mesh, materials, clamped, supports: loads.0, tractions: loads.1 }
 }
 
@@ -275,14 +271,13 @@ impl PyProblem {
             // One material or several (`tribo.Problem` gives `young`, `poisson` as one), each triangle's region.
             let mesh_inner = mesh.cast::<PyMesh>()?.get().inner.clone();
             let n = mesh_inner.n_triangles();
-            let region = regions.map_or(Ok(vec![0; n]), |r| indices(r, "regions", &[Some(n)], Settings))?;
-            let materials = materials.ok_or_else(|| PyTypeError::new_err("Problem() missing keyword 'materials'"))?;
-            let materials: Vec<Material> =
-                materials.into_iter().map(|(young, poisson)| Material { young, poisson }).collect();
+            let region = regions.map(|r| indices(r, "regions", &[Some(n)], Settings)).transpose()?;
+            let pairs = materials.ok_or_else(|| PyTypeError::new_err("Problem() missing keyword 'materials'"))?;
+            let materials = tribo::Materials::from_pairs(&pairs, region, n);
             let (supports, tractions) = loads((supports.unwrap_or_default(), tractions.unwrap_or_default()));
             let spec = ProblemSpec {
                 // A placeholder where none is given: `with_materials` says so.
-                material: materials.first().copied().unwrap_or(Material { young: f64::NAN, poisson: 0.0 }),
+                material: materials.materials.first().copied().unwrap_or(Material { young: f64::NAN, poisson: 0.0 }),
                 model: model_given.unwrap_or_default(),
                 clamped: clamped.unwrap_or_default(),
                 supports,
@@ -293,7 +288,7 @@ impl PyProblem {
                 multiplier_points: points,
                 multiplier_space: space,
             };
-            py.detach(|| tribo::Problem::with_materials(mesh_inner, spec, tribo::Materials { materials, region }))
+            py.detach(|| tribo::Problem::with_materials(mesh_inner, spec, materials))
         }
         .map_err(|e| chain_gap_error(py, to_pyerr(e)))?;
         let (c, spec) = (&p.contact, &p.spec);
@@ -308,7 +303,7 @@ impl PyProblem {
             young: spec.material.young,
             poisson: spec.material.poisson,
             materials: p.materials.materials.iter().map(|m| (m.young, m.poisson)).collect(),
-            regions: vec1(py, p.materials.region.iter().map(|&r| r as i64).collect::<Vec<_>>())?,
+            regions: ints(py, p.materials.region.iter().copied())?,
             contact: spec.contact.clone(),
             clamped: spec.clamped.clone(),
             supports: spec.supports.iter().map(|s| PySupport { inner: s.clone() }).collect(),
@@ -320,7 +315,7 @@ impl PyProblem {
             contact_normal: (c.normal[0], c.normal[1]),
             contact_tangent: (c.tangent[0], c.tangent[1]),
             tangent_sign: c.tangent_sign(),
-            contact_nodes: vec1(py, c.nodes.iter().map(|&n| n as i64).collect::<Vec<_>>())?,
+            contact_nodes: ints(py, c.nodes.iter().copied())?,
             node_abscissae: vec1(py, &c.node_xi)?,
             multiplier_mesh: vec1(py, &p.multipliers.xi)?,
             multiplier_abscissae: vec1(py, p.multipliers.dof_abscissae())?,
@@ -409,10 +404,8 @@ impl PyProblem {
         let level = |l: &Level| (l.unknowns, l.multipliers, l.triangles, l.estimate.named(), l.relative, l.seconds);
         let spans = |l: &Level| l.bodies.iter().map(|b| b.spans()).collect::<Vec<_>>();
         let mesh = |l: Level| {
-            let (head, regions) =
-                ((level(&l), l.status.name()), l.regions.iter().map(|&r| r as i64).collect::<Vec<_>>());
-            let at = (spans(&l), PyMesh::from_core(py, l.mesh)?, vec1(py, &l.multiplier_mesh)?, vec1(py, regions)?);
-            Ok((head.0, head.1, at))
+            let at = (spans(&l), ints(py, l.regions.iter().copied())?, vec1(py, &l.multiplier_mesh)?);
+            Ok((level(&l), l.status.name(), (at.0, PyMesh::from_core(py, l.mesh)?, at.2, at.1)))
         };
         let levels = levels.into_iter().map(mesh).collect::<PyResult<Vec<_>>>()?;
         (answer, levels, stop.as_str()).into_pyobject(py)

@@ -6,7 +6,7 @@ use pyo3::types::{IntoPyDict, PyDict};
 use tribo::results::Scalar;
 use tribo::{Choice, ContactState};
 
-use crate::convert::{mat, pairs, vec1};
+use crate::convert::{ints, mat, pairs, vec1};
 
 /// `Report` as a dict.
 fn report<'py>(py: Python<'py>, r: &tribo::Report) -> PyResult<Bound<'py, PyDict>> {
@@ -51,12 +51,12 @@ pub fn solution<'py>(py: Python<'py>, s: &tribo::Solution) -> PyResult<Bound<'py
 
 /// `History` as a dict: its solutions as dicts, and the per-step series the core derives from them.
 pub fn history<'py>(py: Python<'py>, h: &tribo::History) -> PyResult<Bound<'py, PyDict>> {
-    let count = |state| vec1(py, h.count(state).into_iter().map(|c| c as i64).collect::<Vec<_>>());
+    let count = |state| ints(py, h.count(state));
     let (boundary_steps, boundaries) = h.stick_slip_table();
     let d = PyDict::new(py);
     d.set_item("status", h.status.name()).and(d.set_item("ended_at", h.ended_at))?;
     d.set_item("solutions", h.solutions.iter().map(|s| solution(py, s)).collect::<PyResult<Vec<_>>>()?)?;
-    d.set_item("kept", vec1(py, h.kept.iter().map(|&k| k as i64).collect::<Vec<_>>())?)?;
+    d.set_item("kept", ints(py, h.kept.iter().copied())?)?;
     d.set_item("failed", h.failed.as_deref().map(|s| solution(py, s)).transpose()?)?;
     h.series().into_iter().try_for_each(|(name, v)| d.set_item(name, vec1(py, v)?))?;
     d.set_item("stick_count", count(ContactState::Stick)?)?;
@@ -64,7 +64,7 @@ pub fn history<'py>(py: Python<'py>, h: &tribo::History) -> PyResult<Bound<'py, 
     d.set_item("separation_count", count(ContactState::Separation)?)?;
     d.set_item("contact_zone", mat(py, &h.extent(|s| s != ContactState::Separation))?)?;
     d.set_item("stick_zone", mat(py, &h.extent(|s| s == ContactState::Stick))?)?;
-    d.set_item("stick_slip_steps", vec1(py, boundary_steps.into_iter().map(|k| k as i64).collect::<Vec<_>>())?)?;
+    d.set_item("stick_slip_steps", ints(py, boundary_steps)?)?;
     d.set_item("stick_slip_boundaries", vec1(py, boundaries)?)?;
     d.set_item("gross_sliding", vec1(py, h.gross_sliding())?)?;
     d.set_item("factorizations", h.factorizations).and(d.set_item("setup_seconds", h.setup_seconds))?;

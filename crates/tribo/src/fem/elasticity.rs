@@ -125,6 +125,14 @@ impl Materials {
     pub fn uniform(material: Material, n_triangles: usize) -> Self {
         Self { materials: vec![material], region: vec![0; n_triangles] }
     }
+
+    /// The materials as the keyword surface gives them: pairs (E, ν), and the region of each triangle, or
+    /// without one every one of the `n_triangles` triangles of the first material (checked when a problem is
+    /// built: [`crate::Problem::with_materials`]).
+    pub fn from_pairs(pairs: &[(f64, f64)], region: Option<Vec<usize>>, n_triangles: usize) -> Self {
+        let materials = pairs.iter().map(|&(young, poisson)| Material { young, poisson }).collect();
+        Self { materials, region: region.unwrap_or_else(|| vec![0; n_triangles]) }
+    }
 }
 
 impl MaterialField for Materials {
