@@ -63,7 +63,7 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
     "loads.body_force": ("The body force f per unit area, in global axes", "stress / length", "[0, 0]"),
     "loads.tractions": ("The traction per unit length on each named edge set (Γ_N), in global axes", "stress",
                         "none"),
-    "contact.edge_set": ("The straight edge set Γ_C that meets the obstacle (*required* for one body)", "—", "—"),
+    "contact.edge_set": ("The edge set Γ_C that meets the obstacle: one open chain of boundary edges, straight or bent (straight for two bodies; *required* for one body)", "—", "—"),
     "contact.secondary": ("Two bodies: the side that carries the multipliers and the stabilization, "
                           "`body.edge_set`", "—", "—"),
     "contact.primary": ("Two bodies: the other side, `body.edge_set`", "—", "—"),

@@ -88,13 +88,17 @@ def l_shape() -> tribo.Mesh:
     sets = m.edge_sets
     sets["corner"] = np.vstack([sets["top"], sets["right"]])
     sets["split"] = np.vstack([sets["top"][:1], sets["bottom"][:1]])
+    sets["loop"] = np.vstack([sets["top"], sets["right"], sets["bottom"], sets["left"]])
     return tribo.Mesh(m.points, m.triangles, sets)
 
 
 def test_contact_geometry_errors() -> None:
     m = l_shape()
     common: dict[str, Any] = dict(young=1.0, poisson=0.3, clamped="left")
-    raises(tribo.ContactGeometryError, "ContactNotStraight", lambda: tribo.Problem(m, contact="corner", **common), "not straight")
+    # A bent set is one chain of edges: accepted; all four sides are a closed loop, not one open chain.
+    xi = tribo.Problem(m, contact="corner", **common).node_abscissae
+    assert xi[-1] - xi[0] == pytest.approx(2.0)
+    raises(tribo.ContactGeometryError, "ContactNotConnected", lambda: tribo.Problem(m, contact="loop", **common), "closed loop")
     raises(tribo.ContactGeometryError, None, lambda: tribo.Problem(m, contact="split", **common))
     raises(
         tribo.ContactGeometryError, "ContactOverlapsDirichlet", lambda: tribo.Problem(m, contact="left", **common)

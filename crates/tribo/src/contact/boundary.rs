@@ -1,5 +1,21 @@
-//! Geometry of the contact boundary Γ_C: a named set of boundary edges forming one straight segment, its
-//! normal, tangent and abscissae (the conventions are those of [`crate::contact`]).
+//! Geometry of the contact boundary Γ_C: a named set of boundary edges forming one open chain (a straight
+//! segment, or a polyline: the faceted arc of a curved boundary), the normal and tangent of each edge and
+//! the abscissae of its nodes (the conventions are those of [`crate::contact`]).
+//!
+//! # A chain of edges
+//! Every edge carries its own outward normal `n_e` and tangent `t_e = (−n_e₂, n_e₁)`. The abscissa ξ is
+//! the arclength, counted from the start of the chain at the projection of its first node on the
+//! direction of the chord between its ends (so that a straight chain has the abscissa of its line, up to
+//! rounding). The chain runs from the end with the smaller x toward the other one (the smaller y when the
+//! chord is vertical), as a straight Γ_C does. Where the set is straight to the tolerance of
+//! [`crate::contact::geometric_tol_rel`], every edge has the normal of the first one exactly, and the
+//! abscissa is the projection on the line of Γ_C, as it always was.
+//!
+//! A quantity at a node (`u_n`, the slip, the gap at the node) reads the node's normal: the normalized mean
+//! of the normals of its two edges (that of its only edge at an end). Everything integrated on Γ_C reads
+//! each edge's own frame (see [`crate::contact::mortar`] and [`crate::contact::operators`]).
+
+use std::collections::HashMap;
 
 use crate::error::{Error, Result};
 use crate::mesh::line::{geometric_tol_rel, off_line};
@@ -16,6 +32,10 @@ pub struct ContactEdge {
     pub triangle: usize,
     /// Length |E|.
     pub length: f64,
+    /// The edge's outward unit normal n_e.
+    pub normal: [f64; 2],
+    /// The edge's tangent t_e = (−n_e₂, n_e₁).
+    pub tangent: [f64; 2],
 }
 
 /// The contact boundary Γ_C.
@@ -23,13 +43,13 @@ pub struct ContactEdge {
 pub struct ContactBoundary {
     /// Name of the edge set.
     pub set: String,
-    /// Outward unit normal n.
+    /// Outward unit normal n (of the first edge; of all of Γ_C when it is straight).
     pub normal: [f64; 2],
-    /// Tangent t = (−n₂, n₁).
+    /// Tangent t = (−n₂, n₁) (of the first edge).
     pub tangent: [f64; 2],
-    /// Unit direction d of increasing abscissa (±t).
+    /// Unit direction d of increasing abscissa on the first edge (±t).
     pub direction: [f64; 2],
-    /// Origin o of the abscissa (foot of the perpendicular from (0, 0)).
+    /// Origin o of the abscissa on the line of the first edge (foot of the perpendicular from (0, 0)).
     pub origin: Point,
     /// Edges sorted by abscissa.
     pub edges: Vec<ContactEdge>,
@@ -37,28 +57,80 @@ pub struct ContactBoundary {
     pub nodes: Vec<usize>,
     /// Abscissae of `nodes`.
     pub node_xi: Vec<f64>,
+    /// Coordinates of `nodes`.
+    pub node_points: Vec<Point>,
+    /// Where the chain leaves the line of its first edge, as `(node, distance, edge length)`; `None` when
+    /// Γ_C is straight.
+    pub bend: Option<(usize, f64, f64)>,
+}
+
+/// The edges of Γ_C in order, with the frame of its abscissa (as the fields of [`ContactBoundary`]).
+struct Chain {
+    normal: [f64; 2],
+    direction: [f64; 2],
+    origin: Point,
+    edges: Vec<ContactEdge>,
+    nodes: Vec<usize>,
+    node_xi: Vec<f64>,
+}
+
+/// The outward unit normal of the boundary edge (a, b), from the interior vertex of its triangle.
+fn outward_normal(mesh: &Mesh, a: usize, b: usize) -> ([f64; 2], usize) {
+    let pts = mesh.points();
+    let t = mesh.boundary_triangle(a, b).expect("validated boundary edge");
+    let (pa, pb) = (pts[a], pts[b]);
+    let len = mesh.edge_length(a, b);
+    let e = [(pb[0] - pa[0]) / len, (pb[1] - pa[1]) / len];
+    let mut normal = [e[1], -e[0]];
+    let inner = mesh.triangles()[t].iter().copied().find(|&i| i != a && i != b).expect("triangle");
+    let to_inner = [pts[inner][0] - pa[0], pts[inner][1] - pa[1]];
+    if normal[0] * to_inner[0] + normal[1] * to_inner[1] > 0.0 {
+        normal = [-normal[0], -normal[1]];
+    }
+    (normal, t)
+}
+
+/// The distance from `p` to the segment [a, b].
+fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let l2 = d[0] * d[0] + d[1] * d[1];
+    let s = if l2 > 0.0 { (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / l2).clamp(0.0, 1.0) } else { 0.0 };
+    (p[0] - a[0] - s * d[0]).hypot(p[1] - a[1] - s * d[1])
 }
 
 impl ContactBoundary {
     /// Extracts Γ_C from the edge set `set` of `mesh`.
     ///
     /// # Errors
-    /// [`Error::UnknownEdgeSet`], [`Error::ContactNotStraight`], [`Error::ContactNotConnected`].
+    /// [`Error::UnknownEdgeSet`]; [`Error::ContactNotConnected`] when the edges are not one open chain
+    /// (a gap, a branch, a closed loop, a node visited twice).
     pub fn new(mesh: &Mesh, set: &str) -> Result<Self> {
         let raw = mesh.edge_set(set)?;
+        let (normal, _) = outward_normal(mesh, raw[0][0], raw[0][1]);
+        let bend = off_line(mesh, raw, normal);
+        let c = match bend {
+            None => Self::straight(mesh, set, raw, normal)?,
+            Some(_) => Self::chain(mesh, set, raw)?,
+        };
+        let node_points = c.nodes.iter().map(|&i| mesh.points()[i]).collect();
+        Ok(Self {
+            set: set.to_string(),
+            normal: c.normal,
+            tangent: [-c.normal[1], c.normal[0]],
+            direction: c.direction,
+            origin: c.origin,
+            edges: c.edges,
+            nodes: c.nodes,
+            node_xi: c.node_xi,
+            node_points,
+            bend,
+        })
+    }
+
+    /// A straight Γ_C: ordered by the projection on its line, every edge with the normal of the first.
+    fn straight(mesh: &Mesh, set: &str, raw: &[[usize; 2]], normal: [f64; 2]) -> Result<Chain> {
         let pts = mesh.points();
-        // Normal from the first edge and the interior vertex of its triangle.
-        let [a0, b0] = raw[0];
-        let t0 = mesh.boundary_triangle(a0, b0).expect("validated boundary edge");
-        let (pa, pb) = (pts[a0], pts[b0]);
-        let len0 = mesh.edge_length(a0, b0);
-        let e = [(pb[0] - pa[0]) / len0, (pb[1] - pa[1]) / len0];
-        let mut normal = [e[1], -e[0]];
-        let inner = mesh.triangles()[t0].iter().copied().find(|&i| i != a0 && i != b0).expect("triangle");
-        let to_inner = [pts[inner][0] - pa[0], pts[inner][1] - pa[1]];
-        if normal[0] * to_inner[0] + normal[1] * to_inner[1] > 0.0 {
-            normal = [-normal[0], -normal[1]];
-        }
+        let pa = pts[raw[0][0]];
         let tangent = [-normal[1], normal[0]];
         let tol = geometric_tol_rel();
         let direction = if tangent[0] > tol || (tangent[0].abs() <= tol && tangent[1] > 0.0) {
@@ -69,16 +141,12 @@ impl ContactBoundary {
         let offset = pa[0] * normal[0] + pa[1] * normal[1];
         let origin = [offset * normal[0], offset * normal[1]];
         let xi_of = |p: Point| (p[0] - origin[0]) * direction[0] + (p[1] - origin[1]) * direction[1];
-
-        if let Some((node, distance, length)) = off_line(mesh, raw, normal) {
-            return Err(Error::ContactNotStraight { set: set.to_string(), node, distance, length });
-        }
         let mut edges = Vec::with_capacity(raw.len());
         for &[a, b] in raw {
             let length = mesh.edge_length(a, b);
             let (left, right) = if xi_of(pts[a]) < xi_of(pts[b]) { (a, b) } else { (b, a) };
             let triangle = mesh.boundary_triangle(a, b).expect("validated boundary edge");
-            edges.push(ContactEdge { left, right, triangle, length });
+            edges.push(ContactEdge { left, right, triangle, length, normal, tangent });
         }
         edges.sort_by(|p, q| xi_of(pts[p.left]).total_cmp(&xi_of(pts[q.left])));
         for w in edges.windows(2) {
@@ -104,33 +172,201 @@ impl ContactBoundary {
                 what: "a node is visited twice (the edges fold back on themselves)".to_string(),
             });
         }
-        Ok(Self { set: set.to_string(), normal, tangent, direction, origin, edges, nodes, node_xi })
+        Ok(Chain { normal, direction, origin, edges, nodes, node_xi })
     }
 
-    /// `d · t`: +1 when the abscissa increases along t, −1 otherwise.
+    /// A bent Γ_C: the edges walked as one open chain, each with its own normal, abscissae by arclength.
+    fn chain(mesh: &Mesh, set: &str, raw: &[[usize; 2]]) -> Result<Chain> {
+        let pts = mesh.points();
+        let bad = |what: String| Err(Error::ContactNotConnected { set: set.to_string(), what });
+        let mut around: HashMap<usize, Vec<usize>> = HashMap::new();
+        for (k, &[a, b]) in raw.iter().enumerate() {
+            around.entry(a).or_default().push(k);
+            around.entry(b).or_default().push(k);
+        }
+        if let Some((node, e)) = around.iter().filter(|(_, e)| e.len() > 2).min_by_key(|(n, _)| **n) {
+            return bad(format!("the edges branch at node {node} ({} edges of the set meet there)", e.len()));
+        }
+        let mut ends: Vec<usize> = around.iter().filter(|(_, e)| e.len() == 1).map(|(n, _)| *n).collect();
+        ends.sort_unstable();
+        if ends.is_empty() {
+            return bad(format!(
+                "the edges form a closed loop (through node {}): Γ_C must be an open chain",
+                raw[0][0].min(raw[0][1])
+            ));
+        }
+        if ends.len() > 2 {
+            return bad(format!(
+                "the edges form {} separate chains (ends at nodes {:?}): Γ_C must be one chain",
+                ends.len() / 2,
+                ends
+            ));
+        }
+        // From the end with the smaller x (the smaller y when the chord is vertical), as a straight Γ_C.
+        let (p, q) = (pts[ends[0]], pts[ends[1]]);
+        let chord = [q[0] - p[0], q[1] - p[1]];
+        let span = chord[0].hypot(chord[1]);
+        let tol = geometric_tol_rel();
+        let forward = chord[0] > tol * span || (chord[0].abs() <= tol * span && chord[1] > 0.0);
+        let (first, last) = if forward { (ends[0], ends[1]) } else { (ends[1], ends[0]) };
+        let unit = if span > 0.0 {
+            let s = if forward { 1.0 } else { -1.0 };
+            [s * chord[0] / span, s * chord[1] / span]
+        } else {
+            [1.0, 0.0]
+        };
+        let mut edges = Vec::with_capacity(raw.len());
+        let mut nodes = vec![first];
+        let mut used = vec![false; raw.len()];
+        let mut at = first;
+        while let Some(&k) = around[&at].iter().find(|&&k| !used[k]) {
+            used[k] = true;
+            let [a, b] = raw[k];
+            let next = if a == at { b } else { a };
+            let (normal, triangle) = outward_normal(mesh, a, b);
+            let tangent = [-normal[1], normal[0]];
+            edges.push(ContactEdge {
+                left: at,
+                right: next,
+                triangle,
+                length: mesh.edge_length(a, b),
+                normal,
+                tangent,
+            });
+            nodes.push(next);
+            at = next;
+        }
+        if at != last || edges.len() != raw.len() {
+            return bad(format!("the edges from node {first} do not reach every edge of the set: it is not one chain"));
+        }
+        // The walk runs along +t or −t on every edge alike: the body stays on one side of the chain.
+        let sign = |e: &ContactEdge| {
+            let (a, b) = (pts[e.left], pts[e.right]);
+            (b[0] - a[0]) * e.tangent[0] + (b[1] - a[1]) * e.tangent[1] > 0.0
+        };
+        if let Some(w) = edges.windows(2).find(|w| sign(&w[0]) != sign(&w[1])) {
+            return bad(format!(
+                "the body changes side of the chain at node {} (the outward normals of its two edges point to \
+                 opposite sides of the walk)",
+                w[0].right
+            ));
+        }
+        let mut node_xi = Vec::with_capacity(nodes.len());
+        node_xi.push(pts[first][0] * unit[0] + pts[first][1] * unit[1]);
+        for e in &edges {
+            node_xi.push(node_xi[node_xi.len() - 1] + e.length);
+        }
+        let e0 = edges[0];
+        let (normal, tangent) = (e0.normal, e0.tangent);
+        let direction = if sign(&e0) { tangent } else { [-tangent[0], -tangent[1]] };
+        let offset = pts[first][0] * normal[0] + pts[first][1] * normal[1];
+        let origin = [offset * normal[0], offset * normal[1]];
+        Ok(Chain { normal, direction, origin, edges, nodes, node_xi })
+    }
+
+    /// Whether Γ_C is one straight segment (every edge with the same normal).
+    pub fn is_straight(&self) -> bool {
+        self.bend.is_none()
+    }
+
+    /// `d · t`: +1 when the abscissa increases along t, −1 otherwise (on every edge alike).
     pub fn tangent_sign(&self) -> f64 {
         self.direction[0] * self.tangent[0] + self.direction[1] * self.tangent[1]
     }
 
-    /// Abscissa of a point (its projection on the line of Γ_C).
+    /// The normal at node `k` of Γ_C (an index into `nodes`): the normalized mean of its edges' normals.
+    pub fn node_normal(&self, k: usize) -> [f64; 2] {
+        if self.is_straight() {
+            return self.normal;
+        }
+        let last = self.edges.len() - 1;
+        let (a, b) = (self.edges[k.saturating_sub(1).min(last)].normal, self.edges[k.min(last)].normal);
+        let m = [a[0] + b[0], a[1] + b[1]];
+        let norm = m[0].hypot(m[1]);
+        if norm > 0.0 {
+            [m[0] / norm, m[1] / norm]
+        } else {
+            b
+        }
+    }
+
+    /// The tangent `(−n₂, n₁)` at node `k` of Γ_C.
+    pub fn node_tangent(&self, k: usize) -> [f64; 2] {
+        let n = self.node_normal(k);
+        [-n[1], n[0]]
+    }
+
+    /// The edge that holds abscissa `xi` (the first or the last edge beyond the ends).
+    pub fn edge_at(&self, xi: f64) -> usize {
+        self.node_xi.partition_point(|&y| y <= xi).clamp(1, self.edges.len()) - 1
+    }
+
+    /// Abscissa of a point: its projection on the line of a straight Γ_C; on a chain, the abscissa of the
+    /// nearest point of the chain, the end edges extended beyond the ends.
     pub fn abscissa(&self, p: Point) -> f64 {
-        (p[0] - self.origin[0]) * self.direction[0] + (p[1] - self.origin[1]) * self.direction[1]
+        if self.is_straight() {
+            return (p[0] - self.origin[0]) * self.direction[0] + (p[1] - self.origin[1]) * self.direction[1];
+        }
+        let last = self.edges.len() - 1;
+        let mut best = (f64::INFINITY, 0.0);
+        for (k, e) in self.edges.iter().enumerate() {
+            let (a, b) = (self.node_points[k], self.node_points[k + 1]);
+            let d = [b[0] - a[0], b[1] - a[1]];
+            let mut s = ((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / (e.length * e.length);
+            s = s.clamp(if k == 0 { f64::NEG_INFINITY } else { 0.0 }, if k == last { f64::INFINITY } else { 1.0 });
+            let distance = (p[0] - a[0] - s * d[0]).hypot(p[1] - a[1] - s * d[1]);
+            if distance < best.0 {
+                best = (distance, self.node_xi[k] + s * e.length);
+            }
+        }
+        best.1
     }
 
-    /// Distance of a point from the segment `[lo, hi]` (abscissae) of the line of Γ_C.
+    /// Distance of a point from the part `[lo, hi]` (abscissae) of Γ_C (of its line when straight; the end
+    /// edges of a chain extended beyond its ends).
     pub fn distance_to_span(&self, p: Point, lo: f64, hi: f64) -> f64 {
-        let xi = self.abscissa(p);
-        (lo - xi).max(xi - hi).max(0.0).hypot(self.distance_to_line(p))
+        if self.is_straight() {
+            let xi = self.abscissa(p);
+            return (lo - xi).max(xi - hi).max(0.0).hypot(self.distance_to_line(p));
+        }
+        let last = self.edges.len() - 1;
+        let mut best = f64::INFINITY;
+        for k in 0..=last {
+            let a = lo.max(if k == 0 { f64::NEG_INFINITY } else { self.node_xi[k] });
+            let b = hi.min(if k == last { f64::INFINITY } else { self.node_xi[k + 1] });
+            if a <= b {
+                best = best.min(segment_distance(p, self.point_at(a), self.point_at(b)));
+            }
+        }
+        best
     }
 
-    /// Signed distance of a point from the line of Γ_C (along n).
+    /// Signed distance of a point from Γ_C along n: from the line of a straight Γ_C; on a chain, from its
+    /// nearest point, along the normal of the nearest edge.
     pub fn distance_to_line(&self, p: Point) -> f64 {
-        (p[0] - self.origin[0]) * self.normal[0] + (p[1] - self.origin[1]) * self.normal[1]
+        if self.is_straight() {
+            return (p[0] - self.origin[0]) * self.normal[0] + (p[1] - self.origin[1]) * self.normal[1];
+        }
+        let xi = self.abscissa(p);
+        let (q, n) = (self.point_at(xi), self.edges[self.edge_at(xi)].normal);
+        let d = (p[0] - q[0]).hypot(p[1] - q[1]);
+        if (p[0] - q[0]) * n[0] + (p[1] - q[1]) * n[1] < 0.0 {
+            -d
+        } else {
+            d
+        }
     }
 
-    /// The point of Γ_C's line at abscissa `xi`.
+    /// The point of Γ_C at abscissa `xi` (of its line when straight; on the end edges extended beyond the
+    /// ends of a chain).
     pub fn point_at(&self, xi: f64) -> Point {
-        [self.origin[0] + xi * self.direction[0], self.origin[1] + xi * self.direction[1]]
+        if self.is_straight() {
+            return [self.origin[0] + xi * self.direction[0], self.origin[1] + xi * self.direction[1]];
+        }
+        let k = self.edge_at(xi);
+        let s = (xi - self.node_xi[k]) / self.edges[k].length;
+        let (a, b) = (self.node_points[k], self.node_points[k + 1]);
+        [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])]
     }
 
     /// Abscissa of the start of Γ_C.

@@ -14,6 +14,16 @@
 //!   along `−x`. [`ContactBoundary::tangent_sign`] is `d · t` (±1).
 //! * Straightness is checked with a tolerance relative to the local edge length: a node may lie at most
 //!   `√ε · h_E` off the line (coordinates rounded to about 8 significant digits still pass).
+//! * A Γ_C that is not straight is a **bent** chain of edges (one body against a rigid obstacle): each edge
+//!   has its own `n_e` and `t_e`, normal and tangential quantities on an edge are along its own frame, and
+//!   the abscissa is the arclength (module [`boundary`]'s documentation). The multipliers are scalar
+//!   functions of the arclength, so a P1 λ is continuous through a kink and its components turn with the
+//!   edges: the traction on edge e is `−λ_n n_e − λ_t t_e`. M1–M3 and the γ-weighted terms are 1D integrals
+//!   in the arclength, unchanged; only the coupling `∫ ψ_j v·n` is summed edge by edge
+//!   ([`mortar::MortarMatrices::m2_edges`]), and the stabilization reads σ(u_h) n_e on each edge. The paper's
+//!   stability argument turns each edge onto the x axis by itself (it is local to an edge and its triangle),
+//!   so (3.3)–(3.4) hold edge by edge, and the admissible γ0 is unchanged: `|σ n|²` does not depend on the
+//!   direction of n for an isotropic material ([`gamma0`]).
 
 mod boundary;
 pub mod gamma0;

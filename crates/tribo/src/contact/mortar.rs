@@ -115,6 +115,9 @@ pub struct MortarMatrices {
     pub m1: Coo,
     /// `M2 = ∫ φ_i ψ_j`.
     pub m2: Coo,
+    /// M2 edge by edge, `(i, j, k, ∫_{E_k} φ_i ψ_j)` sorted, for a bent Γ_C whose edges have their own
+    /// normals (empty on a straight Γ_C, where `m2` serves).
+    pub m2_edges: Vec<(usize, usize, usize, f64)>,
     /// `M3 = ∫ φ_i χ_k`.
     pub m3: Coo,
     /// `∫ h_T ψ_i ψ_j`: multiply by γ0 for `Dγ`.
@@ -148,6 +151,8 @@ impl MortarMatrices {
         let pieces = common_refinement(fe, &mult.xi);
         let (mut m1, mut m2, mut m3) = (Coo::new(p, p), Coo::new(p, q), Coo::new(p, r));
         let (mut d_h, mut c_h) = (Coo::new(q, q), Coo::new(q, r));
+        let mut m2_edges = Vec::new();
+        let bent = !contact.is_straight();
         let g_h: Vec<f64> = contact.edges.iter().zip(h_t).map(|(e, h)| h * e.length).collect();
         let mut psi_integrals = vec![0.0; q];
         let mut gap_moments = vec![0.0; q];
@@ -169,6 +174,9 @@ impl MortarMatrices {
                     }
                     for &(j, pj) in &psi[..npsi] {
                         m2.entries.push((i, j, w * fi * pj));
+                        if bent {
+                            m2_edges.push((i, j, pc.edge, w * fi * pj));
+                        }
                     }
                     m3.entries.push((i, pc.edge, w * fi));
                 }
@@ -182,16 +190,25 @@ impl MortarMatrices {
             }
             for &(t, w) in &GAUSS4 {
                 let x = mid + half * t;
-                let g = obstacle.gap(x)?;
+                let g = obstacle.gap(contact, x)?;
                 let (psi, npsi) = mult.basis(pc.cell, x);
                 for &(i, pi) in &psi[..npsi] {
                     gap_moments[i] += w * half * pi * g;
                 }
             }
         }
+        m2_edges.sort_by_key(|e| (e.0, e.1, e.2));
+        let mut by_edge: Vec<(usize, usize, usize, f64)> = Vec::with_capacity(m2_edges.len());
+        for e in m2_edges {
+            match by_edge.last_mut() {
+                Some(l) if (l.0, l.1, l.2) == (e.0, e.1, e.2) => l.3 += e.3,
+                _ => by_edge.push(e),
+            }
+        }
         Ok(Self {
             m1: m1.compress(),
             m2: m2.compress(),
+            m2_edges: by_edge,
             m3: m3.compress(),
             d_h: d_h.compress(),
             c_h: c_h.compress(),

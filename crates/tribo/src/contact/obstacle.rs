@@ -11,10 +11,24 @@
 //! The equilibrium equation (first line of (3.1)) and the stabilization terms are unchanged: σ(u_h) does not
 //! see a rigid shift. In matrix form the obstacle adds the vector `d = (∫ψ_j g, ∫ψ_j s)` to the
 //! QP's linear term (see [`crate::qp`]).
+//!
+//! # Shapes given by their geometry
+//! A gap function of the abscissa suits a straight Γ_C (Hertz's half-space idealization). A bent Γ_C (a chain
+//! of edges, [`crate::contact::ContactBoundary`]) meets an obstacle given by its geometry: a line, a disc, a
+//! hole around the body, or any signed distance `d(x)` (positive outside the obstacle). The initial gap at a
+//! point x of Γ_C is then `g₀ = d(x)`, the distance to the obstacle's nearest point, and non-penetration is
+//! still `u_n ≤ g₀ − δ` along the body's own normal n_e. This is the small-sliding linearization of
+//! `d(x + u) ≥ 0`, `d(x) + ∇d · u ≥ 0`, with the obstacle's normal `−∇d` replaced by the body's n_e: the two
+//! agree where the body touches (both are normal to the common tangent), up to the facets' angle, O(h) on
+//! a faceted arc, and the gap they multiply vanishes there. The body's normal keeps λ_n and λ_t in Γ_C's own
+//! frame, as on a straight Γ_C. The approach δ lowers the gap by δ everywhere (a line moves by δ toward the
+//! body; a hole shrinks by δ, the interference of a shrink fit) and the shift s moves the obstacle's surface
+//! by s along each edge's t_e (a rotation by s/R of a hole around a disc).
 
 use std::fmt;
 use std::sync::Arc;
 
+use crate::contact::ContactBoundary;
 use crate::error::{Error, Result};
 
 /// A user gap function `ξ ↦ g₀(ξ)`.
@@ -27,7 +41,19 @@ impl fmt::Debug for GapFunction {
     }
 }
 
-/// Shape of the obstacle: the initial gap `g₀(ξ) ≥ 0` between Γ_C and the obstacle, along n.
+/// A user signed distance `x ↦ d(x)` from the obstacle, positive outside it.
+#[derive(Clone)]
+pub struct DistanceFunction(pub Arc<dyn Fn([f64; 2]) -> f64 + Send + Sync>);
+
+impl fmt::Debug for DistanceFunction {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("DistanceFunction(<closure>)")
+    }
+}
+
+/// Shape of the obstacle: the initial gap `g₀(ξ) ≥ 0` between Γ_C and the obstacle, along n, as a function of
+/// the abscissa (`Flat` to `Function`), or the obstacle's geometry (`Line` to `Distance`: the module
+/// documentation).
 #[derive(Debug, Clone, Default)]
 pub enum ObstacleShape {
     /// A flat obstacle touching Γ_C: `g₀ = 0`.
@@ -57,6 +83,30 @@ pub enum ObstacleShape {
     },
     /// Any function of the abscissa.
     Function(GapFunction),
+    /// A rigid half-plane whose surface is the line through `point` with normal `normal` (pointing out of the
+    /// obstacle, toward the body; any length): `g₀(x) = (x − p) · m / |m|`.
+    Line {
+        /// A point of the line.
+        point: [f64; 2],
+        /// The normal out of the obstacle.
+        normal: [f64; 2],
+    },
+    /// A rigid disc outside the body: `g₀(x) = |x − c| − R`.
+    Disc {
+        /// Centre c.
+        center: [f64; 2],
+        /// Radius R > 0.
+        radius: f64,
+    },
+    /// A rigid hole around the body (the body inside a circle): `g₀(x) = R − |x − c|`.
+    Hole {
+        /// Centre c.
+        center: [f64; 2],
+        /// Radius R > 0.
+        radius: f64,
+    },
+    /// Any signed distance from the obstacle, positive outside it.
+    Distance(DistanceFunction),
 }
 
 /// The rigid obstacle: shape and prescribed motion.
@@ -96,7 +146,25 @@ impl Obstacle {
             }
         }
         match &self.shape {
-            ObstacleShape::Flat | ObstacleShape::Function(_) => Ok(()),
+            ObstacleShape::Flat | ObstacleShape::Function(_) | ObstacleShape::Distance(_) => Ok(()),
+            ObstacleShape::Line { point, normal } => {
+                if !point.iter().all(|v| v.is_finite()) {
+                    bad(format!("the line's point must be finite, got ({}, {})", point[0], point[1]))
+                } else if !(normal.iter().all(|v| v.is_finite()) && normal[0].hypot(normal[1]) > 0.0) {
+                    bad(format!("the line's normal must be finite and not zero, got ({}, {})", normal[0], normal[1]))
+                } else {
+                    Ok(())
+                }
+            }
+            ObstacleShape::Disc { center, radius } | ObstacleShape::Hole { center, radius } => {
+                if !center.iter().all(|v| v.is_finite()) {
+                    bad(format!("the centre must be finite, got ({}, {})", center[0], center[1]))
+                } else if !(radius.is_finite() && *radius > 0.0) {
+                    bad(format!("radius must be positive and finite, got {radius}"))
+                } else {
+                    Ok(())
+                }
+            }
             ObstacleShape::Circle { center, radius } | ObstacleShape::Parabola { center, radius } => {
                 if !center.is_finite() {
                     bad(format!("center must be finite, got {center}"))
@@ -129,7 +197,18 @@ impl Obstacle {
         }
     }
 
-    /// Initial gap `g₀(ξ)` (NaN at a non-finite abscissa).
+    /// Initial gap `g₀` at abscissa `xi` of `contact`: the gap function's value, or the signed distance of
+    /// the point of Γ_C there from a shape given by its geometry.
+    pub fn initial_gap_on(&self, contact: &ContactBoundary, xi: f64) -> f64 {
+        if self.shape.is_geometry() {
+            self.shape.distance(contact.point_at(xi))
+        } else {
+            self.initial_gap(xi)
+        }
+    }
+
+    /// Initial gap `g₀(ξ)` of a gap function of the abscissa (NaN at a non-finite abscissa, and for a shape
+    /// given by its geometry: [`Obstacle::initial_gap_on`] places it).
     pub fn initial_gap(&self, xi: f64) -> f64 {
         if !xi.is_finite() {
             return f64::NAN;
@@ -158,15 +237,19 @@ impl Obstacle {
                 }
             }
             ObstacleShape::Function(f) => (f.0)(xi),
+            ObstacleShape::Line { .. }
+            | ObstacleShape::Disc { .. }
+            | ObstacleShape::Hole { .. }
+            | ObstacleShape::Distance(_) => f64::NAN,
         }
     }
 
-    /// Gap after the approach: `g(ξ) = g₀(ξ) − δ`; non-penetration is `u_n ≤ g`.
+    /// Gap after the approach at abscissa `xi` of `contact`: `g(ξ) = g₀(ξ) − δ`; non-penetration is `u_n ≤ g`.
     ///
     /// # Errors
     /// [`Error::BadObstacle`] if a user function returns a non-finite value.
-    pub fn gap(&self, xi: f64) -> Result<f64> {
-        let g = self.initial_gap(xi) - self.approach;
+    pub fn gap(&self, contact: &ContactBoundary, xi: f64) -> Result<f64> {
+        let g = self.initial_gap_on(contact, xi) - self.approach;
         if g.is_finite() {
             Ok(g)
         } else {
@@ -176,6 +259,25 @@ impl Obstacle {
 }
 
 impl ObstacleShape {
+    /// Whether the shape is given by its geometry (a line, a disc, a hole, a signed distance) rather than as a
+    /// gap function of the abscissa.
+    pub fn is_geometry(&self) -> bool {
+        matches!(self, Self::Line { .. } | Self::Disc { .. } | Self::Hole { .. } | Self::Distance(_))
+    }
+
+    /// The signed distance of point `x` from a shape given by its geometry (NaN for a gap function).
+    pub fn distance(&self, x: [f64; 2]) -> f64 {
+        match self {
+            Self::Line { point, normal } => {
+                ((x[0] - point[0]) * normal[0] + (x[1] - point[1]) * normal[1]) / normal[0].hypot(normal[1])
+            }
+            Self::Disc { center, radius } => (x[0] - center[0]).hypot(x[1] - center[1]) - radius,
+            Self::Hole { center, radius } => radius - (x[0] - center[0]).hypot(x[1] - center[1]),
+            Self::Distance(f) => (f.0)(x),
+            _ => f64::NAN,
+        }
+    }
+
     /// The radius R and the abscissa of the lowest point of a circle or a parabola, else None.
     pub fn radius_center(&self) -> Option<(f64, f64)> {
         match *self {
@@ -192,12 +294,12 @@ impl ObstacleShape {
         match self {
             Self::Circle { center, .. } | Self::Parabola { center, .. } => vec![*center],
             Self::Polyline { xi, .. } => xi.clone(),
-            Self::Flat | Self::Function(_) => Vec::new(),
+            _ => Vec::new(),
         }
     }
 
-    /// The shape's name, as scene files and Python spell it: `flat`, `circle`, `parabola`, `polyline` or
-    /// `function`.
+    /// The shape's name, as scene files and Python spell it: `flat`, `circle`, `parabola`, `polyline`,
+    /// `function`, `line`, `disc`, `hole` or `distance`.
     pub fn kind(&self) -> &'static str {
         match self {
             Self::Flat => "flat",
@@ -205,6 +307,10 @@ impl ObstacleShape {
             Self::Parabola { .. } => "parabola",
             Self::Polyline { .. } => "polyline",
             Self::Function(_) => "function",
+            Self::Line { .. } => "line",
+            Self::Disc { .. } => "disc",
+            Self::Hole { .. } => "hole",
+            Self::Distance(_) => "distance",
         }
     }
 }
@@ -220,6 +326,13 @@ impl fmt::Display for ObstacleShape {
             Self::Polyline { xi, .. } => write!(f, "polyline(<{} points>)", xi.len()),
             Self::Function(_) => f.write_str("function(<closure>)"),
             Self::Flat => f.write_str("flat()"),
+            Self::Line { point, normal } => {
+                write!(f, "line(point=({}, {}), normal=({}, {}))", point[0], point[1], normal[0], normal[1])
+            }
+            Self::Disc { center, radius } | Self::Hole { center, radius } => {
+                write!(f, "{}(center=({}, {}), radius={radius})", self.kind(), center[0], center[1])
+            }
+            Self::Distance(_) => f.write_str("distance(<closure>)"),
         }
     }
 }

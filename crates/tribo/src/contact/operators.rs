@@ -18,9 +18,10 @@ use crate::contact::ContactBoundary;
 use crate::fem::elasticity::{element_dofs, strain_displacement, MaterialField};
 use crate::mesh::Mesh;
 
-/// Voigt vectors `a` with `a · σ = σ_n` and `a · σ = σ_t` (σ = (σ_xx, σ_yy, σ_xy)).
-pub fn traction_components(contact: &ContactBoundary) -> (Vector3<f64>, Vector3<f64>) {
-    let (n, t) = (contact.normal, contact.tangent);
+/// Voigt vectors `a` with `a · σ = σ_n` and `a · σ = σ_t` (σ = (σ_xx, σ_yy, σ_xy)) for the unit normal `n`
+/// and `t = (−n₂, n₁)`.
+pub fn traction_components(n: [f64; 2]) -> (Vector3<f64>, Vector3<f64>) {
+    let t = [-n[1], n[0]];
     let a_n = Vector3::new(n[0] * n[0], n[1] * n[1], 2.0 * n[0] * n[1]);
     let a_t = Vector3::new(t[0] * n[0], t[1] * n[1], t[0] * n[1] + t[1] * n[0]);
     (a_n, a_t)
@@ -39,13 +40,14 @@ pub struct ContactStress {
 }
 
 impl ContactStress {
-    /// The stress operators of every contact edge, each with the material of its triangle.
+    /// The stress operators of every contact edge, each with the material of its triangle and in its own
+    /// frame (n_e, t_e).
     pub fn new(mesh: &Mesh, materials: &impl MaterialField, contact: &ContactBoundary) -> Self {
-        let (a_n, a_t) = traction_components(contact);
         let ops = contact
             .edges
             .iter()
             .map(|e| {
+                let (a_n, a_t) = traction_components(e.normal);
                 let c = materials.at(e.triangle).elasticity_matrix();
                 let bt = strain_displacement(mesh, e.triangle).transpose();
                 [bt * (c * a_n), bt * (c * a_t)]
@@ -77,7 +79,8 @@ impl ContactStress {
 
     /// Rows of the coupling `E = B − γ0 Cγ S` over all dofs: `2q` sparse rows (normal then
     /// tangential), each sorted by dof with duplicates summed. `B` is the mortar term
-    /// `∫ ψ_j v_n = Σ_i M2[i, j] (v_i · n)` (and `· t`), `Cγ S` the γ-weighted stress term
+    /// `∫ ψ_j v_n = Σ_i M2[i, j] (v_i · n)` (and `· t`; on a bent Γ_C edge by edge, `Σ_e Σ_i M2_e[i, j]
+    /// (v_i · n_e)`), `Cγ S` the γ-weighted stress term
     /// `∫ h_T ψ_j σ(v)`. With a `primary` side (two bodies), `B` tests the jump: `∫ ψ_j [v]_n`, the primary
     /// term `−Σ_i M2²[i, j] (v²_i · n)` added ([`crate::contact::pair`]).
     pub fn coupling_rows(
@@ -93,10 +96,21 @@ impl ContactStress {
         let secondary = mortar.m2.entries.iter().map(|&(i, j, m)| (contact.nodes[i], j, m));
         let primary =
             primary.into_iter().flat_map(|p| p.m2.entries.iter().map(|&(i, j, m)| (p.boundary.nodes[i], j, -m)));
-        for (node, j, m) in secondary.chain(primary) {
-            for c in 0..2 {
-                rows[j].push((2 * node + c, m * n[c]));
-                rows[q + j].push((2 * node + c, m * t[c]));
+        if contact.is_straight() {
+            for (node, j, m) in secondary.chain(primary) {
+                for c in 0..2 {
+                    rows[j].push((2 * node + c, m * n[c]));
+                    rows[q + j].push((2 * node + c, m * t[c]));
+                }
+            }
+        } else {
+            // Each edge's part of M2 in its own frame (two bodies need straight sides: no primary term here).
+            for &(i, j, k, m) in &mortar.m2_edges {
+                let (node, e) = (contact.nodes[i], &contact.edges[k]);
+                for c in 0..2 {
+                    rows[j].push((2 * node + c, m * e.normal[c]));
+                    rows[q + j].push((2 * node + c, m * e.tangent[c]));
+                }
             }
         }
         if gamma0 > 0.0 {

@@ -51,10 +51,16 @@ impl PrimarySide {
     /// The primary side `set` of `mesh` against the secondary line `secondary` and its multiplier mesh.
     ///
     /// # Errors
-    /// [`Error::UnknownEdgeSet`] and the errors of [`ContactBoundary::new`]; [`Error::ContactPair`] when
+    /// [`Error::UnknownEdgeSet`] and the errors of [`ContactBoundary::new`]; [`Error::ContactNotStraight`] when
+    /// either side is not straight; [`Error::ContactPair`] when
     /// the two lines are not one line with opposite normals, or the primary does not cover the secondary.
     pub fn new(mesh: &Mesh, secondary: &ContactBoundary, set: &str, mult: &MultiplierMesh) -> Result<Self> {
         let boundary = ContactBoundary::new(mesh, set)?;
+        for side in [secondary, &boundary] {
+            if let Some((node, distance, length)) = side.bend {
+                return Err(Error::ContactNotStraight { set: side.set.clone(), node, distance, length });
+            }
+        }
         let bad =
             |what: String| Error::ContactPair { secondary: secondary.set.clone(), primary: set.to_string(), what };
         let tol = geometric_tol_rel();

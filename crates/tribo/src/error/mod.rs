@@ -309,8 +309,9 @@ pub enum Error {
     NoDirichlet,
 
     // ----- contact geometry -----
-    /// Γ_C is not one straight segment.
-    #[error("contact boundary '{set}' is not straight: node {node} lies {} off the line of the first edge (edge length {})", Num(*.distance), Num(*.length))]
+    /// A side of a pair of bodies is not one straight segment (two bodies need straight contact sides; one
+    /// body against a rigid obstacle takes any open chain of edges).
+    #[error("contact boundary '{set}' is not straight: node {node} lies {} off the line of the first edge (edge length {}); the contact sides of two bodies must be straight", Num(*.distance), Num(*.length))]
     ContactNotStraight {
         /// Edge set name.
         set: String,
@@ -321,8 +322,8 @@ pub enum Error {
         /// Local edge length it is compared with.
         length: f64,
     },
-    /// Γ_C is made of several pieces, or edges overlap.
-    #[error("contact boundary '{set}' is not one connected segment: {what}")]
+    /// Γ_C is not one open chain of edges: several pieces, a branch, a closed loop, or edges that overlap.
+    #[error("contact boundary '{set}' is not one open chain of edges: {what}")]
     ContactNotConnected {
         /// Edge set name.
         set: String,

@@ -9,6 +9,7 @@
 pub mod generate;
 pub mod line;
 pub mod refine;
+pub mod shapes;
 
 use std::collections::{BTreeMap, HashMap};
 

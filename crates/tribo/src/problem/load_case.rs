@@ -129,9 +129,9 @@ impl Problem {
         if self.primary.is_some() {
             return Ok(());
         }
-        let n = self.contact.normal;
         let tol = crate::mesh::line::geometric_tol_rel();
-        for (&node, &g) in self.contact.nodes.iter().zip(gap) {
+        for (k, (&node, &g)) in self.contact.nodes.iter().zip(gap).enumerate() {
+            let n = self.contact.node_normal(k);
             let prescribed = match self.dofs.nodes[node] {
                 NodeSupport::Fixed { .. } => true,
                 // Along n: the condition's unit vector is ±n (to the straightness tolerance).

@@ -138,7 +138,7 @@ impl Problem {
     ///
     /// # Errors
     /// Any input error: material, unknown edge sets, no support, bad or conflicting supports, a piece the
-    /// supports do not hold, non-finite loads, Γ_C not straight or not connected or overlapping Γ_D, bad
+    /// supports do not hold, non-finite loads, Γ_C not one open chain of edges or overlapping Γ_D, bad
     /// obstacle, bad multiplier points.
     pub fn new(mesh: Mesh, spec: ProblemSpec) -> Result<Self> {
         let materials = Materials::uniform(spec.material, mesh.n_triangles());
@@ -229,7 +229,8 @@ impl Problem {
         let clock = Instant::now();
         let contact = ContactBoundary::new(&mesh, &spec.contact)?;
         // The gap at the nodes of Γ_C: every value the solver and its results use is checked.
-        let contact_gap = contact.node_xi.iter().map(|&xi| spec.obstacle.gap(xi)).collect::<Result<Vec<f64>>>()?;
+        let contact_gap =
+            contact.node_xi.iter().map(|&xi| spec.obstacle.gap(&contact, xi)).collect::<Result<Vec<f64>>>()?;
         let contact_edges: std::collections::HashSet<[usize; 2]> =
             contact.edges.iter().map(|e| [e.left.min(e.right), e.left.max(e.right)]).collect();
         for e in &contact.edges {

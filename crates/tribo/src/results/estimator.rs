@@ -454,8 +454,21 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
 
     // Γ_C: the stabilized residual, contact and friction, edge by edge on the common refinement.
     let contact = input.contact;
-    let (nrm, tng) = (contact.normal, contact.tangent);
     let mult = input.multipliers;
+    // u_n and the slip at the two ends of each edge, in the edge's own frame (a node's values read the node's
+    // normal, the mean of its edges' on a bent Γ_C).
+    let in_frame = |nodal: &[f64], k: usize, tangential: bool| -> [f64; 2] {
+        [k, k + 1].map(|j| {
+            if contact.is_straight() {
+                return nodal[j];
+            }
+            let (node, e) = (contact.nodes[j], &contact.edges[k]);
+            let u = [input.displacement[2 * node], input.displacement[2 * node + 1]];
+            let (a, b) =
+                if tangential { (e.tangent, contact.node_tangent(j)) } else { (e.normal, contact.node_normal(j)) };
+            nodal[j] + u[0] * (a[0] - b[0]) + u[1] * (a[1] - b[1])
+        })
+    };
     let pieces = common_refinement(&contact.node_xi, &mult.xi);
     let value = |values: &[f64], cell: usize, xi: f64| -> f64 {
         let (b, nb) = mult.basis(cell, xi);
@@ -468,13 +481,15 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
     let mut conditions = vec![0.0; mesh.n_triangles()];
     for piece in &pieces {
         let e = &contact.edges[piece.edge];
+        let (nrm, tng) = (e.normal, e.tangent);
         let s = &input.stress[e.triangle];
         let sn = traction(s, nrm);
         let (sigma_n, sigma_t) = (sn[0] * nrm[0] + sn[1] * nrm[1], sn[0] * tng[0] + sn[1] * tng[1]);
         let (x0, x1) = (contact.node_xi[piece.edge], contact.node_xi[piece.edge + 1]);
-        let along = |nodal: &[f64], xi: f64| {
+        let (u_n, slip) = (in_frame(input.u_n, piece.edge, false), in_frame(input.slip, piece.edge, true));
+        let along = |ends: [f64; 2], xi: f64| {
             let w = (xi - x0) / (x1 - x0);
-            (1.0 - w) * nodal[piece.edge] + w * nodal[piece.edge + 1]
+            (1.0 - w) * ends[0] + w * ends[1]
         };
         let (mut gc, mut comp, mut cone, mut diss, mut lam, mut ncp) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
         // c = E* / h_E turns a displacement into a traction at the scale of the edge.
@@ -492,14 +507,14 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
             gc += wq * ((ln + sigma_n).powi(2) + (lt + sigma_t).powi(2));
             lam += wq * (ln * ln + lt * lt);
             sigma_l2 += wq * (sigma_n * sigma_n + sigma_t * sigma_t);
-            comp += wq * ln * ((input.gap)(xi) - along(input.u_n, xi));
+            comp += wq * ln * ((input.gap)(xi) - along(u_n, xi));
             cone += wq * (lt.abs() - b).max(0.0).powi(2);
-            let du = along(input.slip, xi);
+            let du = along(slip, xi);
             diss += wq * (b * du.abs() - lt * du);
             // The conditions as residuals of their projections (zero exactly when they hold): the
             // complementarity min(λ_n, c (g − u_n)₊) (penetration is the term below) and the friction
             // law λ_t − P_[−b, b](λ_t + c Δu_t).
-            let rn = ln.min(c * ((input.gap)(xi) - along(input.u_n, xi)).max(0.0));
+            let rn = ln.min(c * ((input.gap)(xi) - along(u_n, xi)).max(0.0));
             let rt = lt - (lt + c * du).clamp(-b.max(0.0), b.max(0.0));
             ncp += wq * (rn * rn + rt * rt);
         }
@@ -513,13 +528,14 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
     // Penetration, with the obstacle's own gap between the nodes.
     for (k, e) in contact.edges.iter().enumerate() {
         let (x0, x1) = (contact.node_xi[k], contact.node_xi[k + 1]);
+        let u_n = in_frame(input.u_n, k, false);
         let mut pen = 0.0;
         for w in penetration_pieces(x0, x1, input.lowest).windows(2) {
             let half = 0.5 * (w[1] - w[0]);
             for (x, wg) in GAUSS3 {
                 let xi = w[0] + half * (x + 1.0);
                 let s = (xi - x0) / (x1 - x0);
-                let un = (1.0 - s) * input.u_n[k] + s * input.u_n[k + 1];
+                let un = (1.0 - s) * u_n[0] + s * u_n[1];
                 pen += half * wg * (un - (input.gap)(xi)).max(0.0).powi(2);
             }
         }

@@ -54,7 +54,8 @@ pub struct Solution {
     /// Slip relative to the obstacle at the FE nodes of Γ_C: `u_t − s` for a static solve, the slip
     /// increment `u_t^k − u_t^{k−1} − (s_k − s_{k−1})` in step k of a history ([`crate::solve::history`]).
     pub slip: Vec<f64>,
-    /// Gap g = g₀ − δ at the FE nodes of Γ_C (δ of the load case).
+    /// Gap g = g₀ − δ at the FE nodes of Γ_C (δ of the load case). `u_n` and `slip` at a node read the
+    /// node's normal ([`crate::ContactBoundary::node_normal`]; Γ_C's own where it is straight).
     pub gap: Vec<f64>,
     /// Total normal contact force `∫ λ_n`.
     pub normal_force: f64,
@@ -64,10 +65,10 @@ pub struct Solution {
     /// The total force the obstacle exerts on the body, `(F_x, F_y) = −(N n + T t)` in global axes (n, t
     /// the normal and tangent of [`crate::ContactBoundary`]), with
     /// `N` = [`Solution::normal_force`] and `T` = [`Solution::tangential_force`] (the traction on Γ_C is
-    /// `σ(u)·n = −λ_n n − λ_t t`).
+    /// `σ(u)·n = −λ_n n − λ_t t`). On a bent Γ_C, `−∫ (λ_n n_e + λ_t t_e)` edge by edge.
     pub contact_force: [f64; 2],
     /// How the obstacle moved, in global axes: `−δ n + s t` (the approach δ toward the body, against
-    /// the outward normal, and the shift s along t).
+    /// the outward normal, and the shift s along t; on a bent Γ_C, in the frame of its first edge).
     pub obstacle_motion: [f64; 2],
     /// Largest pointwise penetration `max(u_n − g)₊` over the FE nodes of Γ_C.
     pub max_penetration: f64,
@@ -130,13 +131,14 @@ impl Solution {
         let sig = |s: &[f64; 3], a: [f64; 2], b: [f64; 2]| {
             a[0] * (s[0] * b[0] + s[2] * b[1]) + a[1] * (s[2] * b[0] + s[1] * b[1])
         };
-        let sigma_n = contact.edges.iter().map(|e| sig(&stress[e.triangle], n, n)).collect();
-        let sigma_t = contact.edges.iter().map(|e| sig(&stress[e.triangle], t, n)).collect();
+        let sigma_n = contact.edges.iter().map(|e| sig(&stress[e.triangle], e.normal, e.normal)).collect();
+        let sigma_t = contact.edges.iter().map(|e| sig(&stress[e.triangle], e.tangent, e.normal)).collect();
         let edge_abscissae = contact.node_xi.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
         let mut u_n = Vec::with_capacity(contact.nodes.len());
         let mut slip = Vec::with_capacity(contact.nodes.len());
         for (i, origin) in loading.slip_origin.iter().enumerate() {
             let [ux, uy] = problem.contact_displacement(i, &displacement);
+            let (n, t) = (contact.node_normal(i), contact.node_tangent(i));
             u_n.push(ux * n[0] + uy * n[1]);
             slip.push(ux * t[0] + uy * t[1] - origin);
         }
@@ -145,13 +147,25 @@ impl Solution {
         let w = &problem.mortar.psi_integrals;
         let normal_force: f64 = lambda_n.iter().zip(w).map(|(l, w)| l * w).sum();
         let tangential_force: f64 = lambda_t.iter().zip(w).map(|(l, w)| l * w).sum();
-        let contact_force = [0, 1].map(|i| -(normal_force * n[i] + tangential_force * t[i]));
+        let contact_force = if contact.is_straight() {
+            [0, 1].map(|i| -(normal_force * n[i] + tangential_force * t[i]))
+        } else {
+            // Edge by edge in its own frame: Σ_i M2_e[i, j] = ∫_{E_e} ψ_j.
+            let mut force = [0.0, 0.0];
+            for &(_, j, k, m) in &problem.mortar.m2_edges {
+                let e = &contact.edges[k];
+                for (c, f) in force.iter_mut().enumerate() {
+                    *f -= m * (lambda_n[j] * e.normal[c] + lambda_t[j] * e.tangent[c]);
+                }
+            }
+            force
+        };
         let obstacle_motion = [0, 1].map(|i| -loading.approach * n[i] + loading.shift * t[i]);
 
         let scaled = |v: [f64; 2]| [loading.load_factor * v[0], loading.load_factor * v[1]];
         let spec = &problem.spec;
         let moved = spec.obstacle.approach - loading.approach;
-        let gap_at = |xi: f64| spec.obstacle.initial_gap(xi) - spec.obstacle.approach + moved;
+        let gap_at = |xi: f64| spec.obstacle.initial_gap_on(contact, xi) - spec.obstacle.approach + moved;
         let input = EstimatorInput {
             mesh,
             materials,

@@ -359,8 +359,8 @@ fn after(condensed: &Condensed<'_>, solution: &Solution, loading: &LoadCase) -> 
     let moved = |j: usize| loading.moved_supports.as_ref().map_or(0.0, |m| m.e_change[j]);
     let tangential = (q..2 * q).map(|j| eu[j] + moved(j) - dl[j]).collect();
     let shift = loading.shift;
-    let t = problem.contact.tangent;
     let u_t = |i: usize| {
+        let t = problem.contact.node_tangent(i);
         let u = problem.contact_displacement(i, &solution.displacement);
         u[0] * t[0] + u[1] * t[1]
     };

@@ -123,14 +123,21 @@ fn material_load_and_support_rules() {
 
 #[test]
 fn contact_geometry_rules() {
-    // An L-shaped set is not straight.
+    // An L-shaped set is one chain of edges (a bent Γ_C): accepted, the abscissa its arclength.
     let mut m = square().edge_sets().clone();
     let mut l = m["bottom"].clone();
     l.extend(m["right"].iter().copied());
     m.insert("corner".into(), l);
+    let mut loop_ = m["corner"].clone();
+    loop_.extend(m["top"].iter().chain(&m["left"]).copied());
+    m.insert("loop".into(), loop_);
     let mesh = Mesh::new(square().points().to_vec(), square().triangles().to_vec(), m).unwrap();
-    let e = problem_err(mesh, ProblemSpec { contact: "corner".into(), ..spec() });
-    assert!(matches!(e, Error::ContactNotStraight { .. }), "{e}");
+    let bent = Problem::new(mesh.clone(), ProblemSpec { contact: "corner".into(), clamped: vec![], ..spec() }).unwrap();
+    assert!(!bent.contact.is_straight());
+    assert_eq!((bent.contact.start(), bent.contact.length()), (0.0, 2.0));
+    // All four sides: a closed loop, not one open chain.
+    let e = problem_err(mesh, ProblemSpec { contact: "loop".into(), clamped: vec![], ..spec() });
+    assert!(matches!(&e, Error::ContactNotConnected { what, .. } if what.contains("closed loop")), "{e}");
     // Two separate pieces of the bottom side.
     let mut m = square().edge_sets().clone();
     let b = m["bottom"].clone();

@@ -61,7 +61,7 @@ fn direct_equation(problem: &Problem, sol: &Solution, gamma0: f64) -> Direct {
         add(d, -f, &mut residual);
     }
     // b(λ, v) − ∫γ (λ_n + σ_n(u)) σ_n(v) − ∫γ (λ_t + σ_t(u)) σ_t(v).
-    let (a_n, a_t): (Vector3<f64>, Vector3<f64>) = traction_components(&problem.contact);
+    let (a_n, a_t): (Vector3<f64>, Vector3<f64>) = traction_components(problem.contact.normal);
     let (n, t) = (problem.contact.normal, problem.contact.tangent);
     for (k, xi, w) in quadrature(problem) {
         let e = problem.contact.edges[k];
@@ -95,7 +95,7 @@ fn direct_equation(problem: &Problem, sol: &Solution, gamma0: f64) -> Direct {
 /// sum of the absolute values of its integrands (its scale).
 fn direct_inequality(problem: &Problem, sol: &Solution, gamma0: f64, nu_n: &[f64], nu_t: &[f64]) -> (f64, f64) {
     let mesh = &problem.mesh;
-    let (a_n, a_t) = traction_components(&problem.contact);
+    let (a_n, a_t) = traction_components(problem.contact.normal);
     let (n, t) = (problem.contact.normal, problem.contact.tangent);
     let (mut val, scale);
     val = 0.0;
@@ -105,7 +105,7 @@ fn direct_inequality(problem: &Problem, sol: &Solution, gamma0: f64, nu_n: &[f64
         let (xl, xr) = (problem.contact.node_xi[k], problem.contact.node_xi[k + 1]);
         let (fl, fr) = ((xr - xi) / (xr - xl), (xi - xl) / (xr - xl));
         let u = [0, 1].map(|c| fl * sol.displacement[2 * e.left + c] + fr * sol.displacement[2 * e.right + c]);
-        let wn = u[0] * n[0] + u[1] * n[1] - problem.spec.obstacle.gap(xi).unwrap();
+        let wn = u[0] * n[0] + u[1] * n[1] - problem.spec.obstacle.gap(&problem.contact, xi).unwrap();
         let wt = u[0] * t[0] + u[1] * t[1] - problem.spec.obstacle.shift;
         let m = &problem.multipliers;
         let (ln, lt) = (m.evaluate(&sol.lambda_n, xi), m.evaluate(&sol.lambda_t, xi));
@@ -117,7 +117,9 @@ fn direct_inequality(problem: &Problem, sol: &Solution, gamma0: f64, nu_n: &[f64
         val += w * (dn * (wn - rn) + dt * (wt - rt));
         // Scale: |ν − λ| times a bound on the size of the (stabilized) gap and slip that does not vanish
         // where they do (|u_n| + |g| + |γ (λ_n + σ_n)|, likewise tangentially).
-        let size_n = (u[0] * n[0] + u[1] * n[1]).abs() + problem.spec.obstacle.gap(xi).unwrap().abs() + rn.abs();
+        let size_n = (u[0] * n[0] + u[1] * n[1]).abs()
+            + problem.spec.obstacle.gap(&problem.contact, xi).unwrap().abs()
+            + rn.abs();
         let size_t = (u[0] * t[0] + u[1] * t[1]).abs() + problem.spec.obstacle.shift.abs() + rt.abs();
         sizes.push(size_n.max(size_t));
         diffs.push(w * (dn.abs() + dt.abs()));

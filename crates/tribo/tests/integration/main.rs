@@ -29,6 +29,7 @@
 
 mod adaptive;
 mod coulomb_newton;
+mod curved;
 mod error_bars;
 mod errors;
 mod estimator;

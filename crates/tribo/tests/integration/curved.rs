@@ -1,0 +1,189 @@
+//! A bent Γ_C (issue 39, first step): the faceted rim of a roller, a chain of edges each with its own normal,
+//! against a rigid flat given by its geometry ([`ObstacleShape::Line`]).
+//!
+//! * Against plane-strain Hertz: a roller of radius 1 (the ring sector of radii 0.25–1 around its lowest point,
+//!   clamped on the inner arc) pressed on a rigid flat to a/R ≈ 0.04. Hertz's pressure of the computed force P
+//!   is `p(x) = p₀ (1 − x²/a²)^½`, `a² = 4 P R / (π E*)`; λ_n is compared with it in L2 at the horizontal
+//!   distance x from the lowest point of the rim, and the contact width by the pressure's second moment,
+//!   `a = 2 (∫ λ_n x² / P)^½` (exact for Hertz's pressure, and not tied to where the mesh resolves the edge).
+//! * Invariance: the roller scene turned and moved gives the same tractions, the forces turned.
+//! * Continuity: a straight Γ_C whose nodes are bent by 1e-7 of an edge length (a chain, read edge by edge)
+//!   gives the straight answer to within a few times that.
+
+use std::f64::consts::{FRAC_PI_2, PI};
+
+use tribo::*;
+
+const E: f64 = 1.0;
+const NU: f64 = 0.3;
+
+/// `R p + c`.
+fn moved([cos, sin]: [f64; 2], c: [f64; 2], p: [f64; 2]) -> [f64; 2] {
+    [cos * p[0] - sin * p[1] + c[0], sin * p[0] + cos * p[1] + c[1]]
+}
+
+/// The roller (centre (0, 1), radius 1, the sector ±1.2 rad around its lowest point between the radii 0.25
+/// and 1, graded at growth 0.075 to h_min over ±0.1 rad), moved by the rotation `r` and the translation `c`, clamped on its inner arc, pressed by
+/// `approach` on the rigid flat y = 0 (moved with it), shifted `shift`.
+fn roller(h_min: f64, r: [f64; 2], c: [f64; 2], approach: f64, shift: f64) -> Problem {
+    let sector = RingSector { center: [0.0, 1.0], radii: [0.25, 1.0], angles: [-FRAC_PI_2 - 1.2, -FRAC_PI_2 + 1.2] };
+    let grading = ArcGrading { angles: [-FRAC_PI_2 - 0.1, -FRAC_PI_2 + 0.1], h_min, h_max: 0.1, growth: 0.075 };
+    let mesh = ring_sector(&sector, &grading).expect("a roller mesh");
+    let points = mesh.points().iter().map(|&p| moved(r, c, p)).collect();
+    let mesh = Mesh::new(points, mesh.triangles().to_vec(), mesh.edge_sets().clone()).expect("a rigid motion");
+    let spec = ProblemSpec::new(Material { young: E, poisson: NU }, "outer")
+        .clamped(["inner"])
+        .obstacle(ObstacleShape::Line { point: moved(r, c, [0.0, 0.0]), normal: moved(r, [0.0; 2], [0.0, 1.0]) })
+        .approach(approach)
+        .shift(shift);
+    Problem::new(mesh, spec).expect("a roller on a flat")
+}
+
+/// The horizontal distance from the roller's lowest point of the point of Γ_C at abscissa `xi`.
+fn x_of(problem: &Problem, xi: f64) -> f64 {
+    problem.contact.point_at(xi)[0]
+}
+
+/// `(relative L2 error of λ_n against Hertz's pressure of the computed force, the second-moment width over
+/// Hertz's, a / R)`, integrated on the pieces of T_H and Γ_C's nodes with Hertz's edges ±a among the breaks.
+fn against_hertz(problem: &Problem, sol: &Solution) -> (f64, f64, f64) {
+    let e_star = E / (1.0 - NU * NU);
+    let p = sol.normal_force;
+    let a = (4.0 * p / (PI * e_star)).sqrt();
+    let p0 = 2.0 * p / (PI * a);
+    let hertz = |x: f64| if x.abs() < a { p0 * (1.0 - (x / a).powi(2)).sqrt() } else { 0.0 };
+    // The abscissae of the edges ±a: x is monotone along the rim.
+    let c = &problem.contact;
+    let at_x = |x: f64| {
+        let (mut lo, mut hi) = (c.start(), c.end());
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if x_of(problem, mid) < x {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    };
+    let mut breaks: Vec<f64> = problem.multipliers.xi.iter().chain(&c.node_xi).copied().collect();
+    breaks.extend([at_x(-a), at_x(a)]);
+    breaks.sort_by(f64::total_cmp);
+    breaks.dedup();
+    let (mut num, mut den, mut moment) = (0.0, 0.0, 0.0);
+    for w in breaks.windows(2) {
+        let (h, m) = (0.5 * (w[1] - w[0]), 0.5 * (w[1] + w[0]));
+        let (gx, gw) = tribo_testkit::gauss8();
+        for (&g, &wt) in gx.iter().zip(&gw) {
+            let xi = m + h * g;
+            let (l, x) = (problem.multipliers.evaluate(&sol.lambda_n, xi), x_of(problem, xi));
+            num += wt * h * (l - hertz(x)).powi(2);
+            den += wt * h * hertz(x).powi(2);
+            moment += wt * h * l * x * x;
+        }
+    }
+    ((num / den).sqrt(), 2.0 * (moment / p).sqrt() / a, a)
+}
+
+/// The roller against Hertz, a/R ≈ 0.04, on meshes graded at growth 0.075 to h_min = a/20 and a/40: the
+/// L2 error of λ_n falls (measured 2.55 % and 1.42 %; 1.21 % at a/80) and the width is within 1 % (0.993 and
+/// 0.994 of Hertz's). Issue 39 asks for 1 % in both at a/R ≤ 0.05: the pressure is not there yet. What is
+/// left is not the mesh alone (at a/R ≈ 0.02 and a/20: 1.56 %); it includes what Hertz's half-space leaves
+/// out (the body's finite size, its curvature) and needs a reference of the same body on a much finer mesh.
+#[test]
+fn a_roller_on_a_rigid_flat_matches_hertz() {
+    let mut errors = Vec::new();
+    for h_min in [0.002, 0.001] {
+        let problem = roller(h_min, [1.0, 0.0], [0.0, 0.0], 0.0035, 0.0);
+        assert!(!problem.contact.is_straight());
+        let sol = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+        assert_eq!(sol.report.status, SolveStatus::Converged);
+        let (l2, width, a) = against_hertz(&problem, &sol);
+        eprintln!(
+            "h_min {h_min}: {} unknowns, P = {:.6e}, a/R = {a:.4}, λ_n L2 {l2:.3e}, width / Hertz {width:.5}",
+            problem.n_free, sol.normal_force
+        );
+        assert!((0.035..=0.05).contains(&a), "a/R = {a}");
+        // The force is vertical: the flat is frictionless and horizontal.
+        assert!(sol.contact_force[0].abs() <= 1e-6 * sol.contact_force[1].abs(), "{:?}", sol.contact_force);
+        assert!((sol.contact_force[1] - sol.normal_force).abs() <= 1e-3 * sol.normal_force, "{:?}", sol.contact_force);
+        errors.push((l2, (width - 1.0).abs()));
+    }
+    let (coarse, fine) = (errors[0], errors[1]);
+    assert!(fine.0 < 0.7 * coarse.0 && fine.0 < 0.02, "λ_n against Hertz: {errors:?}");
+    assert!(coarse.1 < 0.01 && fine.1 < 0.01, "the contact width against Hertz: {errors:?}");
+}
+
+/// The roller turned by any angle and moved gives the same tractions and the forces turned, frictionless
+/// and Coulomb with a shift (partial slip), to 1e-10 relative.
+#[test]
+fn the_roller_turned_and_moved_gives_the_same_answer() {
+    let settings = SolverSettings::default();
+    for (friction, shift) in [(Friction::Frictionless, 0.0), (Friction::Coulomb { mu: 0.3 }, 0.0005)] {
+        let p = roller(0.01, [1.0, 0.0], [0.0, 0.0], 0.0035, shift);
+        let s = p.solve(&friction, &settings, None).expect("solves");
+        assert_eq!(s.report.status, SolveStatus::Converged);
+        let at: std::collections::HashMap<usize, usize> =
+            p.contact.nodes.iter().enumerate().map(|(k, &n)| (n, k)).collect();
+        for (angle, c) in [(0.7, [3.7, -12.5]), (2.5, [-40.0, 15.0]), (-1.9, [0.25, 0.5])] {
+            let r = [f64::cos(angle), f64::sin(angle)];
+            let pm = roller(0.01, r, c, 0.0035, shift);
+            let sm = pm.solve(&friction, &settings, None).expect("solves");
+            assert_eq!(sm.report.status, SolveStatus::Converged);
+            // P1 multipliers on Γ_C's nodes: matched by node.
+            let scale = s.lambda_n.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            let mut worst = 0.0_f64;
+            for (j, node) in pm.contact.nodes.iter().enumerate() {
+                let k = at[node];
+                worst = worst.max((sm.lambda_n[j] - s.lambda_n[k]).abs() / scale);
+                worst = worst.max((sm.lambda_t[j] - s.lambda_t[k]).abs() / scale);
+            }
+            let turned = moved(r, [0.0; 2], s.contact_force);
+            let force = s.contact_force[0].hypot(s.contact_force[1]);
+            worst = worst.max((turned[0] - sm.contact_force[0]).hypot(turned[1] - sm.contact_force[1]) / force);
+            assert!(worst <= 1e-10, "{friction:?}, angle {angle}: departs by {worst:e}");
+        }
+        if shift > 0.0 {
+            assert!(s.states.contains(&ContactState::Slip) && s.states.contains(&ContactState::Stick));
+        }
+    }
+}
+
+/// The Hertz scene whose contact nodes are moved off their line by 1e-7 of an edge length, alternately up
+/// and down (beyond the straightness tolerance of √ε: a chain of edges whose normals turn by up to 2e-7),
+/// gives the straight answer to within 1e-5 relative: the chain's frames and arclength agree with the
+/// straight segment's as its kinks vanish.
+#[test]
+fn a_nearly_straight_chain_gives_the_straight_answer() {
+    let straight =
+        tribo_testkit::hertz_problem(0.02, 0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    let mesh = &straight.mesh;
+    let mut points = mesh.points().to_vec();
+    for (k, &node) in straight.contact.nodes.iter().enumerate() {
+        let e = straight.contact.edges[k.min(straight.contact.n_edges() - 1)].length;
+        let n = straight.contact.normal;
+        let s = if k % 2 == 0 { 1e-7 } else { -1e-7 } * e;
+        points[node] = [points[node][0] + s * n[0], points[node][1] + s * n[1]];
+    }
+    let bent_mesh = Mesh::new(points, mesh.triangles().to_vec(), mesh.edge_sets().clone()).expect("bent");
+    let bent = Problem::new(bent_mesh, straight.spec.clone()).expect("a chain");
+    assert!(!bent.contact.is_straight() && straight.contact.is_straight());
+    let friction = Friction::Coulomb { mu: 0.3 };
+    let settings = SolverSettings::default();
+    let (s, b) = (straight.solve(&friction, &settings, None).unwrap(), bent.solve(&friction, &settings, None).unwrap());
+    assert_eq!((s.report.status, b.report.status), (SolveStatus::Converged, SolveStatus::Converged));
+    let scale = s.lambda_n.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let worst = s
+        .lambda_n
+        .iter()
+        .zip(&b.lambda_n)
+        .chain(s.lambda_t.iter().zip(&b.lambda_t))
+        .map(|(x, y)| (x - y).abs() / scale)
+        .fold(0.0, f64::max);
+    let xi = s.lambda_n.len().min(b.lambda_n.len());
+    eprintln!("{xi} dofs: the chain departs from the straight answer by {worst:.2e}");
+    assert_eq!(s.lambda_n.len(), b.lambda_n.len());
+    assert!(worst <= 1e-5, "departs by {worst:e}");
+    let (f, g) = (s.contact_force, b.contact_force);
+    assert!((f[0] - g[0]).hypot(f[1] - g[1]) <= 1e-5 * f[0].hypot(f[1]), "{f:?} against {g:?}");
+}
