@@ -1,22 +1,10 @@
 //! Geometry of the contact boundary Γ_C: a named set of boundary edges forming one open chain (a straight
 //! segment, or a polyline: the faceted arc of a curved boundary), the normal and tangent of each edge and
 //! the abscissae of its nodes (the conventions are those of [`crate::contact`]).
-//!
-//! # A chain of edges
-//! Every edge carries its own outward normal `n_e` and tangent `t_e = (−n_e₂, n_e₁)`. The abscissa ξ is
-//! the arclength, counted from the start of the chain at the projection of its first node on the
-//! direction of the chord between its ends (so that a straight chain has the abscissa of its line, up to
-//! rounding). The chain runs from the end with the smaller x toward the other one (the smaller y when the
-//! chord is vertical), as a straight Γ_C does. Where the set is straight to the tolerance of
-//! [`crate::contact::geometric_tol_rel`], every edge has the normal of the first one exactly, and the
-//! abscissa is the projection on the line of Γ_C, as it always was.
-//!
-//! A quantity at a node (`u_n`, the slip, the gap at the node) reads the node's normal: the normalized mean
-//! of the normals of its two edges (that of its only edge at an end). Everything integrated on Γ_C reads
-//! each edge's own frame (see [`crate::contact::mortar`] and [`crate::contact::operators`]).
 
 use std::collections::HashMap;
 
+use crate::contact::obstacle::ObstacleShape;
 use crate::error::{Error, Result};
 use crate::mesh::line::{geometric_tol_rel, off_line};
 use crate::mesh::{Mesh, Point};
@@ -32,13 +20,30 @@ pub struct ContactEdge {
     pub triangle: usize,
     /// Length |E|.
     pub length: f64,
-    /// The edge's outward unit normal n_e.
+    /// The normal n_e of the contact on this edge, along which λ_n acts: the body's outward normal, or the
+    /// obstacle's where it is given by its geometry ([`ContactBoundary::orient_to`]).
     pub normal: [f64; 2],
-    /// The edge's tangent t_e = (−n_e₂, n_e₁).
+    /// The tangent t_e = (−n_e₂, n_e₁) of the contact on this edge, along which λ_t acts.
     pub tangent: [f64; 2],
+    /// The body's outward unit normal on this edge (σ(u_h) n on the edge is σ(u_h) times it).
+    pub outward: [f64; 2],
 }
 
 /// The contact boundary Γ_C.
+///
+/// # A chain of edges
+/// Every edge carries its own outward normal and its contact frame `n_e`, `t_e = (−n_e₂, n_e₁)` (the outward
+/// normal, or the obstacle's: [`ContactBoundary::orient_to`]). The abscissa ξ is
+/// the arclength, counted from the start of the chain at the projection of its first node on the
+/// direction of the chord between its ends (so that a straight chain has the abscissa of its line, up to
+/// rounding). The chain runs from the end with the smaller x toward the other one (the smaller y when the
+/// chord is vertical), as a straight Γ_C does. Where the set is straight to the tolerance of
+/// [`crate::contact::geometric_tol_rel`], every edge has the normal of the first one exactly, and the
+/// abscissa is the projection on the line of Γ_C, as it always was.
+///
+/// A quantity at a node (`u_n`, the slip) reads the node's frame: the normalized mean of the contact normals
+/// of its two edges (that of its only edge at an end). Everything integrated on Γ_C reads
+/// each edge's own frame (see [`crate::contact::mortar`] and [`crate::contact::operators`]).
 #[derive(Debug, Clone)]
 pub struct ContactBoundary {
     /// Name of the edge set.
@@ -62,6 +67,9 @@ pub struct ContactBoundary {
     /// Where the chain leaves the line of its first edge, as `(node, distance, edge length)`; `None` when
     /// Γ_C is straight.
     pub bend: Option<(usize, f64, f64)>,
+    /// Whether every edge has the contact frame of the first (`normal`, `tangent`): a straight Γ_C whose
+    /// obstacle is a gap function of the abscissa.
+    pub one_frame: bool,
 }
 
 /// The edges of Γ_C in order, with the frame of its abscissa (as the fields of [`ContactBoundary`]).
@@ -124,7 +132,44 @@ impl ContactBoundary {
             node_xi: c.node_xi,
             node_points,
             bend,
+            one_frame: bend.is_none(),
         })
+    }
+
+    /// Turns the contact frame of every edge to the normal of an obstacle given by its geometry
+    /// ([`ObstacleShape::is_geometry`]): `n_e = −∇d / |∇d|` at the edge's midpoint, d the obstacle's signed
+    /// distance ([`ObstacleShape::distance_gradient`]). A frictionless rigid surface pushes
+    /// along its own normal only; on the body's side the two normals agree to the angle the surface turns
+    /// through where it is pressed flat, a/R on a roller (see [`crate::contact::obstacle`]). Where the
+    /// gradient is not defined (at a disc's centre, a flat spot of a signed distance), the edge keeps the
+    /// body's normal. Other shapes leave the frames as they are.
+    ///
+    /// # Errors
+    /// [`Error::BadObstacle`] when a signed distance is not finite near an edge's midpoint.
+    pub fn orient_to(&mut self, shape: &ObstacleShape) -> Result<()> {
+        if !shape.is_geometry() {
+            return Ok(());
+        }
+        for (k, e) in self.edges.iter_mut().enumerate() {
+            let (a, b) = (self.node_points[k], self.node_points[k + 1]);
+            let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+            let grad = shape.distance_gradient(mid, e.length);
+            if !grad.iter().all(|g| g.is_finite()) {
+                return Err(Error::BadObstacle {
+                    what: format!(
+                        "the signed distance is not finite near ({}, {}), the midpoint of contact edge ({}, {})",
+                        mid[0], mid[1], e.left, e.right
+                    ),
+                });
+            }
+            let norm = grad[0].hypot(grad[1]);
+            if norm > 0.0 {
+                e.normal = [-grad[0] / norm, -grad[1] / norm];
+                e.tangent = [-e.normal[1], e.normal[0]];
+            }
+        }
+        self.one_frame = false;
+        Ok(())
     }
 
     /// A straight Γ_C: ordered by the projection on its line, every edge with the normal of the first.
@@ -146,7 +191,7 @@ impl ContactBoundary {
             let length = mesh.edge_length(a, b);
             let (left, right) = if xi_of(pts[a]) < xi_of(pts[b]) { (a, b) } else { (b, a) };
             let triangle = mesh.boundary_triangle(a, b).expect("validated boundary edge");
-            edges.push(ContactEdge { left, right, triangle, length, normal, tangent });
+            edges.push(ContactEdge { left, right, triangle, length, normal, tangent, outward: normal });
         }
         edges.sort_by(|p, q| xi_of(pts[p.left]).total_cmp(&xi_of(pts[q.left])));
         for w in edges.windows(2) {
@@ -232,6 +277,7 @@ impl ContactBoundary {
                 length: mesh.edge_length(a, b),
                 normal,
                 tangent,
+                outward: normal,
             });
             nodes.push(next);
             at = next;
@@ -274,9 +320,9 @@ impl ContactBoundary {
         self.direction[0] * self.tangent[0] + self.direction[1] * self.tangent[1]
     }
 
-    /// The normal at node `k` of Γ_C (an index into `nodes`): the normalized mean of its edges' normals.
+    /// The contact normal at node `k` of Γ_C (an index into `nodes`): the normalized mean of its edges'.
     pub fn node_normal(&self, k: usize) -> [f64; 2] {
-        if self.is_straight() {
+        if self.one_frame {
             return self.normal;
         }
         let last = self.edges.len() - 1;

@@ -63,9 +63,9 @@ impl Gamma0Bound {
 /// huge nor a tiny Young's modulus overflows it; each triangle's bound is then divided by its E, and γ0
 /// (one constant on Γ_C) must stay below the smallest.
 pub fn admissible_gamma0(mesh: &Mesh, materials: &impl MaterialField, contact: &ContactBoundary) -> Gamma0Bound {
-    // |σ n|² = σ_n² + σ_t² does not depend on the direction of n for an isotropic C: one normal serves every
-    // edge of a bent Γ_C.
-    let (a_n, a_t) = traction_components(contact.normal);
+    // |σ m|² = σ_n² + σ_t² does not depend on the direction of m for an isotropic C, nor on the frame (n, t)
+    // it is split in: one normal serves every edge of a bent Γ_C.
+    let (a_n, a_t) = traction_components(contact.normal, contact.normal);
     let p: Matrix3<f64> = a_n * a_n.transpose() + a_t * a_t.transpose();
     // λ_max(Lᵀ P L) of C(E = 1), by Poisson's ratio: the materials of Γ_C's triangles are few.
     let mut by_poisson: Vec<(f64, f64)> = Vec::new();

@@ -16,7 +16,7 @@
 //!   `√ε · h_E` off the line (coordinates rounded to about 8 significant digits still pass).
 //! * A Γ_C that is not straight is a **bent** chain of edges (one body against a rigid obstacle): each edge
 //!   has its own `n_e` and `t_e`, normal and tangential quantities on an edge are along its own frame, and
-//!   the abscissa is the arclength (module [`boundary`]'s documentation). The multipliers are scalar
+//!   the abscissa is the arclength ([`ContactBoundary`]'s documentation). The multipliers are scalar
 //!   functions of the arclength, so a P1 λ is continuous through a kink and its components turn with the
 //!   edges: the traction on edge e is `−λ_n n_e − λ_t t_e`. M1–M3 and the γ-weighted terms are 1D integrals
 //!   in the arclength, unchanged; only the coupling `∫ ψ_j v·n` is summed edge by edge

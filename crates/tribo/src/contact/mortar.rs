@@ -115,8 +115,8 @@ pub struct MortarMatrices {
     pub m1: Coo,
     /// `M2 = ∫ φ_i ψ_j`.
     pub m2: Coo,
-    /// M2 edge by edge, `(i, j, k, ∫_{E_k} φ_i ψ_j)` sorted, for a bent Γ_C whose edges have their own
-    /// normals (empty on a straight Γ_C, where `m2` serves).
+    /// M2 edge by edge, `(i, j, k, ∫_{E_k} φ_i ψ_j)` sorted, for a Γ_C whose edges have their own contact
+    /// frames (empty where they share one, [`crate::contact::ContactBoundary::one_frame`], and `m2` serves).
     pub m2_edges: Vec<(usize, usize, usize, f64)>,
     /// `M3 = ∫ φ_i χ_k`.
     pub m3: Coo,
@@ -152,7 +152,7 @@ impl MortarMatrices {
         let (mut m1, mut m2, mut m3) = (Coo::new(p, p), Coo::new(p, q), Coo::new(p, r));
         let (mut d_h, mut c_h) = (Coo::new(q, q), Coo::new(q, r));
         let mut m2_edges = Vec::new();
-        let bent = !contact.is_straight();
+        let bent = !contact.one_frame;
         let g_h: Vec<f64> = contact.edges.iter().zip(h_t).map(|(e, h)| h * e.length).collect();
         let mut psi_integrals = vec![0.0; q];
         let mut gap_moments = vec![0.0; q];

@@ -18,13 +18,13 @@ use crate::contact::ContactBoundary;
 use crate::fem::elasticity::{element_dofs, strain_displacement, MaterialField};
 use crate::mesh::Mesh;
 
-/// Voigt vectors `a` with `a · σ = σ_n` and `a · σ = σ_t` (σ = (σ_xx, σ_yy, σ_xy)) for the unit normal `n`
-/// and `t = (−n₂, n₁)`.
-pub fn traction_components(n: [f64; 2]) -> (Vector3<f64>, Vector3<f64>) {
+/// Voigt vectors `a` with `a · σ = σ_n = n · σ m` and `a · σ = σ_t = t · σ m` (σ = (σ_xx, σ_yy, σ_xy)) for the
+/// body's outward unit normal `m`, the contact normal `n` and `t = (−n₂, n₁)` (n = m but against an obstacle
+/// given by its geometry, [`crate::contact::ContactBoundary::orient_to`]).
+pub fn traction_components(m: [f64; 2], n: [f64; 2]) -> (Vector3<f64>, Vector3<f64>) {
     let t = [-n[1], n[0]];
-    let a_n = Vector3::new(n[0] * n[0], n[1] * n[1], 2.0 * n[0] * n[1]);
-    let a_t = Vector3::new(t[0] * n[0], t[1] * n[1], t[0] * n[1] + t[1] * n[0]);
-    (a_n, a_t)
+    let a = |v: [f64; 2]| Vector3::new(v[0] * m[0], v[1] * m[1], v[0] * m[1] + v[1] * m[0]);
+    (a(n), a(t))
 }
 
 /// The contact stresses as linear forms of the displacement, per FE edge of Γ_C: `σ_n(v) = s_n · v_T`,
@@ -47,7 +47,7 @@ impl ContactStress {
             .edges
             .iter()
             .map(|e| {
-                let (a_n, a_t) = traction_components(e.normal);
+                let (a_n, a_t) = traction_components(e.outward, e.normal);
                 let c = materials.at(e.triangle).elasticity_matrix();
                 let bt = strain_displacement(mesh, e.triangle).transpose();
                 [bt * (c * a_n), bt * (c * a_t)]
@@ -96,7 +96,7 @@ impl ContactStress {
         let secondary = mortar.m2.entries.iter().map(|&(i, j, m)| (contact.nodes[i], j, m));
         let primary =
             primary.into_iter().flat_map(|p| p.m2.entries.iter().map(|&(i, j, m)| (p.boundary.nodes[i], j, -m)));
-        if contact.is_straight() {
+        if contact.one_frame {
             for (node, j, m) in secondary.chain(primary) {
                 for c in 0..2 {
                     rows[j].push((2 * node + c, m * n[c]));
@@ -104,7 +104,7 @@ impl ContactStress {
                 }
             }
         } else {
-            // Each edge's part of M2 in its own frame (two bodies need straight sides: no primary term here).
+            // Each edge's part of M2 in its own frame (two bodies have one frame: no primary term here).
             for &(i, j, k, m) in &mortar.m2_edges {
                 let (node, e) = (contact.nodes[i], &contact.edges[k]);
                 for c in 0..2 {

@@ -227,7 +227,8 @@ impl Problem {
         let assembly = clock.elapsed().as_secs_f64();
 
         let clock = Instant::now();
-        let contact = ContactBoundary::new(&mesh, &spec.contact)?;
+        let mut contact = ContactBoundary::new(&mesh, &spec.contact)?;
+        contact.orient_to(&spec.obstacle.shape)?;
         // The gap at the nodes of Γ_C: every value the solver and its results use is checked.
         let contact_gap =
             contact.node_xi.iter().map(|&xi| spec.obstacle.gap(&contact, xi)).collect::<Result<Vec<f64>>>()?;

@@ -459,7 +459,7 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
     // normal, the mean of its edges' on a bent Γ_C).
     let in_frame = |nodal: &[f64], k: usize, tangential: bool| -> [f64; 2] {
         [k, k + 1].map(|j| {
-            if contact.is_straight() {
+            if contact.one_frame {
                 return nodal[j];
             }
             let (node, e) = (contact.nodes[j], &contact.edges[k]);
@@ -483,7 +483,7 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
         let e = &contact.edges[piece.edge];
         let (nrm, tng) = (e.normal, e.tangent);
         let s = &input.stress[e.triangle];
-        let sn = traction(s, nrm);
+        let sn = traction(s, e.outward);
         let (sigma_n, sigma_t) = (sn[0] * nrm[0] + sn[1] * nrm[1], sn[0] * tng[0] + sn[1] * tng[1]);
         let (x0, x1) = (contact.node_xi[piece.edge], contact.node_xi[piece.edge + 1]);
         let (u_n, slip) = (in_frame(input.u_n, piece.edge, false), in_frame(input.slip, piece.edge, true));

@@ -131,8 +131,8 @@ impl Solution {
         let sig = |s: &[f64; 3], a: [f64; 2], b: [f64; 2]| {
             a[0] * (s[0] * b[0] + s[2] * b[1]) + a[1] * (s[2] * b[0] + s[1] * b[1])
         };
-        let sigma_n = contact.edges.iter().map(|e| sig(&stress[e.triangle], e.normal, e.normal)).collect();
-        let sigma_t = contact.edges.iter().map(|e| sig(&stress[e.triangle], e.tangent, e.normal)).collect();
+        let sigma_n = contact.edges.iter().map(|e| sig(&stress[e.triangle], e.normal, e.outward)).collect();
+        let sigma_t = contact.edges.iter().map(|e| sig(&stress[e.triangle], e.tangent, e.outward)).collect();
         let edge_abscissae = contact.node_xi.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
         let mut u_n = Vec::with_capacity(contact.nodes.len());
         let mut slip = Vec::with_capacity(contact.nodes.len());
@@ -147,7 +147,7 @@ impl Solution {
         let w = &problem.mortar.psi_integrals;
         let normal_force: f64 = lambda_n.iter().zip(w).map(|(l, w)| l * w).sum();
         let tangential_force: f64 = lambda_t.iter().zip(w).map(|(l, w)| l * w).sum();
-        let contact_force = if contact.is_straight() {
+        let contact_force = if contact.one_frame {
             [0, 1].map(|i| -(normal_force * n[i] + tangential_force * t[i]))
         } else {
             // Edge by edge in its own frame: Σ_i M2_e[i, j] = ∫_{E_e} ψ_j.

@@ -6,6 +6,7 @@
 //!   is `p(x) = p₀ (1 − x²/a²)^½`, `a² = 4 P R / (π E*)`; λ_n is compared with it in L2 at the horizontal
 //!   distance x from the lowest point of the rim, and the contact width by the pressure's second moment,
 //!   `a = 2 (∫ λ_n x² / P)^½` (exact for Hertz's pressure, and not tied to where the mesh resolves the edge).
+//!   The contact acts along the flat's normal ([`ContactBoundary::orient_to`]).
 //! * Invariance: the roller scene turned and moved gives the same tractions, the forces turned.
 //! * Continuity: a straight Γ_C whose nodes are bent by 1e-7 of an edge length (a chain, read edge by edge)
 //!   gives the straight answer to within a few times that.
@@ -86,10 +87,9 @@ fn against_hertz(problem: &Problem, sol: &Solution) -> (f64, f64, f64) {
 }
 
 /// The roller against Hertz, a/R ≈ 0.04, on meshes graded at growth 0.075 to h_min = a/20 and a/40: the
-/// L2 error of λ_n falls (measured 2.55 % and 1.42 %; 1.21 % at a/80) and the width is within 1 % (0.993 and
-/// 0.994 of Hertz's). Issue 39 asks for 1 % in both at a/R ≤ 0.05: the pressure is not there yet. What is
-/// left is not the mesh alone (at a/R ≈ 0.02 and a/20: 1.56 %); it includes what Hertz's half-space leaves
-/// out (the body's finite size, its curvature) and needs a reference of the same body on a much finer mesh.
+/// L2 error of λ_n falls below 1 % (measured 2.07 % and 0.83 %; 0.76 % at a/80, 0.58 % at a/R ≈ 0.014) and the
+/// width is within 0.5 % (0.996 and 0.997 of Hertz's). λ acts along the flat's normal: along the body's own
+/// normal, tilted by up to a/R in the contact zone, the error stalls at 1.4 % and the width at 0.994.
 #[test]
 fn a_roller_on_a_rigid_flat_matches_hertz() {
     let mut errors = Vec::new();
@@ -110,8 +110,8 @@ fn a_roller_on_a_rigid_flat_matches_hertz() {
         errors.push((l2, (width - 1.0).abs()));
     }
     let (coarse, fine) = (errors[0], errors[1]);
-    assert!(fine.0 < 0.7 * coarse.0 && fine.0 < 0.02, "λ_n against Hertz: {errors:?}");
-    assert!(coarse.1 < 0.01 && fine.1 < 0.01, "the contact width against Hertz: {errors:?}");
+    assert!(fine.0 < 0.7 * coarse.0 && fine.0 < 0.01, "λ_n against Hertz: {errors:?}");
+    assert!(coarse.1 < 0.005 && fine.1 < 0.005, "the contact width against Hertz: {errors:?}");
 }
 
 /// The roller turned by any angle and moved gives the same tractions and the forces turned, frictionless
@@ -186,4 +186,57 @@ fn a_nearly_straight_chain_gives_the_straight_answer() {
     assert!(worst <= 1e-5, "departs by {worst:e}");
     let (f, g) = (s.contact_force, b.contact_force);
     assert!((f[0] - g[0]).hypot(f[1] - g[1]) <= 1e-5 * f[0].hypot(f[1]), "{f:?} against {g:?}");
+}
+
+/// A ring sector (radii 0.5–1, a quarter turn) clamped on its inner arc, on rollers along its radial sides,
+/// pressed into a rigid hole of its outer radius by an interference δ ([`ObstacleShape::Hole`], the approach):
+/// Lamé's plane-strain ring, `u_r = A r + B / r` with `u_r(a) = 0` and `u_r(b) = −δ`, whose contact pressure is
+/// uniform, `p = 2 δ b ((λ + μ) + μ a² / b²) / (b² − a²)`. The faceted arc stands inside the circle by its
+/// sag, `h² / 12R` on average over an edge (2e-6 at h = 0.005, 0.2 % of δ = 1e-3), which lowers the pressure
+/// by as much (measured −0.206 % against −0.208 %); the pressure is within 0.5 % of Lamé's everywhere.
+#[test]
+fn a_ring_pressed_into_a_hole_has_lames_uniform_pressure() {
+    let (a, b, delta) = (0.5, 1.0, 1e-3);
+    let sector = RingSector { center: [0.0, 0.0], radii: [a, b], angles: [0.3, 0.3 + FRAC_PI_2] };
+    let grading = ArcGrading { angles: [0.3, 0.3 + FRAC_PI_2], h_min: 0.005, h_max: 0.005, growth: 0.15 };
+    let mesh = ring_sector(&sector, &grading).expect("a ring sector");
+    let spec = ProblemSpec::new(Material { young: E, poisson: NU }, "outer")
+        .clamped(["inner"])
+        .support(Support::Roller { set: "start".into() })
+        .support(Support::Roller { set: "end".into() })
+        .obstacle(ObstacleShape::Hole { center: [0.0, 0.0], radius: b })
+        .approach(delta);
+    let problem = Problem::new(mesh, spec).expect("a ring in a hole");
+    let sol = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+    assert_eq!(sol.report.status, SolveStatus::Converged);
+    let (lambda, mu) = (E * NU / ((1.0 + NU) * (1.0 - 2.0 * NU)), E / (2.0 * (1.0 + NU)));
+    let p = 2.0 * delta * b * ((lambda + mu) + mu * a * a / (b * b)) / (b * b - a * a);
+    let worst = sol.lambda_n.iter().map(|l| (l / p - 1.0).abs()).fold(0.0, f64::max);
+    let mean = sol.normal_force / problem.contact.length() / p - 1.0;
+    eprintln!("{} unknowns: λ_n / Lamé's p within {worst:.2e}, the mean {mean:+.2e}", problem.n_free);
+    assert!(worst < 5e-3 && mean.abs() < 3e-3, "λ_n against Lamé: worst {worst:e}, mean {mean:e}");
+    // The sag accounts for the mean: the arc pressed by δ − h²/12R (h the mean edge), to 1e-4 (measured
+    // −2.06e-3 against −2.08e-3).
+    let h = problem.contact.length() / problem.contact.n_edges() as f64;
+    let sag = h * h / (12.0 * b) / delta;
+    assert!((mean + sag).abs() < 1e-4, "the mean {mean:e} against the sag's −{sag:e}");
+    assert!(sol.lambda_t.iter().all(|t| t.abs() <= 1e-9 * p), "frictionless");
+}
+
+/// Two paths to one answer: the roller against the flat given as a line and as a signed-distance closure
+/// (its normal by central differences) gives the same answer to the differences' truncation.
+#[test]
+fn a_signed_distance_closure_gives_the_answer_of_the_shape_it_copies() {
+    let line = roller(0.01, [1.0, 0.0], [0.0, 0.0], 0.0035, 0.0);
+    let mut spec = line.spec.clone();
+    spec.obstacle.shape = ObstacleShape::Distance(DistanceFunction(std::sync::Arc::new(|x: [f64; 2]| x[1])));
+    let closure = Problem::new(line.mesh.clone(), spec).expect("a signed distance");
+    let settings = SolverSettings::default();
+    let (s, c) = (
+        line.solve(&Friction::Frictionless, &settings, None).unwrap(),
+        closure.solve(&Friction::Frictionless, &settings, None).unwrap(),
+    );
+    let scale = s.lambda_n.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let worst = s.lambda_n.iter().zip(&c.lambda_n).map(|(x, y)| (x - y).abs() / scale).fold(0.0, f64::max);
+    assert!(worst < 1e-8, "departs by {worst:e}");
 }

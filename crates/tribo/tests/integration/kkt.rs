@@ -61,7 +61,7 @@ fn direct_equation(problem: &Problem, sol: &Solution, gamma0: f64) -> Direct {
         add(d, -f, &mut residual);
     }
     // b(λ, v) − ∫γ (λ_n + σ_n(u)) σ_n(v) − ∫γ (λ_t + σ_t(u)) σ_t(v).
-    let (a_n, a_t): (Vector3<f64>, Vector3<f64>) = traction_components(problem.contact.normal);
+    let (a_n, a_t): (Vector3<f64>, Vector3<f64>) = traction_components(problem.contact.normal, problem.contact.normal);
     let (n, t) = (problem.contact.normal, problem.contact.tangent);
     for (k, xi, w) in quadrature(problem) {
         let e = problem.contact.edges[k];
@@ -95,7 +95,7 @@ fn direct_equation(problem: &Problem, sol: &Solution, gamma0: f64) -> Direct {
 /// sum of the absolute values of its integrands (its scale).
 fn direct_inequality(problem: &Problem, sol: &Solution, gamma0: f64, nu_n: &[f64], nu_t: &[f64]) -> (f64, f64) {
     let mesh = &problem.mesh;
-    let (a_n, a_t) = traction_components(problem.contact.normal);
+    let (a_n, a_t) = traction_components(problem.contact.normal, problem.contact.normal);
     let (n, t) = (problem.contact.normal, problem.contact.tangent);
     let (mut val, scale);
     val = 0.0;
