@@ -146,7 +146,7 @@ pub use fem::elasticity::{Material, Materials, Model};
 pub use fem::supports::{Dofs, NodeSupport, Support};
 pub use mesh::generate::{graded_rectangle, rectangle, Diagonal, Grading, Side};
 pub use mesh::shapes::{ring_sector, ArcGrading, RingSector};
-pub use mesh::Mesh;
+pub use mesh::{Curve, Mesh};
 pub use problem::bodies::{Body, BodyPart, ContactPair};
 pub use problem::load_case::LoadCase;
 #[allow(deprecated)]

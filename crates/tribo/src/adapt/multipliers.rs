@@ -41,3 +41,63 @@ pub(crate) fn refine(xi: &[f64], contact: &ContactBoundary, ratio: f64, apart: i
     }
     out
 }
+
+/// [`refine`] from the T_H `xi` of Γ_C `old` onto the refined Γ_C `new`. On a bent Γ_C whose nodes went onto
+/// its curve, T_H is refined in the old abscissae (the new nodes taken there) and carried to the new
+/// arclength through the old nodes.
+pub(crate) fn refine_onto(
+    old: &ContactBoundary,
+    xi: &[f64],
+    new: &ContactBoundary,
+    ratio: f64,
+    apart: impl Fn(f64, f64) -> bool,
+) -> Vec<f64> {
+    let Some(pairs) = moved_abscissae(old, new) else {
+        return refine(xi, new, ratio, apart);
+    };
+    let mut in_old = new.clone();
+    in_old.node_xi.iter_mut().for_each(|x| *x = remap(&pairs, *x, false));
+    let mut out = refine(xi, &in_old, ratio, apart);
+    out.iter_mut().for_each(|x| *x = remap(&pairs, *x, true));
+    let last = out.len() - 1;
+    (out[0], out[last]) = (new.start(), new.end());
+    out
+}
+
+/// The abscissae `xi` on the refined Γ_C `new`, taken back to Γ_C `old` (the same where nothing moved).
+pub(crate) fn abscissae_back(old: &ContactBoundary, new: &ContactBoundary, xi: &[f64]) -> Vec<f64> {
+    let pairs = moved_abscissae(old, new);
+    xi.iter().map(|&x| pairs.as_ref().map_or(x, |p| remap(p, x, false))).collect()
+}
+
+/// Where refinement moved the nodes of a bent Γ_C (onto its curve, [`crate::Mesh::with_curve`]: its
+/// arclength grows), the abscissae of the old nodes on the old and on the new Γ_C, as `(old, new)` pairs in
+/// order; `None` on a straight Γ_C, whose abscissae do not move.
+pub(crate) fn moved_abscissae(old: &ContactBoundary, new: &ContactBoundary) -> Option<Vec<(f64, f64)>> {
+    if new.is_straight() {
+        return None;
+    }
+    let index: std::collections::HashMap<usize, usize> = new.nodes.iter().enumerate().map(|(k, &n)| (n, k)).collect();
+    // Bisection keeps the coarse nodes and their indices: every old node of Γ_C is a node of the new one.
+    let pairs = old.nodes.iter().zip(&old.node_xi).filter_map(|(n, &x)| Some((x, new.node_xi[*index.get(n)?])));
+    Some(pairs.collect())
+}
+
+/// The piecewise-linear map through `pairs` (increasing in both), from the first coordinate to the second
+/// (`forward`) or back, extended beyond the ends with slope 1.
+pub(crate) fn remap(pairs: &[(f64, f64)], x: f64, forward: bool) -> f64 {
+    let at = |k: usize| if forward { pairs[k] } else { (pairs[k].1, pairs[k].0) };
+    let n = pairs.len();
+    if n < 2 {
+        return pairs.first().map_or(x, |_| x - at(0).0 + at(0).1);
+    }
+    let k = pairs.partition_point(|p| if forward { p.0 <= x } else { p.1 <= x }).clamp(1, n - 1) - 1;
+    let ((x0, y0), (x1, y1)) = (at(k), at(k + 1));
+    if x < x0 {
+        y0 + (x - x0)
+    } else if x > x1 {
+        y1 + (x - x1)
+    } else {
+        y0 + (x - x0) * (y1 - y0) / (x1 - x0)
+    }
+}

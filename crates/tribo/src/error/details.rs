@@ -76,6 +76,14 @@ impl Error {
                 "UnknownEdgeSet",
                 vec![("name", T(name.clone())), ("available", T(available.clone()))],
             ),
+            Self::BadCurve { set, what, node } => (
+                ErrorCategory::Mesh,
+                "BadCurve",
+                [("set", T(set.clone())), ("what", T(what.clone()))]
+                    .into_iter()
+                    .chain(node.map(|n| ("node", I(n))))
+                    .collect(),
+            ),
             Self::EmptyEdgeSet { name } => (ErrorCategory::Mesh, "EmptyEdgeSet", vec![("name", T(name.clone()))]),
             Self::EmptyMesh => (ErrorCategory::Mesh, "EmptyMesh", vec![]),
             Self::BadGenerator { what } => (ErrorCategory::Mesh, "BadGenerator", vec![("what", T(what.clone()))]),

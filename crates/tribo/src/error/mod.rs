@@ -124,6 +124,16 @@ pub enum Error {
         /// Second node.
         b: usize,
     },
+    /// A curve given to an edge set is not valid, or does not pass through the set's nodes.
+    #[error("the curve of edge set '{set}': {what}")]
+    BadCurve {
+        /// Name of the edge set.
+        set: String,
+        /// What is wrong.
+        what: String,
+        /// The node off the curve, if that is what is wrong.
+        node: Option<usize>,
+    },
     /// An edge set name was asked for that the mesh does not have.
     #[error("the mesh has no edge set named '{name}' (it has: {available})")]
     UnknownEdgeSet {

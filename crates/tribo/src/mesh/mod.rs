@@ -33,6 +33,45 @@ pub struct Mesh {
     edge_sets: BTreeMap<String, Vec<[usize; 2]>>,
     /// Boundary edge (sorted node pair) -> the triangle that owns it.
     boundary: HashMap<[usize; 2], usize>,
+    /// The exact curves some edge sets lie on ([`Mesh::with_curve`]).
+    curves: BTreeMap<String, Curve>,
+}
+
+/// The exact curve an edge set lies on, so that refinement puts the new nodes of its edges on the curve
+/// rather than on the chords ([`Mesh::with_curve`]). A straight set needs none: the midpoints of its edges
+/// are on it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Curve {
+    /// A circular arc.
+    Arc {
+        /// Centre.
+        center: Point,
+        /// Radius.
+        radius: f64,
+    },
+}
+
+impl Curve {
+    /// The distance of `p` from the curve.
+    pub fn distance(&self, p: Point) -> f64 {
+        match *self {
+            Self::Arc { center, radius } => ((p[0] - center[0]).hypot(p[1] - center[1]) - radius).abs(),
+        }
+    }
+
+    /// The point of the curve nearest `p` (`p` itself at an arc's centre, which has none).
+    pub fn project(&self, p: Point) -> Point {
+        match *self {
+            Self::Arc { center, radius } => {
+                let r = (p[0] - center[0]).hypot(p[1] - center[1]);
+                if r > 0.0 {
+                    [center[0] + radius * (p[0] - center[0]) / r, center[1] + radius * (p[1] - center[1]) / r]
+                } else {
+                    p
+                }
+            }
+        }
+    }
 }
 
 /// Signed area of the triangle (a, b, c): positive when counter-clockwise.
@@ -143,7 +182,50 @@ impl Mesh {
                 }
             }
         }
-        Ok(Self { points, triangles, edge_sets, boundary })
+        Ok(Self { points, triangles, edge_sets, boundary, curves: BTreeMap::new() })
+    }
+
+    /// This mesh with the edge set `set` on `curve`: refinement ([`crate::mesh::refine::bisect`]) then puts
+    /// the new nodes of its edges on the curve, so that adaptive levels approach the curve instead of keeping
+    /// the first level's chords (whose distance from an arc of radius R is up to `h² / 8R`).
+    ///
+    /// # Errors
+    /// [`Error::UnknownEdgeSet`]; [`Error::BadCurve`] for a radius that is not positive and finite, a centre
+    /// that is not finite, or a node of the set farther from the curve than `√ε` times its edge's length.
+    pub fn with_curve(mut self, set: &str, curve: Curve) -> Result<Self> {
+        let edges = self.edge_set(set)?;
+        let Curve::Arc { center, radius } = curve;
+        if !(center.iter().all(|c| c.is_finite()) && radius.is_finite() && radius > 0.0) {
+            return Err(Error::BadCurve {
+                set: set.to_string(),
+                what: format!(
+                    "an arc needs a finite centre and a positive radius, got ({}, {}) and {radius}",
+                    center[0], center[1]
+                ),
+                node: None,
+            });
+        }
+        let tol = line::geometric_tol_rel();
+        for &[a, b] in edges {
+            let length = self.edge_length(a, b);
+            for node in [a, b] {
+                let distance = curve.distance(self.points[node]);
+                if distance > tol * length {
+                    return Err(Error::BadCurve {
+                        set: set.to_string(),
+                        what: format!("node {node} lies {distance:e} off the curve (edge length {length:e})"),
+                        node: Some(node),
+                    });
+                }
+            }
+        }
+        self.curves.insert(set.to_string(), curve);
+        Ok(self)
+    }
+
+    /// The curves of the edge sets that have one ([`Mesh::with_curve`]).
+    pub fn curves(&self) -> &BTreeMap<String, Curve> {
+        &self.curves
     }
 
     /// Node coordinates.

@@ -84,11 +84,11 @@
 //! * M. Karkulik, D. Pavlicek, D. Praetorius, *On 2D newest vertex bisection: optimality of mesh-closure
 //!   and H¹-stability of L₂-projection*, Constr. Approx. 38 (2013) 213–234.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 use crate::error::{Error, Result};
 use crate::mesh::generate::MAX_CELLS;
-use crate::mesh::{dist2, Mesh, Point};
+use crate::mesh::{dist2, Curve, Mesh, Point};
 use crate::settings::Bisection;
 
 /// The result of [`bisect`]: the refined mesh and how it relates to the coarse one.
@@ -181,7 +181,13 @@ pub fn label_longest_edge(mesh: &Mesh) -> Mesh {
         .collect();
     // A rotation changes nothing `Mesh::new` checked, nor the boundary map (same edges, same owners). Every
     // field is listed, so that a new one must be thought about here.
-    Mesh { points: mesh.points.clone(), triangles, edge_sets: mesh.edge_sets.clone(), boundary: mesh.boundary.clone() }
+    Mesh {
+        points: mesh.points.clone(),
+        triangles,
+        edge_sets: mesh.edge_sets.clone(),
+        boundary: mesh.boundary.clone(),
+        curves: mesh.curves.clone(),
+    }
 }
 
 /// Refines every marked triangle by newest-vertex bisection, with the conforming closure (see the [module
@@ -197,7 +203,9 @@ pub fn label_longest_edge(mesh: &Mesh) -> Mesh {
 /// [`Error::MarkedTriangleOutOfRange`] for a marked index that is not a triangle;
 /// [`Error::RefinementTooLarge`] if the refined mesh would have more than
 /// [`MAX_CELLS`] triangles (checked before it is built); the errors of
-/// [`Mesh::new`] if a child degenerates (only for triangles already degenerate to round-off).
+/// [`Mesh::new`] if a child degenerates (only for triangles already degenerate to round-off), or is inverted
+/// by a new node moved onto the curve of its edge set ([`Mesh::with_curve`]: a triangle much wider than the
+/// curve's radius allows).
 pub fn bisect(mesh: &Mesh, marked: &[usize], bisection: Bisection) -> Result<Refinement> {
     bisect_within(mesh, marked, bisection, MAX_CELLS)
 }
@@ -220,11 +228,19 @@ fn bisect_within(mesh: &Mesh, marked: &[usize], bisection: Bisection, limit: usi
     let mut midpoint_of: Vec<Option<usize>> = vec![None; edges.nodes.len()];
     let mut midpoints = Vec::new();
     let mut points = mesh.points().to_vec();
+    // The edges of sets on a curve: their new nodes go onto it.
+    let on_curve: HashMap<[usize; 2], &Curve> = mesh
+        .curves
+        .iter()
+        .filter_map(|(set, c)| mesh.edge_sets.get(set).map(|edges| (edges, c)))
+        .flat_map(|(edges, c)| edges.iter().map(move |&[a, b]| (sorted(a, b), c)))
+        .collect();
     for (e, &[a, b]) in edges.nodes.iter().enumerate() {
         if is_marked[e] {
             midpoint_of[e] = Some(n_coarse + midpoints.len());
             midpoints.push([a, b]);
-            points.push(midpoint(points[a], points[b]));
+            let m = midpoint(points[a], points[b]);
+            points.push(on_curve.get(&sorted(a, b)).map_or(m, |c| c.project(m)));
         }
     }
 
@@ -268,7 +284,9 @@ fn bisect_within(mesh: &Mesh, marked: &[usize], bisection: Bisection, limit: usi
             (name.clone(), refined)
         })
         .collect();
-    let mesh = Mesh::new(points, triangles, edge_sets)?;
+    let curves = mesh.curves.clone();
+    let mut mesh = Mesh::new(points, triangles, edge_sets)?;
+    mesh.curves = curves;
     Ok(Refinement { mesh, parent, midpoints })
 }
 
@@ -706,5 +724,49 @@ mod tests {
                 mesh = r.into_mesh();
             }
         }
+    }
+
+    /// The new nodes of a set on an arc go onto the arc, those of other sets and of the interior onto the
+    /// midpoints; the curve goes with the refined mesh, so that a second refinement keeps to it too.
+    #[test]
+    fn new_nodes_of_a_curved_set_go_onto_its_arc() {
+        use crate::mesh::shapes::{ring_sector, ArcGrading, RingSector};
+        let sector = RingSector { center: [1.0, -2.0], radii: [0.5, 1.0], angles: [0.0, 1.0] };
+        let coarse = ring_sector(&sector, &ArcGrading { angles: [0.0, 1.0], h_min: 0.2, h_max: 0.2, growth: 0.3 })
+            .expect("a ring sector");
+        let all: Vec<usize> = (0..coarse.n_triangles()).collect();
+        let once = bisect(&label_longest_edge(&coarse), &all, Bisection::AllEdges).unwrap().into_mesh();
+        let all_once: Vec<usize> = (0..once.n_triangles()).collect();
+        let twice = bisect(&once, &all_once, Bisection::AllEdges).unwrap().into_mesh();
+        assert_eq!(twice.curves(), coarse.curves());
+        let radius = |p: Point| (p[0] - 1.0).hypot(p[1] + 2.0);
+        for (name, r) in [("outer", 1.0), ("inner", 0.5)] {
+            let set = twice.edge_set(name).unwrap();
+            assert_eq!(set.len(), 2 * once.edge_set(name).unwrap().len(), "{name}: every edge bisected");
+            for &[a, b] in set {
+                for p in [twice.points()[a], twice.points()[b]] {
+                    assert!((radius(p) - r).abs() < 1e-15, "{p:?} off the arc of radius {r}");
+                }
+            }
+        }
+        // The radial side at angle 0 is straight, without a curve: its new nodes are midpoints, on it.
+        for &[a, b] in twice.edge_set("start").unwrap() {
+            assert!([a, b].iter().all(|&n| (twice.points()[n][1] + 2.0).abs() < 1e-15));
+        }
+    }
+
+    /// A curve the set's nodes are not on, or one that is not an arc, is refused naming the set (and the node).
+    #[test]
+    fn a_curve_off_the_nodes_is_refused() {
+        use crate::mesh::Curve;
+        let mesh =
+            crate::mesh::generate::rectangle([0.0, 1.0], [0.0, 1.0], 2, 2, crate::mesh::generate::Diagonal::Right)
+                .unwrap();
+        let e = mesh.clone().with_curve("top", Curve::Arc { center: [0.5, 0.0], radius: 1.0 }).unwrap_err();
+        assert!(matches!(&e, Error::BadCurve { set, node: Some(_), .. } if set == "top"), "{e}");
+        let e = mesh.clone().with_curve("top", Curve::Arc { center: [0.5, 0.0], radius: -1.0 }).unwrap_err();
+        assert!(matches!(&e, Error::BadCurve { node: None, .. }), "{e}");
+        let e = mesh.with_curve("lid", Curve::Arc { center: [0.5, 0.0], radius: 1.0 }).unwrap_err();
+        assert!(matches!(&e, Error::UnknownEdgeSet { .. }), "{e}");
     }
 }

@@ -9,7 +9,7 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::generate::{graded_rectangle, Grading, Side};
-use crate::mesh::{Mesh, Point};
+use crate::mesh::{Curve, Mesh, Point};
 
 /// The sector of a ring to mesh: radii `r_in ≤ |x − c| ≤ r_out`, angles (radians, counterclockwise from the
 /// x axis) from `angles[0]` to `angles[1]`.
@@ -39,8 +39,8 @@ pub struct ArcGrading {
 }
 
 /// A mesh of a ring sector, fine along `grading.angles` of its outer arc (module documentation). The edge
-/// sets are `"outer"` and `"inner"` (the arcs) and `"start"` and `"end"` (the radial sides at the first and
-/// the last angle).
+/// sets are `"outer"` and `"inner"` (the arcs, each with its [`Curve`], so that refinement stays on the
+/// circles) and `"start"` and `"end"` (the radial sides at the first and the last angle).
 ///
 /// # Errors
 /// [`Error::BadGenerator`] for radii or angles that are not finite, not increasing, out of the bounds of
@@ -93,7 +93,9 @@ pub fn ring_sector(sector: &RingSector, grading: &ArcGrading) -> Result<Mesh> {
         .iter()
         .map(|&(from, to)| Ok((to.to_string(), flat.edge_set(from)?.to_vec())))
         .collect::<Result<std::collections::BTreeMap<_, _>>>()?;
-    Mesh::new(points, flat.triangles().to_vec(), sets)
+    Mesh::new(points, flat.triangles().to_vec(), sets)?
+        .with_curve("outer", Curve::Arc { center: sector.center, radius: r_out })?
+        .with_curve("inner", Curve::Arc { center: sector.center, radius: r_in })
 }
 
 #[cfg(test)]
