@@ -46,6 +46,7 @@ TYPES: dict[str, Any] = {
     "_string": StrictStr,
     "_pair": Pair,
     "_range": Pair,
+    "_center": Union[Num, Pair],
     "_numbers": list[Num],
     "_path": Path_,
     "_counts": Union[Steps, Annotated[list[Steps], Field(min_length=1)]],

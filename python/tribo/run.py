@@ -140,13 +140,17 @@ def materials(problem: Problem, solution: Solution) -> list[dict[str, Any]]:
                         - (p[:, 2, 0] - p[:, 0, 0]) * (p[:, 1, 1] - p[:, 0, 1]))
     eta, zeta, von_mises = (np.asarray(v) for v in (solution.estimator, solution.traction_estimator,
                                                      solution.von_mises))
+    def norm(v: np.ndarray) -> float:
+        """The 2-norm, scaled by the largest value: η_K of 1e200 (E of 1e300) square beyond a float."""
+        top = float(np.max(np.abs(v), initial=0.0))
+        return top * float(np.sqrt(np.sum((v / top) ** 2))) if 0.0 < top < math.inf else top
+
     out = []
     for k, (young, poisson) in enumerate(problem.materials):
         mine = regions == k
         out.append({"young": young, "poisson": poisson, "triangles": int(mine.sum()), "area": float(area[mine].sum()),
                     "max_von_mises": float(np.max(von_mises[mine], initial=0.0)),
-                    "estimate": float(np.sqrt(np.sum(eta[mine] ** 2))),
-                    "traction_estimate": float(np.sqrt(np.sum(zeta[mine] ** 2)))})
+                    "estimate": norm(eta[mine]), "traction_estimate": norm(zeta[mine])})
     return out
 
 

@@ -86,6 +86,10 @@ class Scene:
             return make(o["radius"], o.get("center", 0.0))
         if shape == "polyline":
             return Obstacle.polyline(o["xi"], o["gap"])
+        if shape == "line":
+            return Obstacle.line(o["point"], o["normal"])
+        if shape in ("disc", "hole"):
+            return (Obstacle.disc if shape == "disc" else Obstacle.hole)(o["center"], o["radius"])
         return Obstacle.flat()
 
     def _approach(self) -> float:

@@ -69,9 +69,15 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
     "contact.primary": ("Two bodies: the other side, `body.edge_set`", "—", "—"),
     "contact.gap": ("Two bodies: the initial gap between the sides, as an obstacle shape", "length",
                     "flat (touching)"),
-    "obstacle.shape": ("The rigid obstacle's profile along Γ_C", "—", '`"flat"`'),
-    "obstacle.radius": ("The radius R of a circle or parabola (*required* for them)", "length", "—"),
-    "obstacle.center": ("The abscissa ξ on Γ_C of a circle's or parabola's lowest point", "length", "0"),
+    "obstacle.shape": ("The rigid obstacle: a gap function of the abscissa on Γ_C (`flat`, `circle`, `parabola`, "
+                       "`polyline`) or a shape given by its geometry (`line`, `disc`, `hole`)", "—", '`"flat"`'),
+    "obstacle.radius": ("The radius R of a circle, a parabola, a disc or a hole (*required* for them)", "length",
+                        "—"),
+    "obstacle.center": ("The abscissa ξ on Γ_C of a circle's or parabola's lowest point; the centre `[x, y]` of a "
+                        "disc or a hole (*required* for them)", "length", "0"),
+    "obstacle.point": ("A point `[x, y]` of a line obstacle's surface (*required* for it)", "length", "—"),
+    "obstacle.normal": ("A line obstacle's normal `[x, y]`, out of the obstacle toward the body (*required* for "
+                        "it)", "—", "—"),
     "obstacle.xi": ("A polyline's abscissae on Γ_C, increasing (*required* for it)", "length", "—"),
     "obstacle.gap": ("A polyline's initial gap at each of its abscissae (*required* for it)", "length", "—"),
     "obstacle.approach": ("δ: how far the obstacle moves toward the body (against the outward normal n)",
@@ -197,6 +203,7 @@ _BY_CHECKER: dict[str, dict[str, Any]] = {
     "_string": {"type": "string"},
     "_pair": _PAIR,
     "_range": _PAIR,
+    "_center": {"oneOf": [_NUMBER, _PAIR]},
     "_numbers": {"type": "array", "items": _NUMBER},
     "_path": _PATH,
     "_counts": {"oneOf": [_STEPS, {"type": "array", "items": _STEPS, "minItems": 1}]},

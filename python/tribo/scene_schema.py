@@ -23,10 +23,13 @@ A scene has these tables (every key is optional unless marked *required*; see ``
 ``[loads]``
     ``body_force = [fx, fy]``; ``[loads.tractions]``: ``edge_set = [tx, ty]`` per loaded edge set.
 ``[contact]``
-    ``edge_set`` (*required*): the straight edge set Γ_C.
+    ``edge_set`` (*required*): the edge set Γ_C, one open chain of edges (straight, or bent against an
+    obstacle given by its geometry).
 ``[obstacle]``
     ``shape``: ``"flat"`` (default), ``"circle"``, ``"parabola"`` (both with ``radius`` *required* and
-    ``center``, an abscissa on Γ_C, default 0) or ``"polyline"`` (``xi`` and ``gap`` lists, *required*);
+    ``center``, an abscissa on Γ_C, default 0) or ``"polyline"`` (``xi`` and ``gap`` lists, *required*):
+    gap functions of the abscissa; or, given by its geometry, ``"line"`` (``point`` and ``normal``, out of
+    the obstacle, *required*), ``"disc"`` or ``"hole"`` (``center = [x, y]`` and ``radius``, *required*);
     a key of another shape is an error; ``approach`` (δ, toward the body) and ``shift`` (s, along the
     tangent t = (−n₂, n₁), n the outward normal of the body: on a top face t = (−1, 0), so a positive
     shift moves the obstacle toward −x; ``summary.json`` gives the motion in global axes as
@@ -121,6 +124,7 @@ from tribo.scene_values import (
     Checker,
     SceneError,
     _boolean,
+    _center,
     _choice,
     _count,
     _counts,
@@ -246,9 +250,11 @@ SCHEMA: dict[str, dict[str, Checker]] = {
     "loads": {"body_force": _pair, "tractions": _pairs},
     "contact": {"edge_set": _string, "secondary": _string, "primary": _string, "gap": _shape},
     "obstacle": {
-        "shape": _choice("flat", "circle", "parabola", "polyline"),
+        "shape": _choice("flat", "circle", "parabola", "polyline", "line", "disc", "hole"),
         "radius": _number,
-        "center": _number,
+        "center": _center,
+        "point": _pair,
+        "normal": _pair,
         "xi": _numbers,
         "gap": _numbers,
         "approach": _number,
@@ -326,8 +332,12 @@ NOT_FOR_TWO_BODIES = {
 # The keys of one [[supports]] entry, by kind (besides kind and edge_set).
 SUPPORT_KINDS: dict[str, tuple[str, ...]] = {"clamp": (), "roller": (), "displacement": ("x", "y")}
 # The keys of [obstacle] that describe its shape: those each shape takes, and those it requires.
-SHAPE_KEYS = {"flat": (), "circle": ("radius", "center"), "parabola": ("radius", "center"), "polyline": ("xi", "gap")}
-SHAPE_REQUIRED = {"flat": (), "circle": ("radius",), "parabola": ("radius",), "polyline": ("xi", "gap")}
+SHAPE_KEYS = {"flat": (), "circle": ("radius", "center"), "parabola": ("radius", "center"), "polyline": ("xi", "gap"),
+              "line": ("point", "normal"), "disc": ("center", "radius"), "hole": ("center", "radius")}
+SHAPE_REQUIRED = {"flat": (), "circle": ("radius",), "parabola": ("radius",), "polyline": ("xi", "gap"),
+                  "line": ("point", "normal"), "disc": ("center", "radius"), "hole": ("center", "radius")}
+# The shapes given by their geometry (for a contact side of any shape), whose center is a point [x, y].
+GEOMETRY_SHAPES = ("line", "disc", "hole")
 # The most cells (nx · ny) a uniform rectangle may have: the limit of the core's Mesh.rectangle, checked here
 # before nx and ny are rounded to integers (an absurd h would overflow the binding's conversion).
 MAX_CELLS = _MAX_CELLS  # the core's limit (tribo.generate::MAX_CELLS)
@@ -343,6 +353,12 @@ def _check_obstacle(o: Mapping[str, Any], table: str = "obstacle") -> None:
     for key in SHAPE_REQUIRED[shape]:
         if key not in o:
             raise SceneError(f"scene key '{table}.{key}' is required for a {shape}", f"{table}.{key}")
+    if "center" in o and isinstance(o["center"], tuple) != (shape in GEOMETRY_SHAPES):
+        what = "two numbers [x, y]" if shape in GEOMETRY_SHAPES else "a number (an abscissa on Γ_C)"
+        raise SceneError(f"scene key '{table}.center' must be {what} for a {shape}", f"{table}.center")
+    if table != "obstacle" and shape in GEOMETRY_SHAPES:
+        raise SceneError(f"scene key '{table}.shape': the gap between two bodies is a function of the abscissa "
+                         f"(flat, circle, parabola or polyline), not a {shape}", f"{table}.shape")
 
 
 def _body_entry(index: int, entry: Any) -> dict[str, Any]:

@@ -84,6 +84,11 @@ def _pair(key: str, v: Any) -> tuple[float, float]:
     return (_number(key, v[0]), _number(key, v[1]))
 
 
+def _center(key: str, v: Any) -> float | tuple[float, float]:
+    """A number (an abscissa on Γ_C: a circle's or a parabola's) or two numbers [x, y] (a disc's or a hole's)."""
+    return _pair(key, v) if isinstance(v, list) else _number(key, v)
+
+
 def _range(key: str, v: Any) -> tuple[float, float]:
     """An interval [a, b] with a < b (a side of the rectangle)."""
     a, b = _pair(key, v)

@@ -382,3 +382,20 @@ def test_the_shipped_coated_scene_runs_within_two_percent_of_the_layered_referen
         sys.path.remove(scripts)
     x, p = contact(solution.normal_force, 1.0, 0.25, (600.0, 0.25), (200.0, 0.3), PERIOD, POINTS)
     assert difference(problem, solution, x, p) <= 0.02
+
+
+def test_the_materials_summary_takes_estimates_whose_squares_overflow() -> None:
+    """summary.json's per-material estimates are 2-norms of η_K: computed scaled, so that η_K of 1e200 (E of 1e300
+    in a fuzzed scene) gives a finite total, the same as the plain norm where the squares do not overflow."""
+    from types import SimpleNamespace
+
+    from tribo.run import materials
+
+    mesh = tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 1, 1)
+    problem = SimpleNamespace(regions=[0, 0], mesh=mesh, materials=[STIFF])
+    for scale in (1.0, 1e200):
+        eta = np.array([3.0, 4.0]) * scale
+        solution = SimpleNamespace(estimator=eta, traction_estimator=eta, von_mises=[1.0, 2.0])
+        [summary] = materials(problem, solution)  # type: ignore[arg-type]
+        assert summary["estimate"] == summary["traction_estimate"] == pytest.approx(5.0 * scale, rel=1e-15)
+        assert summary["area"] == pytest.approx(1.0) and summary["triangles"] == 2

@@ -6,7 +6,7 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyMapping;
 use tribo::error::ErrorCategory::Mesh;
-use tribo::{Choice, Diagonal, Grading, Side};
+use tribo::{ArcGrading, Choice, Curve, Diagonal, Grading, RingSector, Side};
 
 use crate::convert::{floats, indices, mat, pair, rows};
 use crate::errors::{bad_input, to_pyerr};
@@ -40,6 +40,9 @@ pub struct PyMesh {
     /// Bounding box (xmin, ymin, xmax, ymax).
     #[pyo3(get)]
     bounding_box: (f64, f64, f64, f64),
+    /// The arcs some edge sets lie on: dict name -> (cx, cy, radius) (`with_curve`).
+    #[pyo3(get)]
+    curves: BTreeMap<String, (f64, f64, f64)>,
 }
 
 impl PyMesh {
@@ -55,6 +58,11 @@ impl PyMesh {
             n_triangles: m.n_triangles(),
             max_diameter: m.max_diameter(),
             bounding_box: (x0, y0, x1, y1),
+            curves: m
+                .curves()
+                .iter()
+                .map(|(n, Curve::Arc { center: c, radius })| (n.clone(), (c[0], c[1], *radius)))
+                .collect(),
             inner: m,
         })
     }
@@ -129,6 +137,36 @@ impl PyMesh {
         let d = Grading::new(side, segment, h_max);
         let grading = Grading { h_min: h_min.unwrap_or(d.h_min), growth: growth.unwrap_or(d.growth), ..d };
         Self::from_core(py, py.detach(|| tribo::graded_rectangle(x, y, &grading)).map_err(to_pyerr)?)
+    }
+
+    /// This mesh with the edge set `edge_set` on the arc of `center` and `radius`: refinement puts the new
+    /// nodes of its edges on the arc (MeshError BadCurve when the set's nodes are not on it).
+    fn with_curve(&self, py: Python<'_>, edge_set: &str, center: (f64, f64), radius: f64) -> PyResult<Self> {
+        let curve = Curve::Arc { center: center.into(), radius };
+        Self::from_core(py, self.inner.clone().with_curve(edge_set, curve).map_err(to_pyerr)?)
+    }
+
+    /// A mesh of the ring sector radii[0] ≤ ‖x − center‖ ≤ radii[1] between `angles` (radians), graded toward
+    /// the `arc` of angles of its outer circle (default: all of it) to h_min (defaults: the core's, as
+    /// `graded_rectangle`). Edge sets 'outer' and 'inner' (on their arcs) and 'start' and 'end'.
+    #[staticmethod]
+    #[pyo3(signature = (center, radii, angles, *, h_max, h_min=None, arc=None, growth=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn ring_sector(
+        py: Python<'_>,
+        center: (f64, f64),
+        radii: (f64, f64),
+        angles: (f64, f64),
+        h_max: f64,
+        h_min: Option<f64>,
+        arc: Option<(f64, f64)>,
+        growth: Option<f64>,
+    ) -> PyResult<Self> {
+        let d = Grading::new(Side::Top, [0.0, 0.0], h_max);
+        let sector = RingSector { center: center.into(), radii: radii.into(), angles: angles.into() };
+        let angles = arc.unwrap_or(angles).into();
+        let grading = ArcGrading { angles, h_min: h_min.unwrap_or(d.h_min), h_max, growth: growth.unwrap_or(d.growth) };
+        Self::from_core(py, py.detach(|| tribo::ring_sector(&sector, &grading)).map_err(to_pyerr)?)
     }
 
     /// Diameter h_T of every triangle, (T,) float64.

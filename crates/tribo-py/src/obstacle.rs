@@ -7,9 +7,9 @@ use std::sync::Arc;
 use numpy::PyArray1;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
-use pyo3::types::PyFloat;
+use pyo3::types::{PyFloat, PyTuple};
 use tribo::error::ErrorCategory::ContactGeometry;
-use tribo::{GapFunction, ObstacleShape};
+use tribo::{DistanceFunction, GapFunction, ObstacleShape};
 
 use crate::convert::{callback, floats};
 use crate::errors::to_pyerr;
@@ -40,14 +40,15 @@ pub fn chain_gap_error(py: Python<'_>, err: PyErr) -> PyErr {
 }
 
 /// The shape of a rigid obstacle: the initial gap g0(ξ) ≥ 0 between Γ_C and the obstacle along the
-/// outward normal, ξ the abscissa on Γ_C. Build one with `flat`, `circle`, `parabola`, `polyline` or
-/// `function`; its motion (approach δ, shift s) is given to `Problem`.
+/// outward normal, ξ the abscissa on Γ_C (`flat`, `circle`, `parabola`, `polyline`, `function`), or the
+/// obstacle's geometry (`line`, `disc`, `hole`, `distance`: for a contact side of any shape). Its motion
+/// (approach δ, shift s) is given to `Problem`.
 #[pyclass(frozen, name = "Obstacle", module = "tribo")]
 pub struct PyObstacle {
     pub(crate) shape: ObstacleShape,
     /// The call that built it (a gap function shows its Python repr).
     repr: String,
-    /// 'flat', 'circle', 'parabola', 'polyline' or 'function'.
+    /// 'flat', 'circle', 'parabola', 'polyline', 'function', 'line', 'disc', 'hole' or 'distance'.
     #[pyo3(get)]
     kind: &'static str,
     /// The radius R of a circle or a parabola (its curvature radius), else None.
@@ -71,19 +72,23 @@ impl PyObstacle {
     /// re-raised as it is for KeyboardInterrupt and SystemExit.
     pub fn from_callable(f: Py<PyAny>) -> PyResult<Self> {
         let repr = Python::attach(|py| f.bind(py).repr().map(|r| format!("Obstacle.function({r})")))?;
-        let call = move |xi: f64| -> f64 {
-            Python::attach(|py| match f.call1(py, (xi,)).and_then(|v| v.extract::<f64>(py)) {
-                Ok(g) => g,
-                Err(e) => {
-                    GAP_ERROR.with(|slot| {
-                        slot.borrow_mut().get_or_insert(e);
-                    });
-                    f64::NAN
-                }
-            })
-        };
+        let call = move |xi: f64| -> f64 { call_or_nan(&f, &[xi]) };
         Ok(Self { repr, ..Self::checked(ObstacleShape::Function(GapFunction(Arc::new(call))))? })
     }
+}
+
+/// `f(*args)` as a float, attached to Python for the call; a Python exception or a non-float result is NaN,
+/// the exception kept (per thread) for [`chain_gap_error`].
+fn call_or_nan(f: &Py<PyAny>, args: &[f64]) -> f64 {
+    Python::attach(|py| match PyTuple::new(py, args).and_then(|a| f.call1(py, a)).and_then(|v| v.extract::<f64>(py)) {
+        Ok(g) => g,
+        Err(e) => {
+            GAP_ERROR.with(|slot| {
+                slot.borrow_mut().get_or_insert(e);
+            });
+            f64::NAN
+        }
+    })
 }
 
 #[pymethods]
@@ -123,7 +128,39 @@ impl PyObstacle {
         Self::from_callable(callback(gap, "Obstacle.function", "gap(xi) -> float", ContactGeometry)?)
     }
 
-    /// The initial gap g0 at abscissae `xi` (a float or an array of floats).
+    /// A rigid half-plane whose surface is the line through `point` with normal `normal` (out of the obstacle,
+    /// toward the body): g0 is the signed distance of a point of Γ_C from it, and the contact acts along the
+    /// line's normal. For a contact side of any shape.
+    #[staticmethod]
+    fn line(point: (f64, f64), normal: (f64, f64)) -> PyResult<Self> {
+        Self::checked(ObstacleShape::Line { point: point.into(), normal: normal.into() })
+    }
+
+    /// A rigid disc of centre `center` and radius R outside the body: g0 = ‖x − c‖ − R.
+    #[staticmethod]
+    fn disc(center: (f64, f64), radius: f64) -> PyResult<Self> {
+        Self::checked(ObstacleShape::Disc { center: center.into(), radius })
+    }
+
+    /// A rigid hole of centre `center` and radius R around the body: g0 = R − ‖x − c‖ (the approach is the
+    /// interference of a shrink fit).
+    #[staticmethod]
+    fn hole(center: (f64, f64), radius: f64) -> PyResult<Self> {
+        Self::checked(ObstacleShape::Hole { center: center.into(), radius })
+    }
+
+    /// Any Python callable distance(x: float, y: float) -> float: the signed distance from the obstacle,
+    /// positive outside it (its normal by central differences).
+    #[staticmethod]
+    fn distance(distance: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let f = callback(distance, "Obstacle.distance", "distance(x, y) -> float", ContactGeometry)?;
+        let repr = format!("Obstacle.distance({})", distance.repr()?);
+        let call = move |x: [f64; 2]| -> f64 { call_or_nan(&f, &x) };
+        Ok(Self { repr, ..Self::checked(ObstacleShape::Distance(DistanceFunction(Arc::new(call))))? })
+    }
+
+    /// The initial gap g0 at abscissae `xi` (a float or an array of floats; NaN for a shape given by its
+    /// geometry, whose gap is the distance of Γ_C's points).
     fn gap0<'py>(&self, py: Python<'py>, xi: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         let o = tribo::Obstacle { shape: self.shape.clone(), ..Default::default() };
         take_gap_error();

@@ -109,8 +109,8 @@ impl Problem {
     /// [`Error::ContactPair`] for body names that are empty, repeated or hold a '.', a pair side that names
     /// no body or no edge set of it, both sides on one body, lines that are not one line with opposite
     /// normals, a primary line that does not cover the secondary one, a piece of a body that neither its
-    /// supports nor the contact hold (naming the body and the free motion); the other errors of
-    /// [`Problem::new`].
+    /// supports nor the contact hold (naming the body and the free motion); [`Error::BadObstacle`] for a gap
+    /// given by its geometry ([`crate::ObstacleShape::is_geometry`]); the other errors of [`Problem::new`].
     pub fn two_bodies(bodies: [Body; 2], pair: ContactPair, body_force: [f64; 2]) -> Result<Self> {
         let bad = |what: String| Error::ContactPair {
             secondary: pair.secondary.clone(),
@@ -147,6 +147,15 @@ impl Problem {
         let mut points = Vec::new();
         let mut triangles = Vec::new();
         let mut edge_sets = BTreeMap::new();
+        if pair.gap.is_geometry() {
+            return Err(Error::BadObstacle {
+                what: format!(
+                    "the gap between two bodies is a function of the abscissa on the secondary side (flat, circle, \
+                     parabola, polyline or function), not a shape given by its geometry ({})",
+                    pair.gap.kind()
+                ),
+            });
+        }
         let mut parts = Vec::new();
         let mut region = Vec::new();
         for (k, b) in bodies.iter().enumerate() {

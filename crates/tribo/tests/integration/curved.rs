@@ -277,3 +277,18 @@ fn adaptive_levels_of_the_roller_follow_its_arc() {
     assert!(errors[0].0 < adapt.tol, "the curved levels meet Hertz: {errors:?}");
     assert!(errors[1].0 > 10.0 * errors[0].0 && errors[1].1 > 1e-4, "the chords keep their sag: {errors:?}");
 }
+
+/// Two bodies take a gap function of the abscissa between them, not a shape given by its geometry (their
+/// contact sides are straight, and the gap is measured along the secondary side's normal).
+#[test]
+fn two_bodies_refuse_a_gap_given_by_its_geometry() {
+    let (bodies, mut pair) = tribo_testkit::two_body_hertz_parts(
+        0.05,
+        Material { young: 1.0, poisson: 0.3 },
+        Material { young: 2.0, poisson: 0.3 },
+        0.01,
+    );
+    pair.gap = ObstacleShape::Line { point: [0.0, 0.0], normal: [0.0, 1.0] };
+    let e = Problem::two_bodies(bodies, pair, [0.0, 0.0]).unwrap_err();
+    assert!(matches!(&e, Error::BadObstacle { what } if what.contains("(line)")), "{e}");
+}

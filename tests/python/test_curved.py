@@ -1,0 +1,138 @@
+"""Bent contact sides from Python (issue 39): a ring sector's rim against obstacles given by their geometry
+(``Obstacle.line``, ``disc``, ``hole``, ``distance``), meshes whose arcs refinement follows
+(``Mesh.ring_sector``, ``Mesh.with_curve``), against Lamé's ring and the Rust tests' roller, and the refusals."""
+
+from __future__ import annotations
+
+import math
+import tomllib
+
+import numpy as np
+import pytest
+
+import tribo
+from tribo.scene import parse_scene, scene_path
+
+E, NU = 1.0, 0.3
+
+
+def _ring_in_hole(h: float, delta: float) -> tribo.Problem:
+    """A quarter ring (radii 0.5–1) clamped inside, on rollers on its radial sides, pressed into a rigid hole of
+    its outer radius by the interference ``delta``."""
+    mesh = tribo.Mesh.ring_sector((0.0, 0.0), (0.5, 1.0), (0.3, 0.3 + math.pi / 2), h_max=h, h_min=h)
+    return tribo.Problem(mesh, young=E, poisson=NU, contact="outer", clamped="inner",
+                         supports=[tribo.Support.roller("start"), tribo.Support.roller("end")],
+                         obstacle=tribo.Obstacle.hole((0.0, 0.0), 1.0), approach=delta)
+
+
+def test_a_ring_pressed_into_a_hole_has_lames_pressure_less_the_sag() -> None:
+    a, b, delta = 0.5, 1.0, 1e-3
+    problem = _ring_in_hole(0.01, delta)
+    sol = problem.solve()
+    assert sol.report.status == "converged"
+    lam, mu = E * NU / ((1 + NU) * (1 - 2 * NU)), E / (2 * (1 + NU))
+    p = 2 * delta * b * ((lam + mu) + mu * a * a / (b * b)) / (b * b - a * a)
+    xi = np.asarray(problem.node_abscissae)
+    h = (xi[-1] - xi[0]) / (len(xi) - 1)
+    # The faceted arc stands inside the circle by h²/12R on average over an edge: the interference it meets.
+    expected = p * (1 - h * h / (12 * b) / delta)
+    np.testing.assert_allclose(sol.lambda_n, expected, rtol=2e-3)
+    assert sol.normal_force / (xi[-1] - xi[0]) == pytest.approx(expected, rel=2e-4)
+    np.testing.assert_allclose(sol.lambda_t, 0.0, atol=1e-9 * p)
+
+
+def _roller(obstacle: tribo.Obstacle) -> tribo.Problem:
+    mesh = tribo.Mesh.ring_sector((0.0, 1.0), (0.25, 1.0), (-math.pi / 2 - 1.2, -math.pi / 2 + 1.2), h_max=0.1,
+                                  h_min=0.01, arc=(-math.pi / 2 - 0.1, -math.pi / 2 + 0.1))
+    return tribo.Problem(mesh, young=E, poisson=NU, contact="outer", clamped="inner", obstacle=obstacle,
+                         approach=0.0035)
+
+
+def test_a_signed_distance_gives_the_answer_of_the_line_it_copies() -> None:
+    line, closure = tribo.Obstacle.line((0.0, 0.0), (0.0, 2.0)), tribo.Obstacle.distance(lambda x, y: y)
+    assert (line.kind, closure.kind) == ("line", "distance")
+    assert repr(line) == "Obstacle.line(point=(0, 0), normal=(0, 2))"
+    assert repr(closure).startswith("Obstacle.distance(<function")
+    s, c = _roller(line).solve(), _roller(closure).solve()
+    assert s.report.status == c.report.status == "converged"
+    np.testing.assert_allclose(c.lambda_n, s.lambda_n, atol=1e-8 * np.max(s.lambda_n))
+    # The force is vertical and equals P: the flat pushes along its own normal.
+    fx, fy = s.contact_force
+    assert abs(fx) <= 1e-6 * fy and fy == pytest.approx(s.normal_force, rel=1e-3)
+    # A gap function's gap0 reads the abscissa; a shape given by its geometry has none there.
+    assert math.isnan(line.gap0(0.0))
+
+
+def test_the_adaptive_roller_keeps_its_rim_on_the_arc() -> None:
+    mesh = tribo.Mesh.ring_sector((0.0, 1.0), (0.25, 1.0), (-math.pi / 2 - 1.2, -math.pi / 2 + 1.2), h_max=0.05,
+                                  h_min=0.05)
+    assert mesh.curves == {"outer": (0.0, 1.0, 1.0), "inner": (0.0, 1.0, 0.25)}
+    problem = tribo.Problem(mesh, young=E, poisson=NU, contact="outer", clamped="inner",
+                            obstacle=tribo.Obstacle.line((0.0, 0.0), (0.0, 1.0)), approach=0.0035)
+    run = problem.solve_adaptive(tol=0.05)
+    assert run.stop == "tolerance" and run.solution.report.status == "converged"
+    last = run.problem
+    points = np.asarray(last.mesh.points)[np.asarray(last.contact_nodes)]
+    np.testing.assert_allclose(np.hypot(points[:, 0], points[:, 1] - 1.0), 1.0, atol=1e-14)
+    assert last.mesh.curves == mesh.curves
+
+
+def test_bad_curves_and_obstacles_are_typed_errors() -> None:
+    square = tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 2, 2)
+    with pytest.raises(tribo.MeshError, match="node .* off the curve") as e:
+        square.with_curve("top", (0.5, 0.0), 1.0)
+    assert e.value.kind == "BadCurve" and e.value.details["set"] == "top"
+    with pytest.raises(tribo.MeshError, match="positive radius"):
+        square.with_curve("top", (0.5, 0.0), -1.0)
+    with pytest.raises(tribo.ContactGeometryError, match="radius"):
+        tribo.Obstacle.hole((0.0, 0.0), 0.0)
+    with pytest.raises(tribo.ContactGeometryError, match="normal"):
+        tribo.Obstacle.line((0.0, 0.0), (0.0, 0.0))
+    with pytest.raises(tribo.MeshError, match="radii"):
+        tribo.Mesh.ring_sector((0.0, 0.0), (1.0, 0.5), (0.0, 1.0), h_max=0.1)
+
+    def broken(x: float, y: float) -> float:
+        raise ValueError("no distance here")
+
+    mesh = tribo.Mesh.ring_sector((0.0, 0.0), (0.5, 1.0), (0.0, 1.0), h_max=0.2)
+    with pytest.raises(tribo.ContactGeometryError, match="BadObstacle|not finite|returned") as err:
+        tribo.Problem(mesh, young=E, poisson=NU, contact="outer", clamped="inner",
+                      obstacle=tribo.Obstacle.distance(broken))
+    assert isinstance(err.value.__cause__, ValueError)
+
+
+def _hertz_scene(obstacle: dict[str, object]) -> dict[str, object]:
+    scene = tomllib.loads(scene_path("hertz").read_text(encoding="utf-8"))
+    scene["obstacle"] = obstacle
+    scene["discretization"] = {"grading": [-0.3, 0.3], "h_min": 0.02}
+    return scene
+
+
+def test_a_scene_takes_obstacles_given_by_their_geometry() -> None:
+    """The Hertz block against its cylinder as a gap function and as a rigid disc: the same force to the order
+    (a/R)² at which a circle's vertical and radial distances differ; a line at the block's top is the flat."""
+    approach = {"approach": 0.01}
+    _, circle = parse_scene(_hertz_scene({"shape": "circle", "radius": 1.0, **approach})).solve()
+    _, disc = parse_scene(_hertz_scene({"shape": "disc", "center": [0.0, 1.0], "radius": 1.0, **approach})).solve()
+    assert circle.report.status == disc.report.status == "converged"
+    assert disc.normal_force == pytest.approx(circle.normal_force, rel=0.02)
+    _, flat = parse_scene(_hertz_scene({"shape": "flat", **approach})).solve()
+    _, line = parse_scene(_hertz_scene({"shape": "line", "point": [0.0, 0.0], "normal": [0.0, 1.0], **approach})).solve()
+    assert line.normal_force == pytest.approx(flat.normal_force, rel=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("obstacle", "key", "match"),
+    [
+        ({"shape": "disc", "center": 0.0, "radius": 1.0}, "obstacle.center", r"two numbers \[x, y\] for a disc"),
+        ({"shape": "circle", "center": [0.0, 1.0], "radius": 1.0}, "obstacle.center", "a number"),
+        ({"shape": "line", "point": [0.0, 0.0]}, "obstacle.normal", "required for a line"),
+        ({"shape": "hole", "center": [0.0, 0.0], "radius": 1.0, "point": [0.0, 0.0]}, "obstacle.point",
+         "does not apply to a hole"),
+    ],
+)
+def test_a_geometric_obstacle_with_the_wrong_keys_is_a_scene_error(obstacle: dict[str, object], key: str,
+                                                                   match: str) -> None:
+    with pytest.raises(tribo.SceneError, match=match) as e:
+        parse_scene(_hertz_scene(obstacle))
+    assert e.value.details["key"] == key
