@@ -299,9 +299,15 @@ def conventions(problem: Problem, solution: Solution) -> dict[str, str]:
     """The directions and signs of every output, as sentences keyed by the quantity."""
     n, t = problem.contact_normal, problem.contact_tangent
     motion = solution.obstacle_motion
+    normals = np.asarray(problem.contact_normals(problem.node_abscissae))
+    one = bool(np.all(normals == normals[0]))
     out = {
-        "n": f"outward unit normal of the body on Γ_C, n = {format_vector(n)}",
-        "t": f"unit tangent t = (−n₂, n₁) = {format_vector(t)}",
+        "n": f"outward unit normal of the body on Γ_C, n = {format_vector(n)}" if one else
+        "the contact normal of each edge of Γ_C (n_x, n_y): the body's outward normal, or the obstacle's (−∇d) "
+        f"where the obstacle is given by its geometry; n = {format_vector(n)} on the first edge",
+        "t": f"unit tangent t = (−n₂, n₁) = {format_vector(t)}" if one else "unit tangent t = (−n₂, n₁) of each edge",
+        "n_x": "the x component of the contact normal n there",
+        "n_y": "the y component of the contact normal n there",
         "xi": abscissa_description(problem),
         "lambda_n": "λ_n = −σ_n ≥ 0, the contact pressure",
         "lambda_t": "λ_t = −σ_t, along t: the obstacle's friction traction on the body is −λ_t t",

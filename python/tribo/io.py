@@ -492,9 +492,10 @@ def stress_tensor(solution: Solution) -> npt.NDArray[np.float64]:
 
 def obstacle_points(problem: Problem, solution: Solution) -> npt.NDArray[np.float64]:
     """Where the obstacle's surface is, facing each FE node of Γ_C: the node moved by the gap g = g0 − δ
-    along n, (n_c, 2)."""
-    p = problem.contact_points(solution.node_abscissae)
-    return np.asarray(p + np.outer(solution.gap, problem.contact_normal))
+    along its contact normal n, (n_c, 2)."""
+    xi = solution.node_abscissae
+    p = problem.contact_points(xi)
+    return np.asarray(p + np.asarray(solution.gap)[:, None] * problem.contact_normals(xi))
 
 
 def contact_tables(problem: Problem, solution: Solution) -> dict[str, dict[str, npt.NDArray[Any]]]:
@@ -502,8 +503,8 @@ def contact_tables(problem: Problem, solution: Solution) -> dict[str, dict[str, 
     ``multipliers`` (dofs of λ), ``nodes`` (FE nodes) and ``edges`` (FE edges)."""
 
     def at(xi: npt.NDArray[np.float64]) -> dict[str, npt.NDArray[Any]]:
-        p = problem.contact_points(xi)
-        return {"xi": xi, "x": p[:, 0], "y": p[:, 1]}
+        p, n = problem.contact_points(xi), problem.contact_normals(xi)
+        return {"xi": xi, "x": p[:, 0], "y": p[:, 1], "n_x": n[:, 0], "n_y": n[:, 1]}
 
     po = obstacle_points(problem, solution)
     return {

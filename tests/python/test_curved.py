@@ -6,11 +6,15 @@ from __future__ import annotations
 
 import math
 import tomllib
+from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import tribo
+from tribo.checks import conventions
+from tribo.io import write_contact_csv
 from tribo.scene import parse_scene, scene_path
 
 E, NU = 1.0, 0.3
@@ -136,3 +140,22 @@ def test_a_geometric_obstacle_with_the_wrong_keys_is_a_scene_error(obstacle: dic
     with pytest.raises(tribo.SceneError, match=match) as e:
         parse_scene(_hertz_scene(obstacle))
     assert e.value.details["key"] == key
+
+
+def test_the_contact_tables_give_each_point_its_normal(tmp_path: Path) -> None:
+    """contact.csv and contact_nodes.csv carry n_x, n_y: radial on the ring pressed into a hole (the hole's
+    normal at each edge's midpoint, the mean of two at a node), and the obstacle's surface lies along them."""
+    problem = _ring_in_hole(0.05, 1e-3)
+    solution = problem.solve()
+    write_contact_csv(tmp_path, problem, solution)
+    for name in ("contact.csv", "contact_nodes.csv"):
+        table = pd.read_csv(tmp_path / name, comment="#")
+        r = np.hypot(table["x"], table["y"])
+        cos = (table["n_x"] * table["x"] + table["n_y"] * table["y"]) / r
+        assert np.all(cos > 1 - 0.05**2), name  # radial to the chords' angle
+        assert np.allclose(np.hypot(table["n_x"], table["n_y"]), 1.0)
+    nodes = pd.read_csv(tmp_path / "contact_nodes.csv", comment="#")
+    # The hole's surface faces each node along its normal, at the hole's radius less the interference.
+    surface = np.hypot(nodes["obstacle_x"], nodes["obstacle_y"])
+    np.testing.assert_allclose(surface, 1.0 - 1e-3, atol=1e-6)
+    assert "contact normal of each edge" in conventions(problem, solution)["n"]

@@ -417,6 +417,13 @@ impl PyProblem {
         Ok(Array2::from(x.iter().map(|&x| self.inner.contact.point_at(x)).collect::<Vec<_>>()).into_pyarray(py))
     }
 
+    /// The contact normal n at abscissae `xi` of Γ_C, (M, 2): one for a straight side against a gap function;
+    /// on a bent side or against an obstacle given by its geometry, each edge's (a node's: its edges' mean).
+    fn contact_normals<'py>(&self, py: Python<'py>, xi: &Bound<'_, PyAny>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let x = floats(xi, "xi", &[None], ContactGeometry)?;
+        Ok(Array2::from(x.iter().map(|&x| self.inner.contact.normal_at(x)).collect::<Vec<_>>()).into_pyarray(py))
+    }
+
     /// Values at abscissae `xi` of the multiplier with dof values `values` (P0 or P1 on T_H).
     fn evaluate_multiplier<'py>(
         &self,

@@ -8,6 +8,9 @@
 
 use tribo::*;
 
+mod roller;
+pub use roller::*;
+
 /// The Hertz scene file.
 pub const HERTZ_SCENE: &str = include_str!("../../../python/tribo/scenes/hertz.toml");
 

@@ -342,6 +342,20 @@ impl ContactBoundary {
         [-n[1], n[0]]
     }
 
+    /// The contact normal at abscissa `xi`: a node's ([`ContactBoundary::node_normal`]) within `√ε` of an
+    /// edge length of it, else the normal of the edge that holds `xi`.
+    pub fn normal_at(&self, xi: f64) -> [f64; 2] {
+        if self.one_frame {
+            return self.normal;
+        }
+        let k = self.edge_at(xi);
+        let tol = crate::contact::geometric_tol_rel() * self.edges[k].length;
+        match [k, k + 1].into_iter().find(|&j| (self.node_xi[j] - xi).abs() <= tol) {
+            Some(j) => self.node_normal(j),
+            None => self.edges[k].normal,
+        }
+    }
+
     /// The edge that holds abscissa `xi` (the first or the last edge beyond the ends).
     pub fn edge_at(&self, xi: f64) -> usize {
         self.node_xi.partition_point(|&y| y <= xi).clamp(1, self.edges.len()) - 1

@@ -11,80 +11,13 @@
 //! * Continuity: a straight Γ_C whose nodes are bent by 1e-7 of an edge length (a chain, read edge by edge)
 //!   gives the straight answer to within a few times that.
 
-use std::f64::consts::{FRAC_PI_2, PI};
+use std::f64::consts::FRAC_PI_2;
 
 use tribo::*;
+use tribo_testkit::{moved, roller_against_hertz, roller_problem};
 
 const E: f64 = 1.0;
 const NU: f64 = 0.3;
-
-/// `R p + c`.
-fn moved([cos, sin]: [f64; 2], c: [f64; 2], p: [f64; 2]) -> [f64; 2] {
-    [cos * p[0] - sin * p[1] + c[0], sin * p[0] + cos * p[1] + c[1]]
-}
-
-/// The roller (centre (0, 1), radius 1, the sector ±1.2 rad around its lowest point between the radii 0.25
-/// and 1, graded at growth 0.075 to h_min over ±0.1 rad), moved by the rotation `r` and the translation `c`, clamped on its inner arc, pressed by
-/// `approach` on the rigid flat y = 0 (moved with it), shifted `shift`.
-fn roller(h_min: f64, r: [f64; 2], c: [f64; 2], approach: f64, shift: f64) -> Problem {
-    let sector = RingSector { center: [0.0, 1.0], radii: [0.25, 1.0], angles: [-FRAC_PI_2 - 1.2, -FRAC_PI_2 + 1.2] };
-    let grading = ArcGrading { angles: [-FRAC_PI_2 - 0.1, -FRAC_PI_2 + 0.1], h_min, h_max: 0.1, growth: 0.075 };
-    let mesh = ring_sector(&sector, &grading).expect("a roller mesh");
-    let points = mesh.points().iter().map(|&p| moved(r, c, p)).collect();
-    let mesh = Mesh::new(points, mesh.triangles().to_vec(), mesh.edge_sets().clone()).expect("a rigid motion");
-    let spec = ProblemSpec::new(Material { young: E, poisson: NU }, "outer")
-        .clamped(["inner"])
-        .obstacle(ObstacleShape::Line { point: moved(r, c, [0.0, 0.0]), normal: moved(r, [0.0; 2], [0.0, 1.0]) })
-        .approach(approach)
-        .shift(shift);
-    Problem::new(mesh, spec).expect("a roller on a flat")
-}
-
-/// The horizontal distance from the roller's lowest point of the point of Γ_C at abscissa `xi`.
-fn x_of(problem: &Problem, xi: f64) -> f64 {
-    problem.contact.point_at(xi)[0]
-}
-
-/// `(relative L2 error of λ_n against Hertz's pressure of the computed force, the second-moment width over
-/// Hertz's, a / R)`, integrated on the pieces of T_H and Γ_C's nodes with Hertz's edges ±a among the breaks.
-fn against_hertz(problem: &Problem, sol: &Solution) -> (f64, f64, f64) {
-    let e_star = E / (1.0 - NU * NU);
-    let p = sol.normal_force;
-    let a = (4.0 * p / (PI * e_star)).sqrt();
-    let p0 = 2.0 * p / (PI * a);
-    let hertz = |x: f64| if x.abs() < a { p0 * (1.0 - (x / a).powi(2)).sqrt() } else { 0.0 };
-    // The abscissae of the edges ±a: x is monotone along the rim.
-    let c = &problem.contact;
-    let at_x = |x: f64| {
-        let (mut lo, mut hi) = (c.start(), c.end());
-        for _ in 0..100 {
-            let mid = 0.5 * (lo + hi);
-            if x_of(problem, mid) < x {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        0.5 * (lo + hi)
-    };
-    let mut breaks: Vec<f64> = problem.multipliers.xi.iter().chain(&c.node_xi).copied().collect();
-    breaks.extend([at_x(-a), at_x(a)]);
-    breaks.sort_by(f64::total_cmp);
-    breaks.dedup();
-    let (mut num, mut den, mut moment) = (0.0, 0.0, 0.0);
-    for w in breaks.windows(2) {
-        let (h, m) = (0.5 * (w[1] - w[0]), 0.5 * (w[1] + w[0]));
-        let (gx, gw) = tribo_testkit::gauss8();
-        for (&g, &wt) in gx.iter().zip(&gw) {
-            let xi = m + h * g;
-            let (l, x) = (problem.multipliers.evaluate(&sol.lambda_n, xi), x_of(problem, xi));
-            num += wt * h * (l - hertz(x)).powi(2);
-            den += wt * h * hertz(x).powi(2);
-            moment += wt * h * l * x * x;
-        }
-    }
-    ((num / den).sqrt(), 2.0 * (moment / p).sqrt() / a, a)
-}
 
 /// The roller against Hertz, a/R ≈ 0.04, on meshes graded at growth 0.075 to h_min = a/20 and a/40: the
 /// L2 error of λ_n falls below 1 % (measured 2.07 % and 0.83 %; 0.76 % at a/80, 0.58 % at a/R ≈ 0.014) and the
@@ -94,11 +27,11 @@ fn against_hertz(problem: &Problem, sol: &Solution) -> (f64, f64, f64) {
 fn a_roller_on_a_rigid_flat_matches_hertz() {
     let mut errors = Vec::new();
     for h_min in [0.002, 0.001] {
-        let problem = roller(h_min, [1.0, 0.0], [0.0, 0.0], 0.0035, 0.0);
+        let problem = roller_problem(h_min, 0.075, [1.0, 0.0], [0.0, 0.0], 0.0035, 0.0);
         assert!(!problem.contact.is_straight());
         let sol = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
         assert_eq!(sol.report.status, SolveStatus::Converged);
-        let (l2, width, a) = against_hertz(&problem, &sol);
+        let (l2, width, a) = roller_against_hertz(&problem, &sol);
         eprintln!(
             "h_min {h_min}: {} unknowns, P = {:.6e}, a/R = {a:.4}, λ_n L2 {l2:.3e}, width / Hertz {width:.5}",
             problem.n_free, sol.normal_force
@@ -120,14 +53,14 @@ fn a_roller_on_a_rigid_flat_matches_hertz() {
 fn the_roller_turned_and_moved_gives_the_same_answer() {
     let settings = SolverSettings::default();
     for (friction, shift) in [(Friction::Frictionless, 0.0), (Friction::Coulomb { mu: 0.3 }, 0.0005)] {
-        let p = roller(0.01, [1.0, 0.0], [0.0, 0.0], 0.0035, shift);
+        let p = roller_problem(0.01, 0.075, [1.0, 0.0], [0.0, 0.0], 0.0035, shift);
         let s = p.solve(&friction, &settings, None).expect("solves");
         assert_eq!(s.report.status, SolveStatus::Converged);
         let at: std::collections::HashMap<usize, usize> =
             p.contact.nodes.iter().enumerate().map(|(k, &n)| (n, k)).collect();
         for (angle, c) in [(0.7, [3.7, -12.5]), (2.5, [-40.0, 15.0]), (-1.9, [0.25, 0.5])] {
             let r = [f64::cos(angle), f64::sin(angle)];
-            let pm = roller(0.01, r, c, 0.0035, shift);
+            let pm = roller_problem(0.01, 0.075, r, c, 0.0035, shift);
             let sm = pm.solve(&friction, &settings, None).expect("solves");
             assert_eq!(sm.report.status, SolveStatus::Converged);
             // P1 multipliers on Γ_C's nodes: matched by node.
@@ -227,7 +160,7 @@ fn a_ring_pressed_into_a_hole_has_lames_uniform_pressure() {
 /// (its normal by central differences) gives the same answer to the differences' truncation.
 #[test]
 fn a_signed_distance_closure_gives_the_answer_of_the_shape_it_copies() {
-    let line = roller(0.01, [1.0, 0.0], [0.0, 0.0], 0.0035, 0.0);
+    let line = roller_problem(0.01, 0.075, [1.0, 0.0], [0.0, 0.0], 0.0035, 0.0);
     let mut spec = line.spec.clone();
     spec.obstacle.shape = ObstacleShape::Distance(DistanceFunction(std::sync::Arc::new(|x: [f64; 2]| x[1])));
     let closure = Problem::new(line.mesh.clone(), spec).expect("a signed distance");
@@ -262,7 +195,7 @@ fn adaptive_levels_of_the_roller_follow_its_arc() {
     for mesh in [curved, chords] {
         let problem = Problem::new(mesh, spec.clone()).expect("a roller");
         let run = problem.solve_adaptive(&Friction::Frictionless, &SolverSettings::default(), &adapt, None).unwrap();
-        let (l2, width, a) = against_hertz(&run.problem, &run.solution);
+        let (l2, width, a) = roller_against_hertz(&run.problem, &run.solution);
         let off =
             run.problem.contact.node_points.iter().map(|p| (p[0].hypot(p[1] - 1.0) - 1.0).abs()).fold(0.0, f64::max);
         eprintln!(
