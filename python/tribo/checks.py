@@ -116,6 +116,7 @@ def check_solution(problem: Problem, solution: Solution) -> list[str]:
             "strain (check the units)"
         )
     reasons += _held_contact(problem) + _cut_zone(problem, solution) + _non_unique_multipliers(problem, solution)
+    reasons += _faceted_without_curve(problem)
     nu = max([problem.poisson, *(m[1] for m in getattr(problem, "materials", ()))])  # a body of several materials
     if nu >= MAX_POISSON and problem.model == "plane_strain":
         reasons.append(
@@ -197,6 +198,26 @@ def _non_unique_multipliers(problem: Problem, solution: Solution) -> list[str]:
         "them: H is singular there, so λ_n need not be unique (two QP methods may return two λ_n, and with "
         "friction two displacements) and its oscillation is not the pressure's (the checkerboard of study 1a); use "
         "γ0 > 0 (the default) or a multiplier mesh no finer than the FE edges (multiplier_ratio ≥ 1)"
+    ]
+
+
+def _faceted_without_curve(problem: Problem) -> list[str]:
+    """A contact side that looks like the faceted arc of a curve (three or more kinks, none sharper than 30°)
+    and whose edge set carries no curve: refinement keeps its chords, and the estimates cannot see them."""
+    if problem.primary is not None or problem.contact in problem.mesh.curves:
+        return []
+    p = np.asarray(problem.mesh.points)[np.asarray(problem.contact_nodes)]
+    d = np.diff(p, axis=0)
+    d /= np.hypot(d[:, 0], d[:, 1])[:, None]
+    turn = np.degrees(np.arccos(np.clip(np.sum(d[1:] * d[:-1], axis=1), -1.0, 1.0)))
+    kinks = turn[turn > 1e-6]
+    if len(kinks) < 3 or kinks.max() >= 30.0:
+        return []
+    return [
+        f"the contact side '{problem.contact}' bends at {len(kinks)} nodes by up to {_g(float(kinks.max()))}° and its "
+        "edge set carries no curve: if it stands for a curved boundary, its chords stand off the curve by up to "
+        "h²/8R between nodes, adaptive refinement keeps them (new nodes on the chords), and the estimates cannot "
+        "see that; give the set its curve (Mesh.with_curve) or mesh it finely enough"
     ]
 
 

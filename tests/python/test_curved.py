@@ -159,3 +159,27 @@ def test_the_contact_tables_give_each_point_its_normal(tmp_path: Path) -> None:
     surface = np.hypot(nodes["obstacle_x"], nodes["obstacle_y"])
     np.testing.assert_allclose(surface, 1.0 - 1e-3, atol=1e-6)
     assert "contact normal of each edge" in conventions(problem, solution)["n"]
+
+
+def test_a_faceted_side_without_its_curve_is_warned_about() -> None:
+    """check_solution says when a contact side looks like a faceted arc (many small kinks) whose edge set has no
+    curve, so that adaptive levels would keep its chords; silent with the curve, on a straight side, and on an
+    L-shaped side (a real corner)."""
+    curved = tribo.Mesh.ring_sector((0.0, 1.0), (0.25, 1.0), (-math.pi / 2 - 1.2, -math.pi / 2 + 1.2), h_max=0.1,
+                                    h_min=0.1)
+    bare = tribo.Mesh(curved.points, curved.triangles, curved.edge_sets)
+    assert bare.curves == {}
+    said = []
+    for mesh in (curved, bare):
+        problem = tribo.Problem(mesh, young=E, poisson=NU, contact="outer", clamped="inner",
+                                obstacle=tribo.Obstacle.line((0.0, 0.0), (0.0, 1.0)), approach=0.0035)
+        said.append([r for r in tribo.check_solution(problem, problem.solve()) if "carries no curve" in r])
+    inner_nodes = len(problem.contact_nodes) - 2  # every interior node of the faceted arc is a kink
+    assert said[0] == [] and len(said[1]) == 1 and f"'outer' bends at {inner_nodes} nodes" in said[1][0], said
+    square = tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 4, 4)
+    sets = square.edge_sets
+    sets["corner"] = np.vstack([sets["top"], sets["right"]])
+    for contact in ("top", "corner"):
+        problem = tribo.Problem(tribo.Mesh(square.points, square.triangles, sets), young=1.0, poisson=0.3,
+                                contact=contact, clamped="left")
+        assert not [r for r in tribo.check_solution(problem, problem.solve()) if "carries no curve" in r]
