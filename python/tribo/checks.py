@@ -274,6 +274,14 @@ def warn_solution(problem: Problem, solution: Solution, stacklevel: int = 2) -> 
     return reasons
 
 
+def obstacle_points(problem: Problem, solution: Solution) -> np.ndarray:
+    """Where the obstacle's surface is, facing each FE node of Γ_C: the node moved by the gap g = g0 − δ
+    along its contact normal n, (n_c, 2)."""
+    xi = solution.node_abscissae
+    p = problem.contact_points(xi)
+    return np.asarray(p + np.asarray(solution.gap)[:, None] * problem.contact_normals(xi))
+
+
 def format_vector(v: tuple[float, float] | np.ndarray) -> str:
     """A 2-vector for people: ``(-0.004, -0.01)``."""
     return f"({_g(float(v[0]))}, {_g(float(v[1]))})"
@@ -322,6 +330,9 @@ def conventions(problem: Problem, solution: Solution) -> dict[str, str]:
     motion = solution.obstacle_motion
     normals = np.asarray(problem.contact_normals(problem.node_abscissae))
     one = bool(np.all(normals == normals[0]))
+    if one:  # the contact normal (the obstacle's where it is given by its geometry)
+        n = (float(normals[0][0]), float(normals[0][1]))
+        t = (-n[1], n[0])
     out = {
         "n": f"outward unit normal of the body on Γ_C, n = {format_vector(n)}" if one else
         "the contact normal of each edge of Γ_C (n_x, n_y): the body's outward normal, or the obstacle's (−∇d) "

@@ -16,7 +16,8 @@ writes its results:
   tangential position s (for a fretting cycle, the hysteresis loop), and ``history_tractions.png``: λ_t
   against ±μλ_n at chosen steps.
 
-Conventions: s is the obstacle's position along the tangent t = (−n₂, n₁) of Γ_C (n the outward normal),
+Conventions: s is the obstacle's position along the tangent t = (−n₂, n₁) of Γ_C (n the outward normal, or the
+obstacle's where it is given by its geometry),
 Q = ∫λ_t is the tangential force along t, and abscissae run as ``tribo.checks.abscissa_description`` says
 (written into the CSV header and the plot).
 """

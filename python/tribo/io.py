@@ -46,7 +46,7 @@ import numpy as np
 import numpy.typing as npt
 
 from tribo._tribo import Mesh, MeshError
-from tribo.checks import conventions
+from tribo.checks import conventions, obstacle_points
 from tribo.problem import Problem
 from tribo.results import Solution
 
@@ -488,14 +488,6 @@ def stress_tensor(solution: Solution) -> npt.NDArray[np.float64]:
     t[:, 0, 0], t[:, 1, 1], t[:, 2, 2] = s[:, 0], s[:, 1], solution.stress_zz
     t[:, 0, 1] = t[:, 1, 0] = s[:, 2]
     return t
-
-
-def obstacle_points(problem: Problem, solution: Solution) -> npt.NDArray[np.float64]:
-    """Where the obstacle's surface is, facing each FE node of Γ_C: the node moved by the gap g = g0 − δ
-    along its contact normal n, (n_c, 2)."""
-    xi = solution.node_abscissae
-    p = problem.contact_points(xi)
-    return np.asarray(p + np.asarray(solution.gap)[:, None] * problem.contact_normals(xi))
 
 
 def contact_tables(problem: Problem, solution: Solution) -> dict[str, dict[str, npt.NDArray[Any]]]:

@@ -25,7 +25,7 @@ import numpy as np
 import numpy.typing as npt
 
 from tribo._tribo import STATE_NAMES
-from tribo.checks import abscissa_description, actors, format_vector, shift_description
+from tribo.checks import abscissa_description, actors, format_vector, obstacle_points, shift_description
 from tribo.problem import Problem
 from tribo.results import History, Solution
 
@@ -231,9 +231,13 @@ def von_mises(
     if edges:
         ax.triplot(tri, color="k", lw=0.15, alpha=0.5)
     if obstacle and problem.primary is None:  # between two bodies, the other body is drawn
-        xi = np.linspace(float(solution.node_abscissae[0]), float(solution.node_abscissae[-1]), 2001)
-        g = np.asarray(problem.obstacle.gap0(xi)) - problem.approach
-        surface = problem.contact_points(xi) + np.outer(g, problem.contact_normal)
+        if problem.obstacle.kind in ("line", "disc", "hole", "distance"):
+            # Given by its geometry: its surface faces each node along the node's contact normal.
+            surface = obstacle_points(problem, solution)
+        else:
+            xi = np.linspace(float(solution.node_abscissae[0]), float(solution.node_abscissae[-1]), 2001)
+            g = np.asarray(problem.obstacle.gap0(xi)) - problem.approach
+            surface = problem.contact_points(xi) + np.outer(g, problem.contact_normal)
         moved = format_vector(solution.obstacle_motion)
         ax.plot(surface[:, 0], surface[:, 1], color="C3", lw=1.5, label=f"obstacle (moved by {moved})")
         ax.legend(loc="upper right", fontsize="small")

@@ -80,7 +80,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
                         "it)", "—", "—"),
     "obstacle.xi": ("A polyline's abscissae on Γ_C, increasing (*required* for it)", "length", "—"),
     "obstacle.gap": ("A polyline's initial gap at each of its abscissae (*required* for it)", "length", "—"),
-    "obstacle.approach": ("δ: how far the obstacle moves toward the body (against the outward normal n)",
+    "obstacle.approach": ("δ: how far the obstacle moves toward the body (against the outward normal n; a shape given "
+                          "by its geometry: the gap lowered by δ everywhere)",
                           "length", "0"),
     "obstacle.shift": ("s: how far the obstacle moves along t = (−n₂, n₁), small sliding", "length", "0"),
     "friction.mu": ("Coulomb's friction coefficient μ (0: frictionless)", "—", "frictionless"),

@@ -183,3 +183,18 @@ def test_a_faceted_side_without_its_curve_is_warned_about() -> None:
         problem = tribo.Problem(tribo.Mesh(square.points, square.triangles, sets), young=1.0, poisson=0.3,
                                 contact=contact, clamped="left")
         assert not [r for r in tribo.check_solution(problem, problem.solve()) if "carries no curve" in r]
+
+
+def test_the_deformed_plot_draws_an_obstacle_given_by_its_geometry() -> None:
+    """plot.von_mises(obstacle=True) draws a line, disc or hole where it faces the contact nodes (a gap function
+    is sampled along Γ_C instead): finite points, on the line y = 0 for the roller's flat."""
+    pytest.importorskip("matplotlib")
+    from tribo import plot
+
+    problem = _roller(tribo.Obstacle.line((0.0, 0.0), (0.0, 1.0)))
+    ax = plot.von_mises(problem, problem.solve(), obstacle=True)
+    [line] = [line for line in ax.get_lines() if str(line.get_label()).startswith("obstacle")]
+    x, y = np.asarray(line.get_xdata()), np.asarray(line.get_ydata())
+    assert len(x) == len(problem.contact_nodes) and np.all(np.isfinite(x))
+    np.testing.assert_allclose(y, 0.0035, atol=1e-12)  # the flat moved up by the approach
+    assert "(0, 0.0035)" in str(line.get_label())

@@ -315,7 +315,8 @@ impl ContactBoundary {
         self.bend.is_none()
     }
 
-    /// `d · t`: +1 when the abscissa increases along t, −1 otherwise (on every edge alike).
+    /// `d · t`: +1 when the abscissa increases along t, −1 otherwise (t the body's tangent of the first edge; the
+    /// walk has the same sign against every edge's outward tangent).
     pub fn tangent_sign(&self) -> f64 {
         self.direction[0] * self.tangent[0] + self.direction[1] * self.tangent[1]
     }
@@ -408,7 +409,7 @@ impl ContactBoundary {
             return (p[0] - self.origin[0]) * self.normal[0] + (p[1] - self.origin[1]) * self.normal[1];
         }
         let xi = self.abscissa(p);
-        let (q, n) = (self.point_at(xi), self.edges[self.edge_at(xi)].normal);
+        let (q, n) = (self.point_at(xi), self.edges[self.edge_at(xi)].outward);
         let d = (p[0] - q[0]).hypot(p[1] - q[1]);
         if (p[0] - q[0]) * n[0] + (p[1] - q[1]) * n[1] < 0.0 {
             -d

@@ -223,6 +223,18 @@ impl Mesh {
         Ok(self)
     }
 
+    /// This mesh with the curves `curves` (of edge sets on them already: a renumbered or merged copy of meshes
+    /// whose curves were checked).
+    pub(crate) fn with_curves(mut self, curves: BTreeMap<String, Curve>) -> Self {
+        self.curves = curves;
+        self
+    }
+
+    /// This mesh without the curves of its edge sets: its refinements keep new boundary nodes on the chords.
+    pub fn without_curves(&self) -> Self {
+        Self { curves: BTreeMap::new(), ..self.clone() }
+    }
+
     /// The curves of the edge sets that have one ([`Mesh::with_curve`]).
     pub fn curves(&self) -> &BTreeMap<String, Curve> {
         &self.curves

@@ -285,7 +285,19 @@ fn bisect_within(mesh: &Mesh, marked: &[usize], bisection: Bisection, limit: usi
         })
         .collect();
     let curves = mesh.curves.clone();
-    let mut mesh = Mesh::new(points, triangles, edge_sets)?;
+    let moved = !on_curve.is_empty();
+    let mut mesh = Mesh::new(points, triangles, edge_sets).map_err(|e| match e {
+        // Only a node moved onto a curve can invert a child of a valid triangle.
+        Error::InvertedTriangle { .. } | Error::DegenerateTriangle { .. } if moved => Error::BadCurve {
+            set: curves.keys().cloned().collect::<Vec<_>>().join(", "),
+            what: format!(
+                "a new node moved onto the curve leaves a triangle inverted or flat ({e}): the mesh is too coarse \
+                 next to the curve's radius there; refine it first"
+            ),
+            node: None,
+        },
+        e => e,
+    })?;
     mesh.curves = curves;
     Ok(Refinement { mesh, parent, midpoints })
 }
@@ -753,6 +765,23 @@ mod tests {
         for &[a, b] in twice.edge_set("start").unwrap() {
             assert!([a, b].iter().all(|&n| (twice.points()[n][1] + 2.0).abs() < 1e-15));
         }
+    }
+
+    /// A node moved onto a curve that inverts a triangle (a chord long next to the radius, the arc bulging past
+    /// the opposite vertex) is a typed error naming the curved set, not an index of the mesh never handed out.
+    #[test]
+    fn a_node_moved_onto_a_curve_past_the_opposite_vertex_is_refused() {
+        use crate::mesh::Curve;
+        let points = vec![[-1.0, 0.0], [1.0, 0.0], [0.0, 0.1]];
+        let sets = BTreeMap::from([("arc".to_string(), vec![[0, 1]])]);
+        let mesh = Mesh::new(points, vec![[0, 1, 2]], sets)
+            .unwrap()
+            .with_curve("arc", Curve::Arc { center: [0.0, -0.5], radius: 1.25_f64.sqrt() })
+            .unwrap();
+        let e = bisect(&label_longest_edge(&mesh), &[0], Bisection::AllEdges).unwrap_err();
+        assert!(matches!(&e, Error::BadCurve { set, .. } if set == "arc"), "{e}");
+        // Without the curve the same bisection is fine.
+        assert!(bisect(&label_longest_edge(&mesh.without_curves()), &[0], Bisection::AllEdges).is_ok());
     }
 
     /// A curve the set's nodes are not on, or one that is not an arc, is refused naming the set (and the node).

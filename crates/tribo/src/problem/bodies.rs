@@ -171,7 +171,12 @@ impl Problem {
             let (nodes, triangles) = (n0..points.len(), t0..triangles.len());
             parts.push(BodyPart { name: b.name.clone(), nodes, triangles, unknowns: 0 });
         }
-        let mesh = Mesh::new(points, triangles, edge_sets)?;
+        // Each body's curves, under its sets' new names.
+        let curves = bodies
+            .iter()
+            .flat_map(|b| b.mesh.curves().iter().map(|(set, c)| (format!("{}.{set}", b.name), *c)))
+            .collect();
+        let mesh = Mesh::new(points, triangles, edge_sets)?.with_curves(curves);
         // The secondary side's material: that under its first edge (as a body of several materials has it).
         let secondary = &bodies[s];
         let set = &pair.secondary[secondary.name.len() + 1..];
@@ -251,6 +256,7 @@ impl Problem {
                 mesh.triangles().iter().map(|t| t.map(|i| index[i])).collect(),
                 mesh.edge_sets().iter().map(|(k, v)| (k.clone(), v.iter().map(renumber).collect())).collect(),
             )?
+            .with_curves(mesh.curves().clone())
         };
         // Children are listed parent by parent, so each body's triangles stay one range too.
         let (mut node0, mut triangle0) = (0, 0);

@@ -32,6 +32,9 @@ pub struct LoadCase {
     /// At the FE nodes of Γ_C, the tangential displacement from which slip is measured: the shift s of a
     /// static solve, `u_t^{k−1} + s_k − s_{k−1}` in step k of a history.
     pub slip_origin: Vec<f64>,
+    /// At the FE nodes of Γ_C, the displacement from which slip is measured: 0 for a static solve, `u^{k−1}` in
+    /// step k of a history (an edge of a bent Γ_C reads the slip in its own frame from it).
+    pub previous_u: Vec<[f64; 2]>,
     /// Where a step of a history moves the prescribed displacements away from the problem's values (and,
     /// once solved, where the rigid motion of a body held only by the contact moves it).
     pub moved_supports: Option<MovedSupports>,
@@ -82,6 +85,7 @@ impl LoadCase {
             shift,
             load_factor: 1.0,
             slip_origin: vec![shift; problem.contact.nodes.len()],
+            previous_u: vec![[0.0, 0.0]; problem.contact.nodes.len()],
             moved_supports: None,
             rigid: problem.rigid_load(&problem.f_full),
         }

@@ -196,6 +196,8 @@ pub(crate) struct EstimatorInput<'a> {
     /// u_n and the slip at the FE nodes of Γ_C.
     pub u_n: &'a [f64],
     pub slip: &'a [f64],
+    /// The displacement at the FE nodes of Γ_C from which the slip is measured (`u^{k−1}` in a history).
+    pub previous_u: &'a [[f64; 2]],
     /// The gap g(ξ) of this load case, anywhere on Γ_C.
     pub gap: &'a dyn Fn(f64) -> f64,
     /// The abscissae where the gap may have a local minimum between the FE nodes (the obstacle's lowest
@@ -325,6 +327,7 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
     let times = |v: &[f64], k: f64| v.iter().map(|x| x * k).collect::<Vec<f64>>();
     let stress: Vec<[f64; 3]> = input.stress.iter().map(|s| s.map(|x| x * ks)).collect();
     let (u, u_n, slip) = (times(input.displacement, ku), times(input.u_n, ku), times(input.slip, ku));
+    let previous_u: Vec<[f64; 2]> = input.previous_u.iter().map(|p| p.map(|x| x * ku)).collect();
     let (lambda_n, lambda_t, threshold) =
         (times(input.lambda_n, ks), times(input.lambda_t, ks), times(input.threshold, ks));
     let gap = |xi: f64| (input.gap)(xi) * ku;
@@ -349,6 +352,7 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
         threshold: &threshold,
         u_n: &u_n,
         slip: &slip,
+        previous_u: &previous_u,
         gap: &gap,
         lowest: input.lowest,
     };
@@ -463,7 +467,9 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
                 return nodal[j];
             }
             let (node, e) = (contact.nodes[j], &contact.edges[k]);
-            let u = [input.displacement[2 * node], input.displacement[2 * node + 1]];
+            // The slip is an increment: from the previous displacement (0 but in a history).
+            let from = if tangential { input.previous_u.get(j).copied().unwrap_or([0.0, 0.0]) } else { [0.0, 0.0] };
+            let u = [input.displacement[2 * node] - from[0], input.displacement[2 * node + 1] - from[1]];
             let (a, b) =
                 if tangential { (e.tangent, contact.node_tangent(j)) } else { (e.normal, contact.node_normal(j)) };
             nodal[j] + u[0] * (a[0] - b[0]) + u[1] * (a[1] - b[1])

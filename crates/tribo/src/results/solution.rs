@@ -68,7 +68,8 @@ pub struct Solution {
     /// `σ(u)·n = −λ_n n − λ_t t`). On a bent Γ_C, `−∫ (λ_n n_e + λ_t t_e)` edge by edge.
     pub contact_force: [f64; 2],
     /// How the obstacle moved, in global axes: `−δ n + s t` (the approach δ toward the body, against
-    /// the outward normal, and the shift s along t; on a bent Γ_C, in the frame of its first edge).
+    /// the outward normal, and the shift s along t; where the frames vary along Γ_C, in the contact frame of
+    /// its first edge: against a line obstacle, the line's motion).
     pub obstacle_motion: [f64; 2],
     /// Largest pointwise penetration `max(u_n − g)₊` over the FE nodes of Γ_C.
     pub max_penetration: f64,
@@ -160,7 +161,9 @@ impl Solution {
             }
             force
         };
-        let obstacle_motion = [0, 1].map(|i| -loading.approach * n[i] + loading.shift * t[i]);
+        // In the contact frame of the first edge (Γ_C's own on a straight side against a gap function).
+        let (n0, t0) = (contact.edges[0].normal, contact.edges[0].tangent);
+        let obstacle_motion = [0, 1].map(|i| -loading.approach * n0[i] + loading.shift * t0[i]);
 
         let scaled = |v: [f64; 2]| [loading.load_factor * v[0], loading.load_factor * v[1]];
         let spec = &problem.spec;
@@ -187,6 +190,7 @@ impl Solution {
             threshold: &friction_threshold,
             u_n: &u_n,
             slip: &slip,
+            previous_u: &loading.previous_u,
             gap: &gap_at,
             lowest: &spec.obstacle.shape.lowest_points(),
         };

@@ -359,12 +359,13 @@ fn after(condensed: &Condensed<'_>, solution: &Solution, loading: &LoadCase) -> 
     let moved = |j: usize| loading.moved_supports.as_ref().map_or(0.0, |m| m.e_change[j]);
     let tangential = (q..2 * q).map(|j| eu[j] + moved(j) - dl[j]).collect();
     let shift = loading.shift;
+    let n = problem.contact.nodes.len();
+    let u_nodes: Vec<[f64; 2]> = (0..n).map(|i| problem.contact_displacement(i, &solution.displacement)).collect();
     let u_t = |i: usize| {
         let t = problem.contact.node_tangent(i);
-        let u = problem.contact_displacement(i, &solution.displacement);
-        u[0] * t[0] + u[1] * t[1]
+        u_nodes[i][0] * t[0] + u_nodes[i][1] * t[1]
     };
-    PreviousStep { tangential, u_t_nodes: (0..problem.contact.nodes.len()).map(u_t).collect(), shift }
+    PreviousStep { tangential, u_t_nodes: (0..n).map(u_t).collect(), u_nodes, shift }
 }
 
 /// Where a history stands before a step: the tangential displacement at rest is 0 and the obstacle at
@@ -377,6 +378,8 @@ struct PreviousStep {
     pub tangential: Vec<f64>,
     /// `u_t^{k−1}` at the FE nodes of Γ_C.
     pub u_t_nodes: Vec<f64>,
+    /// `u^{k−1}` at the FE nodes of Γ_C.
+    pub u_nodes: Vec<[f64; 2]>,
     /// `s_{k−1}`.
     pub shift: f64,
 }
@@ -389,7 +392,8 @@ impl PreviousStep {
         let q = problem.n_multipliers();
         let shift = problem.spec.obstacle.shift;
         let tangential = problem.mortar.psi_integrals.iter().zip(&factor.d[q..]).map(|(w, d)| d - w * shift).collect();
-        Self { tangential, u_t_nodes: vec![0.0; problem.contact.nodes.len()], shift: 0.0 }
+        let n = problem.contact.nodes.len();
+        Self { tangential, u_t_nodes: vec![0.0; n], u_nodes: vec![[0.0, 0.0]; n], shift: 0.0 }
     }
 }
 
@@ -442,6 +446,7 @@ fn step_load_case(problem: &Problem, factor: &Factor, step: &LoadStep, previous:
         shift: step.shift,
         load_factor: alpha,
         slip_origin: previous.u_t_nodes.iter().map(|u| u + ds).collect(),
+        previous_u: previous.u_nodes.clone(),
         moved_supports,
         rigid: problem.rigid_load(&problem.f_full.iter().map(|f| alpha * f).collect::<Vec<_>>()),
     })

@@ -225,3 +225,27 @@ fn two_bodies_refuse_a_gap_given_by_its_geometry() {
     let e = Problem::two_bodies(bodies, pair, [0.0, 0.0]).unwrap_err();
     assert!(matches!(&e, Error::BadObstacle { what } if what.contains("(line)")), "{e}");
 }
+
+/// In a history the slip of a step is an increment, read on each edge of a bent Γ_C in the edge's own frame:
+/// a step that repeats the one before (the roller pressed on a rigid disc and dragged, then held where it is)
+/// slips nowhere, and
+/// its estimate has no friction part (the dissipation `b |Δu_t| − λ_t Δu_t` of a zero increment), while the
+/// first step's has.
+#[test]
+fn a_held_step_of_a_bent_contact_slips_nowhere() {
+    // Against a rigid disc under it (two cylinders): the contact frames turn from edge to edge.
+    let line = roller_problem(0.01, 0.075, [1.0, 0.0], [0.0, 0.0], 0.0035, 0.0);
+    let mut spec = line.spec.clone();
+    spec.obstacle.shape = ObstacleShape::Disc { center: [0.0, -1.0], radius: 1.0 };
+    let problem = Problem::new(line.mesh.clone(), spec).expect("a roller on a disc");
+    let steps = [LoadStep::new(0.0035, 0.0005), LoadStep::new(0.0035, 0.0005)];
+    let history =
+        problem.solve_history(&Friction::Coulomb { mu: 0.3 }, &steps, &SolverSettings::default(), None).unwrap();
+    assert_eq!(history.status, SolveStatus::Converged);
+    let (first, held) = (&history.solutions[0], &history.solutions[1]);
+    let slip = held.slip.iter().fold(0.0_f64, |m, s| m.max(s.abs()));
+    let moved = first.slip.iter().fold(0.0_f64, |m, s| m.max(s.abs()));
+    assert!(slip <= 1e-6 * moved, "the held step slips by {slip:e} (the first by {moved:e})");
+    let (f0, f1) = (first.report.estimate.friction, held.report.estimate.friction);
+    assert!(f0 > 0.0 && f1 <= 1e-4 * f0, "friction parts of the estimate: {f0:e}, then {f1:e}");
+}
