@@ -316,9 +316,27 @@ def shift_description(problem: Problem, solution: Solution | None = None) -> str
     return f"s = {_g(s)} along t = {format_vector(t)}: the obstacle moved {where}"
 
 
+def one_contact_normal(problem: Problem) -> tuple[float, float] | None:
+    """The contact normal n when it is one along all of Γ_C (a straight side against a gap function, or any side
+    against a line), else None (each edge has its own: ``Problem.contact_normals``)."""
+    normals = np.asarray(problem.contact_normals(problem.node_abscissae))
+    return (float(normals[0][0]), float(normals[0][1])) if bool(np.all(normals == normals[0])) else None
+
+
+def _is_bent(problem: Problem) -> bool:
+    """Whether Γ_C leaves the line through its ends (a chain of edges, not one segment)."""
+    p = np.asarray(problem.mesh.points)[np.asarray(problem.contact_nodes)]
+    chord = p[-1] - p[0]
+    length = float(np.hypot(*chord))
+    off = np.abs((p[:, 0] - p[0, 0]) * chord[1] - (p[:, 1] - p[0, 1]) * chord[0]) / max(length, 1e-300)
+    return bool(length == 0.0 or off.max() > 1e-8 * length)
+
+
 def abscissa_description(problem: Problem) -> str:
     """Which way the abscissa ξ of Γ_C runs, in words: ``abscissa ξ along Γ_C, increasing with x (along
     −t)``; every output that plots or lists positions on Γ_C reads it from here."""
+    if _is_bent(problem):
+        return "arclength ξ along Γ_C, from its end with the smaller x (the smaller y if its ends share x)"
     t = problem.contact_tangent
     axis = "x" if abs(t[0]) >= abs(t[1]) else "y"
     return f"abscissa ξ along Γ_C, increasing with {axis} (along {'+t' if problem.tangent_sign > 0 else '−t'})"
@@ -328,10 +346,10 @@ def conventions(problem: Problem, solution: Solution) -> dict[str, str]:
     """The directions and signs of every output, as sentences keyed by the quantity."""
     n, t = problem.contact_normal, problem.contact_tangent
     motion = solution.obstacle_motion
-    normals = np.asarray(problem.contact_normals(problem.node_abscissae))
-    one = bool(np.all(normals == normals[0]))
-    if one:  # the contact normal (the obstacle's where it is given by its geometry)
-        n = (float(normals[0][0]), float(normals[0][1]))
+    single = one_contact_normal(problem)
+    one = single is not None
+    if single is not None:  # the contact normal (the obstacle's where it is given by its geometry)
+        n = single
         t = (-n[1], n[0])
     out = {
         "n": f"outward unit normal of the body on Γ_C, n = {format_vector(n)}" if one else

@@ -25,7 +25,14 @@ import numpy as np
 import numpy.typing as npt
 
 from tribo._tribo import STATE_NAMES
-from tribo.checks import abscissa_description, actors, format_vector, obstacle_points, shift_description
+from tribo.checks import (
+    abscissa_description,
+    actors,
+    format_vector,
+    obstacle_points,
+    one_contact_normal,
+    shift_description,
+)
 from tribo.problem import Problem
 from tribo.results import History, Solution
 
@@ -153,7 +160,9 @@ def contact_pressure(
     ax.plot(x, y, color="C0", lw=1.8, marker="." if problem.space == "P1" else None, ms=3, label=r"$\lambda_n$")
     ax.axhline(0.0, color="k", lw=0.5)
     ax.set_xlabel(_xi_label(problem))
-    ax.set_ylabel(rf"contact pressure $\lambda_n = -\sigma_n$, n = {format_vector(problem.contact_normal)}")
+    n = one_contact_normal(problem)
+    shown = format_vector(n) if n else "each edge's"
+    ax.set_ylabel(rf"contact pressure $\lambda_n = -\sigma_n$, n = {shown}")
     ax.set_title(
         rf"Normal contact: $\lambda_n$ and $-\sigma_n(u_h)$, total force {solution.normal_force:.4g}"
         + f"\nforce of {' on '.join(actors(problem))} (Fx, Fy) = {format_vector(solution.contact_force)}",
@@ -180,7 +189,9 @@ def tangential(problem: Problem, solution: Solution, ax: Axes | None = None, *, 
     ax.plot(x, y, color="0.35", lw=1.0, label=r"$-\sigma_t(u_h)$ (per FE edge)")
     ax.axhline(0.0, color="k", lw=0.5)
     ax.set_xlabel(_xi_label(problem))
-    ax.set_ylabel(rf"$\lambda_t = -\sigma_t$ along t = {format_vector(problem.contact_tangent)}")
+    n = one_contact_normal(problem)
+    shown = format_vector((-n[1], n[0])) if n else "each edge's"
+    ax.set_ylabel(rf"$\lambda_t = -\sigma_t$ along t = {shown}")
     mu = f", μ = {solution.mu:g}" if solution.mu is not None else ""
     ax.set_title(
         rf"Friction ({solution.friction}{mu}): $\lambda_t$ against its bound" + "\n"

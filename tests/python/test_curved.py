@@ -198,3 +198,22 @@ def test_the_deformed_plot_draws_an_obstacle_given_by_its_geometry() -> None:
     assert len(x) == len(problem.contact_nodes) and np.all(np.isfinite(x))
     np.testing.assert_allclose(y, 0.0035, atol=1e-12)  # the flat moved up by the approach
     assert "(0, 0.0035)" in str(line.get_label())
+
+
+def test_labels_of_a_bent_side_say_arclength_and_each_edge_s_normal() -> None:
+    """On a bent side the abscissa is the arclength, and n is one vector only where the contact frames agree
+    (the roller's flat: n = (0, −1)); against a hole each edge has its own."""
+    pytest.importorskip("matplotlib")
+    from tribo import plot
+    from tribo.checks import abscissa_description, one_contact_normal
+
+    roller = _roller(tribo.Obstacle.line((0.0, 0.0), (0.0, 1.0)))
+    assert abscissa_description(roller).startswith("arclength ξ along Γ_C")
+    assert one_contact_normal(roller) == (0.0, -1.0)
+    ring = _ring_in_hole(0.05, 1e-3)
+    assert one_contact_normal(ring) is None
+    ax = plot.contact_pressure(ring, ring.solve())
+    assert ax.get_ylabel().endswith("n = each edge's")
+    straight = tribo.Problem(tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 4, 4), young=1.0, poisson=0.3,
+                             contact="top", clamped="bottom")
+    assert abscissa_description(straight).startswith("abscissa ξ along Γ_C, increasing with x")
