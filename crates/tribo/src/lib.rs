@@ -1,10 +1,11 @@
 //! # tribo — 2D frictional contact with the stabilized Lagrange multiplier method
 //!
 //! tribo solves the contact of a linear elastic body (plane strain or stress, small strain, P1 triangles) with a
-//! rigid obstacle along a straight boundary Γ_C, with Coulomb friction, by the stabilized Lagrange
-//! multiplier method of Barbosa and Hughes as extended to Coulomb friction by V. Lleras. The multipliers
-//! λ_H = (λ_Hn, λ_Ht) live on their own 1D mesh T_H of Γ_C (P0 or continuous P1) whose points need not be
-//! FE nodes.
+//! rigid obstacle along a boundary Γ_C (a straight segment, or any open chain of boundary edges against an
+//! obstacle given by its geometry: [`ContactBoundary`], [`ObstacleShape`]), with Coulomb friction, by the
+//! stabilized Lagrange multiplier method of Barbosa and Hughes as extended to Coulomb friction by V. Lleras.
+//! The multipliers λ_H = (λ_Hn, λ_Ht) live on their own 1D mesh T_H of Γ_C (P0 or continuous P1) whose points
+//! need not be FE nodes.
 //!
 //! ## A first solve
 //! A block clamped at the bottom, a rigid cylinder pressed into its top and shifted along it, Coulomb
@@ -68,7 +69,8 @@
 //! * [`error`] (typed errors, [`Num`]) and [`choice`] (the names of every option);
 //! * [`settings`]: one struct per stage, the flat-name table, the friction law ([`settings::friction`])
 //!   and the γ0 choice ([`Stabilization`]);
-//! * the geometry tower: [`mesh`] (the P1 mesh, its generators, the straight-line test, bisection) → [`fem`]
+//! * the geometry tower: [`mesh`] (the P1 mesh, its generators, the straight-line test, the curves of edge sets,
+//!   bisection) → [`fem`]
 //!   (elasticity element by element, supports and the unknowns they leave, assembly) → [`contact`] (Γ_C
 //!   and its conventions, the obstacle, T_H, the mortar matrices, the Barbosa–Hughes operators, the γ0
 //!   bound);
