@@ -162,10 +162,9 @@ impl PyMesh {
         arc: Option<(f64, f64)>,
         growth: Option<f64>,
     ) -> PyResult<Self> {
-        let d = Grading::new(Side::Top, [0.0, 0.0], h_max);
         let sector = RingSector { center: center.into(), radii: radii.into(), angles: angles.into() };
-        let angles = arc.unwrap_or(angles).into();
-        let grading = ArcGrading { angles, h_min: h_min.unwrap_or(d.h_min), h_max, growth: growth.unwrap_or(d.growth) };
+        let d = ArcGrading::new(arc.unwrap_or(angles).into(), h_max);
+        let grading = ArcGrading { h_min: h_min.unwrap_or(d.h_min), growth: growth.unwrap_or(d.growth), ..d };
         Self::from_core(py, py.detach(|| tribo::ring_sector(&sector, &grading)).map_err(to_pyerr)?)
     }
 

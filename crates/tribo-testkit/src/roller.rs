@@ -36,6 +36,9 @@ pub fn roller_graded(
 ) -> Problem {
     let sector = RingSector { center: [0.0, 1.0], radii: [0.25, 1.0], angles: [-FRAC_PI_2 - 1.2, -FRAC_PI_2 + 1.2] };
     let grading = ArcGrading { angles: [-FRAC_PI_2 - arc, -FRAC_PI_2 + arc], h_min, h_max: 0.1_f64.max(h_min), growth };
+    // Internal invariants of this dev-only kit (no user input reaches it): the callers pass positive sizes
+    // with h_min ≤ 0.1 and an arc inside the sector, a rigid motion keeps every triangle valid, and the roller
+    // is a valid problem (tests/integration/curved.rs solves it); a broken fixture panics with the message.
     let mesh = ring_sector(&sector, &grading).expect("the calling test's own valid sizes");
     let points = mesh.points().iter().map(|&p| moved(r, c, p)).collect();
     let mesh = Mesh::new(points, mesh.triangles().to_vec(), mesh.edge_sets().clone()).expect("a rigid motion");

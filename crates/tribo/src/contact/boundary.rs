@@ -83,6 +83,10 @@ struct Chain {
 }
 
 /// The outward unit normal of the boundary edge (a, b), from the interior vertex of its triangle.
+///
+/// Internal invariant, not reachable from user input: (a, b) comes from a named edge set of `mesh`, and
+/// [`Mesh::new`] refused any set edge that is not a boundary edge, so it has its one owning triangle, whose
+/// third vertex is not on it (a triangle has three distinct nodes: degenerate ones are refused too).
 fn outward_normal(mesh: &Mesh, a: usize, b: usize) -> ([f64; 2], usize) {
     let pts = mesh.points();
     let t = mesh.boundary_triangle(a, b).expect("validated boundary edge");

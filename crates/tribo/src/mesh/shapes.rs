@@ -38,6 +38,14 @@ pub struct ArcGrading {
     pub growth: f64,
 }
 
+impl ArcGrading {
+    /// The grading toward the arc `angles` with the defaults of [`Grading::new`]: `h_min = h_max / 16`, growth
+    /// [`Grading::DEFAULT_GROWTH`].
+    pub fn new(angles: [f64; 2], h_max: f64) -> Self {
+        Self { angles, h_min: h_max / Grading::DEFAULT_REFINEMENT, h_max, growth: Grading::DEFAULT_GROWTH }
+    }
+}
+
 /// A mesh of a ring sector, fine along `grading.angles` of its outer arc (module documentation). The edge
 /// sets are `"outer"` and `"inner"` (the arcs, each with its [`Curve`], so that refinement stays on the
 /// circles) and `"start"` and `"end"` (the radial sides at the first and the last angle).
