@@ -150,7 +150,10 @@ fn bench_assembly(c: &mut Criterion) {
         group.bench_with_input(BenchmarkId::from_parameter(h_min), &s, |b, s| {
             let p = &s.problem;
             let h_t: Vec<f64> = p.contact.edges.iter().map(|e| p.mesh.diameter(e.triangle)).collect();
-            b.iter(|| MortarMatrices::new(black_box(&p.contact), &p.multipliers, &h_t, &p.spec.obstacle).unwrap())
+            b.iter(|| {
+                MortarMatrices::new(black_box(&p.contact), &p.multipliers, &h_t, &p.spec.obstacle, p.spec.model)
+                    .unwrap()
+            })
         });
     }
     group.finish();
@@ -296,7 +299,14 @@ fn bench_admissible_gamma0(c: &mut Criterion) {
     for h_min in SIZES {
         let s = scene(h_min, 0.0);
         group.bench_with_input(BenchmarkId::from_parameter(h_min), &s, |b, s| {
-            b.iter(|| tribo::stabilization::admissible_gamma0(black_box(&s.mesh), &s.spec.material, &s.problem.contact))
+            b.iter(|| {
+                tribo::stabilization::admissible_gamma0(
+                    black_box(&s.mesh),
+                    s.spec.model,
+                    &s.spec.material,
+                    &s.problem.contact,
+                )
+            })
         });
     }
     group.finish();

@@ -439,6 +439,6 @@ impl PyProblem {
     /// The energy norm sqrt(uᵀ K u) of a nodal displacement `u` (N, 2), K of this mesh, material and model.
     fn energy_norm(&self, u: &Bound<'_, PyAny>) -> PyResult<f64> {
         let u = floats(u, "u", &[Some(self.inner.mesh.n_nodes()), Some(2)], Settings)?;
-        Ok(tribo::elasticity::energy_norm(&self.inner.mesh, &self.inner.in_plane, &u))
+        Ok(tribo::elasticity::energy_norm(self.inner.spec.model, &self.inner.mesh, &self.inner.in_plane, &u))
     }
 }

@@ -381,8 +381,25 @@ pub fn hertz_l2_error(problem: &Problem, sol: &Solution) -> f64 {
 /// [`hertz_l2_error`] for the contact modulus `e_star`.
 pub fn hertz_l2_error_with(problem: &Problem, sol: &Solution, e_star: f64) -> f64 {
     let (p, a) = hertz_pressure_with(sol.normal_force, e_star);
+    pressure_l2_error(problem, sol, &p, &[-a, a], None, |_| 1.0)
+}
+
+/// The relative L² error of λ_n against the pressure `exact`, with the measure `weight(ξ)` (1 in the plane,
+/// ξ for an axisymmetric Γ_C from the axis), by 8-point Gauss on every segment of the union of T_H, the FE
+/// nodes and `extra` breakpoints (where `exact` is singular), over all of Γ_C or up to `up_to`.
+pub fn pressure_l2_error(
+    problem: &Problem,
+    sol: &Solution,
+    exact: &dyn Fn(f64) -> f64,
+    extra: &[f64],
+    up_to: Option<f64>,
+    weight: impl Fn(f64) -> f64,
+) -> f64 {
+    let end = up_to.unwrap_or(f64::INFINITY);
     let mut breaks: Vec<f64> = problem.multipliers.xi.iter().chain(&problem.contact.node_xi).copied().collect();
-    breaks.extend([-a, a]);
+    breaks.extend(extra);
+    breaks.extend(up_to);
+    breaks.retain(|&x| x <= end);
     breaks.sort_by(f64::total_cmp);
     breaks.dedup();
     let (gx, gw) = gauss8();
@@ -391,9 +408,9 @@ pub fn hertz_l2_error_with(problem: &Problem, sol: &Solution, e_star: f64) -> f6
         let (h, m) = (0.5 * (w[1] - w[0]), 0.5 * (w[1] + w[0]));
         for (x, wt) in gx.iter().zip(&gw) {
             let xi = m + h * x;
-            let l = problem.multipliers.evaluate(&sol.lambda_n, xi);
-            num += wt * h * (l - p(xi)).powi(2);
-            den += wt * h * p(xi).powi(2);
+            let (l, e) = (problem.multipliers.evaluate(&sol.lambda_n, xi), exact(xi));
+            num += wt * h * weight(xi) * (l - e).powi(2);
+            den += wt * h * weight(xi) * e * e;
         }
     }
     (num / den).sqrt()

@@ -1,6 +1,7 @@
 //! # tribo — 2D frictional contact with the stabilized Lagrange multiplier method
 //!
-//! tribo solves the contact of a linear elastic body (plane strain or stress, small strain, P1 triangles) with a
+//! tribo solves the contact of a linear elastic body (plane strain, plane stress or axisymmetric:
+//! [`Model`]; small strain, P1 triangles) with a
 //! rigid obstacle along a boundary Γ_C (a straight segment, or any open chain of boundary edges against an
 //! obstacle given by its geometry: [`ContactBoundary`], [`ObstacleShape`]), with Coulomb friction, by the
 //! stabilized Lagrange multiplier method of Barbosa and Hughes as extended to Coulomb friction by V. Lleras.

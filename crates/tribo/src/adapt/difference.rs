@@ -1,7 +1,9 @@
 //! The L²(Γ_C) difference of the multipliers of two problems on one Γ_C line, each on its own T_H: what the
-//! hierarchical estimate ([`crate::adapt::enriched`]) and the studies' true errors measure.
+//! hierarchical estimate ([`crate::adapt::enriched`]) and the studies' true errors measure. In axisymmetry
+//! the norm is over the surface of revolution (`2π r ds`), as every Γ_C integral is.
 
 use crate::contact::mortar::GAUSS2;
+use crate::fem::axisymmetric::radial_weight;
 use crate::problem::Problem;
 use crate::results::Solution;
 
@@ -29,7 +31,10 @@ pub fn multiplier_difference_on(
         return (f64::NAN, f64::NAN);
     }
     let (xa, xb) = (&a.multipliers.xi, &b.multipliers.xi);
-    let mut breaks: Vec<f64> = xa.iter().chain(xb).copied().filter(|x| *x > lo && *x < hi).collect();
+    // In axisymmetry the measure 2π r is linear on each FE edge of b's Γ_C: its nodes are breakpoints too.
+    let radial = b.spec.model.is_axisymmetric();
+    let fe: &[f64] = if radial { &b.contact.node_xi } else { &[] };
+    let mut breaks: Vec<f64> = xa.iter().chain(xb).chain(fe).copied().filter(|x| *x > lo && *x < hi).collect();
     breaks.extend([lo, hi].into_iter().filter(|x| x.is_finite()));
     breaks.sort_by(f64::total_cmp);
     breaks.dedup();
@@ -51,6 +56,7 @@ pub fn multiplier_difference_on(
         let (half, mid) = (0.5 * (w[1] - w[0]), 0.5 * (w[0] + w[1]));
         for &(g, wg) in &GAUSS2 {
             let x = mid + half * g;
+            let wg = if radial { wg * radial_weight(b.contact.point_at(x)[0]) } else { wg };
             let (na, ta) = (at(a, &sa.lambda_n, x) / scale, at(a, &sa.lambda_t, x) / scale);
             let (nb, tb) = (at(b, &sb.lambda_n, x) / scale, at(b, &sb.lambda_t, x) / scale);
             diff += wg * half * ((na - nb).powi(2) + (ta - tb).powi(2));

@@ -12,12 +12,13 @@
 //! the global matrix may stay definite somewhat beyond it. γ0 scales like 1/E and like 1/(the shape of
 //! the contact triangles); choosing γ0 as a fraction of the bound makes the choice unit free.
 
-use nalgebra::Matrix3;
+use nalgebra::{Matrix3, Matrix4};
 
 use crate::contact::operators::traction_components;
 use crate::contact::ContactBoundary;
 use crate::error::{check_setting, Error, Result};
-use crate::fem::elasticity::{Material, MaterialField};
+use crate::fem::axisymmetric;
+use crate::fem::elasticity::{Material, MaterialField, Model};
 use crate::mesh::Mesh;
 use crate::settings::Stabilization;
 
@@ -62,11 +63,23 @@ impl Gamma0Bound {
 /// C. The eigenproblem is solved for the material scaled to E = 1 (C is proportional to E), so neither a
 /// huge nor a tiny Young's modulus overflows it; each triangle's bound is then divided by its E, and γ0
 /// (one constant on Γ_C) must stay below the smallest.
-pub fn admissible_gamma0(mesh: &Mesh, materials: &impl MaterialField, contact: &ContactBoundary) -> Gamma0Bound {
+///
+/// In axisymmetry the strain has the hoop component and the measures are the solid's and the surface's:
+/// `vᵀ K_T v = 2π r_c |T| εᵀ C₄ ε` and `vᵀ G_T v = γ0 h_T ∫_E 2π r (σ_n² + σ_t²)`, so the bound is
+/// `γ0_T = r_c |T| / (h_T |E| r_E λ_max(L₄ᵀ P₄ L₄))`, r_E the radius of the edge's midpoint and P₄ the P above
+/// with a zero row and column for σ_θθ (which the traction does not read). The four strains are taken as
+/// independent, so the bound is again sufficient.
+pub fn admissible_gamma0(
+    mesh: &Mesh,
+    model: Model,
+    materials: &impl MaterialField,
+    contact: &ContactBoundary,
+) -> Gamma0Bound {
     // |σ m|² = σ_n² + σ_t² does not depend on the direction of m for an isotropic C, nor on the frame (n, t)
     // it is split in: one normal serves every edge of a bent Γ_C.
     let (a_n, a_t) = traction_components(contact.normal, contact.normal);
     let p: Matrix3<f64> = a_n * a_n.transpose() + a_t * a_t.transpose();
+    let radial = model.is_axisymmetric();
     // λ_max(Lᵀ P L) of C(E = 1), by Poisson's ratio: the materials of Γ_C's triangles are few.
     let mut by_poisson: Vec<(f64, f64)> = Vec::new();
     let mut lam = |poisson: f64| {
@@ -74,12 +87,25 @@ pub fn admissible_gamma0(mesh: &Mesh, materials: &impl MaterialField, contact: &
             return l;
         }
         // C(E = 1) is positive definite for a validated ν; its Cholesky factor exists.
-        let l = match (Material { young: 1.0, poisson }).elasticity_matrix().cholesky() {
-            Some(c) => {
-                let l = c.l();
-                (l.transpose() * p * l).symmetric_eigenvalues().max()
+        let unit = Material { young: 1.0, poisson };
+        let l = if radial {
+            let mut p4 = Matrix4::<f64>::zeros();
+            p4.fixed_view_mut::<3, 3>(0, 0).copy_from(&p);
+            match axisymmetric::law(&unit).cholesky() {
+                Some(c) => {
+                    let l = c.l();
+                    (l.transpose() * p4 * l).symmetric_eigenvalues().max()
+                }
+                None => f64::NAN,
             }
-            None => f64::NAN,
+        } else {
+            match unit.elasticity_matrix().cholesky() {
+                Some(c) => {
+                    let l = c.l();
+                    (l.transpose() * p * l).symmetric_eigenvalues().max()
+                }
+                None => f64::NAN,
+            }
         };
         by_poisson.push((poisson, l));
         l
@@ -89,7 +115,12 @@ pub fn admissible_gamma0(mesh: &Mesh, materials: &impl MaterialField, contact: &
         .iter()
         .map(|e| {
             let m = materials.at(e.triangle);
-            let shape = mesh.area(e.triangle) / (mesh.diameter(e.triangle) * e.length * lam(m.poisson));
+            let mut shape = mesh.area(e.triangle) / (mesh.diameter(e.triangle) * e.length * lam(m.poisson));
+            if radial {
+                let pts = mesh.points();
+                let r_edge = 0.5 * (pts[e.left][0] + pts[e.right][0]);
+                shape *= axisymmetric::centroid_radius(mesh, e.triangle) / r_edge;
+            }
             (shape / m.young, e.triangle)
         })
         .fold((f64::INFINITY, 0), |best, cur| if cur.0 < best.0 { cur } else { best });

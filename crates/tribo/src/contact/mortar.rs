@@ -10,8 +10,9 @@
 //!   `Dγ = ∫ γ ψ_i ψ_j` (q × q), `Cγ = ∫ γ ψ_j χ_k` (q × r) and `Gγ = ∫ γ χ_k χ_l = diag(γ_k |E_k|)`;
 //! * `w_j = ∫ ψ_j` and the gap moments `d_j = ∫ ψ_j g` (the obstacle, see [`crate::contact::obstacle`]).
 //!
-//! Every integrand but the gap is a polynomial of degree ≤ 2 on each refinement piece, so 2-point
-//! Gauss–Legendre is exact; the gap moments use 4 points (exact for a Hertz parabola).
+//! Every integrand but the gap is a polynomial of degree ≤ 2 on each refinement piece (≤ 3 with the
+//! axisymmetric measure 2π r), so 2-point Gauss–Legendre is exact; the gap moments use 4 points (exact for a
+//! Hertz parabola).
 //! Breakpoints of the two meshes closer than `√ε` times the smaller of the two local sizes are merged, so
 //! nearly coincident points never create slivers, and the pieces tile Γ_C exactly.
 
@@ -19,6 +20,8 @@ use crate::contact::multiplier::MultiplierMesh;
 use crate::contact::obstacle::Obstacle;
 use crate::contact::ContactBoundary;
 use crate::error::Result;
+use crate::fem::axisymmetric::radial_weight;
+use crate::fem::elasticity::Model;
 use crate::mesh::line::geometric_tol_rel;
 
 /// One piece of the common refinement: `[a, b]` inside FE edge `edge` and multiplier segment `cell`.
@@ -141,19 +144,43 @@ const GAUSS4: [(f64, f64); 4] = [
 ];
 
 impl MortarMatrices {
-    /// Integrates every Γ_C matrix. `h_t[k]` is the diameter of the triangle owning FE edge k.
+    /// Integrates every Γ_C matrix. `h_t[k]` is the diameter of the triangle owning FE edge k. Under
+    /// [`Model::Axisymmetric`] every integral is over the surface of revolution, `2π r ds` (r linear on each
+    /// edge: the integrands gain one degree and the rules stay exact).
     ///
     /// # Errors
     /// [`crate::Error::BadObstacle`] if the gap function returns a non-finite value.
-    pub fn new(contact: &ContactBoundary, mult: &MultiplierMesh, h_t: &[f64], obstacle: &Obstacle) -> Result<Self> {
+    pub fn new(
+        contact: &ContactBoundary,
+        mult: &MultiplierMesh,
+        h_t: &[f64],
+        obstacle: &Obstacle,
+        model: Model,
+    ) -> Result<Self> {
         let fe = &contact.node_xi;
+        let radial = model.is_axisymmetric();
+        // The measure at abscissa x of edge e: 1, or 2π r(x).
+        let measure = |e: usize, x: f64| {
+            if !radial {
+                return 1.0;
+            }
+            let s = (x - fe[e]) / (fe[e + 1] - fe[e]);
+            let (a, b) = (contact.node_points[e], contact.node_points[e + 1]);
+            radial_weight((1.0 - s) * a[0] + s * b[0])
+        };
         let (p, q, r) = (fe.len(), mult.n_dofs(), contact.n_edges());
         let pieces = common_refinement(fe, &mult.xi);
         let (mut m1, mut m2, mut m3) = (Coo::new(p, p), Coo::new(p, q), Coo::new(p, r));
         let (mut d_h, mut c_h) = (Coo::new(q, q), Coo::new(q, r));
         let mut m2_edges = Vec::new();
         let bent = !contact.one_frame;
-        let g_h: Vec<f64> = contact.edges.iter().zip(h_t).map(|(e, h)| h * e.length).collect();
+        let g_h: Vec<f64> = contact
+            .edges
+            .iter()
+            .zip(h_t)
+            .enumerate()
+            .map(|(k, (e, h))| h * e.length * measure(k, 0.5 * (fe[k] + fe[k + 1])))
+            .collect();
         let mut psi_integrals = vec![0.0; q];
         let mut gap_moments = vec![0.0; q];
         let fe_basis = |e: usize, x: f64| {
@@ -165,7 +192,7 @@ impl MortarMatrices {
             let h = h_t[pc.edge];
             for &(t, w) in &GAUSS2 {
                 let x = mid + half * t;
-                let w = w * half;
+                let w = w * half * measure(pc.edge, x);
                 let phi = fe_basis(pc.edge, x);
                 let (psi, npsi) = mult.basis(pc.cell, x);
                 for &(i, fi) in &phi {
@@ -193,7 +220,7 @@ impl MortarMatrices {
                 let g = obstacle.gap(contact, x)?;
                 let (psi, npsi) = mult.basis(pc.cell, x);
                 for &(i, pi) in &psi[..npsi] {
-                    gap_moments[i] += w * half * pi * g;
+                    gap_moments[i] += w * half * measure(pc.edge, x) * pi * g;
                 }
             }
         }

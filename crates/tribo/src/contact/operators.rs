@@ -10,12 +10,13 @@
 //! Γ_C itself is rejected ([`crate::Error::TractionOnContact`]): the method takes σ·n = −λ on all of Γ_C.
 
 use faer::sparse::Triplet;
-use nalgebra::{SVector, Vector3};
+use nalgebra::{SVector, Vector3, Vector4};
 
 use crate::contact::mortar::MortarMatrices;
 use crate::contact::pair::PrimarySide;
 use crate::contact::ContactBoundary;
-use crate::fem::elasticity::{element_dofs, strain_displacement, MaterialField};
+use crate::fem::axisymmetric;
+use crate::fem::elasticity::{element_dofs, strain_displacement, MaterialField, Model};
 use crate::mesh::Mesh;
 
 /// Voigt vectors `a` with `a · σ = σ_n = n · σ m` and `a · σ = σ_t = t · σ m` (σ = (σ_xx, σ_yy, σ_xy)) for the
@@ -41,13 +42,20 @@ pub struct ContactStress {
 
 impl ContactStress {
     /// The stress operators of every contact edge, each with the material of its triangle and in its own
-    /// frame (n_e, t_e).
-    pub fn new(mesh: &Mesh, materials: &impl MaterialField, contact: &ContactBoundary) -> Self {
+    /// frame (n_e, t_e); in axisymmetry the in-plane stress carries the hoop strain's part
+    /// ([`crate::fem::axisymmetric`]).
+    pub fn new(mesh: &Mesh, model: Model, materials: &impl MaterialField, contact: &ContactBoundary) -> Self {
         let ops = contact
             .edges
             .iter()
             .map(|e| {
                 let (a_n, a_t) = traction_components(e.outward, e.normal);
+                if model.is_axisymmetric() {
+                    let bt = axisymmetric::hoop_strain_displacement(mesh, e.triangle).transpose();
+                    let c = axisymmetric::law(materials.at(e.triangle));
+                    let four = |a: Vector3<f64>| Vector4::new(a[0], a[1], a[2], 0.0);
+                    return [bt * (c * four(a_n)), bt * (c * four(a_t))];
+                }
                 let c = materials.at(e.triangle).elasticity_matrix();
                 let bt = strain_displacement(mesh, e.triangle).transpose();
                 [bt * (c * a_n), bt * (c * a_t)]
@@ -58,7 +66,8 @@ impl ContactStress {
     }
 
     /// Triplets of `−G` (the stabilization part of `A = K − G`) over all dofs:
-    /// `vᵀ G v = γ0 Σ_k h_T |E_k| (σ_n(v)² + σ_t(v)²)`.
+    /// `vᵀ G v = γ0 Σ_k h_T |E_k| (σ_n(v)² + σ_t(v)²)` (`h_T ∫_{E_k} 2π r` for `|E_k|` in axisymmetry: σ is
+    /// constant on the edge).
     pub fn stiffness_triplets(&self, mortar: &MortarMatrices, gamma0: f64) -> Vec<Triplet<usize, usize, f64>> {
         let mut trip = Vec::new();
         if gamma0 == 0.0 {

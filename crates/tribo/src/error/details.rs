@@ -100,6 +100,7 @@ impl Error {
                 "NodalValuesLength",
                 vec![("len", I(*len)), ("n_nodes", I(*n_nodes)), ("components", I(*components))],
             ),
+            Self::BadAxisymmetry { what } => (ErrorCategory::Mesh, "BadAxisymmetry", vec![("what", T(what.clone()))]),
             Self::BadMaterial { what } => (ErrorCategory::Settings, "BadMaterial", vec![("what", T(what.clone()))]),
             Self::NonFiniteLoad { target, x, y } => (
                 ErrorCategory::Settings,

@@ -186,6 +186,14 @@ pub enum Error {
         components: usize,
     },
 
+    /// An axisymmetric body's mesh is not a meridian section (a node at r < 0), or the model is asked of
+    /// what it does not take.
+    #[error("axisymmetric model: {what}")]
+    BadAxisymmetry {
+        /// What is wrong.
+        what: String,
+    },
+
     // ----- material, loads, supports -----
     /// A material constant is out of range.
     #[error("material: {what}")]

@@ -7,7 +7,7 @@ use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 
 use crate::error::{Error, Result};
 use crate::fem::dofs::Dofs;
-use crate::fem::elasticity::{add_body_force, add_traction, element_dofs, element_stiffness, MaterialField};
+use crate::fem::elasticity::{add_body_force, add_traction, element_dofs, element_stiffness_of, MaterialField, Model};
 use crate::fem::supports::NodeSupport;
 use crate::mesh::Mesh;
 
@@ -28,6 +28,7 @@ pub struct LinearSystem {
 /// [`Error::NonFiniteLoad`] for a non-finite load (as given, assembled or lifted); [`Error::Assembly`]
 /// for a non-finite stiffness entry or a matrix faer cannot build.
 pub fn assemble(
+    model: Model,
     mesh: &Mesh,
     material: &impl MaterialField,
     body_force: [f64; 2],
@@ -41,9 +42,9 @@ pub fn assemble(
         }
     }
     let mut f_full = vec![0.0; n_dofs];
-    add_body_force(mesh, body_force, &mut f_full);
+    add_body_force(model, mesh, body_force, &mut f_full);
     for (set, g) in tractions {
-        add_traction(mesh, mesh.edge_set(set)?, *g, &mut f_full);
+        add_traction(model, mesh, mesh.edge_set(set)?, *g, &mut f_full);
     }
     if let Some(d) = f_full.iter().position(|v| !v.is_finite()) {
         return Err(Error::NonFiniteLoad {
@@ -52,7 +53,7 @@ pub fn assemble(
             y: f64::NAN,
         });
     }
-    let (k_matrix, k_lift) = stiffness_on_unknowns(mesh, material, dofs)?;
+    let (k_matrix, k_lift) = stiffness_on_unknowns(model, mesh, material, dofs)?;
     let f_lifted: Vec<f64> = f_full.iter().zip(&k_lift).map(|(f, k)| f - k).collect();
     if let Some(d) = f_lifted.iter().position(|v| !v.is_finite()) {
         return Err(Error::NonFiniteLoad {
@@ -77,6 +78,7 @@ pub fn assemble(
 /// # Errors
 /// [`Error::Assembly`] for a non-finite element entry or a mesh too large for 32-bit node indices.
 fn stiffness_on_unknowns(
+    model: Model,
     mesh: &Mesh,
     material: &impl MaterialField,
     dofs: &Dofs,
@@ -127,7 +129,7 @@ fn stiffness_on_unknowns(
     let mut k_lift = vec![0.0; 2 * n_nodes];
     let lifted = !dofs.homogeneous();
     for (t, tri) in mesh.triangles().iter().enumerate() {
-        let k = element_stiffness(mesh, t, &material.at(t).elasticity_matrix());
+        let k = element_stiffness_of(model, mesh, t, material.at(t));
         let el = element_dofs(tri);
         if let Some(e) = k.iter().position(|v| !v.is_finite()) {
             let (r, c) = (e % 6, e / 6);

@@ -37,6 +37,8 @@
 use std::collections::HashSet;
 
 use crate::error::{Error, Result};
+use crate::fem::axisymmetric::axis_nodes;
+use crate::fem::elasticity::Model;
 use crate::fem::rigid_motions::{check_held, pins, FreeMotions};
 use crate::fem::supports::{node_supports, slide, NodeSupport, Support};
 use crate::mesh::Mesh;
@@ -59,6 +61,8 @@ pub struct Dofs {
     /// The pins that hold those motions in the factorized stiffness: per pinned node, its support with
     /// the pins (`u · a = 0` along each pinned direction a), which [`Dofs::lifting_of`] keeps too.
     pub pins: Vec<(usize, NodeSupport)>,
+    /// The nodes on the axis of an axisymmetric body, held at `u_r = 0` (empty in a plane model).
+    pub axis: Vec<usize>,
 }
 
 impl Dofs {
@@ -71,22 +75,32 @@ impl Dofs {
     /// [`Error::FloatingPiece`] / [`Error::RigidMotion`]
     /// for a piece that the supports do not hold.
     pub fn new(mesh: &Mesh, supports: &[Support]) -> Result<Self> {
-        Self::held_by_contact(mesh, supports, &|_| false)
+        Self::held_by_contact(mesh, supports, &|_| false, Model::PlaneStrain)
     }
 
     /// [`Dofs::new`], where a piece that holds a node for which `may_float` is true (a node of a contact
     /// side) may be left free by its supports: its free rigid motions are kept in `floating` and held in
     /// the stiffness by pins (`pins`), chosen off the contact sides (see `fem/rigid_motions.rs`).
     ///
+    /// Under [`Model::Axisymmetric`] the nodes on the axis get `u_r = 0` besides their supports, and only the
+    /// axial translation is a rigid motion ([`crate::fem::axisymmetric`]).
+    ///
     /// # Errors
-    /// As [`Dofs::new`]; [`Error::NoDirichlet`] only when no node may float either.
-    pub fn held_by_contact(mesh: &Mesh, supports: &[Support], may_float: &dyn Fn(usize) -> bool) -> Result<Self> {
+    /// As [`Dofs::new`]; [`Error::NoDirichlet`] only when no node may float either;
+    /// [`Error::BadAxisymmetry`] for an axisymmetric mesh with a node at r < 0.
+    pub fn held_by_contact(
+        mesh: &Mesh,
+        supports: &[Support],
+        may_float: &dyn Fn(usize) -> bool,
+        model: Model,
+    ) -> Result<Self> {
         let n_nodes = mesh.n_nodes();
+        let axis = if model.is_axisymmetric() { axis_nodes(mesh)? } else { Vec::new() };
         if supports.is_empty() && !(0..n_nodes).any(may_float) {
             return Err(Error::NoDirichlet);
         }
-        let (mut nodes, edges) = node_supports(mesh, supports)?;
-        let floating = check_held(mesh, &nodes, may_float)?;
+        let (mut nodes, edges) = node_supports(mesh, supports, &axis)?;
+        let floating = check_held(mesh, &nodes, may_float, model.is_axisymmetric())?;
         let mut pinned: Vec<(usize, NodeSupport)> = Vec::new();
         for piece in &floating {
             let chosen = pins(mesh, &nodes, piece, may_float);
@@ -124,7 +138,7 @@ impl Dofs {
             }
         }
         let lifting = lifting(&nodes);
-        Ok(Self { nodes, map, n_free, lifting, edges, floating, pins: pinned })
+        Ok(Self { nodes, map, n_free, lifting, edges, floating, pins: pinned, axis })
     }
 
     /// The number of free rigid motions the contact must hold.
@@ -158,7 +172,7 @@ impl Dofs {
     /// a node held by nearly parallel conditions beyond the body's size; [`Error::BadSupport`] if the supports do not leave
     /// the same unknowns as these dofs (they must differ only in their values).
     pub fn lifting_of(&self, mesh: &Mesh, supports: &[Support]) -> Result<Vec<f64>> {
-        let (mut nodes, _) = node_supports(mesh, supports)?;
+        let (mut nodes, _) = node_supports(mesh, supports, &self.axis)?;
         for &(node, pinned) in &self.pins {
             nodes[node] = keep_value(pinned, nodes[node]);
         }

@@ -1,4 +1,6 @@
-//! Isotropic linear elasticity with P1 triangles, in plane strain or plane stress ([`Model`]).
+//! Isotropic linear elasticity with P1 triangles, in plane strain, plane stress or axisymmetry ([`Model`];
+//! the axisymmetric element is in [`crate::fem::axisymmetric`], and the functions here that take a model
+//! dispatch to it).
 //!
 //! Degrees of freedom are interleaved: dof `2 i` is the x displacement of node `i`, dof `2 i + 1` its y
 //! displacement. Stresses use Voigt order `(σ_xx, σ_yy, σ_xy)` and strains `(ε_xx, ε_yy, 2 ε_xy)`.
@@ -10,7 +12,7 @@
 //! `C₁₁ = E' (1 − ν') / ((1 + ν') (1 − 2ν'))` is `E / (1 − ν²)`. So everything in-plane (the stiffness, the
 //! stresses, the Barbosa–Hughes operators and the admissible γ0, the estimates, whose contact modulus
 //! `E' / (1 − ν'²)` is then `E`, the plane-stress E* of Hertz) is computed from [`Model::in_plane`]'s material,
-//! and only the out-of-plane stress and von Mises read the model ([`Model::sigma_zz`], [`Model::von_mises`]).
+//! and only the out-of-plane stress and von Mises read the model ([`Model::sigma_zz`], [`von_mises`]).
 //! The equivalent has a positive `E'` only for ν > −1/2: plane stress takes ν in (−1/2, 1/2).
 
 use faer::sparse::{SparseColMat, Triplet};
@@ -18,6 +20,7 @@ use nalgebra::{Matrix3, SMatrix, Vector3};
 
 use crate::choice::named_choice;
 use crate::error::{Error, Num, Result};
+use crate::fem::axisymmetric;
 use crate::mesh::Mesh;
 
 /// What the out-of-plane direction is.
@@ -28,16 +31,24 @@ pub enum Model {
     PlaneStrain,
     /// Plane stress (σ_zz = 0): a thin plate loaded in its plane (forces per unit thickness).
     PlaneStress,
+    /// A solid of revolution about the y axis (x = r ≥ 0), with the hoop strain u_r / r; forces on the whole
+    /// turn ([`crate::fem::axisymmetric`]).
+    Axisymmetric,
 }
 
-named_choice!(Model, "model", { Model::PlaneStrain => "plane_strain", Model::PlaneStress => "plane_stress" });
+named_choice!(Model, "model", {
+    Model::PlaneStrain => "plane_strain",
+    Model::PlaneStress => "plane_stress",
+    Model::Axisymmetric => "axisymmetric",
+});
 
 impl Model {
     /// The plane-strain material with `material`'s in-plane law under this model (the module documentation):
-    /// `material` itself in plane strain, `(E (1 + 2ν) / (1 + ν)², ν / (1 + ν))` in plane stress.
+    /// `material` itself in plane strain (and in axisymmetry, whose law is the full one, [`crate::fem::axisymmetric::law`]),
+    /// `(E (1 + 2ν) / (1 + ν)², ν / (1 + ν))` in plane stress.
     pub fn in_plane(self, material: Material) -> Material {
         match self {
-            Model::PlaneStrain => material,
+            Model::PlaneStrain | Model::Axisymmetric => material,
             Model::PlaneStress => {
                 let (e, nu) = (material.young, material.poisson);
                 Material { young: e * (1.0 + 2.0 * nu) / ((1.0 + nu) * (1.0 + nu)), poisson: nu / (1.0 + nu) }
@@ -79,23 +90,26 @@ impl Model {
         })
     }
 
-    /// The out-of-plane stress of the in-plane stress `s` of `material`: `ν (σ_xx + σ_yy)` in plane strain,
-    /// 0 in plane stress.
+    /// The out-of-plane stress of the in-plane stress `s` of `material` in a plane model: `ν (σ_xx + σ_yy)`
+    /// in plane strain, 0 in plane stress. In axisymmetry it is the hoop stress, which the in-plane stress
+    /// does not give: [`element_stresses`] computes it.
     pub fn sigma_zz(self, material: &Material, s: [f64; 3]) -> f64 {
         match self {
-            Model::PlaneStrain => material.sigma_zz(s),
+            Model::PlaneStrain | Model::Axisymmetric => material.sigma_zz(s),
             Model::PlaneStress => 0.0,
         }
     }
 
-    /// The von Mises stress of the in-plane stress `s` of `material` with its out-of-plane stress
-    /// ([`Model::sigma_zz`]).
-    pub fn von_mises(self, material: &Material, s: [f64; 3]) -> f64 {
-        match self {
-            Model::PlaneStrain => material.von_mises(s),
-            Model::PlaneStress => von_mises_with(s, 0.0),
-        }
+    /// Whether the body is a solid of revolution ([`Model::Axisymmetric`]).
+    pub fn is_axisymmetric(self) -> bool {
+        self == Model::Axisymmetric
     }
+}
+
+/// The von Mises stress of `(σ_xx, σ_yy, σ_xy, σ_zz)`, computed on the stresses divided by the largest of them
+/// so that no square overflows.
+pub fn von_mises(s: [f64; 4]) -> f64 {
+    von_mises_with([s[0], s[1], s[2]], s[3])
 }
 
 /// The material of each triangle: a [`Material`] is the same everywhere, [`Materials`] gives each region
@@ -203,19 +217,19 @@ impl Material {
     /// Von Mises stress of a plane-strain stress state (σ_zz = ν (σ_xx + σ_yy)), computed on the stresses
     /// divided by the largest of them so that no square overflows.
     pub fn von_mises(&self, s: [f64; 3]) -> f64 {
-        von_mises_with(s, self.poisson)
+        von_mises_with(s, self.sigma_zz(s))
     }
 }
 
-/// Von Mises stress of the in-plane stress `s` with `σ_zz = k (σ_xx + σ_yy)` (k = ν in plane strain, 0 in plane
-/// stress), computed on the stresses divided by the largest of them so that no square overflows.
-fn von_mises_with(s: [f64; 3], k: f64) -> f64 {
-    let m = s.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+/// Von Mises stress of the in-plane stress `s` with the out-of-plane stress `zz`, computed on the stresses
+/// divided by the largest of them so that no square overflows.
+fn von_mises_with(s: [f64; 3], zz: f64) -> f64 {
+    let m = s.iter().fold(zz.abs(), |m, v| m.max(v.abs()));
     if m == 0.0 || !m.is_finite() {
         return if m == 0.0 { 0.0 } else { f64::NAN };
     }
     let [a, b, c] = s.map(|v| v / m);
-    let szz = k * (a + b);
+    let szz = zz / m;
     m * (0.5 * ((a - b).powi(2) + (b - szz).powi(2) + (szz - a).powi(2)) + 3.0 * c * c).sqrt()
 }
 
@@ -250,7 +264,15 @@ pub fn element_stiffness(mesh: &Mesh, t: usize, c: &Matrix3<f64>) -> SMatrix<f64
     b.transpose() * c * b
 }
 
-/// Triplets of the global stiffness matrix (2N × 2N, duplicates to be summed).
+/// The element stiffness of triangle `t` under `model` (`material` its in-plane law, [`Model::in_plane`]).
+pub fn element_stiffness_of(model: Model, mesh: &Mesh, t: usize, material: &Material) -> SMatrix<f64, 6, 6> {
+    match model {
+        Model::Axisymmetric => axisymmetric::element_stiffness(mesh, t, material),
+        _ => element_stiffness(mesh, t, &material.elasticity_matrix()),
+    }
+}
+
+/// Triplets of the global stiffness matrix of a plane model (2N × 2N, duplicates to be summed).
 pub fn stiffness_triplets(mesh: &Mesh, material: &impl MaterialField) -> Vec<Triplet<usize, usize, f64>> {
     let mut trip = Vec::with_capacity(36 * mesh.n_triangles());
     for (t, tri) in mesh.triangles().iter().enumerate() {
@@ -265,7 +287,7 @@ pub fn stiffness_triplets(mesh: &Mesh, material: &impl MaterialField) -> Vec<Tri
     trip
 }
 
-/// Global stiffness matrix K (2N × 2N, all dofs, no support applied).
+/// Global stiffness matrix K of a plane model (2N × 2N, all dofs, no support applied).
 ///
 /// # Errors
 /// [`Error::Assembly`] if faer cannot build the matrix (index overflow, allocation failure).
@@ -275,8 +297,12 @@ pub fn stiffness(mesh: &Mesh, material: &impl MaterialField) -> Result<SparseCol
         .map_err(|e| Error::Assembly { matrix: "K", what: format!("{e:?}") })
 }
 
-/// Adds the load of a constant body force `f` (per unit area) to `rhs`: each node of T gets `|T| f / 3`.
-pub fn add_body_force(mesh: &Mesh, f: [f64; 2], rhs: &mut [f64]) {
+/// Adds the load of a constant body force `f` (per unit volume) under `model` to `rhs`: each node of T gets
+/// `|T| f / 3` in a plane model ([`axisymmetric::add_body_force`] in axisymmetry).
+pub fn add_body_force(model: Model, mesh: &Mesh, f: [f64; 2], rhs: &mut [f64]) {
+    if model.is_axisymmetric() {
+        return axisymmetric::add_body_force(mesh, f, rhs);
+    }
     for (t, tri) in mesh.triangles().iter().enumerate() {
         let w = mesh.area(t) / 3.0;
         for &i in tri {
@@ -286,8 +312,12 @@ pub fn add_body_force(mesh: &Mesh, f: [f64; 2], rhs: &mut [f64]) {
     }
 }
 
-/// Adds the load of a constant traction `g` (force per unit length) on a set of boundary edges to `rhs`.
-pub fn add_traction(mesh: &Mesh, edges: &[[usize; 2]], g: [f64; 2], rhs: &mut [f64]) {
+/// Adds the load of a constant traction `g` (force per unit length in a plane model, per unit area of the
+/// surface of revolution in axisymmetry: [`axisymmetric::add_traction`]) on a set of boundary edges to `rhs`.
+pub fn add_traction(model: Model, mesh: &Mesh, edges: &[[usize; 2]], g: [f64; 2], rhs: &mut [f64]) {
+    if model.is_axisymmetric() {
+        return axisymmetric::add_traction(mesh, edges, g, rhs);
+    }
     for &[a, b] in edges {
         let w = 0.5 * mesh.edge_length(a, b);
         for i in [a, b] {
@@ -297,15 +327,21 @@ pub fn add_traction(mesh: &Mesh, edges: &[[usize; 2]], g: [f64; 2], rhs: &mut [f
     }
 }
 
-/// Constant stress `(σ_xx, σ_yy, σ_xy)` in every triangle for the nodal displacement `u` (length 2N).
-pub fn element_stresses(mesh: &Mesh, material: &impl MaterialField, u: &[f64]) -> Vec<[f64; 3]> {
+/// Constant stress `(σ_xx, σ_yy, σ_xy, σ_zz)` in every triangle for the nodal displacement `u` (length 2N)
+/// under `model`, `material` the in-plane law ([`Model::in_plane`]): σ_zz is `ν (σ_xx + σ_yy)` in plane
+/// strain, 0 in plane stress and the hoop stress σ_θθ in axisymmetry.
+pub fn element_stresses(model: Model, mesh: &Mesh, material: &impl MaterialField, u: &[f64]) -> Vec<[f64; 4]> {
     mesh.triangles()
         .iter()
         .enumerate()
         .map(|(t, tri)| {
-            let ut = nalgebra::SVector::<f64, 6>::from_iterator(element_dofs(tri).iter().map(|&d| u[d]));
+            let ut = axisymmetric::local(tri, u);
+            if model.is_axisymmetric() {
+                return axisymmetric::element_stress(mesh, t, material.at(t), &ut);
+            }
             let s: Vector3<f64> = material.at(t).elasticity_matrix() * (strain_displacement(mesh, t) * ut);
-            [s[0], s[1], s[2]]
+            let s = [s[0], s[1], s[2]];
+            [s[0], s[1], s[2], model.sigma_zz(material.at(t), s)]
         })
         .collect()
 }
@@ -316,8 +352,8 @@ pub fn element_stresses(mesh: &Mesh, material: &impl MaterialField, u: &[f64]) -
 /// smooths the P1 cell stress's jumps (the checkerboard near the fans of a graded mesh). It is a
 /// post-processed field for plots and files: the solve, the reactions and the estimator use the cell
 /// stress.
-pub fn recovered_stress(mesh: &Mesh, stresses: &[[f64; 3]]) -> Vec<[f64; 3]> {
-    let mut sum = vec![[0.0; 3]; mesh.n_nodes()];
+pub fn recovered_stress<const N: usize>(mesh: &Mesh, stresses: &[[f64; N]]) -> Vec<[f64; N]> {
+    let mut sum = vec![[0.0; N]; mesh.n_nodes()];
     let mut weight = vec![0.0; mesh.n_nodes()];
     for (t, (tri, s)) in mesh.triangles().iter().zip(stresses).enumerate() {
         let area = mesh.area(t);
@@ -333,12 +369,16 @@ pub fn recovered_stress(mesh: &Mesh, stresses: &[[f64; 3]]) -> Vec<[f64; 3]> {
 }
 
 /// The internal forces `K u` on all 2N dofs from the element stresses of `u` ([`element_stresses`]),
-/// element by element: `K_T u_T = |T| Bᵀ σ_T`, so no matrix is assembled (the reactions of every solve
-/// and history step come from here).
-pub fn internal_forces(mesh: &Mesh, stresses: &[[f64; 3]]) -> Vec<f64> {
+/// element by element: `K_T u_T = |T| Bᵀ σ_T` (`2π r_c |T| Bᵀ σ_T` with the hoop row in axisymmetry), so no
+/// matrix is assembled (the reactions of every solve and history step come from here).
+pub fn internal_forces(model: Model, mesh: &Mesh, stresses: &[[f64; 4]]) -> Vec<f64> {
     let mut out = vec![0.0; 2 * mesh.n_nodes()];
     for (t, (tri, s)) in mesh.triangles().iter().zip(stresses).enumerate() {
-        let f = strain_displacement(mesh, t).transpose() * Vector3::from(*s) * mesh.area(t);
+        let f = if model.is_axisymmetric() {
+            axisymmetric::element_forces(mesh, t, s)
+        } else {
+            strain_displacement(mesh, t).transpose() * Vector3::new(s[0], s[1], s[2]) * mesh.area(t)
+        };
         for (&d, fd) in element_dofs(tri).iter().zip(f.iter()) {
             out[d] += fd;
         }
@@ -347,10 +387,16 @@ pub fn internal_forces(mesh: &Mesh, stresses: &[[f64; 3]]) -> Vec<f64> {
 }
 
 /// Elastic energy norm `sqrt(uᵀ K u)` of a nodal displacement, element by element.
-pub fn energy_norm(mesh: &Mesh, material: &impl MaterialField, u: &[f64]) -> f64 {
+pub fn energy_norm(model: Model, mesh: &Mesh, material: &impl MaterialField, u: &[f64]) -> f64 {
     let mut e = 0.0;
     for (t, tri) in mesh.triangles().iter().enumerate() {
-        let ut = nalgebra::SVector::<f64, 6>::from_iterator(element_dofs(tri).iter().map(|&d| u[d]));
+        let ut = axisymmetric::local(tri, u);
+        if model.is_axisymmetric() {
+            let b = axisymmetric::hoop_strain_displacement(mesh, t);
+            let eps = b * ut;
+            e += axisymmetric::volume(mesh, t) * eps.dot(&(axisymmetric::law(material.at(t)) * eps));
+            continue;
+        }
         let eps = strain_displacement(mesh, t) * ut;
         e += mesh.area(t) * eps.dot(&(material.at(t).elasticity_matrix() * eps));
     }

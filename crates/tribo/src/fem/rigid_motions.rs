@@ -55,10 +55,15 @@ impl FreeMotions {
 /// Every piece of the mesh must be held (see the module documentation): by its supports, or, for a piece
 /// holding a node for which `may_float` is true (a node of a contact side), by the contact, whose free
 /// motions are returned.
+///
+/// A solid of revolution (`axisymmetric`) has one rigid motion, the axial translation β: the radial
+/// translation and the rotation strain it in the hoop direction ([`crate::fem::axisymmetric`]), so they
+/// count as held.
 pub(super) fn check_held(
     mesh: &Mesh,
     nodes: &[NodeSupport],
     may_float: &dyn Fn(usize) -> bool,
+    axisymmetric: bool,
 ) -> Result<Vec<FreeMotions>> {
     let n = mesh.n_triangles();
     let mut parent: Vec<usize> = (0..n).collect();
@@ -165,12 +170,22 @@ pub(super) fn check_held(
                     pieces,
                 });
             }
-            let motions = vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+            let motions = if axisymmetric {
+                vec![[0.0, 1.0, 0.0]]
+            } else {
+                vec![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+            };
             free.push(FreeMotions { triangle: r, nodes: list, centre, scale, motions });
             continue;
         }
         let mut gram = Matrix3::<f64>::zeros();
         let mut rows = 0usize;
+        if axisymmetric {
+            // The hoop strain holds the radial translation and the rotation.
+            gram[(0, 0)] += 1.0;
+            gram[(2, 2)] += 1.0;
+            rows += 2;
+        }
         for &i in &held {
             let (x, y) = ((pts[i][0] - centre[0]) / scale, (pts[i][1] - centre[1]) / scale);
             let dirs: Vec<[f64; 2]> = match nodes[i] {

@@ -154,6 +154,14 @@ pub(super) fn slide(a: [f64; 2], value: f64) -> NodeSupport {
     NodeSupport::Slide { normal: a, tangent: t, value }
 }
 
+/// The `support` of the axis's condition `u_r = 0` (not one of the user's supports).
+const AXIS: usize = usize::MAX;
+
+/// The name of condition source `k`: its support's edge set, or the axis.
+fn source(supports: &[Support], k: usize) -> String {
+    supports.get(k).map_or_else(|| "the axis (r = 0)".to_string(), |s| s.set().to_string())
+}
+
 /// One condition `a · u = v` at a node, with the support it comes from.
 #[derive(Clone, Copy)]
 struct Condition {
@@ -168,9 +176,18 @@ struct Condition {
 /// # Errors
 /// [`Error::UnknownEdgeSet`]; [`Error::BadSupport`]; [`Error::SupportNotStraight`];
 /// [`Error::ConflictingSupports`]; [`Error::NearlyParallelSupports`].
-pub(super) fn node_supports(mesh: &Mesh, supports: &[Support]) -> Result<(Vec<NodeSupport>, HashSet<[usize; 2]>)> {
+/// The nodes of `axis` (an axisymmetric body's, [`crate::fem::axisymmetric::axis_nodes`]) get `u_x = 0`
+/// besides, named "the axis" where it conflicts with a support.
+pub(super) fn node_supports(
+    mesh: &Mesh,
+    supports: &[Support],
+    axis: &[usize],
+) -> Result<(Vec<NodeSupport>, HashSet<[usize; 2]>)> {
     let n_nodes = mesh.n_nodes();
     let mut conditions: Vec<Vec<Condition>> = vec![Vec::new(); n_nodes];
+    for &node in axis {
+        conditions[node].push(Condition { a: [1.0, 0.0], v: 0.0, support: AXIS });
+    }
     let mut edges = HashSet::new();
     for (k, support) in supports.iter().enumerate() {
         let set = support.set();
@@ -244,8 +261,8 @@ fn resolve(node: usize, list: &[Condition], supports: &[Support], size: f64) -> 
     let tol_v = geometric_tol_rel() * vmax;
     let conflict = |c: &Condition, what: String| Error::ConflictingSupports {
         node,
-        first: supports[first.support].set().to_string(),
-        second: supports[c.support].set().to_string(),
+        first: source(supports, first.support),
+        second: source(supports, c.support),
         what,
     };
     let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
@@ -273,8 +290,8 @@ fn resolve(node: usize, list: &[Condition], supports: &[Support], size: f64) -> 
             if displacement > std::f64::consts::SQRT_2 * vmax && displacement > size {
                 return Err(Error::NearlyParallelSupports {
                     node,
-                    first: supports[first.support].set().to_string(),
-                    second: supports[second.support].set().to_string(),
+                    first: source(supports, first.support),
+                    second: source(supports, second.support),
                     angle_degrees: det.abs().min(1.0).asin().to_degrees(),
                     displacement,
                     data: vmax,

@@ -245,7 +245,8 @@ impl Problem {
     ) -> (Vec<f64>, Vec<f64>) {
         use crate::fem::elasticity::{element_stresses, internal_forces};
         let mut a_lift = if with_stiffness {
-            internal_forces(&self.mesh, &element_stresses(&self.mesh, &self.in_plane, ubar))
+            let stresses = element_stresses(self.spec.model, &self.mesh, &self.in_plane, ubar);
+            internal_forces(self.spec.model, &self.mesh, &stresses)
         } else {
             vec![0.0; ubar.len()]
         };

@@ -211,7 +211,13 @@ impl Problem {
                 on_contact[b] = true;
             }
         }
-        let dofs = Dofs::held_by_contact(&mesh, &spec.all_supports(None), &|i| on_contact[i])?;
+        if spec.model.is_axisymmetric() && primary.is_some() {
+            return Err(Error::BadAxisymmetry {
+                what: "two bodies in contact are not axisymmetric yet: one body against a rigid obstacle is"
+                    .to_string(),
+            });
+        }
+        let dofs = Dofs::held_by_contact(&mesh, &spec.all_supports(None), &|i| on_contact[i], spec.model)?;
         let n_free = dofs.n_free;
         let mut bodies = bodies;
         for part in &mut bodies {
@@ -223,7 +229,7 @@ impl Problem {
             part.unknowns = dofs.nodes[part.nodes.clone()].iter().map(count).sum();
         }
         let LinearSystem { k_matrix, f_free, f_full } =
-            assemble(&mesh, &in_plane, spec.body_force, &spec.tractions, &dofs)?;
+            assemble(spec.model, &mesh, &in_plane, spec.body_force, &spec.tractions, &dofs)?;
         let assembly = clock.elapsed().as_secs_f64();
 
         let clock = Instant::now();
@@ -265,11 +271,11 @@ impl Problem {
         }
         let multipliers = MultiplierMesh::new(&contact, &spec.multiplier_points, spec.multiplier_space)?;
         let h_t: Vec<f64> = contact.edges.iter().map(|e| mesh.diameter(e.triangle)).collect();
-        let mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &spec.obstacle)?;
+        let mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &spec.obstacle, spec.model)?;
         let primary = primary.map(|set| PrimarySide::new(&mesh, &contact, set, &multipliers)).transpose()?;
         // Γ_C's triangles with their own materials (one body's, the secondary's for two, a coating's).
-        let contact_stress = ContactStress::new(&mesh, &in_plane, &contact);
-        let gamma0_bound = admissible_gamma0(&mesh, &in_plane, &contact);
+        let contact_stress = ContactStress::new(&mesh, spec.model, &in_plane, &contact);
+        let gamma0_bound = admissible_gamma0(&mesh, spec.model, &in_plane, &contact);
         let contact_matrices = clock.elapsed().as_secs_f64();
         Ok(Self {
             mesh,

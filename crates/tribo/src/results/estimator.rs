@@ -11,7 +11,8 @@
 //! estimate reads `Σ_K η_K² / E*_K`):
 //!
 //! * **bulk** (the equilibrium (2.1) and the boundary conditions (2.4)):
-//!   `h_K² ‖f‖²_K` (body load), `½ h_E ‖[σ_h n]‖²_E` on each interior edge (half to each side),
+//!   `h_K² ‖f‖²_K` (body load; `‖f + div σ_h‖` in axisymmetry, whose norms are all 2π r-weighted:
+//!   [`crate::fem::axisymmetric`]), `½ h_E ‖[σ_h n]‖²_E` on each interior edge (half to each side),
 //!   `h_E ‖σ_h n − F‖²_E` on each Neumann edge (F the traction, 0 on a free edge) and, on a roller or a
 //!   component left free by a prescribed displacement, the traction component along the free direction;
 //! * **Γ_C**: `h_E ‖λ_H + σ_h n‖²_E`, normal and tangential: the very residual the Barbosa–Hughes term
@@ -78,7 +79,8 @@ use crate::contact::mortar::{common_refinement, GAUSS2};
 use crate::contact::multiplier::MultiplierMesh;
 use crate::contact::pair::PrimarySide;
 use crate::contact::ContactBoundary;
-use crate::fem::elasticity::{Material, MaterialField, Materials};
+use crate::fem::axisymmetric::{radial_weight, residual};
+use crate::fem::elasticity::{Material, MaterialField, Materials, Model};
 use crate::fem::supports::{Dofs, NodeSupport};
 use crate::mesh::Mesh;
 
@@ -189,6 +191,9 @@ pub(crate) struct EstimatorInput<'a> {
     pub body_force: [f64; 2],
     pub tractions: Vec<(&'a [[usize; 2]], [f64; 2])>,
     pub stress: &'a [[f64; 3]],
+    /// Plane or axisymmetric, and in axisymmetry the hoop stress σ_θθ per triangle (empty otherwise).
+    pub model: Model,
+    pub hoop: &'a [f64],
     pub displacement: &'a [f64],
     pub lambda_n: &'a [f64],
     pub lambda_t: &'a [f64],
@@ -326,6 +331,7 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
     let (ku, ks, ke) = (2f64.powi(pu), 2f64.powi(ps), 2f64.powi(ps - pu));
     let times = |v: &[f64], k: f64| v.iter().map(|x| x * k).collect::<Vec<f64>>();
     let stress: Vec<[f64; 3]> = input.stress.iter().map(|s| s.map(|x| x * ks)).collect();
+    let hoop = times(input.hoop, ks);
     let (u, u_n, slip) = (times(input.displacement, ku), times(input.u_n, ku), times(input.slip, ku));
     let previous_u: Vec<[f64; 2]> = input.previous_u.iter().map(|p| p.map(|x| x * ku)).collect();
     let (lambda_n, lambda_t, threshold) =
@@ -346,6 +352,8 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
         body_force: input.body_force.map(|x| x * ks),
         tractions: input.tractions.iter().map(|(e, t)| (*e, t.map(|x| x * ks))).collect(),
         stress: &stress,
+        model: input.model,
+        hoop: &hoop,
         displacement: &u,
         lambda_n: &lambda_n,
         lambda_t: &lambda_t,
@@ -380,17 +388,19 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
         m.young / (1.0 - m.poisson.powi(2))
     };
     let mut parts = vec![Parts::default(); mesh.n_triangles()];
-
-    // Body load.
-    let f2 = input.body_force[0].powi(2) + input.body_force[1].powi(2);
-    if f2 > 0.0 {
+    // The measure of a point: 1, or 2π r in axisymmetry (integrals over the solid or a surface of revolution).
+    let radial = input.model.is_axisymmetric();
+    let measure = |r: f64| if radial { radial_weight(r) } else { 1.0 };
+    // Body load, and in axisymmetry the part of div σ_h that a constant stress leaves.
+    let f = input.body_force;
+    if f[0] != 0.0 || f[1] != 0.0 || radial {
         for (t, p) in parts.iter_mut().enumerate() {
-            p.bulk += mesh.diameter(t).powi(2) * mesh.area(t) * f2;
+            let (r, w) = if radial { residual(mesh, t, &input.stress[t], input.hoop[t], f) } else { (f, mesh.area(t)) };
+            p.bulk += mesh.diameter(t).powi(2) * w * (r[0] * r[0] + r[1] * r[1]);
         }
     }
 
-    // The triangles around each node (grouped by node), to find the neighbour across each edge without a
-    // map of all the edges.
+    // The triangles around each node, to find the neighbour across each edge without a map of the edges.
     let tris = mesh.triangles();
     let (start, around) =
         crate::mesh::grouped(mesh.n_nodes(), tris.iter().enumerate().flat_map(|(t, tri)| tri.map(|v| (v, t))));
@@ -421,15 +431,16 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
         for k in 0..3 {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
             let (pa, pb) = (pts[a], pts[b]);
-            let len = mesh.edge_length(a, b);
-            // CCW: the outward normal of the edge a → b is (dy, −dx) / |E|.
-            let n = [(pb[1] - pa[1]) / len, -(pb[0] - pa[0]) / len];
+            // h_E = |E|, and |E| in the measure at its midpoint (exact for constant stresses); CCW: the outward
+            // normal of the edge a → b is (dy, −dx) / |E|.
+            let (len_m, len) = (mesh.edge_length(a, b), mesh.edge_length(a, b) * measure(0.5 * (pa[0] + pb[0])));
+            let n = [(pb[1] - pa[1]) / len_m, -(pb[0] - pa[0]) / len_m];
             let other = around[start[a]..start[a + 1]].iter().copied().find(|&t2| t2 != t && tris[t2].contains(&b));
             match other {
                 // Interior edge, seen from both sides: half of h_E |E| |[σ n]|² to this side.
                 Some(t2) => {
                     let (s1, s2) = (traction(&input.stress[t], n), traction(&input.stress[t2], n));
-                    parts[t].bulk += 0.5 * len * len * ((s1[0] - s2[0]).powi(2) + (s1[1] - s2[1]).powi(2));
+                    parts[t].bulk += 0.5 * len_m * len * ((s1[0] - s2[0]).powi(2) + (s1[1] - s2[1]).powi(2));
                 }
                 None => {
                     let key = [a.min(b), a.max(b)];
@@ -450,7 +461,7 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
                         let g = neumann.get(&key).copied().unwrap_or([0.0, 0.0]);
                         (s[0] - g[0]).powi(2) + (s[1] - g[1]).powi(2)
                     };
-                    parts[t].bulk += len * len * r2;
+                    parts[t].bulk += len_m * len * r2;
                 }
             }
         }
@@ -497,6 +508,7 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
             let w = (xi - x0) / (x1 - x0);
             (1.0 - w) * ends[0] + w * ends[1]
         };
+        let ends_r = [contact.node_points[piece.edge][0], contact.node_points[piece.edge + 1][0]];
         let (mut gc, mut comp, mut cone, mut diss, mut lam, mut ncp) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
         // c = E* / h_E turns a displacement into a traction at the scale of the edge.
         let e_star = e_star(e.triangle);
@@ -504,7 +516,7 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
         let half = 0.5 * (piece.b - piece.a);
         for (x, w) in GAUSS3 {
             let xi = piece.a + half * (x + 1.0);
-            let wq = w * half;
+            let wq = w * half * measure(along(ends_r, xi));
             let (ln, lt, b) = (
                 value(input.lambda_n, piece.cell, xi),
                 value(input.lambda_t, piece.cell, xi),
@@ -542,7 +554,8 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
                 let xi = w[0] + half * (x + 1.0);
                 let s = (xi - x0) / (x1 - x0);
                 let un = (1.0 - s) * u_n[0] + s * u_n[1];
-                pen += half * wg * (un - (input.gap)(xi)).max(0.0).powi(2);
+                let r = (1.0 - s) * contact.node_points[k][0] + s * contact.node_points[k + 1][0];
+                pen += half * wg * measure(r) * (un - (input.gap)(xi)).max(0.0).powi(2);
             }
         }
         // As squares of products: E*² alone overflows for E* beyond 1e154, and ∞ · 0 where nothing
@@ -565,7 +578,7 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
 
     let eta: Vec<f64> = parts.iter().map(|p| p.sum().sqrt()).collect();
     let total = |f: fn(&Parts) -> f64| parts.iter().map(f).sum::<f64>().sqrt();
-    let energy = crate::fem::elasticity::energy_norm(mesh, input.materials, input.displacement);
+    let energy = crate::fem::elasticity::energy_norm(input.model, mesh, input.materials, input.displacement);
     let eta_total = total(Parts::sum);
     // η² / E* is an energy: each triangle's part over its own E* (one E* for a body of one material).
     let eta_energy = parts.iter().enumerate().map(|(t, p)| p.sum() / e_star(t)).sum::<f64>().sqrt();

@@ -2,7 +2,7 @@
 //! multipliers and Γ_C traces), the contact state per multiplier dof, the resultants, the discrete KKT
 //! residuals and the [`Report`].
 
-use crate::fem::elasticity::{element_stresses, internal_forces, MaterialField};
+use crate::fem::elasticity::{element_stresses, internal_forces, von_mises};
 use crate::problem::load_case::LoadCase;
 use crate::problem::Condensed;
 use crate::results::estimator::{estimate, EstimatorInput};
@@ -16,15 +16,16 @@ pub struct Solution {
     pub displacement: Vec<f64>,
     /// Constant stress (σ_xx, σ_yy, σ_xy) per triangle.
     pub stress: Vec<[f64; 3]>,
-    /// The out-of-plane stress per triangle: ν (σ_xx + σ_yy) in plane strain, 0 in plane stress (with
-    /// [`Solution::stress`], the full symmetric stress tensor; σ_xz = σ_yz = 0).
+    /// The out-of-plane stress per triangle: ν (σ_xx + σ_yy) in plane strain, 0 in plane stress, the hoop
+    /// stress σ_θθ in axisymmetry (with [`Solution::stress`], the full symmetric stress tensor; σ_xz = σ_yz = 0).
+    /// In axisymmetry x is r and y is z: `stress` is (σ_rr, σ_zz, σ_rz).
     pub stress_zz: Vec<f64>,
     /// Von Mises stress per triangle (with that σ_zz).
     pub von_mises: Vec<f64>,
     /// The recovered stress (σ_xx, σ_yy, σ_xy) per node: the area-weighted mean of the cell stresses
     /// around it ([`crate::fem::elasticity::recovered_stress`]), for plots and files.
     pub nodal_stress: Vec<[f64; 3]>,
-    /// The von Mises stress of [`Solution::nodal_stress`] per node.
+    /// The von Mises stress per node, of [`Solution::nodal_stress`] with the recovered σ_zz.
     pub nodal_von_mises: Vec<f64>,
     /// Reaction forces on clamped dofs (2N, zero elsewhere): `K u − f` (f the load of the load case).
     pub reactions: Vec<f64>,
@@ -101,27 +102,21 @@ impl Solution {
         let (problem, condensed) = (condensed.problem(), condensed.factor());
         let q = condensed.q();
         let mesh = &problem.mesh;
-        // The stresses and the estimates read the in-plane law; σ_zz and von Mises the model.
-        let (model, user) = (problem.spec.model, &problem.materials);
+        // The stresses and the estimates read the in-plane law, σ_zz (the hoop stress in axisymmetry) the model.
+        let model = problem.spec.model;
         let materials = &problem.in_plane;
         let displacement = problem.dofs.expand_with(u_free, loading.lifting(problem));
-        let stress = element_stresses(mesh, materials, &displacement);
-        let von_mises = stress.iter().enumerate().map(|(t, s)| model.von_mises(user.at(t), *s)).collect();
-        let stress_zz = stress.iter().enumerate().map(|(t, s)| model.sigma_zz(user.at(t), *s)).collect();
-        let nodal_stress = crate::fem::elasticity::recovered_stress(mesh, &stress);
-        // The recovered stress is averaged over each node's triangles, all of one body (bodies share no
-        // node), so the node's material is that of any of them (at an interface of two materials of one
-        // body, the last triangle's: the averaged stress smears the interface anyway).
-        let mut node_material = vec![0usize; mesh.n_nodes()];
-        for (t, tri) in mesh.triangles().iter().enumerate() {
-            for &v in tri {
-                node_material[v] = t;
-            }
-        }
-        let nodal_von_mises =
-            nodal_stress.iter().zip(&node_material).map(|(s, &t)| model.von_mises(user.at(t), *s)).collect();
+        let stress4 = element_stresses(model, mesh, materials, &displacement);
+        let stress: Vec<[f64; 3]> = stress4.iter().map(|s| [s[0], s[1], s[2]]).collect();
+        let von_mises: Vec<f64> = stress4.iter().map(|s| von_mises(*s)).collect();
+        let stress_zz: Vec<f64> = stress4.iter().map(|s| s[3]).collect();
+        let hoop: &[f64] = if model.is_axisymmetric() { &stress_zz } else { &[] };
+        // The recovered stress is averaged over each node's triangles, σ_zz with the others.
+        let nodal_stress4 = crate::fem::elasticity::recovered_stress(mesh, &stress4);
+        let nodal_stress = nodal_stress4.iter().map(|s| [s[0], s[1], s[2]]).collect();
+        let nodal_von_mises: Vec<f64> = nodal_stress4.iter().map(|s| crate::fem::elasticity::von_mises(*s)).collect();
         // Reactions K u − f on all dofs (zero up to round-off on free dofs), K u from the stresses.
-        let mut reactions = internal_forces(mesh, &stress);
+        let mut reactions = internal_forces(model, mesh, &stress4);
         for (r, f) in reactions.iter_mut().zip(&loading.f_full) {
             *r -= f;
         }
@@ -184,6 +179,8 @@ impl Solution {
                 .filter_map(|(set, g)| Some((mesh.edge_set(set).ok()?, scaled(*g))))
                 .collect(),
             stress: &stress,
+            model,
+            hoop,
             displacement: &displacement,
             lambda_n: &lambda_n,
             lambda_t: &lambda_t,

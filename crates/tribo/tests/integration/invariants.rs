@@ -59,7 +59,7 @@ proptest! {
         let space = if p0 { MultiplierSpace::P0 } else { MultiplierSpace::P1 };
         let mult = MultiplierMesh::new(&contact, &MultiplierPoints::Abscissae(xi), space).expect("valid T_H");
         let h_t: Vec<f64> = contact.edges.iter().map(|e| mesh.diameter(e.triangle)).collect();
-        let m = MortarMatrices::new(&contact, &mult, &h_t, &Obstacle::default()).expect("integrates");
+        let m = MortarMatrices::new(&contact, &mult, &h_t, &Obstacle::default(), Model::PlaneStrain).expect("integrates");
         let tol = 16.0 * f64::EPSILON * contact.length();
         let expected: Vec<f64> = (0..contact.nodes.len())
             .map(|i| {

@@ -28,6 +28,7 @@
 //! Scenes and measures shared with the benches and examples come from the `tribo-testkit` crate.
 
 mod adaptive;
+mod axisymmetric;
 mod coulomb_newton;
 mod curved;
 mod error_bars;

@@ -290,7 +290,8 @@ fn the_contact_stresses_and_the_estimate_read_each_triangles_material() {
     let weighted: f64 = (0..problem.mesh.n_triangles())
         .map(|t| sol.estimator[t].powi(2) / star(&problem.in_plane.materials[problem.in_plane.region[t]]))
         .sum();
-    let energy = tribo::elasticity::energy_norm(&problem.mesh, &problem.in_plane, &sol.displacement);
+    let energy =
+        tribo::elasticity::energy_norm(problem.spec.model, &problem.mesh, &problem.in_plane, &sol.displacement);
     let expected = weighted.sqrt() / energy;
     let got = sol.report.estimate.energy_relative;
     assert!((got - expected).abs() <= 1e-12 * expected, "energy_relative {got} against {expected}");

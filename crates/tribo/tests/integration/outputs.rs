@@ -221,7 +221,7 @@ fn the_choice_registry_lists_every_option() {
     assert_eq!(registry["bisection"], ["all_edges", "refinement_edge"]);
     assert_eq!(registry["marking"], Marking::names());
     assert_eq!(registry["stop_on"], ["bound", "hierarchical", "enriched"]);
-    assert_eq!(registry["model"], ["plane_strain", "plane_stress"]);
+    assert_eq!(registry["model"], ["plane_strain", "plane_stress", "axisymmetric"]);
     assert_eq!(registry["coulomb"], ["fixed_point", "newton", "auto"]);
     for name in &registry["condensation"] {
         assert_eq!(Condensation::parse(name).map(Condensation::as_str), Ok(*name));

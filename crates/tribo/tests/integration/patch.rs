@@ -209,24 +209,38 @@ fn constant_strain_without_contact_is_reproduced() {
 
 /// The internal forces computed element by element from the stresses (how a solution gets its reactions)
 /// equal `K u` with K assembled, for a displacement with no structure: two paths to one answer, to
-/// round-off relative to `|K| |u|`.
+/// round-off relative to `|K| |u|`, in plane strain and in axisymmetry (the hoop row in both).
 #[test]
 fn internal_forces_equal_the_assembled_stiffness_applied() {
     let mesh = tribo_testkit::distorted_square(6);
     let material = Material { young: E, poisson: NU };
     let n = 2 * mesh.n_nodes();
     let u: Vec<f64> = (0..n).map(|i| ((i * 7919) % 101) as f64 / 101.0 - 0.5).collect();
-    let stresses = elasticity::element_stresses(&mesh, &material, &u);
-    let forces = elasticity::internal_forces(&mesh, &stresses);
-    let mut ku = vec![0.0; n];
-    let mut scale = vec![0.0_f64; n];
-    for t in elasticity::stiffness_triplets(&mesh, &material) {
-        ku[t.row] += t.val * u[t.col];
-        scale[t.row] += (t.val * u[t.col]).abs();
-    }
-    for i in 0..n {
-        let err = (forces[i] - ku[i]).abs();
-        assert!(err <= 64.0 * f64::EPSILON * scale[i], "dof {i}: {} against {} (scale {})", forces[i], ku[i], scale[i]);
+    for model in [Model::PlaneStrain, Model::Axisymmetric] {
+        let stresses = elasticity::element_stresses(model, &mesh, &material, &u);
+        let forces = elasticity::internal_forces(model, &mesh, &stresses);
+        let mut ku = vec![0.0; n];
+        let mut scale = vec![0.0_f64; n];
+        for (t, tri) in mesh.triangles().iter().enumerate() {
+            let k = elasticity::element_stiffness_of(model, &mesh, t, &material);
+            let dofs = elasticity::element_dofs(tri);
+            for (a, &da) in dofs.iter().enumerate() {
+                for (b, &db) in dofs.iter().enumerate() {
+                    ku[da] += k[(a, b)] * u[db];
+                    scale[da] += (k[(a, b)] * u[db]).abs();
+                }
+            }
+        }
+        for i in 0..n {
+            let err = (forces[i] - ku[i]).abs();
+            assert!(
+                err <= 64.0 * f64::EPSILON * scale[i],
+                "{model:?} dof {i}: {} against {} (scale {})",
+                forces[i],
+                ku[i],
+                scale[i]
+            );
+        }
     }
 }
 
@@ -274,7 +288,8 @@ fn the_recovered_stress_is_exact_for_linear_stress_fields_on_uniform_meshes() {
         let (exx, eyy, gxy) = (2.0 * p[0], p[0], p[1]);
         [(lam + 2.0 * g) * exx + lam * eyy, lam * exx + (lam + 2.0 * g) * eyy, g * gxy]
     };
-    let cells = element_stresses(&mesh, &material, &u);
+    let cells: Vec<[f64; 3]> =
+        element_stresses(Model::PlaneStrain, &mesh, &material, &u).iter().map(|s| [s[0], s[1], s[2]]).collect();
     let nodal = recovered_stress(&mesh, &cells);
     let interior = |p: [f64; 2]| p.iter().all(|&c| c > 1e-9 && c < 1.0 - 1e-9);
     let scale = exact([1.0, 1.0]).iter().fold(0.0_f64, |m, v| m.max(v.abs()));
