@@ -118,7 +118,7 @@ def check_solution(problem: Problem, solution: Solution) -> list[str]:
     reasons += _held_contact(problem) + _cut_zone(problem, solution) + _non_unique_multipliers(problem, solution)
     reasons += _faceted_without_curve(problem)
     nu = max([problem.poisson, *(m[1] for m in getattr(problem, "materials", ()))])  # a body of several materials
-    if nu >= MAX_POISSON and problem.model == "plane_strain":
+    if nu >= MAX_POISSON and problem.model != "plane_stress":
         reasons.append(
             f"ν = {nu:.6g} is close to ½: P1 triangles lock "
             f"(λ/μ = {_g(2 * nu / (1 - 2 * nu))}), so the body is too stiff and the contact pressure and force are too large, by more than any "
@@ -383,6 +383,12 @@ def conventions(problem: Problem, solution: Solution) -> dict[str, str]:
             "slip": "the jump [u]_t = (u¹ − u²∘Π)·t of the two sides, along t (in a history: since the previous step)",
             "current_gap": "g₀ − [u]_n: the gap between the two sides, 0 in contact",
         })
+    if problem.model == "axisymmetric":
+        out["model"] = (
+            "axisymmetric: the solid of revolution of the mesh about the y axis (x = r ≥ 0, the axis held at "
+            "u_r = 0); tractions are per unit area of the surface, forces (normal, tangential, contact, reactions) "
+            "on the whole turn, σ_zz of the files is the hoop stress σ_θθ"
+        )
     if solution.friction == "tresca":
         out["states"] += (
             "; Tresca's threshold is given, not μ λ_n, so λ_t may sit at ±threshold where there is no "

@@ -12,7 +12,8 @@ Writing: ``write_vtu("out/result.vtu", problem, solution)`` writes three files, 
   ``stress_recovered`` (σ_xx, σ_yy, σ_xy per node: the area-weighted mean of the cell stresses around it,
   ``Solution.nodal_stress``) and ``von_mises_recovered``, and cell
   data ``stress``, the full symmetric 3 × 3 stress tensor (9 components, which ParaView reads as a tensor:
-  σ_xz = σ_yz = 0 and σ_zz = ν (σ_xx + σ_yy) in plane strain, 0 in plane stress), its components ``sigma_xx``,
+  σ_xz = σ_yz = 0 and σ_zz = ν (σ_xx + σ_yy) in plane strain, 0 in plane stress, the hoop stress σ_θθ in
+  axisymmetry, where x is r and y the axis, and ``sigma_hoop`` repeats it), its components ``sigma_xx``,
   ``sigma_yy``, ``sigma_xy``, ``sigma_zz``, ``von_mises``, ``error_indicator`` (the a posteriori η_K),
   ``traction_indicator`` (ζ_K, each triangle's part of the estimated error of the contact tractions) and
   ``body`` (0, or for two bodies the body's index in ``problem.bodies``) and ``material`` (each triangle's
@@ -407,6 +408,8 @@ def write_vtu(path: str | Path, problem: Problem, solution: Solution, *, per_bod
             # The material of each triangle: an index into problem.materials (a coating's, a layer's; per body
             # for two).
             "material": [np.asarray(problem.regions)],
+            # In axisymmetry the out-of-plane stress is the hoop stress: said by its name too.
+            **({"sigma_hoop": [solution.stress_zz]} if problem.model == "axisymmetric" else {}),
         },
     )
     n = len(solution.node_abscissae)
@@ -482,7 +485,7 @@ def _write_vtm(path: Path, names: Sequence[str], files: Sequence[Path]) -> Path:
 
 def stress_tensor(solution: Solution) -> npt.NDArray[np.float64]:
     """The full symmetric stress tensor per triangle, (T, 3, 3): the in-plane components, σ_zz (from the core:
-    ν (σ_xx + σ_yy) in plane strain, 0 in plane stress) and σ_xz = σ_yz = 0."""
+    ν (σ_xx + σ_yy) in plane strain, 0 in plane stress, the hoop stress in axisymmetry) and σ_xz = σ_yz = 0."""
     s = solution.stress
     t = np.zeros((len(s), 3, 3))
     t[:, 0, 0], t[:, 1, 1], t[:, 2, 2] = s[:, 0], s[:, 1], solution.stress_zz

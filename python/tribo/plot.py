@@ -126,7 +126,9 @@ def hertz_pressure(problem: Problem, solution: Solution) -> tuple[np.ndarray, np
     """The 2D Hertz pressure of the computed normal force for a circle or parabola (rigid, on an elastic
     half-plane: a² = 4PR/(πE*), E* = E/(1 − ν²) in plane strain and E in plane stress, p = (2P/(πa))
     √(1 − (ξ − c)²/a²)), as (ξ, p) over the contact width; between two bodies, for the combined modulus
-    1/E* = Σ 1/E*_i of their materials. None for other gaps, without contact, or for a body of several materials."""
+    1/E* = Σ 1/E*_i of their materials. In axisymmetry the 3D Hertz pressure of a sphere on a half-space
+    (a³ = 3PR/(4E*), p = 3P/(2πa²) √(1 − r²/a²), P the force on the whole turn). None for other gaps, without
+    contact, or for a body of several materials."""
     o = problem.obstacle
     p_total = solution.normal_force
     if o.radius is None or o.center is None or not p_total > 0.0:
@@ -135,8 +137,13 @@ def hertz_pressure(problem: Problem, solution: Solution) -> tuple[np.ndarray, np
     if any(len(body[2]) > 1 for body in per_body):
         return None  # a coated body: Hertz's half-plane is no reference (study 21 has one)
     # Each body's one material (the two bodies' (name, mesh, materials, …) as given to Problem.two_bodies).
-    strain = problem.model == "plane_strain"
+    strain = problem.model != "plane_stress"
     e_star = 1.0 / sum((1.0 - (nu**2 if strain else 0.0)) / e for body in per_body for e, nu in body[2])
+    if problem.model == "axisymmetric":
+        a = (3.0 * p_total * o.radius / (4.0 * e_star)) ** (1.0 / 3.0)
+        xi = o.center + a * np.linspace(-1.0, 1.0, 201)
+        shape = np.sqrt(np.clip(1.0 - ((xi - o.center) / a) ** 2, 0.0, None))
+        return xi, 3.0 * p_total / (2.0 * math.pi * a * a) * shape
     a = math.sqrt(4.0 * p_total * o.radius / (math.pi * e_star))
     xi = o.center + a * np.linspace(-1.0, 1.0, 201)
     return xi, 2.0 * p_total / (math.pi * a) * np.sqrt(np.clip(1.0 - ((xi - o.center) / a) ** 2, 0.0, None))
@@ -153,6 +160,7 @@ def contact_pressure(
     reference = hertz_pressure(problem, solution) if hertz else None
     if reference is not None:
         model = "half-plane" if problem.primary is None else "two half-planes"
+        model = "half-space, a sphere" if problem.model == "axisymmetric" else model
         ax.plot(*reference, color="k", lw=1.0, ls=":", label=f"Hertz, same force ({model})")
     x, y = _edge_steps(solution, -solution.sigma_n)
     ax.plot(x, y, color="0.35", lw=1.0, label=r"$-\sigma_n(u_h)$ (per FE edge)")

@@ -232,8 +232,9 @@ class Problem(_tribo.Problem):
     multiplier_points=None, space=None, model=None, materials=None, regions=None)``: the body (a Mesh, Young's
     modulus and Poisson's ratio, or for a body of several materials, a coating on a substrate say, ``materials``
     [(E, ν), …] and ``regions``, the index of each triangle's material, from ``tribo.io.read_triangle_groups``
-    or the triangles' centroids; model 'plane_strain', the default, or 'plane_stress': a thin plate, forces per unit
-    thickness), its
+    or the triangles' centroids; model 'plane_strain', the default, 'plane_stress': a thin plate, forces per unit
+    thickness, or 'axisymmetric': the solid of revolution of the mesh about the y axis, x = r ≥ 0, the axis held at
+    u_r = 0, tractions per unit area and forces on the whole turn), its
     supports (edge sets clamped, or a list of Support), its loads (tractions: a dict edge set -> (tx, ty);
     body_force (fx, fy)), Γ_C (the edge set `contact`) and the obstacle with its motion (an
     Obstacle or a callable gap(xi), the approach δ and the tangential shift s), and the multiplier mesh T_H
@@ -252,7 +253,7 @@ class Problem(_tribo.Problem):
 
     @property
     def model(self) -> str:
-        """``'plane_strain'`` or ``'plane_stress'``."""
+        """``'plane_strain'``, ``'plane_stress'`` or ``'axisymmetric'``."""
         return str(self._arguments.get("model") or _tribo.solver_defaults()["model"]).lower()
 
     @classmethod

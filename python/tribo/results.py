@@ -164,7 +164,8 @@ class Solution(_Record):
         mu: Coulomb coefficient μ, or None.
         displacement: nodal displacements, (N, 2).
         stress: constant stress (σ_xx, σ_yy, σ_xy) per triangle, (T, 3).
-        stress_zz: out-of-plane stress per triangle, (T,): ν (σ_xx + σ_yy) in plane strain, 0 in plane stress.
+        stress_zz: out-of-plane stress per triangle, (T,): ν (σ_xx + σ_yy) in plane strain, 0 in plane stress, the
+            hoop stress σ_θθ in axisymmetry (where x is r, y the axis and ``stress`` is (σ_rr, σ_zz, σ_rz)).
         von_mises: von Mises stress per triangle (with that σ_zz), (T,).
         reactions: reaction forces K u − f per node, (N, 2) (zero off the supported nodes).
         multiplier_abscissae: abscissae of the multiplier dofs, (q,).

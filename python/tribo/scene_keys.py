@@ -56,7 +56,9 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
                          "`group` (a physical surface of the mesh file) or `box = [x0, y0, x1, y1]` (the triangles "
                          "whose centroid lies in it); a later one holds where two overlap", "—",
                          "none: all of `[material]`"),
-    "material.model": ('`"plane_strain"` (a long body) or `"plane_stress"` (a thin plate, forces per unit '
+    "material.model": ('`"plane_strain"` (a long body), `"axisymmetric"` (the solid of revolution of the mesh about '
+                       'the y axis: x = r ≥ 0, the axis held at u_r = 0, tractions per unit area, forces on the whole '
+                       'turn) or `"plane_stress"` (a thin plate, forces per unit '
                        "thickness, ν in (−1/2, 1/2))", "—", None),
     "supports.clamped": ("The edge sets held fixed (u = 0); or `[[supports]]` entries with `kind` (`clamp`, "
                          "`roller`, `displacement` with `x`/`y`) and `edge_set`", "—", "— (*required*, one form)"),

@@ -9,7 +9,8 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     (a path relative to the scene file), whose named line sets are the edge sets. One of the two is
     required. A rectangle has the edge sets ``bottom``, ``right``, ``top``, ``left``.
 ``[material]``
-    ``young``, ``poisson`` (*required*); ``model``: ``"plane_strain"`` (default) or ``"plane_stress"``;
+    ``young``, ``poisson`` (*required*); ``model``: ``"plane_strain"`` (default), ``"plane_stress"`` or
+    ``"axisymmetric"``;
     ``[[material.regions]]``: parts of the body of other materials, each with ``young``, ``poisson`` and
     ``group`` (a physical surface of the mesh file) or ``box = [x0, y0, x1, y1]`` (the triangles whose
     centroid lies in it; put the interface on a grid line), a later one holding where two overlap.
