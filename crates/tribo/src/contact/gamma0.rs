@@ -117,9 +117,14 @@ pub fn admissible_gamma0(
             let m = materials.at(e.triangle);
             let mut shape = mesh.area(e.triangle) / (mesh.diameter(e.triangle) * e.length * lam(m.poisson));
             if radial {
+                // An edge on the axis (refused as Γ_C by the problem) has no measure and no bound.
                 let pts = mesh.points();
                 let r_edge = 0.5 * (pts[e.left][0] + pts[e.right][0]);
-                shape *= axisymmetric::centroid_radius(mesh, e.triangle) / r_edge;
+                shape = if r_edge > 0.0 {
+                    shape * axisymmetric::centroid_radius(mesh, e.triangle) / r_edge
+                } else {
+                    f64::INFINITY
+                };
             }
             (shape / m.young, e.triangle)
         })

@@ -25,14 +25,16 @@
 //! loaded by `+λ` through the same moments with the opposite sign.
 //!
 //! The primary term is integrated exactly like the secondary one (2-point Gauss on the common refinement
-//! of T_H and the primary nodes, whose integrand is of degree 2), so a constant traction passes the patch
-//! test on non-matching meshes. The primary line must cover the secondary one: multipliers live on Γ_C and
+//! of T_H and the primary nodes, whose integrand is of degree 2, 3 with the axisymmetric measure 2π r), so a
+//! constant traction passes the patch test on non-matching meshes. The primary line must cover the secondary one: multipliers live on Γ_C and
 //! every point of it must face the other body.
 
 use crate::contact::mortar::{common_refinement, Coo, GAUSS2};
 use crate::contact::multiplier::MultiplierMesh;
 use crate::contact::ContactBoundary;
 use crate::error::{Error, Result};
+use crate::fem::axisymmetric::radial_weight;
+use crate::fem::elasticity::Model;
 use crate::mesh::line::geometric_tol_rel;
 use crate::mesh::Mesh;
 
@@ -54,7 +56,13 @@ impl PrimarySide {
     /// [`Error::UnknownEdgeSet`] and the errors of [`ContactBoundary::new`]; [`Error::ContactNotStraight`] when
     /// either side is not straight; [`Error::ContactPair`] when
     /// the two lines are not one line with opposite normals, or the primary does not cover the secondary.
-    pub fn new(mesh: &Mesh, secondary: &ContactBoundary, set: &str, mult: &MultiplierMesh) -> Result<Self> {
+    pub fn new(
+        mesh: &Mesh,
+        secondary: &ContactBoundary,
+        set: &str,
+        mult: &MultiplierMesh,
+        model: Model,
+    ) -> Result<Self> {
         let boundary = ContactBoundary::new(mesh, set)?;
         for side in [secondary, &boundary] {
             if let Some((node, distance, length)) = side.bend {
@@ -97,7 +105,9 @@ impl PrimarySide {
                  secondary line): every point of Γ_C must face the other body"
             )));
         }
-        let m2 = primary_mortar(&xi, start, end, mult);
+        // The measure at abscissa x: 1, or 2π r on the (straight) secondary line.
+        let measure = |x: f64| if model.is_axisymmetric() { radial_weight(secondary.point_at(x)[0]) } else { 1.0 };
+        let m2 = primary_mortar(&xi, start, end, mult, &measure);
         Ok(Self { boundary, xi, m2 })
     }
 
@@ -116,8 +126,9 @@ impl PrimarySide {
     }
 }
 
-/// `∫_{[start, end]} φ²_i ψ_j` on the common refinement of T_H and the primary nodes inside Γ_C.
-fn primary_mortar(xi: &[f64], start: f64, end: f64, mult: &MultiplierMesh) -> Coo {
+/// `∫_{[start, end]} φ²_i ψ_j` (with the measure `measure(ξ)`) on the common refinement of T_H and the primary
+/// nodes inside Γ_C.
+fn primary_mortar(xi: &[f64], start: f64, end: f64, mult: &MultiplierMesh, measure: &dyn Fn(f64) -> f64) -> Coo {
     let mut fe: Vec<f64> = vec![start];
     fe.extend(xi.iter().copied().filter(|&x| x > start && x < end));
     fe.push(end);
@@ -133,7 +144,7 @@ fn primary_mortar(xi: &[f64], start: f64, end: f64, mult: &MultiplierMesh) -> Co
             let (psi, npsi) = mult.basis(pc.cell, x);
             for (i, fi) in [(k, 1.0 - s), (k + 1, s)] {
                 for &(j, pj) in &psi[..npsi] {
-                    m2.entries.push((i, j, w * half * fi * pj));
+                    m2.entries.push((i, j, w * half * measure(x) * fi * pj));
                 }
             }
         }

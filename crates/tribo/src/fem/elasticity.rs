@@ -92,11 +92,12 @@ impl Model {
 
     /// The out-of-plane stress of the in-plane stress `s` of `material` in a plane model: `ν (σ_xx + σ_yy)`
     /// in plane strain, 0 in plane stress. In axisymmetry it is the hoop stress, which the in-plane stress
-    /// does not give: [`element_stresses`] computes it.
+    /// does not give (NaN here): [`element_stresses`] computes it.
     pub fn sigma_zz(self, material: &Material, s: [f64; 3]) -> f64 {
         match self {
-            Model::PlaneStrain | Model::Axisymmetric => material.sigma_zz(s),
+            Model::PlaneStrain => material.sigma_zz(s),
             Model::PlaneStress => 0.0,
+            Model::Axisymmetric => f64::NAN,
         }
     }
 

@@ -211,12 +211,6 @@ impl Problem {
                 on_contact[b] = true;
             }
         }
-        if spec.model.is_axisymmetric() && primary.is_some() {
-            return Err(Error::BadAxisymmetry {
-                what: "two bodies in contact are not axisymmetric yet: one body against a rigid obstacle is"
-                    .to_string(),
-            });
-        }
         let dofs = Dofs::held_by_contact(&mesh, &spec.all_supports(None), &|i| on_contact[i], spec.model)?;
         let n_free = dofs.n_free;
         let mut bodies = bodies;
@@ -269,15 +263,28 @@ impl Problem {
         if contact.nodes.iter().all(|&node| matches!(dofs.nodes[node], NodeSupport::Fixed { .. })) {
             return Err(Error::ContactFullyClamped { set: spec.contact.clone() });
         }
+        if spec.model.is_axisymmetric() {
+            // A contact edge on the axis is a line of the solid, not a surface: it has no area to press.
+            let on_axis = |i: usize| dofs.axis.binary_search(&i).is_ok();
+            if let Some(e) = contact.edges.iter().find(|e| on_axis(e.left) && on_axis(e.right)) {
+                return Err(Error::BadAxisymmetry {
+                    what: format!(
+                        "the contact edge ({}, {}) of '{}' lies on the axis (r = 0): a line of the solid, with no                          surface to touch",
+                        e.left, e.right, spec.contact
+                    ),
+                });
+            }
+        }
         let multipliers = MultiplierMesh::new(&contact, &spec.multiplier_points, spec.multiplier_space)?;
         let h_t: Vec<f64> = contact.edges.iter().map(|e| mesh.diameter(e.triangle)).collect();
         let mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &spec.obstacle, spec.model)?;
-        let primary = primary.map(|set| PrimarySide::new(&mesh, &contact, set, &multipliers)).transpose()?;
+        let primary =
+            primary.map(|set| PrimarySide::new(&mesh, &contact, set, &multipliers, spec.model)).transpose()?;
         // Γ_C's triangles with their own materials (one body's, the secondary's for two, a coating's).
         let contact_stress = ContactStress::new(&mesh, spec.model, &in_plane, &contact);
         let gamma0_bound = admissible_gamma0(&mesh, spec.model, &in_plane, &contact);
         let contact_matrices = clock.elapsed().as_secs_f64();
-        Ok(Self {
+        let problem = Self {
             mesh,
             spec,
             contact,
@@ -298,7 +305,33 @@ impl Problem {
             bodies,
             timings: SetupTimings { assembly, contact_matrices },
             factor_cache: FactorCache::default(),
-        })
+        };
+        if problem.spec.obstacle.shift != 0.0 {
+            problem.check_axisymmetric_shift()?;
+        }
+        Ok(problem)
+    }
+
+    /// In axisymmetry the obstacle, a solid of revolution, may shift along the axis only: a shift along a
+    /// tangent with a radial component (on an edge of Γ_C that is not parallel to the axis) would move it
+    /// radially, which no rigid body of revolution does.
+    ///
+    /// # Errors
+    /// [`Error::BadAxisymmetry`] naming the first such edge.
+    pub fn check_axisymmetric_shift(&self) -> Result<()> {
+        if !self.spec.model.is_axisymmetric() {
+            return Ok(());
+        }
+        let tol = crate::mesh::line::geometric_tol_rel();
+        match self.contact.edges.iter().find(|e| e.tangent[0].abs() > tol) {
+            None => Ok(()),
+            Some(e) => Err(Error::BadAxisymmetry {
+                what: format!(
+                    "the obstacle shifts along the tangent ({:.4}, {:.4}) of the contact edge ({}, {}), which has a                      radial component: a body of revolution can only slide along its axis (y); shift it on a                      contact side parallel to the axis, or not at all",
+                    e.tangent[0], e.tangent[1], e.left, e.right
+                ),
+            }),
+        }
     }
 
     /// `d = (∫ψ_j g, ∫ψ_j s)` (2q): the obstacle's gap and tangential shift tested with the multiplier

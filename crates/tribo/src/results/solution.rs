@@ -58,7 +58,8 @@ pub struct Solution {
     /// Gap g = g₀ − δ at the FE nodes of Γ_C (δ of the load case). `u_n` and `slip` at a node read the
     /// node's normal ([`crate::ContactBoundary::node_normal`]; Γ_C's own where it is straight).
     pub gap: Vec<f64>,
-    /// Total normal contact force `∫ λ_n`.
+    /// Total normal contact force `∫ λ_n` (in axisymmetry over the surface of revolution, `∫ λ_n 2π r ds`: the
+    /// axial force on a Γ_C across the axis, the total of the pressure on a bore).
     pub normal_force: f64,
     /// Total tangential contact force `∫ λ_t`. The friction traction the obstacle exerts on the body is
     /// `−λ_t t`, so a positive `tangential_force` pulls the body toward −t.
@@ -66,7 +67,8 @@ pub struct Solution {
     /// The total force the obstacle exerts on the body, `(F_x, F_y) = −(N n + T t)` in global axes (n, t
     /// the normal and tangent of [`crate::ContactBoundary`]), with
     /// `N` = [`Solution::normal_force`] and `T` = [`Solution::tangential_force`] (the traction on Γ_C is
-    /// `σ(u)·n = −λ_n n − λ_t t`). On a bent Γ_C, `−∫ (λ_n n_e + λ_t t_e)` edge by edge.
+    /// `σ(u)·n = −λ_n n − λ_t t`). On a bent Γ_C, `−∫ (λ_n n_e + λ_t t_e)` edge by edge. In axisymmetry the
+    /// resultant on the whole turn: its radial component is 0 (the radial tractions cancel over the turn).
     pub contact_force: [f64; 2],
     /// How the obstacle moved, in global axes: `−δ n + s t` (the approach δ toward the body, against
     /// the outward normal, and the shift s along t; where the frames vary along Γ_C, in the contact frame of
@@ -156,6 +158,8 @@ impl Solution {
             }
             force
         };
+        // A solid of revolution: the radial tractions cancel over the turn, the resultant is axial.
+        let contact_force = if model.is_axisymmetric() { [0.0, contact_force[1]] } else { contact_force };
         // In the contact frame of the first edge (Γ_C's own on a straight side against a gap function).
         let (n0, t0) = (contact.edges[0].normal, contact.edges[0].tangent);
         let obstacle_motion = [0, 1].map(|i| -loading.approach * n0[i] + loading.shift * t0[i]);

@@ -487,6 +487,9 @@ pub(crate) fn check_steps(problem: &Problem, steps: &[LoadStep]) -> Result<()> {
                 ),
             });
         }
+        if step.shift != 0.0 {
+            problem.check_axisymmetric_shift().map_err(|e| Error::BadLoadStep { step: k, what: e.to_string() })?;
+        }
         let values = step.displacements.as_slice();
         let moved = problem.spec.obstacle.approach - step.approach;
         let gap: Vec<f64> = problem.contact_gap.iter().map(|g| g + moved).collect();

@@ -239,3 +239,94 @@ fn a_flat_punch_is_boussinesq() {
     assert!(errors.windows(2).all(|w| w[1].0 < w[0].0) && errors[2].0 < 0.01, "pressure {errors:?}");
     assert!(errors[2].1.abs() < 0.01, "force {errors:?}");
 }
+
+/// Two cylinders of radius 20, the lower (E = 200) clamped at its base, the upper (`upper`) pushed down `delta` at
+/// its top, meshed on their own (non-matching) graded meshes toward (0, 0.15) of their faces, with the gap
+/// `gap` between them; the lower top is the secondary side.
+fn two_cylinders(h_min: f64, upper: Material, gap: ObstacleShape, delta: f64, lower_bottom: Support) -> Problem {
+    let body = |name: &str, y: [f64; 2], side, h_min: f64, material, supports| {
+        let grading = Grading { side, segment: [0.0, 0.15], h_min, h_max: 5.0, growth: 0.05 };
+        let mesh = graded_rectangle([0.0, 20.0], y, &grading).expect("mesh");
+        let materials = Materials::uniform(material, mesh.n_triangles());
+        Body { name: name.into(), mesh, materials, clamped: vec![], supports, tractions: vec![] }
+    };
+    let bodies = [
+        body("lower", [-20.0, 0.0], Side::Top, h_min, STEEL, vec![lower_bottom]),
+        // A finer mesh above: the two sides' nodes do not match.
+        body(
+            "upper",
+            [0.0, 20.0],
+            Side::Bottom,
+            0.7 * h_min,
+            upper,
+            vec![Support::displacement("top", None, Some(-delta))],
+        ),
+    ];
+    let pair = ContactPair {
+        secondary: "lower.top".into(),
+        primary: "upper.bottom".into(),
+        gap,
+        multiplier_points: MultiplierPoints::RatioToFe(1.0),
+        multiplier_space: MultiplierSpace::P1,
+        model: Model::Axisymmetric,
+    };
+    Problem::two_bodies(bodies, pair, [0.0, 0.0]).expect("valid")
+}
+
+/// Two bodies in axisymmetry: two flat cylinders of different materials stacked on a roller and pressed (the
+/// patch test of the pair, non-matching meshes: uniaxial stress δ / (H₁/E₁ + H₂/E₂) in both, to the QP's
+/// tolerance), and two elastic spheres idealized as flat faces with the gap r²/(2R) (R the curvatures' sum's
+/// inverse) against 3D Hertz with the combined modulus `1/E* = Σ (1 − ν²)/E`: 1.22 % and 0.64 % in L² on
+/// meshes graded to a/40 and a/80 (below, a/57 and a/114 above).
+#[test]
+fn two_bodies_in_axisymmetry() {
+    let alu = Material { young: 70.0, poisson: 0.33 };
+    let delta = 1e-3;
+    let flat = two_cylinders(0.01, alu, ObstacleShape::Flat, delta, Support::displacement("bottom", None, Some(0.0)));
+    let sol = flat.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+    assert_eq!(sol.report.status, SolveStatus::Converged);
+    let stress = delta / (20.0 / STEEL.young + 20.0 / alu.young);
+    for l in &sol.lambda_n {
+        assert!((l / stress - 1.0).abs() < 1e-6, "λ_n {l} against {stress}");
+    }
+    assert!((sol.normal_force / (PI * 400.0 * stress) - 1.0).abs() < 1e-6, "P {}", sol.normal_force);
+    for (s, hoop) in sol.stress.iter().zip(&sol.stress_zz) {
+        assert!((s[1] + stress).abs() < 1e-6 * stress && hoop.abs() < 1e-6 * stress, "{s:?} {hoop}");
+    }
+    let e_star = 1.0 / ((1.0 - STEEL.poisson.powi(2)) / STEEL.young + (1.0 - alu.poisson.powi(2)) / alu.young);
+    let mut errors = Vec::new();
+    for h_min in [0.0025, 0.00125] {
+        let hertz = two_cylinders(
+            h_min,
+            alu,
+            ObstacleShape::Parabola { center: 0.0, radius: 1.0 },
+            0.01,
+            Support::clamp("bottom"),
+        );
+        let sol = hertz.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+        assert_eq!(sol.report.status, SolveStatus::Converged);
+        errors.push(l2_error(&hertz, &sol, e_star));
+    }
+    assert!(errors[1] < errors[0] && errors[1] < 0.01, "L² against 3D Hertz {errors:?}");
+}
+
+/// What a solid of revolution cannot do is refused, naming what: an obstacle shifted radially (on a Γ_C across
+/// the axis, statically or in a history step; along the axis it is the hub's push-out), a contact side on the
+/// axis itself (a line of the solid). The contact force's radial component is 0: the radial tractions cancel
+/// over the turn.
+#[test]
+fn what_axisymmetry_refuses() {
+    let radial = sphere_on_flat(0.02, 0.01, 2.0, 0.3);
+    let err = Problem::new(radial.mesh.clone(), radial.spec.clone().shift(1e-3)).expect_err("a radial shift");
+    assert!(matches!(err, Error::BadAxisymmetry { .. }) && err.to_string().contains("radial"), "{err}");
+    let steps = [LoadStep::new(0.01, 0.0), LoadStep::new(0.01, 1e-3)];
+    let err = radial.solve_history(&Friction::Coulomb { mu: 0.3 }, &steps, &SolverSettings::default(), None);
+    assert!(matches!(err, Err(Error::BadLoadStep { step: 1, .. })), "{err:?}");
+    let sol = hub(8, 1e-3, 0.0).solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+    assert_eq!(sol.contact_force[0], 0.0);
+    assert!((sol.normal_force - sol.lambda_n[0] * 2.0 * PI * 0.5 * 0.5).abs() < 0.02 * sol.normal_force);
+    let mesh = rectangle([0.0, 1.0], [0.0, 1.0], 4, 4, Diagonal::Right).expect("mesh");
+    let spec = ProblemSpec::new(STEEL, "left").clamped(["right"]).model(Model::Axisymmetric);
+    let err = Problem::new(mesh, spec).expect_err("Γ_C on the axis");
+    assert!(matches!(err, Error::BadAxisymmetry { .. }) && err.to_string().contains("on the axis"), "{err}");
+}
