@@ -386,8 +386,10 @@ def conventions(problem: Problem, solution: Solution) -> dict[str, str]:
     if problem.model == "axisymmetric":
         out["model"] = (
             "axisymmetric: the solid of revolution of the mesh about the y axis (x = r ≥ 0, the axis held at "
-            "u_r = 0); tractions are per unit area of the surface, forces (normal, tangential, contact, reactions) "
-            "on the whole turn, σ_zz of the files is the hoop stress σ_θθ"
+            "u_r = 0); tractions are per unit area of the surface; normal_force and tangential_force are ∫ λ over "
+            "the surface of revolution (the whole turn); the contact force and the bodies' reactions are resultants "
+            "on the whole turn, whose radial components cancel (0); a node's reaction is the force on its ring; "
+            "σ_zz of the files is the hoop stress σ_θθ"
         )
     if solution.friction == "tresca":
         out["states"] += (

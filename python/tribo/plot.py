@@ -140,8 +140,13 @@ def hertz_pressure(problem: Problem, solution: Solution) -> tuple[np.ndarray, np
     strain = problem.model != "plane_stress"
     e_star = 1.0 / sum((1.0 - (nu**2 if strain else 0.0)) / e for body in per_body for e, nu in body[2])
     if problem.model == "axisymmetric":
+        # A sphere: the obstacle's centre on the axis, Γ_C across it (a circle off the axis is a torus).
+        n = one_contact_normal(problem)
+        xi0 = np.asarray(problem.node_abscissae)
+        if o.center != 0.0 or n is None or abs(n[0]) > 1e-9 or abs(xi0.min()) > 1e-9 * np.ptp(xi0):
+            return None
         a = (3.0 * p_total * o.radius / (4.0 * e_star)) ** (1.0 / 3.0)
-        xi = o.center + a * np.linspace(-1.0, 1.0, 201)
+        xi = a * np.linspace(0.0, 1.0, 201)
         shape = np.sqrt(np.clip(1.0 - ((xi - o.center) / a) ** 2, 0.0, None))
         return xi, 3.0 * p_total / (2.0 * math.pi * a * a) * shape
     a = math.sqrt(4.0 * p_total * o.radius / (math.pi * e_star))

@@ -270,13 +270,14 @@ class Problem(_tribo.Problem):
         multiplier_size: float | None = None,
         multiplier_points: npt.ArrayLike | None = None,
         space: Literal["P0", "P1", "p0", "p1"] | None = None,
-        model: Literal["plane_strain", "plane_stress"] | None = None,
+        model: Literal["plane_strain", "plane_stress", "axisymmetric"] | None = None,
     ) -> Problem:
         """Two elastic bodies in contact along one straight line: ``secondary`` ('body.edge_set') carries
         the multipliers T_H and the stabilization, ``primary`` meets it with the opposite normal; ``gap``
         is the initial gap between them as an obstacle shape (flat: touching; a parabola for two curved
         profiles). Each body has its own material (or materials: a coated body), supports and tractions (``Body``);
-        ``model`` is both bodies' ('plane_strain', the default, or 'plane_stress': two thin plates); a motion its supports
+        ``model`` is both bodies' ('plane_strain', the default, 'plane_stress': two thin plates, or 'axisymmetric': two
+        solids of revolution about the y axis); a motion its supports
         leave free is held by the contact alone (a punch pushed by a load); ``body_force`` acts on both. The problem solves, solves histories and plots
         as a one-body problem; ``bodies`` says where each body lies in ``mesh`` (the two joined, edge sets
         renamed 'body.set'); adaptive refinement bisects both bodies."""

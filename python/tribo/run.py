@@ -156,10 +156,12 @@ def materials(problem: Problem, solution: Solution) -> list[dict[str, Any]]:
 
 def bodies(problem: Problem, solution: Solution) -> list[dict[str, Any]]:
     """Per body: its name, nodes, triangles and unknowns, and the total reaction of its supports (Rx, Ry),
-    which balances the contact force it takes and its loads."""
+    which balances the contact force it takes and its loads (in axisymmetry the resultant on the whole turn, Rx 0:
+    the nodes' radial ring forces cancel over the turn)."""
     out = []
     for name, (n0, n1, t0, t1), unknowns in problem.bodies:
         rx, ry = (float(v) for v in solution.reactions[n0:n1].sum(axis=0))
+        rx = 0.0 if problem.model == "axisymmetric" else rx
         out.append({"name": name, "nodes": n1 - n0, "triangles": t1 - t0, "unknowns": unknowns, "reaction": [rx, ry]})
     return out
 

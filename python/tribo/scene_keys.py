@@ -62,8 +62,10 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
                        "thickness, ν in (−1/2, 1/2))", "—", None),
     "supports.clamped": ("The edge sets held fixed (u = 0); or `[[supports]]` entries with `kind` (`clamp`, "
                          "`roller`, `displacement` with `x`/`y`) and `edge_set`", "—", "— (*required*, one form)"),
-    "loads.body_force": ("The body force f per unit area, in global axes", "stress / length", "[0, 0]"),
-    "loads.tractions": ("The traction per unit length on each named edge set (Γ_N), in global axes", "stress",
+    "loads.body_force": ("The body force f per unit area (per unit volume in axisymmetry), in global axes",
+                         "stress / length", "[0, 0]"),
+    "loads.tractions": ("The traction per unit length (per unit area of the surface in axisymmetry) on each named "
+                        "edge set (Γ_N), in global axes", "stress",
                         "none"),
     "contact.edge_set": ("The edge set Γ_C that meets the obstacle: one open chain of boundary edges, straight or bent (straight for two bodies; *required* for one body)", "—", "—"),
     "contact.secondary": ("Two bodies: the side that carries the multipliers and the stabilization, "
@@ -143,7 +145,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
     "bodies.name": ("The body's name (*required*)", "—", "—"),
     **{f"bodies.{k}": v for k, v in _BODY.items()},
     **{f"bodies.material.{k}": v for k, v in _MATERIAL.items()},
-    "bodies.material.model": ('`"plane_strain"` or `"plane_stress"`: both bodies take the same', "—", None),
+    "bodies.material.model": ('`"plane_strain"`, `"plane_stress"` or `"axisymmetric"`: both bodies take the same',
+                              "—", None),
     "bodies.material.regions": ("Parts of the body of other materials (`[[bodies.material.regions]]`), as "
                                 "`[[material.regions]]`", "—", "none: all of the body's `material`"),
     "bodies.loads.tractions": ("The traction per unit length on each named edge set of the body", "stress",

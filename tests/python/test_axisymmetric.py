@@ -70,19 +70,33 @@ def test_a_cylinder_pressed_on_a_flat_is_uniaxial_from_python() -> None:
     assert s.normal_force == pytest.approx(math.pi * E * delta, rel=1e-7)
 
 
+def test_two_stacked_cylinders_are_uniaxial() -> None:
+    """Two bodies in axisymmetry on non-matching meshes: two cylinders of two materials stacked on a roller and
+    pressed carry the uniaxial stress δ / (H₁/E₁ + H₂/E₂), and the force on the whole turn π R² times it."""
+    delta, alu = 1e-3, (70.0, 0.33)
+    lower = tribo.Body("lower", tribo.Mesh.rectangle((0.0, 1.0), (-1.0, 0.0), 4, 4), young=E, poisson=NU,
+                       supports=[tribo.Support.displacement("bottom", y=0.0)])
+    upper = tribo.Body("upper", tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 5, 5), young=alu[0], poisson=alu[1],
+                       supports=[tribo.Support.displacement("top", y=-delta)])
+    problem = tribo.Problem.two_bodies(lower, upper, secondary="lower.top", primary="upper.bottom",
+                                       model="axisymmetric")
+    s = problem.solve()
+    stress = delta / (1 / E + 1 / alu[0])
+    np.testing.assert_allclose(s.lambda_n, stress, rtol=1e-6)
+    assert s.normal_force == pytest.approx(math.pi * stress, rel=1e-6)
+    assert s.contact_force[0] == 0.0 and s.contact_force[1] == pytest.approx(-math.pi * stress, rel=1e-6)
+
+
 def test_what_axisymmetry_does_not_take_is_a_typed_error() -> None:
-    """A mesh left of the axis is a MeshError naming the node; two bodies are refused for now; a scene with an
-    unknown model names the choices."""
+    """A mesh left of the axis is a MeshError naming the node; an obstacle shifted radially is refused; a model
+    misspelled names the choices."""
     mesh = tribo.Mesh.rectangle((-0.5, 1.0), (0.0, 1.0), 3, 3)
     with pytest.raises(tribo.MeshError, match="node 0 lies at r") as e:
         tribo.Problem(mesh, young=E, poisson=NU, contact="bottom", clamped="top", model="axisymmetric")
     assert e.value.kind == "BadAxisymmetry"
-    lower = tribo.Body("lower", tribo.Mesh.rectangle((0.0, 1.0), (-1.0, 0.0), 2, 2), young=E, poisson=NU,
-                       clamped="bottom")
-    upper = tribo.Body("upper", tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 2, 2), young=E, poisson=NU,
-                       supports=[tribo.Support.displacement("top", y=-1e-3)])
-    with pytest.raises(tribo.MeshError, match="two bodies"):
-        tribo.Problem.two_bodies(lower, upper, secondary="lower.top", primary="upper.bottom", model="axisymmetric")
+    with pytest.raises(tribo.MeshError, match="radial component"):
+        tribo.Problem(tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 2, 2), young=E, poisson=NU, contact="bottom",
+                      clamped="top", model="axisymmetric", shift=1e-3)
     with pytest.raises(tribo.TriboError, match="axisymmetric"):
         tribo.Problem(tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 2, 2), young=E, poisson=NU, contact="bottom",
                       clamped="top", model="axisymetric")
