@@ -9,7 +9,9 @@
 use tribo::*;
 
 mod roller;
+mod wedge;
 pub use roller::*;
+pub use wedge::*;
 
 /// The Hertz scene file.
 pub const HERTZ_SCENE: &str = include_str!("../../../python/tribo/scenes/hertz.toml");

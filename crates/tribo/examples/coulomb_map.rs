@@ -16,6 +16,11 @@
 //! * `tall block`: the block (0, 1) × (0, 6), loaded alike, τ a fraction of min(μ, W / (2H)) = min(μ, 1/12)
 //!   (its overturning), where the tangential load turns into a moment six times as long.
 //!
+//! * `wedge`: a wedge of half-angle α forced into a rigid V-groove by a traction on its top
+//!   (`tribo_testkit::wedge_problem`, 16 rows, ν = 0.3): force control on a bent Γ_C, α the second axis (in the
+//!   `load_fraction` column, in degrees), the fixed point's error multiplied by about −μ cot α while the flanks
+//!   slip.
+//!
 //! Per problem and method: the status, the iterations (QPs of the fixed point, dense LU solves of Newton),
 //! the wall time of the solve (the factorization reused), the forces and KKT residual, and where both
 //! converged the largest difference of their multipliers relative to the largest λ_n.
@@ -25,7 +30,7 @@ use std::io::Write;
 use std::time::Instant;
 
 use tribo::*;
-use tribo_testkit::{hertz_mesh, hertz_spec};
+use tribo_testkit::{hertz_mesh, hertz_spec, wedge_problem};
 
 const MUS: [f64; 9] = [0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0];
 const HEADER: &str =
@@ -132,6 +137,13 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
                 let solvable = tau < (width / 2.0 - h / 3.0) / height;
                 compare(&mut csv, "tall block", &Problem::new(mesh, spec)?, [nu, fraction, mu], solvable)?;
             }
+        }
+    }
+    // The wedge: α in the load_fraction column; it always has an answer (the groove holds it).
+    for alpha in [15.0, 20.0, 30.0, 45.0] {
+        let wedge = wedge_problem(16, alpha, 0.3);
+        for mu in MUS {
+            compare(&mut csv, "wedge", &wedge, [0.3, alpha, mu], true)?;
         }
     }
     csv.flush()?;

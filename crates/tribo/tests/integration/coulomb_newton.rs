@@ -8,7 +8,7 @@
 use std::ops::ControlFlow;
 
 use tribo::*;
-use tribo_testkit::{hertz_mesh, hertz_spec};
+use tribo_testkit::{hertz_mesh, hertz_spec, wedge_problem};
 
 fn settings(coulomb: CoulombMethod) -> SolverSettings {
     SolverSettings { coulomb, ..Default::default() }
@@ -39,8 +39,14 @@ fn contraction(fixed_point: &Solution) -> f64 {
 /// within (δ_N + δ_F) / (1 − L), each δ measured by one more evaluation of Φ_H (plus the QPs' tolerance,
 /// `qp_tol` times the size of λ, for the Tresca QP that measures it), and u within that distance's image.
 fn same_answer(problem: &Problem, mu: f64, what: &str) -> (Solution, Solution) {
+    same_answer_with(problem, mu, what, &settings(CoulombMethod::FixedPoint))
+}
+
+/// [`same_answer`] with the fixed point's own settings (a relaxed one: its contraction L is then the relaxed
+/// iteration's, and one plain evaluation of Φ_H measures δ at least as large as a relaxed one would).
+fn same_answer_with(problem: &Problem, mu: f64, what: &str, fixed_point: &SolverSettings) -> (Solution, Solution) {
     let coulomb = Friction::Coulomb { mu };
-    let fp = problem.solve(&coulomb, &settings(CoulombMethod::FixedPoint), None).unwrap();
+    let fp = problem.solve(&coulomb, fixed_point, None).unwrap();
     let nw = problem.solve(&coulomb, &settings(CoulombMethod::Newton), None).unwrap();
     assert_eq!(fp.report.status, SolveStatus::Converged, "{what}: the fixed point");
     assert_eq!(nw.report.status, SolveStatus::Converged, "{what}: Newton");
@@ -56,7 +62,7 @@ fn same_answer(problem: &Problem, mu: f64, what: &str) -> (Solution, Solution) {
     let allowed = (change(problem, mu, &nw)
         + change(problem, mu, &fp)
         + qp(&nw, CoulombMethod::Newton)
-        + qp(&fp, CoulombMethod::FixedPoint))
+        + tribo_testkit::reached_qp_tol(fixed_point, &fp) * kappa * size)
         / (1.0 - l);
     let dist =
         norm(fp.lambda_n.iter().zip(&nw.lambda_n).chain(fp.lambda_t.iter().zip(&nw.lambda_t)).map(|(a, b)| a - b));
@@ -365,4 +371,38 @@ fn d25_three_paths_give_one_answer() {
             }
         }
     }
+}
+
+/// A wedge of half-angle 20° forced into a rigid V-groove (`tribo_testkit::wedge_problem`, issue 40's "where the
+/// fixed point fails"): sliding in, the frozen friction bound multiplies the fixed point's error by about
+/// −μ cot α = −1.37 at μ = 0.5, and the plain fixed point two-cycles: its changes stop falling and alternate, and
+/// it ends `stagnated`. Newton converges (and `auto` answers by it, no fallback), and so does the fixed point
+/// relaxed by ω = ½ (error factor 1 − ω (1 + μ cot α) ≈ −0.18), to the same answer within the contraction bound.
+/// At 45° (μ cot α = 0.5) both converge plainly and agree.
+#[test]
+fn on_a_wedge_forced_into_a_groove_the_fixed_point_cycles_and_newton_converges() {
+    let (mu, coulomb) = (0.5, Friction::Coulomb { mu: 0.5 });
+    let wedge = wedge_problem(16, 20.0, 0.3);
+    let mut plain = settings(CoulombMethod::FixedPoint);
+    plain.fp.max_iter = 400;
+    let fp = wedge.solve(&coulomb, &plain, None).unwrap();
+    assert_ne!(fp.report.status, SolveStatus::Converged, "the plain fixed point cycles");
+    let r = &fp.report.residual_history;
+    let n = r.len();
+    assert!(n >= 20, "it ran {n} iterations");
+    // A two-cycle: every other change equal to a few per cent, neighbours different, none falling.
+    let tail = &r[n - 6..];
+    for k in 2..6 {
+        assert!((tail[k] / tail[k - 2] - 1.0).abs() < 0.02, "not a two-cycle: {tail:?}");
+    }
+    assert!(tail.iter().all(|&c| c > 1e-3), "the changes do not fall: {tail:?}");
+    let auto = wedge.solve(&coulomb, &settings(CoulombMethod::Auto), None).unwrap();
+    assert_eq!(auto.report.status, SolveStatus::Converged);
+    assert_eq!((auto.report.coulomb_method, auto.report.coulomb_fallback), (Some(CoulombMethod::Newton), false));
+    let mut relaxed = settings(CoulombMethod::FixedPoint);
+    relaxed.fp.relaxation = 0.5;
+    let (fp, nw) = same_answer_with(&wedge, mu, "wedge 20°, μ = 0.5, the fixed point relaxed by ½", &relaxed);
+    assert!(fp.states.iter().filter(|s| **s != ContactState::Separation).all(|s| *s == ContactState::Slip));
+    assert!(nw.report.iterations < fp.report.iterations);
+    same_answer(&wedge_problem(16, 45.0, 0.3), mu, "wedge 45°, μ = 0.5");
 }
