@@ -2,7 +2,8 @@
 
 docs/coulomb_map.csv is written by the Rust example `cargo run --release -p tribo --example coulomb_map` (its
 documentation gives the scenes: Hertz shifted along its top under displacement control, and a block held only by
-the contact under force control, over μ and Poisson's ratio ν); this script writes docs/coulomb_map.md (per scene
+the contact under force control, over μ and Poisson's ratio ν, and a wedge forced into a V-groove over μ and
+its half-angle); this script writes docs/coulomb_map.md (per scene
 and method: how many problems converged, the iterations, the largest difference of the two answers) and
 docs/coulomb_map.png (the iterations over μ × ν, a cross where a method did not converge, a grey square where the
 problem has no solution).
@@ -34,10 +35,16 @@ HOLDS = {"held block": "min(μ, 1)", "tall block": "min(μ, 1/12)"}
 
 
 def family(r: dict[str, Any]) -> str:
-    """The scene and its load: `hertz`, or `held block, τ = 0.5 min(μ, 1)`."""
-    if math.isnan(r["load_fraction"]):
+    """The scene and its load: `hertz`, `wedge`, or `held block, τ = 0.5 min(μ, 1)`."""
+    if math.isnan(r["load_fraction"]) or r["scene"] == "wedge":
         return str(r["scene"])
     return f"{r['scene']}, τ = {r['load_fraction']:g} {HOLDS[r['scene']]}"
+
+
+def second(r: dict[str, Any]) -> float:
+    """The second axis of a problem: Poisson's ratio ν, or the wedge's half-angle α in degrees (which its rows
+    carry in the load_fraction column)."""
+    return float(r["load_fraction"] if r["scene"] == "wedge" else r["nu"])
 
 
 def summary(rows: list[dict[str, Any]]) -> dict[tuple[str, str], dict[str, Any]]:
@@ -52,9 +59,9 @@ def summary(rows: list[dict[str, Any]]) -> dict[tuple[str, str], dict[str, Any]]
             its = sorted(int(r["iterations"]) for r in rs if r["status"] == "converged")
             diffs = [r["lambda_difference"] for r in rs if not math.isnan(r["lambda_difference"])]
             out[(f, m)] = dict(problems=len(rs), converged=len(its), iterations=its,
-                               failed=[(r["nu"], r["mu"], r["status"]) for r in rs if r["status"] != "converged"],
+                               failed=[(second(r), r["mu"], r["status"]) for r in rs if r["status"] != "converged"],
                                difference=max(diffs) if diffs else math.nan,
-                               unsolvable=[(r["nu"], r["mu"], r["status"]) for r in every if r["solvable"] != "true"])
+                               unsolvable=[(second(r), r["mu"], r["status"]) for r in every if r["solvable"] != "true"])
     return out
 
 
@@ -69,7 +76,8 @@ def run(csv_path: Path, out: Path) -> dict[tuple[str, str], dict[str, Any]]:
         table.append([f, m, f"{v['converged']} of {v['problems']}",
                       f"{its[0]}–{its[-1]}" if its else "—", its[len(its) // 2] if its else "—",
                       f"{v['difference']:.1e}",
-                      "; ".join(f"ν {nu:g} μ {mu:g}: {st}" for nu, mu, st in v["failed"]) or "—",
+                      "; ".join(f"{'α' if f == 'wedge' else 'ν'} {nu:g} μ {mu:g}: {st}"
+                                for nu, mu, st in v["failed"]) or "—",
                       f"{len(v['unsolvable'])}: {', '.join(ends)}" if v["unsolvable"] else "—"])
     md = ["# Study 20: which Coulomb method converges where\n\n",
           "Regenerate with `cargo run --release -p tribo --example coulomb_map && python scripts/plot_coulomb_map.py`;"
@@ -83,7 +91,11 @@ def run(csv_path: Path, out: Path) -> dict[tuple[str, str], dict[str, Any]]:
           "best on the last dof with its centroid h/3 from the corner, has no solution beyond τ = 1 − h/3 = 0.983 on "
           "these meshes: both methods must fail there, and the last column says how each ended those problems). "
           "`tall block`: the block (0, 1) × (0, 6) loaded alike, τ a fraction of min(μ, W / (2H)) = min(μ, 1/12), "
-          "its overturning (the discrete limit (W / 2 − h / 3) / H = 0.0806 lies above both fractions). The "
+          "its overturning (the discrete limit (W / 2 − h / 3) / H = 0.0806 lies above both fractions). `wedge`: a "
+          "wedge of half-angle α (15° to 45°, the second axis in its place of ν; ν = 0.3) forced into a rigid V-groove "
+          "by a traction on its top, held by nothing else (force control on a bent contact side): sliding in, the "
+          "frozen bound multiplies the fixed point's error by about −μ cot α, so the plain fixed point cycles where "
+          "μ > tan α and the flanks slip, until μ is large enough for the wedge to stick. The "
           "difference is the largest |Δλ| of the two answers "
           "relative to the largest λ_n, where both converged: the fixed point stops at a relative change of "
           "`fp_tol` = 1e-8.\n\n",
@@ -97,14 +109,14 @@ def run(csv_path: Path, out: Path) -> dict[tuple[str, str], dict[str, Any]]:
                              layout="constrained")
     top = max(int(r["iterations"]) for r in rows)
     for j, f in enumerate(families):
-        nus = sorted({r["nu"] for r in rows if family(r) == f})
+        nus = sorted({second(r) for r in rows if family(r) == f})
         mus = sorted({r["mu"] for r in rows if family(r) == f})
         for i, m in enumerate(METHODS):
             ax = axes[i][j]
             grid = [[math.nan] * len(mus) for _ in nus]
             for r in rows:
                 if family(r) == f and r["method"] == m:
-                    a, b = nus.index(r["nu"]), mus.index(r["mu"])
+                    a, b = nus.index(second(r)), mus.index(r["mu"])
                     grid[a][b] = r["iterations"] if r["status"] == "converged" else math.nan
                     if r["solvable"] != "true":
                         ax.plot(b, a, "s", color="0.6", ms=11)  # no solution: both must fail
@@ -116,7 +128,7 @@ def run(csv_path: Path, out: Path) -> dict[tuple[str, str], dict[str, Any]]:
             ax.set_xticks(range(len(mus)), [f"{v:g}" for v in mus], fontsize=7)
             ax.set_yticks(range(len(nus)), [f"{v:g}" for v in nus], fontsize=7)
             ax.set_xlabel("μ")
-            ax.set_ylabel("ν")
+            ax.set_ylabel("wedge half-angle α (°)" if f == "wedge" else "ν")
             ax.set_title(f"{f}\n{m.replace('_', ' ')}", fontsize=9)
     fig.colorbar(image, ax=axes, label="iterations (×: not converged; grey square: no solution)", shrink=0.8)
     fig.savefig(out / "coulomb_map.png", dpi=85)

@@ -576,6 +576,14 @@ def test_the_docs_quote_the_coulomb_map_as_generated() -> None:
     assert set(stalled) == {"stagnated"}, stalled
     assert f"stagnates on {len(stalled)} of {total} problems" in _page("guide/friction.md")
     assert f"converges on all {total} problems; Newton stagnates on {len(stalled)}" in " ".join(_page("changelog.md").split())
+    # The wedge: where the fixed point two-cycles and Newton converges, as the guide and the changelog say.
+    fp, nw = s[("wedge", "fixed_point")], s[("wedge", "newton")]
+    assert nw["converged"] == nw["problems"] and {st for _, _, st in fp["failed"]} == {"max_iterations"}
+    guide, changelog = " ".join(_page("guide/friction.md").split()), " ".join(_page("changelog.md").split())
+    said = f"on {len(fp['failed'])} of {fp['problems']} wedges"
+    assert said in guide and said in changelog, said
+    assert f"converges on all {nw['problems']} ({_span(nw['iterations'], 'd')} steps)" in guide
+    assert f"differ by up to {fp['difference']:.1e} of the largest λ_n" in guide
 
 
 def test_the_sweep_guide_quotes_study_10s_coulomb_map_as_generated() -> None:
