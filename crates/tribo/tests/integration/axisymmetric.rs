@@ -330,3 +330,30 @@ fn what_axisymmetry_refuses() {
     let err = Problem::new(mesh, spec).expect_err("Γ_C on the axis");
     assert!(matches!(err, Error::BadAxisymmetry { .. }) && err.to_string().contains("on the axis"), "{err}");
 }
+
+/// The adaptive loop in axisymmetry: from a uniform coarse cylinder (h = 0.5, five times the contact radius) a
+/// sphere on a flat at `tol` = 2 % and 1 % (the default stop, the hierarchical estimate of the traction error in
+/// L²(Γ_C, 2π r dr)) ends within `tol` of 3D Hertz, on levels that keep the model and the axis (u_r = 0 there).
+/// Measured: 1.49 % at 2.2k unknowns (10 levels) and 0.84 % at 7.8k (12 levels).
+#[test]
+fn the_adaptive_loop_finds_the_sphere() {
+    let e_star = STEEL.young / (1.0 - STEEL.poisson.powi(2));
+    let mesh = rectangle([0.0, 4.0], [-4.0, 0.0], 8, 8, Diagonal::Right).expect("mesh");
+    let spec = ProblemSpec::new(STEEL, "top")
+        .clamped(["bottom"])
+        .obstacle(ObstacleShape::Circle { center: 0.0, radius: 1.0 })
+        .approach(0.01)
+        .model(Model::Axisymmetric);
+    let problem = Problem::new(mesh, spec).expect("valid");
+    for tol in [0.02, 0.01] {
+        let adapt = AdaptSettings { tol, ..AdaptSettings::default() };
+        let run = problem.solve_adaptive(&Friction::Frictionless, &SolverSettings::default(), &adapt, None).unwrap();
+        assert_eq!(run.solution.report.status, SolveStatus::Converged);
+        assert!(run.problem.spec.model.is_axisymmetric());
+        let l2 = l2_error(&run.problem, &run.solution, e_star);
+        assert!(l2 < tol, "tol {tol}: {l2}");
+        for (i, p) in run.problem.mesh.points().iter().enumerate().filter(|(_, p)| p[0] == 0.0) {
+            assert_eq!(run.solution.displacement[2 * i], 0.0, "node {i} at {p:?} on the axis");
+        }
+    }
+}
