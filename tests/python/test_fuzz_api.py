@@ -285,6 +285,8 @@ ARGUMENTS: dict[str, tuple[st.SearchStrategy[Any], st.SearchStrategy[Any]]] = {
         ),
     ),
     "space": (st.sampled_from(["P0", "P1"]), st.sampled_from(["p0", "P2", ""])),
+    # The rectangle straddles x = 0: an axisymmetric body there is refused (a node at r < 0).
+    "model": (st.sampled_from(["plane_strain", "plane_stress"]), st.sampled_from(["axisymmetric", "3d", "", "Axisymmetric"])),
 }
 SETTINGS: dict[str, tuple[st.SearchStrategy[Any], st.SearchStrategy[Any]]] = {
     "friction": (friction_settings(hostile=False), friction_settings(hostile=True)),
