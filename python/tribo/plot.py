@@ -255,7 +255,7 @@ def von_mises(
     if edges:
         ax.triplot(tri, color="k", lw=0.15, alpha=0.5)
     if obstacle and problem.primary is None:  # between two bodies, the other body is drawn
-        if problem.obstacle.kind in ("line", "disc", "hole", "distance"):
+        if problem.obstacle.kind in ("line", "disc", "hole", "profile", "distance"):
             # Given by its geometry: its surface faces each node along the node's contact normal.
             surface = obstacle_points(problem, solution)
         else:

@@ -90,6 +90,8 @@ class Scene:
             return Obstacle.line(o["point"], o["normal"])
         if shape in ("disc", "hole"):
             return (Obstacle.disc if shape == "disc" else Obstacle.hole)(o["center"], o["radius"])
+        if shape == "profile":
+            return Obstacle.profile(o["points"])
         return Obstacle.flat()
 
     def _approach(self) -> float:

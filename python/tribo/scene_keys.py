@@ -74,7 +74,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
     "contact.gap": ("Two bodies: the initial gap between the sides, as an obstacle shape", "length",
                     "flat (touching)"),
     "obstacle.shape": ("The rigid obstacle: a gap function of the abscissa on Γ_C (`flat`, `circle`, `parabola`, "
-                       "`polyline`) or a shape given by its geometry (`line`, `disc`, `hole`)", "—", '`"flat"`'),
+                       "`polyline`) or a shape given by its geometry (`line`, `disc`, `hole`, `profile`)", "—",
+                       '`"flat"`'),
     "obstacle.radius": ("The radius R of a circle, a parabola, a disc or a hole (*required* for them)", "length",
                         "—"),
     "obstacle.center": ("The abscissa ξ on Γ_C of a circle's or parabola's lowest point; the centre `[x, y]` of a "
@@ -82,6 +83,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
     "obstacle.point": ("A point `[x, y]` of a line obstacle's surface (*required* for it)", "length", "—"),
     "obstacle.normal": ("A line obstacle's normal `[x, y]`, out of the obstacle toward the body (*required* for "
                         "it)", "—", "—"),
+    "obstacle.points": ("A profile's polyline, points `[x, y]` in order, the obstacle on its right from the first to "
+                        "the last (*required* for it)", "length", "—"),
     "obstacle.xi": ("A polyline's abscissae on Γ_C, increasing (*required* for it)", "length", "—"),
     "obstacle.gap": ("A polyline's initial gap at each of its abscissae (*required* for it)", "length", "—"),
     "obstacle.approach": ("δ: how far the obstacle moves toward the body (against the outward normal n; a shape given "
@@ -218,6 +221,7 @@ _BY_CHECKER: dict[str, dict[str, Any]] = {
     "_names": {"oneOf": [{"type": "string"}, {"type": "array", "items": {"type": "string"}, "minItems": 1}]},
     "_grading": {"oneOf": [{"enum": ["auto", "none"]}, _PAIR]},
     "_pairs": {"type": "object", "additionalProperties": _PAIR},
+    "_points": {"type": "array", "items": _PAIR, "minItems": 2},
     "_paths": {"type": "object", "additionalProperties": _PATH},
 }
 

@@ -30,7 +30,9 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     ``shape``: ``"flat"`` (default), ``"circle"``, ``"parabola"`` (both with ``radius`` *required* and
     ``center``, an abscissa on Γ_C, default 0) or ``"polyline"`` (``xi`` and ``gap`` lists, *required*):
     gap functions of the abscissa; or, given by its geometry, ``"line"`` (``point`` and ``normal``, out of
-    the obstacle, *required*), ``"disc"`` or ``"hole"`` (``center = [x, y]`` and ``radius``, *required*);
+    the obstacle, *required*), ``"disc"`` or ``"hole"`` (``center = [x, y]`` and ``radius``, *required*),
+    ``"profile"`` (``points``, a list of at least two points [x, y], *required*: the obstacle on the right of
+    the polyline from the first to the last, its ends extended);
     a key of another shape is an error; ``approach`` (δ, toward the body) and ``shift`` (s, along the
     tangent t = (−n₂, n₁), n the outward normal of the body: on a top face t = (−1, 0), so a positive
     shift moves the obstacle toward −x; ``summary.json`` gives the motion in global axes as
@@ -136,6 +138,7 @@ from tribo.scene_values import (
     _numbers,
     _pair,
     _pairs,
+    _points,
     _path,
     _paths,
     _range,
@@ -251,11 +254,12 @@ SCHEMA: dict[str, dict[str, Checker]] = {
     "loads": {"body_force": _pair, "tractions": _pairs},
     "contact": {"edge_set": _string, "secondary": _string, "primary": _string, "gap": _shape},
     "obstacle": {
-        "shape": _choice("flat", "circle", "parabola", "polyline", "line", "disc", "hole"),
+        "shape": _choice("flat", "circle", "parabola", "polyline", "line", "disc", "hole", "profile"),
         "radius": _number,
         "center": _center,
         "point": _pair,
         "normal": _pair,
+        "points": _points,
         "xi": _numbers,
         "gap": _numbers,
         "approach": _number,
@@ -334,11 +338,13 @@ NOT_FOR_TWO_BODIES = {
 SUPPORT_KINDS: dict[str, tuple[str, ...]] = {"clamp": (), "roller": (), "displacement": ("x", "y")}
 # The keys of [obstacle] that describe its shape: those each shape takes, and those it requires.
 SHAPE_KEYS = {"flat": (), "circle": ("radius", "center"), "parabola": ("radius", "center"), "polyline": ("xi", "gap"),
-              "line": ("point", "normal"), "disc": ("center", "radius"), "hole": ("center", "radius")}
+              "line": ("point", "normal"), "disc": ("center", "radius"), "hole": ("center", "radius"),
+              "profile": ("points",)}
 SHAPE_REQUIRED = {"flat": (), "circle": ("radius",), "parabola": ("radius",), "polyline": ("xi", "gap"),
-                  "line": ("point", "normal"), "disc": ("center", "radius"), "hole": ("center", "radius")}
+                  "line": ("point", "normal"), "disc": ("center", "radius"), "hole": ("center", "radius"),
+                  "profile": ("points",)}
 # The shapes given by their geometry (for a contact side of any shape), whose center is a point [x, y].
-GEOMETRY_SHAPES = ("line", "disc", "hole")
+GEOMETRY_SHAPES = ("line", "disc", "hole", "profile")
 # The most cells (nx · ny) a uniform rectangle may have: the limit of the core's Mesh.rectangle, checked here
 # before nx and ny are rounded to integers (an absurd h would overflow the binding's conversion).
 MAX_CELLS = _MAX_CELLS  # the core's limit (tribo.generate::MAX_CELLS)

@@ -84,6 +84,13 @@ def _pair(key: str, v: Any) -> tuple[float, float]:
     return (_number(key, v[0]), _number(key, v[1]))
 
 
+def _points(key: str, v: Any) -> list[tuple[float, float]]:
+    """A list of at least two points [x, y] (a profile's polyline)."""
+    if not (isinstance(v, list) and len(v) >= 2):
+        raise SceneError(f"scene key '{key}' must be a list of at least two points [x, y], got {v!r}", key)
+    return [_pair(key, p) for p in v]
+
+
 def _center(key: str, v: Any) -> float | tuple[float, float]:
     """A number (an abscissa on Γ_C: a circle's or a parabola's) or two numbers [x, y] (a disc's or a hole's)."""
     return _pair(key, v) if isinstance(v, list) else _number(key, v)

@@ -67,6 +67,21 @@ def test_a_signed_distance_gives_the_answer_of_the_line_it_copies() -> None:
     assert math.isnan(line.gap0(0.0))
 
 
+def test_a_profile_is_the_line_it_follows_and_its_points_are_checked() -> None:
+    """A profile of two points (the obstacle on the right of the walk from the first to the second) is the line it
+    lies on, to round-off; a profile of one point, of a repeated point or of points that are not pairs is refused
+    naming what."""
+    line = _roller(tribo.Obstacle.line((0.0, 0.0), (0.0, 1.0))).solve()
+    profile = tribo.Obstacle.profile([(-3.0, 0.0), (3.0, 0.0)])
+    assert (profile.kind, repr(profile)) == ("profile", "Obstacle.profile(<2 points>)")
+    p = _roller(profile).solve()
+    np.testing.assert_allclose(p.lambda_n, line.lambda_n, rtol=1e-12, atol=1e-12 * np.max(line.lambda_n))
+    for points, match in [([(0.0, 0.0)], "at least two points"), ([(0.0, 0.0), (0.0, 0.0)], "coincide"),
+                          ([0.0, 1.0, 2.0], "profile points")]:
+        with pytest.raises(tribo.TriboError, match=match):
+            tribo.Obstacle.profile(points)
+
+
 def test_the_adaptive_roller_keeps_its_rim_on_the_arc() -> None:
     mesh = tribo.Mesh.ring_sector((0.0, 1.0), (0.25, 1.0), (-math.pi / 2 - 1.2, -math.pi / 2 + 1.2), h_max=0.05,
                                   h_min=0.05)
@@ -123,6 +138,8 @@ def test_a_scene_takes_obstacles_given_by_their_geometry() -> None:
     _, flat = parse_scene(_hertz_scene({"shape": "flat", **approach})).solve()
     _, line = parse_scene(_hertz_scene({"shape": "line", "point": [0.0, 0.0], "normal": [0.0, 1.0], **approach})).solve()
     assert line.normal_force == pytest.approx(flat.normal_force, rel=1e-9)
+    _, profile = parse_scene(_hertz_scene({"shape": "profile", "points": [[-3.0, 0.0], [3.0, 0.0]], **approach})).solve()
+    assert profile.normal_force == pytest.approx(flat.normal_force, rel=1e-9)
 
 
 @pytest.mark.parametrize(
@@ -131,6 +148,9 @@ def test_a_scene_takes_obstacles_given_by_their_geometry() -> None:
         ({"shape": "disc", "center": 0.0, "radius": 1.0}, "obstacle.center", r"two numbers \[x, y\] for a disc"),
         ({"shape": "circle", "center": [0.0, 1.0], "radius": 1.0}, "obstacle.center", "a number"),
         ({"shape": "line", "point": [0.0, 0.0]}, "obstacle.normal", "required for a line"),
+        ({"shape": "profile", "points": [[0.0, 0.0]]}, "obstacle.points", "at least two points"),
+        ({"shape": "profile", "points": [[0.0, 0.0], [1.0, 0.0]], "radius": 1.0}, "obstacle.radius",
+         "does not apply to a profile"),
         ({"shape": "hole", "center": [0.0, 0.0], "radius": 1.0, "point": [0.0, 0.0]}, "obstacle.point",
          "does not apply to a hole"),
     ],

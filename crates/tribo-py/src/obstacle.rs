@@ -15,9 +15,8 @@ use crate::convert::{callback, floats};
 use crate::errors::to_pyerr;
 
 thread_local! {
-    /// The first exception a Python gap function raised during the current core call on this thread,
-    /// kept until the call returns. Per thread, so that problems sharing one `Obstacle.function` in two
-    /// threads never see each other's exceptions (the core calls the gap function on the caller's thread).
+    /// The first exception a gap function raised in the current core call on this thread (the core calls it on
+    /// the caller's thread), kept until the call returns: per thread, so that threads never see each other's.
     static GAP_ERROR: RefCell<Option<PyErr>> = const { RefCell::new(None) };
 }
 
@@ -39,16 +38,15 @@ pub fn chain_gap_error(py: Python<'_>, err: PyErr) -> PyErr {
     }
 }
 
-/// The shape of a rigid obstacle: the initial gap g0(ξ) ≥ 0 between Γ_C and the obstacle along the
-/// outward normal, ξ the abscissa on Γ_C (`flat`, `circle`, `parabola`, `polyline`, `function`), or the
-/// obstacle's geometry (`line`, `disc`, `hole`, `distance`: for a contact side of any shape). Its motion
-/// (approach δ, shift s) is given to `Problem`.
+/// The shape of a rigid obstacle: the initial gap g0(ξ) ≥ 0 along the outward normal, ξ the abscissa on Γ_C
+/// (`flat`, `circle`, `parabola`, `polyline`, `function`), or the obstacle's geometry (`line`, `disc`, `hole`,
+/// `profile`, `distance`: for a contact side of any shape). Its motion (approach δ, shift s) is given to `Problem`.
 #[pyclass(frozen, name = "Obstacle", module = "tribo")]
 pub struct PyObstacle {
     pub(crate) shape: ObstacleShape,
     /// The call that built it (a gap function shows its Python repr).
     repr: String,
-    /// 'flat', 'circle', 'parabola', 'polyline', 'function', 'line', 'disc', 'hole' or 'distance'.
+    /// 'flat', 'circle', 'parabola', 'polyline', 'function', 'line', 'disc', 'hole', 'profile' or 'distance'.
     #[pyo3(get)]
     kind: &'static str,
     /// The radius R of a circle or a parabola (its curvature radius), else None.
@@ -66,10 +64,9 @@ impl PyObstacle {
         Ok(Self { repr: format!("Obstacle.{shape}"), kind: shape.kind(), radius, center, shape })
     }
 
-    /// A gap function. The core calls it during the Γ_C integration (with the GIL released): it
-    /// re-attaches for the call. A Python exception or a non-float result becomes NaN, which the core
-    /// rejects as BadObstacle; the exception itself is kept (per thread) and chained to that error, or
-    /// re-raised as it is for KeyboardInterrupt and SystemExit.
+    /// A gap function, called by the core (GIL released: it re-attaches). An exception or a non-float is NaN, which
+    /// the core rejects as BadObstacle; the exception is kept (per thread) and chained to that error, or re-raised
+    /// as it is for KeyboardInterrupt and SystemExit.
     pub fn from_callable(f: Py<PyAny>) -> PyResult<Self> {
         let repr = Python::attach(|py| f.bind(py).repr().map(|r| format!("Obstacle.function({r})")))?;
         let call = move |xi: f64| -> f64 { call_or_nan(&f, &[xi]) };
@@ -142,11 +139,18 @@ impl PyObstacle {
         Self::checked(ObstacleShape::Disc { center: center.into(), radius })
     }
 
-    /// A rigid hole of centre `center` and radius R around the body: g0 = R − ‖x − c‖ (the approach is the
-    /// interference of a shrink fit).
+    /// A rigid hole of centre `center` and radius R around the body: g0 = R − ‖x − c‖ (δ: a shrink fit's).
     #[staticmethod]
     fn hole(center: (f64, f64), radius: f64) -> PyResult<Self> {
         Self::checked(ObstacleShape::Hole { center: center.into(), radius })
+    }
+
+    /// A rigid body bounded by the polyline through `points` (m × 2, m ≥ 2), on its right from the first point to
+    /// the last, its end segments extended: g0 is the signed distance from it (a V-groove, a step).
+    #[staticmethod]
+    fn profile(points: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let p = floats(points, "profile points", &[None, Some(2)], ContactGeometry)?;
+        Self::checked(ObstacleShape::Profile { points: p.chunks_exact(2).map(|c| [c[0], c[1]]).collect() })
     }
 
     /// Any Python callable distance(x: float, y: float) -> float: the signed distance from the obstacle,
@@ -159,8 +163,7 @@ impl PyObstacle {
         Ok(Self { repr, ..Self::checked(ObstacleShape::Distance(DistanceFunction(Arc::new(call))))? })
     }
 
-    /// The initial gap g0 at abscissae `xi` (a float or an array of floats; NaN for a shape given by its
-    /// geometry, whose gap is the distance of Γ_C's points).
+    /// The initial gap g0 at abscissae `xi` (a float or an array; NaN for a shape given by its geometry).
     fn gap0<'py>(&self, py: Python<'py>, xi: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
         let o = tribo::Obstacle { shape: self.shape.clone(), ..Default::default() };
         take_gap_error();

@@ -56,6 +56,13 @@ pub fn groove(alpha_deg: f64) -> ObstacleShape {
     })))
 }
 
+/// The same groove as a [`ObstacleShape::Profile`]: the polyline from the top of its left flank down to the tip and
+/// up its right flank (the groove on its right), its ends extended.
+pub fn groove_profile(alpha_deg: f64) -> ObstacleShape {
+    let (sin, cos) = alpha_deg.to_radians().sin_cos();
+    ObstacleShape::Profile { points: vec![[-sin, cos], [0.0, 0.0], [sin, cos]] }
+}
+
 /// The wedge of [`wedge_mesh`] (n rows, half-angle `alpha_deg`, Poisson's ratio `poisson`, E = 1) pushed into
 /// its [`groove`] by the traction (0, −0.001) on its top.
 ///

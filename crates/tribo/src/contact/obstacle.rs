@@ -112,6 +112,14 @@ pub enum ObstacleShape {
         /// Radius R > 0.
         radius: f64,
     },
+    /// A rigid body bounded by the polyline through `points`, lying on its right as one walks from the first
+    /// point to the last (the body on its left), its end segments extended to rays: a V-groove, a step, a
+    /// profile. `g₀(x)` is the distance to the polyline, signed by the side (at a vertex, by the sum of its two
+    /// segments' normals).
+    Profile {
+        /// The vertices, at least two, consecutive ones distinct.
+        points: Vec<[f64; 2]>,
+    },
     /// Any signed distance from the obstacle, positive outside it.
     Distance(DistanceFunction),
 }
@@ -154,6 +162,18 @@ impl Obstacle {
         }
         match &self.shape {
             ObstacleShape::Flat | ObstacleShape::Function(_) | ObstacleShape::Distance(_) => Ok(()),
+            ObstacleShape::Profile { points } => {
+                if points.len() < 2 {
+                    return bad(format!("a profile needs at least two points, got {}", points.len()));
+                }
+                if let Some(k) = points.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
+                    return bad(format!("profile point {k} is not finite: ({}, {})", points[k][0], points[k][1]));
+                }
+                if let Some(k) = (1..points.len()).find(|&k| points[k] == points[k - 1]) {
+                    return bad(format!("profile points {} and {k} coincide: a segment needs two points", k - 1));
+                }
+                Ok(())
+            }
             ObstacleShape::Line { point, normal } => {
                 if !point.iter().all(|v| v.is_finite()) {
                     bad(format!("the line's point must be finite, got ({}, {})", point[0], point[1]))
@@ -247,6 +267,7 @@ impl Obstacle {
             ObstacleShape::Line { .. }
             | ObstacleShape::Disc { .. }
             | ObstacleShape::Hole { .. }
+            | ObstacleShape::Profile { .. }
             | ObstacleShape::Distance(_) => f64::NAN,
         }
     }
@@ -269,7 +290,57 @@ impl ObstacleShape {
     /// Whether the shape is given by its geometry (a line, a disc, a hole, a signed distance) rather than as a
     /// gap function of the abscissa.
     pub fn is_geometry(&self) -> bool {
-        matches!(self, Self::Line { .. } | Self::Disc { .. } | Self::Hole { .. } | Self::Distance(_))
+        matches!(
+            self,
+            Self::Line { .. } | Self::Disc { .. } | Self::Hole { .. } | Self::Profile { .. } | Self::Distance(_)
+        )
+    }
+
+    /// The signed distance of `x` from a profile's polyline and its gradient (see [`ObstacleShape::Profile`]):
+    /// the nearest point over the segments (the first and the last extended to rays); on a segment the distance
+    /// along its left normal, at a vertex `±|x − v|` signed by the sum of its two segments' left normals.
+    fn profile_distance(points: &[[f64; 2]], x: [f64; 2]) -> (f64, [f64; 2]) {
+        let m = points.len() - 1;
+        let mut best = (f64::INFINITY, 0usize, 0.0);
+        for k in 0..m {
+            let (a, b) = (points[k], points[k + 1]);
+            let d = [b[0] - a[0], b[1] - a[1]];
+            let t = ((x[0] - a[0]) * d[0] + (x[1] - a[1]) * d[1]) / (d[0] * d[0] + d[1] * d[1]);
+            let lo = if k == 0 { f64::NEG_INFINITY } else { 0.0 };
+            let t = t.clamp(lo, if k == m - 1 { f64::INFINITY } else { 1.0 });
+            let r = (x[0] - a[0] - t * d[0]).hypot(x[1] - a[1] - t * d[1]);
+            if r < best.0 {
+                best = (r, k, t);
+            }
+        }
+        let left = |k: usize| {
+            let (a, b) = (points[k], points[k + 1]);
+            let l = (b[0] - a[0]).hypot(b[1] - a[1]);
+            [-(b[1] - a[1]) / l, (b[0] - a[0]) / l]
+        };
+        let (r, k, t) = best;
+        // At an inner vertex (t = 0 of a segment after the first, or t = 1 of one before the last).
+        let vertex = if t <= 0.0 && k > 0 {
+            Some(k)
+        } else if t >= 1.0 && k < m - 1 {
+            Some(k + 1)
+        } else {
+            None
+        };
+        match vertex {
+            Some(v) if r > 0.0 => {
+                let (n1, n2) = (left(v - 1), left(v));
+                let p = points[v];
+                let s =
+                    if (x[0] - p[0]) * (n1[0] + n2[0]) + (x[1] - p[1]) * (n1[1] + n2[1]) >= 0.0 { 1.0 } else { -1.0 };
+                (s * r, [s * (x[0] - p[0]) / r, s * (x[1] - p[1]) / r])
+            }
+            _ => {
+                let n = left(k);
+                let a = points[k];
+                ((x[0] - a[0]) * n[0] + (x[1] - a[1]) * n[1], n)
+            }
+        }
     }
 
     /// The gradient of [`ObstacleShape::distance`] at `x`: exact for a line, a disc and a hole, by central
@@ -291,6 +362,7 @@ impl ObstacleShape {
             }
             Self::Disc { center, .. } => radial(center, 1.0),
             Self::Hole { center, .. } => radial(center, -1.0),
+            Self::Profile { points } => Self::profile_distance(points, x).1,
             Self::Distance(f) => {
                 let d = |dx: f64, dy: f64| (f.0)([x[0] + dx, x[1] + dy]);
                 let step = f64::EPSILON.cbrt() * x[0].abs().max(x[1].abs()).max(d(0.0, 0.0).abs()).max(length);
@@ -308,6 +380,7 @@ impl ObstacleShape {
             }
             Self::Disc { center, radius } => (x[0] - center[0]).hypot(x[1] - center[1]) - radius,
             Self::Hole { center, radius } => radius - (x[0] - center[0]).hypot(x[1] - center[1]),
+            Self::Profile { points } => Self::profile_distance(points, x).0,
             Self::Distance(f) => (f.0)(x),
             _ => f64::NAN,
         }
@@ -334,7 +407,7 @@ impl ObstacleShape {
     }
 
     /// The shape's name, as scene files and Python spell it: `flat`, `circle`, `parabola`, `polyline`,
-    /// `function`, `line`, `disc`, `hole` or `distance`.
+    /// `function`, `line`, `disc`, `hole`, `profile` or `distance`.
     pub fn kind(&self) -> &'static str {
         match self {
             Self::Flat => "flat",
@@ -345,6 +418,7 @@ impl ObstacleShape {
             Self::Line { .. } => "line",
             Self::Disc { .. } => "disc",
             Self::Hole { .. } => "hole",
+            Self::Profile { .. } => "profile",
             Self::Distance(_) => "distance",
         }
     }
@@ -367,6 +441,7 @@ impl fmt::Display for ObstacleShape {
             Self::Disc { center, radius } | Self::Hole { center, radius } => {
                 write!(f, "{}(center=({}, {}), radius={radius})", self.kind(), center[0], center[1])
             }
+            Self::Profile { points } => write!(f, "profile(<{} points>)", points.len()),
             Self::Distance(_) => f.write_str("distance(<closure>)"),
         }
     }
@@ -396,6 +471,31 @@ mod tests {
                 assert!((exact[0].hypot(exact[1]) - 1.0).abs() < 1e-15, "a unit gradient");
             }
         }
+        // A profile: a V-groove of half-angle 30° (the body above it) against the same groove as the smaller of
+        // its two lines' distances (outside the groove: above both lines), and its gradient against central
+        // differences, on segments, on the rays beyond the ends and around the vertex.
+        let (sin, cos) = (0.5_f64, 0.75_f64.sqrt());
+        let groove = ObstacleShape::Profile { points: vec![[-sin, cos], [0.0, 0.0], [sin, cos]] };
+        let lines = |x: [f64; 2]| (cos * x[0] + sin * x[1]).min(-cos * x[0] + sin * x[1]);
+        let closure = ObstacleShape::Distance(DistanceFunction(Arc::new(groove_copy)));
+        fn groove_copy(x: [f64; 2]) -> f64 {
+            ObstacleShape::Profile { points: vec![[-0.5, 0.75_f64.sqrt()], [0.0, 0.0], [0.5, 0.75_f64.sqrt()]] }
+                .distance(x)
+        }
+        for x in [[0.0, 0.3], [0.1, 0.2], [-0.3, 0.9], [2.0, 5.0], [-3.0, 4.0], [0.4, 0.2]] {
+            assert!(
+                (groove.distance(x) - lines(x)).abs() < 1e-15,
+                "{x:?}: {} against {}",
+                groove.distance(x),
+                lines(x)
+            );
+        }
+        for x in [[0.02, 0.3], [0.4, 0.2], [0.01, -0.2], [0.05, -0.3], [-2.0, 0.5], [3.0, 7.0]] {
+            let (exact, numeric) = (groove.distance_gradient(x, 0.01), closure.distance_gradient(x, 0.01));
+            assert!((exact[0] - numeric[0]).hypot(exact[1] - numeric[1]) < 1e-8, "{x:?}: {exact:?} {numeric:?}");
+        }
+        // Below the tip the groove's solid: negative, its distance the tip's.
+        assert!((groove.distance([0.0, -0.2]) + 0.2).abs() < 1e-15);
         // No gradient at a disc's centre; none for a gap function.
         let disc = ObstacleShape::Disc { center: [1.0, 1.0], radius: 1.0 };
         assert_eq!(disc.distance_gradient([1.0, 1.0], 0.1), [0.0, 0.0]);

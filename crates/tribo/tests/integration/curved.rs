@@ -249,3 +249,31 @@ fn a_held_step_of_a_bent_contact_slips_nowhere() {
     let (f0, f1) = (first.report.estimate.friction, held.report.estimate.friction);
     assert!(f0 > 0.0 && f1 <= 1e-4 * f0, "friction parts of the estimate: {f0:e}, then {f1:e}");
 }
+
+/// A rigid profile (a polyline, the obstacle on its right) gives the answer of the signed distance it equals: the
+/// wedge of issue 40 in its V-groove, given as the smaller of the two flank lines' distances (its normal by
+/// central differences) and as the profile through the groove's three corners (its normal exact), Coulomb
+/// μ = 0.3 by Newton: the same forces and multipliers to 1e-8 relative (the differences' truncation).
+#[test]
+fn a_profile_is_the_signed_distance_it_equals() {
+    let coulomb = Friction::Coulomb { mu: 0.3 };
+    let settings = SolverSettings { coulomb: CoulombMethod::Newton, ..Default::default() };
+    let closure = tribo_testkit::wedge_problem(12, 25.0, 0.3);
+    let spec = ProblemSpec {
+        obstacle: Obstacle { shape: tribo_testkit::groove_profile(25.0), ..closure.spec.obstacle.clone() },
+        ..closure.spec.clone()
+    };
+    let profile = Problem::new(closure.mesh.clone(), spec).expect("the profile groove");
+    let (a, b) = (closure.solve(&coulomb, &settings, None).unwrap(), profile.solve(&coulomb, &settings, None).unwrap());
+    assert_eq!((a.report.status, b.report.status), (SolveStatus::Converged, SolveStatus::Converged));
+    let scale = a.lambda_n.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let diff = a
+        .lambda_n
+        .iter()
+        .zip(&b.lambda_n)
+        .chain(a.lambda_t.iter().zip(&b.lambda_t))
+        .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()));
+    assert!(diff < 1e-8 * scale, "λ differ by {diff:e} of {scale:e}");
+    assert!((a.normal_force / b.normal_force - 1.0).abs() < 1e-8);
+    assert_eq!(profile.spec.obstacle.shape.kind(), "profile");
+}
