@@ -172,7 +172,13 @@ impl Obstacle {
                 if let Some(k) = (1..points.len()).find(|&k| points[k] == points[k - 1]) {
                     return bad(format!("profile points {} and {k} coincide: a segment needs two points", k - 1));
                 }
-                Ok(())
+                match profile_crossing(points) {
+                    Some((a, b)) => bad(format!(
+                        "the profile's segments {a} and {b} cross or fold back onto each other (its end segments \
+                         extended): the obstacle would not have one side"
+                    )),
+                    None => Ok(()),
+                }
             }
             ObstacleShape::Line { point, normal } => {
                 if !point.iter().all(|v| v.is_finite()) {
@@ -286,6 +292,38 @@ impl Obstacle {
     }
 }
 
+/// The first two segments of a profile (the first and the last extended to rays) that cross, or two consecutive
+/// ones that fold back onto each other (antiparallel), as their indices; None for a simple profile.
+fn profile_crossing(points: &[[f64; 2]]) -> Option<(usize, usize)> {
+    let m = points.len() - 1;
+    let cross = |u: [f64; 2], v: [f64; 2]| u[0] * v[1] - u[1] * v[0];
+    let sub = |a: [f64; 2], b: [f64; 2]| [a[0] - b[0], a[1] - b[1]];
+    // Parameter ranges of each segment: the first reaches back to −∞, the last forward to +∞.
+    let range = |k: usize| (if k == 0 { f64::NEG_INFINITY } else { 0.0 }, if k == m - 1 { f64::INFINITY } else { 1.0 });
+    for k in 1..m {
+        let (u, v) = (sub(points[k], points[k - 1]), sub(points[k + 1], points[k]));
+        if cross(u, v) == 0.0 && u[0] * v[0] + u[1] * v[1] < 0.0 {
+            return Some((k - 1, k));
+        }
+    }
+    for a in 0..m {
+        for b in a + 2..m {
+            let (p, r) = (points[a], sub(points[a + 1], points[a]));
+            let (q, s) = (points[b], sub(points[b + 1], points[b]));
+            let denom = cross(r, s);
+            if denom == 0.0 {
+                continue; // parallel: they meet only if collinear, which the fold check and the others catch
+            }
+            let (t, w) = (cross(sub(q, p), s) / denom, cross(sub(q, p), r) / denom);
+            let ((ta, tb), (wa, wb)) = (range(a), range(b));
+            if t >= ta && t <= tb && w >= wa && w <= wb {
+                return Some((a, b));
+            }
+        }
+    }
+    None
+}
+
 impl ObstacleShape {
     /// Whether the shape is given by its geometry (a line, a disc, a hole, a signed distance) rather than as a
     /// gap function of the abscissa.
@@ -300,6 +338,9 @@ impl ObstacleShape {
     /// the nearest point over the segments (the first and the last extended to rays); on a segment the distance
     /// along its left normal, at a vertex `±|x − v|` signed by the sum of its two segments' left normals.
     fn profile_distance(points: &[[f64; 2]], x: [f64; 2]) -> (f64, [f64; 2]) {
+        if points.len() < 2 {
+            return (f64::NAN, [f64::NAN, f64::NAN]); // refused by `Obstacle::validate`
+        }
         let m = points.len() - 1;
         let mut best = (f64::INFINITY, 0usize, 0.0);
         for k in 0..m {
@@ -494,6 +535,15 @@ mod tests {
             let (exact, numeric) = (groove.distance_gradient(x, 0.01), closure.distance_gradient(x, 0.01));
             assert!((exact[0] - numeric[0]).hypot(exact[1] - numeric[1]) < 1e-8, "{x:?}: {exact:?} {numeric:?}");
         }
+        // A profile that crosses itself, or whose end rays cross a segment, or that folds back, is refused.
+        let refused = |points: Vec<[f64; 2]>| {
+            Obstacle { shape: ObstacleShape::Profile { points }, ..Default::default() }.validate().is_err()
+        };
+        assert!(refused(vec![[0.0, 0.0], [2.0, 2.0], [2.0, 0.0], [0.0, 2.0]]), "a bow tie");
+        assert!(refused(vec![[0.0, 0.0], [1.0, 0.0], [0.5, 0.0]]), "a fold");
+        assert!(refused(vec![[0.0, 1.0], [0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [-1.0, 2.0]]), "the last ray crosses");
+        assert!(!refused(vec![[-1.0, 1.0], [0.0, 0.0], [1.0, 1.0]]) && !refused(vec![[0.0, 0.0], [1.0, 0.0]]));
+        assert!(!refused(vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]), "collinear, going on");
         // Below the tip the groove's solid: negative, its distance the tip's.
         assert!((groove.distance([0.0, -0.2]) + 0.2).abs() < 1e-15);
         // No gradient at a disc's centre; none for a gap function.

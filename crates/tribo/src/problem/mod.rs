@@ -269,7 +269,7 @@ impl Problem {
             if let Some(e) = contact.edges.iter().find(|e| on_axis(e.left) && on_axis(e.right)) {
                 return Err(Error::BadAxisymmetry {
                     what: format!(
-                        "the contact edge ({}, {}) of '{}' lies on the axis (r = 0): a line of the solid, with no                          surface to touch",
+                        "the contact edge ({}, {}) of '{}' lies on the axis (r = 0): a line of the solid, with no surface to touch",
                         e.left, e.right, spec.contact
                     ),
                 });
@@ -327,7 +327,7 @@ impl Problem {
             None => Ok(()),
             Some(e) => Err(Error::BadAxisymmetry {
                 what: format!(
-                    "the obstacle shifts along the tangent ({:.4}, {:.4}) of the contact edge ({}, {}), which has a                      radial component: a body of revolution can only slide along its axis (y); shift it on a                      contact side parallel to the axis, or not at all",
+                    "the obstacle shifts along the tangent ({:.4}, {:.4}) of the contact edge ({}, {}), which has a radial component: a body of revolution can only slide along its axis (y); shift it on a contact side parallel to the axis, or not at all",
                     e.tangent[0], e.tangent[1], e.left, e.right
                 ),
             }),

@@ -377,7 +377,7 @@ fn d25_three_paths_give_one_answer() {
 /// fixed point fails"): sliding in, the frozen friction bound multiplies the fixed point's error by about
 /// −μ cot α = −1.37 at μ = 0.5, and the plain fixed point two-cycles: its changes stop falling and alternate, and
 /// it ends `stagnated`. Newton converges (and `auto` answers by it, no fallback), and so does the fixed point
-/// relaxed by ω = ½ (error factor 1 − ω (1 + μ cot α) ≈ −0.18), to the same answer within the contraction bound.
+/// relaxed by ω = ½ (error factor 1 − ω (1 + μ cot α) ≈ −0.19), to the same answer within the contraction bound.
 /// At 45° (μ cot α = 0.5) both converge plainly and agree.
 #[test]
 fn on_a_wedge_forced_into_a_groove_the_fixed_point_cycles_and_newton_converges() {
@@ -386,16 +386,17 @@ fn on_a_wedge_forced_into_a_groove_the_fixed_point_cycles_and_newton_converges()
     let mut plain = settings(CoulombMethod::FixedPoint);
     plain.fp.max_iter = 400;
     let fp = wedge.solve(&coulomb, &plain, None).unwrap();
-    assert_ne!(fp.report.status, SolveStatus::Converged, "the plain fixed point cycles");
+    // It detects that it makes no progress (before its cap of 400).
+    assert_eq!(fp.report.status, SolveStatus::Stagnated, "the plain fixed point cycles");
     let r = &fp.report.residual_history;
     let n = r.len();
-    assert!(n >= 20, "it ran {n} iterations");
-    // A two-cycle: every other change equal to a few per cent, neighbours different, none falling.
-    let tail = &r[n - 6..];
-    for k in 2..6 {
-        assert!((tail[k] / tail[k - 2] - 1.0).abs() < 0.02, "not a two-cycle: {tail:?}");
-    }
-    assert!(tail.iter().all(|&c| c > 1e-3), "the changes do not fall: {tail:?}");
+    assert!((40..400).contains(&n), "it ran {n} iterations");
+    // A two-cycle, not a slow convergence: the iterates alternate between two states, so the change of each
+    // iteration stays the distance between them, of a few per mille of λ_n, and does not fall over its last 40
+    // iterations (a contraction of 0.999 would have shrunk it by 4 %).
+    let tail = &r[n - 40..];
+    assert!(tail.iter().all(|&c| c > 1e-3), "the changes stay large: {tail:?}");
+    assert!(tail[39] / tail[0] > 0.99, "the changes do not fall: {} then {}", tail[0], tail[39]);
     let auto = wedge.solve(&coulomb, &settings(CoulombMethod::Auto), None).unwrap();
     assert_eq!(auto.report.status, SolveStatus::Converged);
     assert_eq!((auto.report.coulomb_method, auto.report.coulomb_fallback), (Some(CoulombMethod::Newton), false));

@@ -235,7 +235,7 @@ proptest! {
         nx in 2usize..8,
         model in any_model(),
     ) {
-        // A solid of revolution is not shifted across its axis (refused): its extreme data are the others.
+        // A solid of revolution is not shifted radially (refused on this top face): its extreme data are the others.
         let shift = if model.is_axisymmetric() { 0.0 } else { 10f64.powi(shift_exp) };
         let mesh = rectangle([0.0, 1.0], [-1.0, 0.0], nx, nx, Diagonal::Right).expect("valid");
         let spec = ProblemSpec {
