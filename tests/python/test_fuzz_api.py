@@ -490,3 +490,28 @@ def test_fuzz_several_materials(args: tuple[Any, Any]) -> None:
         return event("refused: solve")
     event(f"status: {solution.report.status}")
     assert_honest(solution)
+
+
+@fuzz(25)
+@given(
+    st.floats(-0.5, 2.0),
+    st.sampled_from([0.0, 1e-300, 1.0, 1e6]),
+    reals(-0.9, 0.49, hostile=[0.5, -1.0, NAN]),
+    st.one_of(st.floats(-0.01, 0.05), st.sampled_from([NAN, INF, 1e300])),
+    st.one_of(st.just(0.0), st.floats(-0.01, 0.01)),
+    st.sampled_from([None, 0.3, 2.0]),
+    st.sampled_from(["bottom", "top", "left", "right"]),
+)
+def test_fuzz_axisymmetric(x0: float, young: float, poisson: float, approach: float, shift: float, mu: float | None,
+                           contact: str) -> None:
+    """Axisymmetric bodies (issue 41) with hostile data: a rectangle starting anywhere near the axis (left of it:
+    refused), any side as Γ_C (the axis itself, left at x0 = 0: refused; a radial shift: refused), hostile E, ν,
+    approach and μ: a TriboError or an honest solution."""
+    mesh = tribo.Mesh.rectangle((x0, x0 + 1.0), (0.0, 1.0), 3, 3)
+    clamped = {"bottom": "top", "top": "bottom", "left": "right", "right": "left"}[contact]
+    problem = outcome(lambda: tribo.Problem(mesh, young=young, poisson=poisson, contact=contact, clamped=clamped,
+                                            model="axisymmetric", approach=approach, shift=shift))
+    if problem is not None:
+        s = outcome(lambda: problem.solve() if mu is None else problem.solve(mu=mu))
+        if s is not None:
+            assert_honest(s)
