@@ -36,15 +36,15 @@ HOLDS = {"held block": "min(μ, 1)", "tall block": "min(μ, 1/12)"}
 
 def family(r: dict[str, Any]) -> str:
     """The scene and its load: `hertz`, `wedge`, or `held block, τ = 0.5 min(μ, 1)`."""
-    if math.isnan(r["load_fraction"]) or r["scene"] == "wedge":
+    if math.isnan(r["load_fraction"]) or r["scene"] in ("wedge", "two bodies"):
         return str(r["scene"])
     return f"{r['scene']}, τ = {r['load_fraction']:g} {HOLDS[r['scene']]}"
 
 
 def second(r: dict[str, Any]) -> float:
-    """The second axis of a problem: Poisson's ratio ν, or the wedge's half-angle α in degrees (which its rows
-    carry in the load_fraction column)."""
-    return float(r["load_fraction"] if r["scene"] == "wedge" else r["nu"])
+    """The second axis of a problem: Poisson's ratio ν, the wedge's half-angle α in degrees or the two bodies' Dundurs
+    β (which their rows carry in the load_fraction column)."""
+    return float(r["load_fraction"] if r["scene"] in ("wedge", "two bodies") else r["nu"])
 
 
 def summary(rows: list[dict[str, Any]]) -> dict[tuple[str, str], dict[str, Any]]:
@@ -76,7 +76,7 @@ def run(csv_path: Path, out: Path) -> dict[tuple[str, str], dict[str, Any]]:
         table.append([f, m, f"{v['converged']} of {v['problems']}",
                       f"{its[0]}–{its[-1]}" if its else "—", its[len(its) // 2] if its else "—",
                       f"{v['difference']:.1e}",
-                      "; ".join(f"{'α' if f == 'wedge' else 'ν'} {nu:g} μ {mu:g}: {st}"
+                      "; ".join(f"{ {'wedge': 'α', 'two bodies': 'β'}.get(f, 'ν')} {nu:g} μ {mu:g}: {st}"
                                 for nu, mu, st in v["failed"]) or "—",
                       f"{len(v['unsolvable'])}: {', '.join(ends)}" if v["unsolvable"] else "—"])
     md = ["# Study 20: which Coulomb method converges where\n\n",
@@ -95,7 +95,9 @@ def run(csv_path: Path, out: Path) -> dict[tuple[str, str], dict[str, Any]]:
           "wedge of half-angle α (15° to 45°, the second axis in its place of ν; ν = 0.3) forced into a rigid V-groove "
           "by a traction on its top, held by nothing else (force control on a bent contact side): sliding in, the "
           "frozen bound multiplies the fixed point's error by about −μ cot α, so the plain fixed point cycles where "
-          "μ > tan α and the flanks slip, until μ is large enough for the wedge to stick. The "
+          "μ > tan α and the flanks slip, until μ is large enough for the wedge to stick. `two bodies`: two-body "
+          "Hertz (h_min 0.02, the upper top pushed 0.01 and held in x), ν = 0, the lower E = 200 and the upper E = "
+          "200, 70, 20, 2, so that the Dundurs β (0, 0.24, 0.41, 0.49, the second axis) alone makes the friction. The "
           "difference is the largest |Δλ| of the two answers "
           "relative to the largest λ_n, where both converged: the fixed point stops at a relative change of "
           "`fp_tol` = 1e-8.\n\n",
@@ -126,9 +128,9 @@ def run(csv_path: Path, out: Path) -> dict[tuple[str, str], dict[str, Any]]:
                         ax.text(b, a, f"{int(r['iterations'])}", ha="center", va="center", fontsize=7)
             image = ax.imshow(grid, origin="lower", aspect="auto", cmap="viridis", vmin=0, vmax=top)
             ax.set_xticks(range(len(mus)), [f"{v:g}" for v in mus], fontsize=7)
-            ax.set_yticks(range(len(nus)), [f"{v:g}" for v in nus], fontsize=7)
+            ax.set_yticks(range(len(nus)), [f"{v:.3g}" for v in nus], fontsize=7)
             ax.set_xlabel("μ")
-            ax.set_ylabel("wedge half-angle α (°)" if f == "wedge" else "ν")
+            ax.set_ylabel({"wedge": "wedge half-angle α (°)", "two bodies": "Dundurs β"}.get(f, "ν"))
             ax.set_title(f"{f}\n{m.replace('_', ' ')}", fontsize=9)
     fig.colorbar(image, ax=axes, label="iterations (×: not converged; grey square: no solution)", shrink=0.8)
     fig.savefig(out / "coulomb_map.png", dpi=85)

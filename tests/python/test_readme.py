@@ -584,6 +584,13 @@ def test_the_docs_quote_the_coulomb_map_as_generated() -> None:
     assert said in guide and said in changelog, said
     assert f"converges on all {nw['problems']} ({_span(nw['iterations'], 'd')} steps)" in guide
     assert f"differ by up to {fp['difference']:.1e} of the largest λ_n" in guide
+    # Two bodies over the Dundurs β: both converge everywhere, as the guide says.
+    fp, nw = s[("two bodies", "fixed_point")], s[("two bodies", "newton")]
+    assert fp["converged"] == fp["problems"] == nw["converged"] == nw["problems"]
+    said = (f"both converge on all {fp['problems']} problems, the fixed point in {_span(fp['iterations'], 'd')} "
+            f"iterations and Newton in {_span(nw['iterations'], 'd')} steps, their answers within "
+            f"{max(fp['difference'], nw['difference']):.1e} of each other")
+    assert said in guide, said
 
 
 def test_the_sweep_guide_quotes_study_10s_coulomb_map_as_generated() -> None:

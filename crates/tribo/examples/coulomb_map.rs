@@ -21,6 +21,12 @@
 //!   `load_fraction` column, in degrees), the fixed point's error multiplied by about −μ cot α while the flanks
 //!   slip.
 //!
+//! * `two bodies`: two-body Hertz (`tribo_testkit::two_body_hertz`, h_min 0.02, the upper block's top pushed
+//!   0.01 and held in x), ν = 0 in both, the lower block E = 200, the upper one E = 200, 70, 20, 2: friction from
+//!   the mismatch alone, the Dundurs β (0, 0.24, 0.41, 0.49 in plane strain, (1 − 2ν)/(2(1 − ν)) (μ₁ − μ₂)/(μ₁ + μ₂)
+//!   with equal ν) the second axis (in the `load_fraction` column), which couples the normal and tangential
+//!   problems across the interface.
+//!
 //! Per problem and method: the status, the iterations (QPs of the fixed point, dense LU solves of Newton),
 //! the wall time of the solve (the factorization reused), the forces and KKT residual, and where both
 //! converged the largest difference of their multipliers relative to the largest λ_n.
@@ -30,7 +36,7 @@ use std::io::Write;
 use std::time::Instant;
 
 use tribo::*;
-use tribo_testkit::{hertz_mesh, hertz_spec, wedge_problem};
+use tribo_testkit::{hertz_mesh, hertz_spec, two_body_hertz, wedge_problem};
 
 const MUS: [f64; 9] = [0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0];
 const HEADER: &str =
@@ -144,6 +150,22 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
         let wedge = wedge_problem(16, alpha, 0.3);
         for mu in MUS {
             compare(&mut csv, "wedge", &wedge, [0.3, alpha, mu], true)?;
+        }
+    }
+    // Two bodies: β in the load_fraction column.
+    for upper in [200.0, 70.0, 20.0, 2.0] {
+        let (e1, e2) = (200.0_f64, upper);
+        // Equal ν = 0: β = (1 − 2ν)/(2(1 − ν)) (μ₁ − μ₂)/(μ₁ + μ₂) with μ_i = E_i / 2.
+        let beta = 0.5 * (e1 - e2) / (e1 + e2);
+        let pair = two_body_hertz(
+            0.02,
+            Material { young: e1, poisson: 0.0 },
+            Material { young: e2, poisson: 0.0 },
+            true,
+            0.01,
+        );
+        for mu in MUS {
+            compare(&mut csv, "two bodies", &pair, [0.0, beta, mu], true)?;
         }
     }
     csv.flush()?;
