@@ -383,3 +383,36 @@ fn a_push_out_history() {
     let force = lame_pressure(0.5, 1.0, delta) * 2.0 * PI * 0.5 * 0.5;
     assert!((last.tangential_force.abs() / (mu * force) - 1.0).abs() < 0.01, "push-out {}", last.tangential_force);
 }
+
+/// The energy estimate in axisymmetry against the true energy error: the sphere on coarse graded cylinders, its
+/// error measured against the same problem on the mesh bisected everywhere three times (all edges: 64 times the
+/// triangles; its own error about an eighth of the coarse one at first order), the coarse displacement
+/// prolongated onto it, `‖u_f − P u_h‖_A / ‖u_f‖_A`; beside it the plane-strain problem on the same meshes. The
+/// estimate lies above the error (the reference's own error is far below the margin) and its effectivity in
+/// axisymmetry is within 15 % of the plane one's. Measured: 3.40 and 3.63 in axisymmetry, 3.21 and 3.27 in the
+/// plane (510–716 unknowns).
+#[test]
+fn the_energy_estimate_against_the_energy_error() {
+    let effectivity = |h_min: f64, model: Model| {
+        let sphere = sphere_on_flat(h_min, 0.01, 4.0, 0.3);
+        let coarse = Problem::new(sphere.mesh.clone(), sphere.spec.clone().model(model)).unwrap();
+        let sol = coarse.solve(&Friction::Frictionless, &SolverSettings::default(), None).unwrap();
+        let (mut mesh, mut u) = (coarse.mesh.clone(), sol.displacement.clone());
+        for _ in 0..3 {
+            let all: Vec<usize> = (0..mesh.n_triangles()).collect();
+            let refinement = tribo::mesh::refine::bisect(&mesh, &all, Bisection::AllEdges).unwrap();
+            u = refinement.prolongate(&u, 2).unwrap();
+            mesh = refinement.into_mesh();
+        }
+        let fine = Problem::new(mesh.clone(), coarse.spec.clone()).unwrap();
+        let reference = fine.solve(&Friction::Frictionless, &SolverSettings::default(), None).unwrap();
+        let diff: Vec<f64> = reference.displacement.iter().zip(&u).map(|(a, b)| a - b).collect();
+        let norm = |v: &[f64]| tribo::elasticity::energy_norm(model, &mesh, &fine.in_plane, v);
+        sol.report.estimate.energy_relative / (norm(&diff) / norm(&reference.displacement))
+    };
+    for h_min in [0.04, 0.02] {
+        let (axisymmetric, plane) = (effectivity(h_min, Model::Axisymmetric), effectivity(h_min, Model::PlaneStrain));
+        assert!(axisymmetric > 1.5 && plane > 1.5, "h_min {h_min}: {axisymmetric} and {plane}");
+        assert!((axisymmetric / plane - 1.0).abs() < 0.15, "h_min {h_min}: {axisymmetric} against {plane}");
+    }
+}
