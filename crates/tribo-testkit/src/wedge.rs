@@ -72,5 +72,7 @@ pub fn wedge_problem(n: usize, alpha_deg: f64, poisson: f64) -> Problem {
     let spec = ProblemSpec::new(Material { young: 1.0, poisson }, "flanks")
         .traction("top", [0.0, -1e-3])
         .obstacle(groove(alpha_deg));
+    // An internal invariant of this dev-only kit (no user input reaches it): a valid wedge mesh, its flanks one
+    // chain through the tip, a valid groove and E = 1; only the caller's ν can be refused, a test's own parameter.
     Problem::new(wedge_mesh(n, alpha_deg), spec).expect("the wedge in its groove is a valid problem")
 }

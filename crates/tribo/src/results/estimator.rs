@@ -431,9 +431,9 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
         for k in 0..3 {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
             let (pa, pb) = (pts[a], pts[b]);
-            // h_E = |E|, and |E| in the measure at its midpoint (exact for constant stresses); CCW: the outward
-            // normal of the edge a → b is (dy, −dx) / |E|.
-            let (len_m, len) = (mesh.edge_length(a, b), mesh.edge_length(a, b) * measure(0.5 * (pa[0] + pb[0])));
+            // h_E = |E|, and |E| in the measure at its midpoint; CCW: the outward normal of a → b is (dy, −dx) / |E|.
+            let len_m = mesh.edge_length(a, b);
+            let len = len_m * measure(0.5 * (pa[0] + pb[0]));
             let n = [(pb[1] - pa[1]) / len_m, -(pb[0] - pa[0]) / len_m];
             let other = around[start[a]..start[a + 1]].iter().copied().find(|&t2| t2 != t && tris[t2].contains(&b));
             match other {
