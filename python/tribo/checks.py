@@ -201,24 +201,45 @@ def _non_unique_multipliers(problem: Problem, solution: Solution) -> list[str]:
     ]
 
 
+def _chain(edges: np.ndarray) -> list[int]:
+    """The nodes of a chain of edges in order, from one of its ends (any node of a loop)."""
+    around: dict[int, list[int]] = {}
+    for a, b in edges.tolist():
+        around.setdefault(a, []).append(b)
+        around.setdefault(b, []).append(a)
+    start = min((n for n, m in around.items() if len(m) == 1), default=int(edges[0][0]))
+    nodes, seen = [start], {start}
+    while (nxt := [m for m in around[nodes[-1]] if m not in seen]):
+        nodes.append(nxt[0])
+        seen.add(nxt[0])
+    return nodes
+
+
 def _faceted_without_curve(problem: Problem) -> list[str]:
     """A contact side that looks like the faceted arc of a curve (three or more kinks, none sharper than 30°)
-    and whose edge set carries no curve: refinement keeps its chords, and the estimates cannot see them."""
-    if problem.primary is not None or problem.contact in problem.mesh.curves:
-        return []
-    p = np.asarray(problem.mesh.points)[np.asarray(problem.contact_nodes)]
-    d = np.diff(p, axis=0)
-    d /= np.hypot(d[:, 0], d[:, 1])[:, None]
-    turn = np.degrees(np.arccos(np.clip(np.sum(d[1:] * d[:-1], axis=1), -1.0, 1.0)))
-    kinks = turn[turn > 1e-6]
-    if len(kinks) < 3 or kinks.max() >= 30.0:
-        return []
-    return [
-        f"the contact side '{problem.contact}' bends at {len(kinks)} nodes by up to {_g(float(kinks.max()))}° and its "
-        "edge set carries no curve: if it stands for a curved boundary, its chords stand off the curve by up to "
-        "h²/8R between nodes, adaptive refinement keeps them (new nodes on the chords), and the estimates cannot "
-        "see that; give the set its curve (Mesh.with_curve) or mesh it finely enough"
-    ]
+    and whose edge set carries no curve: refinement keeps its chords, and the estimates cannot see them; between
+    two bodies the facets' gaps also enter the contact."""
+    reasons = []
+    for side in [problem.contact] + ([problem.primary] if problem.primary is not None else []):
+        if side in problem.mesh.curves:
+            continue
+        p = np.asarray(problem.mesh.points)[_chain(np.asarray(problem.mesh.edge_sets[side]))]
+        d = np.diff(p, axis=0)
+        d /= np.hypot(d[:, 0], d[:, 1])[:, None]
+        turn = np.degrees(np.arccos(np.clip(np.sum(d[1:] * d[:-1], axis=1), -1.0, 1.0)))
+        kinks = turn[turn > 1e-6]
+        if len(kinks) < 3 or kinks.max() >= 30.0:
+            continue
+        pair = (" Between two bodies the facets also stand in the gap: on a conforming interface (a shrink fit) "
+                "that is a pressure error of about h/(8δ) relative, δ the interference; give both sides their "
+                "curves") if problem.primary is not None else ""
+        reasons.append(
+            f"the contact side '{side}' bends at {len(kinks)} nodes by up to {_g(float(kinks.max()))}° and its "
+            "edge set carries no curve: if it stands for a curved boundary, its chords stand off the curve by up to "
+            "h²/8R between nodes, adaptive refinement keeps them (new nodes on the chords), and the estimates cannot "
+            f"see that; give the set its curve (Mesh.with_curve) or mesh it finely enough.{pair}"
+        )
+    return reasons
 
 
 def _cut_zone(problem: Problem, solution: Solution) -> list[str]:

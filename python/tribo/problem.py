@@ -275,7 +275,8 @@ class Problem(_tribo.Problem):
         """Two elastic bodies in contact along one straight line: ``secondary`` ('body.edge_set') carries
         the multipliers T_H and the stabilization, ``primary`` meets it with the opposite normal; ``gap``
         is the initial gap between them as an obstacle shape (flat: touching; a parabola for two curved
-        profiles). Each body has its own material (or materials: a coated body), supports and tractions (``Body``);
+        profiles). Either side may be bent (a shrink fit's arcs): the two then face each other, and the gap is
+        their geometry's (their curves', where both edge sets carry one) plus ``gap``. Each body has its own material (or materials: a coated body), supports and tractions (``Body``);
         ``model`` is both bodies' ('plane_strain', the default, 'plane_stress': two thin plates, or 'axisymmetric': two
         solids of revolution about the y axis); a motion its supports
         leave free is held by the contact alone (a punch pushed by a load); ``body_force`` acts on both. The problem solves, solves histories and plots

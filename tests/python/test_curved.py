@@ -293,3 +293,50 @@ def test_a_half_disc_meshed_by_gmsh_on_a_flat_is_hertz(tmp_path: Path) -> None:
     lam = problem.evaluate_multiplier(s.lambda_n, xi)
     l2 = math.sqrt(np.trapezoid((lam - exact) ** 2, xi) / np.trapezoid(exact**2, xi))
     assert 0.02 < a < 0.06 and l2 < 0.02, (a, l2)
+
+
+def _shrink_fit(h: tuple[float, float], curves: bool = True) -> tribo.Problem:
+    """A quarter ring of radii 0.5–1.001 (E = 1, ν = 0.3) shrunk into a quarter ring of radii 1–2 (E = 2, ν = 0.25),
+    non-matching meshes, both on rollers on the axes; with or without the arcs' circles."""
+    def body(name: str, radii: tuple[float, float], size: float, young: float, poisson: float) -> tribo.Body:
+        mesh = tribo.Mesh.ring_sector((0.0, 0.0), radii, (0.0, math.pi / 2), h_max=size, h_min=size)
+        if not curves:
+            mesh = tribo.Mesh(mesh.points, mesh.triangles, mesh.edge_sets)
+        return tribo.Body(name, mesh, young=young, poisson=poisson,
+                          supports=[tribo.Support.roller("start"), tribo.Support.roller("end")])
+    return tribo.Problem.two_bodies(body("inner", (0.5, 1.001), h[0], 1.0, 0.3), body("outer", (1.0, 2.0), h[1], 2.0, 0.25),
+                                    secondary="inner.outer", primary="outer.inner", space="P1")
+
+
+def _lame(a: float = 0.5, b: float = 1.0, c: float = 2.0, delta: float = 1e-3) -> float:
+    """Lamé's pressure of the fit as posed (the closed form of ``tribo_testkit::ShrinkFit``, plane strain)."""
+    rs = b + delta
+    c_i = (1 + 0.3) * rs * ((1 - 2 * 0.3) * rs**2 + a * a) / (1.0 * (rs**2 - a * a))
+    c_o = (1 + 0.25) * b * ((1 - 2 * 0.25) * b * b + c * c) / (2.0 * (c * c - b * b))
+    return delta / (c_i + c_o * rs / b)
+
+
+def test_a_ring_shrunk_into_a_ring_has_lames_pressure() -> None:
+    """Two bodies with a bent interface from Python: λ_n is Lamé's uniform pressure to 0.15 % at 10k unknowns
+    (the Rust test measures it), and the force on the inner quarter is −p (b + δ) (1, 1)."""
+    problem = _shrink_fit((0.02, 0.035))
+    sol = problem.solve()
+    assert sol.report.status == "converged"
+    p = _lame()
+    lam = np.asarray(sol.lambda_n)
+    xi = np.asarray(problem.multiplier_mesh)
+    l2 = math.sqrt(np.trapezoid((lam - p) ** 2, xi) / (p * p * (xi[-1] - xi[0])))
+    assert l2 < 3e-3
+    np.testing.assert_allclose(sol.contact_force, [-p * 1.001] * 2, rtol=2e-3)
+    assert not [r for r in tribo.check_solution(problem, sol) if "carries no curve" in r]
+
+
+def test_a_bent_pair_without_its_curves_is_warned_about() -> None:
+    """Without the arcs' circles the facets stand in the gap: the answer is several times farther from Lamé, and
+    check_solution names both sides."""
+    problem = _shrink_fit((0.04, 0.07), curves=False)
+    sol = problem.solve()
+    said = [r for r in tribo.check_solution(problem, sol) if "carries no curve" in r]
+    assert len(said) == 2 and "'inner.outer'" in said[0] and "'outer.inner'" in said[1] and "h/(8δ)" in said[0]
+    p = _lame()
+    assert abs(np.mean(sol.lambda_n) / p - 1) > 5e-3

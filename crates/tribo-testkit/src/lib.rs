@@ -9,8 +9,10 @@
 use tribo::*;
 
 mod roller;
+mod shrink_fit;
 mod wedge;
 pub use roller::*;
+pub use shrink_fit::*;
 pub use wedge::*;
 
 /// The Hertz scene file.

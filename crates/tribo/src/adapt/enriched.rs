@@ -559,10 +559,13 @@ impl Problem {
     /// refined where the FE edges under it were (keeping this problem's ratio H/h) where any of `solutions`
     /// touches or may touch. The new nodes stay on the chords of a curved edge set ([`crate::Mesh::with_curve`]):
     /// the enriched Γ_C keeps this problem's arclength, so that λ_H and λ_f are compared at the same abscissae;
-    /// the sag that leaves, h²/8R of the finer edges, is of second order next to the error measured.
+    /// the sag that leaves, h²/8R of the finer edges, is of second order next to the error measured. The sets
+    /// keep their curves all the same: the gap of a bent pair is that of its curves on both meshes (on the
+    /// chords' new nodes it would take their sag, of the order of a shrink fit's interference).
     pub(super) fn enriched(&self, solutions: &[&Solution], marked: &[usize]) -> Result<Problem> {
         let ratio = super::multipliers::ratio(&self.multipliers.xi, &self.contact);
-        let refined = bisect(&self.mesh.without_curves(), marked, Bisection::AllEdges)?;
+        let refined =
+            bisect(&self.mesh.without_curves(), marked, Bisection::AllEdges)?.with_curves(self.mesh.curves().clone());
         super::next_problem(self, solutions, refined, ratio)
     }
 

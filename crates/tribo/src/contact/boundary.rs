@@ -361,6 +361,12 @@ impl ContactBoundary {
         }
     }
 
+    /// The contact frame `(n_e, t_e)` of the edge that holds abscissa `xi`.
+    pub fn frame_at(&self, xi: f64) -> ([f64; 2], [f64; 2]) {
+        let e = &self.edges[self.edge_at(xi)];
+        (e.normal, e.tangent)
+    }
+
     /// The edge that holds abscissa `xi` (the first or the last edge beyond the ends).
     pub fn edge_at(&self, xi: f64) -> usize {
         self.node_xi.partition_point(|&y| y <= xi).clamp(1, self.edges.len()) - 1

@@ -103,9 +103,9 @@ impl ContactStress {
         let (n, t) = (contact.normal, contact.tangent);
         let mut rows: Vec<Vec<(usize, f64)>> = vec![Vec::new(); 2 * q];
         let secondary = mortar.m2.entries.iter().map(|&(i, j, m)| (contact.nodes[i], j, m));
-        let primary =
-            primary.into_iter().flat_map(|p| p.m2.entries.iter().map(|&(i, j, m)| (p.boundary.nodes[i], j, -m)));
         if contact.one_frame {
+            let primary =
+                primary.into_iter().flat_map(|p| p.m2.entries.iter().map(|&(i, j, m)| (p.boundary.nodes[i], j, -m)));
             for (node, j, m) in secondary.chain(primary) {
                 for c in 0..2 {
                     rows[j].push((2 * node + c, m * n[c]));
@@ -113,9 +113,14 @@ impl ContactStress {
                 }
             }
         } else {
-            // Each edge's part of M2 in its own frame (two bodies have one frame: no primary term here).
-            for &(i, j, k, m) in &mortar.m2_edges {
-                let (node, e) = (contact.nodes[i], &contact.edges[k]);
+            // Each edge's part of M2 in its own frame, the primary term in the frame of the secondary edge
+            // it faces.
+            let secondary = mortar.m2_edges.iter().map(|&(i, j, k, m)| (contact.nodes[i], j, k, m));
+            let primary = primary
+                .into_iter()
+                .flat_map(|p| p.m2_edges.iter().map(|&(i, j, k, m)| (p.boundary.nodes[i], j, k, -m)));
+            for (node, j, k, m) in secondary.chain(primary) {
+                let e = &contact.edges[k];
                 for c in 0..2 {
                     rows[j].push((2 * node + c, m * e.normal[c]));
                     rows[q + j].push((2 * node + c, m * e.tangent[c]));

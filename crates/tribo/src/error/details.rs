@@ -113,11 +113,6 @@ impl Error {
                 "TractionOnContact",
                 vec![("set", T(set.clone())), ("traction_set", T(traction_set.clone())), ("a", I(*a)), ("b", I(*b))],
             ),
-            Self::ContactNotStraight { set, node, distance, length } => (
-                ErrorCategory::ContactGeometry,
-                "ContactNotStraight",
-                vec![("set", T(set.clone())), ("node", I(*node)), ("distance", F(*distance)), ("length", F(*length))],
-            ),
             Self::ContactPair { secondary, primary, what } => (
                 ErrorCategory::ContactGeometry,
                 "ContactPair",

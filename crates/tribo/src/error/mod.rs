@@ -327,19 +327,6 @@ pub enum Error {
     NoDirichlet,
 
     // ----- contact geometry -----
-    /// A side of a pair of bodies is not one straight segment (two bodies need straight contact sides; one
-    /// body against a rigid obstacle takes any open chain of edges).
-    #[error("contact boundary '{set}' is not straight: node {node} lies {} off the line of the first edge (edge length {}); the contact sides of two bodies must be straight", Num(*.distance), Num(*.length))]
-    ContactNotStraight {
-        /// Edge set name.
-        set: String,
-        /// Offending node.
-        node: usize,
-        /// Its distance to the line.
-        distance: f64,
-        /// Local edge length it is compared with.
-        length: f64,
-    },
     /// Γ_C is not one open chain of edges: several pieces, a branch, a closed loop, or edges that overlap.
     #[error("contact boundary '{set}' is not one open chain of edges: {what}")]
     ContactNotConnected {

@@ -105,6 +105,13 @@ impl Refinement {
         &self.mesh
     }
 
+    /// The refined mesh with `curves` for its edge sets, its nodes where they are (a mesh refined on the chords
+    /// of curves that its sets still name: the gap of a bent pair reads them, [`crate::contact::pair`]).
+    pub(crate) fn with_curves(mut self, curves: std::collections::BTreeMap<String, crate::mesh::Curve>) -> Self {
+        self.mesh = self.mesh.with_curves(curves);
+        self
+    }
+
     /// The refined mesh, by value.
     pub fn into_mesh(self) -> Mesh {
         self.mesh

@@ -54,10 +54,12 @@ pub struct Body {
 pub struct ContactPair {
     /// The secondary side, `"body.edge_set"`: it carries the multipliers and the stabilization.
     pub secondary: String,
-    /// The primary side, `"body.edge_set"`, on the same line with the opposite normal.
+    /// The primary side, `"body.edge_set"`: on the same line with the opposite normal, or, where either side is
+    /// bent, any chain of edges facing the secondary side near it ([`crate::contact::pair`]).
     pub primary: String,
     /// The initial gap g₀(ξ) ≥ 0 between the two lines (abscissa of the secondary line), as the shapes of
     /// the rigid obstacle: [`ObstacleShape::Flat`] for bodies that touch, a parabola for curved profiles.
+    /// Between bent sides it adds to the gap their geometry gives.
     pub gap: ObstacleShape,
     /// Points of T_H on the secondary line.
     pub multiplier_points: MultiplierPoints,
@@ -107,8 +109,9 @@ impl Problem {
     ///
     /// # Errors
     /// [`Error::ContactPair`] for body names that are empty, repeated or hold a '.', a pair side that names
-    /// no body or no edge set of it, both sides on one body, lines that are not one line with opposite
-    /// normals, a primary line that does not cover the secondary one, a piece of a body that neither its
+    /// no body or no edge set of it, both sides on one body, straight sides that are not one line with
+    /// opposite normals, a primary side that does not cover the secondary one, bent sides that do not face
+    /// each other or lie beyond the small-sliding range, a piece of a body that neither its
     /// supports nor the contact hold (naming the body and the free motion); [`Error::BadObstacle`] for a gap
     /// given by its geometry ([`crate::ObstacleShape::is_geometry`]); the other errors of [`Problem::new`].
     pub fn two_bodies(bodies: [Body; 2], pair: ContactPair, body_force: [f64; 2]) -> Result<Self> {

@@ -277,9 +277,15 @@ impl Problem {
         }
         let multipliers = MultiplierMesh::new(&contact, &spec.multiplier_points, spec.multiplier_space)?;
         let h_t: Vec<f64> = contact.edges.iter().map(|e| mesh.diameter(e.triangle)).collect();
-        let mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &spec.obstacle, spec.model)?;
+        let mut mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &spec.obstacle, spec.model)?;
         let primary =
             primary.map(|set| PrimarySide::new(&mesh, &contact, set, &multipliers, spec.model)).transpose()?;
+        // A bent pair's gap from the geometry adds to the pair's gap shape.
+        let mut contact_gap = contact_gap;
+        if let Some(geometry) = primary.as_ref().and_then(|p| p.geometry.as_ref()) {
+            mortar.gap_moments.iter_mut().zip(&geometry.gap_moments).for_each(|(m, g)| *m += g);
+            contact_gap.iter_mut().zip(&geometry.node_gap).for_each(|(m, g)| *m += g);
+        }
         // Γ_C's triangles with their own materials (one body's, the secondary's for two, a coating's).
         let contact_stress = ContactStress::new(&mesh, spec.model, &in_plane, &contact);
         let gamma0_bound = admissible_gamma0(&mesh, spec.model, &in_plane, &contact);

@@ -75,7 +75,7 @@
 //! because it lets the layers under the contact stay coarse; without it, as here, the estimate is the
 //! more pessimistic of the two (see `docs/adaptive.md` for its effectivity).
 
-use crate::contact::mortar::{common_refinement, GAUSS2};
+use crate::contact::mortar::common_refinement;
 use crate::contact::multiplier::MultiplierMesh;
 use crate::contact::pair::PrimarySide;
 use crate::contact::ContactBoundary;
@@ -201,8 +201,10 @@ pub(crate) struct EstimatorInput<'a> {
     /// u_n and the slip at the FE nodes of Γ_C.
     pub u_n: &'a [f64],
     pub slip: &'a [f64],
-    /// The displacement at the FE nodes of Γ_C from which the slip is measured (`u^{k−1}` in a history).
+    /// The displacement at the FE nodes of Γ_C from which the slip is measured (`u^{k−1}` in a history), and
+    /// today's (the jump `u¹ − u²∘Π` for two bodies, as both).
     pub previous_u: &'a [[f64; 2]],
+    pub contact_u: &'a [[f64; 2]],
     /// The gap g(ξ) of this load case, anywhere on Γ_C.
     pub gap: &'a dyn Fn(f64) -> f64,
     /// The abscissae where the gap may have a local minimum between the FE nodes (the obstacle's lowest
@@ -277,38 +279,6 @@ pub(crate) fn traction_weights(mesh: &Mesh, contact: &ContactBoundary) -> Vec<f6
         .collect()
 }
 
-/// The mean over a primary contact edge `[xa, xb]` (abscissae on the secondary line) of
-/// `|σ² n² − (λ_n n + λ_t t)|²`, the body's traction `s = σ² n²` against the reaction of the multiplier
-/// (zero beyond Γ_C), by 2-point Gauss on the pieces T_H cuts it into (exact: λ is piecewise linear).
-fn primary_residual(input: &EstimatorInput<'_>, s: [f64; 2], xa: f64, xb: f64) -> f64 {
-    let (n, t, mult) = (input.contact.normal, input.contact.tangent, input.multipliers);
-    // The T_H points strictly inside the edge (mult.xi is increasing): a slice, not a scan of all of T_H.
-    let inside = &mult.xi[mult.xi.partition_point(|&x| x <= xa)..mult.xi.partition_point(|&x| x < xb)];
-    let mut breaks = vec![xa];
-    breaks.extend_from_slice(inside);
-    breaks.push(xb);
-    let nc = mult.xi.len() - 1;
-    let mut sum = 0.0;
-    for w in breaks.windows(2) {
-        let (half, mid) = (0.5 * (w[1] - w[0]), 0.5 * (w[0] + w[1]));
-        for &(g, wg) in &GAUSS2 {
-            let x = mid + half * g;
-            let (ln, lt) = if x < mult.xi[0] || x > mult.xi[nc] {
-                (0.0, 0.0)
-            } else {
-                let cell = mult.xi.partition_point(|&y| y <= x).clamp(1, nc) - 1;
-                let (b, nb) = mult.basis(cell, x);
-                b[..nb]
-                    .iter()
-                    .fold((0.0, 0.0), |acc, &(j, v)| (acc.0 + v * input.lambda_n[j], acc.1 + v * input.lambda_t[j]))
-            };
-            let r = [s[0] - ln * n[0] - lt * t[0], s[1] - ln * n[1] - lt * t[1]];
-            sum += wg * half * (r[0] * r[0] + r[1] * r[1]);
-        }
-    }
-    sum / (xb - xa)
-}
-
 /// The per-triangle indicators η_K and ζ_K (not squared) and the totals.
 ///
 /// Each term of η² and ζ² has the units of a stress squared (times a length of the mesh): the
@@ -333,7 +303,8 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
     let stress: Vec<[f64; 3]> = input.stress.iter().map(|s| s.map(|x| x * ks)).collect();
     let hoop = times(input.hoop, ks);
     let (u, u_n, slip) = (times(input.displacement, ku), times(input.u_n, ku), times(input.slip, ku));
-    let previous_u: Vec<[f64; 2]> = input.previous_u.iter().map(|p| p.map(|x| x * ku)).collect();
+    let [previous_u, contact_u]: [Vec<[f64; 2]>; 2] =
+        [input.previous_u, input.contact_u].map(|v| v.iter().map(|p| p.map(|x| x * ku)).collect());
     let (lambda_n, lambda_t, threshold) =
         (times(input.lambda_n, ks), times(input.lambda_t, ks), times(input.threshold, ks));
     let gap = |xi: f64| (input.gap)(xi) * ku;
@@ -361,6 +332,7 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
         u_n: &u_n,
         slip: &slip,
         previous_u: &previous_u,
+        contact_u: &contact_u,
         gap: &gap,
         lowest: input.lowest,
     };
@@ -449,7 +421,13 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
                     }
                     let s = traction(&input.stress[t], n);
                     let r2 = if let Some(&(xa, xb)) = primary_edges.get(&key) {
-                        primary_residual(input, s, xa, xb)
+                        crate::contact::pair::traction_residual(
+                            input.contact,
+                            input.multipliers,
+                            [input.lambda_n, input.lambda_t],
+                            s,
+                            [xa, xb],
+                        )
                     } else if input.dofs.edges.contains(&key) {
                         // Γ_D: the traction along a direction the supports leave free must vanish.
                         let free = [a, b].into_iter().find_map(|node| match input.dofs.nodes[node] {
@@ -477,10 +455,10 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
             if contact.one_frame {
                 return nodal[j];
             }
-            let (node, e) = (contact.nodes[j], &contact.edges[k]);
             // The slip is an increment: from the previous displacement (0 but in a history).
             let from = if tangential { input.previous_u.get(j).copied().unwrap_or([0.0, 0.0]) } else { [0.0, 0.0] };
-            let u = [input.displacement[2 * node] - from[0], input.displacement[2 * node + 1] - from[1]];
+            let (now, e) = (input.contact_u[j], &contact.edges[k]);
+            let u = [now[0] - from[0], now[1] - from[1]];
             let (a, b) =
                 if tangential { (e.tangent, contact.node_tangent(j)) } else { (e.normal, contact.node_normal(j)) };
             nodal[j] + u[0] * (a[0] - b[0]) + u[1] * (a[1] - b[1])

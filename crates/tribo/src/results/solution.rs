@@ -134,8 +134,10 @@ impl Solution {
         let edge_abscissae = contact.node_xi.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
         let mut u_n = Vec::with_capacity(contact.nodes.len());
         let mut slip = Vec::with_capacity(contact.nodes.len());
+        let contact_u: Vec<[f64; 2]> =
+            (0..contact.nodes.len()).map(|i| problem.contact_displacement(i, &displacement)).collect();
         for (i, origin) in loading.slip_origin.iter().enumerate() {
-            let [ux, uy] = problem.contact_displacement(i, &displacement);
+            let [ux, uy] = contact_u[i];
             let (n, t) = (contact.node_normal(i), contact.node_tangent(i));
             u_n.push(ux * n[0] + uy * n[1]);
             slip.push(ux * t[0] + uy * t[1] - origin);
@@ -167,7 +169,9 @@ impl Solution {
         let scaled = |v: [f64; 2]| [loading.load_factor * v[0], loading.load_factor * v[1]];
         let spec = &problem.spec;
         let moved = spec.obstacle.approach - loading.approach;
-        let gap_at = |xi: f64| spec.obstacle.initial_gap_on(contact, xi) - spec.obstacle.approach + moved;
+        let geometric = |xi: f64| problem.primary.as_ref().map_or(0.0, |p| p.gap_at(contact, xi));
+        let gap_at =
+            |xi: f64| spec.obstacle.initial_gap_on(contact, xi) + geometric(xi) - spec.obstacle.approach + moved;
         let input = EstimatorInput {
             mesh,
             materials,
@@ -192,6 +196,7 @@ impl Solution {
             u_n: &u_n,
             slip: &slip,
             previous_u: &loading.previous_u,
+            contact_u: &contact_u,
             gap: &gap_at,
             lowest: &spec.obstacle.shape.lowest_points(),
         };

@@ -20,6 +20,7 @@
 //! * `rigid_motion`: a scene turned and moved gives the same tractions and the turned fields;
 //! * `supports`: rollers and prescribed displacements: patch tests, the half Hertz model against the full one;
 //! * `two_bodies`: two elastic bodies in contact (patch test, action and reaction, the rigid limit, Hertz);
+//! * `bent_pair`: two bodies with a bent interface (a shrink fit against Lamé, turned and moved, adaptive, refusals);
 //! * `estimator`: the a posteriori estimate (what it sees, and how it tracks the true error of λ_n);
 //! * `error_bars`: the error bars of the forces and zone widths against a finer mesh, only when asked for;
 //! * `materials`: bodies of several materials (the layered block exact, γ0 from Γ_C's materials, adaptive layers);
@@ -29,6 +30,7 @@
 
 mod adaptive;
 mod axisymmetric;
+mod bent_pair;
 mod coulomb_newton;
 mod curved;
 mod error_bars;
