@@ -66,6 +66,8 @@ def _type(check: Callable[..., Any]) -> Any:
         region = create_model("Region", __config__=STRICT, young=(Num, ...), poisson=(Num, ...),
                               group=(StrictStr | None, None), box=(Annotated[list[Num], Field(min_length=4, max_length=4)] | None, None))
         return list[region]
+    if check.__name__ == "_ring":
+        return create_model("Ring", __config__=STRICT, center=(Pair, ...), radii=(Pair, ...), angles=(Pair, ...))
     schema = getattr(check, "json_schema", None)
     if schema is not None and "enum" in schema:
         return Literal[tuple(schema["enum"])]

@@ -144,6 +144,8 @@ class Scene:
               side_key: str) -> Mesh:
         """The mesh of ``body`` (``[body]`` or a ``[[bodies]]`` entry) with the discretization ``d``, graded
         toward its contact ``side``; the keys name the tables in errors."""
+        if "ring" in body:
+            return self._ring(body, d, body_key, d_key)
         if "mesh" in body:
             if "x" in body or "y" in body:
                 raise SceneError(f"give either {body_key}.mesh or {body_key}.x/{body_key}.y, not both",
@@ -188,6 +190,30 @@ class Scene:
         segment = self.contact_segment((min(along), max(along)), d)
         return Mesh.graded_rectangle(x, y, side=side, segment=segment, h_max=h, h_min=d.get("h_min"),
                                      growth=d.get("growth"))
+
+    @staticmethod
+    def _ring(body: Mapping[str, Any], d: Mapping[str, Any], body_key: str, d_key: str) -> Mesh:
+        """The ring sector of ``body.ring``: uniform at ``h`` (``grading = "auto"`` or ``"none"``), or graded toward
+        the arc ``grading = [a0, a1]`` (degrees) of its outer circle to ``h_min``."""
+        others = sorted(set(body) & {"mesh", "x", "y"})
+        if others:
+            raise SceneError(f"give either {body_key}.ring or {body_key}.{others[0]}, not both", f"{body_key}.ring")
+        if "diagonal" in d:
+            raise SceneError(f"scene key '{d_key}.diagonal' applies to a uniform rectangle, not a ring",
+                             f"{d_key}.diagonal")
+        ring = body["ring"]
+        (r_in, r_out), (a0, a1) = ring["radii"], ring["angles"]
+        angles = (math.radians(a0), math.radians(a1))
+        h = d.get("h", 0.25 * (r_out - r_in))
+        grading = d.get("grading", "auto")
+        if isinstance(grading, str):
+            extra = sorted(set(d) & {"h_min", "growth"})
+            if extra:
+                raise SceneError(f"scene key '{d_key}.{extra[0]}' needs a graded ring: grading = [a0, a1], an arc of "
+                                 "its outer circle in degrees", f"{d_key}.{extra[0]}")
+            return Mesh.ring_sector(ring["center"], (r_in, r_out), angles, h_max=h, h_min=h)
+        return Mesh.ring_sector(ring["center"], (r_in, r_out), angles, h_max=h, h_min=d.get("h_min"),
+                                arc=(math.radians(grading[0]), math.radians(grading[1])), growth=d.get("growth"))
 
     @property
     def is_two_bodies(self) -> bool:

@@ -36,6 +36,9 @@ _BODY = {
     "y": ("The rectangle's extent along y (with `x`; or `mesh`)", "length", "—"),
     "mesh": ("A mesh file meshio reads, relative to the scene file; its named line sets are the edge sets "
              "(a rectangle has `bottom`, `right`, `top`, `left`)", "—", "—"),
+    "ring": ("A ring sector `{ center = [x, y], radii = [r_in, r_out], angles = [a0, a1] }` (angles in degrees, "
+             "r_in ≥ r_out / 4; or `x`/`y`, or `mesh`): edge sets `outer`, `inner`, `start`, `end`, the arcs on their "
+             "circles (refinement and a bent pair's gap follow them)", "length", "—"),
 }
 _MATERIAL = {
     "young": ("Young's modulus E (*required*)", "stress", "—"),
@@ -43,7 +46,8 @@ _MATERIAL = {
 }
 _GRID = {
     "grading": ('Where a rectangle is refined: `"auto"` toward where contact can occur, `"none"` (uniform, size '
-                "`h`) or `[a, b]`, a segment of the contact side", "—", '`"auto"`'),
+                "`h`) or `[a, b]`, a segment of the contact side; a ring is uniform (`\"auto\"`, `\"none\"`) or graded "
+                "toward `[a0, a1]`, an arc of its outer circle in degrees", "—", '`"auto"`'),
     "h": ("The largest cell size", "length", "a quarter of the shorter side"),
     "h_min": ("The cell size at the contact zone (graded meshes)", "length", "h / 16"),
     "growth": ("How fast the cells grow away from the contact zone (graded meshes)", "—", "0.15"),
@@ -67,10 +71,11 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
     "loads.tractions": ("The traction per unit length (per unit area of the surface in axisymmetry) on each named "
                         "edge set (Γ_N), in global axes", "stress",
                         "none"),
-    "contact.edge_set": ("The edge set Γ_C that meets the obstacle: one open chain of boundary edges, straight or bent (straight for two bodies; *required* for one body)", "—", "—"),
+    "contact.edge_set": ("The edge set Γ_C that meets the obstacle: one open chain of boundary edges, straight or bent (*required* for one body)", "—", "—"),
     "contact.secondary": ("Two bodies: the side that carries the multipliers and the stabilization, "
                           "`body.edge_set`", "—", "—"),
-    "contact.primary": ("Two bodies: the other side, `body.edge_set`", "—", "—"),
+    "contact.primary": ("Two bodies: the other side, `body.edge_set` (on the secondary's line, or bent sides facing "
+                        "each other, their gap the geometry's)", "—", "—"),
     "contact.gap": ("Two bodies: the initial gap between the sides, as an obstacle shape", "length",
                     "flat (touching)"),
     "obstacle.shape": ("The rigid obstacle: a gap function of the abscissa on Γ_C (`flat`, `circle`, `parabola`, "

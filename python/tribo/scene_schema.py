@@ -6,8 +6,10 @@ A scene has these tables (every key is optional unless marked *required*; see ``
 
 ``[body]``
     ``x``, ``y``: the rectangle's ranges, e.g. ``x = [-2.0, 2.0]``; or ``mesh``: a mesh file meshio reads
-    (a path relative to the scene file), whose named line sets are the edge sets. One of the two is
-    required. A rectangle has the edge sets ``bottom``, ``right``, ``top``, ``left``.
+    (a path relative to the scene file), whose named line sets are the edge sets; or ``ring = { center = [x,
+    y], radii = [r_in, r_out], angles = [a0, a1] }``: a ring sector (angles in degrees), its edge sets ``outer``,
+    ``inner``, ``start``, ``end`` and its arcs on their circles. One of the three is required. A rectangle has the
+    edge sets ``bottom``, ``right``, ``top``, ``left``.
 ``[material]``
     ``young``, ``poisson`` (*required*); ``model``: ``"plane_strain"`` (default), ``"plane_stress"`` or
     ``"axisymmetric"``;
@@ -95,7 +97,7 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     (``Scene.solve_adaptive`` returns the loop's answer, without). Not with a ``[history]``.
 ``[[bodies]]``
     Two elastic bodies in contact, instead of ``[body]``, ``[material]``, ``[supports]`` and ``[obstacle]``.
-    Exactly two entries, each with ``name`` (*required*), ``x``/``y`` or ``mesh`` as ``[body]``,
+    Exactly two entries, each with ``name`` (*required*), ``x``/``y``, ``mesh`` or ``ring`` as ``[body]``,
     ``material = { young, poisson }`` (*required*; ``model`` the same for both, and ``[[bodies.material.regions]]``
     as ``[[material.regions]]``), ``supports`` (*required*: a list of tables as the
     ``[[supports]]`` entries; a motion they leave free is held by the contact, and ``[]`` leaves the body
@@ -103,7 +105,8 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     ty] } }`` and ``discretization`` with the rectangle's keys (``grading``, ``h``, ``h_min``, ``growth``, ``diagonal``; ``grading = "auto"``
     refines toward the contact: the whole side for a flat gap, ``[c − 2a, c + 2a]`` with ``a = √(2Rδ)`` for a
     curved one, δ the largest prescribed displacement of the scene). ``[contact]`` then names the sides as
-    ``secondary = "body.edge_set"`` (it carries the multipliers and the stabilization) and ``primary``, and
+    ``secondary = "body.edge_set"`` (it carries the multipliers and the stabilization) and ``primary`` (straight
+    sides on one line, or bent sides facing each other: a ring in a ring, whose gap is the arcs'), and
     ``gap`` the initial gap between them as an obstacle shape (``{ shape = "parabola", radius = 1.0 }``;
     default flat: touching). ``[loads]`` keeps ``body_force`` (both bodies); ``[discretization]`` keeps the
     multiplier and γ0 keys. The bodies move through their prescribed displacements: a ``[history]`` moves
@@ -142,6 +145,7 @@ from tribo.scene_values import (
     _path,
     _paths,
     _range,
+    _ring,
     _steps,
     _string,
 )
@@ -248,7 +252,7 @@ def _setting_checker(spec: dict[str, Any]) -> Checker:
 
 
 SCHEMA: dict[str, dict[str, Checker]] = {
-    "body": {"x": _range, "y": _range, "mesh": _string},
+    "body": {"x": _range, "y": _range, "mesh": _string, "ring": _ring},
     "material": {"young": _number, "poisson": _number, "model": _choice(*CHOICES["model"]), "regions": _regions},
     "supports": {"clamped": _names},
     "loads": {"body_force": _pair, "tractions": _pairs},
@@ -320,7 +324,7 @@ def describe_keys() -> list[tuple[str, str, str]]:
     rows.append(("bodies", "supports", "A list of support tables, as [[supports]] entries ([]: held by the contact)."))
     return rows
 # The keys of one [[bodies]] entry: plain values, and the sub-tables with their keys.
-BODY_KEYS: dict[str, Checker] = {"name": _string, "x": _range, "y": _range, "mesh": _string}
+BODY_KEYS: dict[str, Checker] = {"name": _string, "x": _range, "y": _range, "mesh": _string, "ring": _ring}
 BODY_TABLES: dict[str, dict[str, Checker]] = {
     "material": {"young": _number, "poisson": _number, "model": _choice(*CHOICES["model"]), "regions": _regions},
     "loads": {"tractions": _pairs},
@@ -400,8 +404,9 @@ def _body_entry(index: int, entry: Any) -> dict[str, Any]:
     for key in ("young", "poisson"):
         if key not in out["material"]:
             raise SceneError(f"scene key '{where}.material.{key}' is required", f"{where}.material.{key}")
-    if "mesh" not in out and not ("x" in out and "y" in out):
-        raise SceneError(f"scene key '{where}.x' and '{where}.y' (a rectangle) or '{where}.mesh' is required", where)
+    if "mesh" not in out and "ring" not in out and not ("x" in out and "y" in out):
+        raise SceneError(f"scene key '{where}.x' and '{where}.y' (a rectangle), '{where}.ring' or '{where}.mesh' is "
+                         "required", where)
     return out
 
 
@@ -465,8 +470,9 @@ def _check_one_body(sections: dict[str, dict[str, Any]]) -> None:
     if "supports" not in sections:
         raise SceneError("scene key 'supports' is required: [supports] clamped = … or [[supports]] entries", "supports")
     body = sections.get("body", {})
-    if "mesh" not in body and not ("x" in body and "y" in body):
-        raise SceneError("scene key 'body.x' and 'body.y' (a rectangle) or 'body.mesh' is required", "body")
+    if "mesh" not in body and "ring" not in body and not ("x" in body and "y" in body):
+        raise SceneError("scene key 'body.x' and 'body.y' (a rectangle), 'body.ring' or 'body.mesh' is required",
+                         "body")
     for key in ("secondary", "primary", "gap"):
         if key in sections.get("contact", {}):
             raise SceneError(f"scene key 'contact.{key}' names a side of two bodies: it needs [[bodies]]", f"contact.{key}")

@@ -104,6 +104,31 @@ def _range(key: str, v: Any) -> tuple[float, float]:
     return (a, b)
 
 
+def _ring(key: str, v: Any) -> dict[str, tuple[float, float]]:
+    """A ring sector ``{ center = [x, y], radii = [r_in, r_out], angles = [a0, a1] }`` (angles in degrees,
+    counterclockwise from the x axis), meshed by ``Mesh.ring_sector``: edge sets ``outer``, ``inner``, ``start``,
+    ``end``, the arcs carrying their circles."""
+    if not isinstance(v, dict):
+        raise SceneError(f"scene key '{key}' must be a table {{ center = [x, y], radii = [r_in, r_out], angles = "
+                         f"[a0, a1] }}, got {v!r}", key)
+    for name in v:
+        if name not in ("center", "radii", "angles"):
+            raise SceneError(f"scene key '{key}.{name}' is not known (known keys: center, radii, angles)",
+                             f"{key}.{name}")
+    for name in ("center", "radii", "angles"):
+        if name not in v:
+            raise SceneError(f"scene key '{key}.{name}' is required", f"{key}.{name}")
+    return {"center": _pair(f"{key}.center", v["center"]), "radii": _range(f"{key}.radii", v["radii"]),
+            "angles": _range(f"{key}.angles", v["angles"])}
+
+
+_ring.json_schema = {  # type: ignore[attr-defined]
+    "type": "object", "required": ["center", "radii", "angles"], "additionalProperties": False,
+    "properties": {k: {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2}
+                   for k in ("center", "radii", "angles")},
+}
+
+
 def _numbers(key: str, v: Any) -> list[float]:
     """A list of numbers."""
     if not isinstance(v, list):

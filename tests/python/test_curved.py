@@ -4,6 +4,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 import tomllib
 from pathlib import Path
@@ -316,6 +317,12 @@ def _lame(a: float = 0.5, b: float = 1.0, c: float = 2.0, delta: float = 1e-3) -
     return delta / (c_i + c_o * rs / b)
 
 
+def _l2_against(problem: tribo.Problem, sol: tribo.Solution, p: float) -> float:
+    """The relative L2 error of a P1 λ_n (on T_H's nodes) against the uniform pressure p, exact."""
+    e, h = np.asarray(sol.lambda_n) - p, np.diff(np.asarray(problem.multiplier_mesh))
+    return math.sqrt(np.sum(h / 3 * (e[:-1] ** 2 + e[:-1] * e[1:] + e[1:] ** 2)) / (p * p * h.sum()))
+
+
 def test_a_ring_shrunk_into_a_ring_has_lames_pressure() -> None:
     """Two bodies with a bent interface from Python: λ_n is Lamé's uniform pressure to 0.15 % at 10k unknowns
     (the Rust test measures it), and the force on the inner quarter is −p (b + δ) (1, 1)."""
@@ -323,10 +330,7 @@ def test_a_ring_shrunk_into_a_ring_has_lames_pressure() -> None:
     sol = problem.solve()
     assert sol.report.status == "converged"
     p = _lame()
-    lam = np.asarray(sol.lambda_n)
-    xi = np.asarray(problem.multiplier_mesh)
-    l2 = math.sqrt(np.trapezoid((lam - p) ** 2, xi) / (p * p * (xi[-1] - xi[0])))
-    assert l2 < 3e-3
+    assert _l2_against(problem, sol, p) < 3e-3
     np.testing.assert_allclose(sol.contact_force, [-p * 1.001] * 2, rtol=2e-3)
     assert not [r for r in tribo.check_solution(problem, sol) if "carries no curve" in r]
 
@@ -340,3 +344,65 @@ def test_a_bent_pair_without_its_curves_is_warned_about() -> None:
     assert len(said) == 2 and "'inner.outer'" in said[0] and "'outer.inner'" in said[1] and "h/(8δ)" in said[0]
     p = _lame()
     assert abs(np.mean(sol.lambda_n) / p - 1) > 5e-3
+
+
+def test_the_shipped_shrink_fit_scene_gives_lames_pressure(tmp_path: Path) -> None:
+    """`tribo run` on the shipped shrink_fit scene (two ring sectors from ``ring`` keys, a bent pair): λ_n within
+    0.5 % of Lamé's pressure in L² (0.41 % measured, as the Rust test on the same meshes), and summary.json holds
+    the force on the inner quarter, −p (b + δ) (1, 1)."""
+    from tribo.cli import main
+
+    assert main(["-q", "run", str(scene_path("shrink_fit")), "--out", str(tmp_path), "--no-plots"]) == 0
+    scene = parse_scene(tomllib.loads(scene_path("shrink_fit").read_text()))
+    problem, sol = scene.solve()
+    p = _lame()
+    assert _l2_against(problem, sol, p) < 5e-3
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert summary["status"] == "converged"
+    np.testing.assert_allclose(summary["contact_force"], [-p * 1.001] * 2, rtol=5e-3)
+
+
+def test_a_ring_key_makes_the_mesh_python_makes() -> None:
+    """``[body] ring`` is ``Mesh.ring_sector`` (angles in degrees), uniform by default and graded toward an arc of
+    its outer circle with ``grading = [a0, a1]``; the arcs carry their circles."""
+    data = {
+        "body": {"ring": {"center": [0.0, 1.0], "radii": [0.25, 1.0], "angles": [-158.75, -21.25]}},
+        "material": {"young": E, "poisson": NU},
+        "supports": {"clamped": "inner"},
+        "contact": {"edge_set": "outer"},
+        "obstacle": {"shape": "line", "point": [0.0, 0.0], "normal": [0.0, 1.0], "approach": 0.0035},
+        "discretization": {"h": 0.1, "h_min": 0.01, "grading": [-95.73, -84.27]},
+    }
+    mesh = parse_scene(data).mesh()
+    angles = (math.radians(-158.75), math.radians(-21.25))
+    arc = (math.radians(-95.73), math.radians(-84.27))
+    same = tribo.Mesh.ring_sector((0.0, 1.0), (0.25, 1.0), angles, h_max=0.1, h_min=0.01, arc=arc)
+    np.testing.assert_array_equal(mesh.points, same.points)
+    assert set(mesh.curves) == {"inner", "outer"}
+    uniform = parse_scene({**data, "discretization": {"h": 0.1}}).mesh()
+    np.testing.assert_array_equal(
+        uniform.points, tribo.Mesh.ring_sector((0.0, 1.0), (0.25, 1.0), angles, h_max=0.1, h_min=0.1).points)
+
+
+@pytest.mark.parametrize(
+    ("body", "discretization", "key", "match"),
+    [
+        ({"ring": {"center": [0.0, 0.0], "radii": [0.5, 1.0], "angles": [0.0, 90.0]}, "x": [0.0, 1.0]}, {},
+         "body.ring", "not both"),
+        ({"ring": {"center": [0.0, 0.0], "radii": [0.5, 1.0]}}, {}, "body.ring.angles", "required"),
+        ({"ring": {"center": [0.0, 0.0], "radii": [1.0, 0.5], "angles": [0.0, 90.0]}}, {}, "body.ring.radii",
+         "increasing"),
+        ({"ring": {"center": [0.0, 0.0], "radii": [0.5, 1.0], "angles": [0.0, 90.0], "h": 0.1}}, {},
+         "body.ring.h", "not known"),
+        ({"ring": {"center": [0.0, 0.0], "radii": [0.5, 1.0], "angles": [0.0, 90.0]}}, {"h_min": 0.01},
+         "discretization.h_min", "graded ring"),
+    ],
+)
+def test_a_bad_ring_is_refused_by_its_key(body: dict[str, object], discretization: dict[str, object], key: str,
+                                          match: str) -> None:
+    data = {"body": body, "material": {"young": E, "poisson": NU}, "supports": {"clamped": "inner"},
+            "contact": {"edge_set": "outer"}, "obstacle": {"shape": "hole", "center": [0.0, 0.0], "radius": 1.0},
+            "discretization": discretization}
+    with pytest.raises(tribo.SceneError, match=match) as e:
+        parse_scene(data).mesh()
+    assert e.value.details["key"] == key
