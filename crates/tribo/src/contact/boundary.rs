@@ -70,6 +70,9 @@ pub struct ContactBoundary {
     /// Whether every edge has the contact frame of the first (`normal`, `tangent`): a straight Γ_C whose
     /// obstacle is a gap function of the abscissa.
     pub one_frame: bool,
+    /// The exact curve of the edge set, if it carries one ([`crate::Mesh::with_curve`]): the gap to an obstacle
+    /// given by its geometry is measured from it ([`ContactBoundary::surface_point`]).
+    pub curve: Option<crate::mesh::Curve>,
 }
 
 /// The edges of Γ_C in order, with the frame of its abscissa (as the fields of [`ContactBoundary`]).
@@ -137,6 +140,7 @@ impl ContactBoundary {
             node_points,
             bend,
             one_frame: bend.is_none(),
+            curve: mesh.curves().get(set).copied(),
         })
     }
 
@@ -438,6 +442,15 @@ impl ContactBoundary {
         let s = (xi - self.node_xi[k]) / self.edges[k].length;
         let (a, b) = (self.node_points[k], self.node_points[k + 1]);
         [a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])]
+    }
+
+    /// The point of the body's true surface at abscissa `xi`: on the edge set's curve, nearest the facet's point
+    /// ([`ContactBoundary::point_at`]), where the set carries one; the facet's point otherwise. The facets of an
+    /// arc stand inside it by up to h²/8R between nodes: measured from them, the gap to a hole of the arc's
+    /// radius would be that sag, of the order of a shrink fit's interference.
+    pub fn surface_point(&self, xi: f64) -> Point {
+        let p = self.point_at(xi);
+        self.curve.map_or(p, |c| c.project(p))
     }
 
     /// Abscissa of the start of Γ_C.

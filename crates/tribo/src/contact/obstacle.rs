@@ -231,10 +231,11 @@ impl Obstacle {
     }
 
     /// Initial gap `g₀` at abscissa `xi` of `contact`: the gap function's value, or the signed distance of
-    /// the point of Γ_C there from a shape given by its geometry.
+    /// the point of Γ_C there (on its curve, where its edge set carries one: [`ContactBoundary::surface_point`])
+    /// from a shape given by its geometry.
     pub fn initial_gap_on(&self, contact: &ContactBoundary, xi: f64) -> f64 {
         if self.shape.is_geometry() {
-            self.shape.distance(contact.point_at(xi))
+            self.shape.distance(contact.surface_point(xi))
         } else {
             self.initial_gap(xi)
         }
