@@ -246,8 +246,8 @@ def _cut_zone(problem: Problem, solution: Solution) -> list[str]:
     """The reason to doubt a contact zone that reaches an end of Γ_C where the body's boundary goes on
     straight (none at a corner, or when the zone stops short of the ends)."""
     states, nodes = solution.states, np.asarray(problem.contact_nodes)
-    if len(states) == 0 or len(nodes) < 2 or (states[0] == 0 and states[-1] == 0):
-        return []
+    if len(states) == 0 or len(nodes) < 2 or (states[0] == 0 and states[-1] == 0) or nodes[0] == nodes[-1]:
+        return []  # (a closed side has no end)
     tri = np.asarray(problem.mesh.triangles)
     edges = np.sort(np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]]), axis=1)
     unique, counts = np.unique(edges, axis=0, return_counts=True)

@@ -49,7 +49,7 @@ import numpy.typing as npt
 from tribo._tribo import Mesh, MeshError
 from tribo.checks import conventions, obstacle_points
 from tribo.problem import Problem
-from tribo.results import Solution
+from tribo.results import Solution, at_points
 
 __all__ = [
     "mesh_from_meshio",
@@ -428,7 +428,7 @@ def write_vtu(path: str | Path, problem: Problem, solution: Solution, *, per_bod
     )
     xi = problem.multiplier_mesh
     k = len(xi)
-    fields = {
+    fields: dict[str, npt.NDArray[Any]] = {
         "lambda_n": solution.lambda_n,
         "lambda_t": solution.lambda_t,
         "friction_threshold": solution.friction_threshold,
@@ -436,6 +436,7 @@ def write_vtu(path: str | Path, problem: Problem, solution: Solution, *, per_bod
     }
     mlines = np.column_stack([np.arange(k - 1), np.arange(1, k)])
     if problem.space == "P1":
+        fields = {name: at_points(v, k) for name, v in fields.items()}
         multipliers = meshio.Mesh(_xyz(problem.contact_points(xi)), [("line", mlines)], point_data=fields)
     else:
         multipliers = meshio.Mesh(

@@ -34,7 +34,7 @@ from tribo.checks import (
     shift_description,
 )
 from tribo.problem import Problem
-from tribo.results import History, Solution
+from tribo.results import History, Solution, at_points
 
 try:
     import matplotlib.pyplot as plt
@@ -66,6 +66,7 @@ def _state_intervals(problem: Problem, solution: Solution) -> list[tuple[float, 
     if problem.space == "P0":
         bounds = xi
     else:
+        states = at_points(states, len(xi))
         mid = 0.5 * (xi[1:] + xi[:-1])
         bounds = np.concatenate([[xi[0]], mid, [xi[-1]]])
     runs: list[tuple[float, float, int]] = []
@@ -112,7 +113,7 @@ def _multiplier_curve(
     """The multiplier as a curve: P1 through its dofs, P0 as steps over T_H."""
     xi = problem.multiplier_mesh
     if problem.space == "P1":
-        return xi, values
+        return xi, at_points(values, len(xi))
     return np.repeat(xi, 2)[1:-1], np.repeat(values, 2)
 
 

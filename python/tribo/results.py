@@ -38,6 +38,13 @@ _Ints = npt.NDArray[np.int64]
 Status = Literal["converged", "max_iterations", "stagnated", "interrupted", "qp_failed", "non_finite", "inaccurate"]
 
 
+def at_points(values: npt.ArrayLike, n_points: int) -> npt.NDArray[Any]:
+    """P1 multiplier dof values at the ``n_points`` points of T_H: as they are, but on a closed Γ_C (a loop: one dof
+    fewer than points), whose first dof is also at its last point."""
+    v = np.asarray(values)
+    return np.append(v, v[:1]) if len(v) == n_points - 1 else v
+
+
 def _same(a: object, b: object) -> bool:
     """Equal data: arrays of one dtype and shape with equal elements (NaN equal to NaN), containers item by
     item, numbers by value (NaN equal to NaN)."""

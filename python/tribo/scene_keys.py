@@ -71,7 +71,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
     "loads.tractions": ("The traction per unit length (per unit area of the surface in axisymmetry) on each named "
                         "edge set (Γ_N), in global axes", "stress",
                         "none"),
-    "contact.edge_set": ("The edge set Γ_C that meets the obstacle: one open chain of boundary edges, straight or bent (*required* for one body)", "—", "—"),
+    "contact.edge_set": ("The edge set Γ_C that meets the obstacle: one chain of boundary edges, straight or bent, open or "
+                         "closed (a full ring's rim; *required* for one body)", "—", "—"),
     "contact.secondary": ("Two bodies: the side that carries the multipliers and the stabilization, "
                           "`body.edge_set`", "—", "—"),
     "contact.primary": ("Two bodies: the other side, `body.edge_set` (on the secondary's line, or bent sides facing "

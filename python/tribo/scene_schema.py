@@ -26,8 +26,8 @@ A scene has these tables (every key is optional unless marked *required*; see ``
 ``[loads]``
     ``body_force = [fx, fy]``; ``[loads.tractions]``: ``edge_set = [tx, ty]`` per loaded edge set.
 ``[contact]``
-    ``edge_set`` (*required*): the edge set Γ_C, one open chain of edges (straight, or bent against an
-    obstacle given by its geometry).
+    ``edge_set`` (*required*): the edge set Γ_C, one chain of edges (straight, or bent against an
+    obstacle given by its geometry; open, or closed: a full ring's rim).
 ``[obstacle]``
     ``shape``: ``"flat"`` (default), ``"circle"``, ``"parabola"`` (both with ``radius`` *required* and
     ``center``, an abscissa on Γ_C, default 0) or ``"polyline"`` (``xi`` and ``gap`` lists, *required*):

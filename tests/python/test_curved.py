@@ -410,3 +410,34 @@ def test_a_bad_ring_is_refused_by_its_key(body: dict[str, object], discretizatio
     with pytest.raises(tribo.SceneError, match=match) as e:
         parse_scene(data).mesh()
     assert e.value.details["key"] == key
+
+
+def test_a_full_ring_slips_in_its_hole_at_the_slip_torque(tmp_path: Path) -> None:
+    """A closed contact side from a scene file: a full ring (``angles = [0, 360]``, its outer arc one loop, its P1
+    multiplier continuous all round) clamped inside, pressed into a rigid hole and turned far by the hole's
+    shift with Coulomb friction: every dof slips, λ_t = μ λ_n, and the torque is μ p 2π b² (the Rust test's
+    closed form); tribo run writes and plots it, and contact.csv holds one row per dof."""
+    from tribo.run import run_scene
+
+    data = {
+        "body": {"ring": {"center": [0.0, 0.0], "radii": [0.5, 1.0], "angles": [0.0, 360.0]}},
+        "material": {"young": E, "poisson": NU},
+        "supports": {"clamped": "inner"},
+        "contact": {"edge_set": "outer"},
+        "obstacle": {"shape": "hole", "center": [0.0, 0.0], "radius": 1.0, "approach": 1e-3, "shift": 0.02},
+        "friction": {"mu": 0.3},
+        "discretization": {"h": 0.04, "space": "P1"},
+    }
+    problem, sol, files = run_scene(parse_scene(data), tmp_path)
+    assert sol.report.status == "converged"
+    assert problem.contact_nodes[0] == problem.contact_nodes[-1]
+    assert len(sol.lambda_n) == len(problem.multiplier_mesh) - 1
+    lam, mu = E * NU / ((1 + NU) * (1 - 2 * NU)), E / (2 * (1 + NU))
+    p = 2 * 1e-3 * ((lam + mu) + mu * 0.25) / 0.75
+    np.testing.assert_allclose(sol.lambda_n, p, rtol=5e-3)
+    np.testing.assert_allclose(np.abs(sol.lambda_t), 0.3 * np.asarray(sol.lambda_n), rtol=1e-6)
+    assert abs(sol.tangential_force) == pytest.approx(0.3 * p * 2 * math.pi, rel=5e-3)
+    table = pd.read_csv(tmp_path / "contact.csv", comment="#")
+    assert len(table) == len(sol.lambda_n) and set(table["state"]) == {"slip"}
+    assert (tmp_path / "contact_normal.png").is_file() and (tmp_path / "result_multipliers.vtu").is_file()
+    assert not [r for r in tribo.check_solution(problem, sol) if "reaches the end" in r]  # a loop has no end

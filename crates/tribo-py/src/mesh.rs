@@ -148,7 +148,7 @@ impl PyMesh {
 
     /// A mesh of the ring sector radii[0] ≤ ‖x − center‖ ≤ radii[1] between `angles` (radians), graded toward
     /// the `arc` of angles of its outer circle (default: all of it) to h_min (defaults: the core's, as
-    /// `graded_rectangle`). Edge sets 'outer' and 'inner' (on their arcs) and 'start' and 'end'.
+    /// `graded_rectangle`). Edge sets 'outer', 'inner' (on their arcs), 'start', 'end' (a full turn: a ring, no ends).
     #[staticmethod]
     #[pyo3(signature = (center, radii, angles, *, h_max, h_min=None, arc=None, growth=None))]
     #[allow(clippy::too_many_arguments)]

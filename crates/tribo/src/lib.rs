@@ -2,7 +2,7 @@
 //!
 //! tribo solves the contact of a linear elastic body (plane strain, plane stress or axisymmetric:
 //! [`Model`]; small strain, P1 triangles) with a
-//! rigid obstacle along a boundary Γ_C (a straight segment, or any open chain of boundary edges against an
+//! rigid obstacle along a boundary Γ_C (a straight segment, or any chain of boundary edges, open or closed, against an
 //! obstacle given by its geometry: [`ContactBoundary`], [`ObstacleShape`]), with Coulomb friction, by the
 //! stabilized Lagrange multiplier method of Barbosa and Hughes as extended to Coulomb friction by V. Lleras.
 //! The multipliers λ_H = (λ_Hn, λ_Ht) live on their own 1D mesh T_H of Γ_C (P0 or continuous P1) whose points

@@ -1,4 +1,4 @@
-//! Geometry of the contact boundary Γ_C: a named set of boundary edges forming one open chain (a straight
+//! Geometry of the contact boundary Γ_C: a named set of boundary edges forming one chain, open or closed (a straight
 //! segment, or a polyline: the faceted arc of a curved boundary), the normal and tangent of each edge and
 //! the abscissae of its nodes (the conventions are those of [`crate::contact`]).
 
@@ -117,8 +117,9 @@ impl ContactBoundary {
     /// Extracts Γ_C from the edge set `set` of `mesh`.
     ///
     /// # Errors
-    /// [`Error::UnknownEdgeSet`]; [`Error::ContactNotConnected`] when the edges are not one open chain
-    /// (a gap, a branch, a closed loop, a node visited twice).
+    /// [`Error::UnknownEdgeSet`]; [`Error::ContactNotConnected`] when the edges are not one chain, open or
+    /// closed (a gap, a branch, several pieces, a node visited twice). A closed loop is cut at its node of the
+    /// smallest x (then y), which is then its first and its last node ([`ContactBoundary::is_closed`]).
     pub fn new(mesh: &Mesh, set: &str) -> Result<Self> {
         let raw = mesh.edge_set(set)?;
         let (normal, _) = outward_normal(mesh, raw[0][0], raw[0][1]);
@@ -243,10 +244,7 @@ impl ContactBoundary {
         let mut ends: Vec<usize> = around.iter().filter(|(_, e)| e.len() == 1).map(|(n, _)| *n).collect();
         ends.sort_unstable();
         if ends.is_empty() {
-            return bad(format!(
-                "the edges form a closed loop (through node {}): Γ_C must be an open chain",
-                raw[0][0].min(raw[0][1])
-            ));
+            return Self::looped(mesh, set, raw, &around);
         }
         if ends.len() > 2 {
             return bad(format!(
@@ -316,6 +314,68 @@ impl ContactBoundary {
         let offset = pts[first][0] * normal[0] + pts[first][1] * normal[1];
         let origin = [offset * normal[0], offset * normal[1]];
         Ok(Chain { normal, direction, origin, edges, nodes, node_xi })
+    }
+
+    /// A closed Γ_C (a hole's rim, a full ring): cut at its node of the smallest x (then y) and walked along the
+    /// tangent t of its first edge, back to that node, which is then both the first and the last of `nodes`.
+    fn looped(mesh: &Mesh, set: &str, raw: &[[usize; 2]], around: &HashMap<usize, Vec<usize>>) -> Result<Chain> {
+        let pts = mesh.points();
+        let first = *around
+            .keys()
+            .min_by(|&&a, &&b| pts[a][0].total_cmp(&pts[b][0]).then(pts[a][1].total_cmp(&pts[b][1])).then(a.cmp(&b)))
+            .expect("a non-empty set");
+        let forward = |k: usize| {
+            let [a, b] = raw[k];
+            let next = if a == first { b } else { a };
+            let (normal, _) = outward_normal(mesh, a, b);
+            (pts[next][0] - pts[first][0]) * -normal[1] + (pts[next][1] - pts[first][1]) * normal[0] > 0.0
+        };
+        let mut used = vec![false; raw.len()];
+        let start = around[&first].iter().copied().find(|&k| forward(k)).unwrap_or(around[&first][0]);
+        let (mut nodes, mut edges, mut at, mut next_edge) = (vec![first], Vec::new(), first, Some(start));
+        while let Some(k) = next_edge {
+            used[k] = true;
+            let [a, b] = raw[k];
+            let next = if a == at { b } else { a };
+            let (normal, triangle) = outward_normal(mesh, a, b);
+            let tangent = [-normal[1], normal[0]];
+            let length = mesh.edge_length(a, b);
+            edges.push(ContactEdge { left: at, right: next, triangle, length, normal, tangent, outward: normal });
+            nodes.push(next);
+            at = next;
+            next_edge = around[&at].iter().copied().find(|&k| !used[k]);
+        }
+        if at != first || edges.len() != raw.len() {
+            return Err(Error::ContactNotConnected {
+                set: set.to_string(),
+                what: format!("the edges from node {first} do not close into one loop through every edge of the set"),
+            });
+        }
+        if let Some(w) = edges.windows(2).find(|w| {
+            let along = |e: &ContactEdge| {
+                let (a, b) = (pts[e.left], pts[e.right]);
+                (b[0] - a[0]) * e.tangent[0] + (b[1] - a[1]) * e.tangent[1] > 0.0
+            };
+            along(&w[0]) != along(&w[1])
+        }) {
+            return Err(Error::ContactNotConnected {
+                set: set.to_string(),
+                what: format!("the body changes side of the loop at node {}", w[0].right),
+            });
+        }
+        let mut node_xi = vec![pts[first][0]];
+        for e in &edges {
+            node_xi.push(node_xi[node_xi.len() - 1] + e.length);
+        }
+        let (normal, tangent) = (edges[0].normal, edges[0].tangent);
+        let offset = pts[first][0] * normal[0] + pts[first][1] * normal[1];
+        let origin = [offset * normal[0], offset * normal[1]];
+        Ok(Chain { normal, direction: tangent, origin, edges, nodes, node_xi })
+    }
+
+    /// Whether Γ_C is a closed loop (its first node is its last).
+    pub fn is_closed(&self) -> bool {
+        self.nodes.len() > 2 && self.nodes[0] == self.nodes[self.nodes.len() - 1]
     }
 
     /// Whether Γ_C is one straight segment (every edge with the same normal).

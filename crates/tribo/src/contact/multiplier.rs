@@ -63,6 +63,10 @@ pub struct MultiplierMesh {
     pub xi: Vec<f64>,
     /// The space W_0H or W_1H.
     pub space: MultiplierSpace,
+    /// A P1 multiplier on a closed Γ_C ([`ContactBoundary::is_closed`]): its two end points are one point of the
+    /// loop and carry one dof, the first (continuous all round; two dofs there would leave the multiplier one
+    /// more dof than the FE trace has nodes on the loop, a mode that B does not see).
+    pub periodic: bool,
 }
 
 impl MultiplierMesh {
@@ -113,7 +117,7 @@ impl MultiplierMesh {
                 ),
             });
         }
-        Ok(Self { xi, space })
+        Ok(Self { xi, space, periodic: space == MultiplierSpace::P1 && contact.is_closed() })
     }
 
     /// Number of segments N.
@@ -121,19 +125,19 @@ impl MultiplierMesh {
         self.xi.len() - 1
     }
 
-    /// Number of dofs (N for P0, N + 1 for P1).
+    /// Number of dofs (N for P0, N + 1 for P1, N for a periodic P1).
     pub fn n_dofs(&self) -> usize {
         match self.space {
             MultiplierSpace::P0 => self.n_segments(),
-            MultiplierSpace::P1 => self.xi.len(),
+            MultiplierSpace::P1 => self.xi.len() - usize::from(self.periodic),
         }
     }
 
-    /// Abscissae where the dofs live: segment midpoints (P0) or points (P1).
+    /// Abscissae where the dofs live: segment midpoints (P0) or points (P1; but the last of a periodic one).
     pub fn dof_abscissae(&self) -> Vec<f64> {
         match self.space {
             MultiplierSpace::P0 => self.xi.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect(),
-            MultiplierSpace::P1 => self.xi.clone(),
+            MultiplierSpace::P1 => self.xi[..self.n_dofs()].to_vec(),
         }
     }
 
@@ -144,7 +148,8 @@ impl MultiplierMesh {
             MultiplierSpace::P0 => ([(k, 1.0), (k, 0.0)], 1),
             MultiplierSpace::P1 => {
                 let s = (xi - self.xi[k]) / (self.xi[k + 1] - self.xi[k]);
-                ([(k, 1.0 - s), (k + 1, s)], 2)
+                let right = if self.periodic && k + 2 == self.xi.len() { 0 } else { k + 1 };
+                ([(k, 1.0 - s), (right, s)], 2)
             }
         }
     }

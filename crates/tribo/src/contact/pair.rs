@@ -114,6 +114,13 @@ impl PrimarySide {
         let tol = geometric_tol_rel();
         let pts = mesh.points();
         let scale = boundary.edges.iter().map(|e| e.length).fold(0.0, f64::max).max(secondary.length());
+        if let Some(side) = [secondary, &boundary].into_iter().find(|s| s.is_closed()) {
+            return Err(bad(format!(
+                "the side '{}' is a closed loop: two bodies take open sides (cut a full interface into arcs with \
+                 symmetry supports, as the quarter rings of a shrink fit)",
+                side.set
+            )));
+        }
         let straight = secondary.is_straight() && boundary.is_straight();
         if straight {
             let (n1, n2) = (secondary.normal, boundary.normal);

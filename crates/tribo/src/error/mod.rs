@@ -327,8 +327,8 @@ pub enum Error {
     NoDirichlet,
 
     // ----- contact geometry -----
-    /// Γ_C is not one open chain of edges: several pieces, a branch, a closed loop, or edges that overlap.
-    #[error("contact boundary '{set}' is not one open chain of edges: {what}")]
+    /// Γ_C is not one chain of edges (open, or a closed loop): several pieces, a branch, or edges that overlap.
+    #[error("contact boundary '{set}' is not one chain of edges: {what}")]
     ContactNotConnected {
         /// Edge set name.
         set: String,

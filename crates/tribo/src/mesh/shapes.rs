@@ -20,7 +20,9 @@ pub struct RingSector {
     /// Inner and outer radii, `0 < r_in < r_out`, with `r_in ≥ r_out / 4` (the triangles are shrunk along the
     /// arcs by up to `r_in / r_out`).
     pub radii: [f64; 2],
-    /// First and last angle, increasing, less than a full turn apart.
+    /// First and last angle, increasing, at most a full turn apart: a full turn makes a full ring, whose `outer`
+    /// and `inner` sets are closed loops and which has no `start` and `end` (its seam's nodes merged; the mesh
+    /// must then be uniform, or graded toward the whole outer arc, so that both sides of the seam match).
     pub angles: [f64; 2],
 }
 
@@ -63,8 +65,9 @@ pub fn ring_sector(sector: &RingSector, grading: &ArcGrading) -> Result<Mesh> {
         return bad(format!("radii [{r_in}, {r_out}] must be finite, with 0 < r_out / 4 ≤ r_in < r_out"));
     }
     let turn = 2.0 * std::f64::consts::PI;
-    if !(t0.is_finite() && t1.is_finite() && t0 < t1 && t1 - t0 < turn) {
-        return bad(format!("angles [{t0}, {t1}] must be finite, increasing and less than a full turn apart"));
+    let full = (t1 - t0 - turn).abs() <= 1e-12 * turn;
+    if !(t0.is_finite() && t1.is_finite() && t0 < t1 && (t1 - t0 < turn || full)) {
+        return bad(format!("angles [{t0}, {t1}] must be finite, increasing and at most a full turn apart"));
     }
     let [a, b] = grading.angles;
     if !(a.is_finite() && b.is_finite() && t0 <= a && a <= b && b <= t1) {
@@ -101,9 +104,72 @@ pub fn ring_sector(sector: &RingSector, grading: &ArcGrading) -> Result<Mesh> {
         .iter()
         .map(|&(from, to)| Ok((to.to_string(), flat.edge_set(from)?.to_vec())))
         .collect::<Result<std::collections::BTreeMap<_, _>>>()?;
-    Mesh::new(points, flat.triangles().to_vec(), sets)?
+    let (points, triangles, sets) =
+        if full { closed(&flat, points, sets)? } else { (points, flat.triangles().to_vec(), sets) };
+    Mesh::new(points, triangles, sets)?
         .with_curve("outer", Curve::Arc { center: sector.center, radius: r_out })?
         .with_curve("inner", Curve::Arc { center: sector.center, radius: r_in })
+}
+
+/// A full ring from the sector of a full turn: the nodes of its `start` side (θ = t0) merged with those of its
+/// `end` side (θ = t1 = t0 + 2π), at the same radii; `start` and `end` become interior and are dropped, `outer`
+/// and `inner` closed loops.
+///
+/// # Errors
+/// [`Error::BadGenerator`] when the two sides do not have their nodes at the same radii (a ring graded toward an
+/// arc, whose cells differ at the two ends of the unrolled sector): the seam would not be conforming.
+#[allow(clippy::type_complexity)]
+fn closed(
+    flat: &Mesh,
+    mut points: Vec<Point>,
+    mut sets: std::collections::BTreeMap<String, Vec<[usize; 2]>>,
+) -> Result<(Vec<Point>, Vec<[usize; 3]>, std::collections::BTreeMap<String, Vec<[usize; 2]>>)> {
+    let side = |name: &str| -> Result<Vec<usize>> {
+        let mut nodes: Vec<usize> = sets[name].iter().flatten().copied().collect();
+        nodes.sort_by(|&a, &b| flat.points()[a][1].total_cmp(&flat.points()[b][1]));
+        nodes.dedup();
+        Ok(nodes)
+    };
+    let (start, end) = (side("start")?, side("end")?);
+    let radii = |nodes: &[usize]| nodes.iter().map(|&i| flat.points()[i][1]).collect::<Vec<f64>>();
+    let (ra, rb) = (radii(&start), radii(&end));
+    let r_out = rb.last().copied().unwrap_or(1.0);
+    if ra.len() != rb.len() || ra.iter().zip(&rb).any(|(a, b)| (a - b).abs() > 1e-12 * r_out) {
+        return Err(Error::BadGenerator {
+            what: format!(
+                "a full ring needs the same nodes on both sides of its seam: {} against {} (grade it toward the whole \
+                 outer arc, or make it uniform)",
+                ra.len(),
+                rb.len()
+            ),
+        });
+    }
+    // Each start node becomes its end twin; the others are renumbered in order.
+    let mut index: Vec<usize> = (0..points.len()).collect();
+    for (&a, &b) in start.iter().zip(&end) {
+        index[a] = b;
+    }
+    let mut kept = vec![usize::MAX; points.len()];
+    let mut n = 0;
+    for i in 0..points.len() {
+        if index[i] == i {
+            kept[i] = n;
+            n += 1;
+        }
+    }
+    let new = |i: usize| kept[index[i]];
+    let mut k = 0;
+    points.retain(|_| {
+        k += 1;
+        index[k - 1] == k - 1
+    });
+    let triangles = flat.triangles().iter().map(|t| t.map(new)).collect();
+    sets.remove("start");
+    sets.remove("end");
+    for edges in sets.values_mut() {
+        edges.iter_mut().for_each(|e| *e = e.map(new));
+    }
+    Ok((points, triangles, sets))
 }
 
 #[cfg(test)]
@@ -139,6 +205,31 @@ mod tests {
         // The area is the ring sector's, less the segments the chords cut off.
         let area: f64 = (0..mesh.n_triangles()).map(|t| mesh.area(t)).sum();
         assert!((area - 0.5 * 1.2 * (1.0 - 0.25)).abs() < 1e-3, "{area}");
+    }
+
+    #[test]
+    fn a_full_turn_is_a_full_ring_with_closed_arcs() {
+        let turn = 2.0 * std::f64::consts::PI;
+        let sector = RingSector { center: [1.0, 2.0], radii: [0.5, 1.0], angles: [0.3, 0.3 + turn] };
+        let mesh = ring_sector(&sector, &ArcGrading { angles: [0.3, 0.3 + turn], h_min: 0.1, h_max: 0.1, growth: 0.3 })
+            .unwrap();
+        assert!(mesh.edge_set("start").is_err() && mesh.edge_set("end").is_err());
+        for set in ["outer", "inner"] {
+            let c = ContactBoundary::new(&mesh, set).unwrap();
+            assert!(c.is_closed(), "{set}");
+        }
+        // The annulus's area, less the segments the chords cut off; no node twice.
+        let area: f64 = (0..mesh.n_triangles()).map(|t| mesh.area(t)).sum();
+        assert!((area - 0.5 * turn * (1.0 - 0.25)).abs() < 2e-2, "{area}");
+        let mut pts: Vec<[i64; 2]> =
+            mesh.points().iter().map(|p| [(p[0] * 1e9).round() as i64, (p[1] * 1e9).round() as i64]).collect();
+        pts.sort_unstable();
+        pts.dedup();
+        assert_eq!(pts.len(), mesh.n_nodes());
+        // Graded toward part of the arc, the two sides of the seam differ: refused.
+        let graded = ArcGrading { angles: [0.3, 1.0], h_min: 0.01, h_max: 0.1, growth: 0.3 };
+        let e = ring_sector(&sector, &graded).unwrap_err();
+        assert!(matches!(&e, Error::BadGenerator { what } if what.contains("seam")), "{e}");
     }
 
     #[test]

@@ -138,7 +138,7 @@ impl Problem {
     ///
     /// # Errors
     /// Any input error: material, unknown edge sets, no support, bad or conflicting supports, a piece the
-    /// supports do not hold, non-finite loads, Γ_C not one open chain of edges or overlapping Γ_D, bad
+    /// supports do not hold, non-finite loads, Γ_C not one chain of edges (open or closed) or overlapping Γ_D, bad
     /// obstacle, bad multiplier points.
     pub fn new(mesh: Mesh, spec: ProblemSpec) -> Result<Self> {
         let materials = Materials::uniform(spec.material, mesh.n_triangles());

@@ -291,3 +291,45 @@ fn a_profile_is_the_signed_distance_it_equals() {
     assert!((a.normal_force / b.normal_force - 1.0).abs() < 1e-8);
     assert_eq!(profile.spec.obstacle.shape.kind(), "profile");
 }
+
+/// A closed Γ_C: a full ring (radii 0.5–1, clamped inside) pressed into a rigid hole of its outer radius by δ,
+/// its outer arc one loop. Frictionless, the pressure is Lamé's all round (as the quarter ring's above). With
+/// Coulomb friction and the hole turned by s/R far beyond what the ring's twist takes, the whole rim slips, the
+/// tangential traction is μ λ_n everywhere, and the torque the hole exerts is the slip torque `μ p 2π b²`.
+#[test]
+fn a_full_ring_in_a_hole_has_lames_pressure_and_slips_at_mu_p_2_pi_b_squared() {
+    let (a, b, delta, mu) = (0.5, 1.0, 1e-3, 0.3);
+    let sector = RingSector { center: [0.0, 0.0], radii: [a, b], angles: [0.0, 2.0 * std::f64::consts::PI] };
+    let grading = ArcGrading { angles: [0.0, 2.0 * std::f64::consts::PI], h_min: 0.02, h_max: 0.02, growth: 0.15 };
+    let mesh = ring_sector(&sector, &grading).expect("a full ring");
+    assert!(mesh.edge_set("start").is_err(), "a full ring has no radial sides");
+    let problem = |shift: f64| {
+        let spec = ProblemSpec::new(Material { young: E, poisson: NU }, "outer")
+            .clamped(["inner"])
+            .obstacle(ObstacleShape::Hole { center: [0.0, 0.0], radius: b })
+            .approach(delta)
+            .shift(shift);
+        Problem::new(mesh.clone(), spec).expect("a full ring in a hole")
+    };
+    let (lambda, shear) = (E * NU / ((1.0 + NU) * (1.0 - 2.0 * NU)), E / (2.0 * (1.0 + NU)));
+    let p = 2.0 * delta * b * ((lambda + shear) + shear * a * a / (b * b)) / (b * b - a * a);
+    let frictionless = problem(0.0);
+    assert!(frictionless.contact.is_closed());
+    let sol = frictionless.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+    assert_eq!(sol.report.status, SolveStatus::Converged);
+    let worst = sol.lambda_n.iter().map(|l| (l / p - 1.0).abs()).fold(0.0, f64::max);
+    eprintln!("full ring: {} unknowns, λ_n within {worst:.2e} of Lamé", frictionless.n_free);
+    assert!(worst < 3e-3, "λ_n against Lamé: {worst:e}");
+    // Turned far: the ring's rim would twist by about τ b / G·(thickness) ≪ s.
+    let turned = problem(0.02);
+    let sol = turned.solve(&Friction::Coulomb { mu }, &SolverSettings::default(), None).expect("solves");
+    assert_eq!(sol.report.status, SolveStatus::Converged);
+    assert!(sol.states.iter().all(|s| *s == ContactState::Slip), "{:?}", sol.states);
+    let torque = sol.tangential_force.abs() * b;
+    let slip = mu * p * 2.0 * std::f64::consts::PI * b * b;
+    eprintln!("slip torque {torque:.6e} against μ p 2π b² = {slip:.6e}");
+    assert!((torque / slip - 1.0).abs() < 0.01, "{torque} against {slip}");
+    for (ln, lt) in sol.lambda_n.iter().zip(&sol.lambda_t) {
+        assert!((lt.abs() - mu * ln).abs() <= 1e-6 * mu * p, "λ_t {lt} against μ λ_n {}", mu * ln);
+    }
+}
