@@ -84,15 +84,20 @@ impl ShrinkFit {
         };
         let inner = ring([a, b + delta], self.h[0], "inner", INNER_MATERIAL);
         let outer = ring([b, c], self.h[1], "outer", OUTER_MATERIAL);
-        let pair = ContactPair {
-            secondary: "inner.outer".into(),
-            primary: "outer.inner".into(),
-            gap: ObstacleShape::Flat,
-            multiplier_points: MultiplierPoints::RatioToFe(1.0),
-            multiplier_space: MultiplierSpace::P1,
-            model: Model::PlaneStrain,
-        };
-        Problem::two_bodies([inner, outer], pair, [0.0, 0.0]).expect("a valid shrink fit")
+        Problem::two_bodies([inner, outer], ring_pair(), [0.0, 0.0]).expect("a valid shrink fit")
+    }
+}
+
+/// The pair of a ring `inner` in a ring `outer`: the inner ring's outer arc the secondary side, with P1 multipliers
+/// on its FE edges, the outer ring's inner arc the primary, touching (the gap is the arcs'), plane strain.
+pub fn ring_pair() -> ContactPair {
+    ContactPair {
+        secondary: "inner.outer".into(),
+        primary: "outer.inner".into(),
+        gap: ObstacleShape::Flat,
+        multiplier_points: MultiplierPoints::RatioToFe(1.0),
+        multiplier_space: MultiplierSpace::P1,
+        model: Model::PlaneStrain,
     }
 }
 

@@ -114,11 +114,11 @@ impl PrimarySide {
         let tol = geometric_tol_rel();
         let pts = mesh.points();
         let scale = boundary.edges.iter().map(|e| e.length).fold(0.0, f64::max).max(secondary.length());
-        if let Some(side) = [secondary, &boundary].into_iter().find(|s| s.is_closed()) {
+        if secondary.is_closed() != boundary.is_closed() {
+            let (closed, open) = if secondary.is_closed() { (secondary, &boundary) } else { (&boundary, secondary) };
             return Err(bad(format!(
-                "the side '{}' is a closed loop: two bodies take open sides (cut a full interface into arcs with \
-                 symmetry supports, as the quarter rings of a shrink fit)",
-                side.set
+                "the side '{}' is a closed loop and '{}' is not: two bodies take two open sides or two loops",
+                closed.set, open.set
             )));
         }
         let straight = secondary.is_straight() && boundary.is_straight();
@@ -143,7 +143,11 @@ impl PrimarySide {
             }
         }
         let mut xi: Vec<f64> = boundary.nodes.iter().map(|&node| secondary.abscissa(pts[node])).collect();
-        if !straight && xi[0] > xi[xi.len() - 1] {
+        if boundary.is_closed() {
+            xi = unroll(&mut boundary, xi, secondary.length()).ok_or_else(|| {
+                bad("the primary loop's nodes do not go round the secondary loop in one turn".to_string())
+            })?;
+        } else if !straight && xi[0] > xi[xi.len() - 1] {
             reverse(&mut boundary);
             xi.reverse();
         }
@@ -274,6 +278,32 @@ pub fn traction_residual(
         }
     }
     sum / (xb - xa)
+}
+
+/// A primary loop unrolled along the secondary loop of length `length`: its nodes from the one of the smallest
+/// abscissa `xi` round the loop in the secondary's direction, with the node before it first (at its abscissa
+/// less `length`) and that node again last (at its own plus `length`), so that the abscissae increase and
+/// cover the secondary's whole turn. `None` when they do not increase one way round.
+fn unroll(boundary: &mut ContactBoundary, xi: Vec<f64>, length: f64) -> Option<Vec<f64>> {
+    let m = boundary.nodes.len() - 1;
+    let k0 = (0..m).min_by(|&a, &b| xi[a].total_cmp(&xi[b]))?;
+    // The way round: the steps from node to node, each taken the short way across the seam, add up to ±length.
+    let wrapped = |d: f64| d - length * (d / length).round();
+    let forward: f64 = (0..m).map(|k| wrapped(xi[(k + 1) % m] - xi[k])).sum();
+    let step: usize = if forward > 0.0 { 1 } else { m - 1 };
+    let order: Vec<usize> = (0..m).map(|j| (k0 + j * step) % m).collect();
+    let last = order[m - 1];
+    let mut at: Vec<(usize, f64)> = vec![(last, xi[last] - length)];
+    at.extend(order.iter().map(|&k| (k, xi[k])));
+    at.push((k0, xi[k0] + length));
+    if at.windows(2).any(|w| w[1].1 <= w[0].1) {
+        return None;
+    }
+    let (nodes, points) = (boundary.nodes.clone(), boundary.node_points.clone());
+    boundary.nodes = at.iter().map(|&(k, _)| nodes[k]).collect();
+    boundary.node_points = at.iter().map(|&(k, _)| points[k]).collect();
+    boundary.node_xi = at.iter().map(|&(_, x)| x).collect();
+    Some(boundary.node_xi.clone())
 }
 
 /// The primary side in the order of the secondary's abscissa: nodes, points and edges reversed.

@@ -7,7 +7,9 @@
 //! * [`Support::Clamp`]: `u = 0` (a = e_x and a = e_y, v = 0);
 //! * [`Support::Roller`]: `u · n = 0` with n the normal of the set, which must be straight (a symmetry
 //!   line of any direction); the tangential component is free;
-//! * [`Support::Displacement`]: `u_x = ū_x` and/or `u_y = ū_y` (a component left out stays free).
+//! * [`Support::Displacement`]: `u_x = ū_x` and/or `u_y = ū_y` (a component left out stays free);
+//! * [`Support::Rotation`]: the small rigid rotation θ about a point c, `u = θ (−(y − c_y), x − c_x)` (both
+//!   components, each node its own: a shaft turned, a torque applied through a rim).
 //!
 //! The conditions of all supports that reach a node are combined ([`NodeSupport`]): if their vectors a
 //! span the plane the node's displacement is fixed (every condition must then agree with it); if they are
@@ -64,6 +66,16 @@ pub enum Support {
         /// Prescribed y component, or free.
         y: Option<f64>,
     },
+    /// The small rigid rotation `u = θ (−(y − c_y), x − c_x)` of the set about `center` (θ in radians,
+    /// counterclockwise).
+    Rotation {
+        /// Edge set name.
+        set: String,
+        /// The centre c.
+        center: [f64; 2],
+        /// The angle θ.
+        angle: f64,
+    },
 }
 
 impl Support {
@@ -82,10 +94,18 @@ impl Support {
         Self::Displacement { set: set.into(), x, y }
     }
 
+    /// A small rigid rotation of `set` by `angle` (radians, counterclockwise) about `center`.
+    pub fn rotation(set: impl Into<String>, center: [f64; 2], angle: f64) -> Self {
+        Self::Rotation { set: set.into(), center, angle }
+    }
+
     /// The edge set it acts on.
     pub fn set(&self) -> &str {
         match self {
-            Self::Clamp { set } | Self::Roller { set } | Self::Displacement { set, .. } => set,
+            Self::Clamp { set }
+            | Self::Roller { set }
+            | Self::Displacement { set, .. }
+            | Self::Rotation { set, .. } => set,
         }
     }
 
@@ -94,6 +114,12 @@ impl Support {
     /// # Errors
     /// [`Error::BadSupport`].
     pub fn validate(&self) -> Result<()> {
+        if let Self::Rotation { set, center, angle } = self {
+            if !(center.iter().all(|c| c.is_finite()) && angle.is_finite()) {
+                let what = format!("the centre ({}, {}) and the angle {angle} must be finite", center[0], center[1]);
+                return Err(Error::BadSupport { set: set.clone(), what });
+            }
+        }
         if let Self::Displacement { set, x, y } = self {
             let bad = |what: String| Err(Error::BadSupport { set: set.clone(), what });
             if x.is_none() && y.is_none() {
@@ -117,6 +143,7 @@ impl Support {
             Self::Clamp { .. } => "clamp",
             Self::Roller { .. } => "roller",
             Self::Displacement { .. } => "displacement",
+            Self::Rotation { .. } => "rotation",
         }
     }
 }
@@ -194,7 +221,7 @@ pub(super) fn node_supports(
         let raw = mesh.edge_set(set)?;
         support.validate()?;
         let conds: Vec<([f64; 2], f64)> = match support {
-            Support::Clamp { .. } => vec![([1.0, 0.0], 0.0), ([0.0, 1.0], 0.0)],
+            Support::Clamp { .. } | Support::Rotation { .. } => vec![([1.0, 0.0], 0.0), ([0.0, 1.0], 0.0)],
             Support::Roller { .. } => vec![(straight_normal(mesh, set, raw)?, 0.0)],
             Support::Displacement { x, y, .. } => {
                 let mut c = Vec::new();
@@ -211,6 +238,14 @@ pub(super) fn node_supports(
             edges.insert([a.min(b), a.max(b)]);
             for node in [a, b] {
                 for &(dir, v) in &conds {
+                    // A rotation's value is each node's own: θ (−(y − c_y), x − c_x) along e_x and e_y.
+                    let v = match support {
+                        Support::Rotation { center, angle, .. } => {
+                            let p = mesh.points()[node];
+                            angle * (dir[1] * (p[0] - center[0]) - dir[0] * (p[1] - center[1]))
+                        }
+                        _ => v,
+                    };
                     // A node shared by two edges of one set gets the set's conditions once.
                     let list = &mut conditions[node];
                     if !list.iter().any(|c| c.support == k && c.a == dir) {
@@ -321,7 +356,7 @@ impl Support {
     pub fn components(&self) -> [Option<f64>; 2] {
         match self {
             Self::Clamp { .. } => [Some(0.0), Some(0.0)],
-            Self::Roller { .. } => [None, None],
+            Self::Roller { .. } | Self::Rotation { .. } => [None, None],
             Self::Displacement { x, y, .. } => [*x, *y],
         }
     }
@@ -336,6 +371,9 @@ impl std::fmt::Display for Support {
             Self::Displacement { x, y, .. } => {
                 let v = |v: &Option<f64>| v.map_or("None".to_string(), |v| v.to_string());
                 write!(f, "displacement({set:?}, x={}, y={})", v(x), v(y))
+            }
+            Self::Rotation { center, angle, .. } => {
+                write!(f, "rotation({set:?}, center=({}, {}), angle={angle})", center[0], center[1])
             }
             s => write!(f, "{}({set:?})", s.kind()),
         }

@@ -100,6 +100,7 @@ fn renamed(support: &Support, body: &str) -> Support {
         Support::Clamp { .. } => Support::Clamp { set },
         Support::Roller { .. } => Support::Roller { set },
         Support::Displacement { x, y, .. } => Support::Displacement { set, x: *x, y: *y },
+        Support::Rotation { center, angle, .. } => Support::Rotation { set, center: *center, angle: *angle },
     }
 }
 

@@ -130,3 +130,68 @@ fn a_pair_of_sides_that_do_not_face_is_refused() {
     refused([0.8, 0.9995], "inner.outer", "outer.outer", "does not face");
     assert!(solve_pair([1.0, 2.0], "inner.outer", "outer.inner").is_ok());
 }
+
+/// Two full rings, one shrunk into the other (the radii and materials of `ShrinkFit`, non-matching loops): the
+/// interface is two closed sides. The inner ring is clamped inside and the outer one held on its rim by a
+/// rotation ([`Support::Rotation`]). At angle 0 the pressure is Lamé's all round (both rims held; measured 0.11 %
+/// above it in the mean). Turned by 0.01 with Coulomb friction (μ = 0.3), far beyond what the rings' twist takes,
+/// the interface slips everywhere and the torque it carries is the slip torque `μ p 2π r²` (r = b + δ, the
+/// secondary's radius, where λ acts) within 1 % (measured 0.007 %); the twist leaves the pressure as it was.
+#[test]
+fn two_full_rings_slip_at_the_slip_torque() {
+    let fit = ShrinkFit::new([0.04, 0.07]);
+    let ([a, b, c], delta) = (fit.radii, fit.interference);
+    let turn = 2.0 * std::f64::consts::PI;
+    let ring = |name: &str, radii: [f64; 2], h: f64, material: Material, supports: Vec<Support>| {
+        let sector = RingSector { center: [0.0, 0.0], radii, angles: [0.0, turn] };
+        let mesh = ring_sector(&sector, &ArcGrading { angles: [0.0, turn], h_min: h, h_max: h, growth: 0.1 })
+            .expect("a full ring");
+        let materials = Materials::uniform(material, mesh.n_triangles());
+        Body { name: name.into(), mesh, materials, clamped: vec![], supports, tractions: vec![] }
+    };
+    let problem = |angle: f64| {
+        let inner =
+            ring("inner", [a, b + delta], fit.h[0], tribo_testkit::INNER_MATERIAL, vec![Support::clamp("inner")]);
+        let turned = vec![Support::rotation("outer", [0.0, 0.0], angle)];
+        let outer = ring("outer", [b, c], fit.h[1], tribo_testkit::OUTER_MATERIAL, turned);
+        Problem::two_bodies([inner, outer], tribo_testkit::ring_pair(), [0.0, 0.0]).expect("two full rings")
+    };
+    // Lamé's pressure with both rims held (u(a) = 0 inside, u(c) = 0 outside, the rotation's angle 0): each ring
+    // `u = A r + B / r`, so the inner rim moves `−λ C_i`, `C_i = (r − a²/r) / (2 ((λ_i + μ_i) + μ_i a²/r²))` at
+    // r = b + δ, the outer `(λ r / b) C_o`, `C_o = (c²/b − b) / (2 ((λ_o + μ_o) + μ_o c²/b²))`, and the jump closes −δ.
+    let lame = |m: Material| {
+        (m.young * m.poisson / ((1.0 + m.poisson) * (1.0 - 2.0 * m.poisson)), m.young / (2.0 * (1.0 + m.poisson)))
+    };
+    let ((li, mi), (lo, mo)) = (lame(tribo_testkit::INNER_MATERIAL), lame(tribo_testkit::OUTER_MATERIAL));
+    let rs = b + delta;
+    let c_i = (rs - a * a / rs) / (2.0 * ((li + mi) + mi * a * a / (rs * rs)));
+    let c_o = (c * c / b - b) / (2.0 * ((lo + mo) + mo * c * c / (b * b)));
+    let p_held = delta / (c_i + c_o * rs / b);
+    let still = problem(0.0);
+    // The primary loop unrolled along the secondary's turn, one node beyond each end.
+    let unrolled = still.primary.as_ref().map(|p| (p.xi[0], p.xi[p.xi.len() - 1]));
+    let (start, end) = (still.contact.start(), still.contact.end());
+    assert!(still.contact.is_closed() && unrolled.is_some_and(|(lo, hi)| lo < start && hi > end), "{unrolled:?}");
+    let sol = solve(&still);
+    let mean = sol.normal_force / still.contact.length();
+    let l2 = uniform_pressure_error(&still, &sol.lambda_n, p_held);
+    eprintln!(
+        "two full rings: {} unknowns, mean λ_n {mean:.6e} against Lamé's {p_held:.6e}, L2 {l2:.2e}",
+        still.n_free
+    );
+    assert!(l2 < 5e-3, "λ_n against Lamé: {l2:e}");
+    let turned = problem(0.01);
+    let mu = 0.3;
+    let sol = turned.solve(&Friction::Coulomb { mu }, &SolverSettings::default(), None).expect("solves");
+    assert_eq!(sol.report.status, SolveStatus::Converged);
+    assert!(sol.states.iter().all(|s| *s == ContactState::Slip), "{:?}", sol.states);
+    let r = b + delta;
+    let torque = sol.tangential_force.abs() * r;
+    let pressure = sol.normal_force / turned.contact.length();
+    let slip = mu * pressure * turn * r * r;
+    eprintln!("torque {torque:.6e} against μ p 2π r² = {slip:.6e} (p {pressure:.6e} against {mean:.6e} still)");
+    assert!((torque / slip - 1.0).abs() < 0.01, "{torque} against {slip}");
+    let lame_slip = mu * p_held * turn * r * r;
+    assert!((torque / lame_slip - 1.0).abs() < 0.01, "{torque} against Lamé's {lame_slip}");
+    assert!((pressure / mean - 1.0).abs() < 1e-3, "the twist changed the pressure: {pressure} against {mean}");
+}
