@@ -85,7 +85,8 @@ def _model(name: str, keys: dict[str, Callable[..., Any]], required: tuple[str, 
 
 def scene_model() -> type[BaseModel]:
     """The pydantic model of a one-body scene file (the tables of ``SCHEMA``)."""
-    support = create_model("Support", __config__=STRICT, kind=(Literal["clamp", "roller", "displacement"], ...),
+    support = create_model("Support", __config__=STRICT, kind=(Literal["clamp", "roller", "displacement", "rotation"], ...),
+                           center=(Pair | None, None), angle=(Num | None, None),
                            edge_set=(StrictStr, ...), x=(Num | None, None), y=(Num | None, None))
     tables: dict[str, Any] = {}
     for table, keys in SCHEMA.items():

@@ -435,6 +435,8 @@ def _support(entry: Mapping[str, Any]) -> Support:
         return Support.clamp(name)
     if kind == "roller":
         return Support.roller(name)
+    if kind == "rotation":
+        return Support.rotation(name, entry["center"], entry["angle"])
     return Support.displacement(name, x=entry.get("x"), y=entry.get("y"))
 
 

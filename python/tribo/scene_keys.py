@@ -65,7 +65,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
                        'turn) or `"plane_stress"` (a thin plate, forces per unit '
                        "thickness, ν in (−1/2, 1/2))", "—", None),
     "supports.clamped": ("The edge sets held fixed (u = 0); or `[[supports]]` entries with `kind` (`clamp`, "
-                         "`roller`, `displacement` with `x`/`y`) and `edge_set`", "—", "— (*required*, one form)"),
+                         "`roller`, `displacement` with `x`/`y`, `rotation` with `center` and `angle` in radians) and "
+                         "`edge_set`", "—", "— (*required*, one form)"),
     "loads.body_force": ("The body force f per unit area (per unit volume in axisymmetry), in global axes",
                          "stress / length", "[0, 0]"),
     "loads.tractions": ("The traction per unit length (per unit area of the surface in axisymmetry) on each named "
@@ -258,7 +259,7 @@ def json_schema() -> dict[str, Any]:
     tables["material"]["required"] = ["young", "poisson"]
     support = {"type": "object", "required": ["kind", "edge_set"], "additionalProperties": False,
                "properties": {"kind": {"enum": list(SUPPORT_KINDS)}, "edge_set": {"type": "string"}, "x": _NUMBER,
-                              "y": _NUMBER}}
+                              "y": _NUMBER, "center": _PAIR, "angle": _NUMBER}}
     supports = {"type": "array", "items": support, "description": _description("bodies.supports")}
     # The reader takes an empty list too (a body held by the contact alone), so the schema does.
     tables["supports"] = {"oneOf": [tables["supports"], supports]}

@@ -20,7 +20,8 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     ``[supports]`` with ``clamped``: an edge set name or a list of names (u = 0 there). Or a list of
     ``[[supports]]`` entries, each with ``kind`` and ``edge_set``: ``kind = "clamp"`` (u = 0),
     ``"roller"`` (u·n = 0 on a straight set of any direction, tangential component free: a symmetry
-    line) or ``"displacement"`` with ``x`` and/or ``y`` (prescribed components; one left out is free).
+    line), ``"displacement"`` with ``x`` and/or ``y`` (prescribed components; one left out is free) or
+    ``"rotation"`` with ``center = [x, y]`` and ``angle`` (radians: a small rigid rotation of the set).
     Conditions meeting at a node combine (a clamp and a roller at a corner clamp it); contradictory ones
     are an error that names the node.
 ``[loads]``
@@ -339,7 +340,8 @@ NOT_FOR_TWO_BODIES = {
     "history": ("approach", "shift"),
 }
 # The keys of one [[supports]] entry, by kind (besides kind and edge_set).
-SUPPORT_KINDS: dict[str, tuple[str, ...]] = {"clamp": (), "roller": (), "displacement": ("x", "y")}
+SUPPORT_KINDS: dict[str, tuple[str, ...]] = {"clamp": (), "roller": (), "displacement": ("x", "y"),
+                                             "rotation": ("center", "angle")}
 # The keys of [obstacle] that describe its shape: those each shape takes, and those it requires.
 SHAPE_KEYS = {"flat": (), "circle": ("radius", "center"), "parabola": ("radius", "center"), "polyline": ("xi", "gap"),
               "line": ("point", "normal"), "disc": ("center", "radius"), "hole": ("center", "radius"),
@@ -455,9 +457,12 @@ def _support_entry(index: int, entry: Any, table: str = "supports") -> dict[str,
             raise SceneError(
                 f"scene key '{where}.{key}' is not known for kind = {kind!r} (known keys: {known})", f"{where}.{key}"
             )
-        out[key] = _number(f"{where}.{key}", value)
+        out[key] = (_pair if key == "center" else _number)(f"{where}.{key}", value)
     if kind == "displacement" and "x" not in out and "y" not in out:
         raise SceneError(f"scene key '{where}' (a displacement) needs x, y or both", f"{where}.x")
+    for key in SUPPORT_KINDS[kind] if kind == "rotation" else ():
+        if key not in out:
+            raise SceneError(f"scene key '{where}.{key}' is required for a rotation", f"{where}.{key}")
     return out
 
 

@@ -441,3 +441,50 @@ def test_a_full_ring_slips_in_its_hole_at_the_slip_torque(tmp_path: Path) -> Non
     assert len(table) == len(sol.lambda_n) and set(table["state"]) == {"slip"}
     assert (tmp_path / "contact_normal.png").is_file() and (tmp_path / "result_multipliers.vtu").is_file()
     assert not [r for r in tribo.check_solution(problem, sol) if "reaches the end" in r]  # a loop has no end
+
+
+def test_two_full_rings_from_a_scene_slip_at_the_slip_torque(tmp_path: Path) -> None:
+    """Two loops between two bodies and a rotation support, from a scene file: a full ring shrunk into a full ring
+    (the Rust test's rings), the inner clamped inside, the outer's rim turned by 0.01 rad (``kind = "rotation"``)
+    with μ = 0.3: the interface slips all round and carries μ p 2π r² within 1 % of Lamé's p with both rims held."""
+    from tribo.run import run_scene
+
+    ring = {"center": [0.0, 0.0], "angles": [0.0, 360.0]}
+    data = {
+        "bodies": [
+            {"name": "inner", "ring": {**ring, "radii": [0.5, 1.001]}, "material": {"young": 1.0, "poisson": 0.3},
+             "supports": [{"kind": "clamp", "edge_set": "inner"}], "discretization": {"h": 0.04}},
+            {"name": "outer", "ring": {**ring, "radii": [1.0, 2.0]}, "material": {"young": 2.0, "poisson": 0.25},
+             "supports": [{"kind": "rotation", "edge_set": "outer", "center": [0.0, 0.0], "angle": 0.01}],
+             "discretization": {"h": 0.07}},
+        ],
+        "contact": {"secondary": "inner.outer", "primary": "outer.inner"},
+        "friction": {"mu": 0.3},
+        "discretization": {"space": "P1"},
+    }
+    problem, sol, _ = run_scene(parse_scene(data), tmp_path)
+    assert sol.report.status == "converged" and set(sol.state_names) == {"slip"}
+    assert problem.supports[-1] == tribo.Support.rotation("outer.outer", (0.0, 0.0), 0.01)
+
+    def lame(e: float, nu: float) -> tuple[float, float]:
+        return e * nu / ((1 + nu) * (1 - 2 * nu)), e / (2 * (1 + nu))
+
+    (li, mi), (lo, mo), (a, b, c, r) = lame(1.0, 0.3), lame(2.0, 0.25), (0.5, 1.0, 2.0, 1.001)
+    c_i = (r - a * a / r) / (2 * ((li + mi) + mi * a * a / (r * r)))
+    c_o = (c * c / b - b) / (2 * ((lo + mo) + mo * c * c / (b * b)))
+    p = 1e-3 / (c_i + c_o * r / b)
+    assert abs(sol.tangential_force) * r == pytest.approx(0.3 * p * 2 * math.pi * r * r, rel=0.01)
+
+
+def test_a_rotation_support_is_checked_and_reads_back() -> None:
+    s = tribo.Support.rotation("rim", (1.0, 2.0), 0.5)
+    assert (s.kind, s.edge_set, s.value) == ("rotation", "rim", (None, None))
+    assert repr(s) == "Support.rotation(\"rim\", center=(1, 2), angle=0.5)"
+    with pytest.raises(tribo.SettingsError, match="finite"):
+        tribo.Support.rotation("rim", (0.0, 0.0), math.inf)
+    data = {"body": {"x": [0.0, 1.0], "y": [0.0, 1.0]}, "material": {"young": 1.0, "poisson": 0.3},
+            "supports": [{"kind": "rotation", "edge_set": "bottom", "center": [0.0, 0.0]}],
+            "contact": {"edge_set": "top"}}
+    with pytest.raises(tribo.SceneError, match="required for a rotation") as e:
+        parse_scene(data)
+    assert e.value.details["key"] == "supports[0].angle"

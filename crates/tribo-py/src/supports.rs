@@ -1,4 +1,4 @@
-//! `Support`: a Dirichlet condition on a named edge set (clamp, roller, prescribed displacement).
+//! `Support`: a Dirichlet condition on a named edge set (clamp, roller, prescribed displacement, rotation).
 
 use pyo3::prelude::*;
 
@@ -6,7 +6,8 @@ use crate::errors::to_pyerr;
 
 /// A Dirichlet condition on a named edge set: `Support.clamp(set)` (u = 0), `Support.roller(set)`
 /// (u·n = 0 on a straight set, any direction: a symmetry line; the tangential component is free) or
-/// `Support.displacement(set, x=…, y=…)` (prescribed components; one left out is free). Give a list of
+/// `Support.displacement(set, x=…, y=…)` (prescribed components; one left out is free) or
+/// `Support.rotation(set, center, angle)` (a small rigid rotation, radians). Give a list of
 /// them to `Problem(supports=…)`; conditions meeting at a node combine (a clamp and a roller at a corner
 /// clamp it), and contradictory ones are a SettingsError.
 #[pyclass(frozen, from_py_object, name = "Support", module = "tribo")]
@@ -34,11 +35,17 @@ impl PySupport {
     #[pyo3(signature = (edge_set, *, x = None, y = None))]
     fn displacement(edge_set: String, x: Option<f64>, y: Option<f64>) -> PyResult<Self> {
         let inner = tribo::Support::displacement(edge_set, x, y);
-        inner.validate().map_err(to_pyerr)?;
-        Ok(Self { inner })
+        inner.validate().map_err(to_pyerr).map(|()| Self { inner })
     }
 
-    /// 'clamp', 'roller' or 'displacement'.
+    /// The small rigid rotation u = angle (−(y − c_y), x − c_x) of the edge set about center (radians).
+    #[staticmethod]
+    fn rotation(edge_set: String, center: (f64, f64), angle: f64) -> PyResult<Self> {
+        let inner = tribo::Support::rotation(edge_set, [center.0, center.1], angle);
+        inner.validate().map_err(to_pyerr).map(|()| Self { inner })
+    }
+
+    /// 'clamp', 'roller', 'displacement' or 'rotation'.
     #[getter]
     fn kind(&self) -> &'static str {
         self.inner.kind()
@@ -50,8 +57,7 @@ impl PySupport {
         self.inner.set().to_string()
     }
 
-    /// The prescribed (x, y) components (None where free; (0, 0) for a clamp, (None, None) for a roller,
-    /// whose condition is along the normal).
+    /// The prescribed (x, y) components: None where free or not one value (a roller, a rotation), (0, 0) clamped.
     #[getter]
     fn value(&self) -> (Option<f64>, Option<f64>) {
         let [x, y] = self.inner.components();
