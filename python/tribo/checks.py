@@ -143,7 +143,7 @@ def _held_nodes(problem: Problem) -> set[int]:
 
     def holds(support: Any) -> bool:
         x, y = support.value
-        return support.kind == "clamp" or (
+        return support.kind in ("clamp", "rotation") or (
             support.kind == "displacement" and (x is not None or n[0] == 0) and (y is not None or n[1] == 0)
         )
 

@@ -272,7 +272,7 @@ class Problem(_tribo.Problem):
         space: Literal["P0", "P1", "p0", "p1"] | None = None,
         model: Literal["plane_strain", "plane_stress", "axisymmetric"] | None = None,
     ) -> Problem:
-        """Two elastic bodies in contact along one straight line: ``secondary`` ('body.edge_set') carries
+        """Two elastic bodies in contact along one line, straight or bent: ``secondary`` ('body.edge_set') carries
         the multipliers T_H and the stabilization, ``primary`` meets it with the opposite normal; ``gap``
         is the initial gap between them as an obstacle shape (flat: touching; a parabola for two curved
         profiles). Either side may be bent (a shrink fit's arcs): the two then face each other, and the gap is

@@ -203,9 +203,15 @@ class Scene:
                              f"{d_key}.diagonal")
         ring = body["ring"]
         (r_in, r_out), (a0, a1) = ring["radii"], ring["angles"]
+        if a1 - a0 > 360.0:
+            raise SceneError(f"scene key '{body_key}.ring.angles' = [{a0:g}, {a1:g}] spans more than a full turn (360)",
+                             f"{body_key}.ring.angles")
+        grading = d.get("grading", "auto")
+        if isinstance(grading, tuple) and not a0 <= grading[0] <= grading[1] <= a1:
+            raise SceneError(f"scene key '{d_key}.grading' = [{grading[0]:g}, {grading[1]:g}] must be an arc of the "
+                             f"ring's outer circle inside its angles [{a0:g}, {a1:g}] (degrees)", f"{d_key}.grading")
         angles = (math.radians(a0), math.radians(a1))
         h = d.get("h", 0.25 * (r_out - r_in))
-        grading = d.get("grading", "auto")
         if isinstance(grading, str):
             extra = sorted(set(d) & {"h_min", "growth"})
             if extra:

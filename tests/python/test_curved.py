@@ -400,6 +400,10 @@ def test_a_ring_key_makes_the_mesh_python_makes() -> None:
          "body.ring.h", "not known"),
         ({"ring": {"center": [0.0, 0.0], "radii": [0.5, 1.0], "angles": [0.0, 90.0]}}, {"h_min": 0.01},
          "discretization.h_min", "graded ring"),
+        ({"ring": {"center": [0.0, 0.0], "radii": [0.5, 1.0], "angles": [0.0, 400.0]}}, {},
+         "body.ring.angles", "more than a full turn"),
+        ({"ring": {"center": [0.0, 0.0], "radii": [0.5, 1.0], "angles": [0.0, 90.0]}}, {"grading": [80.0, 100.0]},
+         "discretization.grading", "inside its angles"),
     ],
 )
 def test_a_bad_ring_is_refused_by_its_key(body: dict[str, object], discretization: dict[str, object], key: str,

@@ -31,8 +31,8 @@ create_exception!(
     tribo,
     ContactGeometryError,
     TriboError,
-    "A bad contact set-up: Γ_C not one open chain of edges (or bent for two bodies) or clamped, a bad \
-     obstacle, bad multiplier points."
+    "A bad contact set-up: Γ_C not one chain of edges (open or closed) or clamped, two sides that do not face, \
+     a bad obstacle, bad multiplier points."
 );
 create_exception!(
     tribo,

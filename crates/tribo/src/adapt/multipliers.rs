@@ -77,9 +77,16 @@ pub(crate) fn moved_abscissae(old: &ContactBoundary, new: &ContactBoundary) -> O
     if new.is_straight() {
         return None;
     }
-    let index: std::collections::HashMap<usize, usize> = new.nodes.iter().enumerate().map(|(k, &n)| (n, k)).collect();
+    // A loop's cut, its first and last node, stays its node of the smallest index: the first maps to the first,
+    // the last to the last.
+    let (closed, last) = (new.is_closed(), old.nodes.len() - 1);
+    let kept = new.nodes.len() - usize::from(closed);
+    let index: std::collections::HashMap<usize, usize> =
+        new.nodes[..kept].iter().enumerate().map(|(k, &n)| (n, k)).collect();
     // Bisection keeps the coarse nodes and their indices: every old node of Γ_C is a node of the new one.
-    let pairs = old.nodes.iter().zip(&old.node_xi).filter_map(|(n, &x)| Some((x, new.node_xi[*index.get(n)?])));
+    let pairs = old.nodes.iter().zip(&old.node_xi).enumerate().filter_map(|(k, (n, &x))| {
+        Some((x, if closed && k == last { new.end() } else { new.node_xi[*index.get(n)?] }))
+    });
     Some(pairs.collect())
 }
 

@@ -119,7 +119,7 @@ impl ContactBoundary {
     /// # Errors
     /// [`Error::UnknownEdgeSet`]; [`Error::ContactNotConnected`] when the edges are not one chain, open or
     /// closed (a gap, a branch, several pieces, a node visited twice). A closed loop is cut at its node of the
-    /// smallest x (then y), which is then its first and its last node ([`ContactBoundary::is_closed`]).
+    /// smallest index, which is then its first and its last node ([`ContactBoundary::is_closed`]).
     pub fn new(mesh: &Mesh, set: &str) -> Result<Self> {
         let raw = mesh.edge_set(set)?;
         let (normal, _) = outward_normal(mesh, raw[0][0], raw[0][1]);
@@ -229,7 +229,8 @@ impl ContactBoundary {
         Ok(Chain { normal, direction, origin, edges, nodes, node_xi })
     }
 
-    /// A bent Γ_C: the edges walked as one open chain, each with its own normal, abscissae by arclength.
+    /// A bent Γ_C: the edges walked as one open chain (a loop handed to [`ContactBoundary::looped`]), each with
+    /// its own normal, abscissae by arclength.
     fn chain(mesh: &Mesh, set: &str, raw: &[[usize; 2]]) -> Result<Chain> {
         let pts = mesh.points();
         let bad = |what: String| Err(Error::ContactNotConnected { set: set.to_string(), what });
@@ -316,14 +317,14 @@ impl ContactBoundary {
         Ok(Chain { normal, direction, origin, edges, nodes, node_xi })
     }
 
-    /// A closed Γ_C (a hole's rim, a full ring): cut at its node of the smallest x (then y) and walked along the
+    /// A closed Γ_C (a hole's rim, a full ring): cut at its node of the smallest index and walked along the
     /// tangent t of its first edge, back to that node, which is then both the first and the last of `nodes`.
+    /// Bisection keeps the coarse nodes' indices and numbers new nodes after them, so the cut stays where it is
+    /// on every refinement and the abscissae of the coarse nodes with it (a cut at the leftmost node would move
+    /// where a new node on a curve lies further left).
     fn looped(mesh: &Mesh, set: &str, raw: &[[usize; 2]], around: &HashMap<usize, Vec<usize>>) -> Result<Chain> {
         let pts = mesh.points();
-        let first = *around
-            .keys()
-            .min_by(|&&a, &&b| pts[a][0].total_cmp(&pts[b][0]).then(pts[a][1].total_cmp(&pts[b][1])).then(a.cmp(&b)))
-            .expect("a non-empty set");
+        let first = *around.keys().min().expect("a non-empty set");
         let forward = |k: usize| {
             let [a, b] = raw[k];
             let next = if a == first { b } else { a };
@@ -395,7 +396,11 @@ impl ContactBoundary {
             return self.normal;
         }
         let last = self.edges.len() - 1;
-        let (a, b) = (self.edges[k.saturating_sub(1).min(last)].normal, self.edges[k.min(last)].normal);
+        let (a, b) = if self.is_closed() && (k == 0 || k > last) {
+            (self.edges[last].normal, self.edges[0].normal) // the cut of a loop: its two edges
+        } else {
+            (self.edges[k.saturating_sub(1).min(last)].normal, self.edges[k.min(last)].normal)
+        };
         let m = [a[0] + b[0], a[1] + b[1]];
         let norm = m[0].hypot(m[1]);
         if norm > 0.0 {
@@ -437,18 +442,23 @@ impl ContactBoundary {
     }
 
     /// Abscissa of a point: its projection on the line of a straight Γ_C; on a chain, the abscissa of the
-    /// nearest point of the chain, the end edges extended beyond the ends.
+    /// nearest point of the chain, the end edges extended beyond the ends (not those of a closed loop).
     pub fn abscissa(&self, p: Point) -> f64 {
         if self.is_straight() {
             return (p[0] - self.origin[0]) * self.direction[0] + (p[1] - self.origin[1]) * self.direction[1];
         }
-        let last = self.edges.len() - 1;
+        // A loop has no ends to extend.
+        let (last, open) = (self.edges.len() - 1, !self.is_closed());
         let mut best = (f64::INFINITY, 0.0);
         for (k, e) in self.edges.iter().enumerate() {
             let (a, b) = (self.node_points[k], self.node_points[k + 1]);
             let d = [b[0] - a[0], b[1] - a[1]];
             let mut s = ((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / (e.length * e.length);
-            s = s.clamp(if k == 0 { f64::NEG_INFINITY } else { 0.0 }, if k == last { f64::INFINITY } else { 1.0 });
+            let (lo, hi) = (
+                if k == 0 && open { f64::NEG_INFINITY } else { 0.0 },
+                if k == last && open { f64::INFINITY } else { 1.0 },
+            );
+            s = s.clamp(lo, hi);
             let distance = (p[0] - a[0] - s * d[0]).hypot(p[1] - a[1] - s * d[1]);
             if distance < best.0 {
                 best = (distance, self.node_xi[k] + s * e.length);
@@ -464,11 +474,11 @@ impl ContactBoundary {
             let xi = self.abscissa(p);
             return (lo - xi).max(xi - hi).max(0.0).hypot(self.distance_to_line(p));
         }
-        let last = self.edges.len() - 1;
+        let (last, open) = (self.edges.len() - 1, !self.is_closed());
         let mut best = f64::INFINITY;
         for k in 0..=last {
-            let a = lo.max(if k == 0 { f64::NEG_INFINITY } else { self.node_xi[k] });
-            let b = hi.min(if k == last { f64::INFINITY } else { self.node_xi[k + 1] });
+            let a = lo.max(if k == 0 && open { f64::NEG_INFINITY } else { self.node_xi[k] });
+            let b = hi.min(if k == last && open { f64::INFINITY } else { self.node_xi[k + 1] });
             if a <= b {
                 best = best.min(segment_distance(p, self.point_at(a), self.point_at(b)));
             }

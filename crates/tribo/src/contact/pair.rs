@@ -52,9 +52,11 @@
 //!   farther than a tenth of the secondary side's length from it, or a primary edge that does not face the
 //!   secondary side (its outward normal along the secondary's), is refused.
 
+use std::collections::HashMap;
+
 use crate::contact::mortar::{common_refinement, Coo, GAUSS2, GAUSS4};
 use crate::contact::multiplier::MultiplierMesh;
-use crate::contact::ContactBoundary;
+use crate::contact::{ContactBoundary, ContactEdge};
 use crate::error::{Error, Result};
 use crate::fem::axisymmetric::radial_weight;
 use crate::fem::elasticity::Model;
@@ -144,7 +146,7 @@ impl PrimarySide {
         }
         let mut xi: Vec<f64> = boundary.nodes.iter().map(|&node| secondary.abscissa(pts[node])).collect();
         if boundary.is_closed() {
-            xi = unroll(&mut boundary, xi, secondary.length()).ok_or_else(|| {
+            xi = unroll(&mut boundary, xi, secondary.start(), secondary.length()).ok_or_else(|| {
                 bad("the primary loop's nodes do not go round the secondary loop in one turn".to_string())
             })?;
         } else if !straight && xi[0] > xi[xi.len() - 1] {
@@ -227,6 +229,20 @@ impl PrimarySide {
         [0, 1].map(|c| (1.0 - s) * u[2 * a + c] + s * u[2 * b + c])
     }
 
+    /// Each primary edge (as its `[min, max]` node pair) with the abscissae it spans on the secondary side: one
+    /// span, but two for the edge of a loop that straddles the cut (its ends of the turn, each clipped to it).
+    pub fn edge_spans(&self, secondary: &ContactBoundary) -> HashMap<[usize; 2], Vec<[f64; 2]>> {
+        let (start, end, closed) = (secondary.start(), secondary.end(), secondary.is_closed());
+        let mut spans: HashMap<[usize; 2], Vec<[f64; 2]>> = HashMap::new();
+        for (w, x) in self.boundary.nodes.windows(2).zip(self.xi.windows(2)) {
+            let (a, b) = if closed { (x[0].max(start), x[1].min(end)) } else { (x[0], x[1]) };
+            if a < b {
+                spans.entry([w[0].min(w[1]), w[0].max(w[1])]).or_default().push([a, b]);
+            }
+        }
+        spans
+    }
+
     /// The primary side's point `x²(Π ξ)` facing abscissa `xi` of the secondary side (on its facets).
     pub fn point_at(&self, xi: f64) -> Point {
         let (k, s) = self.locate(xi);
@@ -280,12 +296,14 @@ pub fn traction_residual(
     sum / (xb - xa)
 }
 
-/// A primary loop unrolled along the secondary loop of length `length`: its nodes from the one of the smallest
-/// abscissa `xi` round the loop in the secondary's direction, with the node before it first (at its abscissa
-/// less `length`) and that node again last (at its own plus `length`), so that the abscissae increase and
-/// cover the secondary's whole turn. `None` when they do not increase one way round.
-fn unroll(boundary: &mut ContactBoundary, xi: Vec<f64>, length: f64) -> Option<Vec<f64>> {
+/// A primary loop unrolled along the secondary loop `[start, start + length)`: its nodes from the one of the
+/// smallest abscissa `xi` (taken in that turn) round the loop in the secondary's direction, with the node before
+/// it first (at its abscissa less `length`) and that node again last (at its own plus `length`), so that the
+/// abscissae increase and cover the secondary's whole turn; its edges follow the nodes. `None` when they do not
+/// increase one way round.
+fn unroll(boundary: &mut ContactBoundary, xi: Vec<f64>, start: f64, length: f64) -> Option<Vec<f64>> {
     let m = boundary.nodes.len() - 1;
+    let xi: Vec<f64> = xi.iter().map(|&x| x - length * ((x - start) / length).floor()).collect();
     let k0 = (0..m).min_by(|&a, &b| xi[a].total_cmp(&xi[b]))?;
     // The way round: the steps from node to node, each taken the short way across the seam, add up to ±length.
     let wrapped = |d: f64| d - length * (d / length).round();
@@ -300,9 +318,19 @@ fn unroll(boundary: &mut ContactBoundary, xi: Vec<f64>, length: f64) -> Option<V
         return None;
     }
     let (nodes, points) = (boundary.nodes.clone(), boundary.node_points.clone());
+    let edges: std::collections::HashMap<[usize; 2], ContactEdge> =
+        boundary.edges.iter().map(|e| ([e.left.min(e.right), e.left.max(e.right)], *e)).collect();
     boundary.nodes = at.iter().map(|&(k, _)| nodes[k]).collect();
     boundary.node_points = at.iter().map(|&(k, _)| points[k]).collect();
     boundary.node_xi = at.iter().map(|&(_, x)| x).collect();
+    boundary.edges = boundary
+        .nodes
+        .windows(2)
+        .map(|w| {
+            let e = edges.get(&[w[0].min(w[1]), w[0].max(w[1])]).copied()?;
+            Some(ContactEdge { left: w[0], right: w[1], ..e })
+        })
+        .collect::<Option<Vec<_>>>()?;
     Some(boundary.node_xi.clone())
 }
 

@@ -134,13 +134,16 @@ fn closed(
     let radii = |nodes: &[usize]| nodes.iter().map(|&i| flat.points()[i][1]).collect::<Vec<f64>>();
     let (ra, rb) = (radii(&start), radii(&end));
     let r_out = rb.last().copied().unwrap_or(1.0);
-    if ra.len() != rb.len() || ra.iter().zip(&rb).any(|(a, b)| (a - b).abs() > 1e-12 * r_out) {
+    let differ = ra.iter().zip(&rb).find(|(a, b)| (*a - *b).abs() > 1e-12 * r_out);
+    if ra.len() != rb.len() || differ.is_some() {
+        let what = match differ {
+            Some((a, b)) if ra.len() == rb.len() => format!("a node at radius {a} against one at {b}"),
+            _ => format!("{} nodes against {}", ra.len(), rb.len()),
+        };
         return Err(Error::BadGenerator {
             what: format!(
-                "a full ring needs the same nodes on both sides of its seam: {} against {} (grade it toward the whole \
-                 outer arc, or make it uniform)",
-                ra.len(),
-                rb.len()
+                "a full ring needs the same nodes on both sides of its seam, not {what} (grade it toward the whole \
+                 outer arc, or make it uniform)"
             ),
         });
     }

@@ -384,19 +384,8 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
             e[1] += g[1];
         }
     }
-    // The primary's contact edges, with the abscissae of their ends on the secondary line.
-    let primary_edges: std::collections::HashMap<[usize; 2], (f64, f64)> =
-        input.primary.map_or_else(Default::default, |p| {
-            let pts = mesh.points();
-            p.boundary
-                .edges
-                .iter()
-                .map(|e| {
-                    let (xa, xb) = (input.contact.abscissa(pts[e.left]), input.contact.abscissa(pts[e.right]));
-                    ([e.left.min(e.right), e.left.max(e.right)], (xa.min(xb), xa.max(xb)))
-                })
-                .collect()
-        });
+    // The primary's contact edges, with the abscissae they span on the secondary side.
+    let primary_edges = input.primary.map_or_else(Default::default, |p| p.edge_spans(input.contact));
     let on_contact: std::collections::HashSet<[usize; 2]> =
         input.contact.edges.iter().map(|e| [e.left.min(e.right), e.left.max(e.right)]).collect();
     for (t, tri) in tris.iter().enumerate() {
@@ -420,14 +409,20 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
                         continue;
                     }
                     let s = traction(&input.stress[t], n);
-                    let r2 = if let Some(&(xa, xb)) = primary_edges.get(&key) {
-                        crate::contact::pair::traction_residual(
-                            input.contact,
-                            input.multipliers,
-                            [input.lambda_n, input.lambda_t],
-                            s,
-                            [xa, xb],
-                        )
+                    let r2 = if let Some(spans) = primary_edges.get(&key) {
+                        // The mean over the edge (of its two spans where it straddles a loop's cut).
+                        let lambda = [input.lambda_n, input.lambda_t];
+                        let residual = |x: &[f64; 2]| {
+                            let mean = crate::contact::pair::traction_residual(
+                                input.contact,
+                                input.multipliers,
+                                lambda,
+                                s,
+                                *x,
+                            );
+                            mean * (x[1] - x[0])
+                        };
+                        spans.iter().map(residual).sum::<f64>() / spans.iter().map(|x| x[1] - x[0]).sum::<f64>()
                     } else if input.dofs.edges.contains(&key) {
                         // Γ_D: the traction along a direction the supports leave free must vanish.
                         let free = [a, b].into_iter().find_map(|node| match input.dofs.nodes[node] {

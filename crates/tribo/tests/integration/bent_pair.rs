@@ -131,6 +131,16 @@ fn a_pair_of_sides_that_do_not_face_is_refused() {
     assert!(solve_pair([1.0, 2.0], "inner.outer", "outer.inner").is_ok());
 }
 
+/// A full ring about the origin, uniform at `h` along its outer circle, held by `supports`.
+fn full_ring(name: &str, radii: [f64; 2], h: f64, material: Material, supports: Vec<Support>) -> Body {
+    let turn = 2.0 * std::f64::consts::PI;
+    let sector = RingSector { center: [0.0, 0.0], radii, angles: [0.0, turn] };
+    let mesh = ring_sector(&sector, &ArcGrading { angles: [0.0, turn], h_min: h, h_max: h, growth: 0.1 })
+        .expect("a full ring");
+    let materials = Materials::uniform(material, mesh.n_triangles());
+    Body { name: name.into(), mesh, materials, clamped: vec![], supports, tractions: vec![] }
+}
+
 /// Two full rings, one shrunk into the other (the radii and materials of `ShrinkFit`, non-matching loops): the
 /// interface is two closed sides. The inner ring is clamped inside and the outer one held on its rim by a
 /// rotation ([`Support::Rotation`]). At angle 0 the pressure is Lamé's all round (both rims held; measured 0.11 %
@@ -142,18 +152,11 @@ fn two_full_rings_slip_at_the_slip_torque() {
     let fit = ShrinkFit::new([0.04, 0.07]);
     let ([a, b, c], delta) = (fit.radii, fit.interference);
     let turn = 2.0 * std::f64::consts::PI;
-    let ring = |name: &str, radii: [f64; 2], h: f64, material: Material, supports: Vec<Support>| {
-        let sector = RingSector { center: [0.0, 0.0], radii, angles: [0.0, turn] };
-        let mesh = ring_sector(&sector, &ArcGrading { angles: [0.0, turn], h_min: h, h_max: h, growth: 0.1 })
-            .expect("a full ring");
-        let materials = Materials::uniform(material, mesh.n_triangles());
-        Body { name: name.into(), mesh, materials, clamped: vec![], supports, tractions: vec![] }
-    };
     let problem = |angle: f64| {
         let inner =
-            ring("inner", [a, b + delta], fit.h[0], tribo_testkit::INNER_MATERIAL, vec![Support::clamp("inner")]);
+            full_ring("inner", [a, b + delta], fit.h[0], tribo_testkit::INNER_MATERIAL, vec![Support::clamp("inner")]);
         let turned = vec![Support::rotation("outer", [0.0, 0.0], angle)];
-        let outer = ring("outer", [b, c], fit.h[1], tribo_testkit::OUTER_MATERIAL, turned);
+        let outer = full_ring("outer", [b, c], fit.h[1], tribo_testkit::OUTER_MATERIAL, turned);
         Problem::two_bodies([inner, outer], tribo_testkit::ring_pair(), [0.0, 0.0]).expect("two full rings")
     };
     // Lamé's pressure with both rims held (u(a) = 0 inside, u(c) = 0 outside, the rotation's angle 0): each ring
@@ -194,4 +197,36 @@ fn two_full_rings_slip_at_the_slip_torque() {
     let lame_slip = mu * p_held * turn * r * r;
     assert!((torque / lame_slip - 1.0).abs() < 0.01, "{torque} against Lamé's {lame_slip}");
     assert!((pressure / mean - 1.0).abs() < 1e-3, "the twist changed the pressure: {pressure} against {mean}");
+}
+
+/// The two full rings with the roles swapped: the outer ring's inner loop the secondary side, the inner ring's
+/// outer loop (outside it by the interference, its cut elsewhere) the primary, an odd and an even number of
+/// nodes round. The answer is the same fit: the mean pressure on the secondary, `p (b + δ) / b`, within 0.5 % of
+/// Lamé's, and every dof slips at the same torque within 1 %.
+#[test]
+fn two_full_rings_with_their_roles_swapped_give_the_same_fit() {
+    let turn = 2.0 * std::f64::consts::PI;
+    let solve_with = |secondary: &str, primary: &str, angle: f64, friction: &Friction| {
+        let inner =
+            full_ring("inner", [0.5, 1.001], 0.041, tribo_testkit::INNER_MATERIAL, vec![Support::clamp("inner")]);
+        let turned = vec![Support::rotation("outer", [0.0, 0.0], angle)];
+        let outer = full_ring("outer", [1.0, 2.0], 0.07, tribo_testkit::OUTER_MATERIAL, turned);
+        let pair = ContactPair { secondary: secondary.into(), primary: primary.into(), ..tribo_testkit::ring_pair() };
+        let problem = Problem::two_bodies([inner, outer], pair, [0.0, 0.0]).expect("two full rings");
+        let sol = problem.solve(friction, &SolverSettings::default(), None).expect("solves");
+        assert_eq!(sol.report.status, SolveStatus::Converged);
+        let (radius, length) = (problem.contact.length() / turn, problem.contact.length());
+        (sol.normal_force / length * radius, sol.tangential_force.abs() * radius, sol)
+    };
+    let coulomb = Friction::Coulomb { mu: 0.3 };
+    // The force per radian, λ r, is the same on either side.
+    let (line, _, _) = solve_with("inner.outer", "outer.inner", 0.0, &Friction::Frictionless);
+    let (swapped, _, _) = solve_with("outer.inner", "inner.outer", 0.0, &Friction::Frictionless);
+    eprintln!("force per radian: {line:.6e} (inner secondary), {swapped:.6e} (outer secondary)");
+    assert!((swapped / line - 1.0).abs() < 5e-3, "{swapped} against {line}");
+    let (_, torque, _) = solve_with("inner.outer", "outer.inner", 0.01, &coulomb);
+    let (_, torque_swapped, sol) = solve_with("outer.inner", "inner.outer", 0.01, &coulomb);
+    eprintln!("torque {torque:.6e}, swapped {torque_swapped:.6e}");
+    assert!(sol.states.iter().all(|s| *s == ContactState::Slip), "{:?}", sol.states);
+    assert!((torque_swapped / torque - 1.0).abs() < 1e-2, "{torque_swapped} against {torque}");
 }

@@ -333,3 +333,34 @@ fn a_full_ring_in_a_hole_has_lames_pressure_and_slips_at_mu_p_2_pi_b_squared() {
         assert!((lt.abs() - mu * ln).abs() <= 1e-6 * mu * p, "λ_t {lt} against μ λ_n {}", mu * ln);
     }
 }
+
+/// A closed Γ_C refines adaptively: the cut stays at the same node (the loop's node of the smallest index, which
+/// bisection keeps), T_H follows the loop through it, and the last level's pressure is nearer Lamé's than the
+/// first's.
+#[test]
+fn a_full_ring_in_a_hole_refines_adaptively_with_its_cut_in_place() {
+    let (a, b, delta) = (0.5, 1.0, 1e-3);
+    let turn = 2.0 * std::f64::consts::PI;
+    let sector = RingSector { center: [0.0, 0.0], radii: [a, b], angles: [0.0, turn] };
+    let mesh =
+        ring_sector(&sector, &ArcGrading { angles: [0.0, turn], h_min: 0.1, h_max: 0.1, growth: 0.3 }).expect("a ring");
+    let spec = ProblemSpec::new(Material { young: E, poisson: NU }, "outer")
+        .clamped(["inner"])
+        .obstacle(ObstacleShape::Hole { center: [0.0, 0.0], radius: b })
+        .approach(delta)
+        .multipliers(MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    let problem = Problem::new(mesh, spec).expect("a full ring in a hole");
+    let (lambda, shear) = (E * NU / ((1.0 + NU) * (1.0 - 2.0 * NU)), E / (2.0 * (1.0 + NU)));
+    let p = 2.0 * delta * b * ((lambda + shear) + shear * a * a / (b * b)) / (b * b - a * a);
+    let worst = |s: &Solution| s.lambda_n.iter().map(|l| (l / p - 1.0).abs()).fold(0.0, f64::max);
+    let first = worst(&problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves"));
+    let adapt = AdaptSettings { tol: 1e-4, max_levels: 3, ..AdaptSettings::default() };
+    let run =
+        problem.solve_adaptive(&Friction::Frictionless, &SolverSettings::default(), &adapt, None).expect("adapts");
+    let last = worst(&run.solution);
+    eprintln!("full ring, adaptive: {} levels, worst λ_n off Lamé {first:.2e} → {last:.2e}", run.levels.len());
+    assert_eq!(run.solution.report.status, SolveStatus::Converged);
+    assert!(run.problem.contact.is_closed() && run.problem.contact.nodes[0] == problem.contact.nodes[0]);
+    assert_eq!(run.solution.lambda_n.len(), run.problem.multipliers.xi.len() - 1, "periodic P1");
+    assert!(last < first, "{first} → {last}");
+}
