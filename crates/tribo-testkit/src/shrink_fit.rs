@@ -61,7 +61,10 @@ impl ShrinkFit {
         let ring = |radii: [f64; 2], h: f64, name: &str, material: Material| {
             let sector = RingSector { center: [0.0, 0.0], radii, angles: [0.0, FRAC_PI_2] };
             let grading = ArcGrading { angles: [0.0, FRAC_PI_2], h_min: h, h_max: h, growth: 0.1 };
-            // Internal invariants of this dev-only kit: the callers pass positive sizes below the radii.
+            // Internal invariants of this dev-only kit, not reachable from user input (no user input reaches it):
+            // the callers pass positive sizes below the radii, a rigid motion keeps every triangle valid and
+            // every arc node on its moved circle, and the fit is a valid pair (`bent_pair.rs` solves it); a broken
+            // fixture panics with the message.
             let ring = ring_sector(&sector, &grading).expect("the calling test's own valid sizes");
             let (r, t) = self.motion;
             let points = ring.points().iter().map(|&p| moved(r, t, p)).collect();
@@ -84,6 +87,7 @@ impl ShrinkFit {
         };
         let inner = ring([a, b + delta], self.h[0], "inner", INNER_MATERIAL);
         let outer = ring([b, c], self.h[1], "outer", OUTER_MATERIAL);
+        // A valid pair by the invariants above.
         Problem::two_bodies([inner, outer], ring_pair(), [0.0, 0.0]).expect("a valid shrink fit")
     }
 }

@@ -324,7 +324,10 @@ impl ContactBoundary {
     /// where a new node on a curve lies further left).
     fn looped(mesh: &Mesh, set: &str, raw: &[[usize; 2]], around: &HashMap<usize, Vec<usize>>) -> Result<Chain> {
         let pts = mesh.points();
-        let first = *around.keys().min().expect("a non-empty set");
+        let Some(&first) = around.keys().min() else {
+            let what = "the edge set is empty".to_string();
+            return Err(Error::ContactNotConnected { set: set.to_string(), what });
+        };
         let forward = |k: usize| {
             let [a, b] = raw[k];
             let next = if a == first { b } else { a };
