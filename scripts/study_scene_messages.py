@@ -55,6 +55,7 @@ TYPES: dict[str, Any] = {
     "_names": Union[StrictStr, Annotated[list[StrictStr], Field(min_length=1)]],
     "_grading": Union[Literal["auto", "none"], Pair],
     "_pairs": dict[str, Pair],
+    "_pressures": dict[str, Num],
     "_points": Annotated[list[Pair], Field(min_length=2)],
     "_paths": dict[str, Path_],
 }

@@ -231,7 +231,7 @@ class Problem(ProblemData):
         obstacle: Obstacle | None = None,
         approach: float | None = None,
         shift: float | None = None,
-        tractions: Sequence[tuple[str, tuple[float, float]]] | None = None,
+        tractions: Sequence[tuple[str, Sequence[float]]] | None = None,
         body_force: _Pair | None = None,
         multiplier_ratio: float | None = None,
         multiplier_size: float | None = None,

@@ -96,10 +96,11 @@ def _xi_label(problem: Problem) -> str:
 
 
 def _zoom(ax: Axes, problem: Problem, solution: Solution) -> None:
-    """Limits the ξ axis to the contact zone and as much again on either side."""
+    """Limits the ξ axis to the contact zone and as much again on either side (the whole side where nothing
+    touches or the zone crosses a closed side's cut)."""
     xi = problem.multiplier_mesh
     runs = [(a, b) for a, b, s in _state_intervals(problem, solution) if s != 0]
-    if not runs:
+    if not runs or (solution.closed and runs[0][0] <= xi[0] and runs[-1][1] >= xi[-1]):
         ax.set_xlim(float(xi[0]), float(xi[-1]))
         return
     a, b = runs[0][0], runs[-1][1]

@@ -51,9 +51,10 @@ def _pair(value: Any, what: str) -> tuple[float, float]:
     return float(a[0]), float(a[1])
 
 
-def _loads(clamped: Any, supports: Any, tractions: Any) -> dict[str, Any]:
-    """``clamped`` (a name or names), ``supports`` (a Support or several) and ``tractions`` (a dict edge
-    set name → (tx, ty)) as the lists the compiled constructor takes (None stays None)."""
+def _loads(clamped: Any, supports: Any, tractions: Any, pressures: Any = None) -> dict[str, Any]:
+    """``clamped`` (a name or names), ``supports`` (a Support or several), ``tractions`` (a dict edge set name →
+    (tx, ty)) and ``pressures`` (a dict edge set name → p, pressing along each edge's outward normal) as the lists
+    the compiled constructor takes (None stays None; a traction [tx, ty], a pressure [p])."""
     out: dict[str, Any] = {}
     if clamped is not None:
         names = [clamped] if isinstance(clamped, str) else clamped
@@ -68,7 +69,14 @@ def _loads(clamped: Any, supports: Any, tractions: Any) -> dict[str, Any]:
     if tractions is not None:
         if not isinstance(tractions, Mapping) or not all(isinstance(k, str) for k in tractions):
             raise _settings_error(f"tractions must be a dict edge set name -> (tx, ty), got {tractions!r}")
-        out["tractions"] = [(name, _pair(g, f"traction on '{name}'")) for name, g in tractions.items()]
+        out["tractions"] = [(name, list(_pair(g, f"traction on '{name}'"))) for name, g in tractions.items()]
+    if pressures is not None:
+        if not isinstance(pressures, Mapping) or not all(isinstance(k, str) for k in pressures):
+            raise _settings_error(f"pressures must be a dict edge set name -> p, got {pressures!r}")
+        for name, p in pressures.items():
+            if isinstance(p, bool) or not isinstance(p, (int, float, np.floating, np.integer)):
+                raise _settings_error(f"the pressure on '{name}' must be a number, got {p!r}")
+        out["tractions"] = out.get("tractions", []) + [(name, [float(p)]) for name, p in pressures.items()]
     return out
 
 
@@ -105,8 +113,8 @@ def _materials(arguments: dict[str, Any], what: str = "Problem()") -> dict[str, 
 def _compiled_arguments(arguments: dict[str, Any]) -> dict[str, Any]:
     """The keywords of ``Problem`` as the compiled constructor takes them: the loads as lists
     (``_loads``), several materials as ``_materials`` checks them, and a callable gap as ``Obstacle.function``."""
-    loads = _loads(arguments.get("clamped"), arguments.get("supports"), arguments.get("tractions"))
-    out = {k: v for k, v in {**arguments, **loads}.items() if k not in ("young", "poisson")}
+    loads = _loads(*(arguments.get(k) for k in ("clamped", "supports", "tractions", "pressures")))
+    out = {k: v for k, v in {**arguments, **loads}.items() if k not in ("young", "poisson", "pressures")}
     out.update(_materials(arguments))
     obstacle = arguments.get("obstacle")
     if obstacle is not None and not isinstance(obstacle, _tribo.Obstacle):
@@ -155,9 +163,10 @@ class Body:
     tractions: Mapping[str, Any] | None = None
     materials: Sequence[tuple[float, float]] | None = None
     regions: npt.ArrayLike | None = None
+    pressures: Mapping[str, float] | None = None
 
     def _compiled(self) -> tuple[Any, ...]:
-        loads = _loads(self.clamped, self.supports, self.tractions)
+        loads = _loads(self.clamped, self.supports, self.tractions, self.pressures)
         given = _materials({"young": self.young, "poisson": self.poisson, "materials": self.materials,
                             "regions": self.regions}, what=f"Body {self.name!r}")
         regions = given.get("regions")
@@ -228,7 +237,7 @@ class Problem(_tribo.Problem):
     factorization of its last solve, reused by the next solve with the same γ0.
 
     ``Problem(mesh, *, young, poisson, contact, clamped=None, supports=None, obstacle=None, approach=None,
-    shift=None, tractions=None, body_force=None, multiplier_ratio=None, multiplier_size=None,
+    shift=None, tractions=None, pressures=None, body_force=None, multiplier_ratio=None, multiplier_size=None,
     multiplier_points=None, space=None, model=None, materials=None, regions=None)``: the body (a Mesh, Young's
     modulus and Poisson's ratio, or for a body of several materials, a coating on a substrate say, ``materials``
     [(E, ν), …] and ``regions``, the index of each triangle's material, from ``tribo.io.read_triangle_groups``
@@ -236,7 +245,8 @@ class Problem(_tribo.Problem):
     thickness, or 'axisymmetric': the solid of revolution of the mesh about the y axis, x = r ≥ 0, the axis held at
     u_r = 0, tractions per unit area and forces on the whole turn), its
     supports (edge sets clamped, or a list of Support), its loads (tractions: a dict edge set -> (tx, ty);
-    body_force (fx, fy)), Γ_C (the edge set `contact`) and the obstacle with its motion (an
+    pressures: a dict edge set -> p, the traction −p n along each edge's outward normal, so a bore or a curved side
+    can be pressed; body_force (fx, fy)), Γ_C (the edge set `contact`) and the obstacle with its motion (an
     Obstacle or a callable gap(xi), the approach δ and the tangential shift s), and the multiplier mesh T_H
     (at most one of multiplier_ratio H/h, multiplier_size H and multiplier_points; space 'P0' or 'P1').
     """

@@ -45,6 +45,23 @@ def at_points(values: npt.ArrayLike, n_points: int) -> npt.NDArray[Any]:
     return np.append(v, v[:1]) if len(v) == n_points - 1 else v
 
 
+def dof_span(abscissae: npt.ArrayLike, mask: npt.ArrayLike, period: float | None = None) -> tuple[float, float] | None:
+    """The first and last abscissae of the dofs ``mask`` picks, None when it picks none. On a closed Γ_C
+    (``period`` its length) the shortest arc that holds them: the loop less its largest gap between picked
+    dofs, beginning a period early (before Γ_C's start) where it crosses the cut, as the core reads zones."""
+    x = np.asarray(abscissae, dtype=float)[np.asarray(mask, dtype=bool)]
+    if len(x) == 0:
+        return None
+    if period is None:
+        return float(x.min()), float(x.max())
+    x = np.sort(x)
+    gaps = np.append(np.diff(x), x[0] + period - x[-1])
+    k = int(np.argmax(gaps))  # the arc begins after the largest gap
+    if k == len(x) - 1:
+        return float(x[0]), float(x[-1])
+    return float(x[k + 1] - period), float(x[k])
+
+
 def _same(a: object, b: object) -> bool:
     """Equal data: arrays of one dtype and shape with equal elements (NaN equal to NaN), containers item by
     item, numbers by value (NaN equal to NaN)."""
@@ -186,6 +203,8 @@ class Solution(_Record):
         sigma_n: σ_n(u_h) on each FE edge of Γ_C.
         sigma_t: σ_t(u_h) on each FE edge of Γ_C.
         node_abscissae: abscissae of the FE nodes of Γ_C, (n_c,).
+        closed: whether Γ_C is a closed loop: its abscissae wrap with its length (the last node abscissa less
+            the first), and a contact or stick zone may cross its cut (its first node, also its last).
         u_n: u_n at the FE nodes of Γ_C.
         slip: u_t − s (slip relative to the obstacle) at the FE nodes of Γ_C; in a history, the slip
             increment of the step.
@@ -250,6 +269,7 @@ class Solution(_Record):
     nodal_von_mises: _Floats = dataclasses.field(default_factory=lambda: np.zeros(0))
     contact_width: float = math.nan
     stick_width: float = math.nan
+    closed: bool = False
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Solution:
@@ -266,6 +286,13 @@ class Solution(_Record):
         """Current gap g − u_n at the FE nodes of Γ_C: 0 where the body touches the obstacle, < 0 where it
         penetrates."""
         return self.gap - self.u_n
+
+    def extent(self, mask: npt.ArrayLike) -> float:
+        """The length of Γ_C from the first to the last multiplier dof ``mask`` picks (0 for none); on a closed
+        Γ_C the shortest arc that holds them, which may cross the cut (``dof_span``)."""
+        x = self.node_abscissae
+        span = dof_span(self.multiplier_abscissae, mask, float(x[-1] - x[0]) if self.closed else None)
+        return span[1] - span[0] if span else 0.0
 
     @property
     def kkt_max(self) -> float:

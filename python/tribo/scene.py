@@ -245,7 +245,8 @@ class Scene:
             mesh = self._mesh(entry, entry.get("discretization", {}), side, where, f"{where}.discretization", side_key)
             out.append(Body(entry["name"], mesh, **self.materials(mesh, entry["material"], entry, f"{where}.material"),
                             supports=[_support(e) for e in entry["supports"]],
-                            tractions=entry.get("loads", {}).get("tractions")))
+                            tractions=entry.get("loads", {}).get("tractions"),
+                            pressures=entry.get("loads", {}).get("pressures")))
         return out
 
     def materials(self, mesh: Mesh, material: Mapping[str, Any] | None = None, body: Mapping[str, Any] | None = None,
@@ -311,6 +312,7 @@ class Scene:
                 approach=o.get("approach"),
                 shift=o.get("shift"),
                 tractions=loads.get("tractions"),
+                pressures=loads.get("pressures"),
                 body_force=loads.get("body_force"),
                 multiplier_ratio=d.get("multiplier_ratio"),
                 multiplier_size=d.get("multiplier_size"),

@@ -72,6 +72,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
     "loads.tractions": ("The traction per unit length (per unit area of the surface in axisymmetry) on each named "
                         "edge set (Γ_N), in global axes", "stress",
                         "none"),
+    "loads.pressures": ("The pressure p on each named edge set (Γ_N): the traction −p n along each edge's outward "
+                        "normal (a bore, a curved side; p > 0 presses on the body)", "stress", "none"),
     "contact.edge_set": ("The edge set Γ_C that meets the obstacle: one chain of boundary edges, straight or bent, open or "
                          "closed (a full ring's rim; *required* for one body)", "—", "—"),
     "contact.secondary": ("Two bodies: the side that carries the multipliers and the stabilization, "
@@ -161,6 +163,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
                                 "`[[material.regions]]`", "—", "none: all of the body's `material`"),
     "bodies.loads.tractions": ("The traction per unit length on each named edge set of the body", "stress",
                                "none"),
+    "bodies.loads.pressures": ("The pressure on each named edge set of the body, along each edge's outward normal",
+                               "stress", "none"),
     **{f"bodies.discretization.{k}": v for k, v in _GRID.items()},
     "bodies.supports": ("The body's supports, as `[[supports]]` entries (*required*; `[]`: held by the contact "
                         "alone)", "—", "—"),
@@ -228,6 +232,7 @@ _BY_CHECKER: dict[str, dict[str, Any]] = {
     "_names": {"oneOf": [{"type": "string"}, {"type": "array", "items": {"type": "string"}, "minItems": 1}]},
     "_grading": {"oneOf": [{"enum": ["auto", "none"]}, _PAIR]},
     "_pairs": {"type": "object", "additionalProperties": _PAIR},
+    "_pressures": {"type": "object", "additionalProperties": _NUMBER},
     "_points": {"type": "array", "items": _PAIR, "minItems": 2},
     "_paths": {"type": "object", "additionalProperties": _PATH},
 }

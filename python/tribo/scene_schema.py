@@ -25,7 +25,8 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     Conditions meeting at a node combine (a clamp and a roller at a corner clamp it); contradictory ones
     are an error that names the node.
 ``[loads]``
-    ``body_force = [fx, fy]``; ``[loads.tractions]``: ``edge_set = [tx, ty]`` per loaded edge set.
+    ``body_force = [fx, fy]``; ``[loads.tractions]``: ``edge_set = [tx, ty]`` per loaded edge set;
+    ``[loads.pressures]``: ``edge_set = p`` (the traction −p n along each edge's outward normal).
 ``[contact]``
     ``edge_set`` (*required*): the edge set Γ_C, one chain of edges (straight, or bent against an
     obstacle given by its geometry; open, or closed: a full ring's rim).
@@ -145,6 +146,7 @@ from tribo.scene_values import (
     _points,
     _path,
     _paths,
+    _pressures,
     _range,
     _ring,
     _steps,
@@ -256,7 +258,7 @@ SCHEMA: dict[str, dict[str, Checker]] = {
     "body": {"x": _range, "y": _range, "mesh": _string, "ring": _ring},
     "material": {"young": _number, "poisson": _number, "model": _choice(*CHOICES["model"]), "regions": _regions},
     "supports": {"clamped": _names},
-    "loads": {"body_force": _pair, "tractions": _pairs},
+    "loads": {"body_force": _pair, "tractions": _pairs, "pressures": _pressures},
     "contact": {"edge_set": _string, "secondary": _string, "primary": _string, "gap": _shape},
     "obstacle": {
         "shape": _choice("flat", "circle", "parabola", "polyline", "line", "disc", "hole", "profile"),
@@ -328,14 +330,14 @@ def describe_keys() -> list[tuple[str, str, str]]:
 BODY_KEYS: dict[str, Checker] = {"name": _string, "x": _range, "y": _range, "mesh": _string, "ring": _ring}
 BODY_TABLES: dict[str, dict[str, Checker]] = {
     "material": {"young": _number, "poisson": _number, "model": _choice(*CHOICES["model"]), "regions": _regions},
-    "loads": {"tractions": _pairs},
+    "loads": {"tractions": _pairs, "pressures": _pressures},
     "discretization": {k: SCHEMA["discretization"][k] for k in ("grading", "h", "h_min", "growth", "diagonal")},
 }
 # What [[bodies]] replaces, and the keys of the other tables that are per body or do not apply to two bodies.
 ONE_BODY_TABLES = ("body", "material", "supports", "obstacle")
 NOT_FOR_TWO_BODIES = {
     "contact": ("edge_set",),
-    "loads": ("tractions",),
+    "loads": ("tractions", "pressures"),
     "discretization": tuple(BODY_TABLES["discretization"]),
     "history": ("approach", "shift"),
 }

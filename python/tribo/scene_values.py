@@ -203,6 +203,13 @@ def _pairs(key: str, v: Any) -> dict[str, tuple[float, float]]:
     return {name: _pair(f"{key}.{name}", t) for name, t in v.items()}
 
 
+def _pressures(key: str, v: Any) -> dict[str, float]:
+    """A table edge_set = p."""
+    if not isinstance(v, dict):
+        raise SceneError(f"scene key '{key}' must be a table edge_set = p", key)
+    return {name: _number(f"{key}.{name}", p) for name, p in v.items()}
+
+
 def _paths(key: str, v: Any) -> dict[str, float | list[float]]:
     """A table of waypoint paths: prescribed displacement component → number or waypoints."""
     if not isinstance(v, dict):

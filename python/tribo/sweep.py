@@ -91,7 +91,8 @@ COLUMNS: dict[str, str] = {
     "coulomb_method": "the Coulomb method that answered (fixed_point or newton; empty without Coulomb friction)",
     "normal_force": "the normal resultant of the contact pressure",
     "tangential_force": "the tangential resultant",
-    "contact_extent": "the length of Γ_C between the first and last multiplier dof in contact (stick or slip)",
+    "contact_extent": "the length of Γ_C between the first and last multiplier dof in contact (stick or slip; on a "
+                      "closed side, the shortest arc that holds them)",
     "stick_extent": "the same for the dofs that stick",
     "kkt_max": "the largest KKT residual of (3.1)",
     "lambda_n_oscillation": "TV(λ_n) over the multiplier dofs / (2 max λ_n): 1 for one smooth hump, larger when the "
@@ -297,11 +298,6 @@ def cases(
 
 
 # ----- one case, on a worker -----
-def _extent(abscissae: Any, mask: Any) -> float:
-    picked = abscissae[mask]
-    return float(picked.max() - picked.min()) if len(picked) else 0.0
-
-
 def _oscillation(solution: Any) -> float:
     """TV(λ_n) over the multiplier dofs in abscissa order / (2 max λ_n): 1 for a single smooth hump, more
     for a pressure that oscillates (a checkerboard); NaN when nothing presses."""
@@ -324,8 +320,8 @@ def _row(summary: Mapping[str, Any], solution: Any) -> dict[str, Any]:
         "coulomb_method": summary["coulomb_method"] or "",
         "normal_force": summary["normal_force"],
         "tangential_force": summary["tangential_force"],
-        "contact_extent": _extent(solution.multiplier_abscissae, states != 0),
-        "stick_extent": _extent(solution.multiplier_abscissae, states == 1),
+        "contact_extent": solution.extent(states != 0),
+        "stick_extent": solution.extent(states == 1),
         "kkt_max": summary["kkt_max"],
         "lambda_n_oscillation": _oscillation(solution),
         "unknowns": summary["n_free"],

@@ -492,3 +492,83 @@ def test_a_rotation_support_is_checked_and_reads_back() -> None:
     with pytest.raises(tribo.SceneError, match="required for a rotation") as e:
         parse_scene(data)
     assert e.value.details["key"] == "supports[0].angle"
+
+
+def test_a_contact_zone_across_a_loops_cut_is_one_arc() -> None:
+    """A full ring in a loose hole, pushed toward its loop's cut (its first contact node): the zone straddles the
+    cut, and Python reads it as the core does (``Solution.closed``, ``Solution.extent``: the shortest arc, as the
+    Rust test ``a_contact_zone_across_a_loops_cut_is_read_as_one_arc``), not as the whole loop."""
+    mesh = tribo.Mesh.ring_sector((0.0, 0.0), (0.5, 1.0), (0.0, 2 * math.pi), h_max=0.04, h_min=0.04)
+    cut = np.asarray(tribo.Problem(mesh, young=E, poisson=NU, contact="outer", clamped="inner").contact_nodes)[0]
+    direction = np.asarray(mesh.points)[cut]  # (the outer radius is 1)
+
+    def solve(sign: float) -> tuple[tribo.Problem, tribo.Solution]:
+        push = sign * 1.05e-3 * direction
+        problem = tribo.Problem(mesh, young=E, poisson=NU, contact="outer",
+                                supports=[tribo.Support.displacement("inner", x=push[0], y=push[1])],
+                                obstacle=tribo.Obstacle.hole((0.0, 0.0), 1.001))
+        return problem, problem.solve()
+
+    (problem, across), (_, middle) = solve(1.0), solve(-1.0)
+    assert across.closed and not _ring_in_hole(0.1, 1e-3).solve().closed
+    x = across.node_abscissae
+    start, length = x[0], x[-1] - x[0]
+    touching = across.states != 0
+    assert touching[0] and touching[-1] and not touching.all()
+    extent, other = across.extent(touching), middle.extent(middle.states != 0)
+    assert 0 < extent < 0.2 * length and extent == pytest.approx(other, rel=0.05)
+    # As an open side would read it: from the first dof to the last, nearly the whole loop.
+    open_read = float(np.ptp(across.multiplier_abscissae[touching]))
+    assert open_read > 0.8 * length
+    assert across.contact_width == pytest.approx(middle.contact_width, abs=0.05)
+    lo, hi = tribo.results.dof_span(across.multiplier_abscissae, touching, length)
+    assert lo < start < hi
+    from tribo import plot
+
+    xi = problem.multiplier_mesh  # the plot shows the whole loop rather than cut the zone in two
+    assert plot.contact_pressure(problem, across).get_xlim() == pytest.approx((xi[0], xi[-1]))
+    zoomed = plot.contact_pressure(problem, middle).get_xlim()
+    assert zoomed[1] - zoomed[0] < 0.5 * length
+
+
+def _closing_pressure(mesh: tribo.Mesh, delta: float) -> float:
+    """The pressure −p I of a quarter ring whose uniform outer facets close the interference δ with a hole of their
+    circle: the facets lie at R cos(Δθ/2) from the centre, u = −e x, p = E/((1 + ν)(1 − 2ν)) e."""
+    outer = np.asarray(mesh.points)[np.unique(np.asarray(mesh.edge_sets["outer"]))]
+    angles = np.sort(np.arctan2(outer[:, 1], outer[:, 0]))
+    steps = np.diff(angles)
+    assert np.ptp(steps) < 1e-12  # uniform facets
+    return E / ((1 + NU) * (1 - 2 * NU)) * delta / math.cos(0.5 * float(steps[0]))
+
+
+def test_a_pressure_on_a_bore_presses_each_facet_along_its_normal() -> None:
+    """``pressures={"inner": p}`` (scene files: ``[loads.pressures]``): a quarter ring pressed into a rigid hole by δ
+    and under the pressure of that closure inside stays at −p I to round-off (the Rust patch test
+    ``curved_patch.rs``); a traction vector cannot do that on an arc. A pressure that is not a number is refused."""
+    h, delta = 0.05, 1e-3
+    mesh = tribo.Mesh.ring_sector((0.0, 0.0), (0.5, 1.0), (0.3, 0.3 + math.pi / 2), h_max=h, h_min=h)
+    p = _closing_pressure(mesh, delta)
+    problem = tribo.Problem(mesh, young=E, poisson=NU, contact="outer", pressures={"inner": p},
+                            supports=[tribo.Support.roller("start"), tribo.Support.roller("end")],
+                            obstacle=tribo.Obstacle.hole((0.0, 0.0), 1.0), approach=delta)
+    sol = problem.solve()
+    assert sol.report.status == "converged"
+    np.testing.assert_allclose(sol.lambda_n, p, rtol=1e-9)
+    np.testing.assert_allclose(sol.stress[:, :2], -p, rtol=1e-9)
+    # The same from a scene file, its pressure in [loads.pressures].
+    scene: dict[str, object] = {
+        "body": {"ring": {"center": [0.0, 0.0], "radii": [0.5, 1.0],
+                          "angles": [math.degrees(0.3), math.degrees(0.3 + math.pi / 2)]}},
+        "material": {"young": E, "poisson": NU}, "contact": {"edge_set": "outer"},
+        "supports": [{"kind": "roller", "edge_set": "start"}, {"kind": "roller", "edge_set": "end"}],
+        "obstacle": {"shape": "hole", "center": [0.0, 0.0], "radius": 1.0, "approach": delta},
+        "discretization": {"h": h},
+    }
+    built = parse_scene(scene).build()
+    p = _closing_pressure(built.mesh, delta)
+    built = parse_scene({**scene, "loads": {"pressures": {"inner": p}}}).build()
+    np.testing.assert_allclose(built.solve().lambda_n, p, rtol=1e-9)
+    with pytest.raises(tribo.SettingsError, match="pressure on 'inner' must be a number"):
+        tribo.Problem(mesh, young=E, poisson=NU, contact="outer", clamped="start", pressures={"inner": "high"})
+    with pytest.raises(tribo.SceneError, match="loads.pressures.inner"):
+        parse_scene({**scene, "loads": {"pressures": {"inner": [1.0, 2.0]}}})

@@ -89,22 +89,21 @@ pub struct PyProblem {
     inner: tribo::Problem,
 }
 
-/// Supports and tractions as `tribo.Problem` hands them over (lists; see `tribo.problem`).
-type Loads = (Vec<PySupport>, Vec<(String, (f64, f64))>);
-
-fn loads(l: Loads) -> (Vec<tribo::Support>, Vec<(String, [f64; 2])>) {
-    (l.0.into_iter().map(|s| s.inner).collect(), l.1.into_iter().map(|(set, (x, y))| (set, [x, y])).collect())
+/// Tractions as `tribo.Problem` hands them over: (edge set, `[p]` a pressure or `[tx, ty]` a vector).
+fn tractions_of(t: Vec<(String, Vec<f64>)>) -> PyResult<Vec<(String, tribo::Traction)>> {
+    t.into_iter().map(|(set, v)| Ok((set, tribo::Traction::try_from(v.as_slice()).map_err(to_pyerr)?))).collect()
 }
 
 /// A body of `tribo.Body`: (name, mesh, materials, regions or None for one material, clamped, supports, tractions).
 type BodyArgs =
-    (String, Py<PyMesh>, Vec<(f64, f64)>, Option<Vec<usize>>, Vec<String>, Vec<PySupport>, Vec<(String, (f64, f64))>);
+    (String, Py<PyMesh>, Vec<(f64, f64)>, Option<Vec<usize>>, Vec<String>, Vec<PySupport>, Vec<(String, Vec<f64>)>);
 
-fn body(b: BodyArgs) -> tribo::Body {
+fn body(b: BodyArgs) -> PyResult<tribo::Body> {
     let (name, mesh, pairs, regions, clamped, supports, tractions) = b;
-    let (loads, mesh) = (loads((supports, tractions)), mesh.get().inner.clone());
+    let (supports, tractions) = (supports.into_iter().map(|s| s.inner).collect(), tractions_of(tractions)?);
+    let mesh = mesh.get().inner.clone();
     let materials = tribo::Materials::from_pairs(&pairs, regions, mesh.n_triangles());
-    tribo::Body { name, mesh, materials, clamped, supports: loads.0, tractions: loads.1 }
+    Ok(tribo::Body { name, mesh, materials, clamped, supports, tractions })
 }
 
 /// Calls the callback (if any) with `args` and checks for Ctrl-C: `Break` when the callback returned
@@ -232,7 +231,7 @@ impl PyProblem {
         obstacle: Option<Py<PyObstacle>>,
         approach: Option<f64>,
         shift: Option<f64>,
-        tractions: Option<Vec<(String, (f64, f64))>>,
+        tractions: Option<Vec<(String, Vec<f64>)>>,
         body_force: Option<&Bound<'_, PyAny>>,
         multiplier_ratio: Option<f64>,
         multiplier_size: Option<f64>,
@@ -266,7 +265,8 @@ impl PyProblem {
             let (secondary, primary, gap, multiplier_points) = (contact.clone(), primary.clone(), shape, points);
             let (model, multiplier_space) = (model_given.unwrap_or_default(), space);
             let pair = tribo::ContactPair { secondary, primary, gap, multiplier_points, multiplier_space, model };
-            py.detach(|| tribo::Problem::two_bodies([body(first), body(second)], pair, body_force))
+            let bodies = [body(first)?, body(second)?];
+            py.detach(|| tribo::Problem::two_bodies(bodies, pair, body_force))
         } else {
             // One material or several (`tribo.Problem` gives `young`, `poisson` as one), each triangle's region.
             let mesh_inner = mesh.cast::<PyMesh>()?.get().inner.clone();
@@ -274,7 +274,8 @@ impl PyProblem {
             let region = regions.map(|r| indices(r, "regions", &[Some(n)], Settings)).transpose()?;
             let pairs = materials.ok_or_else(|| PyTypeError::new_err("Problem() missing keyword 'materials'"))?;
             let materials = tribo::Materials::from_pairs(&pairs, region, n);
-            let (supports, tractions) = loads((supports.unwrap_or_default(), tractions.unwrap_or_default()));
+            let supports = supports.unwrap_or_default().into_iter().map(|s| s.inner).collect();
+            let tractions = tractions_of(tractions.unwrap_or_default())?;
             let spec = ProblemSpec {
                 // A placeholder where none is given: `with_materials` says so.
                 material: materials.materials.first().copied().unwrap_or(Material { young: f64::NAN, poisson: 0.0 }),

@@ -44,6 +44,7 @@ pub fn solution<'py>(py: Python<'py>, s: &tribo::Solution) -> PyResult<Bound<'py
     d.set_item("contact_force", (s.contact_force[0], s.contact_force[1]))?;
     d.set_item("obstacle_motion", (s.obstacle_motion[0], s.obstacle_motion[1]))?;
     s.scalars().into_iter().try_for_each(|(name, v)| d.set_item(name, v))?;
+    d.set_item("closed", s.closed)?;
     d.set_item("kkt", s.kkt.named().into_py_dict(py)?)?;
     d.set_item("report", report(py, &s.report)?)?;
     Ok(d)

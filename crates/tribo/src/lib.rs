@@ -145,7 +145,7 @@ pub use contact::multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace}
 pub use contact::obstacle::{DistanceFunction, GapFunction, Obstacle, ObstacleShape};
 pub use contact::ContactBoundary;
 pub use error::{Error, Num, Result};
-pub use fem::elasticity::{Material, Materials, Model};
+pub use fem::elasticity::{Material, Materials, Model, Traction};
 pub use fem::supports::{Dofs, NodeSupport, Support};
 pub use mesh::generate::{graded_rectangle, rectangle, Diagonal, Grading, Side};
 pub use mesh::shapes::{ring_sector, ArcGrading, RingSector};

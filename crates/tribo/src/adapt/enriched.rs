@@ -92,7 +92,7 @@ pub use super::difference::{multiplier_difference, multiplier_difference_on};
 use crate::error::{Error, Result};
 use crate::mesh::refine::bisect;
 use crate::problem::Problem;
-use crate::results::{ContactState, ErrorBars, Solution, SolveStatus, Zone};
+use crate::results::{dof_span, ContactState, ErrorBars, Solution, SolveStatus, Zone};
 use crate::settings::friction::{Friction, Threshold};
 use crate::settings::{Bisection, FixedPointSettings, SolverSettings};
 use crate::solve::Observer;
@@ -258,11 +258,12 @@ pub fn near_contact(problem: &Problem, solution: &Solution, width: f64) -> Vec<u
 }
 
 /// The first and last abscissae of the multiplier dofs of `solution` not in separation
-/// ([`Solution::states`]: an interior-point answer has no exact zeros), `None` when nothing touches.
+/// ([`Solution::states`]: an interior-point answer has no exact zeros), `None` when nothing touches. On a
+/// closed Γ_C the shortest arc that holds them, beginning before Γ_C's start where it crosses the cut.
 fn touching_span(problem: &Problem, solution: &Solution) -> Option<(f64, f64)> {
-    let dofs = problem.multipliers.dof_abscissae();
-    let touching = dofs.iter().zip(&solution.states).filter(|(_, c)| **c != ContactState::Separation);
-    touching.fold(None, |span, (&x, _)| Some(span.map_or((x, x), |(lo, hi): (f64, f64)| (lo.min(x), hi.max(x)))))
+    let period = problem.contact.is_closed().then(|| problem.contact.length());
+    let touching = |k: usize| solution.states.get(k).is_some_and(|&c| c != ContactState::Separation);
+    dof_span(&problem.multipliers.dof_abscissae(), period, touching)
 }
 
 /// The width of the strip [`Problem::estimate_hierarchical`] (and a history's estimate, for each step)
@@ -279,10 +280,9 @@ pub(super) fn strip_width(problem: &Problem, solution: &Solution) -> Option<f64>
     Some(above - below)
 }
 
-/// The T_H points on either side of the span `(lo, hi)` of multiplier dofs (the span's ends at T_H's ends).
-fn neighbouring_points(problem: &Problem, (lo, hi): (f64, f64)) -> (f64, f64) {
-    let xi = &problem.multipliers.xi;
-    (xi[xi.partition_point(|&x| x < lo).saturating_sub(1)], xi[xi.partition_point(|&x| x <= hi).min(xi.len() - 1)])
+/// The T_H points on either side of the span `(lo, hi)` of multiplier dofs ([`crate::MultiplierMesh::points_around`]).
+fn neighbouring_points(problem: &Problem, span: (f64, f64)) -> (f64, f64) {
+    problem.multipliers.points_around(span, problem.contact.is_closed())
 }
 
 impl Problem {

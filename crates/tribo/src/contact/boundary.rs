@@ -445,8 +445,41 @@ impl ContactBoundary {
     }
 
     /// Abscissa of a point: its projection on the line of a straight Γ_C; on a chain, the abscissa of the
-    /// nearest point of the chain, the end edges extended beyond the ends (not those of a closed loop).
+    /// nearest point of the chain, the end edges extended beyond the ends (not those of a closed loop). Where
+    /// the chain's set carries its curve, a point whose nearest point of the curve is not beyond an end (it
+    /// faces the end node across the curve, as a node of a concentric arc does) reads that end: extended, the end
+    /// edge would place it beyond the end by about its distance times half the facet's angle.
     pub fn abscissa(&self, p: Point) -> f64 {
+        let xi = self.chain_abscissa(p);
+        let (start, end) = (self.start(), self.end());
+        let (Some(curve), true) = (self.curve, xi < start || xi > end) else {
+            return xi;
+        };
+        // The end node, and the direction from it into the chain.
+        let (node, inward) = if xi < start {
+            let [a, b] = [self.node_points[0], self.node_points[1]];
+            (a, [b[0] - a[0], b[1] - a[1]])
+        } else {
+            let k = self.node_points.len() - 1;
+            let [a, b] = [self.node_points[k], self.node_points[k - 1]];
+            (a, [b[0] - a[0], b[1] - a[1]])
+        };
+        let q = curve.project(p);
+        let along = (q[0] - node[0]) * inward[0] + (q[1] - node[1]) * inward[1];
+        let tol = crate::contact::geometric_tol_rel() * inward[0].hypot(inward[1]).powi(2);
+        if along >= -tol {
+            if xi < start {
+                start
+            } else {
+                end
+            }
+        } else {
+            xi
+        }
+    }
+
+    /// [`ContactBoundary::abscissa`] on the chain alone, the end edges extended.
+    fn chain_abscissa(&self, p: Point) -> f64 {
         if self.is_straight() {
             return (p[0] - self.origin[0]) * self.direction[0] + (p[1] - self.origin[1]) * self.direction[1];
         }
@@ -471,11 +504,20 @@ impl ContactBoundary {
     }
 
     /// Distance of a point from the part `[lo, hi]` (abscissae) of Γ_C (of its line when straight; the end
-    /// edges of a chain extended beyond its ends).
+    /// edges of a chain extended beyond its ends). On a closed loop the span may cross the cut: `lo` before
+    /// the start or `hi` beyond the end stand for the abscissae a period later or earlier.
     pub fn distance_to_span(&self, p: Point, lo: f64, hi: f64) -> f64 {
         if self.is_straight() {
             let xi = self.abscissa(p);
             return (lo - xi).max(xi - hi).max(0.0).hypot(self.distance_to_line(p));
+        }
+        let (start, end, period) = (self.start(), self.end(), self.length());
+        let (lo, hi) = if self.is_closed() && hi - lo >= period { (start, end) } else { (lo, hi) };
+        if self.is_closed() && lo < start {
+            return self.distance_to_span(p, lo + period, end).min(self.distance_to_span(p, start, hi));
+        }
+        if self.is_closed() && hi > end {
+            return self.distance_to_span(p, lo, end).min(self.distance_to_span(p, start, hi - period));
         }
         let (last, open) = (self.edges.len() - 1, !self.is_closed());
         let mut best = f64::INFINITY;

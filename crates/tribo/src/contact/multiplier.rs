@@ -70,6 +70,29 @@ pub struct MultiplierMesh {
 }
 
 impl MultiplierMesh {
+    /// The points of T_H on either side of the span `(lo, hi)` (the span's ends at T_H's ends; on a `closed` Γ_C,
+    /// the points across the cut, a period before or after, where the span reaches it or crosses it).
+    pub fn points_around(&self, (lo, hi): (f64, f64), closed: bool) -> (f64, f64) {
+        let xi = &self.xi;
+        let last = xi.len() - 1;
+        if !closed || last < 2 {
+            return (
+                xi[xi.partition_point(|&x| x < lo).saturating_sub(1)],
+                xi[xi.partition_point(|&x| x <= hi).min(last)],
+            );
+        }
+        // Each end wrapped onto [start, end), its neighbour found there, and moved back by the same periods.
+        let (start, period) = (xi[0], xi[last] - xi[0]);
+        let turns = |x: f64| ((x - start) / period).floor() * period;
+        let (lo_turns, hi_turns) = (turns(lo), turns(hi));
+        let below = match xi.partition_point(|&x| x < lo - lo_turns) {
+            0 => xi[last - 1] - period,
+            k => xi[k - 1],
+        };
+        let above = xi[xi.partition_point(|&x| x <= hi - hi_turns).min(last)];
+        (below + lo_turns, above + hi_turns)
+    }
+
     /// Builds T_H on Γ_C.
     ///
     /// # Errors

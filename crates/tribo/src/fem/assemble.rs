@@ -7,7 +7,9 @@ use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 
 use crate::error::{Error, Result};
 use crate::fem::dofs::Dofs;
-use crate::fem::elasticity::{add_body_force, add_traction, element_dofs, element_stiffness_of, MaterialField, Model};
+use crate::fem::elasticity::{
+    add_body_force, add_traction, element_dofs, element_stiffness_of, MaterialField, Model, Traction,
+};
 use crate::fem::supports::NodeSupport;
 use crate::mesh::Mesh;
 
@@ -32,13 +34,14 @@ pub fn assemble(
     mesh: &Mesh,
     material: &impl MaterialField,
     body_force: [f64; 2],
-    tractions: &[(String, [f64; 2])],
+    tractions: &[(String, Traction)],
     dofs: &Dofs,
 ) -> Result<LinearSystem> {
     let n_dofs = 2 * mesh.n_nodes();
-    for (name, f) in [("body".to_string(), body_force)].iter().chain(tractions) {
+    let given = tractions.iter().map(|(name, t)| (name.clone(), t.components()));
+    for (name, f) in [("body".to_string(), body_force)].into_iter().chain(given) {
         if !(f[0].is_finite() && f[1].is_finite()) {
-            return Err(Error::NonFiniteLoad { target: name.clone(), x: f[0], y: f[1] });
+            return Err(Error::NonFiniteLoad { target: name, x: f[0], y: f[1] });
         }
     }
     let mut f_full = vec![0.0; n_dofs];

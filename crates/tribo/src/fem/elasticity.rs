@@ -313,13 +313,91 @@ pub fn add_body_force(model: Model, mesh: &Mesh, f: [f64; 2], rhs: &mut [f64]) {
     }
 }
 
-/// Adds the load of a constant traction `g` (force per unit length in a plane model, per unit area of the
-/// surface of revolution in axisymmetry: [`axisymmetric::add_traction`]) on a set of boundary edges to `rhs`.
-pub fn add_traction(model: Model, mesh: &Mesh, edges: &[[usize; 2]], g: [f64; 2], rhs: &mut [f64]) {
-    if model.is_axisymmetric() {
-        return axisymmetric::add_traction(mesh, edges, g, rhs);
+/// A load on an edge set (Γ_N): per unit length in a plane model, per unit area of the surface of revolution in
+/// axisymmetry.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Traction {
+    /// A constant traction vector `(t_x, t_y)` in global axes.
+    Vector([f64; 2]),
+    /// A pressure p: the traction `−p n` on each edge, n its outward normal (p > 0 presses on the body). On a
+    /// faceted arc each facet is pressed along its own normal, so that a constant stress `−p I` meets it exactly.
+    Pressure(f64),
+}
+
+impl From<[f64; 2]> for Traction {
+    fn from(v: [f64; 2]) -> Self {
+        Self::Vector(v)
     }
+}
+
+impl TryFrom<&[f64]> for Traction {
+    type Error = Error;
+    /// `[p]` a pressure, `[t_x, t_y]` a vector.
+    fn try_from(v: &[f64]) -> Result<Self> {
+        match *v {
+            [p] => Ok(Self::Pressure(p)),
+            [x, y] => Ok(Self::Vector([x, y])),
+            _ => Err(Error::BadSetting {
+                name: "traction",
+                value: v.len() as f64,
+                what: "a pressure [p] or a vector [tx, ty] (the value is how many numbers were given)".into(),
+            }),
+        }
+    }
+}
+
+impl Traction {
+    /// The traction on an edge of outward normal `n`.
+    pub fn on(&self, n: [f64; 2]) -> [f64; 2] {
+        match *self {
+            Self::Vector(v) => v,
+            Self::Pressure(p) => [-p * n[0], -p * n[1]],
+        }
+    }
+
+    /// The load times `k` (a load factor, or a change of units).
+    #[must_use]
+    pub fn scaled(&self, k: f64) -> Self {
+        match *self {
+            Self::Vector(v) => Self::Vector(v.map(|x| k * x)),
+            Self::Pressure(p) => Self::Pressure(k * p),
+        }
+    }
+
+    /// Its numbers: the vector, or the pressure and 0.
+    pub fn components(&self) -> [f64; 2] {
+        match *self {
+            Self::Vector(v) => v,
+            Self::Pressure(p) => [p, 0.0],
+        }
+    }
+}
+
+/// The outward unit normal of the boundary edge `(a, b)`: away from the third vertex of its triangle (of the
+/// edge's left-hand side `(d_y, −d_x)` turned when it points inward; as it is for an edge on no triangle).
+pub fn outward_normal(mesh: &Mesh, a: usize, b: usize) -> [f64; 2] {
+    let pts = mesh.points();
+    let (pa, pb) = (pts[a], pts[b]);
+    let len = mesh.edge_length(a, b);
+    let n = [(pb[1] - pa[1]) / len, -(pb[0] - pa[0]) / len];
+    let third = mesh.boundary_triangle(a, b).and_then(|t| mesh.triangles()[t].into_iter().find(|&v| v != a && v != b));
+    match third {
+        Some(c) if (pts[c][0] - pa[0]) * n[0] + (pts[c][1] - pa[1]) * n[1] > 0.0 => [-n[0], -n[1]],
+        _ => n,
+    }
+}
+
+/// Adds the load of a traction (force per unit length in a plane model, per unit area of the surface of
+/// revolution in axisymmetry: [`axisymmetric::add_traction`]) on a set of boundary edges to `rhs`: a constant
+/// vector, or a pressure along each edge's outward normal ([`Traction`]).
+pub fn add_traction(model: Model, mesh: &Mesh, edges: &[[usize; 2]], traction: Traction, rhs: &mut [f64]) {
     for &[a, b] in edges {
+        let g =
+            traction.on(if matches!(traction, Traction::Pressure(_)) { outward_normal(mesh, a, b) } else { [0.0; 2] });
+        if model.is_axisymmetric() {
+            axisymmetric::add_traction(mesh, &[[a, b]], g, rhs);
+            continue;
+        }
         let w = 0.5 * mesh.edge_length(a, b);
         for i in [a, b] {
             rhs[2 * i] += w * g[0];

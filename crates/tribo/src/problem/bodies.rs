@@ -25,7 +25,7 @@ use std::ops::Range;
 use crate::contact::multiplier::{MultiplierPoints, MultiplierSpace};
 use crate::contact::obstacle::{Obstacle, ObstacleShape};
 use crate::error::{Error, Result};
-use crate::fem::elasticity::{Materials, Model};
+use crate::fem::elasticity::{Materials, Model, Traction};
 use crate::fem::supports::Support;
 use crate::mesh::Mesh;
 use crate::problem::{Problem, ProblemSpec};
@@ -46,7 +46,7 @@ pub struct Body {
     /// Further supports.
     pub supports: Vec<Support>,
     /// Constant tractions on edge sets.
-    pub tractions: Vec<(String, [f64; 2])>,
+    pub tractions: Vec<(String, Traction)>,
 }
 
 /// The contact pair of a two-body problem.

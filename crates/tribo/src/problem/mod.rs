@@ -30,7 +30,7 @@ use crate::contact::pair::PrimarySide;
 use crate::contact::ContactBoundary;
 use crate::error::{Error, Result};
 use crate::fem::assemble::{assemble, LinearSystem};
-use crate::fem::elasticity::{Material, Materials, Model};
+use crate::fem::elasticity::{Material, Materials, Model, Traction};
 use crate::fem::supports::{Dofs, NodeSupport, Support};
 use crate::mesh::Mesh;
 use condense::FactorCache;
@@ -50,8 +50,9 @@ pub struct ProblemSpec {
     pub supports: Vec<Support>,
     /// Constant body force f (per unit area).
     pub body_force: [f64; 2],
-    /// Constant tractions (per unit length) on named edge sets (Γ_N).
-    pub tractions: Vec<(String, [f64; 2])>,
+    /// Tractions (per unit length) on named edge sets (Γ_N): constant vectors, or pressures along each edge's
+    /// outward normal.
+    pub tractions: Vec<(String, Traction)>,
     /// Name of the contact edge set Γ_C.
     pub contact: String,
     /// The rigid obstacle.

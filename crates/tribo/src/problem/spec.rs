@@ -12,7 +12,7 @@
 
 use crate::contact::multiplier::{MultiplierPoints, MultiplierSpace};
 use crate::contact::obstacle::{Obstacle, ObstacleShape};
-use crate::fem::elasticity::{Material, Model};
+use crate::fem::elasticity::{Material, Model, Traction};
 use crate::fem::supports::Support;
 use crate::problem::ProblemSpec;
 
@@ -67,8 +67,8 @@ impl ProblemSpec {
 
     /// Adds a constant traction (per unit length) on the edge set `set`.
     #[must_use]
-    pub fn traction(mut self, set: impl Into<String>, traction: [f64; 2]) -> Self {
-        self.tractions.push((set.into(), traction));
+    pub fn traction(mut self, set: impl Into<String>, traction: impl Into<Traction>) -> Self {
+        self.tractions.push((set.into(), traction.into()));
         self
     }
 
@@ -126,7 +126,7 @@ mod tests {
             clamped: vec!["bottom".into()],
             supports: vec![Support::roller("left")],
             body_force: [0.0, -1.0],
-            tractions: vec![("right".into(), [0.5, 0.0])],
+            tractions: vec![("right".into(), [0.5, 0.0].into())],
             contact: "top".into(),
             obstacle: Obstacle {
                 shape: ObstacleShape::Parabola { center: 0.1, radius: 2.0 },

@@ -80,7 +80,7 @@ use crate::contact::multiplier::MultiplierMesh;
 use crate::contact::pair::PrimarySide;
 use crate::contact::ContactBoundary;
 use crate::fem::axisymmetric::{radial_weight, residual};
-use crate::fem::elasticity::{Material, MaterialField, Materials, Model};
+use crate::fem::elasticity::{Material, MaterialField, Materials, Model, Traction};
 use crate::fem::supports::{Dofs, NodeSupport};
 use crate::mesh::Mesh;
 
@@ -189,7 +189,7 @@ pub(crate) struct EstimatorInput<'a> {
     pub multipliers: &'a MultiplierMesh,
     /// The body force and the tractions by edge set, as they act in this load case.
     pub body_force: [f64; 2],
-    pub tractions: Vec<(&'a [[usize; 2]], [f64; 2])>,
+    pub tractions: Vec<(&'a [[usize; 2]], Traction)>,
     pub stress: &'a [[f64; 3]],
     /// Plane or axisymmetric, and in axisymmetry the hoop stress σ_θθ per triangle (empty otherwise).
     pub model: Model,
@@ -321,7 +321,7 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
         contact: input.contact,
         multipliers: input.multipliers,
         body_force: input.body_force.map(|x| x * ks),
-        tractions: input.tractions.iter().map(|(e, t)| (*e, t.map(|x| x * ks))).collect(),
+        tractions: input.tractions.iter().map(|(e, t)| (*e, t.scaled(ks))).collect(),
         stress: &stress,
         model: input.model,
         hoop: &hoop,
@@ -376,12 +376,15 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
     let tris = mesh.triangles();
     let (start, around) =
         crate::mesh::grouped(mesh.n_nodes(), tris.iter().enumerate().flat_map(|(t, tri)| tri.map(|v| (v, t))));
-    let mut neumann: std::collections::HashMap<[usize; 2], [f64; 2]> = std::collections::HashMap::new();
+    // Per Neumann edge, the vectors and the pressures given on it, summed (a pressure reads the edge's normal).
+    let mut neumann: std::collections::HashMap<[usize; 2], ([f64; 2], f64)> = std::collections::HashMap::new();
     for (set, g) in &input.tractions {
         for &[a, b] in *set {
-            let e = neumann.entry([a.min(b), a.max(b)]).or_insert([0.0, 0.0]);
-            e[0] += g[0];
-            e[1] += g[1];
+            let e = neumann.entry([a.min(b), a.max(b)]).or_insert(([0.0, 0.0], 0.0));
+            match *g {
+                Traction::Vector(v) => (e.0[0], e.0[1]) = (e.0[0] + v[0], e.0[1] + v[1]),
+                Traction::Pressure(p) => e.1 += p,
+            }
         }
     }
     // The primary's contact edges, with the abscissae they span on the secondary side.
@@ -431,7 +434,8 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
                         });
                         free.map_or(0.0, |d| (s[0] * d[0] + s[1] * d[1]).powi(2))
                     } else {
-                        let g = neumann.get(&key).copied().unwrap_or([0.0, 0.0]);
+                        let (v, p) = neumann.get(&key).copied().unwrap_or(([0.0, 0.0], 0.0));
+                        let g = [v[0] - p * n[0], v[1] - p * n[1]];
                         (s[0] - g[0]).powi(2) + (s[1] - g[1]).powi(2)
                     };
                     parts[t].bulk += len_m * len * r2;

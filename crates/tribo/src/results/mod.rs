@@ -12,4 +12,5 @@ pub use estimator::{ErrorBars, ErrorEstimate, SUBDIVISIONS};
 pub use kkt::KktResiduals;
 pub use solution::Solution;
 pub use status::{ContactState, Report, Scalar, SolveStatus, Timings};
-pub use zones::{zone, Zone};
+pub(crate) use zones::dof_span;
+pub use zones::{loop_zone, zone, Zone};

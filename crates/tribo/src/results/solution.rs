@@ -50,6 +50,10 @@ pub struct Solution {
     pub sigma_t: Vec<f64>,
     /// Abscissae of the FE nodes of Γ_C.
     pub node_abscissae: Vec<f64>,
+    /// Whether Γ_C is a closed loop ([`crate::ContactBoundary::is_closed`]): its abscissae wrap with its
+    /// length, the last of `node_abscissae` less the first, and a zone may cross the cut
+    /// ([`Solution::contact_zone`]).
+    pub closed: bool,
     /// u_n at the FE nodes of Γ_C.
     pub u_n: Vec<f64>,
     /// Slip relative to the obstacle at the FE nodes of Γ_C: `u_t − s` for a static solve, the slip
@@ -184,7 +188,7 @@ impl Solution {
             tractions: spec
                 .tractions
                 .iter()
-                .filter_map(|(set, g)| Some((mesh.edge_set(set).ok()?, scaled(*g))))
+                .filter_map(|(set, g)| Some((mesh.edge_set(set).ok()?, g.scaled(loading.load_factor))))
                 .collect(),
             stress: &stress,
             model,
@@ -233,6 +237,7 @@ impl Solution {
             sigma_n,
             sigma_t,
             node_abscissae: contact.node_xi.clone(),
+            closed: contact.is_closed(),
             u_n,
             slip,
             gap,

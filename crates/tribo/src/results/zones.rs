@@ -8,6 +8,12 @@
 //! reach the first or last dof, the zone ends at that end of Γ_C (the first or last FE node), and that end
 //! is uncertain by the distance from the dof to it. The width is the span `hi − lo` (holes inside a zone,
 //! e.g. two separate contact zones, are counted in it).
+//!
+//! On a closed Γ_C (a loop, [`Solution::closed`]) the abscissae wrap with the loop's length L and there is
+//! no first dof: the zone is the shortest arc that holds every accepted dof, the loop less its largest run
+//! of rejected dofs (so holes smaller than that run are counted, as on an open side). A zone that crosses
+//! the loop's cut begins before Γ_C's start: `lo < start`, the arc from `lo + L` through the cut to `hi`.
+//! Where every dof is accepted the zone is the whole loop, placed exactly (resolution 0).
 
 use crate::results::{ContactState, Solution};
 
@@ -60,13 +66,78 @@ pub fn zone(
     Some(Zone { lo, hi, resolution: lo_half + hi_half })
 }
 
+/// The shortest arc of a loop that holds every dof `accepted` takes (of `n`, in the order of their
+/// abscissae `at`, wrapping with `period`): its first and last dof, the first after the last where it crosses
+/// the cut; `None` when none is accepted. The loop less its largest run of rejected dofs, measured between the
+/// accepted dofs around it (the first such run on a tie).
+pub(crate) fn loop_arc(
+    n: usize,
+    at: impl Fn(usize) -> f64,
+    period: f64,
+    accepted: impl Fn(usize) -> bool,
+) -> Option<(usize, usize)> {
+    let kept: Vec<usize> = (0..n).filter(|&k| accepted(k)).collect();
+    let (&first, &last) = (kept.first()?, kept.last()?);
+    // The gap after each accepted dof to the next one (circularly); the arc begins after the largest.
+    let mut best = (at(first) + period - at(last), last, first);
+    for w in kept.windows(2) {
+        let gap = at(w[1]) - at(w[0]);
+        if gap > best.0 {
+            best = (gap, w[0], w[1]);
+        }
+    }
+    Some((best.2, best.1))
+}
+
+/// The first and last abscissae of the dofs `accepted` takes (of those at `x`, increasing), `None` for none; on a
+/// closed Γ_C (`period` its length) the shortest arc that holds them ([`loop_arc`]), beginning a period early where
+/// it crosses the cut.
+pub(crate) fn dof_span(x: &[f64], period: Option<f64>, accepted: impl Fn(usize) -> bool) -> Option<(f64, f64)> {
+    if let Some(period) = period {
+        return loop_arc(x.len(), |k| x[k], period, accepted)
+            .map(|(a, b)| (x[a] - if a > b { period } else { 0.0 }, x[b]));
+    }
+    let picked = (0..x.len()).filter(|&k| accepted(k)).map(|k| x[k]);
+    picked.fold(None, |span, v| Some(span.map_or((v, v), |(lo, hi): (f64, f64)| (lo.min(v), hi.max(v)))))
+}
+
+/// The zone of the dofs at `abscissae` (increasing) whose `states` `keep` accepts, on a closed Γ_C from
+/// `ends[0]` round to `ends[1]` (the same point; see the module documentation); `None` when it accepts none.
+pub fn loop_zone(
+    abscissae: &[f64],
+    ends: [f64; 2],
+    states: &[ContactState],
+    keep: impl Fn(ContactState) -> bool,
+) -> Option<Zone> {
+    let n = abscissae.len().min(states.len());
+    let period = ends[1] - ends[0];
+    let (first, last) = loop_arc(n, |k| abscissae[k], period, |k| keep(states[k]))?;
+    if (0..n).all(|k| keep(states[k])) {
+        return Some(Zone { lo: ends[0], hi: ends[1], resolution: 0.0 });
+    }
+    // The dofs on either side of the arc are rejected; their distance wraps across the cut.
+    let before = (first + n - 1) % n;
+    let lo_half = 0.5 * (abscissae[first] - abscissae[before]).rem_euclid(period);
+    let hi_half = 0.5 * (abscissae[(last + 1) % n] - abscissae[last]).rem_euclid(period);
+    let shift = if first > last { period } else { 0.0 };
+    Some(Zone { lo: abscissae[first] - shift - lo_half, hi: abscissae[last] + hi_half, resolution: lo_half + hi_half })
+}
+
 impl Solution {
+    /// Γ_C's length where it is a closed loop (the period of its abscissae), `None` on an open side.
+    pub fn loop_length(&self) -> Option<f64> {
+        self.closed.then(|| Some(self.node_abscissae.last()? - self.node_abscissae.first()?)).flatten()
+    }
+
     /// The zone of the dofs accepted by `keep` (see the module documentation).
     fn zone_of(&self, keep: impl Fn(ContactState) -> bool) -> Option<Zone> {
         let ends = match (self.node_abscissae.first(), self.node_abscissae.last()) {
             (Some(&a), Some(&b)) => [a, b],
             _ => return None,
         };
+        if self.closed {
+            return loop_zone(&self.multiplier_abscissae, ends, &self.states, keep);
+        }
         zone(&self.multiplier_abscissae, ends, &self.states, keep)
     }
 
@@ -105,6 +176,26 @@ mod tests {
         let stick = zone(&x, [0.0, 6.0], &[O, L, S, S, L, O], |s| s == S).unwrap();
         assert_eq!((stick.lo, stick.hi, stick.width(), stick.resolution), (1.5, 4.5, 3.0, 1.0));
         assert!(zone(&x, [0.0, 6.0], &[O; 6], |s| s != O).is_none());
+    }
+
+    #[test]
+    fn a_zone_on_a_loop_may_cross_its_cut() {
+        // Dofs at 0, 1, …, 7 on a loop of length 8: the zone 6, 7, 0, 1 crosses the cut at 0 ≡ 8.
+        let x: Vec<f64> = (0..8).map(f64::from).collect();
+        let z = loop_zone(&x, [0.0, 8.0], &[S, L, O, O, O, O, L, S], |s| s != O).unwrap();
+        assert_eq!((z.lo, z.hi, z.width(), z.resolution), (-2.5, 1.5, 4.0, 1.0));
+        // As an open side it would read the whole side.
+        assert_eq!(zone(&x, [0.0, 8.0], &[S, L, O, O, O, O, L, S], |s| s != O).unwrap().width(), 8.0);
+        // Not crossing the cut, it reads as on an open side; a small hole is counted, the largest is not.
+        let inner = loop_zone(&x, [0.0, 8.0], &[O, L, S, O, S, O, O, O], |s| s != O).unwrap();
+        assert_eq!((inner.lo, inner.hi, inner.resolution), (0.5, 4.5, 1.0));
+        // The zone's first dof at the cut: its lower end lies across it.
+        let at_cut = loop_zone(&x, [0.0, 8.0], &[S, S, O, O, O, O, O, O], |s| s != O).unwrap();
+        assert_eq!((at_cut.lo, at_cut.hi), (-0.5, 1.5));
+        // Every dof touching: the whole loop, exactly.
+        let all = loop_zone(&x, [0.0, 8.0], &[S; 8], |s| s != O).unwrap();
+        assert_eq!((all.lo, all.hi, all.resolution), (0.0, 8.0, 0.0));
+        assert!(loop_zone(&x, [0.0, 8.0], &[O; 8], |s| s != O).is_none());
     }
 
     #[test]

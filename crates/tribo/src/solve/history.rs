@@ -67,7 +67,7 @@ use crate::condensation::Factor;
 use crate::error::{Error, Result};
 use crate::problem::load_case::{LoadCase, MovedSupports};
 use crate::problem::{Condensed, Problem};
-use crate::results::{ContactState, ErrorEstimate, Solution, SolveStatus};
+use crate::results::{dof_span, ContactState, ErrorEstimate, Solution, SolveStatus};
 use crate::settings::friction::Friction;
 use crate::settings::SolverSettings;
 pub use crate::solve::progress::{StepObserver, StepProgress};
@@ -172,15 +172,13 @@ impl History {
     }
 
     /// Per converged step, the smallest interval of abscissae holding the multiplier dofs whose state
-    /// `keep` accepts (NaN, NaN when there are none): e.g. the contact zone or the stick zone.
+    /// `keep` accepts (NaN, NaN when there are none): e.g. the contact zone or the stick zone. On a closed
+    /// Γ_C ([`Solution::closed`]) the shortest arc, which begins before Γ_C's start where it crosses the cut
+    /// (as [`Solution::contact_zone`]).
     pub fn extent(&self, keep: impl Fn(ContactState) -> bool) -> Vec<[f64; 2]> {
-        self.records
-            .iter()
-            .map(|s| {
-                let xs = s.states.iter().zip(&self.multiplier_abscissae).filter(|(st, _)| keep(**st)).map(|(_, x)| *x);
-                xs.fold([f64::NAN, f64::NAN], |[a, b], x| [a.min(x), b.max(x)])
-            })
-            .collect()
+        let (x, period) = (&self.multiplier_abscissae, self.solutions.first().and_then(Solution::loop_length));
+        let span = |s: &StepRecord| dof_span(&x[..x.len().min(s.states.len())], period, |k| keep(s.states[k]));
+        self.records.iter().map(|s| span(s).map_or([f64::NAN; 2], |(a, b)| [a, b])).collect()
     }
 
     /// Per converged step, whether the contact slides as a whole: something touches and every multiplier
@@ -196,7 +194,8 @@ impl History {
     }
 
     /// Per converged step, the stick–slip boundaries: the midpoints between neighbouring multiplier dofs
-    /// of which one sticks and the other slips.
+    /// of which one sticks and the other slips (on a closed Γ_C, the last dof and the first across the cut
+    /// too, the midpoint then wrapped onto Γ_C).
     pub fn stick_slip_boundaries(&self) -> Vec<Vec<f64>> {
         self.records.iter().map(|r| self.boundaries_of(r).collect()).collect()
     }
@@ -210,15 +209,21 @@ impl History {
     }
 
     fn boundaries_of<'a>(&'a self, record: &'a StepRecord) -> impl Iterator<Item = f64> + 'a {
+        let boundary = |a: ContactState, b: ContactState| {
+            matches!((a, b), (ContactState::Stick, ContactState::Slip) | (ContactState::Slip, ContactState::Stick))
+        };
         let pairs = record.states.windows(2).zip(self.multiplier_abscissae.windows(2));
-        pairs
-            .filter(|(st, _)| {
-                matches!(
-                    (st[0], st[1]),
-                    (ContactState::Stick, ContactState::Slip) | (ContactState::Slip, ContactState::Stick)
-                )
-            })
-            .map(|(_, x)| 0.5 * (x[0] + x[1]))
+        let inner = pairs.filter(move |(st, _)| boundary(st[0], st[1])).map(|(_, x)| 0.5 * (x[0] + x[1]));
+        // Across a loop's cut: the last dof and the first, a period apart.
+        let x = &self.multiplier_abscissae;
+        let n = x.len().min(record.states.len());
+        let across = self.solutions.first().and_then(|s| Some((*s.node_abscissae.first()?, s.loop_length()?)));
+        let across =
+            across.filter(|_| n > 1 && boundary(record.states[n - 1], record.states[0])).map(|(start, period)| {
+                let mid = 0.5 * (x[n - 1] + x[0] + period);
+                mid - if mid >= start + period { period } else { 0.0 }
+            });
+        inner.chain(across)
     }
 
     /// About how many bytes a history of `steps` on `problem` holds when it ends, keeping the solution of

@@ -364,3 +364,65 @@ fn a_full_ring_in_a_hole_refines_adaptively_with_its_cut_in_place() {
     assert_eq!(run.solution.lambda_n.len(), run.problem.multipliers.xi.len() - 1, "periodic P1");
     assert!(last < first, "{first} → {last}");
 }
+
+/// A contact zone across a loop's cut: a full ring (radii 0.5–1) in a rigid hole of radius 1.001, its inner
+/// rim pushed by 0.00105 toward the loop's cut (the node of the smallest index, on the outer arc). The ring touches
+/// round the cut only; its contact zone is read as that arc (before, from its first dof to its last: nearly the
+/// whole loop), centred on the cut, as wide as the same ring pushed the other way (the zone then in the middle
+/// of the loop), and the hierarchical estimate enriches a strip round the cut, not the whole ring.
+#[test]
+fn a_contact_zone_across_a_loops_cut_is_read_as_one_arc() {
+    let (a, b, clearance, push) = (0.5, 1.0, 1e-3, 1.05e-3);
+    let turn = 2.0 * std::f64::consts::PI;
+    let sector = RingSector { center: [0.0, 0.0], radii: [a, b], angles: [0.0, turn] };
+    let mesh = ring_sector(&sector, &ArcGrading { angles: [0.0, turn], h_min: 0.04, h_max: 0.04, growth: 0.3 })
+        .expect("a ring");
+    let solve = |push: [f64; 2]| {
+        let spec = ProblemSpec::new(Material { young: E, poisson: NU }, "outer")
+            .support(Support::displacement("inner", Some(push[0]), Some(push[1])))
+            .obstacle(ObstacleShape::Hole { center: [0.0, 0.0], radius: b + clearance });
+        let problem = Problem::new(mesh.clone(), spec).expect("a ring in a hole");
+        let sol = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+        assert_eq!(sol.report.status, SolveStatus::Converged);
+        (problem, sol)
+    };
+    let cut = {
+        let spec = ProblemSpec::new(Material { young: E, poisson: NU }, "outer").clamped(["inner"]);
+        let problem = Problem::new(mesh.clone(), spec).expect("a ring");
+        problem.mesh.points()[problem.contact.nodes[0]]
+    };
+    assert!((cut[0].hypot(cut[1]) - b).abs() < 1e-12, "the cut on the outer arc: {cut:?}");
+    let (toward, away) = ([push * cut[0] / b, push * cut[1] / b], [-push * cut[0] / b, -push * cut[1] / b]);
+    let ((problem, across), (_, middle)) = (solve(toward), solve(away));
+    assert!(problem.contact.is_closed() && across.closed && !problem.contact.is_straight());
+    let (zone, other) = (across.contact_zone().expect("touches"), middle.contact_zone().expect("touches"));
+    let (start, length) = (problem.contact.start(), problem.contact.length());
+    eprintln!(
+        "zone across the cut at {start:.4}: [{:.4}, {:.4}] of a loop of {length:.4}; the other way {:.4} wide",
+        zone.lo,
+        zone.hi,
+        other.width()
+    );
+    assert!(zone.lo < start && zone.hi > start, "the zone straddles the cut: {zone:?}");
+    assert!(zone.width() < 0.5 * length, "one arc, not the loop: {zone:?}");
+    assert!((0.5 * (zone.lo + zone.hi) - start).abs() <= zone.resolution, "centred on the cut: {zone:?}");
+    assert!(
+        (zone.width() - other.width()).abs() <= zone.resolution.max(other.resolution),
+        "{zone:?} against {other:?}"
+    );
+    // A history reads its zones the same way.
+    let steps = [LoadStep::new(0.0, 0.0)];
+    let history =
+        problem.solve_history(&Friction::Frictionless, &steps, &SolverSettings::default(), None).expect("runs");
+    let [lo, hi] = history.extent(|s| s != ContactState::Separation)[0];
+    assert!(lo < start && hi > start && hi - lo <= zone.width(), "[{lo}, {hi}] against {zone:?}");
+    // The strip the hierarchical estimate enriches lies round the cut: as large as round the zone in the middle.
+    let unknowns = |(problem, solution): &(Problem, Solution)| {
+        let settings = SolverSettings::default();
+        problem.estimate_hierarchical(solution, &Friction::Frictionless, &settings).expect("estimates").unknowns
+    };
+    let (strip, other_strip) = (unknowns(&(problem.clone(), across)), unknowns(&solve(away)));
+    eprintln!("enriched: {strip} and {other_strip} unknowns, the whole ring bisected {}", 4 * problem.n_free);
+    assert!(other_strip < 3 * problem.n_free, "a strip: {other_strip} of {}", problem.n_free);
+    assert!(strip.abs_diff(other_strip) * 10 <= other_strip, "{strip} against {other_strip}");
+}

@@ -101,9 +101,9 @@ fn material_load_and_support_rules() {
     }
     let s = ProblemSpec { body_force: [f64::INFINITY, 0.0], ..spec() };
     assert!(matches!(problem_err(square(), s), Error::NonFiniteLoad { .. }));
-    let s = ProblemSpec { tractions: vec![("left".into(), [f64::NAN, 0.0])], ..spec() };
+    let s = ProblemSpec { tractions: vec![("left".into(), [f64::NAN, 0.0].into())], ..spec() };
     assert!(matches!(problem_err(square(), s), Error::NonFiniteLoad { target, .. } if target == "left"));
-    let s = ProblemSpec { tractions: vec![("lft".into(), [1.0, 0.0])], ..spec() };
+    let s = ProblemSpec { tractions: vec![("lft".into(), [1.0, 0.0].into())], ..spec() };
     assert!(matches!(problem_err(square(), s), Error::UnknownEdgeSet { name, .. } if name == "lft"));
     // No support at all: the block rests on the foundation under its weight, held by the contact alone;
     // without friction nothing holds it along the foundation, which the solve says by name.
@@ -153,7 +153,7 @@ fn contact_geometry_rules() {
     ));
     let s = ProblemSpec { clamped: vec!["bottom".into()], ..spec() };
     assert!(matches!(problem_err(square(), s), Error::ContactOverlapsDirichlet { .. }));
-    let s = ProblemSpec { tractions: vec![("bottom".into(), [0.0, 1.0])], ..spec() };
+    let s = ProblemSpec { tractions: vec![("bottom".into(), [0.0, 1.0].into())], ..spec() };
     assert!(matches!(problem_err(square(), s), Error::TractionOnContact { .. }));
 }
 

@@ -32,7 +32,7 @@ fn block_on_foundation(supports: Vec<Support>, traction: [f64; 2]) -> Problem {
         clamped: vec![],
         supports,
         body_force: [0.0, 0.0],
-        tractions: vec![("top".into(), traction)],
+        tractions: vec![("top".into(), traction.into())],
         contact: "bottom".into(),
         obstacle: Obstacle { shape: ObstacleShape::Flat, approach: 0.0, shift: 0.0 },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
@@ -165,6 +165,7 @@ fn body(
     tractions: Vec<(String, [f64; 2])>,
 ) -> Body {
     let materials = Materials::uniform(material, mesh.n_triangles());
+    let tractions = tractions.into_iter().map(|(set, t)| (set, t.into())).collect();
     Body { name: name.into(), mesh, materials, clamped: vec![], supports, tractions }
 }
 

@@ -33,6 +33,7 @@ mod axisymmetric;
 mod bent_pair;
 mod coulomb_newton;
 mod curved;
+mod curved_patch;
 mod error_bars;
 mod errors;
 mod estimator;

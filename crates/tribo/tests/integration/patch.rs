@@ -25,7 +25,7 @@ fn patch_problem(
 ) -> Problem {
     let (lam, g) = lame();
     let (sxx, sxy) = (-lam * b, -g * a);
-    let tractions = vec![("left".to_string(), [-sxx, -sxy]), ("right".to_string(), [sxx, sxy])];
+    let tractions = vec![("left".to_string(), [-sxx, -sxy].into()), ("right".to_string(), [sxx, sxy].into())];
     let spec = ProblemSpec {
         material: Material { young: E, poisson: NU },
         model: Model::PlaneStrain,
@@ -180,7 +180,7 @@ fn constant_strain_without_contact_is_reproduced() {
                     clamped: vec!["left".into()],
                     supports: vec![],
                     body_force: [0.0, 0.0],
-                    tractions: vec![("right".to_string(), [E * c, 0.0])],
+                    tractions: vec![("right".to_string(), [E * c, 0.0].into())],
                     contact: "bottom".into(),
                     obstacle: Obstacle { shape: ObstacleShape::Flat, approach: -0.01, shift: 0.0 },
                     multiplier_points: points.clone(),
