@@ -67,6 +67,8 @@ def _type(check: Callable[..., Any]) -> Any:
         region = create_model("Region", __config__=STRICT, young=(Num, ...), poisson=(Num, ...),
                               group=(StrictStr | None, None), box=(Annotated[list[Num], Field(min_length=4, max_length=4)] | None, None))
         return list[region]
+    if check.__name__ == "_rotation":
+        return create_model("Rotation", __config__=STRICT, center=(Pair, ...), angle=(Num, ...))
     if check.__name__ == "_ring":
         return create_model("Ring", __config__=STRICT, center=(Pair, ...), radii=(Pair, ...), angles=(Pair, ...))
     schema = getattr(check, "json_schema", None)
@@ -75,7 +77,7 @@ def _type(check: Callable[..., Any]) -> Any:
     if schema is not None:
         return Annotated[StrictInt, Field(ge=schema["minimum"], le=schema["maximum"])]
     if check.__name__ == "_shape":
-        return _model("Gap", {k: c for k, c in SCHEMA["obstacle"].items() if k not in ("approach", "shift")})
+        return _model("Gap", {k: c for k, c in SCHEMA["obstacle"].items() if k not in ("approach", "shift", "rotation")})
     return TYPES[check.__name__]
 
 

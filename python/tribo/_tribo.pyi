@@ -232,6 +232,7 @@ class Problem(ProblemData):
         approach: float | None = None,
         shift: float | None = None,
         tractions: Sequence[tuple[str, Sequence[float]]] | None = None,
+        rotation: tuple[tuple[float, float], float] | None = None,
         body_force: _Pair | None = None,
         multiplier_ratio: float | None = None,
         multiplier_size: float | None = None,

@@ -323,7 +323,10 @@ def history_tractions(
         ax.plot(x, -sol.friction_threshold, ":", color=line.get_color(), lw=1.0)
     zone = history.contact_zone[list(steps)] if len(steps) else np.empty((0, 2))
     zone = zone[np.isfinite(zone).all(axis=1)]
-    if len(zone):
+    first = history.solutions[0] if history.solutions else None
+    if first is not None and first.closed and len(zone) and float(zone[:, 0].min()) < first.node_abscissae[0]:
+        ax.set_xlim(float(first.node_abscissae[0]), float(first.node_abscissae[-1]))  # across a loop's cut: all of it
+    elif len(zone):
         a, b = float(zone[:, 0].min()), float(zone[:, 1].max())
         pad = 0.3 * (b - a) if b > a else 1.0
         ax.set_xlim(a - pad, b + pad)

@@ -237,8 +237,8 @@ class Problem(_tribo.Problem):
     factorization of its last solve, reused by the next solve with the same γ0.
 
     ``Problem(mesh, *, young, poisson, contact, clamped=None, supports=None, obstacle=None, approach=None,
-    shift=None, tractions=None, pressures=None, body_force=None, multiplier_ratio=None, multiplier_size=None,
-    multiplier_points=None, space=None, model=None, materials=None, regions=None)``: the body (a Mesh, Young's
+    shift=None, rotation=None, tractions=None, pressures=None, body_force=None, multiplier_ratio=None,
+    multiplier_size=None, multiplier_points=None, space=None, model=None, materials=None, regions=None)``: the body (a Mesh, Young's
     modulus and Poisson's ratio, or for a body of several materials, a coating on a substrate say, ``materials``
     [(E, ν), …] and ``regions``, the index of each triangle's material, from ``tribo.io.read_triangle_groups``
     or the triangles' centroids; model 'plane_strain', the default, 'plane_stress': a thin plate, forces per unit
@@ -247,7 +247,9 @@ class Problem(_tribo.Problem):
     supports (edge sets clamped, or a list of Support), its loads (tractions: a dict edge set -> (tx, ty);
     pressures: a dict edge set -> p, the traction −p n along each edge's outward normal, so a bore or a curved side
     can be pressed; body_force (fx, fy)), Γ_C (the edge set `contact`) and the obstacle with its motion (an
-    Obstacle or a callable gap(xi), the approach δ and the tangential shift s), and the multiplier mesh T_H
+    Obstacle or a callable gap(xi), the approach δ and the tangential shift s, and for an obstacle given by its
+    geometry ``rotation=((cx, cy), angle)``: turned by angle radians counterclockwise about (cx, cy), its surface
+    sliding with the turn; not in a history), and the multiplier mesh T_H
     (at most one of multiplier_ratio H/h, multiplier_size H and multiplier_points; space 'P0' or 'P1').
     """
 

@@ -55,11 +55,12 @@ def dof_span(abscissae: npt.ArrayLike, mask: npt.ArrayLike, period: float | None
     if period is None:
         return float(x.min()), float(x.max())
     x = np.sort(x)
-    gaps = np.append(np.diff(x), x[0] + period - x[-1])
-    k = int(np.argmax(gaps))  # the arc begins after the largest gap
-    if k == len(x) - 1:
+    # The gap across the cut first, so that on a tie the arc does not cross it (as the core reads it).
+    gaps = np.append(x[0] + period - x[-1], np.diff(x))
+    k = int(np.argmax(gaps))  # the arc begins after the largest gap: at x[k]
+    if k == 0:
         return float(x[0]), float(x[-1])
-    return float(x[k + 1] - period), float(x[k])
+    return float(x[k] - period), float(x[k - 1])
 
 
 def _same(a: object, b: object) -> bool:
@@ -341,7 +342,8 @@ class History(_Record):
         slip_count: multiplier dofs that slip, per converged step.
         separation_count: multiplier dofs separated from the obstacle, per converged step.
         contact_zone: (first, last) abscissa of the multiplier dofs in contact, per converged step, (K, 2);
-            NaN when nothing touches.
+            NaN when nothing touches. On a closed Γ_C the shortest arc that holds them: first < the side's
+            start where it crosses the cut (first + its length is where it begins).
         stick_zone: (first, last) abscissa of the multiplier dofs that stick, per converged step, (K, 2);
             NaN when none sticks.
         stick_slip_boundaries: the abscissae of the stick–slip boundaries (midpoints between a dof that

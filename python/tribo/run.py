@@ -27,7 +27,7 @@ from tribo.checks import SceneWarning, conventions, warn_missing_error_bars, war
 from tribo.history import vtu_every, write_history
 from tribo.io import write_contact_csv, write_text_atomic, write_vtu
 from tribo.problem import Problem
-from tribo.results import Adaptive, AdaptiveHistory, History, Solution
+from tribo.results import Adaptive, AdaptiveHistory, History, Solution, dof_span
 from tribo.scene import Scene, SceneError
 
 __all__ = ["peak_memory_mb", "run_adaptive", "run_history", "run_scene", "summary"]
@@ -369,9 +369,10 @@ def _plots(out: Path, problem: Problem, solution: Solution) -> list[Path]:
     plt.close(fig)
     files.append(out / "von_mises.png")
     # A close-up of the contact zone, where the stresses concentrate.
-    active = solution.multiplier_abscissae[solution.states != 0]
-    if len(active):
-        a, b = float(active.min()), float(active.max())
+    x = solution.node_abscissae
+    span = dof_span(solution.multiplier_abscissae, solution.states != 0, x[-1] - x[0] if solution.closed else None)
+    if span is not None:
+        a, b = span
         w = max(b - a, problem.mesh.max_diameter * 1e-3)
         p = problem.contact_points([a - w, b + w])
         half = max(float(abs(p[1] - p[0]).max()), w) / 2.0

@@ -310,6 +310,7 @@ class Scene:
                 contact=self.get("contact", "edge_set"),
                 obstacle=obstacle,
                 approach=o.get("approach"),
+                rotation=o.get("rotation"),
                 shift=o.get("shift"),
                 tractions=loads.get("tractions"),
                 pressures=loads.get("pressures"),

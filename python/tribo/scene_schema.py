@@ -149,6 +149,7 @@ from tribo.scene_values import (
     _pressures,
     _range,
     _ring,
+    _rotation,
     _steps,
     _string,
 )
@@ -182,6 +183,10 @@ RENAMED = {
 }
 
 
+# The keys of [obstacle] that move it rather than shape it.
+MOTION_KEYS = ("approach", "shift", "rotation")
+
+
 def _shape(key: str, v: Any) -> dict[str, Any]:
     """An obstacle shape as a table (the initial gap between two bodies): the keys of ``[obstacle]`` that
     describe a shape, checked as there."""
@@ -189,9 +194,9 @@ def _shape(key: str, v: Any) -> dict[str, Any]:
         raise SceneError(f"scene key '{key}' must be a table with shape and its keys", key)
     out: dict[str, Any] = {}
     for name, value in v.items():
-        check = SCHEMA["obstacle"].get(name) if name not in ("approach", "shift") else None
+        check = SCHEMA["obstacle"].get(name) if name not in MOTION_KEYS else None
         if check is None:
-            known = ", ".join(k for k in SCHEMA["obstacle"] if k not in ("approach", "shift"))
+            known = ", ".join(k for k in SCHEMA["obstacle"] if k not in MOTION_KEYS)
             raise SceneError(f"scene key '{key}.{name}' is not known (known keys: {known})", f"{key}.{name}")
         out[name] = check(f"{key}.{name}", value)
     _check_obstacle(out, key)
@@ -271,6 +276,7 @@ SCHEMA: dict[str, dict[str, Checker]] = {
         "gap": _numbers,
         "approach": _number,
         "shift": _number,
+        "rotation": _rotation,
     },
     "friction": {"mu": _number, "threshold": _number},
     "discretization": {
@@ -360,8 +366,11 @@ MAX_CELLS = _MAX_CELLS  # the core's limit (tribo.generate::MAX_CELLS)
 
 def _check_obstacle(o: Mapping[str, Any], table: str = "obstacle") -> None:
     """The shape keys of [obstacle] (or of a gap ``table``): each one the shape requires is given, and none
-    it does not take."""
+    it does not take; a rotation turns a shape given by its geometry only."""
     shape = o.get("shape", "flat")
+    if "rotation" in o and shape not in GEOMETRY_SHAPES:
+        raise SceneError(f"scene key '{table}.rotation' turns an obstacle given by its geometry (line, disc, hole, "
+                         f"profile), not a {shape}", f"{table}.rotation")
     for key in sorted(set(o) & {k for keys in SHAPE_KEYS.values() for k in keys}):
         if key not in SHAPE_KEYS[shape]:
             raise SceneError(f"scene key '{table}.{key}' does not apply to a {shape} obstacle", f"{table}.{key}")

@@ -129,6 +129,26 @@ _ring.json_schema = {  # type: ignore[attr-defined]
 }
 
 
+def _rotation(key: str, v: Any) -> tuple[tuple[float, float], float]:
+    """A small rotation ``{ center = [x, y], angle = a }`` (radians, counterclockwise), as (center, angle)."""
+    if not isinstance(v, dict):
+        raise SceneError(f"scene key '{key}' must be a table {{ center = [x, y], angle = a }}, got {v!r}", key)
+    for name in v:
+        if name not in ("center", "angle"):
+            raise SceneError(f"scene key '{key}.{name}' is not known (known keys: center, angle)", f"{key}.{name}")
+    for name in ("center", "angle"):
+        if name not in v:
+            raise SceneError(f"scene key '{key}.{name}' is required", f"{key}.{name}")
+    return _pair(f"{key}.center", v["center"]), _number(f"{key}.angle", v["angle"])
+
+
+_rotation.json_schema = {  # type: ignore[attr-defined]
+    "type": "object", "required": ["center", "angle"], "additionalProperties": False,
+    "properties": {"center": {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2},
+                   "angle": {"type": "number"}},
+}
+
+
 def _numbers(key: str, v: Any) -> list[float]:
     """A list of numbers."""
     if not isinstance(v, list):

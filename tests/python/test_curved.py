@@ -572,3 +572,45 @@ def test_a_pressure_on_a_bore_presses_each_facet_along_its_normal() -> None:
         tribo.Problem(mesh, young=E, poisson=NU, contact="outer", clamped="start", pressures={"inner": "high"})
     with pytest.raises(tribo.SceneError, match="loads.pressures.inner"):
         parse_scene({**scene, "loads": {"pressures": {"inner": [1.0, 2.0]}}})
+
+
+def test_a_turned_hole_drags_a_ring_as_its_shift_does() -> None:
+    """``rotation=((cx, cy), angle)`` (scene files: ``[obstacle] rotation = { center, angle }``) turns an obstacle
+    given by its geometry: a hole turned by θ about its centre drags a full ring clamped inside as the shift θR
+    does (every dof slips; the Rust test ``turned_obstacle.rs``). Refused for a gap function of the abscissa, and
+    in a scene's flat obstacle."""
+    mesh = tribo.Mesh.ring_sector((0.0, 0.0), (0.5, 1.0), (0.0, 2 * math.pi), h_max=0.04, h_min=0.04)
+
+    def solve(**motion: object) -> tribo.Solution:
+        problem = tribo.Problem(mesh, young=E, poisson=NU, contact="outer", clamped="inner",
+                                obstacle=tribo.Obstacle.hole((0.0, 0.0), 1.0), approach=1e-3, **motion)
+        return problem.solve(mu=0.3)
+
+    turned, shifted = solve(rotation=((0.0, 0.0), 0.02)), solve(shift=0.02)
+    assert turned.report.status == "converged" and set(turned.state_names) == {"slip"}
+    np.testing.assert_allclose(turned.lambda_t, shifted.lambda_t, rtol=1e-9, atol=1e-12)
+    scene = {
+        "body": {"ring": {"center": [0.0, 0.0], "radii": [0.5, 1.0], "angles": [0.0, 360.0]}},
+        "material": {"young": E, "poisson": NU}, "supports": {"clamped": "inner"}, "contact": {"edge_set": "outer"},
+        "obstacle": {"shape": "hole", "center": [0.0, 0.0], "radius": 1.0, "approach": 1e-3,
+                     "rotation": {"center": [0.0, 0.0], "angle": 0.02}},
+        "friction": {"mu": 0.3}, "discretization": {"h": 0.04},
+    }
+    _, from_scene = parse_scene(scene).solve()
+    assert abs(from_scene.tangential_force) == pytest.approx(abs(turned.tangential_force), rel=1e-6)
+    with pytest.raises(tribo.TriboError, match="gap function"):
+        tribo.Problem(mesh, young=E, poisson=NU, contact="outer", clamped="inner", rotation=((0.0, 0.0), 0.01))
+    with pytest.raises(tribo.SceneError, match="obstacle.rotation"):
+        parse_scene({**scene, "obstacle": {"shape": "flat", "rotation": {"center": [0.0, 0.0], "angle": 0.01}}})
+    with pytest.raises(tribo.SceneError, match="obstacle.rotation.axis"):
+        parse_scene({**scene, "obstacle": {**scene["obstacle"], "rotation": {"center": [0, 0], "axis": 1}}})
+
+
+def test_dof_span_reads_a_loop_as_the_core_does() -> None:
+    """``tribo.results.dof_span`` on a loop: the shortest arc, across the cut where it lies there; on a tie with the
+    run across the cut the arc does not cross it (as ``tribo::results`` reads zones)."""
+    x = [0.0, 1.0, 2.0, 3.0]
+    assert tribo.results.dof_span(x, [True] * 4, 4.0) == (0.0, 3.0)
+    assert tribo.results.dof_span(x, [True, False, True, True], 4.0) == (-2.0, 0.0)
+    assert tribo.results.dof_span(x, [True, False, True, True]) == (0.0, 3.0)
+    assert tribo.results.dof_span(x, [False] * 4, 4.0) is None

@@ -100,10 +100,9 @@ type BodyArgs =
 
 fn body(b: BodyArgs) -> PyResult<tribo::Body> {
     let (name, mesh, pairs, regions, clamped, supports, tractions) = b;
-    let (supports, tractions) = (supports.into_iter().map(|s| s.inner).collect(), tractions_of(tractions)?);
-    let mesh = mesh.get().inner.clone();
+    let (mesh, supports) = (mesh.get().inner.clone(), supports.into_iter().map(|s| s.inner).collect());
     let materials = tribo::Materials::from_pairs(&pairs, regions, mesh.n_triangles());
-    Ok(tribo::Body { name, mesh, materials, clamped, supports, tractions })
+    Ok(tribo::Body { name, mesh, materials, clamped, supports, tractions: tractions_of(tractions)? })
 }
 
 /// Calls the callback (if any) with `args` and checks for Ctrl-C: `Break` when the callback returned
@@ -217,7 +216,7 @@ impl PyProblem {
     #[pyo3(signature = (
         mesh, *, materials = None, regions = None, contact, clamped = None, supports = None, obstacle = None, approach = None,
         shift = None, tractions = None, body_force = None, multiplier_ratio = None, multiplier_size = None,
-        multiplier_points = None, space = None, primary = None, model = None,
+        multiplier_points = None, space = None, primary = None, model = None, rotation = None,
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -239,6 +238,7 @@ impl PyProblem {
         space: Option<&str>,
         primary: Option<String>,
         model: Option<&str>,
+        rotation: Option<([f64; 2], f64)>,
     ) -> PyResult<PyClassInitializer<Self>> {
         let obstacle = obstacle.map_or_else(|| Py::new(py, PyObstacle::checked(ObstacleShape::Flat)?), Ok)?;
         let shape = obstacle.get().shape.clone();
@@ -258,7 +258,8 @@ impl PyProblem {
             // Two bodies (`tribo.Problem.two_bodies`): `mesh` is their list, each with its own materials, supports
             // and tractions; they move through their supports.
             let given = [materials.is_some(), regions.is_some(), clamped.is_some(), supports.is_some()];
-            if given.into_iter().chain([tractions.is_some(), approach.is_some(), shift.is_some()]).any(|g| g) {
+            let moved = [tractions.is_some(), approach.or(shift).is_some(), rotation.is_some()];
+            if given.into_iter().chain(moved).any(|g| g) {
                 return Err(PyTypeError::new_err("with primary=, material, supports and tractions are per body"));
             }
             let [first, second]: [BodyArgs; 2] = mesh.extract()?;
@@ -285,7 +286,7 @@ impl PyProblem {
                 body_force,
                 tractions,
                 contact,
-                obstacle: tribo::Obstacle::from_keywords(shape, approach, shift),
+                obstacle: tribo::Obstacle::from_keywords(shape, approach, shift, rotation.map(Into::into)),
                 multiplier_points: points,
                 multiplier_space: space,
             };

@@ -301,7 +301,12 @@ pub fn hertz_spec(approach: f64, shift: f64, points: MultiplierPoints, space: Mu
         body_force: [0.0, 0.0],
         tractions: vec![],
         contact: "top".into(),
-        obstacle: Obstacle { shape: ObstacleShape::Circle { center: 0.0, radius: s.radius }, approach, shift },
+        obstacle: Obstacle {
+            shape: ObstacleShape::Circle { center: 0.0, radius: s.radius },
+            approach,
+            shift,
+            rotation: None,
+        },
         multiplier_points: points,
         multiplier_space: space,
     }
@@ -337,6 +342,7 @@ pub fn block_problem(nx: usize, ny: usize) -> (Problem, f64) {
             shape: ObstacleShape::Flat,
             approach: n("obstacle", "approach"),
             shift: n("obstacle", "shift"),
+            rotation: None,
         },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,

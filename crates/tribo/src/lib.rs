@@ -142,7 +142,7 @@ pub use choice::Choice;
 pub use condensation::Factor;
 pub use contact::gamma0::Gamma0Bound;
 pub use contact::multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace};
-pub use contact::obstacle::{DistanceFunction, GapFunction, Obstacle, ObstacleShape};
+pub use contact::obstacle::{DistanceFunction, GapFunction, Obstacle, ObstacleRotation, ObstacleShape};
 pub use contact::ContactBoundary;
 pub use error::{Error, Num, Result};
 pub use fem::elasticity::{Material, Materials, Model, Traction};

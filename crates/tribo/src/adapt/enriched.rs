@@ -442,7 +442,8 @@ impl Problem {
     }
 
     /// The regions R (the two cells of T_H at an end of Γ_C) at each end whose multiplier dof touches in
-    /// `solution` (not in separation); none on a T_H of fewer than 4 cells.
+    /// `solution` (not in separation); none on a T_H of fewer than 4 cells, nor on a closed Γ_C (a loop has no
+    /// end: its cut is not one).
     pub(super) fn end_regions(&self, solution: &Solution) -> Vec<[f64; 2]> {
         let xi = &self.multipliers.xi;
         let dofs = self.multipliers.dof_abscissae();
@@ -450,9 +451,10 @@ impl Problem {
             let nearest = dofs.iter().enumerate().min_by(|a, b| (a.1 - x).abs().total_cmp(&(b.1 - x).abs()));
             nearest.is_some_and(|(k, _)| solution.states.get(k).is_some_and(|c| *c != ContactState::Separation))
         };
-        // Two cells at each end, apart from each other (a T_H of fewer than 4 cells is not measured).
+        // Two cells at each end, apart from each other (a T_H of fewer than 4 cells is not measured); a loop has
+        // no end.
         let n = xi.len();
-        if n < 5 {
+        if n < 5 || self.contact.is_closed() {
             return Vec::new();
         }
         [(xi[0], [xi[0], xi[2]]), (xi[n - 1], [xi[n - 3], xi[n - 1]])]

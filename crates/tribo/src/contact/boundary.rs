@@ -445,41 +445,8 @@ impl ContactBoundary {
     }
 
     /// Abscissa of a point: its projection on the line of a straight Γ_C; on a chain, the abscissa of the
-    /// nearest point of the chain, the end edges extended beyond the ends (not those of a closed loop). Where
-    /// the chain's set carries its curve, a point whose nearest point of the curve is not beyond an end (it
-    /// faces the end node across the curve, as a node of a concentric arc does) reads that end: extended, the end
-    /// edge would place it beyond the end by about its distance times half the facet's angle.
+    /// nearest point of the chain, the end edges extended beyond the ends (not those of a closed loop).
     pub fn abscissa(&self, p: Point) -> f64 {
-        let xi = self.chain_abscissa(p);
-        let (start, end) = (self.start(), self.end());
-        let (Some(curve), true) = (self.curve, xi < start || xi > end) else {
-            return xi;
-        };
-        // The end node, and the direction from it into the chain.
-        let (node, inward) = if xi < start {
-            let [a, b] = [self.node_points[0], self.node_points[1]];
-            (a, [b[0] - a[0], b[1] - a[1]])
-        } else {
-            let k = self.node_points.len() - 1;
-            let [a, b] = [self.node_points[k], self.node_points[k - 1]];
-            (a, [b[0] - a[0], b[1] - a[1]])
-        };
-        let q = curve.project(p);
-        let along = (q[0] - node[0]) * inward[0] + (q[1] - node[1]) * inward[1];
-        let tol = crate::contact::geometric_tol_rel() * inward[0].hypot(inward[1]).powi(2);
-        if along >= -tol {
-            if xi < start {
-                start
-            } else {
-                end
-            }
-        } else {
-            xi
-        }
-    }
-
-    /// [`ContactBoundary::abscissa`] on the chain alone, the end edges extended.
-    fn chain_abscissa(&self, p: Point) -> f64 {
         if self.is_straight() {
             return (p[0] - self.origin[0]) * self.direction[0] + (p[1] - self.origin[1]) * self.direction[1];
         }

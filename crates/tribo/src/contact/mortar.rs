@@ -133,6 +133,9 @@ pub struct MortarMatrices {
     pub psi_integrals: Vec<f64>,
     /// `∫ ψ_j g` with g the gap after the approach.
     pub gap_moments: Vec<f64>,
+    /// `∫ψ_j s(ξ)` where a turned obstacle's surface moves along Γ_C by a varying s(ξ)
+    /// ([`crate::contact::obstacle`]); empty otherwise (then `∫ψ_j s = s ∫ψ_j`).
+    pub shift_moments: Vec<f64>,
 }
 
 pub(crate) const GAUSS2: [(f64, f64); 2] = [(-0.577_350_269_189_625_8, 1.0), (0.577_350_269_189_625_8, 1.0)];
@@ -183,6 +186,8 @@ impl MortarMatrices {
             .collect();
         let mut psi_integrals = vec![0.0; q];
         let mut gap_moments = vec![0.0; q];
+        // Where the obstacle turns, its surface's motion along each edge varies: ∫ψ_j s(ξ).
+        let mut shift_moments = if obstacle.rotation.is_some() { vec![0.0; q] } else { Vec::new() };
         let fe_basis = |e: usize, x: f64| {
             let s = (x - fe[e]) / (fe[e + 1] - fe[e]);
             [(e, 1.0 - s), (e + 1, s)]
@@ -218,9 +223,21 @@ impl MortarMatrices {
             for &(t, w) in &GAUSS4 {
                 let x = mid + half * t;
                 let g = obstacle.gap(contact, x)?;
+                let s = if shift_moments.is_empty() {
+                    0.0
+                } else {
+                    obstacle.tangential_motion(
+                        contact.surface_point(x),
+                        contact.frame_at(x).1,
+                        contact.edges[pc.edge].length,
+                    )
+                };
                 let (psi, npsi) = mult.basis(pc.cell, x);
                 for &(i, pi) in &psi[..npsi] {
                     gap_moments[i] += w * half * measure(pc.edge, x) * pi * g;
+                    if let Some(m) = shift_moments.get_mut(i) {
+                        *m += w * half * measure(pc.edge, x) * pi * s;
+                    }
                 }
             }
         }
@@ -242,6 +259,7 @@ impl MortarMatrices {
             g_h,
             psi_integrals,
             gap_moments,
+            shift_moments,
         })
     }
 }

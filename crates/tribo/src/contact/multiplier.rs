@@ -81,15 +81,17 @@ impl MultiplierMesh {
                 xi[xi.partition_point(|&x| x <= hi).min(last)],
             );
         }
-        // Each end wrapped onto [start, end), its neighbour found there, and moved back by the same periods.
+        // Each end wrapped onto [start, end), its neighbour found there, and moved back by the same periods; a
+        // dof a period away comes back up to rounding, so the points are compared within a few ε of the period.
         let (start, period) = (xi[0], xi[last] - xi[0]);
-        let turns = |x: f64| ((x - start) / period).floor() * period;
+        let tol = 8.0 * f64::EPSILON * (period + start.abs());
+        let turns = |x: f64| ((x - start + tol) / period).floor() * period;
         let (lo_turns, hi_turns) = (turns(lo), turns(hi));
-        let below = match xi.partition_point(|&x| x < lo - lo_turns) {
+        let below = match xi.partition_point(|&x| x < lo - lo_turns - tol) {
             0 => xi[last - 1] - period,
             k => xi[k - 1],
         };
-        let above = xi[xi.partition_point(|&x| x <= hi - hi_turns).min(last)];
+        let above = xi[xi.partition_point(|&x| x <= hi - hi_turns + tol).min(last)];
         (below + lo_turns, above + hi_turns)
     }
 

@@ -31,6 +31,16 @@
 //! The approach δ lowers the gap by δ everywhere (a line moves by δ toward the body; a hole shrinks by δ, the
 //! interference of a shrink fit) and the shift s moves the obstacle's surface by s along each edge's tangent
 //! (a rotation by s/R of a hole around a disc).
+//!
+//! # A turned obstacle
+//! A shape given by its geometry may also be turned by an angle θ about a point c ([`ObstacleRotation`]). Its
+//! geometry is turned exactly ([`ObstacleShape::turned`]): the gap and the contact normals are those of the
+//! turned shape. Its surface moves by `w(y) = θ ẑ × (y − c)` (the small rotation's displacement) at its point y
+//! nearest the body's point x, `y = x − d(x) ∇d(x)`, and that motion along each edge's tangent adds to the shift:
+//! `s(x) = s + w(y) · t`. Read at y and not at x, a disc turned about its own centre slides its surface by θR and
+//! does not move it toward the body. A gap function of the abscissa has no place in the plane to turn about,
+//! and is refused; so are two bodies (no rigid obstacle), axisymmetry (no rigid rotation of a body of
+//! revolution in its meridian plane) and histories (their steps move the obstacle by approach and shift).
 
 use std::fmt;
 use std::sync::Arc;
@@ -124,6 +134,38 @@ pub enum ObstacleShape {
     Distance(DistanceFunction),
 }
 
+/// A small rigid rotation of an obstacle given by its geometry: by `angle` (radians, counterclockwise) about
+/// `center` (the module documentation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ObstacleRotation {
+    /// The point it turns about.
+    pub center: [f64; 2],
+    /// The angle, radians, counterclockwise.
+    pub angle: f64,
+}
+
+impl From<([f64; 2], f64)> for ObstacleRotation {
+    /// `(center, angle)`.
+    fn from((center, angle): ([f64; 2], f64)) -> Self {
+        Self { center, angle }
+    }
+}
+
+impl ObstacleRotation {
+    /// The point `p` turned by `sign × angle` about the centre.
+    pub fn turn(&self, p: [f64; 2], sign: f64) -> [f64; 2] {
+        let (s, c) = (sign * self.angle).sin_cos();
+        let d = [p[0] - self.center[0], p[1] - self.center[1]];
+        [self.center[0] + c * d[0] - s * d[1], self.center[1] + s * d[0] + c * d[1]]
+    }
+
+    /// The vector `v` turned by `sign × angle`.
+    pub fn turn_vector(&self, v: [f64; 2], sign: f64) -> [f64; 2] {
+        let (s, c) = (sign * self.angle).sin_cos();
+        [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+    }
+}
+
 /// The rigid obstacle: shape and prescribed motion.
 #[derive(Debug, Clone, Default)]
 pub struct Obstacle {
@@ -133,14 +175,43 @@ pub struct Obstacle {
     pub approach: f64,
     /// Tangential shift s of the obstacle along t.
     pub shift: f64,
+    /// A small rotation of a shape given by its geometry (none by default).
+    pub rotation: Option<ObstacleRotation>,
 }
 
 impl Obstacle {
-    /// The obstacle of `shape` moved by the keywords given (approach δ, shift s), the others at their
-    /// defaults (0: touching, not shifted).
-    pub fn from_keywords(shape: ObstacleShape, approach: Option<f64>, shift: Option<f64>) -> Self {
+    /// The obstacle of `shape` moved by the keywords given (approach δ, shift s, a rotation), the others at
+    /// their defaults (0: touching, not shifted, not turned).
+    pub fn from_keywords(
+        shape: ObstacleShape,
+        approach: Option<f64>,
+        shift: Option<f64>,
+        rotation: Option<ObstacleRotation>,
+    ) -> Self {
         let d = Self::default();
-        Self { shape, approach: approach.unwrap_or(d.approach), shift: shift.unwrap_or(d.shift) }
+        Self { shape, approach: approach.unwrap_or(d.approach), shift: shift.unwrap_or(d.shift), rotation }
+    }
+
+    /// The obstacle as the contact meets it: its shape turned by its rotation, if any
+    /// ([`ObstacleShape::turned`]), the rotation kept for the motion of its surface.
+    pub fn placed(&self) -> Self {
+        match &self.rotation {
+            Some(r) => Self { shape: self.shape.turned(r), ..self.clone() },
+            None => self.clone(),
+        }
+    }
+
+    /// How far the surface of the placed obstacle ([`Obstacle::placed`]) moves along `t` facing the body's point
+    /// `x`: the shift s, plus where it is turned, `w(y) · t` at its point y nearest x (the module documentation).
+    pub fn tangential_motion(&self, x: [f64; 2], t: [f64; 2], length: f64) -> f64 {
+        let Some(r) = &self.rotation else {
+            return self.shift;
+        };
+        let (d, g) = (self.shape.distance(x), self.shape.distance_gradient(x, length));
+        let norm = g[0].hypot(g[1]);
+        let y = if norm > 0.0 { [x[0] - d * g[0] / norm, x[1] - d * g[1] / norm] } else { x };
+        let w = [-r.angle * (y[1] - r.center[1]), r.angle * (y[0] - r.center[0])];
+        self.shift + w[0] * t[0] + w[1] * t[1]
     }
 
     /// Checks the shape's parameters and the motion.
@@ -158,6 +229,21 @@ impl Obstacle {
         for (name, v) in [("approach δ", self.approach), ("tangential shift s", self.shift)] {
             if v.is_subnormal() {
                 return bad(crate::error::subnormal(name, v));
+            }
+        }
+        if let Some(r) = &self.rotation {
+            if !(r.angle.is_finite() && r.center.iter().all(|v| v.is_finite())) {
+                return bad(format!(
+                    "the rotation's angle and centre must be finite, got {} about ({}, {})",
+                    r.angle, r.center[0], r.center[1]
+                ));
+            }
+            if !self.shape.is_geometry() {
+                return bad(format!(
+                    "a rotation turns an obstacle given by its geometry (line, disc, hole, profile, signed distance); \
+                     a {} is a gap function of the abscissa, with no place in the plane to turn about",
+                    self.shape.kind()
+                ));
             }
         }
         match &self.shape {
@@ -326,6 +412,26 @@ fn profile_crossing(points: &[[f64; 2]]) -> Option<(usize, usize)> {
 }
 
 impl ObstacleShape {
+    /// The shape turned by `rotation` (exactly): a line's point and normal, a disc's or a hole's centre, a
+    /// profile's points; a signed distance read at the point turned back. A gap function of the abscissa is
+    /// returned as it is (it cannot be turned: [`Obstacle::validate`] refuses a rotation of it).
+    pub fn turned(&self, rotation: &ObstacleRotation) -> Self {
+        let r = *rotation;
+        match self {
+            Self::Line { point, normal } => {
+                Self::Line { point: r.turn(*point, 1.0), normal: r.turn_vector(*normal, 1.0) }
+            }
+            Self::Disc { center, radius } => Self::Disc { center: r.turn(*center, 1.0), radius: *radius },
+            Self::Hole { center, radius } => Self::Hole { center: r.turn(*center, 1.0), radius: *radius },
+            Self::Profile { points } => Self::Profile { points: points.iter().map(|&p| r.turn(p, 1.0)).collect() },
+            Self::Distance(f) => {
+                let f = f.0.clone();
+                Self::Distance(DistanceFunction(Arc::new(move |x| f(r.turn(x, -1.0)))))
+            }
+            other => other.clone(),
+        }
+    }
+
     /// Whether the shape is given by its geometry (a line, a disc, a hole, a signed distance) rather than as a
     /// gap function of the abscissa.
     pub fn is_geometry(&self) -> bool {

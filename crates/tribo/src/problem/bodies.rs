@@ -196,7 +196,7 @@ impl Problem {
                 .flat_map(|b| b.tractions.iter().map(|(set, g)| (format!("{}.{set}", b.name), *g)))
                 .collect(),
             contact: pair.secondary.clone(),
-            obstacle: Obstacle { shape: pair.gap.clone(), approach: 0.0, shift: 0.0 },
+            obstacle: Obstacle { shape: pair.gap.clone(), ..Obstacle::default() },
             multiplier_points: pair.multiplier_points.clone(),
             multiplier_space: pair.multiplier_space,
         };

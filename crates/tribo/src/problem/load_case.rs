@@ -84,7 +84,11 @@ impl LoadCase {
             approach: problem.spec.obstacle.approach,
             shift,
             load_factor: 1.0,
-            slip_origin: vec![shift; problem.contact.nodes.len()],
+            slip_origin: if problem.spec.obstacle.rotation.is_some() {
+                problem.obstacle_slip_origin()
+            } else {
+                vec![shift; problem.contact.nodes.len()]
+            },
             previous_u: vec![[0.0, 0.0]; problem.contact.nodes.len()],
             moved_supports: None,
             rigid: problem.rigid_load(&problem.f_full),

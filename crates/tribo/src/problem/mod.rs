@@ -229,10 +229,11 @@ impl Problem {
 
         let clock = Instant::now();
         let mut contact = ContactBoundary::new(&mesh, &spec.contact)?;
-        contact.orient_to(&spec.obstacle.shape)?;
+        // The obstacle as the contact meets it: turned, where it turns.
+        let obstacle = spec.obstacle.placed();
+        contact.orient_to(&obstacle.shape)?;
         // The gap at the nodes of Γ_C: every value the solver and its results use is checked.
-        let contact_gap =
-            contact.node_xi.iter().map(|&xi| spec.obstacle.gap(&contact, xi)).collect::<Result<Vec<f64>>>()?;
+        let contact_gap = contact.node_xi.iter().map(|&xi| obstacle.gap(&contact, xi)).collect::<Result<Vec<f64>>>()?;
         let contact_edges: std::collections::HashSet<[usize; 2]> =
             contact.edges.iter().map(|e| [e.left.min(e.right), e.left.max(e.right)]).collect();
         for e in &contact.edges {
@@ -278,7 +279,7 @@ impl Problem {
         }
         let multipliers = MultiplierMesh::new(&contact, &spec.multiplier_points, spec.multiplier_space)?;
         let h_t: Vec<f64> = contact.edges.iter().map(|e| mesh.diameter(e.triangle)).collect();
-        let mut mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &spec.obstacle, spec.model)?;
+        let mut mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &obstacle, spec.model)?;
         let primary =
             primary.map(|set| PrimarySide::new(&mesh, &contact, set, &multipliers, spec.model)).transpose()?;
         // A bent pair's gap from the geometry adds to the pair's gap shape.
@@ -316,7 +317,38 @@ impl Problem {
         if problem.spec.obstacle.shift != 0.0 {
             problem.check_axisymmetric_shift()?;
         }
+        if problem.spec.obstacle.rotation.is_some() {
+            problem.check_rotation()?;
+        }
         Ok(problem)
+    }
+
+    /// A history of `steps` steps moves the obstacle by approach and shift only: one that turns is refused.
+    ///
+    /// # Errors
+    /// [`Error::BadLoadStep`] at step 0 when the obstacle turns.
+    pub(crate) fn check_history_of_turned_obstacle(&self, steps: usize) -> Result<()> {
+        if self.spec.obstacle.rotation.is_none() || steps == 0 {
+            return Ok(());
+        }
+        let what = "the obstacle turns: a history moves it by approach and shift only (not yet by a rotation)";
+        Err(Error::BadLoadStep { step: 0, what: what.into() })
+    }
+
+    /// A turned obstacle needs a rigid obstacle in the plane (not two bodies, not a solid of revolution).
+    ///
+    /// # Errors
+    /// [`Error::BadObstacle`] for two bodies, [`Error::BadAxisymmetry`] in axisymmetry.
+    fn check_rotation(&self) -> Result<()> {
+        if self.spec.model.is_axisymmetric() {
+            return Err(Error::BadAxisymmetry {
+                what: "the obstacle turns: a body of revolution has no rigid rotation in its meridian plane".into(),
+            });
+        }
+        if self.primary.is_some() {
+            return Err(Error::BadObstacle { what: "two bodies have no rigid obstacle to turn".into() });
+        }
+        Ok(())
     }
 
     /// In axisymmetry the obstacle, a solid of revolution, may shift along the axis only: a shift along a
@@ -345,7 +377,25 @@ impl Problem {
     /// basis, the part of the QP's linear term that the obstacle contributes (see [`crate::contact::obstacle`]).
     pub fn obstacle_moments(&self) -> Vec<f64> {
         let shift = self.spec.obstacle.shift;
-        self.mortar.gap_moments.iter().copied().chain(self.mortar.psi_integrals.iter().map(|w| w * shift)).collect()
+        let tangential: Vec<f64> = if self.mortar.shift_moments.is_empty() {
+            self.mortar.psi_integrals.iter().map(|w| w * shift).collect()
+        } else {
+            self.mortar.shift_moments.clone()
+        };
+        self.mortar.gap_moments.iter().copied().chain(tangential).collect()
+    }
+
+    /// Where the obstacle moves along Γ_C at each of its FE nodes, along the node's tangent: the shift s, or where
+    /// the obstacle turns, `s + w(y) · t` ([`Obstacle::tangential_motion`]).
+    pub fn obstacle_slip_origin(&self) -> Vec<f64> {
+        let obstacle = self.spec.obstacle.placed();
+        let c = &self.contact;
+        (0..c.nodes.len())
+            .map(|k| {
+                let length = c.edges[k.min(c.edges.len() - 1)].length;
+                obstacle.tangential_motion(c.surface_point(c.node_xi[k]), c.node_tangent(k), length)
+            })
+            .collect()
     }
 
     /// Number of multiplier dofs q (per component).

@@ -93,6 +93,13 @@ impl ProblemSpec {
         self
     }
 
+    /// Turns the obstacle (one given by its geometry) by `angle` radians counterclockwise about `center`
+    /// ([`crate::contact::obstacle`]).
+    pub fn obstacle_rotation(mut self, center: [f64; 2], angle: f64) -> Self {
+        self.obstacle.rotation = Some(crate::ObstacleRotation { center, angle });
+        self
+    }
+
     /// Sets the points of the multiplier mesh T_H and the multiplier space.
     #[must_use]
     pub fn multipliers(mut self, points: MultiplierPoints, space: MultiplierSpace) -> Self {
@@ -132,6 +139,7 @@ mod tests {
                 shape: ObstacleShape::Parabola { center: 0.1, radius: 2.0 },
                 approach: 0.01,
                 shift: 0.002,
+                rotation: None,
             },
             multiplier_points: MultiplierPoints::RatioToFe(2.0),
             multiplier_space: MultiplierSpace::P0,

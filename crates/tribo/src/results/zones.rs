@@ -69,7 +69,7 @@ pub fn zone(
 /// The shortest arc of a loop that holds every dof `accepted` takes (of `n`, in the order of their
 /// abscissae `at`, wrapping with `period`): its first and last dof, the first after the last where it crosses
 /// the cut; `None` when none is accepted. The loop less its largest run of rejected dofs, measured between the
-/// accepted dofs around it (the first such run on a tie).
+/// accepted dofs around it (on a tie, the run across the cut, so that the arc does not cross it; then the first).
 pub(crate) fn loop_arc(
     n: usize,
     at: impl Fn(usize) -> f64,
@@ -120,7 +120,10 @@ pub fn loop_zone(
     let lo_half = 0.5 * (abscissae[first] - abscissae[before]).rem_euclid(period);
     let hi_half = 0.5 * (abscissae[(last + 1) % n] - abscissae[last]).rem_euclid(period);
     let shift = if first > last { period } else { 0.0 };
-    Some(Zone { lo: abscissae[first] - shift - lo_half, hi: abscissae[last] + hi_half, resolution: lo_half + hi_half })
+    let (lo, hi) = (abscissae[first] - shift - lo_half, abscissae[last] + hi_half);
+    // An end midway to a dof across the cut may lie beyond Γ_C's end: the arc read a period earlier.
+    let back = if hi > ends[1] { period } else { 0.0 };
+    Some(Zone { lo: lo - back, hi: hi - back, resolution: lo_half + hi_half })
 }
 
 impl Solution {
@@ -141,13 +144,15 @@ impl Solution {
         zone(&self.multiplier_abscissae, ends, &self.states, keep)
     }
 
-    /// The contact zone: the dofs not in separation, from the first to the last (`None` when nothing
+    /// The contact zone: the dofs not in separation, from the first to the last (on a closed Γ_C the shortest
+    /// arc that holds them, which may begin before the start: the module documentation; `None` when nothing
     /// touches).
     pub fn contact_zone(&self) -> Option<Zone> {
         self.zone_of(|s| s != ContactState::Separation)
     }
 
-    /// The stick zone: the dofs that stick, from the first to the last (`None` when none sticks).
+    /// The stick zone: the dofs that stick, from the first to the last (on a loop, as [`Solution::contact_zone`];
+    /// `None` when none sticks).
     pub fn stick_zone(&self) -> Option<Zone> {
         self.zone_of(|s| s == ContactState::Stick)
     }
@@ -196,6 +201,13 @@ mod tests {
         let all = loop_zone(&x, [0.0, 8.0], &[S; 8], |s| s != O).unwrap();
         assert_eq!((all.lo, all.hi, all.resolution), (0.0, 8.0, 0.0));
         assert!(loop_zone(&x, [0.0, 8.0], &[O; 8], |s| s != O).is_none());
+        // The last dof alone, its neighbour across the cut far: the zone's end lies beyond Γ_C's end, so the arc is
+        // read a period earlier.
+        let far = loop_zone(&[1.5, 2.0, 3.0, 4.5], [0.0, 5.0], &[O, O, O, S], |s| s != O).unwrap();
+        assert_eq!((far.lo, far.hi, far.width()), (-1.25, 0.5, 1.75));
+        // A tie between the run across the cut and another: the arc does not cross the cut.
+        assert_eq!(dof_span(&[0.0, 1.0, 2.0, 3.0], Some(4.0), |_| true), Some((0.0, 3.0)));
+        assert_eq!(dof_span(&[0.0, 1.0, 2.0, 3.0], Some(4.0), |k| k != 1), Some((2.0 - 4.0, 0.0)));
     }
 
     #[test]

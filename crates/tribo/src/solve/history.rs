@@ -221,9 +221,14 @@ impl History {
         let across =
             across.filter(|_| n > 1 && boundary(record.states[n - 1], record.states[0])).map(|(start, period)| {
                 let mid = 0.5 * (x[n - 1] + x[0] + period);
-                mid - if mid >= start + period { period } else { 0.0 }
+                if mid >= start + period {
+                    (Some(mid - period), None) // wrapped onto the start: the first boundary
+                } else {
+                    (None, Some(mid)) // before the end: the last
+                }
             });
-        inner.chain(across)
+        let (first, last) = across.unwrap_or((None, None));
+        first.into_iter().chain(inner).chain(last)
     }
 
     /// About how many bytes a history of `steps` on `problem` holds when it ends, keeping the solution of
@@ -482,6 +487,7 @@ pub(crate) fn check_steps(problem: &Problem, steps: &[LoadStep]) -> Result<()> {
     let components = problem.spec.prescribed_components();
     let mut last: Option<&[f64]> = None;
     let mut lifting: Option<Vec<f64>> = None;
+    problem.check_history_of_turned_obstacle(steps.len())?;
     for (k, step) in steps.iter().enumerate() {
         if problem.is_two_bodies() && (step.approach != 0.0 || step.shift != 0.0) {
             return Err(Error::BadLoadStep {

@@ -100,7 +100,7 @@ fn a_uniform_pressure_passes_a_faceted_arc_against_a_rigid_hole_exactly() {
             assert_eq!(sol.report.status, SolveStatus::Converged);
             let off = departure(&problem.mesh, &sol, p, e);
             eprintln!("one body, {space:?}, {stabilization:?}: off the uniform state by {off:.1e}");
-            assert!(off < 1e-8, "{space:?} {stabilization:?}: {off:e}");
+            assert!(off < 1e-10, "{space:?} {stabilization:?}: {off:e}");
         }
         // With friction: P0 exact (each cell one facet, over which u · t_e is odd about its middle); P1 slips at the
         // ends of the chain (the module documentation), and from there inward.
@@ -111,7 +111,7 @@ fn a_uniform_pressure_passes_a_faceted_arc_against_a_rigid_hole_exactly() {
         let off = departure(&problem.mesh, &sol, p, e);
         eprintln!("one body, {space:?}, Coulomb: off by {off:.1e}, λ_t ≠ 0 at dofs {slipping:?} of 0..={last}");
         if space == MultiplierSpace::P0 {
-            assert!(off < 1e-8, "P0, Coulomb: {off:e}");
+            assert!(off < 1e-10, "P0, Coulomb: {off:e}");
         } else {
             assert!(slipping.contains(&0) && slipping.contains(&last), "the ends slip: {slipping:?}");
             assert!((sol.lambda_t[0].abs() / sol.lambda_n[0] - 0.3).abs() < 1e-6, "at μ λ_n");
@@ -170,7 +170,7 @@ fn a_uniform_pressure_passes_a_curved_interface_between_two_bodies_exactly() {
                 assert_eq!(sol.report.status, SolveStatus::Converged);
                 let off = departure(&problem.mesh, &sol, p, e);
                 eprintln!("two bodies, {space:?}, {stabilization:?}, {friction:?}: off the uniform state by {off:.1e}");
-                assert!(off < 1e-8, "{space:?} {stabilization:?} {friction:?}: {off:e}");
+                assert!(off < 1e-10, "{space:?} {stabilization:?} {friction:?}: {off:e}");
             }
         }
     }
@@ -196,23 +196,5 @@ fn a_full_ring_held_by_friction_alone_carries_a_uniform_pressure_exactly() {
     assert_eq!(sol.report.status, SolveStatus::Converged);
     let off = departure(&problem.mesh, &sol, p, e);
     eprintln!("a full ring held by friction: off the uniform state by {off:.1e}");
-    assert!(off < 1e-8, "{off:e}");
-}
-
-/// A point of a concentric arc that faces the end node of a bent chain carrying its curve reads the end, not a
-/// point beyond it on the end edge extended; a point beyond the end still reads beyond it.
-#[test]
-fn a_point_facing_the_end_of_a_curved_chain_reads_the_end() {
-    let mesh = quarter_ring([0.5, 1.0], 0.05);
-    let spec = ProblemSpec::new(Material { young: 1.0, poisson: NU }, "outer").clamped(["inner"]);
-    let contact = Problem::new(mesh, spec).expect("a ring").contact;
-    let (first, last) = (contact.node_points[0], contact.node_points[contact.node_points.len() - 1]);
-    for (node, end) in [(first, contact.start()), (last, contact.end())] {
-        let out = [node[0] * 1.01, node[1] * 1.01];
-        assert_eq!(contact.abscissa(out), end, "facing the end node");
-        // Turned beyond the end by 0.01 rad: the abscissa goes on beyond the end.
-        let angle = node[1].atan2(node[0]) + if end == contact.start() { -0.01 } else { 0.01 } * contact.tangent_sign();
-        let beyond = contact.abscissa([1.01 * angle.cos(), 1.01 * angle.sin()]);
-        assert!(if end == contact.start() { beyond < end } else { beyond > end }, "{beyond} beyond {end}");
-    }
+    assert!(off < 1e-10, "{off:e}");
 }

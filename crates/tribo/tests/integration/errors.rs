@@ -165,7 +165,7 @@ fn obstacle_rules() {
         ObstacleShape::Polyline { xi: vec![0.0, 0.0], gap: vec![0.0, 1.0] },
         ObstacleShape::Polyline { xi: vec![0.0, 1.0], gap: vec![0.0] },
     ] {
-        let s = ProblemSpec { obstacle: Obstacle { shape, approach: 0.0, shift: 0.0 }, ..spec() };
+        let s = ProblemSpec { obstacle: Obstacle { shape, ..Obstacle::default() }, ..spec() };
         assert!(matches!(problem_err(square(), s), Error::BadObstacle { .. }));
     }
     let s = ProblemSpec { obstacle: Obstacle { approach: f64::NAN, ..Obstacle::default() }, ..spec() };
@@ -302,7 +302,12 @@ fn fuzzing_holes_are_typed_errors() {
     // D6: a gap function that is NaN only at the nodes of Γ_C.
     let nodes: Vec<f64> = (0..=4).map(|i| i as f64 / 4.0).collect();
     let gap = move |xi: f64| if nodes.iter().any(|x| (x - xi).abs() < 1e-12) { f64::NAN } else { 0.0 };
-    let obstacle = Obstacle { shape: ObstacleShape::Function(GapFunction(Arc::new(gap))), approach: 0.0, shift: 0.0 };
+    let obstacle = Obstacle {
+        shape: ObstacleShape::Function(GapFunction(Arc::new(gap))),
+        approach: 0.0,
+        shift: 0.0,
+        rotation: None,
+    };
     assert!(matches!(problem_err(square(), ProblemSpec { obstacle, ..spec() }), Error::BadObstacle { .. }));
     // D2, D3: multiplier meshes too fine to build are refused before anything is allocated.
     for points in [MultiplierPoints::RatioToFe(1e-20), MultiplierPoints::Size(1e-300), MultiplierPoints::Size(1e-12)] {
@@ -537,7 +542,12 @@ fn a_gap_that_fails_between_the_checked_points_is_not_converged() -> Result<()> 
             0.01 * (x - 0.5).powi(2)
         }
     };
-    let obstacle = Obstacle { shape: ObstacleShape::Function(GapFunction(Arc::new(gap))), approach: 0.01, shift: 0.0 };
+    let obstacle = Obstacle {
+        shape: ObstacleShape::Function(GapFunction(Arc::new(gap))),
+        approach: 0.01,
+        shift: 0.0,
+        rotation: None,
+    };
     let problem = Problem::new(square(), ProblemSpec { obstacle, ..spec() })?;
     let settings = SolverSettings::default();
     let sound = problem.solve(&Friction::Frictionless, &settings, None)?;

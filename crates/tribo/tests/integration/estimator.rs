@@ -21,6 +21,7 @@ fn an_obstacle_penetrating_between_nodes_is_seen() {
             shape: ObstacleShape::Parabola { center: 0.375, radius: 0.01 },
             approach: 1e-3,
             shift: 0.0,
+            rotation: None,
         },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,

@@ -167,7 +167,7 @@ proptest! {
             body_force: [load.0, load.1],
             tractions: vec![],
             contact: contact.into(),
-            obstacle: Obstacle { shape: ObstacleShape::Flat, approach, shift },
+            obstacle: Obstacle { shape: ObstacleShape::Flat, approach, shift, rotation: None },
             multiplier_points: points,
             multiplier_space: space,
         };
@@ -250,6 +250,7 @@ proptest! {
                 shape: ObstacleShape::Parabola { center: 0.5, radius: 1.0 },
                 approach: 10f64.powi(approach_exp),
                 shift,
+                rotation: None,
             },
             multiplier_points: MultiplierPoints::RatioToFe(1.0),
             multiplier_space: MultiplierSpace::P1,

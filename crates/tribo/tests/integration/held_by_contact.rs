@@ -34,7 +34,7 @@ fn block_on_foundation(supports: Vec<Support>, traction: [f64; 2]) -> Problem {
         body_force: [0.0, 0.0],
         tractions: vec![("top".into(), traction.into())],
         contact: "bottom".into(),
-        obstacle: Obstacle { shape: ObstacleShape::Flat, approach: 0.0, shift: 0.0 },
+        obstacle: Obstacle { shape: ObstacleShape::Flat, approach: 0.0, shift: 0.0, rotation: None },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
     };

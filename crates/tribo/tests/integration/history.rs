@@ -358,7 +358,7 @@ fn histories_keep_the_lifting_of_prescribed_displacements() {
         body_force: [0.0, 0.0],
         tractions: vec![],
         contact: "bottom".into(),
-        obstacle: tribo::Obstacle { shape: tribo::ObstacleShape::Flat, approach: 0.0, shift: 0.004 },
+        obstacle: tribo::Obstacle { shape: tribo::ObstacleShape::Flat, approach: 0.0, shift: 0.004, rotation: None },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
     };

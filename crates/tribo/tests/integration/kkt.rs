@@ -248,7 +248,7 @@ fn a_slab_pressed_by_a_prescribed_displacement_satisfies_the_discrete_problem() 
         body_force: [0.0, 0.0],
         tractions: vec![],
         contact: "bottom".into(),
-        obstacle: Obstacle { shape: ObstacleShape::Flat, approach: 0.0, shift: 0.0005 },
+        obstacle: Obstacle { shape: ObstacleShape::Flat, approach: 0.0, shift: 0.0005, rotation: None },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
     };

@@ -53,6 +53,7 @@ mod paths;
 mod plane_stress;
 mod rigid_motion;
 mod supports;
+mod turned_obstacle;
 mod two_bodies;
 
 /// The property tests' configuration: `cases` cases (or `PROPTEST_CASES`), reproducible like the Python

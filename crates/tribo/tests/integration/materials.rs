@@ -22,7 +22,7 @@ fn compressed_square(delta: f64, material: Material, space: MultiplierSpace) -> 
         body_force: [0.0, 0.0],
         tractions: vec![],
         contact: "bottom".into(),
-        obstacle: Obstacle { shape: ObstacleShape::Flat, approach: delta, shift: 0.0 },
+        obstacle: Obstacle { shape: ObstacleShape::Flat, approach: delta, shift: 0.0, rotation: None },
         multiplier_points: MultiplierPoints::Size(0.3),
         multiplier_space: space,
     };

@@ -112,7 +112,12 @@ fn active_set_and_clarabel_agree_on_the_patch_and_the_checkerboard_mesh() {
         body_force: [0.0, 0.0],
         tractions: vec![],
         contact: "bottom".into(),
-        obstacle: Obstacle { shape: ObstacleShape::Parabola { center: 0.5, radius: 2.0 }, approach: 1e-3, shift: 2e-4 },
+        obstacle: Obstacle {
+            shape: ObstacleShape::Parabola { center: 0.5, radius: 2.0 },
+            approach: 1e-3,
+            shift: 2e-4,
+            rotation: None,
+        },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
     };

@@ -157,7 +157,7 @@ fn supports_that_push_gamma_c_into_the_obstacle_are_refused() {
         body_force: [0.0, 0.0],
         tractions: vec![],
         contact: "bottom".into(),
-        obstacle: tribo::Obstacle { shape: tribo::ObstacleShape::Flat, approach, shift: 0.0 },
+        obstacle: tribo::Obstacle { shape: tribo::ObstacleShape::Flat, approach, shift: 0.0, rotation: None },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
     };

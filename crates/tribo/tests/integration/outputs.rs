@@ -18,7 +18,7 @@ fn square(contact: &str, clamped: &str) -> Problem {
         body_force: [0.0, 0.0],
         tractions: vec![],
         contact: contact.into(),
-        obstacle: Obstacle { shape: ObstacleShape::Flat, approach: 0.01, shift: 0.004 },
+        obstacle: Obstacle { shape: ObstacleShape::Flat, approach: 0.01, shift: 0.004, rotation: None },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
     };

@@ -34,7 +34,7 @@ fn patch_problem(
         body_force: [0.0, 0.0],
         tractions,
         contact: "bottom".into(),
-        obstacle: Obstacle { shape: ObstacleShape::Flat, approach, shift },
+        obstacle: Obstacle { shape: ObstacleShape::Flat, approach, shift, rotation: None },
         multiplier_points: points,
         multiplier_space: space,
     };
@@ -182,7 +182,7 @@ fn constant_strain_without_contact_is_reproduced() {
                     body_force: [0.0, 0.0],
                     tractions: vec![("right".to_string(), [E * c, 0.0].into())],
                     contact: "bottom".into(),
-                    obstacle: Obstacle { shape: ObstacleShape::Flat, approach: -0.01, shift: 0.0 },
+                    obstacle: Obstacle { shape: ObstacleShape::Flat, approach: -0.01, shift: 0.0, rotation: None },
                     multiplier_points: points.clone(),
                     multiplier_space: space,
                 };

@@ -143,7 +143,7 @@ impl Case {
             body_force: [0.0, 0.0],
             tractions: vec![],
             contact: "top".into(),
-            obstacle: Obstacle { shape, approach: self.approach, shift: self.shift },
+            obstacle: Obstacle { shape, approach: self.approach, shift: self.shift, rotation: None },
             multiplier_points: MultiplierPoints::RatioToFe(self.ratio),
             multiplier_space: if self.p0 { MultiplierSpace::P0 } else { MultiplierSpace::P1 },
         };
@@ -414,7 +414,7 @@ fn the_answer_does_not_depend_on_the_units() {
             body_force: [0.0, 0.0],
             tractions: vec![],
             contact: "top".into(),
-            obstacle: Obstacle { shape: ObstacleShape::Flat, approach, shift: 0.3 * (approach + base) },
+            obstacle: Obstacle { shape: ObstacleShape::Flat, approach, shift: 0.3 * (approach + base), rotation: None },
             multiplier_points: MultiplierPoints::RatioToFe(1.0),
             multiplier_space: MultiplierSpace::P1,
         };
@@ -479,7 +479,7 @@ fn subnormal_data_are_refused_by_name() {
         body_force: [0.0, 0.0],
         tractions: vec![],
         contact: "top".into(),
-        obstacle: Obstacle { shape: ObstacleShape::Flat, approach, shift },
+        obstacle: Obstacle { shape: ObstacleShape::Flat, approach, shift, rotation: None },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
     };

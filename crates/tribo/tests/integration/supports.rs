@@ -27,7 +27,7 @@ fn spec(supports: Vec<Support>, poisson: f64) -> ProblemSpec {
         tractions: vec![],
         contact: "top".into(),
         // A flat obstacle 1 away: nothing touches, λ = 0.
-        obstacle: Obstacle { shape: ObstacleShape::Flat, approach: -1.0, shift: 0.0 },
+        obstacle: Obstacle { shape: ObstacleShape::Flat, approach: -1.0, shift: 0.0, rotation: None },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
     }
