@@ -212,7 +212,8 @@ class Solution(_Record):
         gap: gap g = g0 − δ at the FE nodes of Γ_C.
         contact_force: total force (Fx, Fy) the obstacle exerts on the body in global axes:
             −(normal_force n + tangential_force t).
-        obstacle_motion: how the obstacle moved, in global axes: −approach n + shift t.
+        obstacle_motion: how the obstacle moved, in global axes: −approach n + shift t (a turned obstacle's
+            rotation is not in it: ``summary.json`` gives it as ``obstacle_rotation``).
         normal_force: total normal contact force ∫ λ_n.
         tangential_force: total tangential contact force ∫ λ_t (the obstacle pulls the body by
             −tangential_force along t).

@@ -73,6 +73,13 @@ def peak_memory_mb() -> float | None:
     return peak / 1048576.0 if sys.platform == "darwin" else peak / 1024.0
 
 
+
+def _rotation(problem: Problem) -> dict[str, Any] | None:
+    """The obstacle's rotation as given (``rotation=((cx, cy), angle)``), for summary.json; None when it does not
+    turn."""
+    given = getattr(problem, "_arguments", {}).get("rotation")
+    return None if given is None else {"center": [float(v) for v in given[0]], "angle": float(given[1])}
+
 def summary(
     scene: Scene, problem: Problem, solution: Solution, seconds: float, warned: Sequence[str] = (),
     adapt_stop: str | None = None,
@@ -109,6 +116,7 @@ def summary(
         "tangential_force": solution.tangential_force,
         "contact_force": list(solution.contact_force),
         "obstacle_motion": list(solution.obstacle_motion),
+        "obstacle_rotation": _rotation(problem),
         "normal": [v + 0.0 for v in problem.contact_normal],
         "tangent": [v + 0.0 for v in problem.contact_tangent],
         "max_penetration": solution.max_penetration,

@@ -540,6 +540,9 @@ def check_scene(data: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
     if sections.get("estimate", {}).get("error_bars") and "history" in sections:
         raise SceneError("scene key 'estimate.error_bars' is for one solve or an adaptive one, not a [history]",
                          "estimate.error_bars")
+    if "rotation" in sections.get("obstacle", {}) and "history" in sections:
+        raise SceneError("scene key 'obstacle.rotation' is for one solve or an adaptive one, not a [history] (its "
+                         "steps move the obstacle by approach and shift only)", "obstacle.rotation")
     if "on" in sections.get("adapt", {}) and "history" not in sections:
         raise SceneError("scene key 'adapt.on' names steps of a [history], and the scene has none", "adapt.on")
     d = sections.get("discretization", {})

@@ -574,7 +574,7 @@ def test_a_pressure_on_a_bore_presses_each_facet_along_its_normal() -> None:
         parse_scene({**scene, "loads": {"pressures": {"inner": [1.0, 2.0]}}})
 
 
-def test_a_turned_hole_drags_a_ring_as_its_shift_does() -> None:
+def test_a_turned_hole_drags_a_ring_as_its_shift_does(tmp_path: Path) -> None:
     """``rotation=((cx, cy), angle)`` (scene files: ``[obstacle] rotation = { center, angle }``) turns an obstacle
     given by its geometry: a hole turned by θ about its centre drags a full ring clamped inside as the shift θR
     does (every dof slips; the Rust test ``turned_obstacle.rs``). Refused for a gap function of the abscissa, and
@@ -596,12 +596,18 @@ def test_a_turned_hole_drags_a_ring_as_its_shift_does() -> None:
                      "rotation": {"center": [0.0, 0.0], "angle": 0.02}},
         "friction": {"mu": 0.3}, "discretization": {"h": 0.04},
     }
-    _, from_scene = parse_scene(scene).solve()
+    from tribo.run import run_scene
+
+    _, from_scene, _ = run_scene(parse_scene(scene), tmp_path)
     assert abs(from_scene.tangential_force) == pytest.approx(abs(turned.tangential_force), rel=1e-6)
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert summary["obstacle_rotation"] == {"center": [0.0, 0.0], "angle": 0.02}
     with pytest.raises(tribo.TriboError, match="gap function"):
         tribo.Problem(mesh, young=E, poisson=NU, contact="outer", clamped="inner", rotation=((0.0, 0.0), 0.01))
     with pytest.raises(tribo.SceneError, match="obstacle.rotation"):
         parse_scene({**scene, "obstacle": {"shape": "flat", "rotation": {"center": [0.0, 0.0], "angle": 0.01}}})
+    with pytest.raises(tribo.SceneError, match="not a \\[history\\]"):
+        parse_scene({**scene, "history": {"shift": [0.0, 0.01]}})
     with pytest.raises(tribo.SceneError, match="obstacle.rotation.axis"):
         parse_scene({**scene, "obstacle": {**scene["obstacle"], "rotation": {"center": [0, 0], "axis": 1}}})
 

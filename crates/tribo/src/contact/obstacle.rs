@@ -193,7 +193,8 @@ impl Obstacle {
     }
 
     /// The obstacle as the contact meets it: its shape turned by its rotation, if any
-    /// ([`ObstacleShape::turned`]), the rotation kept for the motion of its surface.
+    /// ([`ObstacleShape::turned`]), the rotation kept for the motion of its surface (so it is placed once: placed
+    /// again, it would turn again).
     pub fn placed(&self) -> Self {
         match &self.rotation {
             Some(r) => Self { shape: self.shape.turned(r), ..self.clone() },
@@ -232,9 +233,9 @@ impl Obstacle {
             }
         }
         if let Some(r) = &self.rotation {
-            if !(r.angle.is_finite() && r.center.iter().all(|v| v.is_finite())) {
+            if !(r.angle.is_finite() && !r.angle.is_subnormal() && r.center.iter().all(|v| v.is_finite())) {
                 return bad(format!(
-                    "the rotation's angle and centre must be finite, got {} about ({}, {})",
+                    "the rotation's angle and centre must be finite (the angle not subnormal), got {} about ({}, {})",
                     r.angle, r.center[0], r.center[1]
                 ));
             }

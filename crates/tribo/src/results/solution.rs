@@ -76,7 +76,8 @@ pub struct Solution {
     pub contact_force: [f64; 2],
     /// How the obstacle moved, in global axes: `−δ n + s t` (the approach δ toward the body, against
     /// the outward normal, and the shift s along t; where the frames vary along Γ_C, in the contact frame of
-    /// its first edge: against a line obstacle, the line's motion).
+    /// its first edge: against a line obstacle, the line's motion). A turned obstacle's rotation is not in it
+    /// ([`crate::ObstacleRotation`]; its surface's motion is in the slip origin).
     pub obstacle_motion: [f64; 2],
     /// Largest pointwise penetration `max(u_n − g)₊` over the FE nodes of Γ_C.
     pub max_penetration: f64,
@@ -174,8 +175,10 @@ impl Solution {
         let spec = &problem.spec;
         let moved = spec.obstacle.approach - loading.approach;
         let geometric = |xi: f64| problem.primary.as_ref().map_or(0.0, |p| p.gap_at(contact, xi));
-        let gap_at =
-            |xi: f64| spec.obstacle.initial_gap_on(contact, xi) + geometric(xi) - spec.obstacle.approach + moved;
+        // The obstacle as the contact meets it (turned, where it turns: `Obstacle::placed`).
+        let placed = spec.obstacle.rotation.map(|_| spec.obstacle.placed());
+        let obstacle = placed.as_ref().unwrap_or(&spec.obstacle);
+        let gap_at = |xi: f64| obstacle.initial_gap_on(contact, xi) + geometric(xi) - obstacle.approach + moved;
         let input = EstimatorInput {
             mesh,
             materials,

@@ -79,8 +79,12 @@ fn a_flat_turned_about_a_point_of_its_surface_is_the_flat_placed_there() {
         let b = placed.solve(&friction, &SolverSettings::default(), None).expect("solves");
         assert_eq!((a.report.status, b.report.status), (SolveStatus::Converged, SolveStatus::Converged));
         let diff = largest_difference(&a, &b);
-        eprintln!("flat turned against placed, {friction:?}: λ differ by {diff:.1e}");
+        // The error estimate reads the turned flat's gap too.
+        let eta = a.estimator.iter().zip(&b.estimator).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+        let top = b.estimator.iter().fold(0.0_f64, |m, x| m.max(*x));
+        eprintln!("flat turned against placed, {friction:?}: λ differ by {diff:.1e}, η_K by {:.1e}", eta / top);
         assert!(diff < 1e-10, "{friction:?}: {diff:e}");
+        assert!(eta <= 1e-10 * top, "{friction:?}: η_K differ by {eta:e} of {top:e}");
         assert!(a.normal_force > 0.0);
     }
 }
