@@ -137,4 +137,9 @@ fn a_rotation_is_refused_where_nothing_can_turn() {
     let e =
         problem.solve_history(&Friction::Frictionless, &steps, &SolverSettings::default(), None).expect_err("refused");
     assert!(matches!(&e, Error::BadLoadStep { step: 0, what } if what.contains("rotation")), "{e}");
+    let adapt = AdaptSettings::default();
+    let e = problem
+        .solve_history_adaptive(&Friction::Frictionless, &steps, &SolverSettings::default(), &adapt, &[], None)
+        .expect_err("refused");
+    assert!(matches!(&e, Error::BadLoadStep { step: 0, .. }), "{e}");
 }
