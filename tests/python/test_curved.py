@@ -529,6 +529,11 @@ def test_a_contact_zone_across_a_loops_cut_is_one_arc() -> None:
     assert plot.contact_pressure(problem, across).get_xlim() == pytest.approx((xi[0], xi[-1]))
     zoomed = plot.contact_pressure(problem, middle).get_xlim()
     assert zoomed[1] - zoomed[0] < 0.5 * length
+    # A history's zones read the same arc, and its traction plot shows the whole loop.
+    history = problem.solve_history(approach=[0.0], shift=[0.0], mu=0.3)
+    lo, hi = history.contact_zone[0]
+    assert lo < start < hi and hi - lo < 0.2 * length
+    assert plot.history_tractions(history, [0], problem=problem).get_xlim() == pytest.approx((x[0], x[-1]))
 
 
 def _closing_pressure(mesh: tribo.Mesh, delta: float) -> float:

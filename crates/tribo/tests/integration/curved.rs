@@ -421,6 +421,16 @@ fn a_contact_zone_across_a_loops_cut_is_read_as_one_arc() {
         let settings = SolverSettings::default();
         problem.estimate_hierarchical(solution, &Friction::Frictionless, &settings).expect("estimates").unknowns
     };
+    // The error bar of the contact width reads the enriched answer's zone across the cut the same way: of the
+    // order of the dof spacing, as for the zone in the middle of the loop (not of the loop's length).
+    let bar = |(problem, _): &(Problem, Solution)| {
+        let s =
+            problem.solve_with_error_bars(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+        s.report.estimate.error_bars.expect("error bars").contact_width
+    };
+    let (bar_across, bar_middle) = (bar(&(problem.clone(), across.clone())), bar(&solve(away)));
+    eprintln!("contact width error bars: {bar_across:.3e} across the cut, {bar_middle:.3e} in the middle");
+    assert!(bar_across < 0.5 * zone.width() && bar_middle < 0.5 * other.width(), "{bar_across} {bar_middle}");
     let (strip, other_strip) = (unknowns(&(problem.clone(), across)), unknowns(&solve(away)));
     eprintln!("enriched: {strip} and {other_strip} unknowns, the whole ring bisected {}", 4 * problem.n_free);
     assert!(other_strip < 3 * problem.n_free, "a strip: {other_strip} of {}", problem.n_free);
