@@ -23,11 +23,15 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import studylib as sl  # noqa: E402
 
 METHODS = ("fixed_point", "newton")
-TEXT = ("scene", "method", "status", "solvable")
+TEXT = ("scene", "method", "status", "solvable", "check")
+VERDICTS = ("agree", "differ", "undecided")
 
 
 def load(path: Path) -> list[dict[str, Any]]:
-    return [{k: (v if k in TEXT else float(v)) for k, v in r.items()} for r in sl.read_csv_rows(path)]
+    """The rows, numbers as floats; `check` (the verdict of `coulomb_check` on the fixed point's answer) empty
+    where the fixed point did not converge or the CSV predates it."""
+    rows = [{k: (v if k in TEXT else float(v)) for k, v in r.items()} for r in sl.read_csv_rows(path)]
+    return [{"check": "", **r} for r in rows]
 
 
 # What τ is a fraction of, per block: min(μ, its overturning load W / (2H)).
@@ -50,7 +54,9 @@ def second(r: dict[str, Any]) -> float:
 def summary(rows: list[dict[str, Any]]) -> dict[tuple[str, str], dict[str, Any]]:
     """Per (family, method), over the problems that have a solution: problems, converged, iterations of the
     converged (min, max, median), which did not converge, and the largest difference of the two methods' λ where
-    both converged; and how the method ended the problems that have none (`unsolvable`)."""
+    both converged; how the method ended the problems that have none (`unsolvable`); and the verdicts of the check
+    of the fixed point's answer by Newton over the problems that have a solution (`checks`: verdict → count; `differ`:
+    where it said so)."""
     out: dict[tuple[str, str], dict[str, Any]] = {}
     for f in dict.fromkeys(family(r) for r in rows):
         for m in METHODS:
@@ -61,7 +67,9 @@ def summary(rows: list[dict[str, Any]]) -> dict[tuple[str, str], dict[str, Any]]
             out[(f, m)] = dict(problems=len(rs), converged=len(its), iterations=its,
                                failed=[(second(r), r["mu"], r["status"]) for r in rs if r["status"] != "converged"],
                                difference=max(diffs) if diffs else math.nan,
-                               unsolvable=[(second(r), r["mu"], r["status"]) for r in every if r["solvable"] != "true"])
+                               unsolvable=[(second(r), r["mu"], r["status"]) for r in every if r["solvable"] != "true"],
+                               checks={v: sum(r["check"] == v for r in rs) for v in VERDICTS},
+                               differ=[(second(r), r["mu"]) for r in rs if r["check"] == "differ"])
     return out
 
 
@@ -78,7 +86,8 @@ def run(csv_path: Path, out: Path) -> dict[tuple[str, str], dict[str, Any]]:
                       f"{v['difference']:.1e}",
                       "; ".join(f"{ {'wedge': 'α', 'two bodies': 'β'}.get(f, 'ν')} {nu:g} μ {mu:g}: {st}"
                                 for nu, mu, st in v["failed"]) or "—",
-                      f"{len(v['unsolvable'])}: {', '.join(ends)}" if v["unsolvable"] else "—"])
+                      f"{len(v['unsolvable'])}: {', '.join(ends)}" if v["unsolvable"] else "—",
+                      ", ".join(f"{n} {k}" for k, n in v["checks"].items() if n) or "—"])
     md = ["# Study 20: which Coulomb method converges where\n\n",
           "Regenerate with `cargo run --release -p tribo --example coulomb_map && python scripts/plot_coulomb_map.py`;"
           " every number is in `coulomb_map.csv`. Each problem is solved by the fixed point of Φ_H (one Tresca QP "
@@ -100,10 +109,13 @@ def run(csv_path: Path, out: Path) -> dict[tuple[str, str], dict[str, Any]]:
           "200, 70, 20, 2, so that the Dundurs β (0, 0.24, 0.41, 0.49, the second axis) alone makes the friction. The "
           "difference is the largest |Δλ| of the two answers "
           "relative to the largest λ_n, where both converged: the fixed point stops at a relative change of "
-          "`fp_tol` = 1e-8.\n\n",
+          "`fp_tol` = 1e-8. The last column is the verdict of `coulomb_check` on the fixed point's answer (Newton solves "
+          "the problem again and the two are compared within the bound their residuals and the fixed point's "
+          "contraction give: agree, differ where the discrete problem has two solutions, undecided where Newton does "
+          "not converge), over the problems with a solution where the fixed point converged.\n\n",
           sl.markdown_table(["scene", "method", "converged (of the problems with a solution)", "iterations",
                              "median", "largest difference", "not converged (ν, μ: status)",
-                             "problems without a solution: how they ended"], table), "\n"]
+                             "problems without a solution: how they ended", "coulomb_check"], table), "\n"]
     (out / "coulomb_map.md").write_text("".join(md))
     families = list(dict.fromkeys(family(r) for r in rows))
     plt = sl.pyplot()

@@ -124,6 +124,15 @@ def check_solution(problem: Problem, solution: Solution) -> list[str]:
             f"(λ/μ = {_g(2 * nu / (1 - 2 * nu))}), so the body is too stiff and the contact pressure and force are too large, by more than any "
             "estimate here shows (Hertz at 33k unknowns: 4.0 % at ν = 0.49, 17 % at 0.499); no refinement repairs it"
         )
+    r = solution.report
+    if r.coulomb_check == "differ":
+        other = "Newton" if r.coulomb_method == "fixed_point" else "the fixed point"
+        reasons.append(
+            f"two answers: {other} converges to another solution of this Coulomb problem, λ_n "
+            f"{_g(100 * (r.check_distance or math.nan))} % away (the two agree to {_g(100 * (r.check_allowed or math.nan))} % "
+            "where the answer is unique): the discrete problem has several solutions here (μ or ν large, a coarse "
+            "contact zone), or λ is not determined to better than that"
+        )
     t = np.asarray(problem.contact_tangent)
     shift = float(np.dot(solution.obstacle_motion, t))
     width = solution.contact_width

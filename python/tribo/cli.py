@@ -93,6 +93,11 @@ def _run(scene_path: Path, out: Path, plots: bool, all_files: bool = False) -> i
     print(f"{scene.title or scene_path}")
     steps = {"newton": "Newton steps", "fixed_point": "fixed-point iterations"}.get(str(r.coulomb_method), "iterations")
     fallback = " after Newton did not converge" if r.coulomb_fallback else ""
+    other = "Newton" if r.coulomb_method == "fixed_point" else "the fixed point"
+    undecided = (f"{other} ended {r.check_status}" if r.check_status not in (None, "converged") else
+                 f"{other} was refused (see the log)" if r.check_status is None else "no contraction measured")
+    fallback += {"agree": f"; {other} agrees", "undecided": f"; unchecked: {undecided}",
+                 "differ": f"; {other} finds another answer: λ is not unique here"}.get(str(r.coulomb_check), "")
     print(
         f"  status {r.status} ({solution.friction}, {r.iterations} {steps}{fallback}), "
         f"normal force {solution.normal_force:.6g}, tangential force {solution.tangential_force:.6g}, "

@@ -331,12 +331,13 @@ class Problem(_tribo.Problem):
         default; ``check_gamma0=False`` takes an explicit ``gamma0`` even at or above the admissible bound
         (for studies of what happens there; the factorization may then fail with SolverError). Every
         other keyword is a solver setting by its name in ``solver_defaults()`` (qp_tol, qp_max_iter,
-        qp_kkt_solver, qp_working_set, qp_method, fp_tol, fp_max_iter, fp_relaxation, coulomb, memory_budget,
-        condensation, keep_every); unset ones take the core's defaults. ``coulomb`` chooses the Coulomb
-        method: 'fixed_point' (the default and the reference), 'newton' (the semismooth Newton method on
+        qp_kkt_solver, qp_working_set, qp_method, fp_tol, fp_max_iter, fp_relaxation, coulomb, coulomb_check,
+        memory_budget, condensation, keep_every); unset ones take the core's defaults. ``coulomb`` chooses the
+        Coulomb method: 'fixed_point' (the default and the reference), 'newton' (the semismooth Newton method on
         Γ_C: the friction bound follows λ_n inside each step) or 'auto' (the fixed point where H is not formed,
         else Newton, and the fixed point where Newton does not converge); ``report.coulomb_method`` says which
-        answered.
+        answered. ``coulomb_check=True`` solves a converged Coulomb problem again by the other method and
+        compares: ``report.coulomb_check`` says 'differ' where the discrete problem has two solutions.
 
         ``error_bars=True`` also solves the problem enriched on the whole mesh (every triangle bisected,
         T_H halved: about 4 times the unknowns, twice where the contact reaches an end of Γ_C) and adds to ``report.estimate`` the hierarchical traction

@@ -113,6 +113,15 @@ class Report(_Record):
             and the fixed point where Newton did not converge); None for frictionless and Tresca.
         coulomb_fallback: True when ``coulomb='auto'`` tried Newton, which did not converge, and the fixed
             point answered.
+        coulomb_check: with ``coulomb_check=True``, what solving a converged Coulomb problem again by the other
+            method found: 'agree' (one answer), 'differ' (two answers, each meeting Coulomb's law, further apart
+            than their residuals allow: λ is not unique there, or not determined to better than their distance)
+            or 'undecided' (the other method did not converge or was refused, or the two lie further apart than
+            their residuals where the fixed point's last changes show no contraction); None unchecked.
+        check_status: how the other method ended ('converged', …), None unchecked or refused.
+        check_distance, check_allowed: the distance of the two answers' λ_n and the bound within which they are
+            one, both relative to the larger ‖λ_n‖ (NaN when the other method did not converge; the bound inf
+            where the fixed point shows no contraction); None unchecked.
         qp_iterations: iterations of each QP: interior-point iterations (clarabel) or steps (active set).
         qp_factorizations: factorizations among each QP's active-set steps (dense Cholesky of the free
             block, or sparse LDLᵀ of the saddle-point system): the other steps updated or bordered a
@@ -164,6 +173,10 @@ class Report(_Record):
     reused_factorization: bool
     timings: dict[str, float]
     estimate: dict[str, float] = dataclasses.field(default_factory=dict)
+    coulomb_check: Literal["agree", "differ", "undecided"] | None = None
+    check_status: Status | None = None
+    check_distance: float | None = None
+    check_allowed: float | None = None
 
     @property
     def converged(self) -> bool:

@@ -98,6 +98,10 @@ def summary(
         "iterations": r.iterations,
         "coulomb_method": r.coulomb_method,
         "coulomb_fallback": r.coulomb_fallback,
+        "coulomb_check": None if r.coulomb_check is None else {
+            "agreement": r.coulomb_check, "status": r.check_status,
+            **{k: v if v is not None and math.isfinite(v) else None  # strict JSON: NaN and inf as null
+               for k, v in (("distance", r.check_distance), ("allowed", r.check_allowed))}},
         "residual_history": r.residual_history.tolist(),
         "qp_iterations": r.qp_iterations.tolist(),
         "qp_factorizations": r.qp_factorizations.tolist(),

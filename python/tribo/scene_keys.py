@@ -151,6 +151,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
     "solver.fp_relaxation": ("The relaxation ω ∈ (0, 1] of the fixed point", "—", None),
     "solver.coulomb": ("The Coulomb method: the fixed point (the reference), semismooth Newton, or auto (the "
                        "fixed point where H is not formed, else Newton falling back to the fixed point)", "—", None),
+    "solver.coulomb_check": ("Solve a converged Coulomb problem again by the other method and say whether the two "
+                             "answers agree (two answers: λ is not unique there)", "—", None),
     "solver.memory_budget": ("The bytes a solve may take (factorization, dense parts, a history's solutions)",
                              "bytes", "what the process may still allocate"),
     "solver.condensation": ("How H is formed", "—", None),

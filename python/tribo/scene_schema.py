@@ -88,7 +88,7 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     Any solver setting by the name ``Problem.solve`` takes (``tribo.solver_settings()`` lists them with
     their kinds and defaults): ``qp_tol``, ``qp_max_iter``, ``qp_kkt_solver`` (``"faer"``/``"qdldl"``),
     ``qp_working_set`` (true/false), ``fp_tol``, ``fp_max_iter``, ``fp_relaxation``, ``coulomb``
-    (``"fixed_point"``, ``"newton"`` or ``"auto"``). Unset keys take the
+    (``"fixed_point"``, ``"newton"`` or ``"auto"``), ``coulomb_check`` (true/false). Unset keys take the
     core's defaults. The table of keys is built from the core's, so it cannot drift from it.
 ``[estimate]``
     ``error_bars`` (true/false, default false): also solve the problem enriched on the whole mesh (every

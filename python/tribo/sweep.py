@@ -89,6 +89,7 @@ COLUMNS: dict[str, str] = {
     "iterations": "iterations of the Coulomb method: fixed-point iterations or Newton steps (of the last step of a "
                   "history)",
     "coulomb_method": "the Coulomb method that answered (fixed_point or newton; empty without Coulomb friction)",
+    "coulomb_check": "with [solver] coulomb_check: agree, differ (two answers: λ not unique) or undecided; else empty",
     "normal_force": "the normal resultant of the contact pressure",
     "tangential_force": "the tangential resultant",
     "contact_extent": "the length of Γ_C between the first and last multiplier dof in contact (stick or slip; on a "
@@ -318,6 +319,7 @@ def _row(summary: Mapping[str, Any], solution: Any) -> dict[str, Any]:
         "friction": summary["friction"],
         "iterations": summary["iterations"],
         "coulomb_method": summary["coulomb_method"] or "",
+        "coulomb_check": (summary.get("coulomb_check") or {}).get("agreement", ""),
         "normal_force": summary["normal_force"],
         "tangential_force": summary["tangential_force"],
         "contact_extent": solution.extent(states != 0),

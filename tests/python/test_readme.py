@@ -591,6 +591,13 @@ def test_the_docs_quote_the_coulomb_map_as_generated() -> None:
             f"iterations and Newton in {_span(nw['iterations'], 'd')} steps, their answers within "
             f"{max(fp['difference'], nw['difference']):.1e} of each other")
     assert said in guide, said
+    # The check of the fixed point's answer by Newton over the whole map (issue 40, item 3), as the guide says.
+    checks = {k: sum(v["checks"][k] for (f, m), v in s.items() if m == "fixed_point") for k in cmap.VERDICTS}
+    stalled = sum(len(v["failed"]) for (f, m), v in s.items() if m == "newton")
+    assert checks["differ"] == 0 and checks["undecided"] == stalled, (checks, stalled)
+    said = (f"agrees on {checks['agree']} of the {checks['agree'] + checks['undecided']} where the fixed point "
+            f"converged and is undecided on the {checks['undecided']} where Newton stagnates")
+    assert said in guide, said
 
 
 def test_the_sweep_guide_quotes_study_10s_coulomb_map_as_generated() -> None:

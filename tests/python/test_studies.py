@@ -428,6 +428,16 @@ def test_plot_coulomb_map(tmp_path: Path) -> None:
     page = (tmp_path / "coulomb_map.md").read_text()
     assert "| hertz | newton | 3 of 4 | 2–2 | 2 | 2.0e-08 | ν 0.3 μ 0.1: stagnated | 1: stagnated |" in page
     assert fp["unsolvable"] == [(0.45, 2.0, "qp_failed")]
+    # With the check's columns: the verdicts counted over the problems with a solution, and where it said differ.
+    header, *rows = lines
+    checked = [header + ",check,check_distance,check_allowed"]
+    verdicts = iter(["agree"] * 4 + ["undecided"] * 2 + ["differ"] * 2 + ["", ""])  # Newton stagnated at (0.3, 0.1)
+    checked += [f"{row},{next(verdicts)},0.01,1e-6" for row in rows]
+    csv.write_text("\n".join(checked) + "\n")
+    res = study("plot_coulomb_map").main(["--csv", str(csv), "--out", str(tmp_path)])
+    assert res[("hertz", "fixed_point")]["checks"] == {"agree": 2, "differ": 1, "undecided": 1}
+    assert res[("hertz", "newton")]["differ"] == [(0.3, 1.0)]
+    assert "| 2 agree, 1 differ, 1 undecided |" in (tmp_path / "coulomb_map.md").read_text()
 
 
 def test_the_layered_reference_is_the_half_space_in_its_limits() -> None:

@@ -29,7 +29,9 @@
 //!
 //! Per problem and method: the status, the iterations (QPs of the fixed point, dense LU solves of Newton),
 //! the wall time of the solve (the factorization reused), the forces and KKT residual, and where both
-//! converged the largest difference of their multipliers relative to the largest λ_n.
+//! converged the largest difference of their multipliers relative to the largest λ_n; and the verdict of
+//! `coulomb_check` on the fixed point's answer (`check`: agree, differ, undecided; empty where the fixed point did
+//! not converge), with its distance and bound (`check_distance`, `check_allowed`: Euclidean, relative to ‖λ_n‖).
 //!
 //! `cargo run --release -p tribo --example coulomb_map [OUT.csv]` (default docs/coulomb_map.csv).
 use std::io::Write;
@@ -40,10 +42,13 @@ use tribo_testkit::{hertz_mesh, hertz_spec, two_body_hertz, wedge_problem};
 
 const MUS: [f64; 9] = [0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0];
 const HEADER: &str =
-    "scene,n_free,q,nu,load_fraction,mu,solvable,method,status,iterations,seconds,normal_force,tangential_force,kkt,lambda_difference";
+    "scene,n_free,q,nu,load_fraction,mu,solvable,method,status,iterations,seconds,normal_force,tangential_force,kkt,lambda_difference,check,check_distance,check_allowed";
 
 fn solve(problem: &Problem, mu: f64, method: CoulombMethod) -> Result<(Solution, f64)> {
-    let settings = SolverSettings { coulomb: method, ..Default::default() };
+    solve_with(problem, mu, SolverSettings { coulomb: method, ..Default::default() })
+}
+
+fn solve_with(problem: &Problem, mu: f64, settings: SolverSettings) -> Result<(Solution, f64)> {
     let clock = Instant::now();
     let sol = problem.solve(&Friction::Coulomb { mu }, &settings, None)?;
     Ok((sol, clock.elapsed().as_secs_f64()))
@@ -76,6 +81,14 @@ fn compare(
         }
         _ => f64::NAN,
     };
+    // The fixed point's answer checked by Newton (one more solve of each, and two QPs).
+    let checked = SolverSettings { coulomb_check: true, ..Default::default() };
+    let check = match solve_with(problem, mu, checked) {
+        Ok((s, _)) => s.report.coulomb_check,
+        Err(_) => None,
+    };
+    let (verdict, distance, allowed) =
+        check.map_or((String::new(), f64::NAN, f64::NAN), |c| (c.agreement.to_string(), c.distance, c.allowed));
     for (name, run) in &runs {
         let (status, its, t, p, qf, kkt) = match run {
             Ok((s, t)) => (
@@ -89,11 +102,11 @@ fn compare(
             Err(e) => (format!("error: {}", e.kind()), 0, f64::NAN, f64::NAN, f64::NAN, f64::NAN),
         };
         println!(
-            "{scene:>10} ν {nu:<4} τ {fraction:<4} μ {mu:<4} {name:>11}: {status:>14} {its:>3} its {t:.4} s  P {p:.6} Q {qf:.6} KKT {kkt:.1e} dλ {diff:.1e}"
+            "{scene:>10} ν {nu:<4} τ {fraction:<4} μ {mu:<4} {name:>11}: {status:>14} {its:>3} its {t:.4} s  P {p:.6} Q {qf:.6} KKT {kkt:.1e} dλ {diff:.1e} {verdict}"
         );
         writeln!(
             csv,
-            "{scene},{},{},{nu},{fraction},{mu},{solvable},{name},{status},{its},{t},{p},{qf},{kkt},{diff}",
+            "{scene},{},{},{nu},{fraction},{mu},{solvable},{name},{status},{its},{t},{p},{qf},{kkt},{diff},{verdict},{distance},{allowed}",
             problem.n_free,
             problem.n_multipliers()
         )?;

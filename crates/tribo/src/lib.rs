@@ -156,7 +156,7 @@ pub use problem::load_case::LoadCase;
 pub use problem::load_case::Loading;
 pub use problem::{Condensed, Problem, ProblemSpec};
 pub use qp::{QpOutcome, QpStatus};
-pub use results::{ContactState, KktResiduals, Report, Solution, SolveStatus, Timings};
+pub use results::{Agreement, ContactState, CoulombCheck, KktResiduals, Report, Solution, SolveStatus, Timings};
 pub use settings::friction::{Friction, FrictionLaw, Threshold};
 pub use settings::{
     AdaptKeywords, AdaptSettings, Bisection, Condensation, CoulombMethod, FixedPointSettings, KktSolver, Marking,

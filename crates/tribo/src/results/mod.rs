@@ -11,6 +11,6 @@ mod zones;
 pub use estimator::{ErrorBars, ErrorEstimate, SUBDIVISIONS};
 pub use kkt::KktResiduals;
 pub use solution::Solution;
-pub use status::{ContactState, Report, Scalar, SolveStatus, Timings};
+pub use status::{Agreement, ContactState, CoulombCheck, Report, Scalar, SolveStatus, Timings};
 pub(crate) use zones::dof_span;
 pub use zones::{loop_zone, zone, Zone};

@@ -88,6 +88,50 @@ named_choice!(ContactState, "contact state", {
     ContactState::Slip => "slip",
 });
 
+/// What a check of a Coulomb answer by the other method found ([`CoulombCheck::agreement`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Agreement {
+    /// The two answers are one: their λ_n lie within the bound their residuals give.
+    Agree,
+    /// Two answers, each meeting Coulomb's law to its residual, lie further apart than the bound allows: λ is
+    /// not unique there (the discrete Coulomb problem may have several solutions above a critical μ), or not
+    /// determined to better than their distance.
+    Differ,
+    /// No verdict: the other method did not converge (or was refused, or a QP of the check failed: the log says
+    /// why), or the two answers lie further apart than their residuals and the fixed point's last changes show no
+    /// contraction (L ≥ 1, or fewer than two changes), without which the bound is infinite.
+    Undecided,
+}
+
+named_choice!(Agreement, "agreement", {
+    Agreement::Agree => "agree",
+    Agreement::Differ => "differ",
+    Agreement::Undecided => "undecided",
+});
+
+/// A Coulomb answer checked by the other method (`SolverSettings::coulomb_check`; derived in
+/// `solve/check.rs`). Distances are Euclidean over the multiplier dofs, relative to ‖λ_n‖ of the answer.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CoulombCheck {
+    /// The method that checked the answer (the one that did not answer).
+    pub method: CoulombMethod,
+    /// How that method ended (`None`: it was refused, e.g. by the memory budget; the log says why).
+    pub status: Option<SolveStatus>,
+    /// The verdict.
+    pub agreement: Agreement,
+    /// ‖λ_n¹ − λ_n²‖ relative to the larger ‖λ_n‖ (NaN when the other method did not converge or was refused).
+    pub distance: f64,
+    /// The distance within which the two are one answer, relative alike: (δ₁ + δ₂ + ε₁ + ε₂) / (1 − L), δᵢ the
+    /// change one more fixed-point iteration makes to answer i, εᵢ what its QPs determine λ_n to (√qp_tol ‖λ_n‖),
+    /// L the fixed point's contraction; infinite where no contraction is measured (L ≥ 1, or no estimate).
+    pub allowed: f64,
+    /// L, the fixed point's contraction estimated from its last changes (the largest ratio of consecutive ones
+    /// over the last three; NaN with fewer than two changes).
+    pub contraction: f64,
+    /// ‖Φ_H(λ_n¹) − Φ_H(λ_n²)‖ / ‖λ_n¹ − λ_n²‖: near 1 where the two are two fixed points, NaN where they coincide.
+    pub secant: f64,
+}
+
 /// Wall times per phase, in seconds.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Timings {
@@ -99,7 +143,8 @@ pub struct Timings {
     pub factorization: f64,
     /// Condensing onto the multipliers (H, c).
     pub condensation: f64,
-    /// All QPs (including the fixed point).
+    /// All QPs (including the fixed point), and the check of a Coulomb answer by the other method where
+    /// `coulomb_check` asked for it.
     pub qp: f64,
     /// Recovering u.
     pub recovery: f64,
@@ -171,6 +216,8 @@ pub struct Report {
     pub timings: Timings,
     /// The a posteriori error estimate of the answer (see [`crate::results::ErrorEstimate`]).
     pub estimate: ErrorEstimate,
+    /// The check of a converged Coulomb answer by the other method, where `coulomb_check` asked for it.
+    pub coulomb_check: Option<CoulombCheck>,
 }
 
 /// One scalar of a [`Report`], for bindings and files.
@@ -190,7 +237,7 @@ pub enum Scalar {
 
 impl Report {
     /// The report's scalars by name, as the Python binding and summary files name them.
-    pub fn scalars(&self) -> [(&'static str, Scalar); 13] {
+    pub fn scalars(&self) -> [(&'static str, Scalar); 17] {
         use crate::choice::Choice;
         use Scalar::{Bool, Count, Float, Missing, Name};
         let (interrupted, failed, reason) = match self.status {
@@ -198,6 +245,8 @@ impl Report {
             SolveStatus::QpFailed { iteration, reason } => (Missing, Count(iteration), Name(reason)),
             _ => (Missing, Missing, Missing),
         };
+        let check = self.coulomb_check;
+        let float = |f: fn(&CoulombCheck) -> f64| check.as_ref().map_or(Missing, |c| Float(f(c)));
         [
             ("status", Name(self.status.name())),
             ("interrupted_iteration", interrupted),
@@ -212,6 +261,10 @@ impl Report {
             ("gamma0", Float(self.gamma0)),
             ("gamma0_bound", Float(self.gamma0_bound)),
             ("reused_factorization", Bool(self.reused_factorization)),
+            ("coulomb_check", check.map_or(Missing, |c| Name(c.agreement.as_str()))),
+            ("check_status", check.and_then(|c| c.status).map_or(Missing, |s| Name(s.name()))),
+            ("check_distance", float(|c| c.distance)),
+            ("check_allowed", float(|c| c.allowed)),
         ]
     }
 }

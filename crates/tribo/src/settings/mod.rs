@@ -210,6 +210,12 @@ pub struct SolverSettings {
     pub fp: FixedPointSettings,
     /// The Coulomb method. Default [`CoulombMethod::FixedPoint`].
     pub coulomb: CoulombMethod,
+    /// Checks a converged Coulomb answer by solving the problem again by the other method (Newton after the
+    /// fixed point, the fixed point after Newton) and comparing the two: [`crate::Report::coulomb_check`] says
+    /// whether they are one answer, within the bound their residuals and the fixed point's contraction give,
+    /// or two (λ is not unique there, or not determined to better than their distance). It costs the other
+    /// method's solve and one Tresca QP per answer. Default false.
+    pub coulomb_check: bool,
     /// Bytes a solve may take for its factorization (the sparse Cholesky factor of A and its workspace,
     /// checked after the symbolic analysis, before anything of that size is allocated) and, each on its
     /// own, for its dense parts (columns of H, the dense QP) and for the solutions a loading history
@@ -233,6 +239,7 @@ impl Default for SolverSettings {
             qp: QpSettings::default(),
             fp: FixedPointSettings::default(),
             coulomb: CoulombMethod::default(),
+            coulomb_check: false,
             memory_budget: default_memory_budget(),
             condensation: Condensation::default(),
             keep_every: 1,

@@ -199,6 +199,7 @@ settings_table! {
     "fp_max_iter" => fp.max_iter: usize;
     "fp_relaxation" => fp.relaxation: f64;
     "coulomb" => coulomb: CoulombMethod;
+    "coulomb_check" => coulomb_check: bool;
     "memory_budget" => memory_budget: usize;
     "condensation" => condensation: Condensation;
     "keep_every" => keep_every: usize;

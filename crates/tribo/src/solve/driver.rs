@@ -10,7 +10,7 @@ use crate::problem::load_case::LoadCase;
 use crate::problem::Condensed;
 use crate::qp::working_set::ContactQp;
 use crate::qp::{QpOutcome, QpStatus};
-use crate::results::{ErrorEstimate, Report, Solution, SolveStatus, Timings};
+use crate::results::{CoulombCheck, ErrorEstimate, Report, Solution, SolveStatus, Timings};
 use crate::settings::friction::Friction;
 use crate::settings::{Condensation, CoulombMethod, QpMethod, SolverSettings};
 use crate::solve::progress::{Observer, Phase, Progress};
@@ -130,7 +130,8 @@ impl Condensed<'_> {
     /// the contact zone needs, 5–11 times the fixed point's time on the graded meshes of 55k–109k unknowns in
     /// study 4), and elsewhere Newton and, where its answer is not `converged`
     /// once checked (its KKT residuals and fields, below) or it exceeds the memory budget, the fixed point
-    /// solving the load case again.
+    /// solving the load case again. With `settings.coulomb_check`, a converged Coulomb answer is checked by the
+    /// other method ([`super::check`]).
     pub(crate) fn solve_loading(
         &self,
         friction: &Friction,
@@ -159,25 +160,40 @@ impl Condensed<'_> {
             }
             Err(_) => false,
         };
-        if !(auto && fell) {
-            return first;
+        // Where Newton did not converge and the fixed point answers, how Newton ended (`None`: refused).
+        let newton_failed = (auto && fell).then(|| first.as_ref().ok().map(|s| s.report.status));
+        let mut solution = if auto && fell {
+            match &first {
+                Ok(s) => log::info!(
+                    "newton ended {} after {} steps: the fixed point solves the problem from the same start",
+                    s.report.status,
+                    s.report.iterations
+                ),
+                Err(e) => log::info!("newton: {e}: the fixed point solves the problem"),
+            }
+            let mut solution =
+                self.solve_loading_by(friction, CoulombMethod::FixedPoint, settings, loading, start, observer)?;
+            solution.report.coulomb_fallback = true;
+            solution
+        } else {
+            first?
+        };
+        if let (true, Some(mu), SolveStatus::Converged) =
+            (settings.coulomb_check, solution.report.mu, solution.report.status)
+        {
+            let clock = Instant::now();
+            solution.report.coulomb_check = Some(match newton_failed {
+                // Newton did not converge from this start: it is not run again.
+                Some(status) => CoulombCheck::undecided(CoulombMethod::Newton, status),
+                None => self.check_coulomb(mu, settings, loading, start, &solution),
+            });
+            solution.report.timings.qp += clock.elapsed().as_secs_f64();
         }
-        match &first {
-            Ok(s) => log::info!(
-                "newton ended {} after {} steps: the fixed point solves the problem from the same start",
-                s.report.status,
-                s.report.iterations
-            ),
-            Err(e) => log::info!("newton: {e}: the fixed point solves the problem"),
-        }
-        let mut solution =
-            self.solve_loading_by(friction, CoulombMethod::FixedPoint, settings, loading, start, observer)?;
-        solution.report.coulomb_fallback = true;
         Ok(solution)
     }
 
     /// [`Condensed::solve_loading`] with the Coulomb method `method` (the fixed point or Newton).
-    fn solve_loading_by(
+    pub(super) fn solve_loading_by(
         &self,
         friction: &Friction,
         method: CoulombMethod,
@@ -299,6 +315,7 @@ impl Condensed<'_> {
             },
             timings,
             estimate: ErrorEstimate::default(),
+            coulomb_check: None,
         };
         let clock = Instant::now();
         // A body held only by the contact moves rigidly by α besides u (`problem/floating.rs`); the contact

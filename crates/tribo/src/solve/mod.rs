@@ -5,9 +5,10 @@
 //! The four public entry points are here, each validating its input once: [`Condensed::solve`],
 //! [`Problem::solve`], [`Condensed::solve_history`] and [`Problem::solve_history`]. The driver of one
 //! solve is `driver`, the fixed point `fixed_point`, the semismooth Newton method beside it [`newton`] (its
-//! derivation), histories [`history`], and the progress reports
-//! [`Progress`] and [`StepProgress`].
+//! derivation), the check of a Coulomb answer by the other method [`check`], histories [`history`], and the
+//! progress reports [`Progress`] and [`StepProgress`].
 
+pub mod check;
 mod driver;
 mod fixed_point;
 pub mod history;

@@ -322,7 +322,9 @@ fn the_setting_has_one_name_and_newton_reports_its_steps() {
 /// (Hertz, ν = 0, P0, γ0 = ½ bound, μ up to 2, the shift up to 0.008) three paths give one answer today: the
 /// fixed point with every QP by clarabel, the fixed point by the active-set method, and Newton, each within the
 /// contraction bound of the others (δ of each answer measured by one more evaluation of Φ_H; measured: at most
-/// 1.6e-9 apart relative in Q over this grid and over 400 random small blocks of the path test's kind).
+/// 1.6e-9 apart relative in Q over this grid and over 400 random small blocks of the path test's kind), and
+/// `coulomb_check` says `agree` on each. (The check finds two answers on coarser blocks with ν ≥ 0.36 or μ = 2,
+/// where the discrete problem has several solutions: the unit tests of `solve/check.rs`.)
 #[test]
 fn d25_three_paths_give_one_answer() {
     for h_min in [0.04, 0.02] {
@@ -335,6 +337,7 @@ fn d25_three_paths_give_one_answer() {
                 stabilization: Stabilization::Fraction(0.5),
                 qp: QpSettings { method, ..Default::default() },
                 coulomb,
+                coulomb_check: true,
                 ..Default::default()
             };
             let answers: Vec<Solution> = [
@@ -347,6 +350,11 @@ fn d25_three_paths_give_one_answer() {
             .collect();
             let what = format!("h_min {h_min}, μ {mu}, shift {shift}");
             assert!(answers.iter().all(|s| s.report.status == SolveStatus::Converged), "{what}");
+            // Each checked by the other Coulomb method: one answer (`solve/check.rs`).
+            for s in &answers {
+                let check = s.report.coulomb_check.expect("checked");
+                assert_eq!(check.agreement, Agreement::Agree, "{what}: {check:?}");
+            }
             let l = contraction(&answers[0]).max(contraction(&answers[1]));
             assert!(l < 1.0, "{what}: the fixed point contracts ({l})");
             let kappa = tribo_testkit::condition_number(&problem.condense(Stabilization::Fraction(0.5)).unwrap());
