@@ -146,6 +146,8 @@ class Scene:
         toward its contact ``side``; the keys name the tables in errors."""
         if "ring" in body:
             return self._ring(body, d, body_key, d_key)
+        if "disc" in body:
+            return self._disc(body, d, body_key, d_key)
         if "mesh" in body:
             if "x" in body or "y" in body:
                 raise SceneError(f"give either {body_key}.mesh or {body_key}.x/{body_key}.y, not both",
@@ -220,6 +222,29 @@ class Scene:
             return Mesh.ring_sector(ring["center"], (r_in, r_out), angles, h_max=h, h_min=h)
         return Mesh.ring_sector(ring["center"], (r_in, r_out), angles, h_max=h, h_min=d.get("h_min"),
                                 arc=(math.radians(grading[0]), math.radians(grading[1])), growth=d.get("growth"))
+
+    @staticmethod
+    def _disc(body: Mapping[str, Any], d: Mapping[str, Any], body_key: str, d_key: str) -> Mesh:
+        """The disc (or sector) of ``body.disc``, uniform at ``h`` (default a quarter of its radius): its rings of
+        nodes ``ceil(R / h)``. Refinement near a contact is the adaptive loop's (the rim carries its circle)."""
+        others = sorted(set(body) & {"mesh", "x", "y", "ring"})
+        if others:
+            raise SceneError(f"give either {body_key}.disc or {body_key}.{others[0]}, not both", f"{body_key}.disc")
+        extra = sorted(set(d) & {"diagonal", "h_min", "growth"}) or (["grading"] if d.get("grading", "auto") not in
+                                                                       ("auto", "none") else [])
+        if extra:
+            raise SceneError(f"scene key '{d_key}.{extra[0]}' applies to a rectangle or a ring, not a disc (uniform at "
+                             f"{d_key}.h)", f"{d_key}.{extra[0]}")
+        disc = body["disc"]
+        (a0, a1), radius = disc["angles"], disc["radius"]
+        if not 0.0 < a1 - a0 <= 360.0:
+            raise SceneError(f"scene key '{body_key}.disc.angles' = [{a0:g}, {a1:g}] must increase by at most a full "
+                             "turn (360)", f"{body_key}.disc.angles")
+        h = d.get("h", 0.25 * radius)
+        if not h > 0.0:
+            raise SceneError(f"scene key '{d_key}.h' must be positive, got {h}", f"{d_key}.h")
+        return Mesh.disc(disc["center"], radius, rings=max(1, math.ceil(radius / h - 1e-9)),
+                         angles=(math.radians(a0), math.radians(a1)))
 
     @property
     def is_two_bodies(self) -> bool:

@@ -39,6 +39,9 @@ _BODY = {
     "ring": ("A ring sector `{ center = [x, y], radii = [r_in, r_out], angles = [a0, a1] }` (angles in degrees, "
              "r_in ≥ r_out / 4; or `x`/`y`, or `mesh`): edge sets `outer`, `inner`, `start`, `end`, the arcs on their "
              "circles (refinement and a bent pair's gap follow them)", "length", "—"),
+    "disc": ("A disc `{ center = [x, y], radius = R }`, or its sector between `angles = [a0, a1]` (degrees; "
+             "`[180, 360]` a half-disc, flat on top), uniform at `h`: edge sets `rim` on its circle, and a sector's "
+             "`start`, `end`", "length", "—"),
 }
 _MATERIAL = {
     "young": ("Young's modulus E (*required*)", "stress", "—"),

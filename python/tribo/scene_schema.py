@@ -6,7 +6,9 @@ A scene has these tables (every key is optional unless marked *required*; see ``
 
 ``[body]``
     ``x``, ``y``: the rectangle's ranges, e.g. ``x = [-2.0, 2.0]``; or ``mesh``: a mesh file meshio reads
-    (a path relative to the scene file), whose named line sets are the edge sets; or ``ring = { center = [x,
+    (a path relative to the scene file), whose named line sets are the edge sets; or ``disc = { center = [x, y],
+    radius = R, angles = [a0, a1] }``: a disc or its sector (angles in degrees, default a whole turn), uniform at
+    ``h``, its edge sets ``rim``, ``start``, ``end``; or ``ring = { center = [x,
     y], radii = [r_in, r_out], angles = [a0, a1] }``: a ring sector (angles in degrees), its edge sets ``outer``,
     ``inner``, ``start``, ``end`` and its arcs on their circles. One of the three is required. A rectangle has the
     edge sets ``bottom``, ``right``, ``top``, ``left``.
@@ -136,6 +138,7 @@ from tribo.scene_values import (
     _choice,
     _count,
     _counts,
+    _disc,
     _every,
     _grading,
     _names,
@@ -260,7 +263,7 @@ def _setting_checker(spec: dict[str, Any]) -> Checker:
 
 
 SCHEMA: dict[str, dict[str, Checker]] = {
-    "body": {"x": _range, "y": _range, "mesh": _string, "ring": _ring},
+    "body": {"x": _range, "y": _range, "mesh": _string, "ring": _ring, "disc": _disc},
     "material": {"young": _number, "poisson": _number, "model": _choice(*CHOICES["model"]), "regions": _regions},
     "supports": {"clamped": _names},
     "loads": {"body_force": _pair, "tractions": _pairs, "pressures": _pressures},
@@ -333,7 +336,8 @@ def describe_keys() -> list[tuple[str, str, str]]:
     rows.append(("bodies", "supports", "A list of support tables, as [[supports]] entries ([]: held by the contact)."))
     return rows
 # The keys of one [[bodies]] entry: plain values, and the sub-tables with their keys.
-BODY_KEYS: dict[str, Checker] = {"name": _string, "x": _range, "y": _range, "mesh": _string, "ring": _ring}
+BODY_KEYS: dict[str, Checker] = {"name": _string, "x": _range, "y": _range, "mesh": _string, "ring": _ring,
+                                 "disc": _disc}
 BODY_TABLES: dict[str, dict[str, Checker]] = {
     "material": {"young": _number, "poisson": _number, "model": _choice(*CHOICES["model"]), "regions": _regions},
     "loads": {"tractions": _pairs, "pressures": _pressures},
@@ -417,9 +421,9 @@ def _body_entry(index: int, entry: Any) -> dict[str, Any]:
     for key in ("young", "poisson"):
         if key not in out["material"]:
             raise SceneError(f"scene key '{where}.material.{key}' is required", f"{where}.material.{key}")
-    if "mesh" not in out and "ring" not in out and not ("x" in out and "y" in out):
-        raise SceneError(f"scene key '{where}.x' and '{where}.y' (a rectangle), '{where}.ring' or '{where}.mesh' is "
-                         "required", where)
+    if not {"mesh", "ring", "disc"} & set(out) and not ("x" in out and "y" in out):
+        raise SceneError(f"scene key '{where}.x' and '{where}.y' (a rectangle), '{where}.ring', '{where}.disc' or "
+                         f"'{where}.mesh' is required", where)
     return out
 
 
@@ -486,9 +490,9 @@ def _check_one_body(sections: dict[str, dict[str, Any]]) -> None:
     if "supports" not in sections:
         raise SceneError("scene key 'supports' is required: [supports] clamped = … or [[supports]] entries", "supports")
     body = sections.get("body", {})
-    if "mesh" not in body and "ring" not in body and not ("x" in body and "y" in body):
-        raise SceneError("scene key 'body.x' and 'body.y' (a rectangle), 'body.ring' or 'body.mesh' is required",
-                         "body")
+    if not {"mesh", "ring", "disc"} & set(body) and not ("x" in body and "y" in body):
+        raise SceneError("scene key 'body.x' and 'body.y' (a rectangle), 'body.ring', 'body.disc' or 'body.mesh' is "
+                         "required", "body")
     for key in ("secondary", "primary", "gap"):
         if key in sections.get("contact", {}):
             raise SceneError(f"scene key 'contact.{key}' names a side of two bodies: it needs [[bodies]]", f"contact.{key}")

@@ -104,20 +104,25 @@ def _range(key: str, v: Any) -> tuple[float, float]:
     return (a, b)
 
 
+def _table(key: str, v: Any, form: str, known: tuple[str, ...], required: tuple[str, ...]) -> dict[str, Any]:
+    """``v`` as an inline table of the keys ``known``, with those of ``required`` (``form`` shows how it reads)."""
+    if not isinstance(v, dict):
+        raise SceneError(f"scene key '{key}' must be a table {{ {form} }}, got {v!r}", key)
+    for name in v:
+        if name not in known:
+            raise SceneError(f"scene key '{key}.{name}' is not known (known keys: {', '.join(known)})", f"{key}.{name}")
+    for name in required:
+        if name not in v:
+            raise SceneError(f"scene key '{key}.{name}' is required", f"{key}.{name}")
+    return v
+
+
 def _ring(key: str, v: Any) -> dict[str, tuple[float, float]]:
     """A ring sector ``{ center = [x, y], radii = [r_in, r_out], angles = [a0, a1] }`` (angles in degrees,
     counterclockwise from the x axis), meshed by ``Mesh.ring_sector``: edge sets ``outer``, ``inner``, ``start``,
     ``end``, the arcs carrying their circles."""
-    if not isinstance(v, dict):
-        raise SceneError(f"scene key '{key}' must be a table {{ center = [x, y], radii = [r_in, r_out], angles = "
-                         f"[a0, a1] }}, got {v!r}", key)
-    for name in v:
-        if name not in ("center", "radii", "angles"):
-            raise SceneError(f"scene key '{key}.{name}' is not known (known keys: center, radii, angles)",
-                             f"{key}.{name}")
-    for name in ("center", "radii", "angles"):
-        if name not in v:
-            raise SceneError(f"scene key '{key}.{name}' is required", f"{key}.{name}")
+    names = ("center", "radii", "angles")
+    v = _table(key, v, "center = [x, y], radii = [r_in, r_out], angles = [a0, a1]", names, names)
     return {"center": _pair(f"{key}.center", v["center"]), "radii": _range(f"{key}.radii", v["radii"]),
             "angles": _range(f"{key}.angles", v["angles"])}
 
@@ -129,16 +134,30 @@ _ring.json_schema = {  # type: ignore[attr-defined]
 }
 
 
+def _disc(key: str, v: Any) -> dict[str, Any]:
+    """A disc or the sector of one ``{ center = [x, y], radius = R, angles = [a0, a1] }`` (angles in degrees,
+    counterclockwise from the x axis; default [0, 360], a whole disc), meshed uniformly by ``Mesh.disc``: edge sets
+    ``rim`` (carrying its circle), and for a sector ``start`` and ``end``."""
+    v = _table(key, v, "center = [x, y], radius = R, angles = [a0, a1]", ("center", "radius", "angles"),
+               ("center", "radius"))
+    radius = _number(f"{key}.radius", v["radius"])
+    if not radius > 0.0:
+        raise SceneError(f"scene key '{key}.radius' must be positive, got {radius:g}", f"{key}.radius")
+    return {"center": _pair(f"{key}.center", v["center"]), "radius": radius,
+            "angles": _range(f"{key}.angles", v.get("angles", [0.0, 360.0]))}
+
+
+_disc.json_schema = {  # type: ignore[attr-defined]
+    "type": "object", "required": ["center", "radius"], "additionalProperties": False,
+    "properties": {"center": {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2},
+                   "radius": {"type": "number", "exclusiveMinimum": 0},
+                   "angles": {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2}},
+}
+
+
 def _rotation(key: str, v: Any) -> tuple[tuple[float, float], float]:
     """A small rotation ``{ center = [x, y], angle = a }`` (radians, counterclockwise), as (center, angle)."""
-    if not isinstance(v, dict):
-        raise SceneError(f"scene key '{key}' must be a table {{ center = [x, y], angle = a }}, got {v!r}", key)
-    for name in v:
-        if name not in ("center", "angle"):
-            raise SceneError(f"scene key '{key}.{name}' is not known (known keys: center, angle)", f"{key}.{name}")
-    for name in ("center", "angle"):
-        if name not in v:
-            raise SceneError(f"scene key '{key}.{name}' is required", f"{key}.{name}")
+    v = _table(key, v, "center = [x, y], angle = a", ("center", "angle"), ("center", "angle"))
     return _pair(f"{key}.center", v["center"]), _number(f"{key}.angle", v["angle"])
 
 

@@ -290,14 +290,19 @@ def test_a_half_disc_meshed_by_gmsh_on_a_flat_is_hertz(tmp_path: Path) -> None:
                             obstacle=tribo.Obstacle.line((0.0, 0.0), (0.0, 1.0)), approach=0.0035)
     s = problem.solve()
     assert s.report.status == "converged"
-    e_star = E / (1 - NU**2)
-    a = math.sqrt(4 * s.normal_force / (math.pi * e_star))
+    a, l2 = _against_hertz(problem, s)
+    assert 0.02 < a < 0.06 and l2 < 0.02, (a, l2)
+
+
+def _against_hertz(problem: tribo.Problem, s: tribo.Solution) -> tuple[float, float]:
+    """Plane-strain Hertz's half-width a for the computed force (R = 1, the contact about x = 0), and the relative L2
+    error of λ_n against Hertz's pressure for that force."""
+    a = math.sqrt(4 * s.normal_force / (math.pi * E / (1 - NU**2)))
     xi = np.linspace(float(np.min(problem.node_abscissae)), float(np.max(problem.node_abscissae)), 200_001)
     x = np.asarray(problem.contact_points(xi))[:, 0]
     exact = 2 * s.normal_force / (math.pi * a) * np.sqrt(np.clip(1 - (x / a) ** 2, 0.0, None))
     lam = problem.evaluate_multiplier(s.lambda_n, xi)
-    l2 = math.sqrt(np.trapezoid((lam - exact) ** 2, xi) / np.trapezoid(exact**2, xi))
-    assert 0.02 < a < 0.06 and l2 < 0.02, (a, l2)
+    return a, math.sqrt(np.trapezoid((lam - exact) ** 2, xi) / np.trapezoid(exact**2, xi))
 
 
 def _shrink_fit(h: tuple[float, float], curves: bool = True) -> tribo.Problem:
@@ -625,3 +630,54 @@ def test_dof_span_reads_a_loop_as_the_core_does() -> None:
     assert tribo.results.dof_span(x, [True, False, True, True], 4.0) == (-2.0, 0.0)
     assert tribo.results.dof_span(x, [True, False, True, True]) == (0.0, 3.0)
     assert tribo.results.dof_span(x, [False] * 4, 4.0) is None
+
+
+def test_a_built_in_half_disc_on_a_flat_is_hertz() -> None:
+    """Issue 39's built-in shapes: ``Mesh.disc`` with angles (π, 2π), a half-disc flat on top (its sides 'start'
+    and 'end', clamped), its rim on the circle, pressed onto a rigid flat; the adaptive loop refines it near the
+    contact with its rim's new nodes on the circle: λ_n within 2 % of plane-strain Hertz for the computed force in
+    L² (as the Gmsh half-disc above; measured 1.23 % at 8.7k unknowns, 9 levels, `tol` = 2 %)."""
+    mesh = tribo.Mesh.disc((0.0, 1.0), 1.0, rings=16, angles=(math.pi, 2 * math.pi))
+    assert sorted(mesh.edge_sets) == ["end", "rim", "start"] and mesh.curves == {"rim": (0.0, 1.0, 1.0)}
+    problem = tribo.Problem(mesh, young=E, poisson=NU, contact="rim", clamped=["start", "end"],
+                            obstacle=tribo.Obstacle.line((0.0, 0.0), (0.0, 1.0)), approach=0.0035)
+    run = problem.solve_adaptive(tol=0.02)
+    assert run.stop == "tolerance" and run.solution.report.status == "converged"
+    last, s = run.problem, run.solution
+    points = np.asarray(last.mesh.points)[np.asarray(last.contact_nodes)]
+    np.testing.assert_allclose(np.hypot(points[:, 0], points[:, 1] - 1.0), 1.0, atol=1e-14)
+    a, l2 = _against_hertz(last, s)
+    assert 0.02 < a < 0.06 and l2 < 0.02, (a, l2)
+
+
+def test_a_disc_key_makes_the_mesh_python_makes_and_bad_ones_are_refused() -> None:
+    """``[body] disc`` is ``Mesh.disc`` (angles in degrees, a whole disc by default), with ``ceil(R / h)`` rings;
+    a whole disc's rim is one loop; refusals name their key."""
+    data = {
+        "body": {"disc": {"center": [0.0, 1.0], "radius": 1.0, "angles": [180.0, 360.0]}},
+        "material": {"young": E, "poisson": NU},
+        "supports": {"clamped": ["start", "end"]},
+        "contact": {"edge_set": "rim"},
+        "obstacle": {"shape": "line", "point": [0.0, 0.0], "normal": [0.0, 1.0], "approach": 0.0035},
+        "discretization": {"h": 0.1},
+    }
+    mesh = parse_scene(data).mesh()
+    same = tribo.Mesh.disc((0.0, 1.0), 1.0, rings=10, angles=(math.pi, 2 * math.pi))
+    np.testing.assert_array_equal(mesh.points, same.points)
+    whole = parse_scene({**data, "body": {"disc": {"center": [0.0, 1.0], "radius": 1.0}}}).mesh()
+    assert sorted(whole.edge_sets) == ["rim"] and whole.n_triangles == 6 * 10**2  # rings of 6 k nodes, h = R / 10
+    for body, discretization, key in [
+        ({"disc": {"center": [0.0, 0.0], "radius": -1.0}}, {}, "body.disc.radius"),
+        ({"disc": {"center": [0.0, 0.0]}}, {}, "body.disc.radius"),
+        ({"disc": {"center": [0.0, 0.0], "radius": 1.0, "rings": 4}}, {}, "body.disc.rings"),
+        ({"disc": {"center": [0.0, 0.0], "radius": 1.0}, "x": [0.0, 1.0]}, {}, "body.disc"),
+        ({"disc": {"center": [0.0, 0.0], "radius": 1.0}}, {"h_min": 0.01}, "discretization.h_min"),
+        ({"disc": {"center": [0.0, 0.0], "radius": 1.0, "angles": [0.0, 400.0]}}, {}, "body.disc.angles"),
+    ]:
+        with pytest.raises(tribo.SceneError) as e:
+            parse_scene({**data, "body": body, "discretization": discretization}).mesh()
+        assert e.value.details["key"] == key, (body, e.value)
+    with pytest.raises(tribo.MeshError, match="rings = -1 must be positive"):
+        tribo.Mesh.disc((0.0, 0.0), 1.0, rings=-1)
+    with pytest.raises(tribo.MeshError, match="at most about"):
+        tribo.Mesh.disc((0.0, 0.0), 1.0, rings=100_000)

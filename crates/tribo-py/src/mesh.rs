@@ -6,7 +6,7 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyMapping;
 use tribo::error::ErrorCategory::Mesh;
-use tribo::{ArcGrading, Choice, Curve, Diagonal, Grading, RingSector, Side};
+use tribo::{ArcGrading, Choice, Curve, Diagonal, DiscSector, Grading, RingSector, Side};
 
 use crate::convert::{floats, indices, mat, pair, rows};
 use crate::errors::{bad_input, to_pyerr};
@@ -166,6 +166,17 @@ impl PyMesh {
         let d = ArcGrading::new(arc.unwrap_or(angles).into(), h_max);
         let grading = ArcGrading { h_min: h_min.unwrap_or(d.h_min), growth: growth.unwrap_or(d.growth), ..d };
         Self::from_core(py, py.detach(|| tribo::ring_sector(&sector, &grading)).map_err(to_pyerr)?)
+    }
+
+    /// A uniform mesh of the disc ‖x − center‖ ≤ radius, or of its sector between `angles` (radians; default a
+    /// whole turn; (π, 2π) a half-disc, flat on top), with `rings` circles of nodes around the centre (cells of
+    /// about radius / rings). Edge sets 'rim' (on its circle; a loop for a whole disc), 'start', 'end' (a sector's).
+    #[staticmethod]
+    #[pyo3(signature = (center, radius, *, rings, angles=(0.0, std::f64::consts::TAU)))]
+    fn disc(py: Python<'_>, center: (f64, f64), radius: f64, rings: i64, angles: (f64, f64)) -> PyResult<Self> {
+        let rings = usize::try_from(rings).map_err(|_| bad_input(Mesh, format!("rings = {rings} must be positive")))?;
+        let sector = DiscSector { center: center.into(), radius, angles: angles.into() };
+        Self::from_core(py, py.detach(|| tribo::disc(&sector, rings)).map_err(to_pyerr)?)
     }
 
     /// Diameter h_T of every triangle, (T,) float64.

@@ -6,9 +6,15 @@
 //! outer arc by radius) onto the ring, so every node of the outer arc lies on the circle exactly, and the
 //! faceted arc departs from the circle by at most `h² / (8 R)` between its nodes (h the edge length). The
 //! triangles are shrunk along the arcs by `r / r_out`: the ratio of the radii bounds their distortion.
+//!
+//! [`disc`] meshes a solid disc, or a sector of one (a half-disc with its flat side, a quarter), uniformly: nodes
+//! on concentric circles `r_k = R k / n` (k = 0 the centre), about `6 k` of them on a whole circle k (the
+//! triangles of a hexagonal packing, nearly equilateral at every radius), each ring joined to the next by
+//! merging the two by angle. Its rim lies on the circle exactly and carries its curve, so that refinement (an
+//! adaptive loop near a contact point) puts new nodes on it.
 
 use crate::error::{Error, Result};
-use crate::mesh::generate::{graded_rectangle, Grading, Side};
+use crate::mesh::generate::{graded_rectangle, Grading, Side, MAX_CELLS};
 use crate::mesh::{Curve, Mesh, Point};
 
 /// The sector of a ring to mesh: radii `r_in ≤ |x − c| ≤ r_out`, angles (radians, counterclockwise from the
@@ -175,8 +181,184 @@ fn closed(
     Ok((points, triangles, sets))
 }
 
+/// A disc, or the sector of one, to mesh by [`disc`]: centre, radius and angles (radians, counterclockwise from
+/// the x axis; a full turn for the whole disc, `[π, 2π]` for a half-disc whose flat side is on top).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DiscSector {
+    /// Centre c.
+    pub center: Point,
+    /// Radius R > 0.
+    pub radius: f64,
+    /// First and last angle, increasing, at most a full turn apart.
+    pub angles: [f64; 2],
+}
+
+/// A uniform mesh of a disc or of the sector of one (module documentation), with `rings` circles of nodes
+/// around its centre: cells of about `R / rings`. Its edge sets are `"rim"`, on the circle (with its [`Curve`]; a
+/// closed loop for a whole disc), and for a sector `"start"` and `"end"`, the radii at its first and last angle.
+///
+/// # Errors
+/// [`Error::BadGenerator`] for a centre, radius or angles that are not finite, a radius not positive, angles not
+/// increasing or more than a full turn apart, or no rings, or so many that the disc would have more triangles
+/// than [`crate::mesh::generate::MAX_CELLS`] (checked before anything is allocated).
+pub fn disc(sector: &DiscSector, rings: usize) -> Result<Mesh> {
+    let bad = |what: String| Err(Error::BadGenerator { what });
+    let (r, [t0, t1], c) = (sector.radius, sector.angles, sector.center);
+    if !(c.iter().all(|v| v.is_finite()) && r.is_finite() && r > 0.0) {
+        return bad(format!("a disc needs a finite centre and a finite radius > 0, got ({}, {}) and {r}", c[0], c[1]));
+    }
+    let turn = 2.0 * std::f64::consts::PI;
+    let full = (t1 - t0 - turn).abs() <= 1e-12 * turn;
+    if !(t0.is_finite() && t1.is_finite() && t0 < t1 && (t1 - t0 < turn || full)) {
+        return bad(format!("angles [{t0}, {t1}] must be finite, increasing and at most a full turn apart"));
+    }
+    // Ring k: its intervals (about 6 k on a whole turn, at least one per 60°), its nodes' indices and angles;
+    // about 6 k² (span / turn) triangles within ring k.
+    let span = if full { turn } else { t1 - t0 };
+    let triangles = 6.0 * (rings as f64).powi(2) * span / turn + 12.0 * rings as f64;
+    if rings == 0 || triangles > MAX_CELLS as f64 {
+        return bad(format!(
+            "a disc needs at least 1 ring of nodes and at most about {MAX_CELLS} triangles, got {rings} rings (about \
+             {triangles:.3e} triangles)"
+        ));
+    }
+    let mut points: Vec<Point> = vec![c];
+    let mut ring: Vec<(usize, f64)> = vec![(0, t0)];
+    let mut triangles: Vec<[usize; 3]> = Vec::new();
+    let mut sides: [Vec<usize>; 2] = [vec![0], vec![0]];
+    for k in 1..=rings {
+        let intervals = ((6 * k) as f64 * span / turn).round().max((span / (turn / 6.0)).ceil()) as usize;
+        let radius = r * k as f64 / rings as f64;
+        let count = if full { intervals } else { intervals + 1 };
+        let next: Vec<(usize, f64)> = (0..count)
+            .map(|i| {
+                let theta = if i == intervals { t1 } else { t0 + span * i as f64 / intervals as f64 };
+                points.push([c[0] + radius * theta.cos(), c[1] + radius * theta.sin()]);
+                (points.len() - 1, theta)
+            })
+            .collect();
+        merge(&ring, &next, full, span, &mut triangles);
+        sides[0].push(next[0].0);
+        sides[1].push(next[next.len() - 1].0);
+        ring = next;
+    }
+    let mut sets = std::collections::BTreeMap::new();
+    let mut rim: Vec<[usize; 2]> = ring.windows(2).map(|w| [w[0].0, w[1].0]).collect();
+    if full {
+        rim.push([ring[ring.len() - 1].0, ring[0].0]);
+    } else {
+        // (the sector's sides from its centre outward, and inward at its end: the boundary runs counterclockwise)
+        sets.insert("start".to_string(), sides[0].windows(2).map(|w| [w[0], w[1]]).collect());
+        sets.insert("end".to_string(), sides[1].windows(2).rev().map(|w| [w[1], w[0]]).collect());
+    }
+    sets.insert("rim".to_string(), rim);
+    Mesh::new(points, triangles, sets)?.with_curve("rim", Curve::Arc { center: c, radius: r })
+}
+
+/// The triangles between two rings of nodes (index, angle), `inner` and `outer`, each increasing in angle from the
+/// sector's first; on a whole turn (`full`) both close up, the first node following the last a turn later. Each
+/// step takes the next node of the ring whose next angle comes first: the two rings merge by angle.
+fn merge(inner: &[(usize, f64)], outer: &[(usize, f64)], full: bool, span: f64, triangles: &mut Vec<[usize; 3]>) {
+    // (a whole turn goes round once more, back to its first nodes, a turn on)
+    let around = |ring: &[(usize, f64)], i: usize| {
+        if i < ring.len() {
+            ring[i]
+        } else {
+            let (n, a) = ring[i - ring.len()];
+            (n, a + span)
+        }
+    };
+    let n = if full { outer.len() + 1 } else { outer.len() };
+    // The centre (an inner ring of one node): a fan.
+    let m = if inner.len() == 1 {
+        1
+    } else if full {
+        inner.len() + 1
+    } else {
+        inner.len()
+    };
+    let (mut i, mut j) = (0, 0);
+    while i + 1 < m || j + 1 < n {
+        let (a, b) = (around(inner, i), around(outer, j));
+        let take_outer = i + 1 >= m || (j + 1 < n && around(outer, j + 1).1 <= around(inner, i + 1).1);
+        if take_outer {
+            triangles.push([a.0, b.0, around(outer, j + 1).0]);
+            j += 1;
+        } else {
+            triangles.push([a.0, b.0, around(inner, i + 1).0]);
+            i += 1;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
+
+    /// A whole disc, a half-disc and a quarter: the triangles tile the polygon of the rim's nodes and the centre
+    /// (their areas equal), every one counterclockwise and well shaped (no angle below 30° on the whole and the
+    /// half disc, 28° on the quarter), the rim's nodes on the circle; a sector's `start` and `end` one edge per ring.
+    #[test]
+    fn a_disc_and_a_half_disc_are_tiled_by_well_shaped_triangles() {
+        let pi = std::f64::consts::PI;
+        for (angles, rings) in [([0.0, 2.0 * pi], 12), ([pi, 2.0 * pi], 9), ([0.3, 0.3 + pi / 2.0], 5)] {
+            let mesh = disc(&DiscSector { center: [1.0, -2.0], radius: 2.0, angles }, rings).unwrap();
+            let p = mesh.points();
+            let area = |t: &[usize; 3]| {
+                let (a, b, c) = (p[t[0]], p[t[1]], p[t[2]]);
+                0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+            };
+            let total: f64 = mesh.triangles().iter().map(area).sum();
+            let rim = mesh.edge_set("rim").unwrap();
+            let mut smallest = 180.0_f64;
+            // The polygon of the rim's nodes and the centre: the sector's area less the segments' sag.
+            let polygon: f64 = rim
+                .iter()
+                .map(|e| {
+                    let (a, b) = (p[e[0]], p[e[1]]);
+                    0.5 * ((a[0] - 1.0) * (b[1] + 2.0) - (a[1] + 2.0) * (b[0] - 1.0))
+                })
+                .sum();
+            assert!((total - polygon).abs() < 1e-12 * total, "{angles:?}: {total} against {polygon}");
+            assert!(total < 2.0 * (angles[1] - angles[0]) && total > 0.98 * 2.0 * (angles[1] - angles[0]));
+            for t in mesh.triangles() {
+                assert!(area(t) > 0.0);
+                for c in 0..3 {
+                    let (a, b, o) = (p[t[c]], p[t[(c + 1) % 3]], p[t[(c + 2) % 3]]);
+                    let (u, v) = ([a[0] - o[0], a[1] - o[1]], [b[0] - o[0], b[1] - o[1]]);
+                    let cos = (u[0] * v[0] + u[1] * v[1]) / (u[0].hypot(u[1]) * v[0].hypot(v[1]));
+                    smallest = smallest.min(cos.acos().to_degrees());
+                }
+            }
+            // The hexagonal packing's 30° on a whole disc and a half-disc (measured: 30.0°), less where the rounding
+            // of a ring's intervals to the sector's span shears them (measured 28.7° on the quarter).
+            let least = if angles[1] - angles[0] >= pi { 29.99 } else { 28.0 };
+            assert!(smallest > least, "{angles:?}: an angle of {smallest}°");
+            for e in rim {
+                for &n in e {
+                    assert!(((p[n][0] - 1.0).hypot(p[n][1] + 2.0) - 2.0).abs() < 1e-14);
+                }
+            }
+            let full = angles == [0.0, 2.0 * pi];
+            assert_eq!(mesh.edge_set("start").is_ok(), !full);
+            if !full {
+                for side in ["start", "end"] {
+                    assert_eq!(mesh.edge_set(side).unwrap().len(), rings, "{side}");
+                }
+            }
+        }
+        // Refused: a radius not positive, angles beyond a turn, no rings.
+        let ok = DiscSector { center: [0.0, 0.0], radius: 1.0, angles: [0.0, pi] };
+        for (sector, rings) in [
+            (DiscSector { radius: 0.0, ..ok }, 4),
+            (DiscSector { angles: [0.0, 7.0], ..ok }, 4),
+            (DiscSector { angles: [1.0, 1.0], ..ok }, 4),
+            (DiscSector { center: [f64::NAN, 0.0], ..ok }, 4),
+            (ok, 0),
+            (ok, 1_000_000),
+        ] {
+            assert!(matches!(disc(&sector, rings), Err(Error::BadGenerator { .. })), "{sector:?} {rings}");
+        }
+    }
     use super::*;
     use crate::contact::ContactBoundary;
     use std::f64::consts::FRAC_PI_2;

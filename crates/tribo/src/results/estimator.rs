@@ -267,13 +267,14 @@ pub(crate) fn traction_weights(mesh: &Mesh, contact: &ContactBoundary) -> Vec<f6
         (Some(&lo), Some(&hi)) => (lo, hi),
         _ => return vec![0.0; mesh.n_triangles()],
     };
-    let distance = |v: usize| contact.distance_to_span(pts[v], lo, hi);
+    // Each node's distance once (a bent Γ_C costs a pass over its edges per node), shared by its triangles.
+    let distance: Vec<f64> = pts.iter().map(|&p| contact.distance_to_span(p, lo, hi)).collect();
     mesh.triangles()
         .iter()
         .enumerate()
         .map(|(t, tri)| {
             let h = mesh.diameter(t);
-            let dist = tri.iter().map(|&v| distance(v)).fold(f64::INFINITY, f64::min);
+            let dist = tri.iter().map(|&v| distance[v]).fold(f64::INFINITY, f64::min);
             h * h / (h + dist).powi(3)
         })
         .collect()
