@@ -69,6 +69,8 @@ def _type(check: Callable[..., Any]) -> Any:
         return list[region]
     if check.__name__ == "_rotation":
         return create_model("Rotation", __config__=STRICT, center=(Pair, ...), angle=(Num, ...))
+    if check.__name__ == "_plate":
+        return create_model("Plate", __config__=STRICT, center=(Pair, ...), radius=(Num, ...), half_widths=(Pair, ...))
     if check.__name__ == "_disc":
         return create_model("Disc", __config__=STRICT, center=(Pair, ...), radius=(Num, ...), angles=(Pair | None, None))
     if check.__name__ == "_ring":

@@ -146,8 +146,8 @@ class Scene:
         toward its contact ``side``; the keys name the tables in errors."""
         if "ring" in body:
             return self._ring(body, d, body_key, d_key)
-        if "disc" in body:
-            return self._disc(body, d, body_key, d_key)
+        if "disc" in body or "plate" in body:
+            return self._round(body, d, body_key, d_key)
         if "mesh" in body:
             if "x" in body or "y" in body:
                 raise SceneError(f"give either {body_key}.mesh or {body_key}.x/{body_key}.y, not both",
@@ -197,7 +197,7 @@ class Scene:
     def _ring(body: Mapping[str, Any], d: Mapping[str, Any], body_key: str, d_key: str) -> Mesh:
         """The ring sector of ``body.ring``: uniform at ``h`` (``grading = "auto"`` or ``"none"``), or graded toward
         the arc ``grading = [a0, a1]`` (degrees) of its outer circle to ``h_min``."""
-        others = sorted(set(body) & {"mesh", "x", "y"})
+        others = sorted(set(body) & {"mesh", "x", "y", "disc", "plate"})
         if others:
             raise SceneError(f"give either {body_key}.ring or {body_key}.{others[0]}, not both", f"{body_key}.ring")
         if "diagonal" in d:
@@ -224,27 +224,45 @@ class Scene:
                                 arc=(math.radians(grading[0]), math.radians(grading[1])), growth=d.get("growth"))
 
     @staticmethod
-    def _disc(body: Mapping[str, Any], d: Mapping[str, Any], body_key: str, d_key: str) -> Mesh:
-        """The disc (or sector) of ``body.disc``, uniform at ``h`` (default a quarter of its radius): its rings of
-        nodes ``ceil(R / h)``. Refinement near a contact is the adaptive loop's (the rim carries its circle)."""
-        others = sorted(set(body) & {"mesh", "x", "y", "ring"})
+    def _round(body: Mapping[str, Any], d: Mapping[str, Any], body_key: str, d_key: str) -> Mesh:
+        """The disc (or sector) of ``body.disc``, or the plate with a hole of ``body.plate``, uniform at ``h``
+        (default a quarter of the radius): a disc's rings of nodes ``ceil(R / h)``; a plate's nodes round the hole
+        the multiple of 8 that puts them about ``h`` apart, its cells across about square (growing from the hole to
+        the plate's edge). Refinement near a contact is the adaptive loop's (the arcs carry their circles)."""
+        kind = "disc" if "disc" in body else "plate"
+        others = sorted(set(body) & {"mesh", "x", "y", "ring", "disc", "plate"} - {kind})
         if others:
-            raise SceneError(f"give either {body_key}.disc or {body_key}.{others[0]}, not both", f"{body_key}.disc")
-        extra = sorted(set(d) & {"diagonal", "h_min", "growth"}) or (["grading"] if d.get("grading", "auto") not in
-                                                                       ("auto", "none") else [])
+            raise SceneError(f"give either {body_key}.{kind} or {body_key}.{others[0]}, not both", f"{body_key}.{kind}")
+        grading = [] if d.get("grading", "auto") in ("auto", "none") else ["grading"]
+        extra = sorted(set(d) & {"diagonal", "h_min", "growth"}) or grading
         if extra:
-            raise SceneError(f"scene key '{d_key}.{extra[0]}' applies to a rectangle or a ring, not a disc (uniform at "
-                             f"{d_key}.h)", f"{d_key}.{extra[0]}")
-        disc = body["disc"]
-        (a0, a1), radius = disc["angles"], disc["radius"]
-        if not 0.0 < a1 - a0 <= 360.0:
-            raise SceneError(f"scene key '{body_key}.disc.angles' = [{a0:g}, {a1:g}] must increase by at most a full "
-                             "turn (360)", f"{body_key}.disc.angles")
-        h = d.get("h", 0.25 * radius)
+            raise SceneError(f"scene key '{d_key}.{extra[0]}' applies to a rectangle or a ring, not a {kind} (uniform "
+                             f"at {d_key}.h)", f"{d_key}.{extra[0]}")
+        shape = body[kind]
+        h = d.get("h", 0.25 * shape["radius"])
         if not h > 0.0:
             raise SceneError(f"scene key '{d_key}.h' must be positive, got {h}", f"{d_key}.h")
-        return Mesh.disc(disc["center"], radius, rings=max(1, math.ceil(radius / h - 1e-9)),
-                         angles=(math.radians(a0), math.radians(a1)))
+        if kind == "disc":
+            (a0, a1), radius = shape["angles"], shape["radius"]
+            if not 0.0 < a1 - a0 <= 360.0:
+                raise SceneError(f"scene key '{body_key}.disc.angles' = [{a0:g}, {a1:g}] must increase by at most a "
+                                 "full turn (360)", f"{body_key}.disc.angles")
+            rings = radius / h
+            if not 6 * rings * rings * (a1 - a0) / 360.0 <= MAX_CELLS:
+                raise SceneError(f"scene key '{d_key}.h' = {h:g} makes about {rings:.3g} rings of nodes, more than "
+                                 f"{MAX_CELLS} triangles", f"{d_key}.h")
+            return Mesh.disc(shape["center"], radius, rings=max(1, math.ceil(rings - 1e-9)),
+                             angles=(math.radians(a0), math.radians(a1)))
+        radius, (a, b) = shape["radius"], shape["half_widths"]
+        if not 0.0 < radius < min(a, b):
+            raise SceneError(f"scene key '{body_key}.plate.radius' = {radius:g} must lie inside the plate's half-widths "
+                             f"[{a:g}, {b:g}]", f"{body_key}.plate.radius")
+        around = 8 * max(1, math.ceil(2 * math.pi * radius / h / 8 - 1e-9)) if h * MAX_CELLS > radius else 0
+        # (the cells across about as deep as wide: the mean of the spacings at the hole and at the plate's edge)
+        across = max(2, math.ceil((min(a, b) - radius) / ((2 * math.pi * radius + 4 * (a + b)) / (2 * max(around, 1)))))
+        if not (0 < around and 2 * around * across <= MAX_CELLS):
+            raise SceneError(f"scene key '{d_key}.h' = {h:g} makes more than {MAX_CELLS} triangles", f"{d_key}.h")
+        return Mesh.plate_with_hole(shape["center"], radius, (a, b), around=around, across=across)
 
     @property
     def is_two_bodies(self) -> bool:
@@ -261,7 +279,8 @@ class Scene:
         for k, entry in enumerate(self.sections["bodies"]["entries"]):
             where = f"bodies[{k}]"
             side, side_key = sides.get(entry["name"], (None, "contact.secondary"))
-            if side is None and "mesh" not in entry and entry.get("discretization", {}).get("grading") != "none":
+            uniform = {"mesh", "disc", "plate"} & set(entry) or entry.get("discretization", {}).get("grading") == "none"
+            if side is None and not uniform:
                 pair = f"secondary = {self.get('contact', 'secondary')!r}, primary = {self.get('contact', 'primary')!r}"
                 raise SceneError(
                     f"body {entry['name']!r} is on neither side of the contact ({pair}), so its mesh cannot be "

@@ -42,6 +42,9 @@ _BODY = {
     "disc": ("A disc `{ center = [x, y], radius = R }`, or its sector between `angles = [a0, a1]` (degrees; "
              "`[180, 360]` a half-disc, flat on top), uniform at `h`: edge sets `rim` on its circle, and a sector's "
              "`start`, `end`", "length", "—"),
+    "plate": ("A plate with a hole `{ center = [x, y], radius = R, half_widths = [a, b] }`, the plate [x − a, x + a] × "
+              "[y − b, y + b]: edge sets `hole` on its circle, `right`, `top`, `left`, `bottom`; its nodes about `h` "
+              "apart round the hole, its cells growing toward the plate's edge", "length", "—"),
 }
 _MATERIAL = {
     "young": ("Young's modulus E (*required*)", "stress", "—"),
@@ -50,8 +53,10 @@ _MATERIAL = {
 _GRID = {
     "grading": ('Where a rectangle is refined: `"auto"` toward where contact can occur, `"none"` (uniform, size '
                 "`h`) or `[a, b]`, a segment of the contact side; a ring is uniform (`\"auto\"`, `\"none\"`) or graded "
-                "toward `[a0, a1]`, an arc of its outer circle in degrees", "—", '`"auto"`'),
-    "h": ("The largest cell size", "length", "a quarter of the shorter side"),
+                "toward `[a0, a1]`, an arc of its outer circle in degrees; a disc and a plate are uniform (`\"auto\"`, "
+                "`\"none\"`)", "—", '`"auto"`'),
+    "h": ("The largest cell size (a plate's: its nodes' spacing round the hole)", "length",
+          "a quarter of the shorter side (of a disc's, a plate's hole's radius)"),
     "h_min": ("The cell size at the contact zone (graded meshes)", "length", "h / 16"),
     "growth": ("How fast the cells grow away from the contact zone (graded meshes)", "—", "0.15"),
     "diagonal": ("How each square of a uniform mesh is split", "—", '`"right"`'),

@@ -8,9 +8,11 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     ``x``, ``y``: the rectangle's ranges, e.g. ``x = [-2.0, 2.0]``; or ``mesh``: a mesh file meshio reads
     (a path relative to the scene file), whose named line sets are the edge sets; or ``disc = { center = [x, y],
     radius = R, angles = [a0, a1] }``: a disc or its sector (angles in degrees, default a whole turn), uniform at
-    ``h``, its edge sets ``rim``, ``start``, ``end``; or ``ring = { center = [x,
+    ``h``, its edge sets ``rim``, ``start``, ``end``; or ``plate = { center = [x, y], radius = R, half_widths = [a,
+    b] }``: a plate with a hole, its nodes about ``h`` apart round the hole, its edge sets ``hole``, ``right``,
+    ``top``, ``left``, ``bottom``; or ``ring = { center = [x,
     y], radii = [r_in, r_out], angles = [a0, a1] }``: a ring sector (angles in degrees), its edge sets ``outer``,
-    ``inner``, ``start``, ``end`` and its arcs on their circles. One of the three is required. A rectangle has the
+    ``inner``, ``start``, ``end`` and its arcs on their circles. One of these is required. A rectangle has the
     edge sets ``bottom``, ``right``, ``top``, ``left``.
 ``[material]``
     ``young``, ``poisson`` (*required*); ``model``: ``"plane_strain"`` (default), ``"plane_stress"`` or
@@ -101,7 +103,8 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     (``Scene.solve_adaptive`` returns the loop's answer, without). Not with a ``[history]``.
 ``[[bodies]]``
     Two elastic bodies in contact, instead of ``[body]``, ``[material]``, ``[supports]`` and ``[obstacle]``.
-    Exactly two entries, each with ``name`` (*required*), ``x``/``y``, ``mesh`` or ``ring`` as ``[body]``,
+    Exactly two entries, each with ``name`` (*required*), ``x``/``y``, ``mesh``, ``ring``, ``disc`` or ``plate`` as
+    ``[body]``,
     ``material = { young, poisson }`` (*required*; ``model`` the same for both, and ``[[bodies.material.regions]]``
     as ``[[material.regions]]``), ``supports`` (*required*: a list of tables as the
     ``[[supports]]`` entries; a motion they leave free is held by the contact, and ``[]`` leaves the body
@@ -146,6 +149,7 @@ from tribo.scene_values import (
     _numbers,
     _pair,
     _pairs,
+    _plate,
     _points,
     _path,
     _paths,
@@ -263,7 +267,7 @@ def _setting_checker(spec: dict[str, Any]) -> Checker:
 
 
 SCHEMA: dict[str, dict[str, Checker]] = {
-    "body": {"x": _range, "y": _range, "mesh": _string, "ring": _ring, "disc": _disc},
+    "body": {"x": _range, "y": _range, "mesh": _string, "ring": _ring, "disc": _disc, "plate": _plate},
     "material": {"young": _number, "poisson": _number, "model": _choice(*CHOICES["model"]), "regions": _regions},
     "supports": {"clamped": _names},
     "loads": {"body_force": _pair, "tractions": _pairs, "pressures": _pressures},
@@ -337,7 +341,7 @@ def describe_keys() -> list[tuple[str, str, str]]:
     return rows
 # The keys of one [[bodies]] entry: plain values, and the sub-tables with their keys.
 BODY_KEYS: dict[str, Checker] = {"name": _string, "x": _range, "y": _range, "mesh": _string, "ring": _ring,
-                                 "disc": _disc}
+                                 "disc": _disc, "plate": _plate}
 BODY_TABLES: dict[str, dict[str, Checker]] = {
     "material": {"young": _number, "poisson": _number, "model": _choice(*CHOICES["model"]), "regions": _regions},
     "loads": {"tractions": _pairs, "pressures": _pressures},
@@ -421,9 +425,9 @@ def _body_entry(index: int, entry: Any) -> dict[str, Any]:
     for key in ("young", "poisson"):
         if key not in out["material"]:
             raise SceneError(f"scene key '{where}.material.{key}' is required", f"{where}.material.{key}")
-    if not {"mesh", "ring", "disc"} & set(out) and not ("x" in out and "y" in out):
-        raise SceneError(f"scene key '{where}.x' and '{where}.y' (a rectangle), '{where}.ring', '{where}.disc' or "
-                         f"'{where}.mesh' is required", where)
+    if not {"mesh", "ring", "disc", "plate"} & set(out) and not ("x" in out and "y" in out):
+        raise SceneError(f"scene key '{where}.x' and '{where}.y' (a rectangle), '{where}.ring', '{where}.disc', "
+                         f"'{where}.plate' or '{where}.mesh' is required", where)
     return out
 
 
@@ -490,9 +494,9 @@ def _check_one_body(sections: dict[str, dict[str, Any]]) -> None:
     if "supports" not in sections:
         raise SceneError("scene key 'supports' is required: [supports] clamped = … or [[supports]] entries", "supports")
     body = sections.get("body", {})
-    if not {"mesh", "ring", "disc"} & set(body) and not ("x" in body and "y" in body):
-        raise SceneError("scene key 'body.x' and 'body.y' (a rectangle), 'body.ring', 'body.disc' or 'body.mesh' is "
-                         "required", "body")
+    if not {"mesh", "ring", "disc", "plate"} & set(body) and not ("x" in body and "y" in body):
+        raise SceneError("scene key 'body.x' and 'body.y' (a rectangle), 'body.ring', 'body.disc', 'body.plate' or "
+                         "'body.mesh' is required", "body")
     for key in ("secondary", "primary", "gap"):
         if key in sections.get("contact", {}):
             raise SceneError(f"scene key 'contact.{key}' names a side of two bodies: it needs [[bodies]]", f"contact.{key}")

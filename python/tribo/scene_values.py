@@ -104,6 +104,15 @@ def _range(key: str, v: Any) -> tuple[float, float]:
     return (a, b)
 
 
+_PAIR_JSON: dict[str, Any] = {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2}
+_POSITIVE_JSON: dict[str, Any] = {"type": "number", "exclusiveMinimum": 0}
+
+
+def _object_json(required: tuple[str, ...], **properties: dict[str, Any]) -> dict[str, Any]:
+    """The JSON Schema of an inline table of ``properties``, those of ``required`` required."""
+    return {"type": "object", "required": list(required), "additionalProperties": False, "properties": properties}
+
+
 def _table(key: str, v: Any, form: str, known: tuple[str, ...], required: tuple[str, ...]) -> dict[str, Any]:
     """``v`` as an inline table of the keys ``known``, with those of ``required`` (``form`` shows how it reads)."""
     if not isinstance(v, dict):
@@ -127,11 +136,8 @@ def _ring(key: str, v: Any) -> dict[str, tuple[float, float]]:
             "angles": _range(f"{key}.angles", v["angles"])}
 
 
-_ring.json_schema = {  # type: ignore[attr-defined]
-    "type": "object", "required": ["center", "radii", "angles"], "additionalProperties": False,
-    "properties": {k: {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2}
-                   for k in ("center", "radii", "angles")},
-}
+_ring.json_schema = _object_json(  # type: ignore[attr-defined]
+    ("center", "radii", "angles"), center=_PAIR_JSON, radii=_PAIR_JSON, angles=_PAIR_JSON)
 
 
 def _disc(key: str, v: Any) -> dict[str, Any]:
@@ -147,12 +153,23 @@ def _disc(key: str, v: Any) -> dict[str, Any]:
             "angles": _range(f"{key}.angles", v.get("angles", [0.0, 360.0]))}
 
 
-_disc.json_schema = {  # type: ignore[attr-defined]
-    "type": "object", "required": ["center", "radius"], "additionalProperties": False,
-    "properties": {"center": {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2},
-                   "radius": {"type": "number", "exclusiveMinimum": 0},
-                   "angles": {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2}},
-}
+_disc.json_schema = _object_json(  # type: ignore[attr-defined]
+    ("center", "radius"), center=_PAIR_JSON, radius=_POSITIVE_JSON, angles=_PAIR_JSON)
+
+
+def _plate(key: str, v: Any) -> dict[str, Any]:
+    """A rectangular plate with a circular hole ``{ center = [x, y], radius = R, half_widths = [a, b] }``: the plate
+    ``[x − a, x + a] × [y − b, y + b]``, meshed by ``Mesh.plate_with_hole``: edge sets ``hole`` (carrying its circle),
+    ``right``, ``top``, ``left``, ``bottom``."""
+    names = ("center", "radius", "half_widths")
+    v = _table(key, v, "center = [x, y], radius = R, half_widths = [a, b]", names, names)
+    return {"center": _pair(f"{key}.center", v["center"]), "radius": _number(f"{key}.radius", v["radius"]),
+            "half_widths": _pair(f"{key}.half_widths", v["half_widths"])}
+
+
+_plate.json_schema = _object_json(  # type: ignore[attr-defined]
+    ("center", "radius", "half_widths"), center=_PAIR_JSON, radius=_POSITIVE_JSON,
+    half_widths={**_PAIR_JSON, "items": _POSITIVE_JSON})
 
 
 def _rotation(key: str, v: Any) -> tuple[tuple[float, float], float]:

@@ -6,7 +6,7 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyMapping;
 use tribo::error::ErrorCategory::Mesh;
-use tribo::{ArcGrading, Choice, Curve, Diagonal, DiscSector, Grading, RingSector, Side};
+use tribo::{ArcGrading, Choice, Curve, Diagonal, DiscSector, Grading, PlateWithHole, RingSector, Side};
 
 use crate::convert::{floats, indices, mat, pair, rows};
 use crate::errors::{bad_input, to_pyerr};
@@ -177,6 +177,26 @@ impl PyMesh {
         let rings = usize::try_from(rings).map_err(|_| bad_input(Mesh, format!("rings = {rings} must be positive")))?;
         let sector = DiscSector { center: center.into(), radius, angles: angles.into() };
         Self::from_core(py, py.detach(|| tribo::disc(&sector, rings)).map_err(to_pyerr)?)
+    }
+
+    /// A mesh of the plate [cx − a, cx + a] × [cy − b, cy + b] less the hole ‖x − center‖ < radius: `around` nodes
+    /// round the hole (a multiple of 8), `across` cells to the plate's edge, growing from the hole. Edge sets 'hole'
+    /// (a loop on its circle), 'right', 'top', 'left', 'bottom'.
+    #[staticmethod]
+    #[pyo3(signature = (center, radius, half_widths, *, around, across))]
+    fn plate_with_hole(
+        py: Python<'_>,
+        center: (f64, f64),
+        radius: f64,
+        half_widths: (f64, f64),
+        around: i64,
+        across: i64,
+    ) -> PyResult<Self> {
+        let count =
+            |n: i64, name| usize::try_from(n).map_err(|_| bad_input(Mesh, format!("{name} = {n} must be positive")));
+        let (around, across) = (count(around, "around")?, count(across, "across")?);
+        let plate = PlateWithHole { center: center.into(), radius, half_widths: half_widths.into() };
+        Self::from_core(py, py.detach(|| tribo::plate_with_hole(&plate, around, across)).map_err(to_pyerr)?)
     }
 
     /// Diameter h_T of every triangle, (T,) float64.

@@ -148,7 +148,7 @@ pub use error::{Error, Num, Result};
 pub use fem::elasticity::{Material, Materials, Model, Traction};
 pub use fem::supports::{Dofs, NodeSupport, Support};
 pub use mesh::generate::{graded_rectangle, rectangle, Diagonal, Grading, Side};
-pub use mesh::shapes::{disc, ring_sector, ArcGrading, DiscSector, RingSector};
+pub use mesh::shapes::{disc, plate_with_hole, ring_sector, ArcGrading, DiscSector, PlateWithHole, RingSector};
 pub use mesh::{Curve, Mesh};
 pub use problem::bodies::{Body, BodyPart, ContactPair};
 pub use problem::load_case::LoadCase;

@@ -12,6 +12,10 @@
 //! triangles of a hexagonal packing, nearly equilateral at every radius), each ring joined to the next by
 //! merging the two by angle. Its rim lies on the circle exactly and carries its curve, so that refinement (an
 //! adaptive loop near a contact point) puts new nodes on it.
+//!
+//! [`plate_with_hole`] meshes a rectangular plate with a circular hole (a pin's bore): an O-grid of `around` nodes
+//! round the hole, each joined to a point of the plate's edge by `across` cells, finer at the hole (the first cell
+//! as deep as the hole's nodes are apart, the others growing geometrically), the plate's corners nodes of the grid.
 
 use crate::error::{Error, Result};
 use crate::mesh::generate::{graded_rectangle, Grading, Side, MAX_CELLS};
@@ -71,7 +75,7 @@ pub fn ring_sector(sector: &RingSector, grading: &ArcGrading) -> Result<Mesh> {
         return bad(format!("radii [{r_in}, {r_out}] must be finite, with 0 < r_out / 4 ≤ r_in < r_out"));
     }
     let turn = 2.0 * std::f64::consts::PI;
-    let full = (t1 - t0 - turn).abs() <= 1e-12 * turn;
+    let full = (t1 - t0 - turn).abs() <= 1e-12 * t0.abs().max(t1.abs()).max(turn);
     if !(t0.is_finite() && t1.is_finite() && t0 < t1 && (t1 - t0 < turn || full)) {
         return bad(format!("angles [{t0}, {t1}] must be finite, increasing and at most a full turn apart"));
     }
@@ -208,7 +212,7 @@ pub fn disc(sector: &DiscSector, rings: usize) -> Result<Mesh> {
         return bad(format!("a disc needs a finite centre and a finite radius > 0, got ({}, {}) and {r}", c[0], c[1]));
     }
     let turn = 2.0 * std::f64::consts::PI;
-    let full = (t1 - t0 - turn).abs() <= 1e-12 * turn;
+    let full = (t1 - t0 - turn).abs() <= 1e-12 * t0.abs().max(t1.abs()).max(turn);
     if !(t0.is_finite() && t1.is_finite() && t0 < t1 && (t1 - t0 < turn || full)) {
         return bad(format!("angles [{t0}, {t1}] must be finite, increasing and at most a full turn apart"));
     }
@@ -291,8 +295,155 @@ fn merge(inner: &[(usize, f64)], outer: &[(usize, f64)], full: bool, span: f64, 
     }
 }
 
+/// A rectangular plate with a circular hole, to mesh by [`plate_with_hole`]: the plate `[cx − a, cx + a] × [cy − b,
+/// cy + b]` around the hole's centre c, of radius R < min(a, b).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlateWithHole {
+    /// The hole's centre c, the plate's too.
+    pub center: Point,
+    /// The hole's radius R.
+    pub radius: f64,
+    /// The plate's half-widths (a, b) along x and y.
+    pub half_widths: [f64; 2],
+}
+
+/// A mesh of a plate with a hole (module documentation): `around` nodes round the hole (a multiple of 8, so that
+/// the plate's corners are nodes), `across` cells from the hole to the plate's edge. Its edge sets are `"hole"` (a
+/// closed loop on its circle, with its [`Curve`]) and the plate's sides `"right"`, `"top"`, `"left"`, `"bottom"`.
+///
+/// # Errors
+/// [`Error::BadGenerator`] for values that are not finite, a radius not positive or not below both half-widths,
+/// `around` not a positive multiple of 8, no cells across, or more triangles than
+/// [`crate::mesh::generate::MAX_CELLS`] (checked before anything is allocated).
+pub fn plate_with_hole(plate: &PlateWithHole, around: usize, across: usize) -> Result<Mesh> {
+    let bad = |what: String| Err(Error::BadGenerator { what });
+    let (c, r, [a, b]) = (plate.center, plate.radius, plate.half_widths);
+    if !([c[0], c[1], r, a, b].iter().all(|v| v.is_finite()) && r > 0.0 && r < a.min(b)) {
+        return bad(format!(
+            "a plate with a hole needs finite values and 0 < R < min(a, b), got R = {r}, a = {a}, b = {b}"
+        ));
+    }
+    if around == 0
+        || !around.is_multiple_of(8)
+        || across == 0
+        || 2.0 * (around as f64) * (across as f64) > MAX_CELLS as f64
+    {
+        return bad(format!(
+            "a plate with a hole needs a positive multiple of 8 nodes around and cells across, at most {MAX_CELLS} \
+             triangles, got {around} around and {across} across"
+        ));
+    }
+    let (n, m) = (around, across);
+    let turn = 2.0 * std::f64::consts::PI;
+    // The point of the plate's edge for node i: the loop from (a, 0) counterclockwise, each eighth of it a half-side.
+    let edge = |i: usize| -> Point {
+        let s = 8.0 * i as f64 / n as f64; // (0 to 8: the corners at 1, 3, 5, 7)
+        let [x, y] = match s {
+            s if s < 1.0 => [a, b * s],
+            s if s < 3.0 => [a * (2.0 - s), b],
+            s if s < 5.0 => [-a, b * (4.0 - s)],
+            s if s < 7.0 => [a * (s - 6.0), -b],
+            s => [a, b * (s - 8.0)],
+        };
+        [c[0] + x, c[1] + y]
+    };
+    // The cells across, geometric: the first as deep as the hole's nodes are apart (or uniform where that is finer).
+    let (depth, first) = (a.min(b) - r, turn * r / n as f64);
+    let fraction = |q: f64| if q == 1.0 { 1.0 / m as f64 } else { (q - 1.0) / (q.powi(m as i32) - 1.0) };
+    let q = if fraction(1.0) * depth <= first {
+        1.0
+    } else {
+        // (the fraction falls from 1/m at q = 1 as q grows: bisection on [1, 2^k])
+        let (mut lo, mut hi) = (1.0_f64, 2.0_f64);
+        while fraction(hi) * depth > first && hi < 1e6 {
+            hi *= 2.0;
+        }
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if fraction(mid) * depth > first {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        hi
+    };
+    let t: Vec<f64> = (0..=m)
+        .map(|j| if q == 1.0 { j as f64 / m as f64 } else { (q.powi(j as i32) - 1.0) / (q.powi(m as i32) - 1.0) })
+        .collect();
+    let mut points = Vec::with_capacity(n * (m + 1));
+    for &tj in &t {
+        for i in 0..n {
+            let theta = turn * i as f64 / n as f64;
+            let (h, e) = ([c[0] + r * theta.cos(), c[1] + r * theta.sin()], edge(i));
+            points.push(if tj == 1.0 { e } else { [h[0] + tj * (e[0] - h[0]), h[1] + tj * (e[1] - h[1])] });
+        }
+    }
+    let node = |i: usize, j: usize| j * n + i % n;
+    let mut triangles = Vec::with_capacity(2 * n * m);
+    for j in 0..m {
+        for i in 0..n {
+            // (the quad's counterclockwise corners: (i + 1, j), (i, j), (i, j + 1), (i + 1, j + 1))
+            triangles.push([node(i + 1, j), node(i, j), node(i, j + 1)]);
+            triangles.push([node(i + 1, j), node(i, j + 1), node(i + 1, j + 1)]);
+        }
+    }
+    let side = |from: usize, to: usize| (from..to).map(|i| [node(i, m), node(i + 1, m)]).collect::<Vec<_>>();
+    let mut sets = std::collections::BTreeMap::new();
+    sets.insert("hole".to_string(), (0..n).rev().map(|i| [node(i + 1, 0), node(i, 0)]).collect());
+    sets.insert("right".to_string(), [side(7 * n / 8, n), side(0, n / 8)].concat());
+    sets.insert("top".to_string(), side(n / 8, 3 * n / 8));
+    sets.insert("left".to_string(), side(3 * n / 8, 5 * n / 8));
+    sets.insert("bottom".to_string(), side(5 * n / 8, 7 * n / 8));
+    Mesh::new(points, triangles, sets)?.with_curve("hole", Curve::Arc { center: c, radius: r })
+}
+
 #[cfg(test)]
 mod tests {
+
+    /// A plate with a hole: its area the plate's less the polygon of the hole's nodes, every triangle counterclockwise,
+    /// the corners nodes, each side's edges on its line, the hole a loop on its circle; the first cells at the hole
+    /// about as deep as its nodes are apart.
+    #[test]
+    fn a_plate_with_a_hole_tiles_the_plate_less_the_hole() {
+        let plate = PlateWithHole { center: [1.0, 2.0], radius: 0.5, half_widths: [3.0, 2.0] };
+        let (n, m) = (32, 12);
+        let mesh = plate_with_hole(&plate, n, m).unwrap();
+        let p = mesh.points();
+        let area = |t: &[usize; 3]| {
+            let (a, b, c) = (p[t[0]], p[t[1]], p[t[2]]);
+            0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+        };
+        assert!(mesh.triangles().iter().all(|t| area(t) > 0.0));
+        let total: f64 = mesh.triangles().iter().map(area).sum();
+        let hole = 0.5 * n as f64 * 0.25 * (2.0 * std::f64::consts::PI / n as f64).sin();
+        assert!((total - (24.0 - hole)).abs() < 1e-12 * total, "{total}");
+        for (name, axis, value) in [("right", 0, 4.0), ("top", 1, 4.0), ("left", 0, -2.0), ("bottom", 1, 0.0)] {
+            let edges = mesh.edge_set(name).unwrap();
+            assert_eq!(edges.len(), n / 4, "{name}");
+            assert!(edges.iter().flatten().all(|&v| (p[v][axis] - value).abs() < 1e-12), "{name}");
+        }
+        let corners = [[4.0, 4.0], [-2.0, 4.0], [-2.0, 0.0], [4.0, 0.0]];
+        assert!(corners.iter().all(|c| p.iter().any(|q| (q[0] - c[0]).abs() + (q[1] - c[1]).abs() < 1e-12)));
+        let ring = mesh.edge_set("hole").unwrap();
+        assert_eq!(ring.len(), n);
+        assert!(ring.iter().flatten().all(|&v| ((p[v][0] - 1.0).hypot(p[v][1] - 2.0) - 0.5).abs() < 1e-14));
+        // The first layer where the plate is narrowest (θ = 90°, toward its top): the node on the hole and the next
+        // outward, against the hole's spacing 2π R / n.
+        let depth = p[n + n / 4][1] - p[n / 4][1];
+        assert!((depth / (2.0 * std::f64::consts::PI * 0.5 / n as f64) - 1.0).abs() < 1e-9, "{depth}");
+        let ok = plate;
+        for (plate, around, across) in [
+            (PlateWithHole { radius: 2.0, ..ok }, 32, 4),
+            (PlateWithHole { radius: 0.0, ..ok }, 32, 4),
+            (PlateWithHole { half_widths: [f64::INFINITY, 2.0], ..ok }, 32, 4),
+            (ok, 12, 4),
+            (ok, 32, 0),
+            (ok, 8_000_000, 8),
+        ] {
+            assert!(matches!(plate_with_hole(&plate, around, across), Err(Error::BadGenerator { .. })), "{plate:?}");
+        }
+    }
 
     /// A whole disc, a half-disc and a quarter: the triangles tile the polygon of the rim's nodes and the centre
     /// (their areas equal), every one counterclockwise and well shaped (no angle below 30° on the whole and the
@@ -300,7 +451,9 @@ mod tests {
     #[test]
     fn a_disc_and_a_half_disc_are_tiled_by_well_shaped_triangles() {
         let pi = std::f64::consts::PI;
-        for (angles, rings) in [([0.0, 2.0 * pi], 12), ([pi, 2.0 * pi], 9), ([0.3, 0.3 + pi / 2.0], 5)] {
+        let cases =
+            [([0.0, 2.0 * pi], 12), ([-3.0, -3.0 + 2.0 * pi], 7), ([pi, 2.0 * pi], 9), ([0.3, 0.3 + pi / 2.0], 5)];
+        for (angles, rings) in cases {
             let mesh = disc(&DiscSector { center: [1.0, -2.0], radius: 2.0, angles }, rings).unwrap();
             let p = mesh.points();
             let area = |t: &[usize; 3]| {
@@ -338,7 +491,7 @@ mod tests {
                     assert!(((p[n][0] - 1.0).hypot(p[n][1] + 2.0) - 2.0).abs() < 1e-14);
                 }
             }
-            let full = angles == [0.0, 2.0 * pi];
+            let full = (angles[1] - angles[0] - 2.0 * pi).abs() < 1e-12;
             assert_eq!(mesh.edge_set("start").is_ok(), !full);
             if !full {
                 for side in ["start", "end"] {
