@@ -254,12 +254,11 @@ class Scene:
             return Mesh.disc(shape["center"], radius, rings=max(1, math.ceil(rings - 1e-9)),
                              angles=(math.radians(a0), math.radians(a1)))
         radius, (a, b) = shape["radius"], shape["half_widths"]
-        if not 0.0 < radius < min(a, b):
-            raise SceneError(f"scene key '{body_key}.plate.radius' = {radius:g} must lie inside the plate's half-widths "
-                             f"[{a:g}, {b:g}]", f"{body_key}.plate.radius")
         around = 8 * max(1, math.ceil(2 * math.pi * radius / h / 8 - 1e-9)) if h * MAX_CELLS > radius else 0
-        # (the cells across about as deep as wide: the mean of the spacings at the hole and at the plate's edge)
-        across = max(2, math.ceil((min(a, b) - radius) / ((2 * math.pi * radius + 4 * (a + b)) / (2 * max(around, 1)))))
+        # (the cells across about as deep as wide along the longest ray, to a corner: the mean of the spacings at the
+        # hole and at the plate's edge)
+        spacing = (2 * math.pi * radius + 4 * (a + b)) / (2 * max(around, 1))
+        across = max(2, math.ceil((math.hypot(a, b) - radius) / spacing))
         if not (0 < around and 2 * around * across <= MAX_CELLS):
             raise SceneError(f"scene key '{d_key}.h' = {h:g} makes more than {MAX_CELLS} triangles", f"{d_key}.h")
         return Mesh.plate_with_hole(shape["center"], radius, (a, b), around=around, across=across)
@@ -279,7 +278,7 @@ class Scene:
         for k, entry in enumerate(self.sections["bodies"]["entries"]):
             where = f"bodies[{k}]"
             side, side_key = sides.get(entry["name"], (None, "contact.secondary"))
-            uniform = {"mesh", "disc", "plate"} & set(entry) or entry.get("discretization", {}).get("grading") == "none"
+            uniform = {"mesh", "ring", "disc", "plate"} & set(entry) or entry.get("discretization", {}).get("grading") == "none"
             if side is None and not uniform:
                 pair = f"secondary = {self.get('contact', 'secondary')!r}, primary = {self.get('contact', 'primary')!r}"
                 raise SceneError(

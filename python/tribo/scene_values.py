@@ -163,8 +163,13 @@ def _plate(key: str, v: Any) -> dict[str, Any]:
     ``right``, ``top``, ``left``, ``bottom``."""
     names = ("center", "radius", "half_widths")
     v = _table(key, v, "center = [x, y], radius = R, half_widths = [a, b]", names, names)
-    return {"center": _pair(f"{key}.center", v["center"]), "radius": _number(f"{key}.radius", v["radius"]),
-            "half_widths": _pair(f"{key}.half_widths", v["half_widths"])}
+    radius, (a, b) = _number(f"{key}.radius", v["radius"]), _pair(f"{key}.half_widths", v["half_widths"])
+    if not (a > 0.0 and b > 0.0):
+        raise SceneError(f"scene key '{key}.half_widths' must be positive, got [{a:g}, {b:g}]", f"{key}.half_widths")
+    if not 0.0 < radius < min(a, b):
+        raise SceneError(f"scene key '{key}.radius' = {radius:g} must be positive and inside the plate's "
+                         f"half-widths [{a:g}, {b:g}]", f"{key}.radius")
+    return {"center": _pair(f"{key}.center", v["center"]), "radius": radius, "half_widths": (a, b)}
 
 
 _plate.json_schema = _object_json(  # type: ignore[attr-defined]
