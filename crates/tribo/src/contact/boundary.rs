@@ -106,7 +106,7 @@ fn outward_normal(mesh: &Mesh, a: usize, b: usize) -> ([f64; 2], usize) {
 }
 
 /// The distance from `p` to the segment [a, b].
-fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
+pub(super) fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
     let d = [b[0] - a[0], b[1] - a[1]];
     let l2 = d[0] * d[0] + d[1] * d[1];
     let s = if l2 > 0.0 { (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / l2).clamp(0.0, 1.0) } else { 0.0 };

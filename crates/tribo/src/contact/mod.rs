@@ -29,6 +29,7 @@ mod boundary;
 pub mod gamma0;
 pub mod mortar;
 pub mod multiplier;
+mod nearest;
 pub mod obstacle;
 pub mod operators;
 pub mod pair;

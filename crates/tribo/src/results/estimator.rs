@@ -262,13 +262,11 @@ fn traction(s: &[f64; 3], n: [f64; 2]) -> [f64; 2] {
 /// (see the module documentation): h_K the diameter of K, d_K the distance from K's nearest vertex to
 /// the segment Γ_C.
 pub(crate) fn traction_weights(mesh: &Mesh, contact: &ContactBoundary) -> Vec<f64> {
-    let pts = mesh.points();
-    let (lo, hi) = match (contact.node_xi.first(), contact.node_xi.last()) {
-        (Some(&lo), Some(&hi)) => (lo, hi),
-        _ => return vec![0.0; mesh.n_triangles()],
-    };
-    // Each node's distance once (a bent Γ_C costs a pass over its edges per node), shared by its triangles.
-    let distance: Vec<f64> = pts.iter().map(|&p| contact.distance_to_span(p, lo, hi)).collect();
+    if contact.node_xi.is_empty() {
+        return vec![0.0; mesh.n_triangles()];
+    }
+    // Each node's distance once, shared by its triangles (on a bent Γ_C by a hierarchy of its facets' boxes).
+    let distance = contact.distances(mesh.points());
     mesh.triangles()
         .iter()
         .enumerate()
