@@ -33,6 +33,10 @@
 //!   0.005 and 0.00125): the whole Coulomb solve from a fresh factorization and the Cholesky reference of
 //!   the two bodies' K (the target: the ratio of one body of as many unknowns).
 //!
+//! - `mixed`: locking (study 25): Hertz at ν = 0.4999 graded at growth 0.05 to h_min = 0.0025 (43k P1
+//!   unknowns), built (`problem_new`) and solved frictionless from a fresh factorization (`solve`) in the
+//!   displacement formulation (which locks) and in the mixed one (the target: at most 2.5 times P1's).
+//!
 //! The set-up prints, once per mesh, the numbers of unknowns (n_free) and of multiplier dofs (q), and the
 //! status of the Coulomb solves. `cargo bench --bench solver -- --test` runs every bench once.
 
@@ -48,8 +52,9 @@ use faer::sparse::SparseColMat;
 use faer::Mat;
 use tribo::mortar::MortarMatrices;
 use tribo::{
-    Choice, Condensation, Friction, Grading, KktSolver, LoadStep, Material, Mesh, MultiplierPoints, MultiplierSpace,
-    Problem, ProblemSpec, QpMethod, QpSettings, Side, SolveStatus, SolverSettings, Stabilization, Threshold,
+    Choice, Condensation, Formulation, Friction, Grading, KktSolver, LoadStep, Material, Mesh, MultiplierPoints,
+    MultiplierSpace, Problem, ProblemSpec, QpMethod, QpSettings, Side, SolveStatus, SolverSettings, Stabilization,
+    Threshold,
 };
 use tribo_testkit::{block_problem, hertz_mesh, hertz_scene, hertz_spec, two_body_hertz};
 
@@ -475,6 +480,32 @@ fn bench_two_bodies(c: &mut Criterion) {
     group.finish();
 }
 
+fn bench_mixed(c: &mut Criterion) {
+    let mut group = c.benchmark_group("mixed");
+    configure_slow(&mut group, 10);
+    let s = hertz_scene();
+    let grading = Grading { side: Side::Top, segment: s.segment, h_min: 0.0025, h_max: 0.1, growth: 0.05 };
+    let mesh = tribo::graded_rectangle(s.x, s.y, &grading).expect("valid grading");
+    let settings = SolverSettings::default();
+    for formulation in [Formulation::Displacement, Formulation::Mixed] {
+        let material = Material { young: s.material.young, poisson: 0.4999 };
+        let spec = ProblemSpec { material, ..spec(0.0) }.formulation(formulation);
+        let problem = Problem::new(mesh.clone(), spec.clone()).expect("valid problem");
+        eprintln!("[mixed, {formulation}] n_free {} q {}", problem.n_free, problem.n_multipliers());
+        group.bench_function(BenchmarkId::new("problem_new", formulation.as_str()), |b| {
+            b.iter(|| Problem::new(black_box(mesh.clone()), spec.clone()).unwrap())
+        });
+        bench_fresh_solve(
+            &mut group,
+            BenchmarkId::new("solve", formulation.as_str()),
+            &problem,
+            &Friction::Frictionless,
+            &settings,
+        );
+    }
+    group.finish();
+}
+
 fn config() -> Criterion {
     Criterion::default().sample_size(10).warm_up_time(Duration::from_millis(500)).nresamples(20_000)
 }
@@ -484,6 +515,6 @@ criterion_group! {
     config = config();
     targets = bench_mesh, bench_assembly, bench_condensation, bench_tresca, bench_coulomb, bench_qp_kkt_solver,
         bench_cholesky_reference, bench_admissible_gamma0, bench_uniform_103k, bench_qp_method, bench_block,
-        bench_history, bench_graded_55k, bench_two_bodies
+        bench_history, bench_graded_55k, bench_two_bodies, bench_mixed
 }
 criterion_main!(benches);

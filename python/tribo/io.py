@@ -10,7 +10,8 @@ Writing: ``write_vtu("out/result.vtu", problem, solution)`` writes three files, 
 
 * ``result.vtu``: the body, with point data ``displacement`` (3 components), ``reaction``,
   ``stress_recovered`` (σ_xx, σ_yy, σ_xy per node: the area-weighted mean of the cell stresses around it,
-  ``Solution.nodal_stress``) and ``von_mises_recovered``, and cell
+  ``Solution.nodal_stress``), ``von_mises_recovered`` and, in the mixed formulation, ``pressure`` (p per
+  node, σ = 2μ ε − p I), and cell
   data ``stress``, the full symmetric 3 × 3 stress tensor (9 components, which ParaView reads as a tensor:
   σ_xz = σ_yz = 0 and σ_zz = ν (σ_xx + σ_yy) in plane strain, 0 in plane stress, the hoop stress σ_θθ in
   axisymmetry, where x is r and y the axis, and ``sigma_hoop`` repeats it), its components ``sigma_xx``,
@@ -393,6 +394,7 @@ def write_vtu(path: str | Path, problem: Problem, solution: Solution, *, per_bod
             "reaction": _xyz(solution.reactions),
             "stress_recovered": solution.nodal_stress,
             "von_mises_recovered": solution.nodal_von_mises,
+            **({"pressure": solution.pressure} if len(solution.pressure) else {}),
         },
         cell_data={
             "stress": [tensor.reshape(-1, 9)],

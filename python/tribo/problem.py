@@ -238,12 +238,16 @@ class Problem(_tribo.Problem):
 
     ``Problem(mesh, *, young, poisson, contact, clamped=None, supports=None, obstacle=None, approach=None,
     shift=None, rotation=None, tractions=None, pressures=None, body_force=None, multiplier_ratio=None,
-    multiplier_size=None, multiplier_points=None, space=None, model=None, materials=None, regions=None)``: the body (a Mesh, Young's
+    multiplier_size=None, multiplier_points=None, space=None, model=None, formulation=None, materials=None,
+    regions=None)``: the body (a Mesh, Young's
     modulus and Poisson's ratio, or for a body of several materials, a coating on a substrate say, ``materials``
     [(E, ν), …] and ``regions``, the index of each triangle's material, from ``tribo.io.read_triangle_groups``
     or the triangles' centroids; model 'plane_strain', the default, 'plane_stress': a thin plate, forces per unit
     thickness, or 'axisymmetric': the solid of revolution of the mesh about the y axis, x = r ≥ 0, the axis held at
-    u_r = 0, tractions per unit area and forces on the whole turn), its
+    u_r = 0, tractions per unit area and forces on the whole turn; formulation 'displacement': P1 displacements,
+    which lock as ν → ½, 'mixed': P1 displacements and pressures, free of locking, for rubber and other nearly
+    incompressible bodies, plane strain or plane stress, one body, or 'auto', the default: mixed from ν = 0.49 in
+    plane strain, ``problem.formulation`` saying which), its
     supports (edge sets clamped, or a list of Support), its loads (tractions: a dict edge set -> (tx, ty);
     pressures: a dict edge set -> p, the traction −p n along each edge's outward normal, so a bore or a curved side
     can be pressed; body_force (fx, fy)), Γ_C (the edge set `contact`) and the obstacle with its motion (an
@@ -267,6 +271,13 @@ class Problem(_tribo.Problem):
     def model(self) -> str:
         """``'plane_strain'``, ``'plane_stress'`` or ``'axisymmetric'``."""
         return str(self._arguments.get("model") or _tribo.solver_defaults()["model"]).lower()
+
+    @property
+    def formulation(self) -> str:
+        """The formulation solved: ``'displacement'`` (P1 displacements) or ``'mixed'`` (displacements and one
+        pressure per node, ``tribo::fem::mixed``), as asked or as ``'auto'`` chose (mixed from ν = 0.49 in plane
+        strain): mixed when there are more unknowns than the bodies' displacement unknowns."""
+        return "mixed" if self.n_free > sum(int(b[2]) for b in self.bodies) else "displacement"
 
     @classmethod
     def two_bodies(

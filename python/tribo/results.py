@@ -250,6 +250,8 @@ class Solution(_Record):
             linear stress at the interior nodes of a uniform mesh; it smooths the P1 cell stress's jumps,
             for plots and files. ``stress`` (per triangle) is the stress of the solve.
         nodal_von_mises: the von Mises stress of ``nodal_stress`` per node, (N,).
+        pressure: the pressure p per node of the mixed formulation, (N,): σ = 2μ ε(u) − p̄ I on each triangle
+            (p̄ the mean of its three nodes'), p = −λ div u; empty for the displacement formulation.
     """
 
     friction: Literal["frictionless", "tresca", "coulomb"]
@@ -282,6 +284,7 @@ class Solution(_Record):
     traction_estimator: _Floats = dataclasses.field(default_factory=lambda: np.zeros(0))
     nodal_stress: _Floats = dataclasses.field(default_factory=lambda: np.zeros((0, 3)))
     nodal_von_mises: _Floats = dataclasses.field(default_factory=lambda: np.zeros(0))
+    pressure: _Floats = dataclasses.field(default_factory=lambda: np.zeros(0))
     contact_width: float = math.nan
     stick_width: float = math.nan
     closed: bool = False

@@ -116,6 +116,7 @@ def summary(
         "n_multipliers": problem.n_multipliers,
         "space": problem.space,
         "model": problem.model,
+        "formulation": problem.formulation,
         "normal_force": solution.normal_force,
         "tangential_force": solution.tangential_force,
         "contact_force": list(solution.contact_force),

@@ -348,6 +348,7 @@ class Scene:
                 mesh,
                 **self.materials(mesh),
                 model=self.get("material", "model"),
+                formulation=self.get("material", "formulation"),
                 clamped=self.get("supports", "clamped"),
                 supports=self.supports(),
                 contact=self.get("contact", "edge_set"),

@@ -72,6 +72,10 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
                        'the y axis: x = r ≥ 0, the axis held at u_r = 0, tractions per unit area, forces on the whole '
                        'turn) or `"plane_stress"` (a thin plate, forces per unit '
                        "thickness, ν in (−1/2, 1/2))", "—", None),
+    "material.formulation": ('`"displacement"` (P1 displacements, which lock as ν → ½), `"mixed"` (P1 displacements '
+                             "and pressures with MINI's condensed bubble: free of locking, for rubber and other nearly "
+                             'incompressible bodies; one body, plane strain or plane stress, ν > 0) or `"auto"` (mixed '
+                             "from ν = 0.49 in plane strain)", "—", None),
     "supports.clamped": ("The edge sets held fixed (u = 0); or `[[supports]]` entries with `kind` (`clamp`, "
                          "`roller`, `displacement` with `x`/`y`, `rotation` with `center` and `angle` in radians) and "
                          "`edge_set`", "—", "— (*required*, one form)"),

@@ -16,7 +16,9 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     edge sets ``bottom``, ``right``, ``top``, ``left``.
 ``[material]``
     ``young``, ``poisson`` (*required*); ``model``: ``"plane_strain"`` (default), ``"plane_stress"`` or
-    ``"axisymmetric"``;
+    ``"axisymmetric"``; ``formulation``: ``"auto"`` (default: mixed from ν = 0.49 in plane strain),
+    ``"displacement"`` or ``"mixed"`` (displacements and pressures, free of locking as ν → ½; one body, not in
+    axisymmetry);
     ``[[material.regions]]``: parts of the body of other materials, each with ``young``, ``poisson`` and
     ``group`` (a physical surface of the mesh file) or ``box = [x0, y0, x1, y1]`` (the triangles whose
     centroid lies in it; put the interface on a grid line), a later one holding where two overlap.
@@ -268,7 +270,8 @@ def _setting_checker(spec: dict[str, Any]) -> Checker:
 
 SCHEMA: dict[str, dict[str, Checker]] = {
     "body": {"x": _range, "y": _range, "mesh": _string, "ring": _ring, "disc": _disc, "plate": _plate},
-    "material": {"young": _number, "poisson": _number, "model": _choice(*CHOICES["model"]), "regions": _regions},
+    "material": {"young": _number, "poisson": _number, "model": _choice(*CHOICES["model"]),
+                 "formulation": _choice(*CHOICES["formulation"]), "regions": _regions},
     "supports": {"clamped": _names},
     "loads": {"body_force": _pair, "tractions": _pairs, "pressures": _pressures},
     "contact": {"edge_set": _string, "secondary": _string, "primary": _string, "gap": _shape},

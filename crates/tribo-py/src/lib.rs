@@ -98,10 +98,8 @@ fn _tribo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<problem::ProblemData>()?;
     m.add_class::<problem::PyProblem>()?;
     m.add_class::<supports::PySupport>()?;
-    m.add_function(wrap_pyfunction!(solver_defaults, m)?)?;
-    m.add_function(wrap_pyfunction!(solver_settings, m)?)?;
-    m.add_function(wrap_pyfunction!(choices, m)?)?;
-    m.add_function(wrap_pyfunction!(format_number, m)?)?;
+    m.add_function(wrap_pyfunction!(solver_defaults, m)?).and(m.add_function(wrap_pyfunction!(solver_settings, m)?))?;
+    m.add_function(wrap_pyfunction!(choices, m)?).and(m.add_function(wrap_pyfunction!(format_number, m)?))?;
     m.add_function(wrap_pyfunction!(check_adapt, m)?)?;
     Ok(())
 }

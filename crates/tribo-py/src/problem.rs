@@ -216,7 +216,7 @@ impl PyProblem {
     #[pyo3(signature = (
         mesh, *, materials = None, regions = None, contact, clamped = None, supports = None, obstacle = None, approach = None,
         shift = None, tractions = None, body_force = None, multiplier_ratio = None, multiplier_size = None,
-        multiplier_points = None, space = None, primary = None, model = None, rotation = None,
+        multiplier_points = None, space = None, primary = None, model = None, rotation = None, formulation = None,
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -239,6 +239,7 @@ impl PyProblem {
         primary: Option<String>,
         model: Option<&str>,
         rotation: Option<([f64; 2], f64)>,
+        formulation: Option<&str>,
     ) -> PyResult<PyClassInitializer<Self>> {
         let obstacle = obstacle.map_or_else(|| Py::new(py, PyObstacle::checked(ObstacleShape::Flat)?), Ok)?;
         let shape = obstacle.get().shape.clone();
@@ -258,9 +259,10 @@ impl PyProblem {
             // Two bodies (`tribo.Problem.two_bodies`): `mesh` is their list, each with its own materials, supports
             // and tractions; they move through their supports.
             let given = [materials.is_some(), regions.is_some(), clamped.is_some(), supports.is_some()];
-            let moved = [tractions.is_some(), approach.or(shift).is_some(), rotation.is_some()];
+            let moved = [tractions.is_some(), approach.or(shift).is_some(), rotation.is_some(), formulation.is_some()];
             if given.into_iter().chain(moved).any(|g| g) {
-                return Err(PyTypeError::new_err("with primary=, material, supports and tractions are per body"));
+                let what = "material, supports and tractions are per body, and formulation is for one body";
+                return Err(PyTypeError::new_err(format!("with primary=, {what}")));
             }
             let [first, second]: [BodyArgs; 2] = mesh.extract()?;
             let (secondary, primary, gap, multiplier_points) = (contact.clone(), primary.clone(), shape, points);
@@ -281,6 +283,7 @@ impl PyProblem {
                 // A placeholder where none is given: `with_materials` says so.
                 material: materials.materials.first().copied().unwrap_or(Material { young: f64::NAN, poisson: 0.0 }),
                 model: model_given.unwrap_or_default(),
+                formulation: formulation.map_or(Ok(Default::default()), tribo::Formulation::parse).map_err(to_pyerr)?,
                 clamped: clamped.unwrap_or_default(),
                 supports,
                 body_force,

@@ -33,16 +33,15 @@ fn report<'py>(py: Python<'py>, r: &tribo::Report) -> PyResult<Bound<'py, PyDict
 /// `Solution` as a dict (its report as a dict too).
 pub fn solution<'py>(py: Python<'py>, s: &tribo::Solution) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    d.set_item("friction", s.report.friction.as_str())?;
-    d.set_item("mu", s.report.mu)?;
+    d.set_item("friction", s.report.friction.as_str()).and(d.set_item("mu", s.report.mu))?;
     d.set_item("displacement", pairs(py, &s.displacement)?)?;
     d.set_item("stress", mat(py, &s.stress)?)?;
     d.set_item("nodal_stress", mat(py, &s.nodal_stress)?)?;
     d.set_item("reactions", pairs(py, &s.reactions)?)?;
     d.set_item("states", vec1(py, s.states.iter().map(|&s| s.code() as i8).collect::<Vec<_>>())?)?;
     s.vectors().into_iter().try_for_each(|(name, v)| d.set_item(name, vec1(py, v)?))?;
-    d.set_item("contact_force", (s.contact_force[0], s.contact_force[1]))?;
-    d.set_item("obstacle_motion", (s.obstacle_motion[0], s.obstacle_motion[1]))?;
+    let pair = |v: [f64; 2]| (v[0], v[1]);
+    d.set_item("contact_force", pair(s.contact_force)).and(d.set_item("obstacle_motion", pair(s.obstacle_motion)))?;
     s.scalars().into_iter().try_for_each(|(name, v)| d.set_item(name, v))?;
     d.set_item("closed", s.closed)?;
     d.set_item("kkt", s.kkt.named().into_py_dict(py)?)?;
@@ -60,8 +59,7 @@ pub fn history<'py>(py: Python<'py>, h: &tribo::History) -> PyResult<Bound<'py, 
     d.set_item("kept", ints(py, h.kept.iter().copied())?)?;
     d.set_item("failed", h.failed.as_deref().map(|s| solution(py, s)).transpose()?)?;
     h.series().into_iter().try_for_each(|(name, v)| d.set_item(name, vec1(py, v)?))?;
-    d.set_item("stick_count", count(ContactState::Stick)?)?;
-    d.set_item("slip_count", count(ContactState::Slip)?)?;
+    d.set_item("stick_count", count(ContactState::Stick)?).and(d.set_item("slip_count", count(ContactState::Slip)?))?;
     d.set_item("separation_count", count(ContactState::Separation)?)?;
     d.set_item("contact_zone", mat(py, &h.extent(|s| s != ContactState::Separation))?)?;
     d.set_item("stick_zone", mat(py, &h.extent(|s| s == ContactState::Stick))?)?;

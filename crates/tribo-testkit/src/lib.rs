@@ -296,6 +296,7 @@ pub fn hertz_spec(approach: f64, shift: f64, points: MultiplierPoints, space: Mu
     ProblemSpec {
         material: s.material,
         model: Model::PlaneStrain,
+        formulation: Default::default(),
         clamped: vec!["bottom".into()],
         supports: vec![],
         body_force: [0.0, 0.0],
@@ -333,6 +334,7 @@ pub fn block_problem(nx: usize, ny: usize) -> (Problem, f64) {
     let spec = ProblemSpec {
         material: Material { young: n("material", "young"), poisson: n("material", "poisson") },
         model: Model::PlaneStrain,
+        formulation: Default::default(),
         clamped: vec![t["supports"]["clamped"].as_str().expect("one set").to_string()],
         supports: vec![],
         body_force: [0.0, 0.0],

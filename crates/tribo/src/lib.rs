@@ -1,7 +1,8 @@
 //! # tribo — 2D frictional contact with the stabilized Lagrange multiplier method
 //!
 //! tribo solves the contact of a linear elastic body (plane strain, plane stress or axisymmetric:
-//! [`Model`]; small strain, P1 triangles) with a
+//! [`Model`]; small strain, P1 triangles, with P1 pressures beside them for nearly incompressible bodies:
+//! [`Formulation`]) with a
 //! rigid obstacle along a boundary Γ_C (a straight segment, or any chain of boundary edges, open or closed, against an
 //! obstacle given by its geometry: [`ContactBoundary`], [`ObstacleShape`]), with Coulomb friction, by the
 //! stabilized Lagrange multiplier method of Barbosa and Hughes as extended to Coulomb friction by V. Lleras.
@@ -146,6 +147,7 @@ pub use contact::obstacle::{DistanceFunction, GapFunction, Obstacle, ObstacleRot
 pub use contact::ContactBoundary;
 pub use error::{Error, Num, Result};
 pub use fem::elasticity::{Material, Materials, Model, Traction};
+pub use fem::mixed::Formulation;
 pub use fem::supports::{Dofs, NodeSupport, Support};
 pub use mesh::generate::{graded_rectangle, rectangle, Diagonal, Grading, Side};
 pub use mesh::shapes::{disc, plate_with_hole, ring_sector, ArcGrading, DiscSector, PlateWithHole, RingSector};
@@ -229,6 +231,7 @@ pub fn choice_registry() -> Vec<(&'static str, Vec<&'static str>)> {
         ("diagonal", Diagonal::names()),
         ("space", MultiplierSpace::names()),
         ("model", Model::names()),
+        ("formulation", Formulation::names()),
         ("friction", FrictionLaw::names()),
         ("state", ContactState::names()),
         ("status", SolveStatus::NAMES.to_vec()),

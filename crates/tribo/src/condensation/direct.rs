@@ -5,9 +5,10 @@
 use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
-use faer::sparse::linalg::cholesky::{LltRef, SymbolicCholesky};
+use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
+use faer::sparse::linalg::cholesky::{LdltRef, LltRef, SymbolicCholesky};
 use faer::sparse::SparseColMatRef;
-use faer::{Conj, Mat, MatMut, Par};
+use faer::{Conj, Mat, MatMut, Par, Side};
 
 use crate::error::{Error, Result};
 use crate::linalg::schur;
@@ -18,24 +19,35 @@ pub(super) enum Direct {
     Columns(Arc<SymbolicCholesky<usize>>, Vec<f64>),
     /// The dofs E touches ordered last ([`crate::linalg::schur`]): all of `E A⁻¹ Eᵀ` from the trailing block.
     Schur(schur::SchurFactor),
+    /// The LDLᵀ factorization of a quasi-definite A (the mixed formulation, [`crate::fem::mixed`]) in the
+    /// fill-reducing ordering: columns of H are solves.
+    Ldlt(Arc<SymbolicCholesky<usize>>, Vec<f64>),
 }
 
 impl Direct {
     pub(super) fn solve_in_place(&self, x: MatMut<'_, f64>) -> Result<()> {
+        let par = faer::get_global_parallelism();
+        // The workspace of a solve with a factor in the fill-reducing ordering.
+        let workspace = |symbolic: &SymbolicCholesky<usize>| {
+            let req = symbolic.solve_in_place_scratch::<f64>(x.ncols(), par);
+            MemBuffer::try_new(req).map_err(|_| Error::MemoryBudget {
+                what: "the workspace of a solve with the factor of A".to_string(),
+                needed: req.size_bytes() as f64,
+                budget: f64::NAN,
+            })
+        };
         match self {
             Self::Columns(symbolic, values) => {
-                let par = faer::get_global_parallelism();
-                let req = symbolic.solve_in_place_scratch::<f64>(x.ncols(), par);
-                let mut mem = MemBuffer::try_new(req).map_err(|_| Error::MemoryBudget {
-                    what: "the workspace of a solve with the factor of A".to_string(),
-                    needed: req.size_bytes() as f64,
-                    budget: f64::NAN,
-                })?;
+                let mut mem = workspace(symbolic)?;
                 LltRef::new(symbolic, values).solve_in_place_with_conj(Conj::No, x, par, MemStack::new(&mut mem));
-                Ok(())
             }
-            Self::Schur(f) => f.solve_in_place(x, Par::rayon(0)).map_err(schur_error),
+            Self::Ldlt(symbolic, values) => {
+                let mut mem = workspace(symbolic)?;
+                LdltRef::new(symbolic, values).solve_in_place_with_conj(Conj::No, x, par, MemStack::new(&mut mem));
+            }
+            Self::Schur(f) => f.solve_in_place(x, Par::rayon(0)).map_err(schur_error)?,
         }
+        Ok(())
     }
 }
 
@@ -104,6 +116,57 @@ pub(super) fn factorize_plain(
         },
         e => schur_error(e),
     })
+}
+
+/// The numeric LDLᵀ factorization of a symmetric quasi-definite `a` (its last `negative` unknowns the
+/// pressures of the mixed formulation) with the symbolic analysis of its pattern, after the budget check
+/// of [`factorize_plain`]. No pivoting is needed: a quasi-definite matrix has an LDLᵀ factorization in every
+/// symmetric ordering, with as many negative pivots as its negative definite block has rows. The inertia
+/// is checked, so a γ0 beyond the bound (an unchecked one) or a matrix at the limits of floating point is
+/// an error, not a wrong H.
+///
+/// # Errors
+/// [`Error::MemoryBudget`] naming the size; [`Error::NotPositiveDefinite`] for a zero pivot or an inertia
+/// other than (n − negative, negative).
+pub(super) fn factorize_quasi_definite(
+    symbolic: &SymbolicCholesky<usize>,
+    a: SparseColMatRef<'_, usize, f64>,
+    negative: usize,
+    budget: usize,
+) -> Result<Vec<f64>> {
+    let par = faer::get_global_parallelism();
+    let req = symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default());
+    let what = "the sparse LDLᵀ factor of the mixed A = K − G";
+    fits_budget(what, symbolic.len_val(), req, 0.0, a.nrows(), budget)?;
+    let too_large = |bytes: f64| Error::MemoryBudget {
+        what: format!("{what} (the allocation failed)"),
+        needed: bytes,
+        budget: budget as f64,
+    };
+    let mut values = Vec::new();
+    let len = symbolic.len_val();
+    values.try_reserve_exact(len).map_err(|_| too_large(8.0 * len as f64))?;
+    values.resize(len, 0.0);
+    let mut mem = MemBuffer::try_new(req).map_err(|_| too_large(req.size_bytes() as f64))?;
+    let reg = LdltRegularization::default();
+    let stack = MemStack::new(&mut mem);
+    if let Err(LdltError::ZeroPivot { index }) =
+        symbolic.factorize_numeric_ldlt(&mut values, a, Side::Lower, reg, par, stack, Default::default())
+    {
+        return Err(Error::NotPositiveDefinite {
+            what: format!("zero pivot at position {index} of the LDLᵀ factor")
+        });
+    }
+    let pivots = crate::linalg::saddle::ldlt_pivots(symbolic, &values);
+    let below = pivots.iter().filter(|d| **d < 0.0).count();
+    if below != negative || pivots.iter().any(|d| !d.is_finite() || *d == 0.0) {
+        return Err(Error::NotPositiveDefinite {
+            what: format!(
+                "the mixed A = K − G is not quasi-definite: {below} negative pivots for {negative} pressures"
+            ),
+        });
+    }
+    Ok(values)
 }
 
 /// A sparse factor of `len_val` values with a workspace `req`, and `extra` bytes beside them, must fit

@@ -29,7 +29,7 @@ mod choose;
 mod diagonal;
 mod direct;
 
-use direct::{factorize_plain, fits_budget, schur_error, solve, Direct};
+use direct::{factorize_plain, factorize_quasi_definite, fits_budget, schur_error, solve, Direct};
 
 pub(crate) use choose::Expected;
 use choose::{
@@ -61,17 +61,17 @@ pub(crate) fn saddle_error(e: SaddleError) -> Error {
 }
 
 /// The saddle-point system of `A`, `E` and `Dγ` (by columns), refused beyond `max_len` factor values
-/// (and beyond `budget` bytes, as [`Error::MemoryBudget`]).
+/// (and beyond `budget` bytes, as [`Error::MemoryBudget`]); A's last `pressures` unknowns are a mixed
+/// formulation's (A quasi-definite).
 fn saddle_system(
     a: SparseColMatRef<'_, usize, f64>,
     e_rows: &[Vec<(usize, f64)>],
     d_cols: &[Vec<(usize, f64)>],
-    max_len: usize,
-    budget: usize,
+    [max_len, budget, pressures]: [usize; 3],
 ) -> Result<SaddleSystem> {
     let d: Vec<(usize, usize, f64)> =
         d_cols.iter().enumerate().flat_map(|(j, col)| col.iter().map(move |&(i, v)| (i, j, v))).collect();
-    let opts = SaddleOptions { max_factor_len: max_len.min(budget / 8), ..Default::default() };
+    let opts = SaddleOptions { max_factor_len: max_len.min(budget / 8), negative: pressures, ..Default::default() };
     let (c, clique) = saddle_clique(e_rows, a.nrows());
     if clique > opts.max_factor_len {
         let what = format!(
@@ -152,7 +152,10 @@ impl Factor {
     /// partial factorization where it is cheaper and fits `budget` bytes, see [`crate::linalg::schur`]);
     /// `expected` says what the solves will do: QPs that start from the multipliers of a nearby problem
     /// make the saddle-point system cheaper (the cost model's `WARM_SADDLE`); a Coulomb fixed point makes
-    /// it dearer against the partial factorization (`FIXED_POINT_BEFORE_FACTORIZING`).
+    /// it dearer against the partial factorization (`FIXED_POINT_BEFORE_FACTORIZING`). With `pressures`
+    /// (the last unknowns are the pressures of the mixed formulation, [`crate::fem::mixed`]) A is
+    /// quasi-definite: it is factorized by LDLᵀ, and H formed by columns or not at all (the saddle-point
+    /// system), never by the partial factorization.
     ///
     /// # Errors
     /// [`Error::NotPositiveDefinite`] if the Cholesky factorization fails; [`Error::Assembly`] if `−G`
@@ -171,8 +174,19 @@ impl Factor {
         condensation: Condensation,
         budget: usize,
         expected: Expected,
+        pressures: usize,
     ) -> Result<Self> {
         let warm = expected.warm;
+        // The partial factorization's kernel is a Cholesky one: a quasi-definite A takes the other two.
+        if condensation == Condensation::Schur && pressures > 0 {
+            return Err(Error::BadSetting {
+                name: "condensation",
+                value: f64::NAN,
+                what: "'schur' (the partial Cholesky factorization) needs a positive definite A, and the mixed \
+                       formulation's is quasi-definite: use 'auto', 'columns' or 'saddle'"
+                    .to_string(),
+            });
+        }
         let clock = Instant::now();
         // A = K − G on K's pattern (G couples the dofs of one triangle, all present in K), factorized
         // with the symbolic analysis of K: only values change with γ0.
@@ -214,11 +228,15 @@ impl Factor {
             Condensation::Schur => true,
             Condensation::Auto => {
                 let w = pushed_estimate(f, &d, q);
-                !loaded && !warm_saddle && schur_pays(w, margin_before_factorizing(expected, definite, nnz_k, w)).0
+                let pays = schur_pays(w, margin_before_factorizing(expected, definite, nnz_k, w)).0;
+                pressures == 0 && !loaded && !warm_saddle && pays
             }
         };
-        let undecided =
-            condensation == Condensation::Auto && loaded && !warm_saddle && schur_pays(q, AFTER_FACTORIZING).0;
+        let undecided = pressures == 0
+            && condensation == Condensation::Auto
+            && loaded
+            && !warm_saddle
+            && schur_pays(q, AFTER_FACTORIZING).0;
         if condensation == Condensation::Schur && bytes > budget as f64 {
             return Err(Error::MemoryBudget {
                 what: "the partial factorization's dense trailing block and E A⁻¹ Eᵀ".to_string(),
@@ -264,8 +282,12 @@ impl Factor {
                     symbolic.get_or_init(|| Arc::new(s))
                 }
             };
-            let values = factorize_plain(symbolic, a, budget)?;
-            (Direct::Columns(symbolic.clone(), values), clock.elapsed().as_secs_f64(), 0.0)
+            let direct = if pressures > 0 {
+                Direct::Ldlt(symbolic.clone(), factorize_quasi_definite(symbolic, a, pressures, budget)?)
+            } else {
+                Direct::Columns(symbolic.clone(), factorize_plain(symbolic, a, budget)?)
+            };
+            (direct, clock.elapsed().as_secs_f64(), 0.0)
         };
         let clock = Instant::now();
         // A⁻¹ 0 = 0: a body pressed only by the obstacle (no load on the free dofs) needs no solve here.
@@ -288,9 +310,9 @@ impl Factor {
         // error; preferred, one that fills in much beyond a Cholesky of A (T_H far finer than the FE edges:
         // the multipliers' block fills) or beyond the budget leaves H to the columns.
         let saddle = match condensation {
-            Condensation::Saddle => Some(saddle_system(a, &e_rows, &d_cols, budget / 8, budget)?),
+            Condensation::Saddle => Some(saddle_system(a, &e_rows, &d_cols, [budget / 8, budget, pressures])?),
             Condensation::Auto if !use_schur && prefer_saddle(nnz_k, pushed, warm) && definite => {
-                saddle_system(a, &e_rows, &d_cols, 2 * CHOLESKY_FILL * nnz_k, budget).ok()
+                saddle_system(a, &e_rows, &d_cols, [2 * CHOLESKY_FILL * nnz_k, budget, pressures]).ok()
             }
             _ => None,
         };

@@ -29,39 +29,69 @@ pub fn traction_components(m: [f64; 2], n: [f64; 2]) -> (Vector3<f64>, Vector3<f
 }
 
 /// The contact stresses as linear forms of the displacement, per FE edge of Γ_C: `σ_n(v) = s_n · v_T`,
-/// `σ_t(v) = s_t · v_T` with `v_T` the 6 dofs of the owning triangle (interleaved x, y). Everything
-/// here is over all 2N dofs; [`crate::Problem::condense_with`] restricts it to the unknowns and applies it
-/// to the lifting of prescribed displacements.
+/// `σ_t(v) = s_t · v_T` with `v_T` the 6 dofs of the owning triangle (interleaved x, y), and in the mixed
+/// formulation its 3 pressures after them (`σ = 2μ ε(v) − p̄_T I`, [`crate::fem::mixed`]). Everything
+/// here is over all 2N dofs (node i's pressure is dof 2N + i); [`crate::Problem::condense_with`] restricts
+/// it to the unknowns and applies it to the lifting of prescribed displacements.
 #[derive(Debug, Clone)]
 pub struct ContactStress {
-    /// `[s_n, s_t]` per contact edge.
-    pub ops: Vec<[SVector<f64, 6>; 2]>,
-    /// The owning triangle's dofs (indices among all 2N dofs).
-    pub dofs: Vec<[usize; 6]>,
+    /// `[s_n, s_t]` per contact edge (6 coefficients, or 9 with the pressures).
+    pub ops: Vec<[Vec<f64>; 2]>,
+    /// The owning triangle's dofs (indices among all 2N dofs, then 2N + node for its pressures).
+    pub dofs: Vec<Vec<usize>>,
 }
 
 impl ContactStress {
     /// The stress operators of every contact edge, each with the material of its triangle and in its own
     /// frame (n_e, t_e); in axisymmetry the in-plane stress carries the hoop strain's part
-    /// ([`crate::fem::axisymmetric`]).
-    pub fn new(mesh: &Mesh, model: Model, materials: &impl MaterialField, contact: &ContactBoundary) -> Self {
+    /// ([`crate::fem::axisymmetric`]). With `pressure` (the mixed formulation, `materials` the shear parts
+    /// of the laws) the mean pressure of the triangle enters as `−p̄_T I`.
+    pub fn new(
+        mesh: &Mesh,
+        model: Model,
+        materials: &impl MaterialField,
+        contact: &ContactBoundary,
+        pressure: bool,
+    ) -> Self {
+        let two_n = 2 * mesh.n_nodes();
         let ops = contact
             .edges
             .iter()
             .map(|e| {
                 let (a_n, a_t) = traction_components(e.outward, e.normal);
-                if model.is_axisymmetric() {
+                let [s_n, s_t]: [SVector<f64, 6>; 2] = if model.is_axisymmetric() {
                     let bt = axisymmetric::hoop_strain_displacement(mesh, e.triangle).transpose();
                     let c = axisymmetric::law(materials.at(e.triangle));
                     let four = |a: Vector3<f64>| Vector4::new(a[0], a[1], a[2], 0.0);
-                    return [bt * (c * four(a_n)), bt * (c * four(a_t))];
-                }
-                let c = materials.at(e.triangle).elasticity_matrix();
-                let bt = strain_displacement(mesh, e.triangle).transpose();
-                [bt * (c * a_n), bt * (c * a_t)]
+                    [bt * (c * four(a_n)), bt * (c * four(a_t))]
+                } else {
+                    let c = materials.at(e.triangle).elasticity_matrix();
+                    let bt = strain_displacement(mesh, e.triangle).transpose();
+                    [bt * (c * a_n), bt * (c * a_t)]
+                };
+                // a · (−p̄, −p̄, 0) = −(a₀ + a₁) p̄, p̄ the mean of the three nodal pressures.
+                let with_pressure = |s: SVector<f64, 6>, a: Vector3<f64>| {
+                    let mut s = s.as_slice().to_vec();
+                    if pressure {
+                        s.extend([-(a[0] + a[1]) / 3.0; 3]);
+                    }
+                    s
+                };
+                [with_pressure(s_n, a_n), with_pressure(s_t, a_t)]
             })
             .collect();
-        let dofs = contact.edges.iter().map(|e| element_dofs(&mesh.triangles()[e.triangle])).collect();
+        let dofs = contact
+            .edges
+            .iter()
+            .map(|e| {
+                let tri = &mesh.triangles()[e.triangle];
+                let mut d = element_dofs(tri).to_vec();
+                if pressure {
+                    d.extend(tri.iter().map(|&i| two_n + i));
+                }
+                d
+            })
+            .collect();
         Self { ops, dofs }
     }
 

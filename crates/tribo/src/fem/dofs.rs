@@ -50,8 +50,10 @@ pub struct Dofs {
     pub nodes: Vec<NodeSupport>,
     /// Per dof (2N, interleaved): the unknown it follows and the coefficient, `u_d = coeff · x_k + ū_d`.
     map: Vec<Option<(usize, f64)>>,
-    /// Number of unknowns n.
+    /// Number of unknowns n (displacements, then the pressures of [`Dofs::with_pressure`]).
     pub n_free: usize,
+    /// Number of displacement unknowns (n without the pressures).
+    pub n_displacement: usize,
     /// The lifting ū (2N): the prescribed part of every dof.
     pub lifting: Vec<f64>,
     /// Edges (sorted node pairs) that carry a support, for the checks against Γ_C.
@@ -138,7 +140,7 @@ impl Dofs {
             }
         }
         let lifting = lifting(&nodes);
-        Ok(Self { nodes, map, n_free, lifting, edges, floating, pins: pinned, axis })
+        Ok(Self { nodes, map, n_free, n_displacement: n_free, lifting, edges, floating, pins: pinned, axis })
     }
 
     /// The number of free rigid motions the contact must hold.
@@ -194,6 +196,23 @@ impl Dofs {
     /// a prescribed dof.
     pub fn unknown(&self, d: usize) -> Option<(usize, f64)> {
         self.map[d]
+    }
+
+    /// These unknowns with one pressure per node after the displacements (the mixed formulation,
+    /// [`crate::fem::mixed`]): node i's pressure is dof `2N + i` of [`Dofs::unknown`] and unknown
+    /// `n_displacement + i`. [`Dofs::expand`] still gives the 2N displacements; [`Dofs::restrict`] of a
+    /// vector of 3N dofs gives all n unknowns.
+    pub fn with_pressure(mut self, n_nodes: usize) -> Self {
+        let first = self.n_displacement;
+        self.map.truncate(2 * n_nodes);
+        self.map.extend((0..n_nodes).map(|i| Some((first + i, 1.0))));
+        self.n_free = first + n_nodes;
+        self
+    }
+
+    /// The pressure unknowns' part of x (empty without them).
+    pub fn pressure<'a>(&self, x: &'a [f64]) -> &'a [f64] {
+        x.get(self.n_displacement..self.n_free).unwrap_or(&[])
     }
 
     /// True when no support prescribes a non-zero displacement.

@@ -188,6 +188,7 @@ impl Problem {
         let spec = ProblemSpec {
             material: secondary.materials.materials[first.map_or(0, |t| secondary.materials.region[t])],
             model: pair.model,
+            formulation: crate::fem::mixed::Formulation::Displacement,
             clamped: bodies.iter().flat_map(|b| b.clamped.iter().map(|c| format!("{}.{c}", b.name))).collect(),
             supports: bodies.iter().flat_map(|b| b.supports.iter().map(|x| renamed(x, &b.name))).collect(),
             body_force,

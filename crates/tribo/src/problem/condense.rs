@@ -194,6 +194,7 @@ impl Problem {
             condensation,
             memory_budget,
             expected,
+            self.n_free - self.dofs.n_displacement,
         )
         .map_err(|e| match e {
             // At γ0 = 0 the matrix is K itself: the supports hold every piece (checked at the door), so only
@@ -231,7 +232,8 @@ impl Problem {
     /// by the contact moves by R α, which no unknown carries where the pins are).
     pub(crate) fn e_action(&self, gamma0: f64, v: &[f64]) -> Vec<f64> {
         let e_full = self.contact_stress.coupling_rows(&self.contact, &self.mortar, self.primary.as_ref(), gamma0);
-        e_full.iter().map(|row| row.iter().map(|&(k, x)| x * v[k]).sum()).collect()
+        let at = |k: usize| v.get(k).copied().unwrap_or(0.0);
+        e_full.iter().map(|row| row.iter().map(|&(k, x)| x * at(k)).sum()).collect()
     }
 
     /// `(Tᵀ(K − G) ū, E ū)` from the triplets of −G and the rows of E over all dofs, without K's part unless
@@ -244,16 +246,27 @@ impl Problem {
         with_stiffness: bool,
     ) -> (Vec<f64>, Vec<f64>) {
         use crate::fem::elasticity::{element_stresses, internal_forces};
-        let mut a_lift = if with_stiffness {
+        use crate::fem::mixed;
+        // In the mixed formulation the pressures' dofs follow the 2N displacements, with no lifting.
+        let pressures = if self.spec.formulation.is_mixed() { self.mesh.n_nodes() } else { 0 };
+        let mut a_lift = if with_stiffness && pressures > 0 {
+            // [K_μ ū; −B ū]: the shear stresses of ū, and its divergence in the pressure rows.
+            let stresses =
+                mixed::element_stresses(self.spec.model, &self.mesh, &self.in_plane, ubar, &vec![0.0; pressures]);
+            let mut a = internal_forces(self.spec.model, &self.mesh, &stresses);
+            a.extend(mixed::divergence(&self.mesh, ubar).iter().map(|v| -v));
+            a
+        } else if with_stiffness {
             let stresses = element_stresses(self.spec.model, &self.mesh, &self.in_plane, ubar);
             internal_forces(self.spec.model, &self.mesh, &stresses)
         } else {
-            vec![0.0; ubar.len()]
+            vec![0.0; ubar.len() + pressures]
         };
+        let at = |k: usize| ubar.get(k).copied().unwrap_or(0.0);
         for t in minus_g_full {
-            a_lift[t.row] += t.val * ubar[t.col];
+            a_lift[t.row] += t.val * at(t.col);
         }
-        let e_lift = e_full.iter().map(|row| row.iter().map(|&(k, v)| v * ubar[k]).sum()).collect();
+        let e_lift = e_full.iter().map(|row| row.iter().map(|&(k, v)| v * at(k)).sum()).collect();
         (self.dofs.restrict(&a_lift), e_lift)
     }
 

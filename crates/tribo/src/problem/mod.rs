@@ -31,6 +31,7 @@ use crate::contact::ContactBoundary;
 use crate::error::{Error, Result};
 use crate::fem::assemble::{assemble, LinearSystem};
 use crate::fem::elasticity::{Material, Materials, Model, Traction};
+use crate::fem::mixed::{self, Formulation};
 use crate::fem::supports::{Dofs, NodeSupport, Support};
 use crate::mesh::Mesh;
 use condense::FactorCache;
@@ -43,6 +44,10 @@ pub struct ProblemSpec {
     pub material: Material,
     /// Plane strain or plane stress ([`Model`], plane strain by default).
     pub model: Model,
+    /// P1 displacements, or displacements and pressures for ν → ½ ([`Formulation`]; by default `Auto`, the
+    /// mixed one from ν = [`crate::fem::mixed::MIXED_FROM_POISSON`] in plane strain). A built problem's spec
+    /// holds the choice made.
+    pub formulation: Formulation,
     /// Names of the clamped edge sets (u = 0): shorthand for [`Support::Clamp`] entries of `supports`.
     pub clamped: Vec<String>,
     /// Further Dirichlet conditions: rollers (symmetry lines) and prescribed displacements (see
@@ -192,7 +197,7 @@ impl Problem {
     /// [`Problem::new`] with per-triangle materials and, for two bodies, the primary contact set.
     fn build(
         mesh: Mesh,
-        spec: ProblemSpec,
+        mut spec: ProblemSpec,
         materials: Materials,
         primary: Option<&str>,
         bodies: Vec<bodies::BodyPart>,
@@ -203,6 +208,12 @@ impl Problem {
         }
         spec.model.validate(&spec.material)?;
         let in_plane = spec.model.in_plane_all(&materials);
+        spec.formulation = spec.formulation.resolve(spec.model, &in_plane);
+        spec.formulation.validate(spec.model, &in_plane)?;
+        let mixed = spec.formulation.is_mixed();
+        // The mixed formulation's K_μ, contact stresses and γ0 bound read the shear part of each law.
+        let shear_of_mixed = mixed.then(|| mixed::shear_part_all(&in_plane));
+        let shear = shear_of_mixed.as_ref().unwrap_or(&in_plane);
         spec.obstacle.validate()?;
         // A piece that holds a node of a contact side may be held by the contact alone.
         let mut on_contact = vec![false; mesh.n_nodes()];
@@ -213,7 +224,6 @@ impl Problem {
             }
         }
         let dofs = Dofs::held_by_contact(&mesh, &spec.all_supports(None), &|i| on_contact[i], spec.model)?;
-        let n_free = dofs.n_free;
         let mut bodies = bodies;
         for part in &mut bodies {
             let count = |n: &NodeSupport| match n {
@@ -223,8 +233,12 @@ impl Problem {
             };
             part.unknowns = dofs.nodes[part.nodes.clone()].iter().map(count).sum();
         }
-        let LinearSystem { k_matrix, f_free, f_full } =
-            assemble(spec.model, &mesh, &in_plane, spec.body_force, &spec.tractions, &dofs)?;
+        let mut system = assemble(spec.model, &mesh, shear, spec.body_force, &spec.tractions, &dofs)?;
+        let dofs = if mixed { dofs.with_pressure(mesh.n_nodes()) } else { dofs };
+        if mixed {
+            system = mixed::assemble_mixed(&mesh, &in_plane, spec.body_force, system, &dofs)?;
+        }
+        let (n_free, LinearSystem { k_matrix, f_free, f_full }) = (dofs.n_free, system);
         let assembly = clock.elapsed().as_secs_f64();
 
         let clock = Instant::now();
@@ -289,8 +303,8 @@ impl Problem {
             contact_gap.iter_mut().zip(&geometry.node_gap).for_each(|(m, g)| *m += g);
         }
         // Γ_C's triangles with their own materials (one body's, the secondary's for two, a coating's).
-        let contact_stress = ContactStress::new(&mesh, spec.model, &in_plane, &contact);
-        let gamma0_bound = admissible_gamma0(&mesh, spec.model, &in_plane, &contact);
+        let contact_stress = ContactStress::new(&mesh, spec.model, shear, &contact, mixed);
+        let gamma0_bound = admissible_gamma0(&mesh, spec.model, shear, &contact);
         let contact_matrices = clock.elapsed().as_secs_f64();
         let problem = Self {
             mesh,
@@ -321,6 +335,17 @@ impl Problem {
             problem.check_rotation()?;
         }
         Ok(problem)
+    }
+
+    /// The load on the unknowns without the lifting, `Tᵀ f`, and in the mixed formulation the pressure rows'
+    /// part of the body force ([`mixed::bubble_load`]): what a load factor scales.
+    pub(crate) fn load_on_unknowns(&self) -> Vec<f64> {
+        let mut load = self.dofs.restrict(&self.f_full);
+        if self.spec.formulation.is_mixed() {
+            let bubble = mixed::bubble_load(&self.mesh, &self.in_plane, self.spec.body_force);
+            load[self.dofs.n_displacement..].iter_mut().zip(bubble).for_each(|(l, b)| *l += b);
+        }
+        load
     }
 
     /// A history of `steps` steps moves the obstacle by approach and shift only: one that turns is refused.
@@ -457,7 +482,8 @@ impl ProblemSpec {
 
     /// The defaults of the keywords a problem is built from, besides the required ones, as the Python
     /// binding and the scene files name them: the multiplier points (`multiplier_ratio`, or
-    /// `multiplier_size`; see [`MultiplierPoints::from_keywords`]), the multiplier `space` and the `model`.
+    /// `multiplier_size`; see [`MultiplierPoints::from_keywords`]), the multiplier `space`, the `model` and the
+    /// `formulation`.
     pub fn keyword_defaults() -> Vec<(&'static str, crate::settings::SettingValue)> {
         use crate::choice::Choice;
         use crate::settings::SettingValue;
@@ -468,6 +494,7 @@ impl ProblemSpec {
         };
         let space = ("space", SettingValue::Name(MultiplierSpace::default().as_str().to_string()));
         let model = ("model", SettingValue::Name(Model::default().as_str().to_string()));
-        points.into_iter().chain([space, model]).collect()
+        let formulation = ("formulation", SettingValue::Name(Formulation::default().as_str().to_string()));
+        points.into_iter().chain([space, model, formulation]).collect()
     }
 }

@@ -13,6 +13,7 @@
 use crate::contact::multiplier::{MultiplierPoints, MultiplierSpace};
 use crate::contact::obstacle::{Obstacle, ObstacleShape};
 use crate::fem::elasticity::{Material, Model, Traction};
+use crate::fem::mixed::Formulation;
 use crate::fem::supports::Support;
 use crate::problem::ProblemSpec;
 
@@ -26,6 +27,7 @@ impl ProblemSpec {
         Self {
             material,
             model: Model::default(),
+            formulation: Formulation::default(),
             clamped: Vec::new(),
             supports: Vec::new(),
             body_force: [0.0, 0.0],
@@ -41,6 +43,14 @@ impl ProblemSpec {
     #[must_use]
     pub fn model(mut self, model: Model) -> Self {
         self.model = model;
+        self
+    }
+
+    /// Sets the formulation: P1 displacements, the mixed displacement–pressure one for bodies near
+    /// incompressibility ([`crate::fem::mixed`]), or `Auto` (the default) to choose by ν.
+    #[must_use]
+    pub fn formulation(mut self, formulation: Formulation) -> Self {
+        self.formulation = formulation;
         self
     }
 
@@ -130,6 +140,7 @@ mod tests {
         let literal = ProblemSpec {
             material,
             model: Model::PlaneStress,
+            formulation: Formulation::Auto,
             clamped: vec!["bottom".into()],
             supports: vec![Support::roller("left")],
             body_force: [0.0, -1.0],

@@ -195,6 +195,9 @@ pub(crate) struct EstimatorInput<'a> {
     pub model: Model,
     pub hoop: &'a [f64],
     pub displacement: &'a [f64],
+    /// The nodal pressure of the mixed formulation (empty for the displacement formulation): the energy
+    /// norm is then `∫ 2μ ε:ε + ∫ p²/λ` ([`crate::fem::mixed::energy_norm`]).
+    pub pressure: &'a [f64],
     pub lambda_n: &'a [f64],
     pub lambda_t: &'a [f64],
     pub threshold: &'a [f64],
@@ -302,6 +305,7 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
     let stress: Vec<[f64; 3]> = input.stress.iter().map(|s| s.map(|x| x * ks)).collect();
     let hoop = times(input.hoop, ks);
     let (u, u_n, slip) = (times(input.displacement, ku), times(input.u_n, ku), times(input.slip, ku));
+    let pressure = times(input.pressure, ks);
     let [previous_u, contact_u]: [Vec<[f64; 2]>; 2] =
         [input.previous_u, input.contact_u].map(|v| v.iter().map(|p| p.map(|x| x * ku)).collect());
     let (lambda_n, lambda_t, threshold) =
@@ -325,6 +329,7 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
         model: input.model,
         hoop: &hoop,
         displacement: &u,
+        pressure: &pressure,
         lambda_n: &lambda_n,
         lambda_t: &lambda_t,
         threshold: &threshold,
@@ -554,7 +559,11 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
 
     let eta: Vec<f64> = parts.iter().map(|p| p.sum().sqrt()).collect();
     let total = |f: fn(&Parts) -> f64| parts.iter().map(f).sum::<f64>().sqrt();
-    let energy = crate::fem::elasticity::energy_norm(input.model, mesh, input.materials, input.displacement);
+    let energy = if input.pressure.is_empty() {
+        crate::fem::elasticity::energy_norm(input.model, mesh, input.materials, input.displacement)
+    } else {
+        crate::fem::mixed::energy_norm(input.model, mesh, input.materials, input.displacement, input.pressure)
+    };
     let eta_total = total(Parts::sum);
     // η² / E* is an energy: each triangle's part over its own E* (one E* for a body of one material).
     let eta_energy = parts.iter().enumerate().map(|(t, p)| p.sum() / e_star(t)).sum::<f64>().sqrt();

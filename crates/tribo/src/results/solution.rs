@@ -27,6 +27,9 @@ pub struct Solution {
     pub nodal_stress: Vec<[f64; 3]>,
     /// The von Mises stress per node, of [`Solution::nodal_stress`] with the recovered σ_zz.
     pub nodal_von_mises: Vec<f64>,
+    /// The pressure p per node (N) of the mixed formulation, `σ = 2μ ε(u) − p̄_T I`
+    /// ([`crate::fem::mixed`]); empty for the displacement formulation.
+    pub pressure: Vec<f64>,
     /// Reaction forces on clamped dofs (2N, zero elsewhere): `K u − f` (f the load of the load case).
     pub reactions: Vec<f64>,
     /// Abscissae of the multiplier dofs.
@@ -113,7 +116,12 @@ impl Solution {
         let model = problem.spec.model;
         let materials = &problem.in_plane;
         let displacement = problem.dofs.expand_with(u_free, loading.lifting(problem));
-        let stress4 = element_stresses(model, mesh, materials, &displacement);
+        let pressure = problem.dofs.pressure(u_free).to_vec();
+        let stress4 = if problem.spec.formulation.is_mixed() {
+            crate::fem::mixed::element_stresses(model, mesh, materials, &displacement, &pressure)
+        } else {
+            element_stresses(model, mesh, materials, &displacement)
+        };
         let stress: Vec<[f64; 3]> = stress4.iter().map(|s| [s[0], s[1], s[2]]).collect();
         let von_mises: Vec<f64> = stress4.iter().map(|s| von_mises(*s)).collect();
         let stress_zz: Vec<f64> = stress4.iter().map(|s| s[3]).collect();
@@ -197,6 +205,7 @@ impl Solution {
             model,
             hoop,
             displacement: &displacement,
+            pressure: &pressure,
             lambda_n: &lambda_n,
             lambda_t: &lambda_t,
             threshold: &friction_threshold,
@@ -230,6 +239,7 @@ impl Solution {
             von_mises,
             nodal_stress,
             nodal_von_mises,
+            pressure,
             reactions,
             multiplier_abscissae: problem.multipliers.dof_abscissae(),
             lambda_n,
@@ -273,6 +283,7 @@ impl Solution {
             &self.displacement,
             &self.von_mises,
             &self.nodal_von_mises,
+            &self.pressure,
             &self.reactions,
             &self.lambda_n,
             &self.lambda_t,
@@ -319,15 +330,17 @@ impl Solution {
         let (n, t) = (problem.mesh.n_nodes(), problem.mesh.n_triangles());
         let (q, e, c) = (problem.n_multipliers(), problem.contact.n_edges(), problem.contact.nodes.len());
         // 2N displacements and reactions, 3T + 3N stresses, T σ_zz, von Mises and the two indicators,
-        // N recovered von Mises; 4q on T_H (and q states); 3 per Γ_C edge, 4 per Γ_C node.
-        let floats = (8 * n + 7 * t + 4 * q + 3 * e + 4 * c) as f64;
+        // N recovered von Mises, N pressures (mixed); 4q on T_H (and q states); 3 per Γ_C edge, 4 per Γ_C node.
+        let p = if problem.spec.formulation.is_mixed() { n } else { 0 };
+        let floats = (8 * n + p + 7 * t + 4 * q + 3 * e + 4 * c) as f64;
         (8.0 * floats) as usize + q + 512
     }
 
     /// The per-entity vectors of floats by name (per triangle, node, multiplier dof, edge or node of Γ_C),
     /// as the Python binding and the files name them.
-    pub fn vectors(&self) -> [(&'static str, &[f64]); 16] {
+    pub fn vectors(&self) -> [(&'static str, &[f64]); 17] {
         [
+            ("pressure", &self.pressure),
             ("stress_zz", &self.stress_zz),
             ("von_mises", &self.von_mises),
             ("nodal_von_mises", &self.nodal_von_mises),

@@ -436,7 +436,7 @@ fn step_load_case(problem: &Problem, factor: &Factor, step: &LoadStep, previous:
         (factor.f.clone(), c)
     } else {
         // f̃ + (α − 1) Tᵀ f − Tᵀ A Δū: the load scaled, its lifting moved; one more solve for E A⁻¹ f.
-        let load = problem.dofs.restrict(&problem.f_full);
+        let load = problem.load_on_unknowns();
         let mut f: Vec<f64> = factor.f.iter().zip(&load).map(|(f, l)| f + (alpha - 1.0) * l).collect();
         if let Some(m) = &moved_supports {
             f.iter_mut().zip(&m.a_change).for_each(|(f, a)| *f -= a);

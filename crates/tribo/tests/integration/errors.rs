@@ -13,6 +13,7 @@ fn spec() -> ProblemSpec {
     ProblemSpec {
         material: Material { young: 100.0, poisson: 0.3 },
         model: Model::PlaneStrain,
+        formulation: Default::default(),
         clamped: vec!["top".into()],
         supports: vec![],
         body_force: [0.0, -1.0],

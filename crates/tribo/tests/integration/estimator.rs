@@ -12,6 +12,7 @@ fn an_obstacle_penetrating_between_nodes_is_seen() {
     let spec = ProblemSpec {
         material: Material { young: 1.0, poisson: 0.3 },
         model: Model::PlaneStrain,
+        formulation: Default::default(),
         clamped: vec!["bottom".into()],
         supports: vec![],
         body_force: [0.0, 0.0],

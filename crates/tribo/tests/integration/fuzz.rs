@@ -137,8 +137,8 @@ fn assert_honest(sol: &Solution, settings: &SolverSettings) {
 proptest! {
     #![proptest_config(crate::reproducible(256))]
 
-    /// Any mesh, material, load, obstacle, multiplier mesh, friction law, settings and model: a typed error or an
-    /// honest solution.
+    /// Any mesh, material, load, obstacle, multiplier mesh, friction law, settings, model and formulation: a typed
+    /// error or an honest solution.
     #[test]
     fn hostile_input_is_an_error_or_an_honest_status(
         mesh in any_mesh(),
@@ -152,6 +152,7 @@ proptest! {
         friction in any_friction(),
         settings in any_settings(),
         model in any_model(),
+        formulation in prop_oneof![Just(Formulation::Auto), Just(Formulation::Displacement), Just(Formulation::Mixed)],
     ) {
         let Ok(mesh) = mesh else {
             note("mesh refused");
@@ -162,6 +163,7 @@ proptest! {
         let spec = ProblemSpec {
             material: Material { young, poisson },
             model,
+            formulation,
             clamped: vec![clamped.into()],
             supports: vec![],
             body_force: [load.0, load.1],
@@ -241,6 +243,7 @@ proptest! {
         let spec = ProblemSpec {
             material: Material { young: 10f64.powi(young_exp), poisson },
             model,
+            formulation: Default::default(),
             clamped: vec!["bottom".into()],
             supports: vec![],
             body_force: [0.0, 0.0],

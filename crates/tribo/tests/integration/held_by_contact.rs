@@ -29,6 +29,7 @@ fn block_on_foundation(supports: Vec<Support>, traction: [f64; 2]) -> Problem {
     let spec = ProblemSpec {
         material: Material { young: E, poisson: NU },
         model: Model::PlaneStrain,
+        formulation: Default::default(),
         clamped: vec![],
         supports,
         body_force: [0.0, 0.0],

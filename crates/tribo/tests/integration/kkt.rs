@@ -243,6 +243,7 @@ fn a_slab_pressed_by_a_prescribed_displacement_satisfies_the_discrete_problem() 
     let spec = ProblemSpec {
         material: Material { young: 200.0, poisson: 0.3 },
         model: Model::PlaneStrain,
+        formulation: Default::default(),
         clamped: vec![],
         supports: vec![Support::roller("left"), Support::displacement("top", Some(push * s), Some(-push * c))],
         body_force: [0.0, 0.0],

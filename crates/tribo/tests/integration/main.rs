@@ -24,6 +24,8 @@
 //! * `estimator`: the a posteriori estimate (what it sees, and how it tracks the true error of λ_n);
 //! * `error_bars`: the error bars of the forces and zone widths against a finer mesh, only when asked for;
 //! * `materials`: bodies of several materials (the layered block exact, γ0 from Γ_C's materials, adaptive layers);
+//! * `mixed`: the mixed displacement–pressure formulation (the patch state exact to ν = 0.4999, Hertz without
+//!   locking, clarabel and the active set to one answer, what it refuses);
 //! * `layout`: the house rules of the crate (the layer table of its folders, file sizes).
 //!
 //! Scenes and measures shared with the benches and examples come from the `tribo-testkit` crate.
@@ -46,6 +48,7 @@ mod kkt;
 mod layout;
 mod materials;
 mod methods;
+mod mixed;
 mod moved_supports;
 mod outputs;
 mod patch;

@@ -17,6 +17,7 @@ fn compressed_square(delta: f64, material: Material, space: MultiplierSpace) -> 
     let spec = ProblemSpec {
         material,
         model: Model::PlaneStrain,
+        formulation: Default::default(),
         clamped: vec!["top".into()],
         supports: vec![Support::roller("left"), Support::roller("right")],
         body_force: [0.0, 0.0],

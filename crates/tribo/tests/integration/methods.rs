@@ -107,6 +107,7 @@ fn active_set_and_clarabel_agree_on_the_patch_and_the_checkerboard_mesh() {
     let spec = ProblemSpec {
         material: Material { young: 1000.0, poisson: 0.25 },
         model: Model::PlaneStrain,
+        formulation: Default::default(),
         clamped: vec!["top".into()],
         supports: vec![],
         body_force: [0.0, 0.0],

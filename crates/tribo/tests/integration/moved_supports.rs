@@ -152,6 +152,7 @@ fn supports_that_push_gamma_c_into_the_obstacle_are_refused() {
     let spec = |approach: f64| tribo::ProblemSpec {
         material: tribo::Material { young: 1.0, poisson: 0.3 },
         model: tribo::Model::PlaneStrain,
+        formulation: Default::default(),
         clamped: vec!["left".into(), "right".into()],
         supports: vec![],
         body_force: [0.0, 0.0],

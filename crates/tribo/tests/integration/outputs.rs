@@ -13,6 +13,7 @@ fn square(contact: &str, clamped: &str) -> Problem {
     let spec = ProblemSpec {
         material: Material { young: 1.0, poisson: 0.3 },
         model: Model::PlaneStrain,
+        formulation: Default::default(),
         clamped: vec![clamped.into()],
         supports: vec![],
         body_force: [0.0, 0.0],
@@ -202,6 +203,7 @@ fn the_choice_registry_lists_every_option() {
         "condensation",
         "coulomb",
         "diagonal",
+        "formulation",
         "friction",
         "marking",
         "model",
@@ -223,21 +225,23 @@ fn the_choice_registry_lists_every_option() {
     assert_eq!(registry["stop_on"], ["bound", "hierarchical", "enriched"]);
     assert_eq!(registry["model"], ["plane_strain", "plane_stress", "axisymmetric"]);
     assert_eq!(registry["coulomb"], ["fixed_point", "newton", "auto"]);
+    assert_eq!(registry["formulation"], ["auto", "displacement", "mixed"]);
     for name in &registry["condensation"] {
         assert_eq!(Condensation::parse(name).map(Condensation::as_str), Ok(*name));
     }
 }
 
-/// The defaults of the keywords a problem is built from give back the default multiplier points, space and
-/// model.
+/// The defaults of the keywords a problem is built from give back the default multiplier points, space,
+/// model and formulation.
 #[test]
 fn problem_keyword_defaults_give_back_the_defaults() {
     let defaults = ProblemSpec::keyword_defaults();
     let ratio = match defaults.as_slice() {
-        [("multiplier_ratio", SettingValue::Float(r)), ("space", SettingValue::Name(space)), ("model", SettingValue::Name(model))] =>
+        [("multiplier_ratio", SettingValue::Float(r)), ("space", SettingValue::Name(space)), ("model", SettingValue::Name(model)), ("formulation", SettingValue::Name(formulation))] =>
         {
             assert_eq!(MultiplierSpace::parse(space), Ok(MultiplierSpace::default()));
             assert_eq!(Model::parse(model), Ok(Model::default()));
+            assert_eq!(Formulation::parse(formulation), Ok(Formulation::Auto));
             *r
         }
         other => panic!("{other:?}"),

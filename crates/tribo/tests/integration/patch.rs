@@ -29,6 +29,7 @@ fn patch_problem(
     let spec = ProblemSpec {
         material: Material { young: E, poisson: NU },
         model: Model::PlaneStrain,
+        formulation: Default::default(),
         clamped: vec!["top".into()],
         supports: vec![],
         body_force: [0.0, 0.0],
@@ -177,6 +178,7 @@ fn constant_strain_without_contact_is_reproduced() {
                 let spec = ProblemSpec {
                     material: Material { young: E, poisson: 0.0 },
                     model: Model::PlaneStrain,
+                    formulation: Default::default(),
                     clamped: vec!["left".into()],
                     supports: vec![],
                     body_force: [0.0, 0.0],

@@ -138,6 +138,7 @@ impl Case {
         let spec = ProblemSpec {
             material: Material { young: self.young, poisson: self.poisson },
             model: Model::PlaneStrain,
+            formulation: Default::default(),
             clamped: vec!["bottom".into()],
             supports: vec![],
             body_force: [0.0, 0.0],
@@ -409,6 +410,7 @@ fn the_answer_does_not_depend_on_the_units() {
         let spec = ProblemSpec {
             material: Material { young, poisson: 0.3 },
             model: Model::PlaneStrain,
+            formulation: Default::default(),
             clamped: vec![],
             supports: vec![Support::displacement("bottom", Some(0.0), Some(base))],
             body_force: [0.0, 0.0],
@@ -474,6 +476,7 @@ fn subnormal_data_are_refused_by_name() {
     let spec = |approach: f64, shift: f64, base: f64| ProblemSpec {
         material: Material { young: 1.0, poisson: 0.3 },
         model: Model::PlaneStrain,
+        formulation: Default::default(),
         clamped: vec![],
         supports: vec![Support::displacement("bottom", Some(0.0), Some(base))],
         body_force: [0.0, 0.0],

@@ -21,6 +21,7 @@ fn spec(supports: Vec<Support>, poisson: f64) -> ProblemSpec {
     ProblemSpec {
         material: Material { young: 100.0, poisson },
         model: Model::PlaneStrain,
+        formulation: Default::default(),
         clamped: vec![],
         supports,
         body_force: [0.0, 0.0],

@@ -99,7 +99,7 @@ impl core::fmt::Display for SaddleError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             Self::InvalidInput(s) => write!(f, "invalid input: {s}"),
-            Self::NotPositiveDiagonal { index } => write!(f, "A[{index},{index}] is not positive"),
+            Self::NotPositiveDiagonal { index } => write!(f, "A[{index},{index}] has not the expected sign"),
             Self::ZeroPivot { position } => {
                 write!(f, "zero pivot at permuted position {position}: system not quasi-definite")
             }
@@ -151,6 +151,10 @@ pub struct SaddleOptions {
     /// The most values the factor may hold: a larger one is refused ([`SaddleError::TooLarge`]) after the
     /// symbolic analysis, before anything of its size is allocated.
     pub max_factor_len: usize,
+    /// The number of trailing unknowns of A with a negative diagonal: A is then symmetric quasi-definite
+    /// (positive definite on the leading block, negative definite on these: the pressures of a mixed
+    /// formulation), and so is K̃, whose expected pivot signs follow (0: A positive definite).
+    pub negative: usize,
 }
 
 impl Default for SaddleOptions {
@@ -164,6 +168,7 @@ impl Default for SaddleOptions {
             par: Par::Seq,
             supernodal_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
             max_factor_len: usize::MAX,
+            negative: 0,
         }
     }
 }
@@ -237,8 +242,8 @@ fn merge_sorted(list: &mut Vec<(usize, f64)>) {
 }
 
 impl SaddleSystem {
-    /// Symbolic analysis with default options. `a`: `n × n` SPD, both
-    /// triangles stored; `e_rows`: the `m` rows of `E` as `(column, value)`;
+    /// Symbolic analysis with default options. `a`: `n × n` SPD (or quasi-definite with
+    /// [`SaddleOptions::negative`]), both triangles stored; `e_rows`: the `m` rows of `E` as `(column, value)`;
     /// `d`: entries `(i, j, v)` of `D`, both triangles (may be empty: `D = 0`).
     pub fn new(
         a: SparseColMatRef<'_, usize, f64>,
@@ -294,6 +299,9 @@ impl SaddleSystem {
                 return Err(SaddleError::InvalidInput(format!("non-finite entry in column {j} of A")));
             }
             diag_a[j] = al.get(start).filter(|&&(i, _)| i == j).map_or(0.0, |&(_, v)| v);
+            // The negative tail's diagonal is kept by its magnitude: the scaling reads |A_jj|.
+            let sign = if j + opts.negative >= n { -1.0 } else { 1.0 };
+            diag_a[j] *= sign;
             if !(diag_a[j] > 0.0) {
                 return Err(SaddleError::NotPositiveDiagonal { index: j });
             }
@@ -410,7 +418,7 @@ impl SaddleSystem {
         let factor_mem =
             MemBuffer::try_new(symbolic.factorize_numeric_ldlt_scratch::<f64>(opts.par, Default::default()))
                 .map_err(too_large)?;
-        let signs: Vec<i8> = (0..nk).map(|i| if i < n { 1 } else { -1 }).collect();
+        let signs: Vec<i8> = (0..nk).map(|i| if i + opts.negative < n { 1 } else { -1 }).collect();
         Ok(Self {
             n,
             m,
@@ -725,3 +733,8 @@ fn constrained_amd(
 
 #[cfg(test)]
 mod tests;
+
+/// The pivots D of an LDLᵀ factor (`values` of faer's numeric LDLᵀ with `symbolic`), in the factor's order.
+pub(crate) fn ldlt_pivots(symbolic: &SymbolicCholesky<usize>, values: &[f64]) -> Vec<f64> {
+    Blocks::new(symbolic, values).diagonal()
+}

@@ -1,0 +1,154 @@
+"""Study 25 — locking: Hertz as ν → ½, P1 displacements against the mixed displacement–pressure formulation.
+
+Issue 41 asks for a locking-free option: λ_n within 2 % of Hertz at ν = 0.499 and 0.4999 on the meshes where P1
+displacements are within 0.7 % at ν = 0.3, its rate under refinement and its cost at most 2.5 times the P1 solve
+of the same mesh. The Hertz scene (a rigid cylinder R = 1 pushed δ = 0.01 into the block (−2, 2) × (−2, 0),
+clamped at the bottom, frictionless, E = 200) is solved on meshes graded toward [−0.3, 0.3] at growth 0.05
+(h_max = 0.1) for h_min = 0.01 … 0.000625, at ν from 0.3 to 0.4999, with `formulation="displacement"` (P1) and
+`formulation="mixed"` (`tribo::fem::mixed`: P1 displacements and pressures, MINI's bubble condensed). Each
+solve's λ_n is measured against the plane-strain Hertz pressure of its own force (E* = E / (1 − ν²)), in
+relative L², and timed (the solve: the factorization and the QPs; building the problem apart; each the fastest
+of three runs on a fresh problem).
+
+    python scripts/study_locking.py            # docs/locking.{csv,md,png}
+    python scripts/study_locking.py --smoke --out /tmp/x
+
+What is left out: the finite block's share of the force (the same for both formulations); memory (the mixed
+factor holds about 1.5 times the unknowns); a locking-free formulation for axisymmetry and for two bodies.
+"""
+
+from __future__ import annotations
+
+import math
+import statistics
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import studylib as sl  # noqa: E402
+
+import tribo  # noqa: E402
+
+POISSONS = [0.3, 0.4, 0.45, 0.47, 0.49, 0.499, 0.4999]
+H_MINS = [0.01, 0.005, 0.0025, 0.00125, 0.000625]
+
+
+def mesh(h_min: float) -> tribo.Mesh:
+    return sl.graded_mesh(h_min, h_max=0.1, growth=0.05)
+
+
+def solve(m: tribo.Mesh, nu: float, formulation: str, repeat: int) -> tuple[tribo.Problem, tribo.Solution, float,
+                                                                             float]:
+    """The problem built and solved ``repeat`` times afresh (no factorization kept): the fastest build and solve."""
+    builds, solves = [], []
+    for _ in range(repeat):
+        problem, build = sl.timed(lambda: tribo.Problem(
+            m, young=sl.YOUNG, poisson=nu, clamped="bottom", contact="top", obstacle=tribo.Obstacle.circle(sl.RADIUS),
+            approach=0.01, formulation=formulation))
+        solution, seconds = sl.timed(problem.solve)
+        assert solution.report.status == "converged", (nu, formulation, solution.report.status)
+        builds.append(build)
+        solves.append(seconds)
+    return problem, solution, min(builds), min(solves)
+
+
+def run(smoke: bool, out: Path) -> list[list[object]]:
+    poissons = [0.3, 0.4999] if smoke else POISSONS
+    h_mins = [0.02, 0.01] if smoke else H_MINS
+    rows: list[list[object]] = []
+    for h_min in h_mins:
+        m = mesh(h_min)
+        for nu in poissons:
+            for formulation in ("displacement", "mixed"):
+                problem, solution, build, seconds = solve(m, nu, formulation, 1 if smoke else 3)
+                error = sl.lambda_l2_error(problem, solution, poisson=nu)
+                rows.append([h_min, nu, formulation, problem.n_free, solution.normal_force, error, build, seconds])
+                print(f"h_min {h_min} ν {nu} {formulation}: {problem.n_free} unknowns, λ_n {100 * error:.3f} % "
+                      f"off Hertz, {seconds:.3f} s")
+    headers = ["h_min", "poisson", "formulation", "unknowns", "P", "error", "build_seconds", "solve_seconds"]
+    out.mkdir(parents=True, exist_ok=True)
+    sl.write_csv(out / "locking.csv", headers, rows)
+    return page(rows, out)
+
+
+def pick(rows: list[list[object]], h_min: float, nu: float, formulation: str) -> list[object]:
+    return next(r for r in rows if r[0] == h_min and r[1] == nu and r[2] == formulation)
+
+
+def page(rows: list[list[object]], out: Path) -> list[list[object]]:
+    h_mins = sorted({float(r[0]) for r in rows}, reverse=True)  # type: ignore[arg-type]
+    poissons = sorted({float(r[1]) for r in rows})  # type: ignore[arg-type]
+    finest = h_mins[-1]
+    plt = sl.pyplot()
+    fig, axes = plt.subplots(1, 3, figsize=(13.0, 4.0))
+    for formulation, style in (("displacement", "o-"), ("mixed", "s-")):
+        errors = [100 * float(pick(rows, finest, nu, formulation)[5]) for nu in poissons]  # type: ignore[arg-type]
+        axes[0].semilogy([1 - 2 * nu for nu in poissons], errors, style, label=formulation)
+    axes[0].invert_xaxis()
+    axes[0].set_xscale("log")
+    axes[0].set_xlabel("1 − 2ν")
+    axes[0].set_ylabel("λ_n against Hertz, relative L² (%)")
+    axes[0].set_title(f"at h_min = {finest}", fontsize=10)
+    axes[0].axhline(2.0, color="grey", ls="--", lw=0.8, label="2 % (issue 41)")
+    axes[0].legend(fontsize=7)
+    series = [("displacement", poissons[0]), ("displacement", poissons[-1]), ("mixed", poissons[0]),
+              ("mixed", poissons[-1])]
+    for formulation, nu in series:
+        mine = [pick(rows, h, nu, formulation) for h in h_mins]
+        axes[1].loglog([float(r[3]) for r in mine], [100 * float(r[5]) for r in mine],  # type: ignore[arg-type]
+                       "o-" if formulation == "displacement" else "s--", label=f"{formulation}, ν = {nu}")
+        axes[2].semilogx([float(r[3]) for r in mine],  # type: ignore[arg-type]
+                         [float(r[7]) / float(pick(rows, r[0], nu, "displacement")[7])  # type: ignore[arg-type]
+                          for r in mine], "o-" if formulation == "displacement" else "s--",
+                         label=f"{formulation}, ν = {nu}")
+    axes[1].set_xlabel("unknowns")
+    axes[1].set_title("under refinement", fontsize=10)
+    axes[1].legend(fontsize=7)
+    axes[2].axhline(2.5, color="grey", ls="--", lw=0.8, label="2.5 (issue 41)")
+    axes[2].set_xlabel("unknowns")
+    axes[2].set_ylabel("solve time / P1's on the same mesh and ν")
+    axes[2].legend(fontsize=7)
+    fig.suptitle("Hertz as ν → ½: P1 displacements lock, the mixed formulation does not", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(out / "locking.png", dpi=110)
+    plt.close(fig)
+    nu_hi = poissons[-1]
+    p1, mixed = pick(rows, finest, poissons[0], "displacement"), pick(rows, finest, nu_hi, "mixed")
+    locked = pick(rows, finest, nu_hi, "displacement")
+    ratios = [float(pick(rows, r[0], r[1], "mixed")[7]) / float(r[7])  # type: ignore[arg-type]
+              for r in rows if r[2] == "displacement"]
+    totals = [(float(pick(rows, r[0], r[1], "mixed")[7]) + float(pick(rows, r[0], r[1], "mixed")[6]))  # type: ignore[arg-type]
+              / (float(r[7]) + float(r[6])) for r in rows if r[2] == "displacement"]  # type: ignore[arg-type]
+    ratio = lambda nu: [float(pick(rows, h, nu, "displacement")[5]) / float(pick(rows, h, nu, "mixed")[5])  # type: ignore[arg-type]  # noqa: E731
+                        for h in h_mins]
+    at49, at45 = (ratio(0.49), ratio(0.45)) if 0.45 in poissons else ([math.nan], [math.nan])
+    rate = sl.fitted_rate([float(pick(rows, h, nu_hi, "mixed")[3]) for h in h_mins],  # type: ignore[arg-type]
+                          [float(pick(rows, h, nu_hi, "mixed")[5]) for h in h_mins])  # type: ignore[arg-type]
+    found = "\n".join([
+        f"* at h_min = {finest} ({p1[3]} P1 unknowns, {mixed[3]} mixed): P1 at ν = {poissons[0]} is "
+        f"{100 * float(p1[5]):.2f} % off Hertz; at ν = {nu_hi} P1 is {100 * float(locked[5]):.1f} % off "  # type: ignore[arg-type]
+        f"(force {float(locked[4]):.4g}), the mixed formulation {100 * float(mixed[5]):.2f} % "  # type: ignore[arg-type]
+        f"(force {float(mixed[4]):.4g})",  # type: ignore[arg-type]
+        f"* the mixed formulation's error at ν = {nu_hi} falls like N^{rate:.2f} over these meshes",
+        f"* its solve takes {min(ratios):.2f}–{max(ratios):.2f} times the P1 solve of the same mesh and ν "
+        f"(median {statistics.median(ratios):.2f}); with the building of the problem, "
+        f"{min(totals):.2f}–{max(totals):.2f} times (median {statistics.median(totals):.2f})",
+        f"* at ν = 0.49 the P1 error is {min(at49):.1f}–{max(at49):.1f} times the mixed one on the same mesh, at "
+        f"ν = 0.45 {min(at45):.1f}–{max(at45):.1f} times (the default formulation, 'auto', is mixed from ν = 0.49)",
+    ])
+    table = sl.markdown_table(
+        ["h_min", "ν", "formulation", "unknowns", "P", "λ_n error", "build (s)", "solve (s)"],
+        [[r[0], r[1], r[2], r[3], f"{float(r[4]):.5g}", f"{100 * float(r[5]):.3f} %",  # type: ignore[arg-type]
+          f"{float(r[6]):.3f}", f"{float(r[7]):.3f}"] for r in rows])  # type: ignore[arg-type]
+    text = "\n\n".join(["Found:", found, "![locking](locking.png)", table])
+    sl.write_page(out / "locking.md", "Study 25: locking as ν → ½", __doc__ or "", sl.commands_block(__doc__ or ""),
+                  text)
+    return rows
+
+
+def main(argv: list[str] | None = None) -> list[list[object]]:
+    return sl.cli(run, __doc__, argv)  # type: ignore[no-any-return]
+
+
+if __name__ == "__main__":
+    main()
