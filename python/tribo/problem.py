@@ -442,7 +442,8 @@ class Problem(_tribo.Problem):
     ) -> Adaptive:
         """Solves adaptively from this problem's mesh: solve, estimate, mark, refine by newest-vertex
         bisection, until the relative estimated error is at most ``tol`` (default 0.01) or the next level
-        would exceed ``max_unknowns`` (default 200 000) displacement unknowns; returns an Adaptive with the
+        would exceed ``max_unknowns`` (default 200 000) unknowns (the pressures of the mixed formulation counted);
+        returns an Adaptive with the
         last ``solution``, the ``problem`` on the last mesh, every level and the reason it stopped.
 
         The relative estimate is that of the contact tractions (λ in L²(Γ_C)) when something touches, of

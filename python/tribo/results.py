@@ -202,7 +202,8 @@ class Solution(_Record):
         mu: Coulomb coefficient μ, or None.
         displacement: nodal displacements, (N, 2).
         stress: constant stress (σ_xx, σ_yy, σ_xy) per triangle, (T, 3).
-        stress_zz: out-of-plane stress per triangle, (T,): ν (σ_xx + σ_yy) in plane strain, 0 in plane stress, the
+        stress_zz: out-of-plane stress per triangle, (T,): ν (σ_xx + σ_yy) in plane strain (−p̄ in the mixed
+            formulation), 0 in plane stress, the
             hoop stress σ_θθ in axisymmetry (where x is r, y the axis and ``stress`` is (σ_rr, σ_zz, σ_rz)).
         von_mises: von Mises stress per triangle (with that σ_zz), (T,).
         reactions: reaction forces K u − f per node, (N, 2) (zero off the supported nodes).
@@ -443,7 +444,7 @@ class Level(_Record):
     """One level of an adaptive solve.
 
     Attributes:
-        unknowns: displacement unknowns (after the supports).
+        unknowns: unknowns (displacements after the supports, and the pressures of the mixed formulation).
         multipliers: multiplier dofs q (per component).
         triangles: triangles of the level's mesh.
         estimate: the level's a posteriori estimate (the keys of ``Report.estimate``).

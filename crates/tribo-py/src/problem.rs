@@ -50,11 +50,11 @@ pub struct ProblemData {
     supports: Vec<PySupport>,
     /// Multiplier space, 'P0' or 'P1'.
     space: &'static str,
-    /// Number of free displacement dofs.
+    /// Number of unknowns: the free displacement dofs, and in the mixed formulation one pressure per node.
     n_free: usize,
     /// Number of multiplier dofs q (per component).
     n_multipliers: usize,
-    /// The admissible bound on γ0 (K − G stays positive definite below it).
+    /// The admissible bound on γ0 (K − G stays positive definite, or quasi-definite when mixed, below it).
     gamma0_bound: f64,
     /// The triangle that sets the admissible bound on γ0.
     gamma0_bound_element: usize,

@@ -123,7 +123,7 @@ pub const MIN_IN_CONTACT: usize = 10;
 /// One level of an adaptive solve.
 #[derive(Debug, Clone)]
 pub struct Level {
-    /// Unknowns (displacement dofs after the supports).
+    /// Unknowns (displacement dofs after the supports, and the pressures of a mixed formulation).
     pub unknowns: usize,
     /// Multiplier dofs q (per component).
     pub multipliers: usize,
@@ -429,7 +429,7 @@ impl Problem {
                     let solutions = read(&answer);
                     let marked = marking::mark(&marking::indicators(&solutions), adapt.theta, adapt.marking);
                     let refined = bisect(&problem.mesh, &marked, adapt.bisection)?;
-                    if 2 * refined.mesh().n_nodes() > adapt.max_unknowns {
+                    if problem.unknowns_per_node() * refined.mesh().n_nodes() > adapt.max_unknowns {
                         None
                     } else {
                         Some(next_problem(&problem, &solutions, refined, ratio)?)

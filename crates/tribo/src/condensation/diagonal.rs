@@ -30,9 +30,9 @@ impl Factor {
 /// The estimate of `H_ii` on the unknowns `idx` (see the module documentation).
 fn estimated(factor: &Factor, idx: &[usize]) -> Vec<f64> {
     let (a_diag, d_diag) = (factor.a_diagonal(), factor.d_diagonal());
-    let jacobi: Vec<f64> =
-        // (over the positive pivots of A: a mixed formulation's pressures have negative ones)
-        idx.iter().map(|&i| factor.e_rows[i].iter().filter(|e| a_diag[e.0] > 0.0).map(|&(k, v)| v * v / a_diag[k]).sum::<f64>()).collect();
+    // (over A's positive diagonal entries: a mixed formulation's pressures have negative ones)
+    let row = |i: usize| factor.e_rows[i].iter().filter(|e| a_diag[e.0] > 0.0).map(|&(k, v)| v * v / a_diag[k]);
+    let jacobi: Vec<f64> = idx.iter().map(|&i| row(i).sum::<f64>()).collect();
     let step = (idx.len() / SAMPLES).max(1);
     let sample: Vec<usize> = (0..idx.len()).step_by(step).filter(|&a| jacobi[a] > 0.0).collect();
     let cols: Vec<usize> = sample.iter().map(|&a| idx[a]).collect();

@@ -1,11 +1,13 @@
-//! The stabilized system condensed onto Γ_C: one sparse Cholesky factorization of `A = K − G`, then the
+//! The stabilized system condensed onto Γ_C: one sparse Cholesky factorization of `A = K − G` (LDLᵀ for
+//! the quasi-definite A of the mixed formulation, [`crate::fem::mixed`]), then the
 //! multiplier operator `H = E A⁻¹ Eᵀ + Dγ` and the linear term `c = d − E A⁻¹ f` of the QP.
 //!
 //! This module is linear algebra only: it is handed `K`, `−G`, the rows of `E`, `Dγ`, `f` and `d` (built by
 //! [`crate::Problem::condense`] from [`crate::contact::operators`] and [`crate::contact::mortar`]) and knows nothing of
 //! meshes or contact.
 //!
-//! This is the only place that touches all n displacement unknowns. `c` costs one solve; a column of H
+//! This is the only place that touches all n unknowns (displacements, and a mixed formulation's
+//! pressures). `c` costs one solve; a column of H
 //! costs one solve with the factor (done in blocks of columns) and is computed only when a QP asks for it
 //! and then kept: the working-set QP ([`crate::qp::working_set`]) only needs the columns of the multiplier
 //! dofs that can be in contact, so on a long Γ_C with a small contact zone most of H is never formed.
@@ -183,7 +185,7 @@ impl Factor {
                 name: "condensation",
                 value: f64::NAN,
                 what: "'schur' (the partial Cholesky factorization) needs a positive definite A, and the mixed \
-                       formulation's is quasi-definite: use 'auto', 'columns' or 'saddle'"
+                       formulation's is quasi-definite: use 'auto' or 'columns' (or formulation = 'displacement')"
                     .to_string(),
             });
         }

@@ -90,17 +90,7 @@ fn stiffness_on_unknowns(
     let n_free = dofs.n_free;
     let too_large = || Error::Assembly { matrix: "K", what: format!("{n_nodes} nodes: more than 2³² − 1") };
     u32::try_from(n_nodes).map_err(|_| too_large())?;
-    // The unknowns of node i are first[i]..first[i + 1].
-    let mut first = Vec::with_capacity(n_nodes + 1);
-    first.push(0usize);
-    for ns in &dofs.nodes {
-        let count = match ns {
-            NodeSupport::Free => 2,
-            NodeSupport::Slide { .. } => 1,
-            NodeSupport::Fixed { .. } => 0,
-        };
-        first.push(first.last().copied().unwrap_or(0) + count);
-    }
+    let first = first_unknowns(dofs);
     debug_assert_eq!(first[n_nodes], n_free);
     let (adj_ptr, adj) = node_graph(mesh);
     // Per entry p of node i's neighbour list: the offset, in each column of node i, of the first row of
@@ -172,9 +162,25 @@ fn stiffness_on_unknowns(
     Ok((SparseColMat::new(pattern, values), k_lift))
 }
 
+/// The first displacement unknown of each node, and their count after the last: the unknowns of node i are
+/// `first[i]..first[i + 1]` (numbered node by node).
+pub(crate) fn first_unknowns(dofs: &Dofs) -> Vec<usize> {
+    let mut first = Vec::with_capacity(dofs.nodes.len() + 1);
+    first.push(0usize);
+    for ns in &dofs.nodes {
+        let count = match ns {
+            NodeSupport::Free => 2,
+            NodeSupport::Slide { .. } => 1,
+            NodeSupport::Fixed { .. } => 0,
+        };
+        first.push(first.last().copied().unwrap_or(0) + count);
+    }
+    first
+}
+
 /// The nodes that share a triangle with each node (itself included), sorted: node i's are
 /// `adj[ptr[i]..ptr[i + 1]]` (32-bit indices, checked by the caller).
-fn node_graph(mesh: &Mesh) -> (Vec<usize>, Vec<u32>) {
+pub(crate) fn node_graph(mesh: &Mesh) -> (Vec<usize>, Vec<u32>) {
     let n = mesh.n_nodes();
     let mut ptr = vec![0usize; n + 1];
     for tri in mesh.triangles() {

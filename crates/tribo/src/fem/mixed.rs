@@ -1,7 +1,7 @@
 //! The mixed displacement–pressure formulation, for bodies near incompressibility (ν → ½), where P1
 //! displacements lock: the volumetric stiffness λ grows without bound against the shear modulus μ, and
-//! the few P1 fields whose divergence vanishes on every triangle are far too stiff (λ_n 18 % off Hertz at
-//! ν = 0.499 on meshes where it is 0.7 % off at ν = 0.3).
+//! the few P1 fields whose divergence vanishes on every triangle are far too stiff (study 25, Hertz graded
+//! to h_min = 0.0025: λ_n 17 % off at ν = 0.499 and 60 % at 0.4999, where it is 0.75 % off at ν = 0.3).
 //!
 //! # The mixed form
 //! With the pressure `p = −λ div u` an unknown of its own, `σ = 2μ ε(u) − p I`, and the body's equations are
@@ -68,12 +68,12 @@
 //! in nearly incompressible elasticity, Appl. Numer. Math. 54 (2005). R. J. Vanderbei, Symmetric
 //! quasidefinite matrices, SIAM J. Optim. 5 (1995).
 
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
 
 use crate::choice::named_choice;
 use crate::error::{Error, Result};
-use crate::fem::assemble::LinearSystem;
+use crate::fem::assemble::{first_unknowns, node_graph, LinearSystem};
 use crate::fem::dofs::Dofs;
 use crate::fem::elasticity::{element_dofs, strain_displacement, Material, MaterialField, Materials, Model};
 use crate::mesh::Mesh;
@@ -81,8 +81,9 @@ use crate::mesh::Mesh;
 /// The Poisson's ratio (in-plane, the largest of a body's materials) from which [`Formulation::Auto`] takes the
 /// mixed formulation. Measured in study 25 (`docs/locking.md`, Hertz graded to h_min = 0.01 … 0.000625): at
 /// ν = 0.49 the P1 displacements' λ_n is 3.3–5.7 times as far from Hertz as the mixed formulation's on the same
-/// mesh, more than the mixed solve's cost (about 2–2.5 times P1's) buys by refining P1; at ν = 0.45 it is
-/// 1.3–1.8 times, less than that. It is also where `tribo.check_solution` warns of locking.
+/// mesh, more than the mixed solve's cost (about twice P1's: 1.9–2.6) buys by refining P1 (twice the
+/// unknowns lower P1's error about twofold there: it falls about like 1/N); at ν = 0.45 it is 1.3–1.8 times,
+/// less than that. It is also where `tribo.check_solution` warns of locking.
 pub const MIXED_FROM_POISSON: f64 = 0.49;
 
 /// How the body's unknowns are discretized.
@@ -90,8 +91,8 @@ pub const MIXED_FROM_POISSON: f64 = 0.49;
 pub enum Formulation {
     /// [`Formulation::Mixed`] for a plane-strain body whose Poisson's ratio reaches [`MIXED_FROM_POISSON`],
     /// [`Formulation::Displacement`] otherwise (plane stress never locks, its in-plane ν' = ν/(1 + ν) stays
-    /// below ⅓; axisymmetry has no mixed formulation yet). A built problem holds the choice made
-    /// (`problem.spec.formulation`).
+    /// below ⅓; axisymmetry has no mixed formulation yet, nor two bodies; a body with a material of ν ≤ 0
+    /// beside it keeps P1). A built problem holds the choice made (`problem.spec.formulation`).
     #[default]
     Auto,
     /// P1 displacements alone: the paper's method. Locks as ν → ½.
@@ -117,14 +118,18 @@ impl Formulation {
     /// the others stand for themselves.
     pub fn resolve(self, model: Model, materials: &Materials) -> Self {
         let nu = materials.materials.iter().fold(f64::NEG_INFINITY, |m, x| m.max(x.poisson));
+        // (not where the mixed formulation would refuse a material: ν ≤ 0 beside rubber, say)
+        let takes = Formulation::Mixed.validate(model, materials).is_ok();
         match self {
-            Formulation::Auto if model == Model::PlaneStrain && nu >= MIXED_FROM_POISSON => Formulation::Mixed,
+            Formulation::Auto if model == Model::PlaneStrain && nu >= MIXED_FROM_POISSON && takes => Formulation::Mixed,
             Formulation::Auto => Formulation::Displacement,
             f => f,
         }
     }
 
     /// Checks that this formulation takes `model` and every material of `materials` (their in-plane laws).
+    /// One pressure per node is continuous across an interface of materials, where the exact p = −λ div u
+    /// jumps: the method stays conforming and converges, the pressure smeared over the interface's triangles.
     ///
     /// # Errors
     /// [`Error::BadAxisymmetry`] for the mixed formulation of an axisymmetric body; [`Error::BadMaterial`]
@@ -234,53 +239,70 @@ pub fn assemble_mixed(
     shear: LinearSystem,
     dofs: &Dofs,
 ) -> Result<LinearSystem> {
-    let (n_u, n) = (dofs.n_displacement, dofs.n_free);
-    let k = shear.k_matrix.as_ref();
-    let mut trip: Vec<Triplet<usize, usize, f64>> = Vec::with_capacity(k.compute_nnz() + 45 * mesh.n_triangles());
-    for j in 0..n_u {
-        for (i, v) in k.row_idx_of_col(j).zip(k.val_of_col(j)) {
-            trip.push(Triplet::new(i, j, *v));
-        }
+    let (n_u, n, n_nodes) = (dofs.n_displacement, dofs.n_free, mesh.n_nodes());
+    let first = first_unknowns(dofs);
+    let (adj_ptr, adj) = node_graph(mesh);
+    // Every column of node i (its displacement unknowns and its pressure) has the same rows, straight into
+    // compressed columns from the mesh graph as K is (`fem::assemble`): the displacement unknowns of i's
+    // neighbours (K_μ's rows there, in its order), then their pressures.
+    let u_rows = |i: usize| adj[adj_ptr[i]..adj_ptr[i + 1]].iter().map(|&m| first[m as usize + 1] - first[m as usize]);
+    let count = |i: usize| u_rows(i).sum::<usize>() + (adj_ptr[i + 1] - adj_ptr[i]);
+    let mut col_ptr = Vec::with_capacity(n + 1);
+    col_ptr.push(0usize);
+    let columns = (0..n_nodes).flat_map(|i| std::iter::repeat_n(i, first[i + 1] - first[i])).chain(0..n_nodes);
+    for i in columns.clone() {
+        col_ptr.push(col_ptr.last().copied().unwrap_or(0) + count(i));
     }
+    let mut row_idx = Vec::with_capacity(col_ptr[n]);
+    for i in columns {
+        let list = &adj[adj_ptr[i]..adj_ptr[i + 1]];
+        list.iter().for_each(|&m| row_idx.extend(first[m as usize]..first[m as usize + 1]));
+        row_idx.extend(list.iter().map(|&m| n_u + m as usize));
+    }
+    let mut values = vec![0.0; col_ptr[n]];
+    let k = shear.k_matrix.as_ref();
+    for j in 0..n_u {
+        let v = k.val_of_col(j);
+        values[col_ptr[j]..col_ptr[j] + v.len()].copy_from_slice(v);
+    }
+    // The entry of row `r` in column `c` (both in the triangle's pattern).
+    let at = |c: usize, r: usize| col_ptr[c] + row_idx[col_ptr[c]..col_ptr[c + 1]].binary_search(&r).unwrap_or(0);
     let mut f_p = bubble_load(mesh, in_plane, body_force);
     let lifted = divergence(mesh, &dofs.lifting);
     for (t, tri) in mesh.triangles().iter().enumerate() {
         let (g, area) = hat_gradients(mesh, t);
         let (lambda, mu) = lame(in_plane.at(t));
         let (c, _) = bubble(&g, area, mu);
-        let dofs_t = element_dofs(tri);
         for (a, &i) in tri.iter().enumerate() {
             let p = n_u + i;
-            for (l, &d) in dofs_t.iter().enumerate() {
+            for (l, &d) in element_dofs(tri).iter().enumerate() {
                 // −∫ φ_i div(φ_d e_c) = −|T|/3 ∂_c φ_j.
                 if let Some((col, coeff)) = dofs.unknown(d) {
                     let v = -area / 3.0 * g[(l / 2, l % 2)] * coeff;
-                    trip.push(Triplet::new(p, col, v));
-                    trip.push(Triplet::new(col, p, v));
+                    values[at(col, p)] += v;
+                    values[at(p, col)] += v;
                 }
             }
             for (b, &j) in tri.iter().enumerate() {
                 let mass = area / 12.0 * if a == b { 2.0 } else { 1.0 };
-                trip.push(Triplet::new(p, n_u + j, -(mass / lambda + c[(a, b)])));
+                values[at(n_u + j, p)] -= mass / lambda + c[(a, b)];
             }
         }
     }
     // −B ū moved to the right: the pressure rows' load is B ū (the lifting's divergence).
     f_p.iter_mut().zip(&lifted).for_each(|(fp, l)| *fp += l);
-    if let Some(v) = trip.iter().find(|t| !t.val.is_finite()) {
-        return Err(Error::Assembly {
-            matrix: "the mixed system",
-            what: format!("non-finite entry at ({}, {})", v.row, v.col),
-        });
+    if let Some(e) = values.iter().position(|v| !v.is_finite()) {
+        return Err(Error::Assembly { matrix: "the mixed system", what: format!("non-finite entry {e}") });
     }
     if let Some(i) = f_p.iter().position(|v| !v.is_finite()) {
         return Err(Error::NonFiniteLoad { target: format!("the pressure row of node {i}"), x: f_p[i], y: f64::NAN });
     }
-    let k_matrix = SparseColMat::try_new_from_triplets(n, n, &trip)
-        .map_err(|e| Error::Assembly { matrix: "the mixed system", what: format!("{e:?}") })?;
+    // faer's checks hold by construction: col_ptr adds counts, and each column's rows increase (the
+    // neighbour lists are sorted, the displacement unknowns numbered node by node, the pressures after them).
+    let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
     let mut f_free = shear.f_free;
     f_free.extend(f_p);
-    Ok(LinearSystem { k_matrix, f_free, f_full: shear.f_full })
+    Ok(LinearSystem { k_matrix: SparseColMat::new(pattern, values), f_free, f_full: shear.f_full })
 }
 
 /// The constant stress `(σ_xx, σ_yy, σ_xy, σ_zz)` of every triangle, `2μ ε(u) − p̄_T I` (p̄_T the mean of

@@ -143,8 +143,8 @@ impl Problem {
                 return Err(Error::BadSetting {
                     name: "condensation",
                     value: f64::NAN,
-                    what: "'saddle' does without H, which a body held only by the contact needs: use 'auto', \
-                           'columns' or 'schur'"
+                    what: "'saddle' does without H, which a body held only by the contact needs: use 'auto' or \
+                           'columns' (or 'schur' with P1 displacements)"
                         .to_string(),
                 });
             }

@@ -337,6 +337,18 @@ impl Problem {
         Ok(problem)
     }
 
+    /// The most unknowns per node: 2 displacements, and a pressure in the mixed formulation.
+    pub(crate) fn unknowns_per_node(&self) -> usize {
+        2 + usize::from(self.spec.formulation.is_mixed())
+    }
+
+    /// The unknowns of a displacement `v` (2N, `Tᵀ v`) and, in the mixed formulation, the nodal `pressure`.
+    pub(crate) fn unknowns_of(&self, v: &[f64], pressure: &[f64]) -> Vec<f64> {
+        let mut x = self.dofs.restrict(v);
+        x[self.dofs.n_displacement..].iter_mut().zip(pressure).for_each(|(x, p)| *x = *p);
+        x
+    }
+
     /// The load on the unknowns without the lifting, `Tᵀ f`, and in the mixed formulation the pressure rows'
     /// part of the body force ([`mixed::bubble_load`]): what a load factor scales.
     pub(crate) fn load_on_unknowns(&self) -> Vec<f64> {

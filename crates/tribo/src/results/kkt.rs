@@ -85,13 +85,23 @@ pub(crate) fn kkt_residuals(
     u: &[f64],
     lambda: &[f64],
     bound: &[f64],
+    n_u: usize,
 ) -> KktResiduals {
     let q = c.q();
     let au = c.apply_a(k, u);
     let etl = c.apply_et(lambda);
     let inf = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| nan_max(m, x.abs()));
     let res: Vec<f64> = au.iter().zip(&etl).zip(&loading.f_free).map(|((a, e), f)| a + e - f).collect();
-    let eq_scale = inf(&loading.f_free).max(inf(&etl));
+    let eq_scale = inf(&loading.f_free[..n_u]).max(inf(&etl[..n_u]));
+    // A mixed formulation's pressure rows (after the n_u displacement unknowns) are constraints, not forces:
+    // each is judged against the size of its own terms, |K| |x| and its load.
+    let mut terms = loading.f_free[n_u..].iter().map(|f| f.abs()).collect::<Vec<f64>>();
+    for (j, xj) in u.iter().enumerate() {
+        for (i, v) in k.row_idx_of_col(j).zip(k.val_of_col(j)).filter(|(i, _)| *i >= n_u) {
+            terms[i - n_u] += (v * xj).abs();
+        }
+    }
+    let pressure_rows = inf(&res[n_u..]) / inf(&terms).max(f64::MIN_POSITIVE);
     let eu = c.apply_e(u);
     // r = E u − d − Dγ λ.
     let dl = c.apply_d(lambda);
@@ -99,9 +109,14 @@ pub(crate) fn kkt_residuals(
     // The scales: Λ the size of λ_n (never 0 when something pushes), R the size of the terms of r (its
     // round-off is ε R): ‖E‖ ‖u‖ bounds ‖E u‖ and stays positive when the terms cancel.
     let lam = inf(lambda).max(c.lambda_scale(&loading.c)).max(inf(bound));
-    let e_norm = c.e_rows.iter().map(|row| row.iter().map(|(_, v)| v.abs()).sum::<f64>()).fold(0.0, f64::max);
-    let gap_scale = (e_norm * inf(u)).max(inf(&loading.d)).max(inf(&dl));
-    let mut k = KktResiduals { equilibrium: ratio(inf(&res), eq_scale), ..Default::default() };
+    // (‖E‖ ‖x‖ over the displacements and over a mixed formulation's pressures apart: units differ.)
+    let e_norm = |part: &dyn Fn(usize) -> bool| {
+        c.e_rows.iter().map(|row| row.iter().filter(|e| part(e.0)).map(|e| e.1.abs()).sum::<f64>()).fold(0.0, f64::max)
+    };
+    let (e_u, e_p) = (e_norm(&|k| k < n_u), e_norm(&|k| k >= n_u));
+    let gap_scale = (e_u * inf(&u[..n_u])).max(e_p * inf(&u[n_u..])).max(inf(&loading.d)).max(inf(&dl));
+    let equilibrium = nan_max(ratio(inf(&res[..n_u]), eq_scale), pressure_rows);
+    let mut k = KktResiduals { equilibrium, ..Default::default() };
     // Positive parts and maxima propagate NaN (`f64::max` would drop it); products of two ratios never
     // underflow to 0/0.
     let pos = |x: f64| nan_max(x, 0.0);

@@ -218,7 +218,8 @@ impl Solution {
         };
         let (estimator, traction_estimator, estimate) = estimate(&input);
         let report = Report { estimate, ..report };
-        let kkt = kkt_residuals(condensed, problem.k_matrix.as_ref(), loading, u_free, &lambda, &friction_threshold);
+        let (k, n_u) = (problem.k_matrix.as_ref(), problem.dofs.n_displacement);
+        let kkt = kkt_residuals(condensed, k, loading, u_free, &lambda, &friction_threshold, n_u);
         let lam_scale = lambda_n.iter().fold(condensed.lambda_scale(&loading.c), |m, v| m.max(v.abs()));
         let theta = qp_tol.sqrt() * lam_scale;
         let states = (0..q)

@@ -76,7 +76,8 @@ pub enum Condensation {
     Auto,
     /// One sparse solve per column of H, for the columns the QPs need (a fill-reducing ordering).
     Columns,
-    /// All of H from a partial factorization with the Γ_C dofs ordered last ([`crate::linalg::schur`]).
+    /// All of H from a partial factorization with the Γ_C dofs ordered last ([`crate::linalg::schur`]); a
+    /// Cholesky kernel, refused for the mixed formulation's quasi-definite A ([`crate::fem::mixed`]).
     Schur,
     /// H never formed: each active-set step solves the sparse saddle-point system
     /// `[[A, E_Fᵀ], [E_F, −Dγ_FF]]` (`qp::sparse`); columns of H only for a QP it cannot certify.

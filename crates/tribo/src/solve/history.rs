@@ -356,14 +356,14 @@ fn after(condensed: &Condensed<'_>, solution: &Solution, loading: &LoadCase) -> 
     let (problem, factor) = (condensed.problem(), condensed.factor());
     let q = condensed.q();
     // The unknowns x = Tᵀ (u − ū_k) (T has orthonormal columns: a node's unknowns are its free
-    // directions); `E (u − ū) = E T x + E (ū_k − ū)` (+ E R α for a body held only by the contact).
+    // directions) and the pressures; `E (u − ū) = E T x + E (ū_k − ū)` (+ E R α for a body held by the contact).
     let relative: Vec<f64> = solution.displacement.iter().zip(loading.lifting(problem)).map(|(u, l)| u - l).collect();
     let lambda = solution.multipliers();
     // A body held only by the contact also moves by R α, which the unknowns do not carry at the pins.
     let eu = if problem.dofs.floating.is_empty() {
-        factor.apply_e(&problem.dofs.restrict(&relative))
+        factor.apply_e(&problem.unknowns_of(&relative, &solution.pressure))
     } else {
-        problem.e_action(factor.gamma0, &relative)
+        problem.e_action(factor.gamma0, &[relative.as_slice(), &solution.pressure].concat())
     };
     let dl = factor.apply_d(&lambda);
     let moved = |j: usize| loading.moved_supports.as_ref().map_or(0.0, |m| m.e_change[j]);

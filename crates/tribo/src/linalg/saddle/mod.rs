@@ -2,7 +2,8 @@
 //!
 //! # The mathematics
 //!
-//! With `A` (n × n, SPD), `E` (m × n) and `D` (m × m, symmetric positive
+//! With `A` (n × n, SPD, or quasi-definite with a negative tail: [`SaddleOptions::negative`]),
+//! `E` (m × n) and `D` (m × m, symmetric positive
 //! semi-definite), the QP over the multipliers `ν`
 //! `min ½ νᵀHν + cᵀν`, `H = E A⁻¹ Eᵀ + D`, `c = d − E A⁻¹ f`,
 //! with the multipliers split into free dofs `F` and fixed dofs `B` (value

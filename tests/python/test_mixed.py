@@ -1,0 +1,79 @@
+"""The mixed displacement–pressure formulation from Python and scene files (issue 41, item 1): the keyword and
+its resolved value, the pressure output, the VTU point data and summary.json, and the refusals."""
+
+from __future__ import annotations
+
+import json
+import tomllib
+from pathlib import Path
+
+import meshio
+import numpy as np
+import pytest
+
+import tribo
+from tribo.run import run_scene
+from tribo.scene import parse_scene, scene_path
+
+
+
+def block(poisson: float, **kw: object) -> tribo.Problem:
+    mesh = tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 8, 8)
+    return tribo.Problem(mesh, young=1.0, poisson=poisson, clamped="top", contact="bottom", approach=0.01, **kw)
+
+
+def test_auto_and_the_pressure_output() -> None:
+    """'auto' (the default) is mixed from ν = 0.49 in plane strain, displacement below and in plane stress;
+    the mixed problem has one pressure per node among its unknowns and in its solution."""
+    mixed, plain = block(0.4999), block(0.3)
+    assert (mixed.formulation, plain.formulation) == ("mixed", "displacement")
+    assert block(0.4999, model="plane_stress").formulation == "displacement"
+    assert block(0.4999, formulation="displacement").formulation == "displacement"
+    assert block(0.3, formulation="mixed").formulation == "mixed"
+    nodes = mixed.mesh.n_nodes
+    assert mixed.n_free == plain.n_free + nodes
+    solution = mixed.solve()
+    assert solution.report.status == "converged"
+    assert solution.pressure.shape == (nodes,) and np.all(np.isfinite(solution.pressure))
+    # Pressed by the obstacle, the block is in compression under it: p = −λ div u > 0 there.
+    assert solution.pressure.max() > 0
+    assert plain.solve().pressure.shape == (0,)
+
+
+def test_refusals() -> None:
+    """Mixed with ν ≤ 0 or in axisymmetry, a misspelled formulation and a formulation for two bodies are typed
+    errors naming what to do."""
+    with pytest.raises(tribo.SettingsError, match="above 0"):
+        block(0.0, formulation="mixed")
+    with pytest.raises(tribo.SettingsError, match="displacement, mixed"):
+        block(0.3, formulation="mini")
+    mesh = tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 4, 4)
+    with pytest.raises(tribo.TriboError, match="axisymmetry"):
+        tribo.Problem(mesh, young=1.0, poisson=0.4, clamped="top", contact="bottom", model="axisymmetric",
+                      formulation="mixed")
+    with pytest.raises(tribo.SettingsError, match="schur"):
+        block(0.4999).solve(condensation="schur")
+
+
+def test_a_scene_file_takes_the_formulation(tmp_path: Path) -> None:
+    """[material] formulation reaches the problem; tribo run writes the pressure to the VTU body file (read back
+    with meshio) and the formulation to summary.json; 'auto' says what it chose."""
+    def scene(formulation: str) -> dict[str, object]:
+        data = tomllib.loads(scene_path("hertz").read_text())  # the shipped Hertz scene, made of rubber
+        data["material"].update(poisson=0.4999, formulation=formulation)
+        return data
+
+    for formulation, said in (("auto", "mixed"), ("displacement", "displacement"), ("mixed", "mixed")):
+        data = scene(formulation)
+        out = tmp_path / formulation
+        problem, solution, _ = run_scene(parse_scene(data), out, plots=False)
+        assert problem.formulation == said and solution.report.status == "converged"
+        summary = json.loads((out / "summary.json").read_text())
+        assert summary["formulation"] == said
+        body = meshio.read(out / "result.vtu")
+        if said == "mixed":
+            assert np.allclose(body.point_data["pressure"], solution.pressure)
+        else:
+            assert "pressure" not in body.point_data
+    with pytest.raises(tribo.SceneError, match="formulation"):
+        parse_scene(scene("p1p1"))
