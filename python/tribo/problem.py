@@ -246,7 +246,7 @@ class Problem(_tribo.Problem):
     thickness, or 'axisymmetric': the solid of revolution of the mesh about the y axis, x = r ≥ 0, the axis held at
     u_r = 0, tractions per unit area and forces on the whole turn; formulation 'displacement': P1 displacements,
     which lock as ν → ½, 'mixed': P1 displacements and pressures, free of locking, for rubber and other nearly
-    incompressible bodies, plane strain or plane stress, one body, or 'auto', the default: mixed from ν = 0.49 in
+    incompressible bodies, plane strain or plane stress, or 'auto', the default: mixed from ν = 0.49 in
     plane strain, ``problem.formulation`` saying which), its
     supports (edge sets clamped, or a list of Support), its loads (tractions: a dict edge set -> (tx, ty);
     pressures: a dict edge set -> p, the traction −p n along each edge's outward normal, so a bore or a curved side
@@ -274,9 +274,8 @@ class Problem(_tribo.Problem):
 
     @property
     def formulation(self) -> str:
-        """The formulation solved: ``'displacement'`` (P1 displacements) or ``'mixed'`` (displacements and one
-        pressure per node, ``tribo::fem::mixed``), as asked or as ``'auto'`` chose (mixed from ν = 0.49 in plane
-        strain): mixed when there are more unknowns than the bodies' displacement unknowns."""
+        """The formulation solved, ``'displacement'`` or ``'mixed'`` (one pressure per node besides the displacements,
+        ``tribo::fem::mixed``), as asked or as ``'auto'`` chose: mixed when pressures are among the unknowns."""
         return "mixed" if self.n_free > sum(int(b[2]) for b in self.bodies) else "displacement"
 
     @classmethod
@@ -294,6 +293,7 @@ class Problem(_tribo.Problem):
         multiplier_points: npt.ArrayLike | None = None,
         space: Literal["P0", "P1", "p0", "p1"] | None = None,
         model: Literal["plane_strain", "plane_stress", "axisymmetric"] | None = None,
+        formulation: Literal["auto", "displacement", "mixed"] | None = None,
     ) -> Problem:
         """Two elastic bodies in contact along one line, straight or bent: ``secondary`` ('body.edge_set') carries
         the multipliers T_H and the stabilization, ``primary`` meets it with the opposite normal; ``gap``
@@ -301,7 +301,8 @@ class Problem(_tribo.Problem):
         profiles). Either side may be bent (a shrink fit's arcs): the two then face each other, and the gap is
         their geometry's (their curves', where both edge sets carry one) plus ``gap``. Each body has its own material (or materials: a coated body), supports and tractions (``Body``);
         ``model`` is both bodies' ('plane_strain', the default, 'plane_stress': two thin plates, or 'axisymmetric': two
-        solids of revolution about the y axis); a motion its supports
+        solids of revolution about the y axis); ``formulation`` both bodies' (as ``Problem``'s: 'auto' is mixed when
+        either body reaches ν = 0.49 in plane strain); a motion its supports
         leave free is held by the contact alone (a punch pushed by a load); ``body_force`` acts on both. The problem solves, solves histories and plots
         as a one-body problem; ``bodies`` says where each body lies in ``mesh`` (the two joined, edge sets
         renamed 'body.set'); adaptive refinement bisects both bodies."""
@@ -311,7 +312,7 @@ class Problem(_tribo.Problem):
             [first._compiled(), second._compiled()],
             contact=secondary, primary=primary, obstacle=gap, body_force=body_force,
             multiplier_ratio=multiplier_ratio, multiplier_size=multiplier_size, multiplier_points=multiplier_points,
-            space=space, model=model,
+            space=space, model=model, formulation=formulation,
         )
 
     def __repr__(self) -> str:

@@ -342,6 +342,7 @@ class Scene:
                     gap=obstacle, body_force=loads.get("body_force"), multiplier_ratio=d.get("multiplier_ratio"),
                     multiplier_size=d.get("multiplier_size"), space=d.get("space"),
                     model=self.sections["bodies"]["entries"][0]["material"].get("model"),
+                    formulation=self.sections["bodies"]["entries"][0]["material"].get("formulation"),
                 )
             mesh = self.mesh()
             return Problem(

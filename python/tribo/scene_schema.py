@@ -17,7 +17,7 @@ A scene has these tables (every key is optional unless marked *required*; see ``
 ``[material]``
     ``young``, ``poisson`` (*required*); ``model``: ``"plane_strain"`` (default), ``"plane_stress"`` or
     ``"axisymmetric"``; ``formulation``: ``"auto"`` (default: mixed from ν = 0.49 in plane strain),
-    ``"displacement"`` or ``"mixed"`` (displacements and pressures, free of locking as ν → ½; one body, not in
+    ``"displacement"`` or ``"mixed"`` (displacements and pressures, free of locking as ν → ½; not in
     axisymmetry);
     ``[[material.regions]]``: parts of the body of other materials, each with ``young``, ``poisson`` and
     ``group`` (a physical surface of the mesh file) or ``box = [x0, y0, x1, y1]`` (the triangles whose
@@ -346,7 +346,8 @@ def describe_keys() -> list[tuple[str, str, str]]:
 BODY_KEYS: dict[str, Checker] = {"name": _string, "x": _range, "y": _range, "mesh": _string, "ring": _ring,
                                  "disc": _disc, "plate": _plate}
 BODY_TABLES: dict[str, dict[str, Checker]] = {
-    "material": {"young": _number, "poisson": _number, "model": _choice(*CHOICES["model"]), "regions": _regions},
+    "material": {"young": _number, "poisson": _number, "model": _choice(*CHOICES["model"]),
+                 "formulation": _choice(*CHOICES["formulation"]), "regions": _regions},
     "loads": {"tractions": _pairs, "pressures": _pressures},
     "discretization": {k: SCHEMA["discretization"][k] for k in ("grading", "h", "h_min", "growth", "diagonal")},
 }
@@ -451,10 +452,11 @@ def _check_two_bodies(data: Mapping[str, Any], sections: dict[str, dict[str, Any
                     f"scene key '{table}.{key}' does not apply to two bodies (see [[bodies]] in the scene format)",
                     f"{table}.{key}",
                 )
-    models = [b["material"].get("model", "plane_strain") for b in bodies]
-    if models[0] != models[1]:
-        raise SceneError(f"scene key 'bodies[1].material.model': both bodies take one model, got {models[0]!r} and "
-                         f"{models[1]!r}", "bodies[1].material.model")
+    for key, default in (("model", "plane_strain"), ("formulation", "auto")):
+        values = [b["material"].get(key, default) for b in bodies]
+        if values[0] != values[1]:
+            raise SceneError(f"scene key 'bodies[1].material.{key}': both bodies take one {key}, got {values[0]!r} "
+                             f"and {values[1]!r}", f"bodies[1].material.{key}")
     for key in ("secondary", "primary"):
         if key not in sections.get("contact", {}):
             raise SceneError(f"scene key 'contact.{key}' is required with [[bodies]] ('body.edge_set')", f"contact.{key}")

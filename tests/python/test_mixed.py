@@ -41,7 +41,7 @@ def test_auto_and_the_pressure_output() -> None:
 
 
 def test_refusals() -> None:
-    """Mixed with ν ≤ 0 or in axisymmetry, a misspelled formulation and a formulation for two bodies are typed
+    """Mixed with ν ≤ 0 or in axisymmetry, a misspelled formulation and the partial factorization are typed
     errors naming what to do."""
     with pytest.raises(tribo.SettingsError, match="above 0"):
         block(0.0, formulation="mixed")
@@ -77,3 +77,30 @@ def test_a_scene_file_takes_the_formulation(tmp_path: Path) -> None:
             assert "pressure" not in body.point_data
     with pytest.raises(tribo.SceneError, match="formulation"):
         parse_scene(scene("p1p1"))
+
+
+def test_two_bodies_take_the_formulation(tmp_path: Path) -> None:
+    """Problem.two_bodies(formulation=) and a two-body scene's [[bodies]] material.formulation: both bodies' pressures
+    are unknowns; 'auto' is mixed when either body is rubber; the two bodies of a scene must agree."""
+    def pair(poisson: float, **kw: object) -> tribo.Problem:
+        lower = tribo.Body("lower", tribo.Mesh.rectangle((0.0, 2.0), (-1.0, 0.0), 6, 3), young=100.0, poisson=poisson,
+                           clamped="bottom")
+        upper = tribo.Body("upper", tribo.Mesh.rectangle((0.0, 2.0), (0.0, 0.5), 6, 2), young=300.0, poisson=0.3,
+                           supports=[tribo.Support.displacement("top", x=0.0, y=-0.01)])
+        return tribo.Problem.two_bodies(lower, upper, secondary="lower.top", primary="upper.bottom",
+                                        **kw)  # type: ignore[arg-type]
+
+    rubber, plain = pair(0.4999), pair(0.3)
+    assert (rubber.formulation, plain.formulation) == ("mixed", "displacement")
+    nodes = rubber.mesh.n_nodes
+    assert rubber.n_free == plain.n_free + nodes
+    assert pair(0.4999, formulation="displacement").formulation == "displacement"
+    solution = rubber.solve()
+    assert solution.report.status == "converged" and solution.pressure.shape == (nodes,)
+    data = tomllib.loads(scene_path("hertz_two_bodies").read_text())
+    data["bodies"][0]["material"]["formulation"] = "mixed"
+    with pytest.raises(tribo.SceneError, match="both bodies take one formulation"):
+        parse_scene(data)
+    data["bodies"][1]["material"]["formulation"] = "mixed"
+    problem, solution, _ = run_scene(parse_scene(data), tmp_path, plots=False)
+    assert problem.formulation == "mixed" and solution.report.status == "converged"

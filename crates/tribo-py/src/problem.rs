@@ -253,21 +253,22 @@ impl PyProblem {
         let points = MultiplierPoints::from_keywords(multiplier_ratio, multiplier_size, points).map_err(to_pyerr)?;
         let space = space.map_or(Ok(MultiplierSpace::default()), MultiplierSpace::parse).map_err(to_pyerr)?;
         let model_given = model.map(tribo::Model::parse).transpose().map_err(to_pyerr)?;
+        let formulation = formulation.map_or(Ok(Default::default()), tribo::Formulation::parse).map_err(to_pyerr)?;
         let body_force = body_force.map_or(Ok([0.0, 0.0]), |b| pair(b, "body_force", Settings))?;
         take_gap_error();
         let p = if let Some(primary) = &primary {
             // Two bodies (`tribo.Problem.two_bodies`): `mesh` is their list, each with its own materials, supports
             // and tractions; they move through their supports.
             let given = [materials.is_some(), regions.is_some(), clamped.is_some(), supports.is_some()];
-            let moved = [tractions.is_some(), approach.or(shift).is_some(), rotation.is_some(), formulation.is_some()];
+            let moved = [tractions.is_some(), approach.or(shift).is_some(), rotation.is_some()];
             if given.into_iter().chain(moved).any(|g| g) {
-                let what = "material, supports and tractions are per body, and formulation is for one body";
-                return Err(PyTypeError::new_err(format!("with primary=, {what}")));
+                return Err(PyTypeError::new_err("with primary=, material, supports and tractions are per body"));
             }
             let [first, second]: [BodyArgs; 2] = mesh.extract()?;
             let (secondary, primary, gap, multiplier_points) = (contact.clone(), primary.clone(), shape, points);
             let (model, multiplier_space) = (model_given.unwrap_or_default(), space);
-            let pair = tribo::ContactPair { secondary, primary, gap, multiplier_points, multiplier_space, model };
+            let pair =
+                tribo::ContactPair { secondary, primary, gap, multiplier_points, multiplier_space, model, formulation };
             let bodies = [body(first)?, body(second)?];
             py.detach(|| tribo::Problem::two_bodies(bodies, pair, body_force))
         } else {
@@ -283,7 +284,7 @@ impl PyProblem {
                 // A placeholder where none is given: `with_materials` says so.
                 material: materials.materials.first().copied().unwrap_or(Material { young: f64::NAN, poisson: 0.0 }),
                 model: model_given.unwrap_or_default(),
-                formulation: formulation.map_or(Ok(Default::default()), tribo::Formulation::parse).map_err(to_pyerr)?,
+                formulation,
                 clamped: clamped.unwrap_or_default(),
                 supports,
                 body_force,

@@ -500,6 +500,7 @@ fn two_block_parts(
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
         model: Model::PlaneStrain,
+        formulation: Default::default(),
     };
     (bodies, pair)
 }

@@ -102,6 +102,7 @@ pub fn ring_pair() -> ContactPair {
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
         model: Model::PlaneStrain,
+        formulation: Default::default(),
     }
 }
 

@@ -58,8 +58,8 @@
 //! A is factorized by LDLᵀ (its inertia checked) and H formed by its columns, or the QPs solve the
 //! saddle-point system `[[A, Eᵀ], [E, −Dγ]]`, quasi-definite too with the pressures' pivots negative
 //! (the saddle kernel of `linalg` takes A's negative tail). The partial factorization, a Cholesky
-//! kernel, is refused. Axisymmetry (the hoop strain enters div u and the bubble's condensation) is refused,
-//! and two bodies have no mixed formulation yet ([`crate::ContactPair`] has no field for it).
+//! kernel, is refused. Axisymmetry (the hoop strain enters div u and the bubble's condensation) is refused.
+//! Two bodies take it ([`crate::ContactPair::formulation`]): each has its own nodes, hence its own pressures.
 //!
 //! # References
 //! D. N. Arnold, F. Brezzi, M. Fortin, A stable finite element for the Stokes equations, Calcolo 21 (1984).
@@ -91,8 +91,9 @@ pub const MIXED_FROM_POISSON: f64 = 0.49;
 pub enum Formulation {
     /// [`Formulation::Mixed`] for a plane-strain body whose Poisson's ratio reaches [`MIXED_FROM_POISSON`],
     /// [`Formulation::Displacement`] otherwise (plane stress never locks, its in-plane ν' = ν/(1 + ν) stays
-    /// below ⅓; axisymmetry has no mixed formulation yet, nor two bodies; a body with a material of ν ≤ 0
-    /// beside it keeps P1). A built problem holds the choice made (`problem.spec.formulation`).
+    /// below ⅓; axisymmetry has no mixed formulation yet; a body with a material of ν ≤ 0 beside it keeps P1).
+    /// For two bodies, either body's materials decide for both. A built problem holds the choice made
+    /// (`problem.spec.formulation`).
     #[default]
     Auto,
     /// P1 displacements alone: the paper's method. Locks as ν → ½.

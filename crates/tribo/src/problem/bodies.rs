@@ -67,6 +67,9 @@ pub struct ContactPair {
     pub multiplier_space: MultiplierSpace,
     /// The model of both bodies: plane strain (long bodies) or plane stress (thin plates).
     pub model: Model,
+    /// The formulation of both bodies ([`crate::fem::mixed`]): `Auto` takes the mixed one when either body
+    /// reaches ν = [`crate::fem::mixed::MIXED_FROM_POISSON`] in plane strain.
+    pub formulation: crate::fem::mixed::Formulation,
 }
 
 /// Where a body lies in the problem's mesh.
@@ -188,7 +191,7 @@ impl Problem {
         let spec = ProblemSpec {
             material: secondary.materials.materials[first.map_or(0, |t| secondary.materials.region[t])],
             model: pair.model,
-            formulation: crate::fem::mixed::Formulation::Displacement,
+            formulation: pair.formulation,
             clamped: bodies.iter().flat_map(|b| b.clamped.iter().map(|c| format!("{}.{c}", b.name))).collect(),
             supports: bodies.iter().flat_map(|b| b.supports.iter().map(|x| renamed(x, &b.name))).collect(),
             body_force,

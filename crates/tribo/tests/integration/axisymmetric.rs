@@ -269,6 +269,7 @@ fn two_cylinders(h_min: f64, upper: Material, gap: ObstacleShape, delta: f64, lo
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
         model: Model::Axisymmetric,
+        formulation: Default::default(),
     };
     Problem::two_bodies(bodies, pair, [0.0, 0.0]).expect("valid")
 }

@@ -116,6 +116,7 @@ fn a_pair_of_sides_that_do_not_face_is_refused() {
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
         model: Model::PlaneStrain,
+        formulation: Default::default(),
     };
     let solve_pair = |outer: [f64; 2], secondary: &str, primary: &str| {
         Problem::two_bodies([ring("inner", [0.5, 1.001]), ring("outer", outer)], pair(secondary, primary), [0.0; 2])

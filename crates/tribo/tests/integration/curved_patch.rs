@@ -159,6 +159,7 @@ fn a_uniform_pressure_passes_a_curved_interface_between_two_bodies_exactly() {
             multiplier_points: MultiplierPoints::RatioToFe(1.0),
             multiplier_space: space,
             model: Model::PlaneStrain,
+            formulation: Default::default(),
         };
         let bodies =
             [body("inner", inner_mesh.clone(), inner, "inner"), body("outer", outer_mesh.clone(), outer, "outer")];

@@ -178,6 +178,7 @@ fn pair(secondary: &str, primary: &str, gap: ObstacleShape) -> ContactPair {
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
         model: Model::PlaneStrain,
+        formulation: Default::default(),
     }
 }
 

@@ -347,3 +347,25 @@ fn the_kkt_residuals_of_the_mixed_formulation_do_not_depend_on_units() {
         assert!(x.max(y) < 1e-14 || (x / y).max(y / x) < 10.0, "{name}: {x:e} against {y:e}");
     }
 }
+
+/// Two bodies take the mixed formulation too (both bodies' pressures, each its own nodes): two-body Hertz, a
+/// rubber block (ν = 0.4999) under a steel one, against Hertz of the combined modulus. `auto` chooses it; it is
+/// as close as P1 displacements are for a compressible block (ν = 0.3) on the same meshes, and P1 displacements
+/// on the rubber lock.
+#[test]
+fn a_rubber_body_under_a_steel_one_does_not_lock() {
+    let steel = Material { young: 200.0, poisson: 0.3 };
+    let error = |lower: Material, formulation: Formulation| {
+        let (bodies, pair) = tribo_testkit::two_body_hertz_parts(0.0025, lower, steel, 0.01);
+        let problem = Problem::two_bodies(bodies, ContactPair { formulation, ..pair }, [0.0, 0.0]).expect("valid");
+        let sol = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+        assert_eq!(sol.report.status, SolveStatus::Converged);
+        let e_star = tribo_testkit::combined_modulus(&lower, &steel);
+        (problem.spec.formulation, hertz_l2_error_with(&problem, &sol, e_star))
+    };
+    let rubber = Material { young: 200.0, poisson: 0.4999 };
+    let ((chosen, mixed), (_, locked)) = (error(rubber, Formulation::Auto), error(rubber, Formulation::Displacement));
+    let (_, compressible) = error(Material { young: 200.0, poisson: 0.3 }, Formulation::Displacement);
+    assert_eq!(chosen, Formulation::Mixed);
+    assert!(mixed < 1.5 * compressible && locked > 5.0 * mixed, "mixed {mixed}, P1 {locked}, ν = 0.3 {compressible}");
+}

@@ -34,6 +34,7 @@ fn pair(secondary: &str, primary: &str, gap: ObstacleShape, space: MultiplierSpa
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: space,
         model: Model::PlaneStrain,
+        formulation: Default::default(),
     }
 }
 
