@@ -124,7 +124,7 @@ def check_solution(problem: Problem, solution: Solution) -> list[str]:
             f"ν = {nu:.6g} is close to ½: P1 triangles lock "
             f"(λ/μ = {_g(2 * nu / (1 - 2 * nu))}), so the body is too stiff and the contact pressure and force are too large, by more than any "
             "estimate here shows (Hertz at 33k unknowns: 4.0 % at ν = 0.49, 17 % at 0.499); no refinement repairs it"
-            + ("" if problem.model == "axisymmetric" else ": use formulation='mixed'")
+            + ": use formulation='mixed'"
         )
     r = solution.report
     if r.coulomb_check == "differ":

@@ -302,7 +302,7 @@ class Problem(_tribo.Problem):
         their geometry's (their curves', where both edge sets carry one) plus ``gap``. Each body has its own material (or materials: a coated body), supports and tractions (``Body``);
         ``model`` is both bodies' ('plane_strain', the default, 'plane_stress': two thin plates, or 'axisymmetric': two
         solids of revolution about the y axis); ``formulation`` both bodies' (as ``Problem``'s: 'auto' is mixed when
-        either body reaches ν = 0.49 in plane strain); a motion its supports
+        either body reaches ν = 0.49 in plane strain or axisymmetry); a motion its supports
         leave free is held by the contact alone (a punch pushed by a load); ``body_force`` acts on both. The problem solves, solves histories and plots
         as a one-body problem; ``bodies`` says where each body lies in ``mesh`` (the two joined, edge sets
         renamed 'body.set'); adaptive refinement bisects both bodies."""

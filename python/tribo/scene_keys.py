@@ -74,8 +74,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
                        "thickness, ν in (−1/2, 1/2))", "—", None),
     "material.formulation": ('`"displacement"` (P1 displacements, which lock as ν → ½), `"mixed"` (P1 displacements '
                              "and pressures with MINI's condensed bubble: free of locking, for rubber and other nearly "
-                             'incompressible bodies; plane strain or plane stress, ν > 0) or `"auto"` (mixed '
-                             "from ν = 0.49 in plane strain)", "—", None),
+                             'incompressible bodies; every model, ν > 0) or `"auto"` (mixed '
+                             "from ν = 0.49 in plane strain and axisymmetry)", "—", None),
     "supports.clamped": ("The edge sets held fixed (u = 0); or `[[supports]]` entries with `kind` (`clamp`, "
                          "`roller`, `displacement` with `x`/`y`, `rotation` with `center` and `angle` in radians) and "
                          "`edge_set`", "—", "— (*required*, one form)"),
@@ -177,7 +177,7 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
     **{f"bodies.material.{k}": v for k, v in _MATERIAL.items()},
     "bodies.material.model": ('`"plane_strain"`, `"plane_stress"` or `"axisymmetric"`: both bodies take the same',
                               "—", None),
-    "bodies.material.formulation": ('`"auto"` (mixed when either body reaches ν = 0.49 in plane strain), '
+    "bodies.material.formulation": ('`"auto"` (mixed when either body reaches ν = 0.49 in plane strain or axisymmetry), '
                                     '`"displacement"` or `"mixed"`: both bodies take the same', "—", None),
     "bodies.material.regions": ("Parts of the body of other materials (`[[bodies.material.regions]]`), as "
                                 "`[[material.regions]]`", "—", "none: all of the body's `material`"),

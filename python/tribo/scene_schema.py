@@ -16,7 +16,7 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     edge sets ``bottom``, ``right``, ``top``, ``left``.
 ``[material]``
     ``young``, ``poisson`` (*required*); ``model``: ``"plane_strain"`` (default), ``"plane_stress"`` or
-    ``"axisymmetric"``; ``formulation``: ``"auto"`` (default: mixed from ν = 0.49 in plane strain),
+    ``"axisymmetric"``; ``formulation``: ``"auto"`` (default: mixed from ν = 0.49 in plane strain and axisymmetry),
     ``"displacement"`` or ``"mixed"`` (displacements and pressures, free of locking as ν → ½; not in
     axisymmetry);
     ``[[material.regions]]``: parts of the body of other materials, each with ``young``, ``poisson`` and

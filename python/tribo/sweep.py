@@ -86,6 +86,7 @@ COLUMNS: dict[str, str] = {
     "adapt_stop": "why the adaptive loop stopped (tolerance, exact, max_unknowns, …); empty without [adapt]",
     "failure": "why a case did not converge or failed (empty when it converged)",
     "friction": "the friction law the solve used",
+    "formulation": "what the body was solved with: displacement (P1) or mixed (displacement–pressure; auto's choice)",
     "iterations": "iterations of the Coulomb method: fixed-point iterations or Newton steps (of the last step of a "
                   "history)",
     "coulomb_method": "the Coulomb method that answered (fixed_point or newton; empty without Coulomb friction)",
@@ -317,6 +318,7 @@ def _row(summary: Mapping[str, Any], solution: Any) -> dict[str, Any]:
         "adapt_stop": summary.get("adapt_stop") or "",
         "failure": failure,
         "friction": summary["friction"],
+        "formulation": summary["formulation"],
         "iterations": summary["iterations"],
         "coulomb_method": summary["coulomb_method"] or "",
         "coulomb_check": (summary.get("coulomb_check") or {}).get("agreement", ""),

@@ -287,7 +287,7 @@ ARGUMENTS: dict[str, tuple[st.SearchStrategy[Any], st.SearchStrategy[Any]]] = {
     "space": (st.sampled_from(["P0", "P1"]), st.sampled_from(["p0", "P2", ""])),
     # The rectangle straddles x = 0: an axisymmetric body there is refused (a node at r < 0).
     "model": (st.sampled_from(["plane_strain", "plane_stress"]), st.sampled_from(["axisymmetric", "3d", "", "Axisymmetric"])),
-    # Mixed with ν ≤ 0 or in axisymmetry is refused; the hostile names are not formulations.
+    # Mixed with ν ≤ 0 is refused; the hostile names are not formulations.
     "formulation": (st.sampled_from(["auto", "displacement", "mixed"]), st.sampled_from(["mixed ", "p1p1", "", "MINI"])),
 }
 SETTINGS: dict[str, tuple[st.SearchStrategy[Any], st.SearchStrategy[Any]]] = {

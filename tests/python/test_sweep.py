@@ -154,6 +154,7 @@ def test_a_sweep_runs_every_case_once_and_reruns_none(tmp_path: Path, client: An
     df = sweep(scene, AXES, out=out, client=client, progress=lambda done, total: seen.append((done, total)))
     assert len(df) == 6 and list(df.columns[:2]) == ["friction.mu", "obstacle.shift"]
     assert (df["status"] == "converged").all() and (df["attempts"] == 1).all()
+    assert (df["formulation"] == "displacement").all()  # ν = 0.3: auto keeps P1 displacements
     assert seen[-1] == (6, 6) and len(seen) == 6
     assert list(zip(df["friction.mu"], df["obstacle.shift"])) == [(m, s) for m in AXES["friction.mu"]
                                                                   for s in AXES["obstacle.shift"]]

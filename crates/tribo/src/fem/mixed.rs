@@ -54,12 +54,24 @@
 //! (E' = 2μ, ν' = 0: [`shear_part`]). Below that bound A = K − G is quasi-definite and eliminating u,
 //! then p, leaves `H = E A⁻¹ Eᵀ + Dγ` positive definite: the Γ_C QPs stay convex.
 //!
-//! # How A is factorized, and what it does not take (yet)
+//! # Axisymmetry
+//! In a solid of revolution ([`crate::fem::axisymmetric`]) `div u = ∂_r u_r + ∂_z u_z + u_r / r`, the hoop strain
+//! taken at each triangle's centroid as the displacement element takes it, so div u stays constant per triangle;
+//! every body integral gains the measure `2π r_c` (one point, the element's rule): `−∫ q div u` becomes
+//! `−2π r_c |T|/3 div_T u` per node (so `∫ p div v = p̄_T 2π r_c |T| div_T v` and the reactions still come from
+//! σ_h), the pressure mass `M/λ` and the bubble's `C_T` and load are the plane ones times `2π r_c`. K_μ is the
+//! axisymmetric stiffness of the shear part (E' = 2μ, ν' = 0: `2μ` on ε_rr, ε_zz, ε_θθ, `μ` on γ_rz), and
+//! `σ_θθ = 2μ ε_θθ − p̄_T`. The bubble is kept as the plane stabilization weighted by `2π r_c`, its hoop strain
+//! left out: it vanishes on constant pressures, so every uniform state (the pressed cylinder,
+//! `tests/integration/axisymmetric_mixed.rs`) stays exact, and the sphere on rubber and the rubber shrink fit
+//! there converge without locking (measured; the inf–sup stability of this choice is not proven here).
+//!
+//! # How A is factorized, and what it does not take
 //! A is factorized by LDLᵀ (its inertia checked) and H formed by its columns, or the QPs solve the
 //! saddle-point system `[[A, Eᵀ], [E, −Dγ]]`, quasi-definite too with the pressures' pivots negative
 //! (the saddle kernel of `linalg` takes A's negative tail). The partial factorization, a Cholesky
-//! kernel, is refused. Axisymmetry (the hoop strain enters div u and the bubble's condensation) is refused.
-//! Two bodies take it ([`crate::ContactPair::formulation`]): each has its own nodes, hence its own pressures.
+//! kernel, is refused. Two bodies take it ([`crate::ContactPair::formulation`]): each has its own nodes, hence
+//! its own pressures.
 //!
 //! # References
 //! D. N. Arnold, F. Brezzi, M. Fortin, A stable finite element for the Stokes equations, Calcolo 21 (1984).
@@ -74,6 +86,7 @@ use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
 use crate::choice::named_choice;
 use crate::error::{Error, Result};
 use crate::fem::assemble::{first_unknowns, node_graph, LinearSystem};
+use crate::fem::axisymmetric;
 use crate::fem::dofs::Dofs;
 use crate::fem::elasticity::{element_dofs, strain_displacement, Material, MaterialField, Materials, Model};
 use crate::mesh::Mesh;
@@ -89,9 +102,9 @@ pub const MIXED_FROM_POISSON: f64 = 0.49;
 /// How the body's unknowns are discretized.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Formulation {
-    /// [`Formulation::Mixed`] for a plane-strain body whose Poisson's ratio reaches [`MIXED_FROM_POISSON`],
-    /// [`Formulation::Displacement`] otherwise (plane stress never locks, its in-plane ν' = ν/(1 + ν) stays
-    /// below ⅓; axisymmetry has no mixed formulation yet; a body with a material of ν ≤ 0 beside it keeps P1).
+    /// [`Formulation::Mixed`] for a plane-strain or axisymmetric body whose Poisson's ratio reaches
+    /// [`MIXED_FROM_POISSON`], [`Formulation::Displacement`] otherwise (plane stress never locks, its in-plane
+    /// ν' = ν/(1 + ν) stays below ⅓; a body with a material of ν ≤ 0 beside it keeps P1).
     /// For two bodies, either body's materials decide for both. A built problem holds the choice made
     /// (`problem.spec.formulation`).
     #[default]
@@ -120,23 +133,22 @@ impl Formulation {
     pub fn resolve(self, model: Model, materials: &Materials) -> Self {
         let nu = materials.materials.iter().fold(f64::NEG_INFINITY, |m, x| m.max(x.poisson));
         // (not where the mixed formulation would refuse a material: ν ≤ 0 beside rubber, say)
-        let takes = Formulation::Mixed.validate(model, materials).is_ok();
+        let takes = Formulation::Mixed.validate(materials).is_ok();
         match self {
-            Formulation::Auto if model == Model::PlaneStrain && nu >= MIXED_FROM_POISSON && takes => Formulation::Mixed,
+            Formulation::Auto if model != Model::PlaneStress && nu >= MIXED_FROM_POISSON && takes => Formulation::Mixed,
             Formulation::Auto => Formulation::Displacement,
             f => f,
         }
     }
 
-    /// Checks that this formulation takes `model` and every material of `materials` (their in-plane laws).
+    /// Checks that this formulation takes every material of `materials` (their in-plane laws), under every model.
     /// One pressure per node is continuous across an interface of materials, where the exact p = −λ div u
     /// jumps: the method stays conforming and converges, the pressure smeared over the interface's triangles.
     ///
     /// # Errors
-    /// [`Error::BadAxisymmetry`] for the mixed formulation of an axisymmetric body; [`Error::BadMaterial`]
-    /// for a mixed material with ν ≤ 0 (λ ≤ 0: the pressure block is no longer negative definite, and
+    /// [`Error::BadMaterial`] for a mixed material with ν ≤ 0 (λ ≤ 0: the pressure block is no longer negative definite, and
     /// such a material does not lock).
-    pub fn validate(self, model: Model, materials: &Materials) -> Result<()> {
+    pub fn validate(self, materials: &Materials) -> Result<()> {
         if !self.is_mixed() {
             return Ok(());
         }
@@ -147,13 +159,6 @@ impl Formulation {
                      P1 displacements do not lock there: use formulation = 'displacement'",
                     m.poisson
                 ),
-            });
-        }
-        if model.is_axisymmetric() {
-            return Err(Error::BadAxisymmetry {
-                what: "the mixed formulation is not available in axisymmetry yet (the hoop strain's part of div u \
-                       and of the bubble); use formulation = 'displacement'"
-                    .to_string(),
             });
         }
         Ok(())
@@ -184,6 +189,32 @@ fn hat_gradients(mesh: &Mesh, t: usize) -> (Matrix3x2, f64) {
 
 type Matrix3x2 = nalgebra::Matrix3x2<f64>;
 
+/// The weight of triangle t's plane integrals under `model`: 1, or `2π r_c` in axisymmetry (its measure in the
+/// solid is `2π r_c |T|`, [`crate::fem::axisymmetric::volume`]).
+fn weight(model: Model, mesh: &Mesh, t: usize) -> f64 {
+    if model.is_axisymmetric() {
+        axisymmetric::radial_weight(axisymmetric::centroid_radius(mesh, t))
+    } else {
+        1.0
+    }
+}
+
+/// `div v` of triangle t as a linear form of its 6 displacement dofs (constant on T: in axisymmetry
+/// `∂_r v_r + ∂_z v_z + v_r / r` with the hoop strain at the centroid, as the displacement element takes it),
+/// and the triangle's measure (`|T|`, or `2π r_c |T|`).
+fn divergence_form(model: Model, mesh: &Mesh, t: usize) -> ([f64; 6], f64) {
+    let (g, area) = hat_gradients(mesh, t);
+    let mut form = [0.0; 6];
+    for (l, f) in form.iter_mut().enumerate() {
+        *f = g[(l / 2, l % 2)];
+    }
+    if model.is_axisymmetric() {
+        let rc = axisymmetric::centroid_radius(mesh, t);
+        (0..3).for_each(|i| form[2 * i] += 1.0 / (3.0 * rc));
+    }
+    (form, weight(model, mesh, t) * area)
+}
+
 /// The bubble's condensed pressure coupling of triangle t: `(C_T, X_T K_b⁻¹)` (3 × 3 and 3 × 2), μ its
 /// shear modulus (the module documentation).
 fn bubble(g: &Matrix3x2, area: f64, mu: f64) -> (Matrix3<f64>, nalgebra::Matrix3x2<f64>) {
@@ -196,22 +227,24 @@ fn bubble(g: &Matrix3x2, area: f64, mu: f64) -> (Matrix3<f64>, nalgebra::Matrix3
     (x_kinv * x.transpose(), x_kinv)
 }
 
-/// `B v` per node (N values): `∫ φ_i div v` for the nodal displacement v (2N).
-pub fn divergence(mesh: &Mesh, v: &[f64]) -> Vec<f64> {
+/// `B v` per node (N values): `∫ φ_i div v` for the nodal displacement v (2N), with the measure of `model`
+/// (φ_i and div v at each triangle's centroid, as every body integral of the element is taken).
+pub fn divergence(model: Model, mesh: &Mesh, v: &[f64]) -> Vec<f64> {
     let mut out = vec![0.0; mesh.n_nodes()];
     for (t, tri) in mesh.triangles().iter().enumerate() {
-        let (g, area) = hat_gradients(mesh, t);
-        let div: f64 = (0..3).map(|j| g[(j, 0)] * v[2 * tri[j]] + g[(j, 1)] * v[2 * tri[j] + 1]).sum();
+        let (form, measure) = divergence_form(model, mesh, t);
+        let div: f64 = element_dofs(tri).iter().zip(form).map(|(&d, f)| f * v[d]).sum();
         for &i in tri {
-            out[i] += area / 3.0 * div;
+            out[i] += measure / 3.0 * div;
         }
     }
     out
 }
 
 /// The pressure rows' part of the body force `f` (N values): `−X_T K_b⁻¹ (9/20) |T| f` of each triangle's
-/// condensed bubble (the module documentation). It scales with the load, as the displacement rows' does.
-pub fn bubble_load(mesh: &Mesh, in_plane: &impl MaterialField, body_force: [f64; 2]) -> Vec<f64> {
+/// condensed bubble (the module documentation; times `2π r_c` in axisymmetry). It scales with the load, as the
+/// displacement rows' does.
+pub fn bubble_load(model: Model, mesh: &Mesh, in_plane: &impl MaterialField, body_force: [f64; 2]) -> Vec<f64> {
     let mut out = vec![0.0; mesh.n_nodes()];
     let f = Vector2::new(body_force[0], body_force[1]);
     if body_force == [0.0, 0.0] {
@@ -220,7 +253,7 @@ pub fn bubble_load(mesh: &Mesh, in_plane: &impl MaterialField, body_force: [f64;
     for (t, tri) in mesh.triangles().iter().enumerate() {
         let (g, area) = hat_gradients(mesh, t);
         let (_, x_kinv) = bubble(&g, area, lame(in_plane.at(t)).1);
-        let load = x_kinv * (f * (9.0 / 20.0 * area));
+        let load = x_kinv * (f * (9.0 / 20.0 * area * weight(model, mesh, t)));
         tri.iter().enumerate().for_each(|(a, &i)| out[i] -= load[a]);
     }
     out
@@ -234,6 +267,7 @@ pub fn bubble_load(mesh: &Mesh, in_plane: &impl MaterialField, body_force: [f64;
 /// # Errors
 /// [`Error::Assembly`] for a non-finite entry or a matrix faer cannot build.
 pub fn assemble_mixed(
+    model: Model,
     mesh: &Mesh,
     in_plane: &impl MaterialField,
     body_force: [f64; 2],
@@ -268,25 +302,27 @@ pub fn assemble_mixed(
     }
     // The entry of row `r` in column `c` (both in the triangle's pattern).
     let at = |c: usize, r: usize| col_ptr[c] + row_idx[col_ptr[c]..col_ptr[c + 1]].binary_search(&r).unwrap_or(0);
-    let mut f_p = bubble_load(mesh, in_plane, body_force);
-    let lifted = divergence(mesh, &dofs.lifting);
+    let mut f_p = bubble_load(model, mesh, in_plane, body_force);
+    let lifted = divergence(model, mesh, &dofs.lifting);
     for (t, tri) in mesh.triangles().iter().enumerate() {
         let (g, area) = hat_gradients(mesh, t);
+        let (form, measure) = divergence_form(model, mesh, t);
+        let w = weight(model, mesh, t);
         let (lambda, mu) = lame(in_plane.at(t));
         let (c, _) = bubble(&g, area, mu);
         for (a, &i) in tri.iter().enumerate() {
             let p = n_u + i;
             for (l, &d) in element_dofs(tri).iter().enumerate() {
-                // −∫ φ_i div(φ_d e_c) = −|T|/3 ∂_c φ_j.
+                // −∫ φ_i div(φ_d e_c) = −|T|/3 ∂_c φ_j (and the hoop strain's part of a radial dof).
                 if let Some((col, coeff)) = dofs.unknown(d) {
-                    let v = -area / 3.0 * g[(l / 2, l % 2)] * coeff;
+                    let v = -measure / 3.0 * form[l] * coeff;
                     values[at(col, p)] += v;
                     values[at(p, col)] += v;
                 }
             }
             for (b, &j) in tri.iter().enumerate() {
                 let mass = area / 12.0 * if a == b { 2.0 } else { 1.0 };
-                values[at(n_u + j, p)] -= mass / lambda + c[(a, b)];
+                values[at(n_u + j, p)] -= w * (mass / lambda + c[(a, b)]);
             }
         }
     }
@@ -307,7 +343,8 @@ pub fn assemble_mixed(
 }
 
 /// The constant stress `(σ_xx, σ_yy, σ_xy, σ_zz)` of every triangle, `2μ ε(u) − p̄_T I` (p̄_T the mean of
-/// the nodal pressure p on T), σ_zz = −p̄_T in plane strain and 0 in plane stress.
+/// the nodal pressure p on T), σ_zz = −p̄_T in plane strain and 0 in plane stress; in axisymmetry
+/// `(σ_rr, σ_zz, σ_rz, σ_θθ)` with σ_θθ = 2μ ε_θθ − p̄_T (the hoop strain at the centroid).
 pub fn element_stresses(
     model: Model,
     mesh: &Mesh,
@@ -320,16 +357,21 @@ pub fn element_stresses(
         .enumerate()
         .map(|(t, tri)| {
             let ut = nalgebra::SVector::<f64, 6>::from_fn(|l, _| u[element_dofs(tri)[l]]);
-            let s: Vector3<f64> = shear_part(in_plane.at(t)).elasticity_matrix() * (strain_displacement(mesh, t) * ut);
             let mean = tri.iter().map(|&i| p[i]).sum::<f64>() / 3.0;
+            if model.is_axisymmetric() {
+                let s = axisymmetric::element_stress(mesh, t, &shear_part(in_plane.at(t)), &ut);
+                return [s[0] - mean, s[1] - mean, s[2], s[3] - mean];
+            }
+            let s: Vector3<f64> = shear_part(in_plane.at(t)).elasticity_matrix() * (strain_displacement(mesh, t) * ut);
             let zz = if model == Model::PlaneStrain { -mean } else { 0.0 };
             [s[0] - mean, s[1] - mean, s[2], zz]
         })
         .collect()
 }
 
-/// The energy norm of the mixed formulation, `sqrt(∫ 2μ ε(u):ε(u) + ∫ p²/λ)` (the second term exact for P1 p:
-/// `∫_T p² = |T|/12 ((Σ pᵢ)² + Σ pᵢ²)`), `materials` the in-plane laws. The displacement formulation's
+/// The energy norm of the mixed formulation, `sqrt(∫ 2μ ε(u):ε(u) + ∫ p²/λ)` (the second term exact for P1 p in
+/// the plane: `∫_T p² = |T|/12 ((Σ pᵢ)² + Σ pᵢ²)`, times `2π r_c` in axisymmetry, as the pressure block's mass),
+/// `materials` the in-plane laws. The displacement formulation's
 /// `∫ ε:C ε` would read λ (div u)², which the mixed formulation does not make small pointwise.
 pub fn energy_norm(model: Model, mesh: &Mesh, in_plane: &Materials, u: &[f64], p: &[f64]) -> f64 {
     let shear = crate::fem::elasticity::energy_norm(model, mesh, &shear_part_all(in_plane), u);
@@ -339,7 +381,7 @@ pub fn energy_norm(model: Model, mesh: &Mesh, in_plane: &Materials, u: &[f64], p
         .enumerate()
         .map(|(t, tri)| {
             let (sum, squares) = tri.iter().fold((0.0, 0.0), |(s, q), &i| (s + p[i], q + p[i] * p[i]));
-            mesh.area(t) / 12.0 * (sum * sum + squares) / lame(in_plane.at(t)).0
+            weight(model, mesh, t) * mesh.area(t) / 12.0 * (sum * sum + squares) / lame(in_plane.at(t)).0
         })
         .sum();
     (shear * shear + volumetric).sqrt()

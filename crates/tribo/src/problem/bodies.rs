@@ -68,7 +68,7 @@ pub struct ContactPair {
     /// The model of both bodies: plane strain (long bodies) or plane stress (thin plates).
     pub model: Model,
     /// The formulation of both bodies ([`crate::fem::mixed`]): `Auto` takes the mixed one when either body
-    /// reaches ν = [`crate::fem::mixed::MIXED_FROM_POISSON`] in plane strain.
+    /// reaches ν = [`crate::fem::mixed::MIXED_FROM_POISSON`] in plane strain or axisymmetry.
     pub formulation: crate::fem::mixed::Formulation,
 }
 

@@ -254,7 +254,7 @@ impl Problem {
             let stresses =
                 mixed::element_stresses(self.spec.model, &self.mesh, &self.in_plane, ubar, &vec![0.0; pressures]);
             let mut a = internal_forces(self.spec.model, &self.mesh, &stresses);
-            a.extend(mixed::divergence(&self.mesh, ubar).iter().map(|v| -v));
+            a.extend(mixed::divergence(self.spec.model, &self.mesh, ubar).iter().map(|v| -v));
             a
         } else if with_stiffness {
             let stresses = element_stresses(self.spec.model, &self.mesh, &self.in_plane, ubar);

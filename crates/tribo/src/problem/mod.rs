@@ -45,8 +45,8 @@ pub struct ProblemSpec {
     /// Plane strain or plane stress ([`Model`], plane strain by default).
     pub model: Model,
     /// P1 displacements, or displacements and pressures for ν → ½ ([`Formulation`]; by default `Auto`, the
-    /// mixed one from ν = [`crate::fem::mixed::MIXED_FROM_POISSON`] in plane strain). A built problem's spec
-    /// holds the choice made.
+    /// mixed one from ν = [`crate::fem::mixed::MIXED_FROM_POISSON`] in plane strain and axisymmetry). A built
+    /// problem's spec holds the choice made.
     pub formulation: Formulation,
     /// Names of the clamped edge sets (u = 0): shorthand for [`Support::Clamp`] entries of `supports`.
     pub clamped: Vec<String>,
@@ -209,7 +209,7 @@ impl Problem {
         spec.model.validate(&spec.material)?;
         let in_plane = spec.model.in_plane_all(&materials);
         spec.formulation = spec.formulation.resolve(spec.model, &in_plane);
-        spec.formulation.validate(spec.model, &in_plane)?;
+        spec.formulation.validate(&in_plane)?;
         let mixed = spec.formulation.is_mixed();
         // The mixed formulation's K_μ, contact stresses and γ0 bound read the shear part of each law.
         let shear_of_mixed = mixed.then(|| mixed::shear_part_all(&in_plane));
@@ -236,7 +236,7 @@ impl Problem {
         let mut system = assemble(spec.model, &mesh, shear, spec.body_force, &spec.tractions, &dofs)?;
         let dofs = if mixed { dofs.with_pressure(mesh.n_nodes()) } else { dofs };
         if mixed {
-            system = mixed::assemble_mixed(&mesh, &in_plane, spec.body_force, system, &dofs)?;
+            system = mixed::assemble_mixed(spec.model, &mesh, &in_plane, spec.body_force, system, &dofs)?;
         }
         let (n_free, LinearSystem { k_matrix, f_free, f_full }) = (dofs.n_free, system);
         let assembly = clock.elapsed().as_secs_f64();
@@ -354,7 +354,7 @@ impl Problem {
     pub(crate) fn load_on_unknowns(&self) -> Vec<f64> {
         let mut load = self.dofs.restrict(&self.f_full);
         if self.spec.formulation.is_mixed() {
-            let bubble = mixed::bubble_load(&self.mesh, &self.in_plane, self.spec.body_force);
+            let bubble = mixed::bubble_load(self.spec.model, &self.mesh, &self.in_plane, self.spec.body_force);
             load[self.dofs.n_displacement..].iter_mut().zip(bubble).for_each(|(l, b)| *l += b);
         }
         load

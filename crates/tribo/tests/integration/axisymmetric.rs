@@ -92,27 +92,40 @@ fn the_axis_and_the_rigid_motions() {
 
 /// The 3D Hertz pressure of force `p` for a rigid sphere of radius `r` on a half-space of contact modulus
 /// `e_star`: `a = (3 P R / (4 E*))^⅓`, `p₀ = 3 P / (2π a²)`.
-fn hertz3d(p: f64, r: f64, e_star: f64) -> (impl Fn(f64) -> f64, f64, f64) {
+pub(crate) fn hertz3d(p: f64, r: f64, e_star: f64) -> (impl Fn(f64) -> f64, f64, f64) {
     let a = (3.0 * p * r / (4.0 * e_star)).cbrt();
     let p0 = 3.0 * p / (2.0 * PI * a * a);
     (move |x: f64| if x < a { p0 * (1.0 - (x / a).powi(2)).sqrt() } else { 0.0 }, a, p0)
 }
 
-/// A rigid sphere of radius 1 pushed `approach` into the cylinder (0, 2) × (−2, 0), clamped at its base, graded
-/// toward (0, 0.3) on its top down to `h_min`.
+/// A rigid sphere of radius 1 pushed `approach` into the cylinder (0, size) × (−size, 0), clamped at its base,
+/// graded toward (0, 0.15) on its top down to `h_min`.
 fn sphere_on_flat(h_min: f64, approach: f64, size: f64, growth: f64) -> Problem {
+    sphere_on_flat_of(STEEL, Formulation::Auto, h_min, approach, size, growth)
+}
+
+/// [`sphere_on_flat`] of `material` in `formulation`.
+pub(crate) fn sphere_on_flat_of(
+    material: Material,
+    formulation: Formulation,
+    h_min: f64,
+    approach: f64,
+    size: f64,
+    growth: f64,
+) -> Problem {
     let grading = Grading { side: Side::Top, segment: [0.0, 0.15], h_min, h_max: size / 4.0, growth };
     let mesh = graded_rectangle([0.0, size], [-size, 0.0], &grading).expect("mesh");
-    let spec = ProblemSpec::new(STEEL, "top")
+    let spec = ProblemSpec::new(material, "top")
         .clamped(["bottom"])
         .obstacle(ObstacleShape::Circle { center: 0.0, radius: 1.0 })
         .approach(approach)
-        .model(Model::Axisymmetric);
+        .model(Model::Axisymmetric)
+        .formulation(formulation);
     Problem::new(mesh, spec).expect("valid")
 }
 
 /// The relative L²(Γ_C, 2π r dr) error of λ_n against the 3D Hertz pressure of the computed force.
-fn l2_error(problem: &Problem, sol: &Solution, e_star: f64) -> f64 {
+pub(crate) fn l2_error(problem: &Problem, sol: &Solution, e_star: f64) -> f64 {
     let (p, a, _) = hertz3d(sol.normal_force, 1.0, e_star);
     pressure_l2_error(problem, sol, &p, &[a], None, |r| r)
 }
@@ -151,8 +164,8 @@ fn a_sphere_on_a_flat_is_hertz() {
 /// A hub (a, b) × (0, L) in (r, z) shrunk on a rigid shaft with radial interference δ, both ends on rollers
 /// (u_z = 0): the plane-strain Lamé state `u_r = A r + B / r`, whose pressure on the bore is
 /// `p = 2 (λ + μ) A (b² / a² − 1)` with `B = (λ + μ) A b² / μ` and `A a + B / a = δ`.
-fn lame_pressure(a: f64, b: f64, delta: f64) -> f64 {
-    let (e, nu) = (STEEL.young, STEEL.poisson);
+pub(crate) fn lame_pressure(material: Material, a: f64, b: f64, delta: f64) -> f64 {
+    let (e, nu) = (material.young, material.poisson);
     let (lam, mu) = (e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu)));
     let big_a = delta / (a + (lam + mu) * b * b / (mu * a));
     2.0 * (lam + mu) * big_a * (b * b / (a * a) - 1.0)
@@ -161,8 +174,14 @@ fn lame_pressure(a: f64, b: f64, delta: f64) -> f64 {
 /// The hub of [`lame_pressure`] on a uniform mesh of `n` × `n` cells, Γ_C its bore (the left side, x = a),
 /// the shaft a flat obstacle pushed δ into it, shifted `shift` along the axis.
 fn hub(n: usize, delta: f64, shift: f64) -> Problem {
+    hub_of(STEEL, Formulation::Auto, n, delta, shift)
+}
+
+/// [`hub`] of `material` in `formulation`.
+pub(crate) fn hub_of(material: Material, formulation: Formulation, n: usize, delta: f64, shift: f64) -> Problem {
     let mesh = rectangle([0.5, 1.0], [0.0, 0.5], n, n, Diagonal::Alternating).expect("mesh");
-    let spec = ProblemSpec::new(STEEL, "left")
+    let spec = ProblemSpec::new(material, "left")
+        .formulation(formulation)
         .support(Support::roller("bottom"))
         .support(Support::roller("top"))
         .approach(delta)
@@ -179,7 +198,7 @@ fn hub(n: usize, delta: f64, shift: f64) -> Problem {
 #[test]
 fn a_shrink_fit_has_the_lame_pressure_and_pushes_out_at_mu_p_area() {
     let (a, b, length, delta) = (0.5, 1.0, 0.5, 1e-3);
-    let p = lame_pressure(a, b, delta);
+    let p = lame_pressure(STEEL, a, b, delta);
     let mut worst = Vec::new();
     for n in [16, 32, 64] {
         let problem = hub(n, delta, 0.0);
@@ -381,7 +400,7 @@ fn a_push_out_history() {
     }
     let last = history.solutions.last().expect("steps");
     assert_eq!(slips[slips.len() - 1], problem.n_multipliers(), "the last step slips everywhere");
-    let force = lame_pressure(0.5, 1.0, delta) * 2.0 * PI * 0.5 * 0.5;
+    let force = lame_pressure(STEEL, 0.5, 1.0, delta) * 2.0 * PI * 0.5 * 0.5;
     assert!((last.tangential_force.abs() / (mu * force) - 1.0).abs() < 0.01, "push-out {}", last.tangential_force);
 }
 

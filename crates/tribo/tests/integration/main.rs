@@ -32,6 +32,7 @@
 
 mod adaptive;
 mod axisymmetric;
+mod axisymmetric_mixed;
 mod bent_pair;
 mod coulomb_newton;
 mod curved;

@@ -169,15 +169,13 @@ fn clarabel_and_the_active_set_agree_on_the_mixed_formulation() {
     );
 }
 
-/// What the mixed formulation does not take is refused: axisymmetry, ν ≤ 0, the partial factorization (a
+/// What the mixed formulation does not take is refused: ν ≤ 0, the partial factorization (a
 /// Cholesky kernel); a γ0 beyond the bound forced unchecked ends in an error naming the inertia, not
 /// in a wrong H.
 #[test]
 fn the_mixed_formulation_refuses_what_it_does_not_take() {
     let (problem, _) = patch(0.4, 0.0, 1e-3, Formulation::Mixed, MultiplierSpace::P1);
     let spec = problem.spec.clone();
-    let axisymmetric = Problem::new(problem.mesh.clone(), spec.clone().model(Model::Axisymmetric));
-    assert!(matches!(&axisymmetric, Err(Error::BadAxisymmetry { what }) if what.contains("mixed")), "{axisymmetric:?}");
     for nu in [0.0, -0.3] {
         let e = Problem::new(
             problem.mesh.clone(),
