@@ -16,7 +16,8 @@ of three runs on a fresh problem).
     python scripts/study_locking.py --memory   # docs/locking_memory.csv: peak RSS, finest mesh, ν = 0.4999
 
 What is left out: the finite block's share of the force (the same for both formulations); memory (the mixed
-factor holds about 1.5 times the unknowns); a locking-free formulation for axisymmetry and for two bodies.
+factor holds about 1.5 times the unknowns, measured apart with --memory); axisymmetry and two bodies (their
+mixed formulation is measured in crates/tribo/tests/integration/axisymmetric_mixed.rs and mixed.rs).
 """
 
 from __future__ import annotations

@@ -28,12 +28,12 @@ line prints each as a ``tribo: warning: …`` line. The rules and their threshol
   where the body's boundary goes on straight (the next boundary edge is collinear with the last edge of
   Γ_C). The contact could spread past that end, and the answer depends on where the contact side was cut;
   at a corner of the body (a block on a foundation) the zone may end there, and nothing is said.
-* **ν close to ½** in plane strain: ``poisson`` ≥ ``MAX_POISSON`` = 0.49. P1 triangles lock as ν → ½ (λ/μ = 2ν/(1 − 2ν)
+* **ν close to ½** in plane strain or axisymmetry with P1 displacements: ``poisson`` ≥ ``MAX_POISSON`` = 0.49. P1 triangles lock as ν → ½ (λ/μ = 2ν/(1 − 2ν)
   is 49 there): on Hertz (33k unknowns, the Python guide's measurement, which a test recomputes), λ_n is 4.0 %
   off at ν = 0.49 and 17 % at 0.499, against 0.76 % at ν = 0.3, and
   at 0.4999 a punch reports a normal force twice that of ν = 0.3 — far beyond the 3 % the change of E*
   explains. No mesh near the contact repairs it; the mixed formulation (``formulation='mixed'``, which the
-  default ``'auto'`` takes there in plane strain) does, and nothing is said under it.
+  default ``'auto'`` takes there in plane strain and axisymmetry) does, and nothing is said under it.
 * **A shift large for small sliding**: the obstacle is not flat and ``|s|`` exceeds ``MAX_SHIFT_FRACTION`` =
   10 % of the contact width. tribo's friction is small sliding: the gap is that of the obstacle where it
   started, so the answer places the contact zone where it was before the shift. The physical zone moves

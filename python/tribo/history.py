@@ -67,7 +67,7 @@ def write_pvd(path: str | Path, files: Sequence[Path], times: Sequence[float]) -
 
 
 def history_table(history: History) -> dict[str, np.ndarray]:
-    """The per-step columns of ``history.csv`` (converged steps only)."""
+    """The per-step columns of ``history.csv`` (converged steps only; ``angle`` where a step turns the obstacle)."""
     k = len(history)
     contact, stick = history.contact_zone, history.stick_zone
     return {
@@ -75,6 +75,7 @@ def history_table(history: History) -> dict[str, np.ndarray]:
         "approach": history.approach[:k],
         "shift": history.shift[:k],
         "load_factor": history.load_factor[:k],
+        **({"angle": history.rotation[:k]} if not np.isnan(history.rotation).all() else {}),
         **{name: values[:k] for name, values in history.displacements.items()},
         "normal_force": history.normal_force,
         "tangential_force": history.tangential_force,

@@ -186,13 +186,15 @@ def history_steps(
     load_factor: Any = None,
     displacements: Mapping[str, Any] | None = None,
     prescribed: Sequence[tuple[str, float]] = (),
+    rotation: Any = None,
 ) -> npt.NDArray[np.float64]:
-    """The steps of a history as rows (approach, shift, load_factor, then the prescribed displacement
-    components): each a number (the same at every step) or one value per step; ``load_factor`` defaults
-    to 1. ``displacements`` maps components of ``prescribed`` (the problem's ``prescribed``: names
+    """The steps of a history as rows (approach, shift, load_factor, the obstacle's angle, then the prescribed
+    displacement components): each a number (the same at every step) or one value per step; ``load_factor``
+    defaults to 1, the angle to NaN (the problem's own). ``displacements`` maps components of ``prescribed`` (the problem's ``prescribed``: names
     'set.x'/'set.y' and values) to their values; a component left out keeps its value. Without
-    ``displacements`` the rows have three columns (every prescribed displacement as the problem has it)."""
-    columns = {"approach": approach, "shift": shift, "load_factor": 1.0 if load_factor is None else load_factor}
+    ``displacements`` the rows have four columns (every prescribed displacement as the problem has it)."""
+    columns = {"approach": approach, "shift": shift, "load_factor": 1.0 if load_factor is None else load_factor,
+               "rotation": np.nan if rotation is None else rotation}
     if displacements is not None:
         known = dict(prescribed)
         if not isinstance(displacements, Mapping):
@@ -239,22 +241,21 @@ class Problem(_tribo.Problem):
     ``Problem(mesh, *, young, poisson, contact, clamped=None, supports=None, obstacle=None, approach=None,
     shift=None, rotation=None, tractions=None, pressures=None, body_force=None, multiplier_ratio=None,
     multiplier_size=None, multiplier_points=None, space=None, model=None, formulation=None, materials=None,
-    regions=None)``: the body (a Mesh, Young's
-    modulus and Poisson's ratio, or for a body of several materials, a coating on a substrate say, ``materials``
+    regions=None)``: the body (a Mesh, Young's modulus and Poisson's ratio, or for a body of several materials, a coating on a substrate say, ``materials``
     [(E, ν), …] and ``regions``, the index of each triangle's material, from ``tribo.io.read_triangle_groups``
     or the triangles' centroids; model 'plane_strain', the default, 'plane_stress': a thin plate, forces per unit
     thickness, or 'axisymmetric': the solid of revolution of the mesh about the y axis, x = r ≥ 0, the axis held at
     u_r = 0, tractions per unit area and forces on the whole turn; formulation 'displacement': P1 displacements,
     which lock as ν → ½, 'mixed': P1 displacements and pressures, free of locking, for rubber and other nearly
-    incompressible bodies, plane strain or plane stress, or 'auto', the default: mixed from ν = 0.49 in
-    plane strain, ``problem.formulation`` saying which), its
+    incompressible bodies, every model, or 'auto', the default: mixed from ν = 0.49 in plane strain and
+    axisymmetry, ``problem.formulation`` saying which), its
     supports (edge sets clamped, or a list of Support), its loads (tractions: a dict edge set -> (tx, ty);
     pressures: a dict edge set -> p, the traction −p n along each edge's outward normal, so a bore or a curved side
     can be pressed; body_force (fx, fy)), Γ_C (the edge set `contact`) and the obstacle with its motion (an
     Obstacle or a callable gap(xi), the approach δ and the tangential shift s, and for an obstacle given by its
     geometry ``rotation=((cx, cy), angle)``: turned by angle radians counterclockwise about (cx, cy), its surface
-    sliding with the turn; not in a history), and the multiplier mesh T_H
-    (at most one of multiplier_ratio H/h, multiplier_size H and multiplier_points; space 'P0' or 'P1').
+    sliding with the turn; a history may turn it step by step), and the multiplier mesh T_H (at most one of
+    multiplier_ratio H/h, multiplier_size H and multiplier_points; space 'P0' or 'P1').
     """
 
     _arguments: dict[str, Any]
@@ -382,6 +383,7 @@ class Problem(_tribo.Problem):
         load_factor: float | npt.ArrayLike | None = None,
         *,
         displacements: Mapping[str, Any] | None = None,
+        rotation: float | npt.ArrayLike | None = None,
         friction: _Law | None = None,
         mu: float | None = None,
         threshold: float | npt.ArrayLike | None = None,
@@ -397,7 +399,9 @@ class Problem(_tribo.Problem):
         (totals, not increments; a scalar is the same at every step; default the problem's) under
         ``load_factor[k]`` × the body force and tractions (default 1), and the prescribed displacements to
         ``displacements`` (a dict from the components of ``prescribed``, 'set.x' or 'set.y', to a value or
-        one per step; a component left out keeps its value): two bodies move only this way. Coulomb's law acts on the slip increment relative to the
+        one per step; a component left out keeps its value): two bodies move only this way. ``rotation`` turns an
+        obstacle that has a ``rotation`` to that angle (radians, the total about its centre; default its own) at each
+        step (the contact frame stays the problem's: small rotations). Coulomb's law acts on the slip increment relative to the
         obstacle, so the answer depends on the path; a history of one step is the static ``solve``. The
         friction, γ0 and settings keywords are those of ``solve``. ``progress``, if given, is called as
         progress(step, steps, status, seconds) after every step; returning False ends the history there
@@ -408,7 +412,7 @@ class Problem(_tribo.Problem):
         converged step only (the per-step arrays cover every step): a long history then fits the memory
         budget, which the solutions kept must fit before any step runs.
         """
-        steps = self._steps(approach, shift, load_factor, displacements)
+        steps = self._steps(approach, shift, load_factor, displacements, rotation)
         try:
             return self._history(steps, self._solve_history(steps, {
                 "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
@@ -473,10 +477,8 @@ class Problem(_tribo.Problem):
         ``progress``, if given, is called as progress(unknowns, relative, seconds) after every level, and
         returning False stops the loop there (stop 'interrupted'). Defaults come from the core.
         """
-        options = {
-            "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
-            "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
-        }
+        options: dict[str, Any] = {"friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
+                                   "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings}
         adapt = _adapt_args(tol, max_unknowns, theta, marking, bisection, stop_on, max_levels, algebraic)
         solution, problem, levels, stop, meshes = self._adapt(options, adapt)
         return Adaptive(solution=Solution.from_dict(solution), problem=problem, levels=levels, stop=stop, meshes=meshes)  # type: ignore[arg-type]
@@ -488,6 +490,7 @@ class Problem(_tribo.Problem):
         load_factor: float | npt.ArrayLike | None = None,
         *,
         displacements: Mapping[str, Any] | None = None,
+        rotation: float | npt.ArrayLike | None = None,
         on: Sequence[int] | None = None,
         tol: float | None = None,
         max_unknowns: int | None = None,
@@ -516,29 +519,26 @@ class Problem(_tribo.Problem):
         own (``Problem::estimate_history_hierarchical`` in the crate). Levels start their steps from rest, as a
         history does, not from the previous level.
         """
-        steps = self._steps(approach, shift, load_factor, displacements)
-        options = {
-            "friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
-            "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings,
-        }
+        steps = self._steps(approach, shift, load_factor, displacements, rotation)
+        options: dict[str, Any] = {"friction": friction, "mu": mu, "threshold": threshold, "gamma0": gamma0,
+                                   "gamma0_fraction": gamma0_fraction, "check_gamma0": check_gamma0, "progress": progress, **settings}
         adapt = _adapt_args(tol, max_unknowns, theta, marking, bisection, stop_on, max_levels, algebraic)
         history, problem, levels, stop, meshes = self._adapt(options, adapt, steps, list(on or []))
         return AdaptiveHistory(
             history=self._history(steps, history), problem=problem, levels=levels, stop=stop, meshes=meshes  # type: ignore[arg-type]
         )
 
-    def _steps(
-        self, approach: Any, shift: Any, load_factor: Any, displacements: Mapping[str, Any] | None
-    ) -> npt.NDArray[np.float64]:
+    def _steps(self, approach: Any, shift: Any, load_factor: Any, displacements: Mapping[str, Any] | None,
+               rotation: Any = None) -> npt.NDArray[np.float64]:
         """The rows of a history: the problem's approach and shift where none is given."""
         approach = self.approach if approach is None else approach
         shift = self.shift if shift is None else shift
-        return history_steps(approach, shift, load_factor, displacements, self.prescribed)
+        return history_steps(approach, shift, load_factor, displacements, self.prescribed, rotation)
 
     def _history(self, steps: npt.NDArray[np.float64], data: dict[str, Any]) -> History:
         """The History of the compiled dict, with the prescribed displacements its rows moved."""
-        names = [name for name, _ in self.prescribed] if steps.shape[1] > 3 else []
-        columns = {n: np.array(steps[:, 3 + i]) for i, n in enumerate(names)}
+        names = [name for name, _ in self.prescribed] if steps.shape[1] > 4 else []
+        columns = {n: np.array(steps[:, 4 + i]) for i, n in enumerate(names)}
         for c in columns.values():
             c.flags.writeable = False  # read-only, as every array of a result
         return History.from_dict({**data, "displacements": columns})

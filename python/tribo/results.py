@@ -330,8 +330,8 @@ class Solution(_Record):
 class History(_Record):
     """A quasi-static loading history: per-step arrays for every step that converged, and the solutions kept.
 
-    The arrays have one entry per converged step (``len(history)``); ``approach``, ``shift`` and
-    ``load_factor`` give the steps asked for (all of them). ``solutions`` holds the whole solution of
+    The arrays have one entry per converged step (``len(history)``); ``approach``, ``shift``, ``load_factor``
+    and ``rotation`` give the steps asked for (all of them). ``solutions`` holds the whole solution of
     every step by default; with the solve keyword ``keep_every=k`` only of every k-th step (steps with
     ``step % k == 0``, the first included) and of the last converged one, ``kept`` naming their steps (the arrays still
     cover every step). ``history.solution(step)`` finds a kept step's solution.
@@ -346,6 +346,8 @@ class History(_Record):
         approach: approach δ_k of every step asked for.
         shift: tangential position s_k of every step asked for.
         load_factor: load factor α_k of every step asked for.
+        rotation: the obstacle's angle θ_k (radians, about its rotation's centre) of every step asked for; NaN
+            where a step kept the problem's own.
         displacements: the prescribed displacement components the steps moved ('set.x'/'set.y' of the
             problem's ``prescribed``), each with its value at every step asked for; empty when the history
             kept them as the problem has them.
@@ -384,6 +386,7 @@ class History(_Record):
     approach: _Floats
     shift: _Floats
     load_factor: _Floats
+    rotation: _Floats
     displacements: dict[str, _Floats] = dataclasses.field(default_factory=dict)
     normal_force: _Floats
     tangential_force: _Floats

@@ -414,7 +414,8 @@ class Scene:
         return columns["approach"], columns["shift"], columns["load_factor"]
 
     def history_columns(self) -> dict[str, Any]:
-        """The steps of ``[history]`` per column: ``approach``, ``shift``, ``load_factor`` and
+        """The steps of ``[history]`` per column: ``approach``, ``shift``, ``load_factor``, ``angle`` (NaN: the
+        obstacle does not turn) and
         ``displacements`` (a dict of the prescribed components the history moves), sampled from the
         waypoints (the first waypoint is step 0)."""
         h = self.sections.get("history", {})
@@ -423,6 +424,7 @@ class Scene:
             "approach": h.get("approach", o.get("approach", 0.0)),
             "shift": h.get("shift", o.get("shift", 0.0)),
             "load_factor": h.get("load_factor", 1.0),
+            "angle": h.get("angle", o["rotation"][1] if "rotation" in o else np.nan),
         }
         moved = h.get("displacements", {})
         lengths = {k: len(v) for k, v in {**given, **moved}.items() if isinstance(v, list)}
@@ -460,7 +462,7 @@ class Scene:
         problem = problem if problem is not None else self.build()
         c = self.history_columns()
         kw = {**({} if keep_every is None else {"keep_every": keep_every}), **self.solve_kwargs()}
-        return problem, problem.solve_history(c["approach"], c["shift"], c["load_factor"],
+        return problem, problem.solve_history(c["approach"], c["shift"], c["load_factor"], rotation=c["angle"],
                                               displacements=c["displacements"] or None, progress=progress, **kw)
 
     def solve_history_adaptive(
@@ -471,7 +473,7 @@ class Scene:
         c = self.history_columns()
         kw = {**self.adapt_kwargs(), **self.solve_kwargs()}
         with _adapt_keys():
-            return problem.solve_history_adaptive(c["approach"], c["shift"], c["load_factor"],
+            return problem.solve_history_adaptive(c["approach"], c["shift"], c["load_factor"], rotation=c["angle"],
                                                   displacements=c["displacements"] or None, progress=progress, **kw)
 
     def to_dict(self) -> dict[str, Any]:

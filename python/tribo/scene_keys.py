@@ -129,6 +129,9 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
     "history.shift": ("s at each waypoint (or one value for all)", "length", "`obstacle.shift`"),
     "history.approach": ("δ at each waypoint (or one value for all)", "length", "`obstacle.approach`"),
     "history.load_factor": ("The factor on the loads at each waypoint", "—", "1"),
+    "history.angle": ("The obstacle's angle at each waypoint, about the centre of `obstacle.rotation` (which it "
+                      "needs); the contact frame stays the problem's: small rotations", "radian",
+                      "`obstacle.rotation.angle`"),
     "history.displacements": ("Paths of prescribed displacement components (`set.x`, `set.y`; `body.set.x` "
                               "for two bodies)", "length", "unchanged"),
     "history.steps": ("Steps from one waypoint to the next (one count, or one per segment)", "—", "10"),

@@ -17,8 +17,7 @@ A scene has these tables (every key is optional unless marked *required*; see ``
 ``[material]``
     ``young``, ``poisson`` (*required*); ``model``: ``"plane_strain"`` (default), ``"plane_stress"`` or
     ``"axisymmetric"``; ``formulation``: ``"auto"`` (default: mixed from ν = 0.49 in plane strain and axisymmetry),
-    ``"displacement"`` or ``"mixed"`` (displacements and pressures, free of locking as ν → ½; not in
-    axisymmetry);
+    ``"displacement"`` or ``"mixed"`` (displacements and pressures, free of locking as ν → ½; every model);
     ``[[material.regions]]``: parts of the body of other materials, each with ``young``, ``poisson`` and
     ``group`` (a physical surface of the mesh file) or ``box = [x0, y0, x1, y1]`` (the triangles whose
     centroid lies in it; put the interface on a grid line), a later one holding where two overlap.
@@ -65,7 +64,8 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     A quasi-static loading history (``tribo run`` then solves it step by step, see ``tribo.history``):
     piecewise-linear paths through waypoints. ``shift``, ``approach`` and ``load_factor`` are each a
     number (the same at every waypoint) or a list of waypoint values (lists have one length, at least 2);
-    unset, they take ``obstacle.shift``, ``obstacle.approach`` and 1. ``steps`` (default 10) is the
+    unset, they take ``obstacle.shift``, ``obstacle.approach`` and 1. ``angle``, a path too, turns an obstacle
+    that has an ``obstacle.rotation`` (radians about its centre; default its angle). ``steps`` (default 10) is the
     number of steps from one waypoint to the next (one count, or a list with one per segment); the first
     waypoint is step 0. ``plot_steps``: the steps whose tractions the plots show (default: the first, the
     middle and the last). ``displacements``: a table of prescribed displacement components
@@ -304,6 +304,7 @@ SCHEMA: dict[str, dict[str, Checker]] = {
     "history": {
         "shift": _path,
         "approach": _path,
+        "angle": _path,
         "load_factor": _path,
         "displacements": _paths,
         "steps": _counts,
@@ -357,7 +358,7 @@ NOT_FOR_TWO_BODIES = {
     "contact": ("edge_set",),
     "loads": ("tractions", "pressures"),
     "discretization": tuple(BODY_TABLES["discretization"]),
-    "history": ("approach", "shift"),
+    "history": ("approach", "shift", "angle"),
 }
 # The keys of one [[supports]] entry, by kind (besides kind and edge_set).
 SUPPORT_KINDS: dict[str, tuple[str, ...]] = {"clamp": (), "roller": (), "displacement": ("x", "y"),
@@ -553,9 +554,9 @@ def check_scene(data: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
     if sections.get("estimate", {}).get("error_bars") and "history" in sections:
         raise SceneError("scene key 'estimate.error_bars' is for one solve or an adaptive one, not a [history]",
                          "estimate.error_bars")
-    if "rotation" in sections.get("obstacle", {}) and "history" in sections:
-        raise SceneError("scene key 'obstacle.rotation' is for one solve or an adaptive one, not a [history] (its "
-                         "steps move the obstacle by approach and shift only)", "obstacle.rotation")
+    if "angle" in sections.get("history", {}) and "rotation" not in sections.get("obstacle", {}):
+        raise SceneError("scene key 'history.angle' turns the obstacle about the centre of 'obstacle.rotation', which "
+                         "the scene does not give (give it with angle = 0)", "history.angle")
     if "on" in sections.get("adapt", {}) and "history" not in sections:
         raise SceneError("scene key 'adapt.on' names steps of a [history], and the scene has none", "adapt.on")
     d = sections.get("discretization", {})

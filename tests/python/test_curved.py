@@ -616,10 +616,46 @@ def test_a_turned_hole_drags_a_ring_as_its_shift_does(tmp_path: Path) -> None:
         tribo.Problem(mesh, young=E, poisson=NU, contact="outer", clamped="inner", rotation=((0.0, 0.0), 0.01))
     with pytest.raises(tribo.SceneError, match="obstacle.rotation"):
         parse_scene({**scene, "obstacle": {"shape": "flat", "rotation": {"center": [0.0, 0.0], "angle": 0.01}}})
-    with pytest.raises(tribo.SceneError, match="not a \\[history\\]"):
-        parse_scene({**scene, "history": {"shift": [0.0, 0.01]}})
+    with pytest.raises(tribo.SceneError, match="history.angle"):
+        parse_scene({**scene, "obstacle": {k: v for k, v in scene["obstacle"].items() if k != "rotation"},
+                     "history": {"angle": [0.0, 0.01]}})
     with pytest.raises(tribo.SceneError, match="obstacle.rotation.axis"):
         parse_scene({**scene, "obstacle": {**scene["obstacle"], "rotation": {"center": [0, 0], "axis": 1}}})
+
+
+def test_a_history_turns_the_hole_as_its_shift_does(tmp_path: Path) -> None:
+    """``solve_history(rotation=…)`` turns an obstacle that has a rotation step by step (scene files: ``[history]
+    angle``): the hole turned 0.005, 0.01, 0.02, 0.01 rad about its centre drags the clamped ring as the same hole
+    shifted by θR step by step (the Rust test ``histories_turn_the_obstacle_step_by_step``); ``history.rotation`` and
+    history.csv's ``angle`` hold the angles; a step that turns an obstacle without a rotation is refused."""
+    mesh = tribo.Mesh.ring_sector((0.0, 0.0), (0.5, 1.0), (0.0, 2 * math.pi), h_max=0.08, h_min=0.08)
+    kw: dict[str, object] = dict(young=E, poisson=NU, contact="outer", clamped="inner",
+                                 obstacle=tribo.Obstacle.hole((0.0, 0.0), 1.0), approach=1e-3)
+    angles = [0.005, 0.01, 0.02, 0.01]
+    turned = tribo.Problem(mesh, rotation=((0.0, 0.0), 0.0), **kw).solve_history(rotation=angles, mu=0.3)  # type: ignore[arg-type]
+    shifted = tribo.Problem(mesh, **kw).solve_history(shift=angles, mu=0.3)  # type: ignore[arg-type]
+    assert turned.converged and shifted.converged and len(turned) == 4
+    np.testing.assert_allclose(turned.rotation, angles)
+    assert np.isnan(shifted.rotation).all()
+    np.testing.assert_allclose(turned.tangential_force, shifted.tangential_force, rtol=1e-8)
+    with pytest.raises(tribo.TriboError, match="no rotation"):
+        tribo.Problem(mesh, **kw).solve_history(rotation=0.01)  # type: ignore[arg-type]
+    from tribo.run import run_scene
+
+    scene = {
+        "body": {"ring": {"center": [0.0, 0.0], "radii": [0.5, 1.0], "angles": [0.0, 360.0]}},
+        "material": {"young": E, "poisson": NU}, "supports": {"clamped": "inner"}, "contact": {"edge_set": "outer"},
+        "obstacle": {"shape": "hole", "center": [0.0, 0.0], "radius": 1.0, "approach": 1e-3,
+                     "rotation": {"center": [0.0, 0.0], "angle": 0.0}},
+        "friction": {"mu": 0.3}, "discretization": {"h": 0.08},
+        "history": {"angle": [0.0, 0.02], "steps": 2},
+    }
+    run_scene(parse_scene(scene), tmp_path)
+    table = pd.read_csv(tmp_path / "history.csv", comment="#")
+    np.testing.assert_allclose(table["angle"], [0.0, 0.01, 0.02])
+    q = tribo.Problem(mesh, **kw).solve_history(shift=[0.0, 0.01, 0.02], mu=0.3).tangential_force  # type: ignore[arg-type]
+    np.testing.assert_allclose(table["tangential_force"], q, rtol=1e-6)
+    assert q[-1] != 0.0
 
 
 def test_dof_span_reads_a_loop_as_the_core_does() -> None:

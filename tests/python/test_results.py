@@ -45,7 +45,7 @@ def history(**kw: Any) -> tribo.History:
     s = solution()
     fields: dict[str, Any] = dict(
         status="converged", ended_at=None, solutions=[s, s], kept=np.arange(2), failed=None, approach=np.full(2, 0.01),
-        shift=np.array([0.0, 0.001]), load_factor=np.ones(2), normal_force=np.full(2, 1.5),
+        shift=np.array([0.0, 0.001]), load_factor=np.ones(2), rotation=np.full(2, np.nan), normal_force=np.full(2, 1.5),
         tangential_force=np.full(2, 0.2), error_estimate=np.full(2, 0.1), traction_error=np.full(2, 0.05),
         traction_error_hierarchical=np.full(2, np.nan),
         stick_count=np.ones(2, dtype=np.int64), slip_count=np.ones(2, dtype=np.int64),
@@ -108,8 +108,10 @@ def test_solved_results_pickle_and_are_read_only() -> None:
 
 
 def test_history_steps_broadcast_scalars() -> None:
-    np.testing.assert_array_equal(history_steps(0.01, [0.0, 0.002]), [[0.01, 0.0, 1.0], [0.01, 0.002, 1.0]])
-    np.testing.assert_array_equal(history_steps([0.01], 0.0, [0.5, 1.0]), [[0.01, 0.0, 0.5], [0.01, 0.0, 1.0]])
+    nan = np.nan  # the obstacle's angle: the problem's own
+    np.testing.assert_array_equal(history_steps(0.01, [0.0, 0.002]), [[0.01, 0.0, 1.0, nan], [0.01, 0.002, 1.0, nan]])
+    np.testing.assert_array_equal(history_steps([0.01], 0.0, [0.5, 1.0]), [[0.01, 0.0, 0.5, nan], [0.01, 0.0, 1.0, nan]])
+    np.testing.assert_array_equal(history_steps(0.0, 0.0, rotation=[0.1, 0.2]), [[0.0, 0.0, 1.0, 0.1], [0.0, 0.0, 1.0, 0.2]])
     for args, match in [
         ((0.01, [0.0, 0.1], [1.0, 1.0, 1.0]), "shift has 2 values, but the history has 3 steps"),
         ((0.01, []), r"at least one step \(shift has no value\)"),

@@ -49,7 +49,6 @@ impl Problem {
         observer: Option<LevelObserver<'_>>,
     ) -> Result<AdaptiveHistory> {
         self.check_adaptive(friction, settings, adapt)?;
-        self.check_history_of_turned_obstacle(steps.len())?;
         if settings.keep_every != 1 {
             return Err(Error::BadSetting {
                 name: "keep_every",

@@ -161,16 +161,7 @@ impl MortarMatrices {
         model: Model,
     ) -> Result<Self> {
         let fe = &contact.node_xi;
-        let radial = model.is_axisymmetric();
-        // The measure at abscissa x of edge e: 1, or 2π r(x).
-        let measure = |e: usize, x: f64| {
-            if !radial {
-                return 1.0;
-            }
-            let s = (x - fe[e]) / (fe[e + 1] - fe[e]);
-            let (a, b) = (contact.node_points[e], contact.node_points[e + 1]);
-            radial_weight((1.0 - s) * a[0] + s * b[0])
-        };
+        let measure = |e: usize, x: f64| measure(contact, model, e, x);
         let (p, q, r) = (fe.len(), mult.n_dofs(), contact.n_edges());
         let pieces = common_refinement(fe, &mult.xi);
         let (mut m1, mut m2, mut m3) = (Coo::new(p, p), Coo::new(p, q), Coo::new(p, r));
@@ -185,9 +176,6 @@ impl MortarMatrices {
             .map(|(k, (e, h))| h * e.length * measure(k, 0.5 * (fe[k] + fe[k + 1])))
             .collect();
         let mut psi_integrals = vec![0.0; q];
-        let mut gap_moments = vec![0.0; q];
-        // Where the obstacle turns, its surface's motion along each edge varies: ∫ψ_j s(ξ).
-        let mut shift_moments = if obstacle.rotation.is_some() { vec![0.0; q] } else { Vec::new() };
         let fe_basis = |e: usize, x: f64| {
             let s = (x - fe[e]) / (fe[e + 1] - fe[e]);
             [(e, 1.0 - s), (e + 1, s)]
@@ -220,26 +208,6 @@ impl MortarMatrices {
                     psi_integrals[i] += w * pi;
                 }
             }
-            for &(t, w) in &GAUSS4 {
-                let x = mid + half * t;
-                let g = obstacle.gap(contact, x)?;
-                let s = if shift_moments.is_empty() {
-                    0.0
-                } else {
-                    obstacle.tangential_motion(
-                        contact.surface_point(x),
-                        contact.frame_at(x).1,
-                        contact.edges[pc.edge].length,
-                    )
-                };
-                let (psi, npsi) = mult.basis(pc.cell, x);
-                for &(i, pi) in &psi[..npsi] {
-                    gap_moments[i] += w * half * measure(pc.edge, x) * pi * g;
-                    if let Some(m) = shift_moments.get_mut(i) {
-                        *m += w * half * measure(pc.edge, x) * pi * s;
-                    }
-                }
-            }
         }
         m2_edges.sort_by_key(|e| (e.0, e.1, e.2));
         let mut by_edge: Vec<(usize, usize, usize, f64)> = Vec::with_capacity(m2_edges.len());
@@ -249,6 +217,7 @@ impl MortarMatrices {
                 _ => by_edge.push(e),
             }
         }
+        let (gap_moments, shift_moments) = obstacle_moments(contact, mult, obstacle, model)?;
         Ok(Self {
             m1: m1.compress(),
             m2: m2.compress(),
@@ -262,4 +231,60 @@ impl MortarMatrices {
             shift_moments,
         })
     }
+}
+
+/// The obstacle's moments on T_H: `(∫ψ_j g, ∫ψ_j s)` with the gap `g = g₀ − δ` and, where the obstacle turns, the
+/// motion of its surface along each edge's tangent `s(ξ)` ([`Obstacle::tangential_motion`]; empty where it does not
+/// turn: the moments are then `s ∫ψ_j`), both exact on the common refinement up to the gap's smoothness (Gauss, 4
+/// points per piece). `obstacle` is placed ([`Obstacle::placed`]); a history turning it calls this per step.
+///
+/// # Errors
+/// [`crate::Error::BadObstacle`] if the gap function returns a non-finite value.
+pub fn obstacle_moments(
+    contact: &ContactBoundary,
+    mult: &MultiplierMesh,
+    obstacle: &Obstacle,
+    model: Model,
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    let fe = &contact.node_xi;
+    let measure = |e: usize, x: f64| measure(contact, model, e, x);
+    let q = mult.n_dofs();
+    let mut gap_moments = vec![0.0; q];
+    // Where the obstacle turns, its surface's motion along each edge varies: ∫ψ_j s(ξ).
+    let mut shift_moments = if obstacle.rotation.is_some() { vec![0.0; q] } else { Vec::new() };
+    for pc in &common_refinement(fe, &mult.xi) {
+        let (half, mid) = (0.5 * (pc.b - pc.a), 0.5 * (pc.a + pc.b));
+        for &(t, w) in &GAUSS4 {
+            let x = mid + half * t;
+            let g = obstacle.gap(contact, x)?;
+            let s = if shift_moments.is_empty() {
+                0.0
+            } else {
+                obstacle.tangential_motion(
+                    contact.surface_point(x),
+                    contact.frame_at(x).1,
+                    contact.edges[pc.edge].length,
+                )
+            };
+            let (psi, npsi) = mult.basis(pc.cell, x);
+            for &(i, pi) in &psi[..npsi] {
+                gap_moments[i] += w * half * measure(pc.edge, x) * pi * g;
+                if let Some(m) = shift_moments.get_mut(i) {
+                    *m += w * half * measure(pc.edge, x) * pi * s;
+                }
+            }
+        }
+    }
+    Ok((gap_moments, shift_moments))
+}
+
+/// The measure at abscissa x of edge e of Γ_C: 1, or `2π r(x)` in axisymmetry.
+fn measure(contact: &ContactBoundary, model: Model, e: usize, x: f64) -> f64 {
+    if !model.is_axisymmetric() {
+        return 1.0;
+    }
+    let fe = &contact.node_xi;
+    let s = (x - fe[e]) / (fe[e + 1] - fe[e]);
+    let (a, b) = (contact.node_points[e], contact.node_points[e + 1]);
+    radial_weight((1.0 - s) * a[0] + s * b[0])
 }

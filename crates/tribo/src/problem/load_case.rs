@@ -7,6 +7,8 @@
 //! factorization.
 
 use crate::condensation::Factor;
+use crate::contact::obstacle::{Obstacle, ObstacleRotation};
+use crate::error::{Error, Result};
 use crate::problem::Problem;
 use crate::qp::QpData;
 
@@ -27,6 +29,8 @@ pub struct LoadCase {
     pub approach: f64,
     /// See `approach`.
     pub shift: f64,
+    /// The obstacle's angle, where it turns ([`crate::ObstacleRotation`]; a step's [`LoadStep::rotation`]).
+    pub angle: Option<f64>,
     /// The factor α on the body force and the tractions (1 for a static solve).
     pub load_factor: f64,
     /// At the FE nodes of Γ_C, the tangential displacement from which slip is measured: the shift s of a
@@ -83,9 +87,10 @@ impl LoadCase {
             gap: problem.contact_gap.clone(),
             approach: problem.spec.obstacle.approach,
             shift,
+            angle: problem.spec.obstacle.rotation.map(|r| r.angle),
             load_factor: 1.0,
             slip_origin: if problem.spec.obstacle.rotation.is_some() {
-                problem.obstacle_slip_origin()
+                problem.slip_origin_of(&problem.spec.obstacle.placed())
             } else {
                 vec![shift; problem.contact.nodes.len()]
             },
@@ -152,6 +157,125 @@ impl Problem {
             let u_n = lifting[2 * node] * n[0] + lifting[2 * node + 1] * n[1];
             if u_n - g > tol * u_n.abs().max(g.abs()) {
                 return Err(crate::Error::PrescribedPenetration { node, u_n, gap: g, step });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The obstacle of a history that turns it, at one step's shift and angle (at the problem's approach, which a
+/// step moves by a constant): what the step's data read of it (derived in [`crate::solve::history`]).
+#[derive(Debug, Clone)]
+pub struct Placement {
+    /// `∫ψ_j (g₀ − δ)` (q) of the obstacle turned to the step's angle.
+    pub gap_moments: Vec<f64>,
+    /// `∫ψ_j s(ξ)` (q): how far its surface has moved along Γ_C, the shift and the rotation's `w · t`.
+    pub motion: Vec<f64>,
+    /// The gap `g₀ − δ` at the FE nodes of Γ_C.
+    pub node_gap: Vec<f64>,
+    /// The surface's motion along each FE node's tangent.
+    pub node_motion: Vec<f64>,
+}
+
+impl Problem {
+    /// The problem's obstacle moved to `shift` and turned to `angle` about the centre of its rotation (at its
+    /// own approach), placed ([`Obstacle::placed`]); the problem's own where it does not turn.
+    pub fn obstacle_at(&self, shift: f64, angle: f64) -> Obstacle {
+        let o = &self.spec.obstacle;
+        let rotation = o.rotation.map(|r| ObstacleRotation { angle, ..r });
+        Obstacle { shift, rotation, ..o.clone() }.placed()
+    }
+
+    /// The obstacle at `shift` and `angle` ([`Problem::obstacle_at`]) as a history step reads it.
+    ///
+    /// # Errors
+    /// [`Error::BadObstacle`] if a gap function returns a non-finite value.
+    pub fn placement(&self, shift: f64, angle: f64) -> Result<Placement> {
+        let obstacle = self.obstacle_at(shift, angle);
+        let (gap_moments, motion) =
+            crate::contact::mortar::obstacle_moments(&self.contact, &self.multipliers, &obstacle, self.spec.model)?;
+        let node_gap = self.contact.node_xi.iter().map(|&xi| obstacle.gap(&self.contact, xi)).collect::<Result<_>>()?;
+        let motion =
+            if motion.is_empty() { self.mortar.psi_integrals.iter().map(|w| w * shift).collect() } else { motion };
+        Ok(Placement { gap_moments, motion, node_gap, node_motion: self.slip_origin_of(&obstacle) })
+    }
+}
+
+/// One step of a loading history: where the obstacle is, how much of the load acts and where the
+/// prescribed displacements are.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadStep {
+    /// Normal approach δ_k of the obstacle toward the body (the total, not an increment).
+    pub approach: f64,
+    /// Tangential position s_k of the obstacle along t (the total, not an increment).
+    pub shift: f64,
+    /// Factor α_k on the body force and the tractions.
+    pub load_factor: f64,
+    /// The values of the prescribed displacement components at this step, in the order of
+    /// [`crate::ProblemSpec::prescribed_components`] (`"set.x"`, `"set.y"` of each
+    /// [`crate::Support::Displacement`]); empty for the problem's own values.
+    pub displacements: Vec<f64>,
+    /// The obstacle's angle θ_k at this step (radians, counterclockwise, the total about the centre of the
+    /// problem's [`crate::ObstacleRotation`], which it needs); `None` for the problem's own angle.
+    pub rotation: Option<f64>,
+}
+
+impl LoadStep {
+    /// A step to approach δ and shift s under the full load, the prescribed displacements as the problem
+    /// has them.
+    pub fn new(approach: f64, shift: f64) -> Self {
+        Self { approach, shift, load_factor: 1.0, displacements: Vec::new(), rotation: None }
+    }
+
+    /// This step with the obstacle turned to `angle` (see [`LoadStep::rotation`]).
+    #[must_use]
+    pub fn with_rotation(self, angle: f64) -> Self {
+        Self { rotation: Some(angle), ..self }
+    }
+
+    /// This step with the prescribed displacement components at `values` (see [`LoadStep::displacements`]).
+    #[must_use]
+    pub fn with_displacements(self, values: Vec<f64>) -> Self {
+        Self { displacements: values, ..self }
+    }
+
+    /// A step from one row of numbers: approach, shift, load factor, the obstacle's angle (NaN: the problem's
+    /// own), then the prescribed displacement components (the rows of a history as the Python binding and tables
+    /// give them).
+    ///
+    /// # Errors
+    /// [`Error::BadLoadStep`] for a row of fewer than four values.
+    pub fn from_row(index: usize, row: &[f64]) -> Result<Self> {
+        match row {
+            [approach, shift, load_factor, angle, displacements @ ..] => Ok(Self {
+                approach: *approach,
+                shift: *shift,
+                load_factor: *load_factor,
+                displacements: displacements.to_vec(),
+                rotation: (!angle.is_nan()).then_some(*angle),
+            }),
+            _ => Err(Error::BadLoadStep {
+                step: index,
+                what: format!("a step needs approach, shift, load_factor and angle, got {} values", row.len()),
+            }),
+        }
+    }
+
+    /// Checks that every value is finite and not subnormal.
+    ///
+    /// # Errors
+    /// [`Error::BadLoadStep`] naming the step (`index`) and the value.
+    pub fn validate(&self, index: usize) -> Result<()> {
+        let named = [("approach", self.approach), ("shift", self.shift), ("load_factor", self.load_factor)];
+        let angle = self.rotation.map(|v| ("the obstacle's angle", v));
+        let displacements = self.displacements.iter().map(|&v| ("a prescribed displacement", v));
+        let values = named.into_iter().chain(angle).chain(displacements);
+        for (name, v) in values {
+            if !v.is_finite() {
+                return Err(Error::BadLoadStep { step: index, what: format!("{name} must be finite, got {v}") });
+            }
+            if v.is_subnormal() {
+                return Err(Error::BadLoadStep { step: index, what: crate::error::subnormal(name, v) });
             }
         }
         Ok(())

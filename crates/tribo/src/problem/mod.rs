@@ -42,7 +42,7 @@ use condense::FactorCache;
 pub struct ProblemSpec {
     /// Material.
     pub material: Material,
-    /// Plane strain or plane stress ([`Model`], plane strain by default).
+    /// Plane strain, plane stress or axisymmetry ([`Model`], plane strain by default).
     pub model: Model,
     /// P1 displacements, or displacements and pressures for ν → ½ ([`Formulation`]; by default `Auto`, the
     /// mixed one from ν = [`crate::fem::mixed::MIXED_FROM_POISSON`] in plane strain and axisymmetry). A built
@@ -360,18 +360,6 @@ impl Problem {
         load
     }
 
-    /// A history of `steps` steps moves the obstacle by approach and shift only: one that turns is refused.
-    ///
-    /// # Errors
-    /// [`Error::BadLoadStep`] at step 0 when the obstacle turns.
-    pub(crate) fn check_history_of_turned_obstacle(&self, steps: usize) -> Result<()> {
-        if self.spec.obstacle.rotation.is_none() || steps == 0 {
-            return Ok(());
-        }
-        let what = "the obstacle turns: a history moves it by approach and shift only (not yet by a rotation)";
-        Err(Error::BadLoadStep { step: 0, what: what.into() })
-    }
-
     /// A turned obstacle needs a rigid obstacle in the plane (not two bodies, not a solid of revolution).
     ///
     /// # Errors
@@ -422,10 +410,9 @@ impl Problem {
         self.mortar.gap_moments.iter().copied().chain(tangential).collect()
     }
 
-    /// Where the obstacle moves along Γ_C at each of its FE nodes, along the node's tangent: the shift s, or where
-    /// the obstacle turns, `s + w(y) · t` ([`Obstacle::tangential_motion`]).
-    pub fn obstacle_slip_origin(&self) -> Vec<f64> {
-        let obstacle = self.spec.obstacle.placed();
+    /// Where the placed `obstacle` moves along Γ_C at each of its FE nodes, along the node's tangent: the shift s,
+    /// or where it turns, `s + w(y) · t` ([`Obstacle::tangential_motion`]).
+    pub fn slip_origin_of(&self, obstacle: &Obstacle) -> Vec<f64> {
         let c = &self.contact;
         (0..c.nodes.len())
             .map(|k| {

@@ -39,7 +39,7 @@ impl ProblemSpec {
         }
     }
 
-    /// Sets the model: plane strain (the default) or plane stress.
+    /// Sets the model: plane strain (the default), plane stress or axisymmetry.
     #[must_use]
     pub fn model(mut self, model: Model) -> Self {
         self.model = model;

@@ -183,8 +183,8 @@ impl Solution {
         let spec = &problem.spec;
         let moved = spec.obstacle.approach - loading.approach;
         let geometric = |xi: f64| problem.primary.as_ref().map_or(0.0, |p| p.gap_at(contact, xi));
-        // The obstacle as the contact meets it (turned, where it turns: `Obstacle::placed`).
-        let placed = spec.obstacle.rotation.map(|_| spec.obstacle.placed());
+        // The obstacle as the contact meets it (turned to the load case's angle, where it turns: `Obstacle::placed`).
+        let placed = loading.angle.map(|a| problem.obstacle_at(spec.obstacle.shift, a));
         let obstacle = placed.as_ref().unwrap_or(&spec.obstacle);
         let gap_at = |xi: f64| obstacle.initial_gap_on(contact, xi) + geometric(xi) - obstacle.approach + moved;
         let input = EstimatorInput {

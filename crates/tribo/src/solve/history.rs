@@ -65,7 +65,8 @@ use std::time::Instant;
 
 use crate::condensation::Factor;
 use crate::error::{Error, Result};
-use crate::problem::load_case::{LoadCase, MovedSupports};
+pub use crate::problem::load_case::LoadStep;
+use crate::problem::load_case::{LoadCase, MovedSupports, Placement};
 use crate::problem::{Condensed, Problem};
 use crate::results::{dof_span, ContactState, ErrorEstimate, Solution, SolveStatus};
 use crate::settings::friction::Friction;
@@ -136,17 +137,18 @@ impl StepRecord {
 }
 
 impl History {
-    /// The per-step series of numbers by name: the approach, shift and load factor of every step asked
-    /// for, the total forces, the error estimate η, the relative traction estimate (the bound) and the
+    /// The per-step series of numbers by name: the approach, shift, load factor and obstacle angle (NaN for
+    /// the problem's own) of every step asked for, the total forces, the error estimate η, the relative traction estimate (the bound) and the
     /// hierarchical one (NaN where it was not computed: an adaptive history stopping on it computes it on
     /// some levels) of the converged steps, and the wall time of each step solved.
-    pub fn series(&self) -> [(&'static str, Vec<f64>); 9] {
+    pub fn series(&self) -> [(&'static str, Vec<f64>); 10] {
         let step = |f: fn(&LoadStep) -> f64| self.steps.iter().map(f).collect();
         let record = |f: fn(&StepRecord) -> f64| self.records.iter().map(f).collect();
         [
             ("approach", step(|s| s.approach)),
             ("shift", step(|s| s.shift)),
             ("load_factor", step(|s| s.load_factor)),
+            ("rotation", step(|s| s.rotation.unwrap_or(f64::NAN))),
             ("normal_force", self.normal_force()),
             ("tangential_force", self.tangential_force()),
             ("error_estimate", record(|r| r.estimate.total)),
@@ -242,8 +244,8 @@ impl History {
     pub fn estimated_bytes(problem: &crate::Problem, steps: &[LoadStep], keep_every: usize) -> f64 {
         let kept = kept_solutions(steps.len(), keep_every);
         let load_steps: usize = steps.iter().map(|s| size_of::<LoadStep>() + 8 * s.displacements.len()).sum();
-        // 9 series + 3 counts + 4 zone ends + 2 × (step, abscissa) of the boundaries, and the flag.
-        let per_step = StepRecord::bytes(problem.n_multipliers()) + 8 + (9 + 3 + 4 + 4) * 8 + 1;
+        // 10 series + 3 counts + 4 zone ends + 2 × (step, abscissa) of the boundaries, and the flag.
+        let per_step = StepRecord::bytes(problem.n_multipliers()) + 8 + (10 + 3 + 4 + 4) * 8 + 1;
         Solution::estimated_bytes(problem) as f64 * kept as f64
             + 2.0 * load_steps as f64
             + per_step as f64 * steps.len() as f64
@@ -295,7 +297,7 @@ impl Condensed<'_> {
         let mut latest: Option<(usize, Solution)> = None;
         for (k, step) in steps.iter().enumerate() {
             let clock = Instant::now();
-            let loading = step_load_case(problem, factor, step, &previous)?;
+            let (loading, placed) = step_load_case(problem, factor, step, &previous)?;
             let from = starts.get(k).map(Vec::as_slice).or(start.as_deref());
             let solution = this.solve_loading(friction, settings, &loading, from, None)?;
             let seconds = clock.elapsed().as_secs_f64();
@@ -322,7 +324,7 @@ impl Condensed<'_> {
                 history.failed = Some(Box::new(solution));
                 break;
             }
-            previous = after(self, &solution, &loading);
+            previous = after(self, &solution, &loading, placed);
             start = Some(solution.multipliers());
             history.records.push(StepRecord::of(&solution));
             if history.multiplier_abscissae.is_empty() {
@@ -352,7 +354,12 @@ impl Condensed<'_> {
 
 /// The state a converged step leaves for the next: `E_t (u^k − ū) − Dγ λ_t^k` (ū the problem's own
 /// lifting), `u_t^k` at the FE nodes of Γ_C and s_k.
-fn after(condensed: &Condensed<'_>, solution: &Solution, loading: &LoadCase) -> PreviousStep {
+fn after(
+    condensed: &Condensed<'_>,
+    solution: &Solution,
+    loading: &LoadCase,
+    placed: Option<Placement>,
+) -> PreviousStep {
     let (problem, factor) = (condensed.problem(), condensed.factor());
     let q = condensed.q();
     // The unknowns x = Tᵀ (u − ū_k) (T has orthonormal columns: a node's unknowns are its free
@@ -375,7 +382,7 @@ fn after(condensed: &Condensed<'_>, solution: &Solution, loading: &LoadCase) -> 
         let t = problem.contact.node_tangent(i);
         u_nodes[i][0] * t[0] + u_nodes[i][1] * t[1]
     };
-    PreviousStep { tangential, u_t_nodes: (0..n).map(u_t).collect(), u_nodes, shift }
+    PreviousStep { tangential, u_t_nodes: (0..n).map(u_t).collect(), u_nodes, shift, placed }
 }
 
 /// Where a history stands before a step: the tangential displacement at rest is 0 and the obstacle at
@@ -392,18 +399,27 @@ struct PreviousStep {
     pub u_nodes: Vec<[f64; 2]>,
     /// `s_{k−1}`.
     pub shift: f64,
+    /// Where the obstacle turns, its step's placement (its surface's motion from rest, at rest 0); `None` else.
+    pub placed: Option<Placement>,
 }
 
 impl PreviousStep {
     /// The state at rest: the body undeformed (u = 0, also where a support prescribes ū: the first step
-    /// moves it there), the obstacle at shift 0. Its tangential data is then `−(E ū)_t`, the tangential
-    /// part of the lifting in the problem's own `d` (exactly 0 without prescribed displacements).
+    /// moves it there), the obstacle at shift 0 and, where it turns, at angle 0. Its tangential data is then
+    /// `−(E ū)_t`, the tangential part of the lifting in the problem's own `d` (exactly 0 without prescribed
+    /// displacements).
     fn rest(problem: &Problem, factor: &Factor) -> Self {
         let q = problem.n_multipliers();
-        let shift = problem.spec.obstacle.shift;
-        let tangential = problem.mortar.psi_integrals.iter().zip(&factor.d[q..]).map(|(w, d)| d - w * shift).collect();
+        let own = problem.obstacle_moments();
+        let tangential = own[q..].iter().zip(&factor.d[q..]).map(|(o, d)| d - o).collect();
         let n = problem.contact.nodes.len();
-        Self { tangential, u_t_nodes: vec![0.0; n], u_nodes: vec![[0.0, 0.0]; n], shift: 0.0 }
+        let placed = problem.spec.obstacle.rotation.map(|_| Placement {
+            gap_moments: Vec::new(),
+            motion: vec![0.0; q],
+            node_gap: Vec::new(),
+            node_motion: vec![0.0; n],
+        });
+        Self { tangential, u_t_nodes: vec![0.0; n], u_nodes: vec![[0.0, 0.0]; n], shift: 0.0, placed }
     }
 }
 
@@ -417,19 +433,38 @@ impl PreviousStep {
 /// # Errors
 /// [`crate::Error::MemoryBudget`] if the solve for a changed load cannot allocate its workspace;
 /// [`Error::BadLoadStep`] if the step's prescribed values conflict (checked before the history too).
-fn step_load_case(problem: &Problem, factor: &Factor, step: &LoadStep, previous: &PreviousStep) -> Result<LoadCase> {
+fn step_load_case(
+    problem: &Problem,
+    factor: &Factor,
+    step: &LoadStep,
+    previous: &PreviousStep,
+) -> Result<(LoadCase, Option<Placement>)> {
     let alpha = step.load_factor;
     let q = problem.n_multipliers();
     let w = &problem.mortar.psi_integrals;
     // g_k = g₀ − δ_k = (g₀ − δ) + (δ − δ_k): the problem's gap moved by the change of approach.
     let moved = problem.spec.obstacle.approach - step.approach;
     let ds = step.shift - previous.shift;
+    let angle = problem.spec.obstacle.rotation.map(|r| step.rotation.unwrap_or(r.angle));
+    let placed = angle.map(|a| problem.placement(step.shift, a)).transpose()?;
     let mut d: Vec<f64> = factor.d[..q]
         .iter()
         .zip(w)
         .map(|(m, w)| m + moved * w)
         .chain(w.iter().zip(&previous.tangential).map(|(w, t)| w * ds + t))
         .collect();
+    let (mut gap, mut slip_origin): (Vec<f64>, Vec<f64>) =
+        (problem.contact_gap.iter().map(|g| g + moved).collect(), previous.u_t_nodes.iter().map(|u| u + ds).collect());
+    // A turned obstacle: the gap of its new angle, the motion of its surface since the previous step.
+    if let (Some(p), Some(before)) = (&placed, &previous.placed) {
+        let own = &problem.mortar.gap_moments;
+        d[..q].iter_mut().zip(own.iter().zip(&p.gap_moments)).for_each(|(d, (o, g))| *d += g - o);
+        let change = p.motion.iter().zip(&before.motion).map(|(a, b)| a - b);
+        d[q..].iter_mut().zip(previous.tangential.iter().zip(change)).for_each(|(d, (t, c))| *d = c + t);
+        gap = p.node_gap.iter().map(|g| g + moved).collect();
+        let node_change = p.node_motion.iter().zip(&before.node_motion).map(|(a, b)| a - b);
+        slip_origin = previous.u_t_nodes.iter().zip(node_change).map(|(u, c)| u + c).collect();
+    }
     let moved_supports = moved_supports(problem, factor, step)?;
     let (f_free, c) = if alpha == 1.0 && moved_supports.is_none() {
         let c = d.iter().zip(&factor.e_ainv_f).map(|(d, e)| d - e).collect();
@@ -446,20 +481,22 @@ fn step_load_case(problem: &Problem, factor: &Factor, step: &LoadStep, previous:
         let c = d.iter().zip(factor.apply_e(&u)).map(|(d, e)| d - e).collect();
         (f, c)
     };
-    Ok(LoadCase {
+    let loading = LoadCase {
         f_free,
         f_full: problem.f_full.iter().map(|f| alpha * f).collect(),
         d,
         c,
-        gap: problem.contact_gap.iter().map(|g| g + moved).collect(),
+        gap,
         approach: step.approach,
         shift: step.shift,
+        angle,
         load_factor: alpha,
-        slip_origin: previous.u_t_nodes.iter().map(|u| u + ds).collect(),
+        slip_origin,
         previous_u: previous.u_nodes.clone(),
         moved_supports,
         rigid: problem.rigid_load(&problem.f_full.iter().map(|f| alpha * f).collect::<Vec<_>>()),
-    })
+    };
+    Ok((loading, placed))
 }
 
 /// The step's prescribed displacements, where they differ from the problem's: the lifting ū_k and the
@@ -487,8 +524,16 @@ pub(crate) fn check_steps(problem: &Problem, steps: &[LoadStep]) -> Result<()> {
     let components = problem.spec.prescribed_components();
     let mut last: Option<&[f64]> = None;
     let mut lifting: Option<Vec<f64>> = None;
-    problem.check_history_of_turned_obstacle(steps.len())?;
     for (k, step) in steps.iter().enumerate() {
+        if let (Some(angle), None) = (step.rotation, problem.spec.obstacle.rotation) {
+            return Err(Error::BadLoadStep {
+                step: k,
+                what: format!(
+                    "the step turns the obstacle to {angle} rad, but the problem's obstacle has no rotation: give it \
+                     one (its centre, the angle 0: ProblemSpec::obstacle_rotation)"
+                ),
+            });
+        }
         if problem.is_two_bodies() && (step.approach != 0.0 || step.shift != 0.0) {
             return Err(Error::BadLoadStep {
                 step: k,
@@ -503,7 +548,9 @@ pub(crate) fn check_steps(problem: &Problem, steps: &[LoadStep]) -> Result<()> {
         }
         let values = step.displacements.as_slice();
         let moved = problem.spec.obstacle.approach - step.approach;
-        let gap: Vec<f64> = problem.contact_gap.iter().map(|g| g + moved).collect();
+        let turned = step.rotation.map(|a| problem.placement(step.shift, a)).transpose()?;
+        let gap0 = turned.as_ref().map_or(&problem.contact_gap, |p| &p.node_gap);
+        let gap: Vec<f64> = gap0.iter().map(|g| g + moved).collect();
         if values.is_empty() || last == Some(values) {
             let own = if values.is_empty() { None } else { lifting.as_deref() };
             problem.check_prescribed_contact(&gap, own.unwrap_or(&problem.dofs.lifting), Some(k))?;
@@ -528,72 +575,4 @@ pub(crate) fn check_steps(problem: &Problem, steps: &[LoadStep]) -> Result<()> {
         last = Some(values);
     }
     Ok(())
-}
-
-/// One step of a loading history: where the obstacle is, how much of the load acts and where the
-/// prescribed displacements are.
-#[derive(Debug, Clone, PartialEq)]
-pub struct LoadStep {
-    /// Normal approach δ_k of the obstacle toward the body (the total, not an increment).
-    pub approach: f64,
-    /// Tangential position s_k of the obstacle along t (the total, not an increment).
-    pub shift: f64,
-    /// Factor α_k on the body force and the tractions.
-    pub load_factor: f64,
-    /// The values of the prescribed displacement components at this step, in the order of
-    /// [`crate::ProblemSpec::prescribed_components`] (`"set.x"`, `"set.y"` of each
-    /// [`crate::Support::Displacement`]); empty for the problem's own values.
-    pub displacements: Vec<f64>,
-}
-
-impl LoadStep {
-    /// A step to approach δ and shift s under the full load, the prescribed displacements as the problem
-    /// has them.
-    pub fn new(approach: f64, shift: f64) -> Self {
-        Self { approach, shift, load_factor: 1.0, displacements: Vec::new() }
-    }
-
-    /// This step with the prescribed displacement components at `values` (see [`LoadStep::displacements`]).
-    #[must_use]
-    pub fn with_displacements(self, values: Vec<f64>) -> Self {
-        Self { displacements: values, ..self }
-    }
-
-    /// A step from one row of numbers: approach, shift, load factor, then the prescribed displacement
-    /// components (the rows of a history as the Python binding and tables give them).
-    ///
-    /// # Errors
-    /// [`Error::BadLoadStep`] for a row of fewer than three values.
-    pub fn from_row(index: usize, row: &[f64]) -> Result<Self> {
-        match row {
-            [approach, shift, load_factor, displacements @ ..] => Ok(Self {
-                approach: *approach,
-                shift: *shift,
-                load_factor: *load_factor,
-                displacements: displacements.to_vec(),
-            }),
-            _ => Err(Error::BadLoadStep {
-                step: index,
-                what: format!("a step needs approach, shift and load_factor, got {} values", row.len()),
-            }),
-        }
-    }
-
-    /// Checks that every value is finite and not subnormal.
-    ///
-    /// # Errors
-    /// [`Error::BadLoadStep`] naming the step (`index`) and the value.
-    pub fn validate(&self, index: usize) -> Result<()> {
-        let named = [("approach", self.approach), ("shift", self.shift), ("load_factor", self.load_factor)];
-        let values = named.into_iter().chain(self.displacements.iter().map(|&v| ("a prescribed displacement", v)));
-        for (name, v) in values {
-            if !v.is_finite() {
-                return Err(Error::BadLoadStep { step: index, what: format!("{name} must be finite, got {v}") });
-            }
-            if v.is_subnormal() {
-                return Err(Error::BadLoadStep { step: index, what: crate::error::subnormal(name, v) });
-            }
-        }
-        Ok(())
-    }
 }

@@ -142,7 +142,6 @@ impl Problem {
         observer: Option<StepObserver<'_>>,
     ) -> Result<History> {
         settings.validate()?;
-        self.check_history_of_turned_obstacle(steps.len())?;
         history_fits(self, steps, settings)?;
         let expected = Expected::solving(friction, false);
         self.condense_for(settings.stabilization, settings.condensation, settings.memory_budget, expected)?

@@ -57,6 +57,53 @@ fn the_pressed_cylinder_is_exact_in_the_mixed_formulation() {
     }
 }
 
+/// The cylinder pressed by δ and pulled out radially by a prescribed `u_r = a` on its outer side (a = 0.4 δ): the
+/// uniform state `u_r = a r`, `u_z = −δ z` (ε_rr = ε_θθ = a), `p = −λ (2a − δ)`, `λ_n = 2μ δ + p`, exact up to ν =
+/// 0.4999 through a radial lifting (the hoop strain's part of `B ū`); the reactions of the top balance the contact
+/// force on the whole turn (the reactions come from σ_h = 2μ ε − p̄ I).
+#[test]
+fn a_radial_lifting_and_the_reactions_are_exact_in_the_mixed_formulation() {
+    let delta = 1e-3;
+    let a = 0.4 * delta;
+    let mesh = tribo_testkit::distorted_square(6);
+    for nu in [0.3, 0.49, 0.4999] {
+        let m = rubber(nu);
+        let (lam, mu) = (m.young * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), m.young / (2.0 * (1.0 + nu)));
+        let spec = ProblemSpec::new(m, "bottom")
+            .support(Support::displacement("top", None, Some(-delta)))
+            .support(Support::displacement("right", Some(a), None))
+            .model(Model::Axisymmetric)
+            .formulation(Formulation::Mixed);
+        let problem = Problem::new(mesh.clone(), spec).expect("valid");
+        let sol = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+        assert_eq!(sol.report.status, SolveStatus::Converged, "ν = {nu}");
+        let p = -lam * (2.0 * a - delta);
+        let ln = 2.0 * mu * delta + p;
+        let tol = 1e-7 * ln;
+        assert!(sol.lambda_n.iter().all(|l| (l - ln).abs() < tol), "ν = {nu}: λ_n {:?} vs {ln}", &sol.lambda_n[..3]);
+        assert!(sol.pressure.iter().all(|x| (x - p).abs() < tol), "ν = {nu}: p {:?} vs {p}", &sol.pressure[..3]);
+        for (i, pt) in problem.mesh.points().iter().enumerate() {
+            let u = sol.node_displacement(i);
+            assert!((u[0] - a * pt[0]).abs() < 1e-7 * delta && (u[1] + delta * pt[1]).abs() < 1e-7 * delta, "{u:?}");
+        }
+        let top: f64 = sol
+            .reactions
+            .iter()
+            .skip(1)
+            .step_by(2)
+            .zip(problem.mesh.points())
+            .filter(|(_, p)| p[1] > 0.5)
+            .map(|(r, _)| r)
+            .sum();
+        assert!(
+            (top + sol.normal_force).abs() < 1e-7 * sol.normal_force,
+            "ν = {nu}: top {top}, P {}",
+            sol.normal_force
+        );
+        assert!((sol.normal_force / (PI * ln) - 1.0).abs() < 1e-7, "ν = {nu}: P {}", sol.normal_force);
+    }
+}
+
 /// A sphere on a flat at ν = 0.4999 (issue 41's axisymmetric bar "with the mixed option"): on the meshes of
 /// `a_sphere_on_a_flat_is_hertz` (graded to a/40, a/80), the mixed formulation's pressure is within 1 % of 3D
 /// Hertz (E* = E / (1 − ν²)) in L²(Γ_C, 2π r dr), and so are p₀ and the force for the approach; P1 displacements

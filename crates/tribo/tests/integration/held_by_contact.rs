@@ -94,7 +94,7 @@ fn with_friction_the_contact_balances_the_load_and_the_answer_scales_with_it() {
     assert!(max_abs(&sol.lambda_n) > 1.2 * p && sol.lambda_t.iter().any(|t| t.abs() > 0.01 * p));
     assert!((sol.normal_force - 2.0 * p).abs() <= 1e-9 * p, "{}", sol.normal_force);
     // One step of a history is the static solve.
-    let step = LoadStep { approach: 0.0, shift: 0.0, load_factor: 1.0, displacements: vec![] };
+    let step = LoadStep { approach: 0.0, shift: 0.0, load_factor: 1.0, displacements: vec![], rotation: None };
     let history = problem.solve_history(&coulomb, &[step], &settings, None).unwrap();
     assert_eq!(history.solutions[0].lambda_n, sol.lambda_n);
     assert_eq!(history.solutions[0].displacement, sol.displacement);
@@ -325,8 +325,10 @@ fn a_history_shears_a_punch_held_by_the_contact() {
     assert_eq!(problem.dofs.n_floating(), 2, "y, and a rotation about a point of the top");
     let mu = 0.3;
     let xs = [0.0, 0.0005, 0.001, 0.0, -0.001];
-    let steps: Vec<LoadStep> =
-        xs.iter().map(|&x| LoadStep { approach: 0.0, shift: 0.0, load_factor: 1.0, displacements: vec![x] }).collect();
+    let steps: Vec<LoadStep> = xs
+        .iter()
+        .map(|&x| LoadStep { approach: 0.0, shift: 0.0, load_factor: 1.0, displacements: vec![x], rotation: None })
+        .collect();
     let history = problem.solve_history(&Friction::Coulomb { mu }, &steps, &SolverSettings::default(), None).unwrap();
     assert_eq!(history.status, SolveStatus::Converged);
     let q: Vec<f64> = history.solutions.iter().map(|s| s.tangential_force).collect();
@@ -366,7 +368,7 @@ fn the_patch_test_holds_for_p0_multipliers_and_without_stabilization() {
 fn a_history_that_unloads_a_body_held_by_the_contact_says_why_it_stops() {
     let problem = block_on_foundation(vec![], [0.0, -0.1]);
     let (coulomb, settings) = (Friction::Coulomb { mu: 0.3 }, SolverSettings::default());
-    let step = |load_factor| LoadStep { approach: 0.0, shift: 0.0, load_factor, displacements: vec![] };
+    let step = |load_factor| LoadStep { approach: 0.0, shift: 0.0, load_factor, displacements: vec![], rotation: None };
     let loaded = problem.solve_history(&coulomb, &[step(1.0)], &settings, None).unwrap();
     assert_eq!(loaded.status, SolveStatus::Converged);
     let unloaded = block_on_foundation(vec![], [0.0, 0.0]);
@@ -427,7 +429,7 @@ fn a_ramped_load_gives_the_static_answer_at_every_step() {
     let coulomb = Friction::Coulomb { mu: 0.3 };
     let steps: Vec<LoadStep> = [0.25, 0.5, 1.0]
         .iter()
-        .map(|&load_factor| LoadStep { approach: 0.0, shift: 0.0, load_factor, displacements: vec![] })
+        .map(|&load_factor| LoadStep { approach: 0.0, shift: 0.0, load_factor, displacements: vec![], rotation: None })
         .collect();
     let history = problem.solve_history(&Friction::Frictionless, &steps, &settings, None).unwrap();
     assert_eq!(history.status, SolveStatus::Converged);

@@ -26,6 +26,10 @@
 //! * `materials`: bodies of several materials (the layered block exact, γ0 from Γ_C's materials, adaptive layers);
 //! * `mixed`: the mixed displacement–pressure formulation (the patch state exact to ν = 0.4999, Hertz without
 //!   locking, clarabel and the active set to one answer, what it refuses);
+//! * `axisymmetric`: solids of revolution (the pressed cylinder exact, a sphere against 3D Hertz, a flat punch
+//!   against Boussinesq, a shrink fit against Lamé, histories, two bodies, the refusals);
+//! * `axisymmetric_mixed`: the mixed formulation in axisymmetry (rubber against 3D Hertz and Lamé);
+//! * `turned_obstacle`: obstacles turned about a point, in one solve and step by step in a history;
 //! * `layout`: the house rules of the crate (the layer table of its folders, file sizes).
 //!
 //! Scenes and measures shared with the benches and examples come from the `tribo-testkit` crate.
