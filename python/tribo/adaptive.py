@@ -68,7 +68,7 @@ def write_levels(out: str | Path, adaptive: Adaptive | AdaptiveHistory, **solve:
         if isinstance(adaptive, AdaptiveHistory):
             h = adaptive.history
             history = problem.solve_history(h.approach, h.shift, h.load_factor, displacements=h.displacements or None,
-                                            **solve)
+                                            rotation=h.rotation, **solve)
             solution = history.solutions[-1] if len(history) else history.failed
             if solution is None:
                 log.info("level %d: the history's first step ended with status '%s'; not written", k, history.status)

@@ -7,7 +7,8 @@ writes its results:
   steps, every k-th step and the last, k the smallest that keeps them within 200; ``[history]
   write_every`` chooses k), and ``result.pvd``, ``result_contact.pvd``, ``result_multipliers.pvd``:
   collections ParaView opens as time series (the "time" is the step number);
-* ``history.csv``: per step, the obstacle's approach and shift, the load factor, the prescribed
+* ``history.csv``: per step, the obstacle's approach and shift, the load factor, its angle (``angle``, where a
+  step turns it), the prescribed
   displacement components the history moves (one column each, named 'set.x'/'set.y'), the normal and
   tangential contact forces, the stick/slip/separation counts, the extents of the contact and stick
   zones, and the step's error estimate η, relative traction estimate (the bound) and hierarchical estimate
@@ -141,7 +142,8 @@ def write_history(out: str | Path, problem: Problem, history: History, *, plots:
     path = out / "history.csv"
     with path.open("w", newline="", encoding="utf-8") as f:
         f.write(
-            "# s (shift): obstacle position along t = (-n2, n1); tangential_force = ∫λ_t along t; "
+            "# s (shift): obstacle position along t = (-n2, n1); angle: its turn about its rotation's centre (rad); "
+            "tangential_force = ∫λ_t along t; "
             f"zones are positions on Γ_C as the {abscissa_description(problem)}\n"
         )
         w = csv.writer(f)

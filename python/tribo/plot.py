@@ -280,14 +280,18 @@ def von_mises(
 
 def history_loop(history: History, ax: Axes | None = None) -> Axes:
     """Q = ∫λ_t against the obstacle's tangential position s along a history, with ±μP for reference; when
-    the obstacle does not move tangentially and the history moves prescribed displacements (two bodies),
-    against the component that travels the most (the one a fretting cycle moves back and forth)."""
+    the obstacle does not move tangentially, against its angle where the history turns it, or where the history
+    moves prescribed displacements (two bodies), against the component that travels the most (the one a fretting
+    cycle moves back and forth)."""
     ax = _axes(ax)
     k = len(history)
     s, q = history.shift[:k], history.tangential_force
     label = "obstacle tangential position s (along t)"
     spans = {name: float(np.abs(np.diff(v[:k])).sum()) for name, v in history.displacements.items() if k}
-    if k and np.ptp(s) == 0.0 and spans and max(spans.values()) > 0.0:
+    turn = history.rotation[:k]
+    if k and np.ptp(s) == 0.0 and not np.isnan(turn).any() and np.ptp(turn) > 0.0:
+        s, label = turn, "obstacle's angle θ (rad, about its rotation's centre)"
+    elif k and np.ptp(s) == 0.0 and spans and max(spans.values()) > 0.0:
         label = max(spans, key=spans.__getitem__)
         s = history.displacements[label][:k]
         label = f"prescribed displacement {label}"

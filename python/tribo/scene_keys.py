@@ -113,8 +113,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
                           "length", "0"),
     "obstacle.shift": ("s: how far the obstacle moves along t = (−n₂, n₁), small sliding", "length", "0"),
     "obstacle.rotation": ("`{ center = [x, y], angle = a }`: the obstacle (a line, disc, hole or profile) turned by a "
-                          "radians counterclockwise about the centre, its surface sliding with the turn (not in a "
-                          "history)", "—", "none"),
+                          "radians counterclockwise about the centre, its surface sliding with the turn (a history "
+                          "may turn it further: `history.angle`)", "—", "none"),
     "friction.mu": ("Coulomb's friction coefficient μ (0: frictionless)", "—", "frictionless"),
     "friction.threshold": ("Tresca's threshold: the bound of |λ_t| wherever the body slides", "stress", "—"),
     **{f"discretization.{k}": v for k, v in _GRID.items()},

@@ -584,14 +584,21 @@ def test_run_stops_on_the_hierarchical_estimate_and_says_which(tmp_path: Path, c
         load_scene(path)
 
 
-def test_run_adapts_a_history(tmp_path: Path) -> None:
+@pytest.mark.parametrize("turned", [False, True])
+def test_run_adapts_a_history(tmp_path: Path, turned: bool) -> None:
     """``[adapt]`` with ``[history]``: every level solves the history; the history's outputs are those of
-    the last mesh, with adapt.csv beside them."""
+    the last mesh, with adapt.csv beside them. The cylinder is dragged by its shift, or (``turned``) given as a disc
+    turned about its centre step by step (``[history] angle``), which each level's files turn alike."""
     import meshio
 
     scene = ADAPT_SCENE.replace("tol = 0.05", "tol = 0.2\non = [0, 4]\nwrite_levels = true") + (
         "[friction]\nmu = 0.3\n[history]\nshift = [0.0, 0.004]\nsteps = 4\n"
     )
+    if turned:
+        scene = scene.replace('shape = "circle"\nradius = 1.0\ncenter = 0.3\n', 'shape = "disc"\nradius = 1.0\n'
+                              'center = [0.3, 1.0]\nrotation = { center = [0.3, 1.0], angle = 0.0 }\n')
+        scene = scene.replace("shift = [0.0, 0.004]", "angle = [0.0, 0.004]")
+        assert "angle = [0.0, 0.004]" in scene and 'shape = "disc"' in scene
     path = tmp_path / "h.toml"
     path.write_text(scene, encoding="utf-8")
     assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 0

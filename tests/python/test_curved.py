@@ -627,7 +627,8 @@ def test_a_history_turns_the_hole_as_its_shift_does(tmp_path: Path) -> None:
     """``solve_history(rotation=…)`` turns an obstacle that has a rotation step by step (scene files: ``[history]
     angle``): the hole turned 0.005, 0.01, 0.02, 0.01 rad about its centre drags the clamped ring as the same hole
     shifted by θR step by step (the Rust test ``histories_turn_the_obstacle_step_by_step``); ``history.rotation`` and
-    history.csv's ``angle`` hold the angles; a step that turns an obstacle without a rotation is refused."""
+    history.csv's ``angle`` hold the angles, and the loop plot draws Q against them; a step that turns an obstacle
+    without a rotation is refused."""
     mesh = tribo.Mesh.ring_sector((0.0, 0.0), (0.5, 1.0), (0.0, 2 * math.pi), h_max=0.08, h_min=0.08)
     kw: dict[str, object] = dict(young=E, poisson=NU, contact="outer", clamped="inner",
                                  obstacle=tribo.Obstacle.hole((0.0, 0.0), 1.0), approach=1e-3)
@@ -640,6 +641,9 @@ def test_a_history_turns_the_hole_as_its_shift_does(tmp_path: Path) -> None:
     np.testing.assert_allclose(turned.tangential_force, shifted.tangential_force, rtol=1e-8)
     with pytest.raises(tribo.TriboError, match="no rotation"):
         tribo.Problem(mesh, **kw).solve_history(rotation=0.01)  # type: ignore[arg-type]
+    from tribo.plot import history_loop
+
+    assert "angle" in history_loop(turned).get_xlabel()  # the loop against what the history moves
     from tribo.run import run_scene
 
     scene = {

@@ -130,7 +130,7 @@ fn observe_with<A: for<'py> pyo3::call::PyCallArgs<'py>>(
     })
 }
 
-/// The rows (approach, shift, load_factor, prescribed displacements…) of a history as load steps.
+/// The rows (approach, shift, load_factor, angle, prescribed displacements…) of a history as load steps.
 fn load_steps(steps: &Bound<'_, PyAny>) -> PyResult<Vec<LoadStep>> {
     let width: usize = steps.getattr("shape")?.get_item(1)?.extract()?;
     let flat = floats(steps, "steps", &[None, Some(width)], Settings)?;
@@ -351,7 +351,7 @@ impl PyProblem {
         results::solution(py, &finish(py, result, error)?)
     }
 
-    /// `tribo.Problem.solve_history` on `steps`, rows (approach, shift, load_factor, displacements…): a History dict.
+    /// `tribo.Problem.solve_history` on `steps`, rows (approach, shift, load_factor, angle, displacements…): a History dict.
     #[pyo3(name = "_solve_history")]
     fn solve_history<'py>(
         &self,

@@ -39,8 +39,8 @@
 //! nearest the body's point x, `y = x − d(x) ∇d(x)`, and that motion along each edge's tangent adds to the shift:
 //! `s(x) = s + w(y) · t`. Read at y and not at x, a disc turned about its own centre slides its surface by θR and
 //! does not move it toward the body. A gap function of the abscissa has no place in the plane to turn about,
-//! and is refused; so are two bodies (no rigid obstacle), axisymmetry (no rigid rotation of a body of
-//! revolution in its meridian plane) and histories (their steps move the obstacle by approach and shift).
+//! and is refused; so are two bodies (no rigid obstacle) and axisymmetry (no rigid rotation of a body of
+//! revolution in its meridian plane). A history may turn it step by step ([`crate::LoadStep::rotation`]).
 
 use std::fmt;
 use std::sync::Arc;

@@ -34,7 +34,8 @@ pub struct LoadCase {
     /// The factor α on the body force and the tractions (1 for a static solve).
     pub load_factor: f64,
     /// At the FE nodes of Γ_C, the tangential displacement from which slip is measured: the shift s of a
-    /// static solve, `u_t^{k−1} + s_k − s_{k−1}` in step k of a history.
+    /// static solve (with a turned obstacle's surface motion), `u_t^{k−1} + s_k − s_{k−1}` in step k of a history
+    /// (`u_t^{k−1} + m_k − m_{k−1}` where the obstacle turns: [`crate::solve::history`]).
     pub slip_origin: Vec<f64>,
     /// At the FE nodes of Γ_C, the displacement from which slip is measured: 0 for a static solve, `u^{k−1}` in
     /// step k of a history (an edge of a bent Γ_C reads the slip in its own frame from it).

@@ -59,6 +59,23 @@
 //!
 //! A frictionless step does not depend on the path; a Tresca step uses the fixed threshold on the slip
 //! increment.
+//!
+//! # A turned obstacle
+//! An obstacle given by its geometry with a rotation ([`crate::ObstacleRotation`]) may turn from step to step
+//! ([`LoadStep::rotation`], the total angle θ_k about its centre). Its gap then depends on the step, and its
+//! surface's motion along Γ_C is a field, `m_k(x) = s_k + w_k(y) · t` ([`crate::contact::obstacle`]), so the
+//! step reads the obstacle turned to θ_k ([`crate::Problem::placement`]):
+//!
+//! ```text
+//! d^k = ( ∫ψ_j (g₀(θ_k) − δ_k),  ∫ψ_j (m_k − m_{k−1}) + (E_t u^{k−1} − Dγ λ_t^{k−1})_j ),
+//! ```
+//!
+//! with `m_0 = 0` at rest (shift 0, angle 0), and the slip increment of Coulomb's law relative to the surface,
+//! `u_t^k − u_t^{k−1} − (m_k − m_{k−1})`. Without a rotation `m_k = s_k` and this is the data above. A, H and Dγ do
+//! not change, so the contact frame (each edge's `n_e`, oriented to the obstacle when the problem was built) stays
+//! the problem's: small rotations. Where the turn moves the surface in its own line (a disc or a hole about its
+//! centre) the frame is the turned obstacle's; where it tilts the surface, the traction's direction is off by the
+//! angle turned from the problem's own (`tests/integration/turned_obstacle.rs` measures 0.24–0.32 θ in λ).
 
 use std::ops::ControlFlow;
 use std::time::Instant;
@@ -237,7 +254,7 @@ impl History {
     /// every `keep_every`-th step and of the last ([`SolverSettings::keep_every`]): those solutions
     /// ([`Solution::estimated_bytes`]), and per step its [`StepRecord`] (the states included), its
     /// [`LoadStep`] twice (the caller's and the history's copy), its wall time, and the per-step series a
-    /// reader takes from it at once, as the bindings and the files do: the nine of [`History::series`],
+    /// reader takes from it at once, as the bindings and the files do: the ten of [`History::series`],
     /// the three counts, the two zones' ends, the gross-sliding flag and two stick–slip boundaries (a step
     /// has as many as its stick zone has ends). The memory budget of a history is checked against it
     /// before any step runs (`docs/history_memory.md` measures it against the peak of long histories).
@@ -425,7 +442,8 @@ impl PreviousStep {
 
 /// The load case of one step of a history (see [`crate::solve::history`] for the derivation): loads
 /// `α f` (the lifting of prescribed displacements is not scaled), gap moments `∫ψ_j (g₀ − δ_k)`,
-/// tangential data `∫ψ_j (s_k − s_{k−1}) + (E_t u^{k−1} − Dγ λ_t^{k−1})_j`, and where the step moves the
+/// tangential data `∫ψ_j (s_k − s_{k−1}) + (E_t u^{k−1} − Dγ λ_t^{k−1})_j` (`∫ψ_j (m_k − m_{k−1})` for the first
+/// term where the obstacle turns: the module documentation), and where the step moves the
 /// prescribed displacements to ū_k, the change `Δū = ū_k − ū` lifted: `− Tᵀ A Δū` in the load, `− E Δū`
 /// in the moments. From rest with α = 1, the problem's own approach and its own prescribed values, this
 /// is bit for bit the static load case.
@@ -548,7 +566,8 @@ pub(crate) fn check_steps(problem: &Problem, steps: &[LoadStep]) -> Result<()> {
         }
         let values = step.displacements.as_slice();
         let moved = problem.spec.obstacle.approach - step.approach;
-        let turned = step.rotation.map(|a| problem.placement(step.shift, a)).transpose()?;
+        let turned = step.rotation.map(|a| problem.placement(step.shift, a)).transpose();
+        let turned = turned.map_err(|e| Error::BadLoadStep { step: k, what: e.to_string() })?;
         let gap0 = turned.as_ref().map_or(&problem.contact_gap, |p| &p.node_gap);
         let gap: Vec<f64> = gap0.iter().map(|g| g + moved).collect();
         if values.is_empty() || last == Some(values) {

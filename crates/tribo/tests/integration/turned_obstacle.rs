@@ -233,5 +233,9 @@ fn a_flat_tilted_step_by_step_is_the_flat_placed_at_each_angle() {
         let diff = largest_difference(step, &statics);
         let tilt = largest_difference(&untilted, &statics);
         assert!(diff < 0.5 * angle.abs() && tilt > 10.0 * diff, "angle {angle}: {diff:e} (the tilt: {tilt:e})");
+        // The error estimate reads the step's tilted gap too: η within 0.2 θ of the placed flat's (measured 7e-5 to
+        // 1.1e-3; reading the problem's own angle instead, 11–57 % apart).
+        let apart = (step.report.estimate.total / statics.report.estimate.total - 1.0).abs();
+        assert!(apart < 0.2 * angle.abs(), "angle {angle}: η {apart:e} apart");
     }
 }
