@@ -351,7 +351,7 @@ impl PyProblem {
         results::solution(py, &finish(py, result, error)?)
     }
 
-    /// `tribo.Problem.solve_history` on `steps`, rows (approach, shift, load_factor, angle, displacements…): a History dict.
+    /// `tribo.Problem.solve_history` on `steps` (rows: approach, shift, load_factor, angle, displacements…).
     #[pyo3(name = "_solve_history")]
     fn solve_history<'py>(
         &self,

@@ -149,8 +149,8 @@ impl Formulation {
     /// jumps: the method stays conforming and converges, the pressure smeared over the interface's triangles.
     ///
     /// # Errors
-    /// [`Error::BadMaterial`] for a mixed material with ν ≤ 0 (λ ≤ 0: the pressure block is no longer negative definite, and
-    /// such a material does not lock).
+    /// [`Error::BadMaterial`] for a mixed material with ν ≤ 0 (λ ≤ 0: the pressure block is no longer negative
+    /// definite, and such a material does not lock).
     pub fn validate(self, materials: &Materials) -> Result<()> {
         if !self.is_mixed() {
             return Ok(());

@@ -155,8 +155,8 @@ impl StepRecord {
 
 impl History {
     /// The per-step series of numbers by name: the approach, shift, load factor and obstacle angle (NaN for
-    /// the problem's own) of every step asked for, the total forces, the error estimate η, the relative traction estimate (the bound) and the
-    /// hierarchical one (NaN where it was not computed: an adaptive history stopping on it computes it on
+    /// the problem's own) of every step asked for, the total forces, the error estimate η, the relative
+    /// traction estimate (the bound) and the hierarchical one (NaN where it was not computed: an adaptive history stopping on it computes it on
     /// some levels) of the converged steps, and the wall time of each step solved.
     pub fn series(&self) -> [(&'static str, Vec<f64>); 10] {
         let step = |f: fn(&LoadStep) -> f64| self.steps.iter().map(f).collect();
