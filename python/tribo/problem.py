@@ -241,7 +241,7 @@ class Problem(_tribo.Problem):
     ``Problem(mesh, *, young, poisson, contact, clamped=None, supports=None, obstacle=None, approach=None,
     shift=None, rotation=None, tractions=None, pressures=None, body_force=None, multiplier_ratio=None,
     multiplier_size=None, multiplier_points=None, space=None, model=None, formulation=None, materials=None,
-    regions=None)``: the body (a Mesh, Young's modulus and Poisson's ratio, or for a body of several materials, a coating on a substrate say, ``materials``
+    regions=None, pairs=None)``: the body (a Mesh, Young's modulus and Poisson's ratio, or for a body of several materials, a coating on a substrate say, ``materials``
     [(E, ν), …] and ``regions``, the index of each triangle's material, from ``tribo.io.read_triangle_groups``
     or the triangles' centroids; model 'plane_strain', the default, 'plane_stress': a thin plate, forces per unit
     thickness, or 'axisymmetric': the solid of revolution of the mesh about the y axis, x = r ≥ 0, the axis held at
@@ -255,7 +255,7 @@ class Problem(_tribo.Problem):
     Obstacle or a callable gap(xi), the approach δ and the tangential shift s, and for an obstacle given by its
     geometry ``rotation=((cx, cy), angle)``: turned by angle radians counterclockwise about (cx, cy), its surface
     sliding with the turn; a history may turn it step by step), and the multiplier mesh T_H (at most one of
-    multiplier_ratio H/h, multiplier_size H and multiplier_points; space 'P0' or 'P1').
+    multiplier_ratio H/h, multiplier_size H and multiplier_points; space 'P0' or 'P1'). ``pairs``: further contact pairs, each another edge set against its own rigid obstacle, [(edge set, Obstacle or None: flat, approach or None, shift or None)], T_H as ``contact``'s (of its ratio or size); ``problem.pairs`` names them all, ``Solution.pairs`` gives each its part.
     """
 
     _arguments: dict[str, Any]

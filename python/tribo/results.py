@@ -190,6 +190,31 @@ class Report(_Record):
         )
 
 
+@dataclass(frozen=True, eq=False, repr=False)
+class PairResult(_Record):
+    """One contact pair's part of a solution (``Solution.pairs``): the fields on Γ_C hold the pairs one after the
+    other, in the order of ``Problem.pairs``; ``multipliers``, ``nodes`` and ``edges`` are the slices of the fields
+    per multiplier dof, per FE node and per FE edge of Γ_C that are this pair's; its forces (``contact_force`` the
+    force its obstacle exerts on the body, global axes) and the widths of its contact and stick zones."""
+
+    name: str
+    multipliers: slice
+    nodes: slice
+    edges: slice
+    normal_force: float
+    tangential_force: float
+    contact_force: tuple[float, float]
+    contact_width: float
+    stick_width: float
+    closed: bool
+
+    @classmethod
+    def from_tuple(cls, data: tuple[Any, ...]) -> PairResult:
+        """A pair from the tuple the compiled module gives: (name, three spans, six numbers, closed)."""
+        name, ((m0, m1), (n0, n1), (e0, e1)), (n, t, fx, fy, contact, stick), closed = data
+        return cls(name, slice(m0, m1), slice(n0, n1), slice(e0, e1), n, t, (fx, fy), contact, stick, closed)
+
+
 @dataclass(frozen=True, eq=False, repr=False, kw_only=True)
 class Solution(_Record):
     """The solution of a contact problem: fields as numpy arrays, totals, KKT residuals and the report.
@@ -253,6 +278,9 @@ class Solution(_Record):
         nodal_von_mises: the von Mises stress of ``nodal_stress`` per node, (N,).
         pressure: the pressure p per node of the mixed formulation, (N,): σ = 2μ ε(u) − p̄ I on each triangle
             (p̄ the mean of its three nodes'), p = −λ div u; empty for the displacement formulation.
+        pairs: each contact pair's part (``PairResult``), ``Problem.pairs`` in order. With several pairs the fields on
+            Γ_C hold the pairs one after the other (each with its own side's abscissae), the forces are their sums,
+            and ``contact_width``, ``stick_width`` and ``closed`` are the first pair's.
     """
 
     friction: Literal["frictionless", "tresca", "coulomb"]
@@ -289,11 +317,13 @@ class Solution(_Record):
     contact_width: float = math.nan
     stick_width: float = math.nan
     closed: bool = False
+    pairs: list[PairResult] = dataclasses.field(default_factory=list)
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Solution:
         """A solution from the dict of fields the compiled module gives (the report as a dict too)."""
-        return cls(**{**data, "report": Report(**data["report"])})
+        pairs = [PairResult.from_tuple(p) for p in data.get("pairs", [])]
+        return cls(**{**data, "report": Report(**data["report"]), "pairs": pairs})
 
     @property
     def state_names(self) -> list[str]:

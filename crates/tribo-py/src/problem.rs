@@ -80,6 +80,8 @@ pub struct ProblemData {
     bodies: Vec<(String, [usize; 4], usize)>,
     /// The prescribed displacement components a history may move, ('set.x' or 'set.y', value), in order.
     prescribed: Vec<(String, f64)>,
+    /// The contact pairs by their edge sets, `contact` first (the solution's `pairs` in this order).
+    pairs: Vec<String>,
 }
 
 /// A contact problem, validated and assembled once (independent of γ0 and friction). It keeps the
@@ -94,6 +96,8 @@ fn tractions_of(t: Vec<(String, Vec<f64>)>) -> PyResult<Vec<(String, tribo::Trac
     t.into_iter().map(|(set, v)| Ok((set, tribo::Traction::try_from(v.as_slice()).map_err(to_pyerr)?))).collect()
 }
 
+/// A further contact pair: (edge set, obstacle or None: flat, approach or None, shift or None).
+type PairArgs = (String, Option<Py<PyObstacle>>, Option<f64>, Option<f64>);
 /// A body of `tribo.Body`: (name, mesh, materials, regions or None for one material, clamped, supports, tractions).
 type BodyArgs =
     (String, Py<PyMesh>, Vec<(f64, f64)>, Option<Vec<usize>>, Vec<String>, Vec<PySupport>, Vec<(String, Vec<f64>)>);
@@ -217,6 +221,7 @@ impl PyProblem {
         mesh, *, materials = None, regions = None, contact, clamped = None, supports = None, obstacle = None, approach = None,
         shift = None, tractions = None, body_force = None, multiplier_ratio = None, multiplier_size = None,
         multiplier_points = None, space = None, primary = None, model = None, rotation = None, formulation = None,
+        pairs = None,
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -240,6 +245,7 @@ impl PyProblem {
         model: Option<&str>,
         rotation: Option<([f64; 2], f64)>,
         formulation: Option<&str>,
+        pairs: Option<Vec<PairArgs>>,
     ) -> PyResult<PyClassInitializer<Self>> {
         let obstacle = obstacle.map_or_else(|| Py::new(py, PyObstacle::checked(ObstacleShape::Flat)?), Ok)?;
         let shape = obstacle.get().shape.clone();
@@ -260,9 +266,11 @@ impl PyProblem {
             // Two bodies (`tribo.Problem.two_bodies`): `mesh` is their list, each with its own materials, supports
             // and tractions; they move through their supports.
             let given = [materials.is_some(), regions.is_some(), clamped.is_some(), supports.is_some()];
-            let moved = [tractions.is_some(), approach.or(shift).is_some(), rotation.is_some()];
+            let moved = [tractions.is_some(), approach.or(shift).is_some(), rotation.is_some(), pairs.is_some()];
             if given.into_iter().chain(moved).any(|g| g) {
-                return Err(PyTypeError::new_err("with primary=, material, supports and tractions are per body"));
+                return Err(PyTypeError::new_err(
+                    "with primary=, material, supports and tractions are per body (one pair)",
+                ));
             }
             let [first, second]: [BodyArgs; 2] = mesh.extract()?;
             let (secondary, primary, gap, multiplier_points) = (contact.clone(), primary.clone(), shape, points);
@@ -276,8 +284,8 @@ impl PyProblem {
             let mesh_inner = mesh.cast::<PyMesh>()?.get().inner.clone();
             let n = mesh_inner.n_triangles();
             let region = regions.map(|r| indices(r, "regions", &[Some(n)], Settings)).transpose()?;
-            let pairs = materials.ok_or_else(|| PyTypeError::new_err("Problem() missing keyword 'materials'"))?;
-            let materials = tribo::Materials::from_pairs(&pairs, region, n);
+            let given = materials.ok_or_else(|| PyTypeError::new_err("Problem() missing keyword 'materials'"))?;
+            let materials = tribo::Materials::from_pairs(&given, region, n);
             let supports = supports.unwrap_or_default().into_iter().map(|s| s.inner).collect();
             let tractions = tractions_of(tractions.unwrap_or_default())?;
             let spec = ProblemSpec {
@@ -291,6 +299,11 @@ impl PyProblem {
                 tractions,
                 contact,
                 obstacle: tribo::Obstacle::from_keywords(shape, approach, shift, rotation.map(Into::into)),
+                pairs: (pairs.unwrap_or_default().into_iter())
+                    .map(|(c, o, a, s)| {
+                        tribo::PairSpec::from_keywords(c, o.map(|o| o.get().shape.clone()), a, s, &points)
+                    })
+                    .collect(),
                 multiplier_points: points,
                 multiplier_space: space,
             };
@@ -329,6 +342,7 @@ impl PyProblem {
             primary,
             bodies: p.bodies.iter().map(|b| (b.name.clone(), b.spans(), b.unknowns)).collect(),
             prescribed: spec.prescribed_components(),
+            pairs: p.pairs().iter().map(|p| p.name.to_string()).collect(),
         };
         Ok(PyClassInitializer::from(data).add_subclass(Self { inner: p }))
     }

@@ -44,6 +44,12 @@ pub fn solution<'py>(py: Python<'py>, s: &tribo::Solution) -> PyResult<Bound<'py
     d.set_item("contact_force", pair(s.contact_force)).and(d.set_item("obstacle_motion", pair(s.obstacle_motion)))?;
     s.scalars().into_iter().try_for_each(|(name, v)| d.set_item(name, v))?;
     d.set_item("closed", s.closed)?;
+    let spans =
+        |r: &tribo::PairResult| [r.multipliers.clone(), r.nodes.clone(), r.edges.clone()].map(|s| (s.start, s.end));
+    let forces = |r: &tribo::PairResult| {
+        [r.normal_force, r.tangential_force, r.contact_force[0], r.contact_force[1], r.contact_width, r.stick_width]
+    };
+    d.set_item("pairs", s.pairs.iter().map(|r| (r.name.clone(), spans(r), forces(r), r.closed)).collect::<Vec<_>>())?;
     d.set_item("kkt", s.kkt.named().into_py_dict(py)?)?;
     d.set_item("report", report(py, &s.report)?)?;
     Ok(d)

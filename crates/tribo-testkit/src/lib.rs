@@ -310,6 +310,7 @@ pub fn hertz_spec(approach: f64, shift: f64, points: MultiplierPoints, space: Mu
         },
         multiplier_points: points,
         multiplier_space: space,
+        pairs: Vec::new(),
     }
 }
 
@@ -348,6 +349,7 @@ pub fn block_problem(nx: usize, ny: usize) -> (Problem, f64) {
         },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
+        pairs: Vec::new(),
     };
     (Problem::new(mesh, spec).expect("valid block problem"), n("friction", "mu"))
 }

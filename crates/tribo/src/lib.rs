@@ -156,9 +156,12 @@ pub use problem::bodies::{Body, BodyPart, ContactPair};
 pub use problem::load_case::LoadCase;
 #[allow(deprecated)]
 pub use problem::load_case::Loading;
+pub use problem::sides::{ContactSide, PairParts, PairSpec};
 pub use problem::{Condensed, Problem, ProblemSpec};
 pub use qp::{QpOutcome, QpStatus};
-pub use results::{Agreement, ContactState, CoulombCheck, KktResiduals, Report, Solution, SolveStatus, Timings};
+pub use results::{
+    Agreement, ContactState, CoulombCheck, KktResiduals, PairResult, Report, Solution, SolveStatus, Timings,
+};
 pub use settings::friction::{Friction, FrictionLaw, Threshold};
 pub use settings::{
     AdaptKeywords, AdaptSettings, Bisection, Condensation, CoulombMethod, FixedPointSettings, KktSolver, Marking,

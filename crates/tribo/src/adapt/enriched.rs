@@ -522,6 +522,7 @@ impl Problem {
         friction: &Friction,
         settings: &SolverSettings,
     ) -> Result<(Problem, Solution)> {
+        self.refuse_several_pairs("the hierarchical estimates and the error bars")?;
         self.check_solution_of(solution)?;
         let enriched = self.enriched(&[solution], marked)?;
         let start = [self.carried(&solution.lambda_n, &enriched), self.carried(&solution.lambda_t, &enriched)].concat();

@@ -147,6 +147,7 @@ impl Problem {
         friction: &Friction,
         settings: &SolverSettings,
     ) -> Result<super::Estimated<History>> {
+        self.refuse_several_pairs("the hierarchical estimates")?;
         let clock = Instant::now();
         if history.records.is_empty() {
             return Ok((Vec::new(), None));

@@ -270,8 +270,8 @@ impl Problem {
 
     /// The checks every adaptive entry point makes before its first solve.
     fn check_adaptive(&self, friction: &Friction, settings: &SolverSettings, adapt: &AdaptSettings) -> Result<()> {
-        settings.validate()?;
-        adapt.validate()?;
+        self.refuse_several_pairs("adaptive refinement and the hierarchical estimates")?;
+        settings.validate().and_then(|()| adapt.validate())?;
         friction.validate(self.n_multipliers())?;
         self.check_prescribed_contact(&self.contact_gap, &self.dofs.lifting, None)?;
         if adapt.max_unknowns < self.n_free {

@@ -56,6 +56,17 @@ impl Default for MultiplierPoints {
     }
 }
 
+impl MultiplierPoints {
+    /// The points another contact side takes when its own are not given: these where they are a size or a ratio
+    /// to the FE edges; the default where they are abscissae or points, which lie on one side.
+    pub fn for_another_side(&self) -> Self {
+        match self {
+            Self::Size(_) | Self::RatioToFe(_) => self.clone(),
+            Self::Abscissae(_) | Self::Points(_) => Self::default(),
+        }
+    }
+}
+
 /// The multiplier mesh T_H with its space.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MultiplierMesh {

@@ -118,6 +118,11 @@ impl Error {
                 "ContactPair",
                 vec![("secondary", T(secondary.clone())), ("primary", T(primary.clone())), ("what", T(what.clone()))],
             ),
+            Self::SeveralPairs { pair, what } => (
+                ErrorCategory::ContactGeometry,
+                "SeveralPairs",
+                vec![("pair", T(pair.clone())), ("what", T(what.clone()))],
+            ),
             Self::HeldOnlyByContact { body, motion, what } => (
                 ErrorCategory::ContactGeometry,
                 "HeldOnlyByContact",

@@ -357,6 +357,15 @@ pub enum Error {
         /// What is wrong.
         what: String,
     },
+    /// Several contact pairs in one problem that do not fit together (sides sharing an edge or a triangle), or a
+    /// capability not yet available with more than one pair (histories, adaptivity, two bodies).
+    #[error("contact pair '{pair}': {what}")]
+    SeveralPairs {
+        /// The pair (its contact edge set).
+        pair: String,
+        /// What is wrong.
+        what: String,
+    },
     /// A body held only by the contact (its supports leave it a free rigid motion) that the contact cannot
     /// hold: free to slide along a frictionless contact, or two bodies free to move together.
     #[error("body '{body}' is held only by the contact, which leaves it free: {motion}; {what}: hold that motion with a support")]

@@ -203,6 +203,7 @@ impl Problem {
             obstacle: Obstacle { shape: pair.gap.clone(), ..Obstacle::default() },
             multiplier_points: pair.multiplier_points.clone(),
             multiplier_space: pair.multiplier_space,
+            pairs: Vec::new(),
         };
         let materials =
             Materials { materials: bodies.iter().flat_map(|b| b.materials.materials.clone()).collect(), region };

@@ -156,8 +156,8 @@ impl Problem {
         }
         // −G and E over all dofs, restricted to the unknowns; their action on the lifting ū gives the
         // γ0-dependent part of the lifted load and obstacle moments (see [`crate::fem::supports`]).
-        let minus_g_full = self.contact_stress.stiffness_triplets(&self.mortar, gamma0);
-        let e_full = self.contact_stress.coupling_rows(&self.contact, &self.mortar, self.primary.as_ref(), gamma0);
+        let minus_g_full = self.minus_g_triplets(gamma0);
+        let e_full = self.coupling_rows(gamma0);
         let mut f = self.f_free.clone();
         let mut d = self.obstacle_moments();
         if !self.dofs.homogeneous() {
@@ -178,7 +178,7 @@ impl Problem {
             .collect();
         let e_rows = self.dofs.restrict_rows(&e_full);
         let d_gamma: Vec<(usize, usize, f64)> = if gamma0 > 0.0 {
-            self.mortar.d_h.entries.iter().map(|&(i, j, v)| (i, j, gamma0 * v)).collect()
+            self.d_h_entries().into_iter().map(|(i, j, v)| (i, j, gamma0 * v)).collect()
         } else {
             Vec::new()
         };
@@ -223,15 +223,15 @@ impl Problem {
     /// moments `d − E ū` (see [`crate::fem::supports`]). A loading history that moves the prescribed
     /// displacements applies it to the change of ū ([`crate::solve::history`]).
     pub(crate) fn lifting_terms(&self, gamma0: f64, ubar: &[f64]) -> (Vec<f64>, Vec<f64>) {
-        let minus_g_full = self.contact_stress.stiffness_triplets(&self.mortar, gamma0);
-        let e_full = self.contact_stress.coupling_rows(&self.contact, &self.mortar, self.primary.as_ref(), gamma0);
+        let minus_g_full = self.minus_g_triplets(gamma0);
+        let e_full = self.coupling_rows(gamma0);
         self.lifting_action(&minus_g_full, &e_full, ubar, true)
     }
 
     /// `E v` (2q) for a displacement v of all 2N dofs, E of the γ0 of a factorization (a body held only
     /// by the contact moves by R α, which no unknown carries where the pins are).
     pub(crate) fn e_action(&self, gamma0: f64, v: &[f64]) -> Vec<f64> {
-        let e_full = self.contact_stress.coupling_rows(&self.contact, &self.mortar, self.primary.as_ref(), gamma0);
+        let e_full = self.coupling_rows(gamma0);
         let at = |k: usize| v.get(k).copied().unwrap_or(0.0);
         e_full.iter().map(|row| row.iter().map(|&(k, x)| x * at(k)).sum()).collect()
     }

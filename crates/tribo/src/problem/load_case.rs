@@ -9,7 +9,7 @@
 use crate::condensation::Factor;
 use crate::contact::obstacle::{Obstacle, ObstacleRotation};
 use crate::error::{Error, Result};
-use crate::problem::Problem;
+use crate::problem::{slip_origin_on, Problem};
 use crate::qp::QpData;
 
 /// One load case of a condensed problem.
@@ -85,17 +85,13 @@ impl LoadCase {
             f_full: problem.f_full.clone(),
             d: factor.d.clone(),
             c: factor.c.clone(),
-            gap: problem.contact_gap.clone(),
+            gap: problem.pairs().iter().flat_map(|p| p.gap.iter().copied()).collect(),
             approach: problem.spec.obstacle.approach,
             shift,
             angle: problem.spec.obstacle.rotation.map(|r| r.angle),
             load_factor: 1.0,
-            slip_origin: if problem.spec.obstacle.rotation.is_some() {
-                problem.slip_origin_of(&problem.spec.obstacle.placed())
-            } else {
-                vec![shift; problem.contact.nodes.len()]
-            },
-            previous_u: vec![[0.0, 0.0]; problem.contact.nodes.len()],
+            slip_origin: problem.pairs().iter().flat_map(|p| slip_origin_on(p.contact, &p.obstacle.placed())).collect(),
+            previous_u: vec![[0.0, 0.0]; problem.pair_node_offsets().last().copied().unwrap_or(0)],
             moved_supports: None,
             rigid: problem.rigid_load(&problem.f_full),
         }
@@ -134,7 +130,8 @@ impl Problem {
     /// Checks that the supports do not prescribe a node of Γ_C into the obstacle: at every FE node of Γ_C
     /// whose normal displacement a support fixes (a fixed node, or a sliding one whose condition is along
     /// n), that displacement `u · n` from the lifting `lifting` (2N) is at most the gap `gap` (at the nodes
-    /// of Γ_C), to `√ε` of the larger of the two. Two bodies are not checked (the jump needs both sides).
+    /// of the first pair's Γ_C; every further pair with its own gap), to `√ε` of the larger of the two. Two
+    /// bodies are not checked (the jump needs both sides).
     ///
     /// # Errors
     /// [`crate::Error::PrescribedPenetration`] naming the node (and `step`, of a history).
@@ -144,20 +141,24 @@ impl Problem {
             return Ok(());
         }
         let tol = crate::mesh::line::geometric_tol_rel();
-        for (k, (&node, &g)) in self.contact.nodes.iter().zip(gap).enumerate() {
-            let n = self.contact.node_normal(k);
-            let prescribed = match self.dofs.nodes[node] {
-                NodeSupport::Fixed { .. } => true,
-                // Along n: the condition's unit vector is ±n (to the straightness tolerance).
-                NodeSupport::Slide { normal, .. } => (normal[0] * n[1] - normal[1] * n[0]).abs() <= 4.0 * tol,
-                NodeSupport::Free => false,
-            };
-            if !prescribed {
-                continue;
-            }
-            let u_n = lifting[2 * node] * n[0] + lifting[2 * node + 1] * n[1];
-            if u_n - g > tol * u_n.abs().max(g.abs()) {
-                return Err(crate::Error::PrescribedPenetration { node, u_n, gap: g, step });
+        // The first pair's side with `gap`, the others with their own.
+        let sides = std::iter::once((&self.contact, gap)).chain(self.sides.iter().map(|s| (&s.contact, &s.gap[..])));
+        for (contact, gap) in sides {
+            for (k, (&node, &g)) in contact.nodes.iter().zip(gap).enumerate() {
+                let n = contact.node_normal(k);
+                let prescribed = match self.dofs.nodes[node] {
+                    NodeSupport::Fixed { .. } => true,
+                    // Along n: the condition's unit vector is ±n (to the straightness tolerance).
+                    NodeSupport::Slide { normal, .. } => (normal[0] * n[1] - normal[1] * n[0]).abs() <= 4.0 * tol,
+                    NodeSupport::Free => false,
+                };
+                if !prescribed {
+                    continue;
+                }
+                let u_n = lifting[2 * node] * n[0] + lifting[2 * node + 1] * n[1];
+                if u_n - g > tol * u_n.abs().max(g.abs()) {
+                    return Err(crate::Error::PrescribedPenetration { node, u_n, gap: g, step });
+                }
             }
         }
         Ok(())

@@ -9,6 +9,7 @@
 pub mod bodies;
 pub mod floating;
 pub mod load_case;
+pub mod sides;
 
 mod condense;
 mod spec;
@@ -64,8 +65,11 @@ pub struct ProblemSpec {
     pub obstacle: Obstacle,
     /// Points of the multiplier mesh T_H.
     pub multiplier_points: MultiplierPoints,
-    /// Multiplier space.
+    /// Multiplier space (of every pair).
     pub multiplier_space: MultiplierSpace,
+    /// Further contact pairs, each a contact edge set against its own rigid obstacle ([`sides`]); empty for
+    /// one pair.
+    pub pairs: Vec<sides::PairSpec>,
 }
 
 /// Timings of the set-up phases, in seconds.
@@ -119,8 +123,10 @@ pub struct Problem {
     pub contact_gap: Vec<f64>,
     /// σ_n(v), σ_t(v) on each contact edge as linear forms of the unknowns.
     pub contact_stress: ContactStress,
-    /// Admissible bound on γ0 and the triangle that sets it.
+    /// Admissible bound on γ0 and the triangle that sets it (of every pair's triangles).
     pub gamma0_bound: Gamma0Bound,
+    /// The further contact pairs (`spec.pairs`, [`sides`]); the fields above are the first pair's.
+    pub sides: Vec<sides::ContactSide>,
     /// The material of every triangle, by region (`spec.material` everywhere for [`Problem::new`]; as given to
     /// [`Problem::with_materials`]; for two bodies the first body's materials, then the second's).
     pub materials: Materials,
@@ -217,7 +223,9 @@ impl Problem {
         spec.obstacle.validate()?;
         // A piece that holds a node of a contact side may be held by the contact alone.
         let mut on_contact = vec![false; mesh.n_nodes()];
-        for set in std::iter::once(spec.contact.as_str()).chain(primary) {
+        for set in
+            std::iter::once(spec.contact.as_str()).chain(primary).chain(spec.pairs.iter().map(|p| p.contact.as_str()))
+        {
             for &[a, b] in mesh.edge_set(set)? {
                 on_contact[a] = true;
                 on_contact[b] = true;
@@ -305,8 +313,9 @@ impl Problem {
         // Γ_C's triangles with their own materials (one body's, the secondary's for two, a coating's).
         let contact_stress = ContactStress::new(&mesh, spec.model, shear, &contact, mixed);
         let gamma0_bound = admissible_gamma0(&mesh, spec.model, shear, &contact);
+        let shear_for_sides = shear.clone();
         let contact_matrices = clock.elapsed().as_secs_f64();
-        let problem = Self {
+        let mut problem = Self {
             mesh,
             spec,
             contact,
@@ -321,6 +330,7 @@ impl Problem {
             contact_gap,
             contact_stress,
             gamma0_bound,
+            sides: Vec::new(),
             materials,
             in_plane,
             primary,
@@ -328,6 +338,7 @@ impl Problem {
             timings: SetupTimings { assembly, contact_matrices },
             factor_cache: FactorCache::default(),
         };
+        problem.build_sides(&shear_for_sides)?;
         if problem.spec.obstacle.shift != 0.0 {
             problem.check_axisymmetric_shift()?;
         }
@@ -401,30 +412,27 @@ impl Problem {
     /// `d = (∫ψ_j g, ∫ψ_j s)` (2q): the obstacle's gap and tangential shift tested with the multiplier
     /// basis, the part of the QP's linear term that the obstacle contributes (see [`crate::contact::obstacle`]).
     pub fn obstacle_moments(&self) -> Vec<f64> {
-        let shift = self.spec.obstacle.shift;
-        let tangential: Vec<f64> = if self.mortar.shift_moments.is_empty() {
-            self.mortar.psi_integrals.iter().map(|w| w * shift).collect()
-        } else {
-            self.mortar.shift_moments.clone()
-        };
-        self.mortar.gap_moments.iter().copied().chain(tangential).collect()
+        let per_pair = self.pairs().into_iter().map(|p| {
+            let shift = p.obstacle.shift;
+            let tangential: Vec<f64> = if p.mortar.shift_moments.is_empty() {
+                p.mortar.psi_integrals.iter().map(|w| w * shift).collect()
+            } else {
+                p.mortar.shift_moments.clone()
+            };
+            p.mortar.gap_moments.iter().copied().chain(tangential).collect()
+        });
+        sides::stack(per_pair.collect())
     }
 
     /// Where the placed `obstacle` moves along Γ_C at each of its FE nodes, along the node's tangent: the shift s,
     /// or where it turns, `s + w(y) · t` ([`Obstacle::tangential_motion`]).
     pub fn slip_origin_of(&self, obstacle: &Obstacle) -> Vec<f64> {
-        let c = &self.contact;
-        (0..c.nodes.len())
-            .map(|k| {
-                let length = c.edges[k.min(c.edges.len() - 1)].length;
-                obstacle.tangential_motion(c.surface_point(c.node_xi[k]), c.node_tangent(k), length)
-            })
-            .collect()
+        slip_origin_on(&self.contact, obstacle)
     }
 
     /// Number of multiplier dofs q (per component).
     pub fn n_multipliers(&self) -> usize {
-        self.multipliers.n_dofs()
+        self.multipliers.n_dofs() + self.sides.iter().map(|s| s.multipliers.n_dofs()).sum::<usize>()
     }
 
     /// The displacement on all 2N dofs from the unknowns: `u = T x + ū` (prescribed values included).
@@ -496,4 +504,18 @@ impl ProblemSpec {
         let formulation = ("formulation", SettingValue::Name(Formulation::default().as_str().to_string()));
         points.into_iter().chain([space, model, formulation]).collect()
     }
+}
+
+/// Where the placed `obstacle` ([`Obstacle::placed`]) moves along the contact side `c` at each of its FE
+/// nodes, along the node's tangent: the shift s, or where it turns, `s + w(y) · t` ([`Obstacle::tangential_motion`]).
+pub(crate) fn slip_origin_on(c: &ContactBoundary, obstacle: &Obstacle) -> Vec<f64> {
+    if obstacle.rotation.is_none() {
+        return vec![obstacle.shift; c.nodes.len()];
+    }
+    (0..c.nodes.len())
+        .map(|k| {
+            let length = c.edges[k.min(c.edges.len() - 1)].length;
+            obstacle.tangential_motion(c.surface_point(c.node_xi[k]), c.node_tangent(k), length)
+        })
+        .collect()
 }

@@ -36,6 +36,7 @@ impl ProblemSpec {
             obstacle: Obstacle::default(),
             multiplier_points: MultiplierPoints::default(),
             multiplier_space: MultiplierSpace::default(),
+            pairs: Vec::new(),
         }
     }
 
@@ -154,6 +155,7 @@ mod tests {
             },
             multiplier_points: MultiplierPoints::RatioToFe(2.0),
             multiplier_space: MultiplierSpace::P0,
+            pairs: Vec::new(),
         };
         assert_eq!(format!("{built:?}"), format!("{literal:?}"));
         let plain = ProblemSpec::new(material, "top");

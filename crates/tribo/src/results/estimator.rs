@@ -76,13 +76,13 @@
 //! more pessimistic of the two (see `docs/adaptive.md` for its effectivity).
 
 use crate::contact::mortar::common_refinement;
-use crate::contact::multiplier::MultiplierMesh;
 use crate::contact::pair::PrimarySide;
-use crate::contact::ContactBoundary;
 use crate::fem::axisymmetric::{radial_weight, residual};
 use crate::fem::elasticity::{Material, MaterialField, Materials, Model, Traction};
 use crate::fem::supports::{Dofs, NodeSupport};
 use crate::mesh::Mesh;
+pub(crate) use crate::results::gamma_c::SideInput;
+use crate::results::gamma_c::{penetration_pieces, side_weights};
 
 /// Sub-intervals per FE edge of Γ_C for the terms whose integrand is not a polynomial there (the
 /// positive parts, |Δu_t|, a gap that is not a parabola).
@@ -185,8 +185,8 @@ pub(crate) struct EstimatorInput<'a> {
     /// reaction), not a Neumann datum.
     pub primary: Option<&'a PrimarySide>,
     pub dofs: &'a Dofs,
-    pub contact: &'a ContactBoundary,
-    pub multipliers: &'a MultiplierMesh,
+    /// Every contact pair's side and fields, the first pair first.
+    pub sides: Vec<SideInput<'a>>,
     /// The body force and the tractions by edge set, as they act in this load case.
     pub body_force: [f64; 2],
     pub tractions: Vec<(&'a [[usize; 2]], Traction)>,
@@ -198,21 +198,6 @@ pub(crate) struct EstimatorInput<'a> {
     /// The nodal pressure of the mixed formulation (empty for the displacement formulation): the energy
     /// norm is then `∫ 2μ ε:ε + ∫ p²/λ` ([`crate::fem::mixed::energy_norm`]).
     pub pressure: &'a [f64],
-    pub lambda_n: &'a [f64],
-    pub lambda_t: &'a [f64],
-    pub threshold: &'a [f64],
-    /// u_n and the slip at the FE nodes of Γ_C.
-    pub u_n: &'a [f64],
-    pub slip: &'a [f64],
-    /// The displacement at the FE nodes of Γ_C from which the slip is measured (`u^{k−1}` in a history), and
-    /// today's (the jump `u¹ − u²∘Π` for two bodies, as both).
-    pub previous_u: &'a [[f64; 2]],
-    pub contact_u: &'a [[f64; 2]],
-    /// The gap g(ξ) of this load case, anywhere on Γ_C.
-    pub gap: &'a dyn Fn(f64) -> f64,
-    /// The abscissae where the gap may have a local minimum between the FE nodes (the obstacle's lowest
-    /// points, [`crate::ObstacleShape::lowest_points`]), sorted.
-    pub lowest: &'a [f64],
 }
 
 /// The four parts of η_K².
@@ -230,55 +215,9 @@ impl Parts {
     }
 }
 
-/// The pieces of the FE edge `[x0, x1]` on which the penetration is integrated: [`SUBDIVISIONS`] equal ones,
-/// and around each of the obstacle's `lowest` points inside the edge, pieces halving toward it down to
-/// 2⁻⁵² of the edge. An obstacle that dips below Γ_C only near its lowest point (a cylinder pushed 1e-6
-/// between two nodes of a coarse mesh: a dip 3e-3 wide under an edge of 0.5) is then seen, whatever the
-/// width of the dip (defect D28: the equal pieces' Gauss points missed it, the estimate was 0, and the
-/// adaptive loop stopped on a mesh that had not found the contact).
-fn penetration_pieces(x0: f64, x1: f64, lowest: &[f64]) -> Vec<f64> {
-    let h = (x1 - x0) / SUBDIVISIONS as f64;
-    let mut out: Vec<f64> = (0..=SUBDIVISIONS).map(|m| x0 + h * m as f64).collect();
-    out[SUBDIVISIONS] = x1;
-    // `lowest` is sorted: the points inside the edge are one slice (a polyline of many vertices costs
-    // each edge a search, not a scan).
-    let inside = &lowest[lowest.partition_point(|&c| c <= x0)..lowest.partition_point(|&c| c < x1)];
-    for &c in inside {
-        out.push(c);
-        let mut d = x1 - x0;
-        for _ in 0..52 {
-            d *= 0.5;
-            out.extend([c - d, c + d].into_iter().filter(|&x| x > x0 && x < x1));
-        }
-    }
-    out.sort_by(f64::total_cmp);
-    out.dedup();
-    out
-}
-
 /// `σ n` for σ = (σ_xx, σ_yy, σ_xy).
 fn traction(s: &[f64; 3], n: [f64; 2]) -> [f64; 2] {
     [s[0] * n[0] + s[2] * n[1], s[2] * n[0] + s[1] * n[1]]
-}
-
-/// The weight `w_K = h_K² / (h_K + d_K)³` of each triangle in the traction estimate `ζ² = Σ_K w_K η_K²`
-/// (see the module documentation): h_K the diameter of K, d_K the distance from K's nearest vertex to
-/// the segment Γ_C.
-pub(crate) fn traction_weights(mesh: &Mesh, contact: &ContactBoundary) -> Vec<f64> {
-    if contact.node_xi.is_empty() {
-        return vec![0.0; mesh.n_triangles()];
-    }
-    // Each node's distance once, shared by its triangles (on a bent Γ_C by a hierarchy of its facets' boxes).
-    let distance = contact.distances(mesh.points());
-    mesh.triangles()
-        .iter()
-        .enumerate()
-        .map(|(t, tri)| {
-            let h = mesh.diameter(t);
-            let dist = tri.iter().map(|&v| distance[v]).fold(f64::INFINITY, f64::min);
-            h * h / (h + dist).powi(3)
-        })
-        .collect()
 }
 
 /// The per-triangle indicators η_K and ζ_K (not squared) and the totals.
@@ -293,8 +232,10 @@ pub(crate) fn traction_weights(mesh: &Mesh, contact: &ContactBoundary) -> Vec<f6
 pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEstimate) {
     let sup = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
     let stresses = input.stress.iter().flatten().fold(0.0_f64, |m, x| m.max(x.abs()));
-    let length = sup(input.displacement).max(sup(input.u_n)).max(sup(input.slip));
-    let stress = sup(input.lambda_n).max(sup(input.lambda_t)).max(stresses).max(sup(input.threshold));
+    let sides = &input.sides;
+    let over_sides = |f: &dyn Fn(&SideInput<'_>) -> f64| sides.iter().map(f).fold(0.0_f64, f64::max);
+    let length = sup(input.displacement).max(over_sides(&|s| sup(s.u_n).max(sup(s.slip))));
+    let stress = stresses.max(over_sides(&|s| sup(s.lambda_n).max(sup(s.lambda_t)).max(sup(s.threshold))));
     let power = |size: f64| if size > 0.0 && size.is_finite() { -(size.log2().round() as i32) } else { 0 };
     let (pu, ps) = (power(length), power(stress));
     if pu == 0 && ps == 0 {
@@ -304,13 +245,19 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
     let times = |v: &[f64], k: f64| v.iter().map(|x| x * k).collect::<Vec<f64>>();
     let stress: Vec<[f64; 3]> = input.stress.iter().map(|s| s.map(|x| x * ks)).collect();
     let hoop = times(input.hoop, ks);
-    let (u, u_n, slip) = (times(input.displacement, ku), times(input.u_n, ku), times(input.slip, ku));
+    let u = times(input.displacement, ku);
     let pressure = times(input.pressure, ks);
-    let [previous_u, contact_u]: [Vec<[f64; 2]>; 2] =
-        [input.previous_u, input.contact_u].map(|v| v.iter().map(|p| p.map(|x| x * ku)).collect());
-    let (lambda_n, lambda_t, threshold) =
-        (times(input.lambda_n, ks), times(input.lambda_t, ks), times(input.threshold, ks));
-    let gap = |xi: f64| (input.gap)(xi) * ku;
+    let points = |v: &[[f64; 2]]| v.iter().map(|p| p.map(|x| x * ku)).collect::<Vec<[f64; 2]>>();
+    // Each side's fields scaled, and its gap.
+    let fields: Vec<[Vec<f64>; 5]> = sides
+        .iter()
+        .map(|s| {
+            [times(s.lambda_n, ks), times(s.lambda_t, ks), times(s.threshold, ks), times(s.u_n, ku), times(s.slip, ku)]
+        })
+        .collect();
+    let motions: Vec<[Vec<[f64; 2]>; 2]> = sides.iter().map(|s| [points(s.previous_u), points(s.contact_u)]).collect();
+    let gaps: Vec<Box<dyn Fn(f64) -> f64 + '_>> =
+        sides.iter().map(|s| Box::new(move |xi: f64| (s.gap)(xi) * ku) as Box<dyn Fn(f64) -> f64>).collect();
     let young = |m: &Material| Material { young: m.young * ke, ..*m };
     let materials = Materials {
         materials: input.materials.materials.iter().map(young).collect(),
@@ -321,8 +268,25 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
         materials: &materials,
         primary: input.primary,
         dofs: input.dofs,
-        contact: input.contact,
-        multipliers: input.multipliers,
+        sides: sides
+            .iter()
+            .zip(&fields)
+            .zip(&motions)
+            .zip(&gaps)
+            .map(|(((s, [ln, lt, b, un, slip]), [previous_u, contact_u]), gap)| SideInput {
+                contact: s.contact,
+                multipliers: s.multipliers,
+                lambda_n: ln,
+                lambda_t: lt,
+                threshold: b,
+                u_n: un,
+                slip,
+                previous_u,
+                contact_u,
+                gap: gap.as_ref(),
+                lowest: s.lowest,
+            })
+            .collect(),
         body_force: input.body_force.map(|x| x * ks),
         tractions: input.tractions.iter().map(|(e, t)| (*e, t.scaled(ks))).collect(),
         stress: &stress,
@@ -330,15 +294,6 @@ pub(crate) fn estimate(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, Error
         hoop: &hoop,
         displacement: &u,
         pressure: &pressure,
-        lambda_n: &lambda_n,
-        lambda_t: &lambda_t,
-        threshold: &threshold,
-        u_n: &u_n,
-        slip: &slip,
-        previous_u: &previous_u,
-        contact_u: &contact_u,
-        gap: &gap,
-        lowest: input.lowest,
     };
     let (eta, zeta, e) = estimate_scaled(&scaled);
     let back = |v: Vec<f64>| v.into_iter().map(|x| x / ks).collect::<Vec<f64>>();
@@ -392,9 +347,10 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
         }
     }
     // The primary's contact edges, with the abscissae they span on the secondary side.
-    let primary_edges = input.primary.map_or_else(Default::default, |p| p.edge_spans(input.contact));
+    let first = &input.sides[0];
+    let primary_edges = input.primary.map_or_else(Default::default, |p| p.edge_spans(first.contact));
     let on_contact: std::collections::HashSet<[usize; 2]> =
-        input.contact.edges.iter().map(|e| [e.left.min(e.right), e.left.max(e.right)]).collect();
+        input.sides.iter().flat_map(|s| &s.contact.edges).map(|e| [e.left.min(e.right), e.left.max(e.right)]).collect();
     for (t, tri) in tris.iter().enumerate() {
         for k in 0..3 {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
@@ -418,11 +374,11 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
                     let s = traction(&input.stress[t], n);
                     let r2 = if let Some(spans) = primary_edges.get(&key) {
                         // The mean over the edge (of its two spans where it straddles a loop's cut).
-                        let lambda = [input.lambda_n, input.lambda_t];
+                        let lambda = [first.lambda_n, first.lambda_t];
                         let residual = |x: &[f64; 2]| {
                             let mean = crate::contact::pair::traction_residual(
-                                input.contact,
-                                input.multipliers,
+                                first.contact,
+                                first.multipliers,
                                 lambda,
                                 s,
                                 *x,
@@ -449,103 +405,105 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
     }
 
     // Γ_C: the stabilized residual, contact and friction, edge by edge on the common refinement.
-    let contact = input.contact;
-    let mult = input.multipliers;
-    // u_n and the slip at the two ends of each edge, in the edge's own frame (a node's values read the node's
-    // normal, the mean of its edges' on a bent Γ_C).
-    let in_frame = |nodal: &[f64], k: usize, tangential: bool| -> [f64; 2] {
-        [k, k + 1].map(|j| {
-            if contact.one_frame {
-                return nodal[j];
-            }
-            // The slip is an increment: from the previous displacement (0 but in a history).
-            let from = if tangential { input.previous_u.get(j).copied().unwrap_or([0.0, 0.0]) } else { [0.0, 0.0] };
-            let (now, e) = (input.contact_u[j], &contact.edges[k]);
-            let u = [now[0] - from[0], now[1] - from[1]];
-            let (a, b) =
-                if tangential { (e.tangent, contact.node_tangent(j)) } else { (e.normal, contact.node_normal(j)) };
-            nodal[j] + u[0] * (a[0] - b[0]) + u[1] * (a[1] - b[1])
-        })
-    };
-    let pieces = common_refinement(&contact.node_xi, &mult.xi);
-    let value = |values: &[f64], cell: usize, xi: f64| -> f64 {
-        let (b, nb) = mult.basis(cell, xi);
-        b[..nb].iter().map(|&(j, v)| v * values[j]).sum()
-    };
     let mut lambda_l2 = 0.0;
     let mut sigma_l2 = 0.0;
     let mut zeta2 = 0.0;
     // The contact and friction conditions in units of traction, squared and integrated, per triangle.
     let mut conditions = vec![0.0; mesh.n_triangles()];
-    for piece in &pieces {
-        let e = &contact.edges[piece.edge];
-        let (nrm, tng) = (e.normal, e.tangent);
-        let s = &input.stress[e.triangle];
-        let sn = traction(s, e.outward);
-        let (sigma_n, sigma_t) = (sn[0] * nrm[0] + sn[1] * nrm[1], sn[0] * tng[0] + sn[1] * tng[1]);
-        let (x0, x1) = (contact.node_xi[piece.edge], contact.node_xi[piece.edge + 1]);
-        let (u_n, slip) = (in_frame(input.u_n, piece.edge, false), in_frame(input.slip, piece.edge, true));
-        let along = |ends: [f64; 2], xi: f64| {
-            let w = (xi - x0) / (x1 - x0);
-            (1.0 - w) * ends[0] + w * ends[1]
+    for side in &input.sides {
+        let contact = side.contact;
+        let mult = side.multipliers;
+        // u_n and the slip at the two ends of each edge, in the edge's own frame (a node's values read the node's
+        // normal, the mean of its edges' on a bent Γ_C).
+        let in_frame = |nodal: &[f64], k: usize, tangential: bool| -> [f64; 2] {
+            [k, k + 1].map(|j| {
+                if contact.one_frame {
+                    return nodal[j];
+                }
+                // The slip is an increment: from the previous displacement (0 but in a history).
+                let from = if tangential { side.previous_u.get(j).copied().unwrap_or([0.0, 0.0]) } else { [0.0, 0.0] };
+                let (now, e) = (side.contact_u[j], &contact.edges[k]);
+                let u = [now[0] - from[0], now[1] - from[1]];
+                let (a, b) =
+                    if tangential { (e.tangent, contact.node_tangent(j)) } else { (e.normal, contact.node_normal(j)) };
+                nodal[j] + u[0] * (a[0] - b[0]) + u[1] * (a[1] - b[1])
+            })
         };
-        let ends_r = [contact.node_points[piece.edge][0], contact.node_points[piece.edge + 1][0]];
-        let (mut gc, mut comp, mut cone, mut diss, mut lam, mut ncp) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-        // c = E* / h_E turns a displacement into a traction at the scale of the edge.
-        let e_star = e_star(e.triangle);
-        let c = e_star / e.length;
-        let half = 0.5 * (piece.b - piece.a);
-        for (x, w) in GAUSS3 {
-            let xi = piece.a + half * (x + 1.0);
-            let wq = w * half * measure(along(ends_r, xi));
-            let (ln, lt, b) = (
-                value(input.lambda_n, piece.cell, xi),
-                value(input.lambda_t, piece.cell, xi),
-                value(input.threshold, piece.cell, xi),
-            );
-            gc += wq * ((ln + sigma_n).powi(2) + (lt + sigma_t).powi(2));
-            lam += wq * (ln * ln + lt * lt);
-            sigma_l2 += wq * (sigma_n * sigma_n + sigma_t * sigma_t);
-            comp += wq * ln * ((input.gap)(xi) - along(u_n, xi));
-            cone += wq * (lt.abs() - b).max(0.0).powi(2);
-            let du = along(slip, xi);
-            diss += wq * (b * du.abs() - lt * du);
-            // The conditions as residuals of their projections (zero exactly when they hold): the
-            // complementarity min(λ_n, c (g − u_n)₊) (penetration is the term below) and the friction
-            // law λ_t − P_[−b, b](λ_t + c Δu_t).
-            let rn = ln.min(c * ((input.gap)(xi) - along(u_n, xi)).max(0.0));
-            let rt = lt - (lt + c * du).clamp(-b.max(0.0), b.max(0.0));
-            ncp += wq * (rn * rn + rt * rt);
-        }
-        conditions[e.triangle] += ncp;
-        let p = &mut parts[e.triangle];
-        p.gamma_c += e.length * gc;
-        p.contact += e_star * comp.abs();
-        p.friction += e.length * cone + e_star * diss.abs();
-        lambda_l2 += lam;
-    }
-    // Penetration, with the obstacle's own gap between the nodes.
-    for (k, e) in contact.edges.iter().enumerate() {
-        let (x0, x1) = (contact.node_xi[k], contact.node_xi[k + 1]);
-        let u_n = in_frame(input.u_n, k, false);
-        let mut pen = 0.0;
-        for w in penetration_pieces(x0, x1, input.lowest).windows(2) {
-            let half = 0.5 * (w[1] - w[0]);
-            for (x, wg) in GAUSS3 {
-                let xi = w[0] + half * (x + 1.0);
-                let s = (xi - x0) / (x1 - x0);
-                let un = (1.0 - s) * u_n[0] + s * u_n[1];
-                let r = (1.0 - s) * contact.node_points[k][0] + s * contact.node_points[k + 1][0];
-                pen += half * wg * measure(r) * (un - (input.gap)(xi)).max(0.0).powi(2);
+        let pieces = common_refinement(&contact.node_xi, &mult.xi);
+        let value = |values: &[f64], cell: usize, xi: f64| -> f64 {
+            let (b, nb) = mult.basis(cell, xi);
+            b[..nb].iter().map(|&(j, v)| v * values[j]).sum()
+        };
+        for piece in &pieces {
+            let e = &contact.edges[piece.edge];
+            let (nrm, tng) = (e.normal, e.tangent);
+            let s = &input.stress[e.triangle];
+            let sn = traction(s, e.outward);
+            let (sigma_n, sigma_t) = (sn[0] * nrm[0] + sn[1] * nrm[1], sn[0] * tng[0] + sn[1] * tng[1]);
+            let (x0, x1) = (contact.node_xi[piece.edge], contact.node_xi[piece.edge + 1]);
+            let (u_n, slip) = (in_frame(side.u_n, piece.edge, false), in_frame(side.slip, piece.edge, true));
+            let along = |ends: [f64; 2], xi: f64| {
+                let w = (xi - x0) / (x1 - x0);
+                (1.0 - w) * ends[0] + w * ends[1]
+            };
+            let ends_r = [contact.node_points[piece.edge][0], contact.node_points[piece.edge + 1][0]];
+            let (mut gc, mut comp, mut cone, mut diss, mut lam, mut ncp) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+            // c = E* / h_E turns a displacement into a traction at the scale of the edge.
+            let e_star = e_star(e.triangle);
+            let c = e_star / e.length;
+            let half = 0.5 * (piece.b - piece.a);
+            for (x, w) in GAUSS3 {
+                let xi = piece.a + half * (x + 1.0);
+                let wq = w * half * measure(along(ends_r, xi));
+                let (ln, lt, b) = (
+                    value(side.lambda_n, piece.cell, xi),
+                    value(side.lambda_t, piece.cell, xi),
+                    value(side.threshold, piece.cell, xi),
+                );
+                gc += wq * ((ln + sigma_n).powi(2) + (lt + sigma_t).powi(2));
+                lam += wq * (ln * ln + lt * lt);
+                sigma_l2 += wq * (sigma_n * sigma_n + sigma_t * sigma_t);
+                comp += wq * ln * ((side.gap)(xi) - along(u_n, xi));
+                cone += wq * (lt.abs() - b).max(0.0).powi(2);
+                let du = along(slip, xi);
+                diss += wq * (b * du.abs() - lt * du);
+                // The conditions as residuals of their projections (zero exactly when they hold): the
+                // complementarity min(λ_n, c (g − u_n)₊) (penetration is the term below) and the friction
+                // law λ_t − P_[−b, b](λ_t + c Δu_t).
+                let rn = ln.min(c * ((side.gap)(xi) - along(u_n, xi)).max(0.0));
+                let rt = lt - (lt + c * du).clamp(-b.max(0.0), b.max(0.0));
+                ncp += wq * (rn * rn + rt * rt);
             }
+            conditions[e.triangle] += ncp;
+            let p = &mut parts[e.triangle];
+            p.gamma_c += e.length * gc;
+            p.contact += e_star * comp.abs();
+            p.friction += e.length * cone + e_star * diss.abs();
+            lambda_l2 += lam;
         }
-        // As squares of products: E*² alone overflows for E* beyond 1e154, and ∞ · 0 where nothing
-        // penetrates would be NaN (defect D29).
-        let (root, e_star) = (pen.sqrt(), e_star(e.triangle));
-        parts[e.triangle].contact += (e_star * root).powi(2) / e.length;
-        conditions[e.triangle] += (e_star / e.length * root).powi(2);
+        // Penetration, with the obstacle's own gap between the nodes.
+        for (k, e) in contact.edges.iter().enumerate() {
+            let (x0, x1) = (contact.node_xi[k], contact.node_xi[k + 1]);
+            let u_n = in_frame(side.u_n, k, false);
+            let mut pen = 0.0;
+            for w in penetration_pieces(x0, x1, side.lowest).windows(2) {
+                let half = 0.5 * (w[1] - w[0]);
+                for (x, wg) in GAUSS3 {
+                    let xi = w[0] + half * (x + 1.0);
+                    let s = (xi - x0) / (x1 - x0);
+                    let un = (1.0 - s) * u_n[0] + s * u_n[1];
+                    let r = (1.0 - s) * contact.node_points[k][0] + s * contact.node_points[k + 1][0];
+                    pen += half * wg * measure(r) * (un - (side.gap)(xi)).max(0.0).powi(2);
+                }
+            }
+            // As squares of products: E*² alone overflows for E* beyond 1e154, and ∞ · 0 where nothing
+            // penetrates would be NaN (defect D29).
+            let (root, e_star) = (pen.sqrt(), e_star(e.triangle));
+            parts[e.triangle].contact += (e_star * root).powi(2) / e.length;
+            conditions[e.triangle] += (e_star / e.length * root).powi(2);
+        }
     }
-    let weights = traction_weights(mesh, contact);
+    let weights = side_weights(mesh, &input.sides);
     let zeta: Vec<f64> = parts
         .iter()
         .zip(&weights)
@@ -586,7 +544,9 @@ fn estimate_scaled(input: &EstimatorInput<'_>) -> (Vec<f64>, Vec<f64>, ErrorEsti
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contact::ContactBoundary;
     use crate::mesh::generate::{rectangle, Diagonal};
+    use crate::results::gamma_c::traction_weights;
 
     /// The penetration pieces of an edge: the equal ones, and around a lowest point inside the edge pieces
     /// halving toward it, so that a dip of any width about it holds Gauss points; points outside the edge

@@ -3,13 +3,16 @@
 //! [`SolveStatus`]).
 
 pub(crate) mod estimator;
+mod gamma_c;
 mod kkt;
+mod pairs;
 mod solution;
 mod status;
 mod zones;
 
 pub use estimator::{ErrorBars, ErrorEstimate, SUBDIVISIONS};
 pub use kkt::KktResiduals;
+pub use pairs::PairResult;
 pub use solution::Solution;
 pub use status::{Agreement, ContactState, CoulombCheck, Report, Scalar, SolveStatus, Timings};
 pub(crate) use zones::dof_span;

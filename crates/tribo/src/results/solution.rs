@@ -5,8 +5,9 @@
 use crate::fem::elasticity::{element_stresses, internal_forces, von_mises};
 use crate::problem::load_case::LoadCase;
 use crate::problem::Condensed;
-use crate::results::estimator::{estimate, EstimatorInput};
+use crate::results::estimator::{estimate, EstimatorInput, SideInput};
 use crate::results::kkt::{kkt_residuals, nan_max};
+use crate::results::pairs::{gamma_c_fields, GammaC, PairResult};
 use crate::results::{ContactState, KktResiduals, Report};
 
 /// The solution of a contact problem.
@@ -94,6 +95,10 @@ pub struct Solution {
     pub kkt: KktResiduals,
     /// How the solve went.
     pub report: Report,
+    /// Each contact pair's part of the fields on Γ_C and its resultants ([`PairResult`]), in the order of
+    /// [`crate::Problem::pairs`]; the fields on Γ_C hold the pairs one after the other, the forces above are
+    /// their sums.
+    pub pairs: Vec<PairResult>,
 }
 
 impl Solution {
@@ -136,45 +141,16 @@ impl Solution {
             *r -= f;
         }
         problem.dofs.keep_reactions(&mut reactions);
-        let contact = &problem.contact;
-        let (n, t) = (contact.normal, contact.tangent);
         let (lambda_n, lambda_t) = (lambda[..q].to_vec(), lambda[q..].to_vec());
-        let sig = |s: &[f64; 3], a: [f64; 2], b: [f64; 2]| {
-            a[0] * (s[0] * b[0] + s[2] * b[1]) + a[1] * (s[2] * b[0] + s[1] * b[1])
-        };
-        let sigma_n = contact.edges.iter().map(|e| sig(&stress[e.triangle], e.normal, e.outward)).collect();
-        let sigma_t = contact.edges.iter().map(|e| sig(&stress[e.triangle], e.tangent, e.outward)).collect();
-        let edge_abscissae = contact.node_xi.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
-        let mut u_n = Vec::with_capacity(contact.nodes.len());
-        let mut slip = Vec::with_capacity(contact.nodes.len());
-        let contact_u: Vec<[f64; 2]> =
-            (0..contact.nodes.len()).map(|i| problem.contact_displacement(i, &displacement)).collect();
-        for (i, origin) in loading.slip_origin.iter().enumerate() {
-            let [ux, uy] = contact_u[i];
-            let (n, t) = (contact.node_normal(i), contact.node_tangent(i));
-            u_n.push(ux * n[0] + uy * n[1]);
-            slip.push(ux * t[0] + uy * t[1] - origin);
-        }
+        let fields = gamma_c_fields(problem, loading, &stress, &displacement, &lambda_n, &lambda_t);
+        let GammaC { u_n, slip, contact_u, pairs, .. } = &fields;
         let gap = loading.gap.clone();
         let max_penetration = u_n.iter().zip(&gap).map(|(u, g)| nan_max(u - g, 0.0)).fold(0.0, nan_max);
-        let w = &problem.mortar.psi_integrals;
-        let normal_force: f64 = lambda_n.iter().zip(w).map(|(l, w)| l * w).sum();
-        let tangential_force: f64 = lambda_t.iter().zip(w).map(|(l, w)| l * w).sum();
-        let contact_force = if contact.one_frame {
-            [0, 1].map(|i| -(normal_force * n[i] + tangential_force * t[i]))
-        } else {
-            // Edge by edge in its own frame: Σ_i M2_e[i, j] = ∫_{E_e} ψ_j.
-            let mut force = [0.0, 0.0];
-            for &(_, j, k, m) in &problem.mortar.m2_edges {
-                let e = &contact.edges[k];
-                for (c, f) in force.iter_mut().enumerate() {
-                    *f -= m * (lambda_n[j] * e.normal[c] + lambda_t[j] * e.tangent[c]);
-                }
-            }
-            force
-        };
-        // A solid of revolution: the radial tractions cancel over the turn, the resultant is axial.
-        let contact_force = if model.is_axisymmetric() { [0.0, contact_force[1]] } else { contact_force };
+        let normal_force: f64 = pairs.iter().map(|p| p.normal_force).sum();
+        let tangential_force: f64 = pairs.iter().map(|p| p.tangential_force).sum();
+        let contact_force =
+            pairs.iter().fold([0.0, 0.0], |f, p| [f[0] + p.contact_force[0], f[1] + p.contact_force[1]]);
+        let contact = &problem.contact;
         // In the contact frame of the first edge (Γ_C's own on a straight side against a gap function).
         let (n0, t0) = (contact.edges[0].normal, contact.edges[0].tangent);
         let obstacle_motion = [0, 1].map(|i| -loading.approach * n0[i] + loading.shift * t0[i]);
@@ -187,13 +163,41 @@ impl Solution {
         let placed = loading.angle.map(|a| problem.obstacle_at(spec.obstacle.shift, a));
         let obstacle = placed.as_ref().unwrap_or(&spec.obstacle);
         let gap_at = |xi: f64| obstacle.initial_gap_on(contact, xi) + geometric(xi) - obstacle.approach + moved;
+        // The further pairs' obstacles, placed once (a history takes one pair).
+        let further: Vec<_> = problem.sides.iter().map(|s| (s, s.obstacle.placed())).collect();
+        let further_gaps: Vec<Box<dyn Fn(f64) -> f64 + '_>> = further
+            .iter()
+            .map(|(s, o)| {
+                Box::new(move |xi: f64| o.initial_gap_on(&s.contact, xi) - o.approach) as Box<dyn Fn(f64) -> f64>
+            })
+            .collect();
+        let lowest: Vec<Vec<f64>> = problem.pairs().iter().map(|p| p.obstacle.shape.lowest_points()).collect();
+        let sides = problem
+            .pairs()
+            .into_iter()
+            .zip(pairs)
+            .zip(&lowest)
+            .enumerate()
+            .map(|(k, ((p, r), lowest))| SideInput {
+                contact: p.contact,
+                multipliers: p.multipliers,
+                lambda_n: &lambda_n[r.multipliers.clone()],
+                lambda_t: &lambda_t[r.multipliers.clone()],
+                threshold: &friction_threshold[r.multipliers.clone()],
+                u_n: &u_n[r.nodes.clone()],
+                slip: &slip[r.nodes.clone()],
+                previous_u: &loading.previous_u[r.nodes.clone()],
+                contact_u: &contact_u[r.nodes.clone()],
+                gap: if k == 0 { &gap_at } else { further_gaps[k - 1].as_ref() },
+                lowest,
+            })
+            .collect();
         let input = EstimatorInput {
             mesh,
             materials,
             primary: problem.primary.as_ref(),
             dofs: &problem.dofs,
-            contact,
-            multipliers: &problem.multipliers,
+            sides,
             body_force: scaled(spec.body_force),
             // The sets were checked when the problem was built.
             tractions: spec
@@ -206,15 +210,6 @@ impl Solution {
             hoop,
             displacement: &displacement,
             pressure: &pressure,
-            lambda_n: &lambda_n,
-            lambda_t: &lambda_t,
-            threshold: &friction_threshold,
-            u_n: &u_n,
-            slip: &slip,
-            previous_u: &loading.previous_u,
-            contact_u: &contact_u,
-            gap: &gap_at,
-            lowest: &spec.obstacle.shape.lowest_points(),
         };
         let (estimator, traction_estimator, estimate) = estimate(&input);
         let report = Report { estimate, ..report };
@@ -233,7 +228,9 @@ impl Solution {
                 }
             })
             .collect();
-        Self {
+        let GammaC { sigma_n, sigma_t, edge_abscissae, node_abscissae, multiplier_abscissae, u_n, slip, pairs, .. } =
+            fields;
+        let mut solution = Self {
             displacement,
             stress,
             stress_zz,
@@ -242,7 +239,7 @@ impl Solution {
             nodal_von_mises,
             pressure,
             reactions,
-            multiplier_abscissae: problem.multipliers.dof_abscissae(),
+            multiplier_abscissae,
             lambda_n,
             lambda_t,
             friction_threshold,
@@ -250,8 +247,8 @@ impl Solution {
             edge_abscissae,
             sigma_n,
             sigma_t,
-            node_abscissae: contact.node_xi.clone(),
-            closed: contact.is_closed(),
+            node_abscissae,
+            closed: problem.contact.is_closed(),
             u_n,
             slip,
             gap,
@@ -264,7 +261,14 @@ impl Solution {
             traction_estimator,
             kkt,
             report,
+            pairs,
+        };
+        for k in 0..solution.pairs.len() {
+            let width = |keep: fn(ContactState) -> bool| solution.pair_zone(k, keep).map_or(0.0, |z| z.width());
+            let (contact, stick) = (width(|s| s != ContactState::Separation), width(|s| s == ContactState::Stick));
+            (solution.pairs[k].contact_width, solution.pairs[k].stick_width) = (contact, stick);
         }
+        solution
     }
 
     /// The largest KKT residual a converged solve may report: `max(√tol, fp_tol)`, `tol` the QP tolerance
@@ -329,7 +333,8 @@ impl Solution {
     /// [`crate::Condensed::solve_history`]).
     pub fn estimated_bytes(problem: &crate::Problem) -> usize {
         let (n, t) = (problem.mesh.n_nodes(), problem.mesh.n_triangles());
-        let (q, e, c) = (problem.n_multipliers(), problem.contact.n_edges(), problem.contact.nodes.len());
+        let (q, e, c) = (problem.n_multipliers(), problem.pair_edge_offsets(), problem.pair_node_offsets());
+        let (e, c) = (e.last().copied().unwrap_or(0), c.last().copied().unwrap_or(0));
         // 2N displacements and reactions, 3T + 3N stresses, T σ_zz, von Mises and the two indicators,
         // N recovered von Mises, N pressures (mixed); 4q on T_H (and q states); 3 per Γ_C edge, 4 per Γ_C node.
         let p = if problem.spec.formulation.is_mixed() { n } else { 0 };

@@ -127,24 +127,37 @@ pub fn loop_zone(
 }
 
 impl Solution {
-    /// Γ_C's length where it is a closed loop (the period of its abscissae), `None` on an open side.
+    /// Γ_C's length where it is a closed loop (the period of its abscissae), `None` on an open side (the first
+    /// pair's, [`Solution::pairs`]).
     pub fn loop_length(&self) -> Option<f64> {
-        self.closed.then(|| Some(self.node_abscissae.last()? - self.node_abscissae.first()?)).flatten()
+        let nodes = self.pairs.first().map_or(0..self.node_abscissae.len(), |p| p.nodes.clone());
+        let x = &self.node_abscissae[nodes];
+        self.closed.then(|| Some(x.last()? - x.first()?)).flatten()
     }
 
-    /// The zone of the dofs accepted by `keep` (see the module documentation).
+    /// The zone of the first pair's dofs accepted by `keep` (see the module documentation).
     fn zone_of(&self, keep: impl Fn(ContactState) -> bool) -> Option<Zone> {
-        let ends = match (self.node_abscissae.first(), self.node_abscissae.last()) {
-            (Some(&a), Some(&b)) => [a, b],
-            _ => return None,
-        };
-        if self.closed {
-            return loop_zone(&self.multiplier_abscissae, ends, &self.states, keep);
-        }
-        zone(&self.multiplier_abscissae, ends, &self.states, keep)
+        self.pair_zone(0, keep)
     }
 
-    /// The contact zone: the dofs not in separation, from the first to the last (on a closed Γ_C the shortest
+    /// The zone of pair `k`'s dofs accepted by `keep`, on its own side ([`crate::PairResult`]; the whole of Γ_C for
+    /// a solution without pairs).
+    pub fn pair_zone(&self, k: usize, keep: impl Fn(ContactState) -> bool) -> Option<Zone> {
+        let (dofs, nodes, closed) = match self.pairs.get(k) {
+            Some(p) => (p.multipliers.clone(), p.nodes.clone(), p.closed),
+            None if k == 0 => (0..self.states.len(), 0..self.node_abscissae.len(), self.closed),
+            None => return None,
+        };
+        let x = &self.node_abscissae[nodes];
+        let ends = [*x.first()?, *x.last()?];
+        let (abscissae, states) = (&self.multiplier_abscissae[dofs.clone()], &self.states[dofs]);
+        if closed {
+            return loop_zone(abscissae, ends, states, keep);
+        }
+        zone(abscissae, ends, states, keep)
+    }
+
+    /// The contact zone of the first pair: the dofs not in separation, from the first to the last (on a closed Γ_C the shortest
     /// arc that holds them, which may begin before the start: the module documentation; `None` when nothing
     /// touches).
     pub fn contact_zone(&self) -> Option<Zone> {

@@ -73,6 +73,7 @@ impl Condensed<'_> {
         observer: Option<StepObserver<'_>>,
         starts: &[Vec<f64>],
     ) -> Result<History> {
+        self.problem().refuse_several_pairs("loading histories")?;
         settings.validate()?;
         friction.validate(self.q())?;
         if steps.is_empty() {
@@ -141,6 +142,7 @@ impl Problem {
         settings: &SolverSettings,
         observer: Option<StepObserver<'_>>,
     ) -> Result<History> {
+        self.refuse_several_pairs("loading histories")?;
         settings.validate()?;
         history_fits(self, steps, settings)?;
         let expected = Expected::solving(friction, false);

@@ -22,6 +22,7 @@ fn spec() -> ProblemSpec {
         obstacle: Obstacle::default(),
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
+        pairs: Vec::new(),
     }
 }
 

@@ -26,6 +26,7 @@ fn an_obstacle_penetrating_between_nodes_is_seen() {
         },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
+        pairs: Vec::new(),
     };
     let problem = Problem::new(mesh, spec).expect("valid");
     let sol = problem.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");

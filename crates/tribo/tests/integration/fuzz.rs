@@ -172,6 +172,7 @@ proptest! {
             obstacle: Obstacle { shape: ObstacleShape::Flat, approach, shift, rotation: None },
             multiplier_points: points,
             multiplier_space: space,
+            pairs: Vec::new(),
         };
         let Ok(problem) = Problem::new(mesh, spec) else {
             note("problem refused");
@@ -257,6 +258,7 @@ proptest! {
             },
             multiplier_points: MultiplierPoints::RatioToFe(1.0),
             multiplier_space: MultiplierSpace::P1,
+            pairs: Vec::new(),
         };
         let Ok(problem) = Problem::new(mesh, spec) else {
             note("valid: problem refused");

@@ -38,6 +38,7 @@ fn block_on_foundation(supports: Vec<Support>, traction: [f64; 2]) -> Problem {
         obstacle: Obstacle { shape: ObstacleShape::Flat, approach: 0.0, shift: 0.0, rotation: None },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
+        pairs: Vec::new(),
     };
     Problem::new(mesh, spec).unwrap()
 }

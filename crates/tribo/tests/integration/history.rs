@@ -362,6 +362,7 @@ fn histories_keep_the_lifting_of_prescribed_displacements() {
         obstacle: tribo::Obstacle { shape: tribo::ObstacleShape::Flat, approach: 0.0, shift: 0.004, rotation: None },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
+        pairs: Vec::new(),
     };
     let problem = tribo::Problem::new(mesh, spec).unwrap();
     let settings = SolverSettings::default();

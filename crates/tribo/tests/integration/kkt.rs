@@ -252,6 +252,7 @@ fn a_slab_pressed_by_a_prescribed_displacement_satisfies_the_discrete_problem() 
         obstacle: Obstacle { shape: ObstacleShape::Flat, approach: 0.0, shift: 0.0005, rotation: None },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
+        pairs: Vec::new(),
     };
     let problem = Problem::new(mesh, spec).unwrap();
     // One QP each (the direct checks hold to the QP's accuracy; a Coulomb fixed point adds its own).

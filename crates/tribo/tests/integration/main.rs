@@ -60,6 +60,7 @@ mod patch;
 mod paths;
 mod plane_stress;
 mod rigid_motion;
+mod several_pairs;
 mod supports;
 mod turned_obstacle;
 mod two_bodies;

@@ -26,6 +26,7 @@ fn compressed_square(delta: f64, material: Material, space: MultiplierSpace) -> 
         obstacle: Obstacle { shape: ObstacleShape::Flat, approach: delta, shift: 0.0, rotation: None },
         multiplier_points: MultiplierPoints::Size(0.3),
         multiplier_space: space,
+        pairs: Vec::new(),
     };
     (mesh, spec)
 }

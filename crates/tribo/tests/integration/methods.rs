@@ -121,6 +121,7 @@ fn active_set_and_clarabel_agree_on_the_patch_and_the_checkerboard_mesh() {
         },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
+        pairs: Vec::new(),
     };
     let patch = Problem::new(distorted_square(8), spec).expect("valid");
     for stabilization in [Stabilization::None, Stabilization::Fraction(0.5)] {

@@ -161,6 +161,7 @@ fn supports_that_push_gamma_c_into_the_obstacle_are_refused() {
         obstacle: tribo::Obstacle { shape: tribo::ObstacleShape::Flat, approach, shift: 0.0, rotation: None },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
+        pairs: Vec::new(),
     };
     let pushed = Problem::new(mesh.clone(), spec(0.01)).unwrap();
     let settings = SolverSettings::default();

@@ -22,6 +22,7 @@ fn square(contact: &str, clamped: &str) -> Problem {
         obstacle: Obstacle { shape: ObstacleShape::Flat, approach: 0.01, shift: 0.004, rotation: None },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
+        pairs: Vec::new(),
     };
     Problem::new(mesh, spec).unwrap()
 }

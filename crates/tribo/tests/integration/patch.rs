@@ -38,6 +38,7 @@ fn patch_problem(
         obstacle: Obstacle { shape: ObstacleShape::Flat, approach, shift, rotation: None },
         multiplier_points: points,
         multiplier_space: space,
+        pairs: Vec::new(),
     };
     Problem::new(tribo_testkit::distorted_square(8), spec).expect("valid patch problem")
 }
@@ -187,6 +188,7 @@ fn constant_strain_without_contact_is_reproduced() {
                     obstacle: Obstacle { shape: ObstacleShape::Flat, approach: -0.01, shift: 0.0, rotation: None },
                     multiplier_points: points.clone(),
                     multiplier_space: space,
+                    pairs: Vec::new(),
                 };
                 let problem = Problem::new(tribo_testkit::distorted_square(8), spec).expect("valid");
                 let settings = SolverSettings { stabilization: stab, ..Default::default() };

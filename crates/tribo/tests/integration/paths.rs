@@ -147,6 +147,7 @@ impl Case {
             obstacle: Obstacle { shape, approach: self.approach, shift: self.shift, rotation: None },
             multiplier_points: MultiplierPoints::RatioToFe(self.ratio),
             multiplier_space: if self.p0 { MultiplierSpace::P0 } else { MultiplierSpace::P1 },
+            pairs: Vec::new(),
         };
         Problem::new(mesh, spec).expect("a valid problem")
     }
@@ -419,6 +420,7 @@ fn the_answer_does_not_depend_on_the_units() {
             obstacle: Obstacle { shape: ObstacleShape::Flat, approach, shift: 0.3 * (approach + base), rotation: None },
             multiplier_points: MultiplierPoints::RatioToFe(1.0),
             multiplier_space: MultiplierSpace::P1,
+            pairs: Vec::new(),
         };
         Problem::new(mesh.clone(), spec).expect("a valid problem")
     };
@@ -485,6 +487,7 @@ fn subnormal_data_are_refused_by_name() {
         obstacle: Obstacle { shape: ObstacleShape::Flat, approach, shift, rotation: None },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
+        pairs: Vec::new(),
     };
     for (approach, shift, base, name) in [
         (1e-320, 0.0, 0.0, "approach δ"),

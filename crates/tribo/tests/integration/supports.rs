@@ -31,6 +31,7 @@ fn spec(supports: Vec<Support>, poisson: f64) -> ProblemSpec {
         obstacle: Obstacle { shape: ObstacleShape::Flat, approach: -1.0, shift: 0.0, rotation: None },
         multiplier_points: MultiplierPoints::RatioToFe(1.0),
         multiplier_space: MultiplierSpace::P1,
+        pairs: Vec::new(),
     }
 }
 

@@ -1,0 +1,325 @@
+//! Several contact pairs in one problem: a body pressed by a punch onto a foundation, a disc between two
+//! platens, a body touching two obstacles at once.
+//!
+//! The first pair is the problem's own (`spec.contact` against `spec.obstacle`, or the secondary side of two
+//! bodies); each further pair ([`PairSpec`]) is another contact side of the body against its own rigid obstacle,
+//! with its own multiplier mesh T_H^k ([`ContactSide`]). Nothing couples the pairs but the body: the multipliers
+//! of pair k test only pair k's side, so every Γ_C matrix of the method is block diagonal over the pairs,
+//!
+//! ```text
+//! λ = (λ_n¹, …, λ_nᵐ, λ_t¹, …, λ_tᵐ),   E = [E_n¹; …; E_nᵐ; E_t¹; …; E_tᵐ],   Dγ = diag(Dγᵏ),   −G = Σ_k −Gᵏ,
+//! ```
+//!
+//! and the QP (3.2) over the stacked multipliers is the one of the pairs together: its bounds and its friction
+//! thresholds act dof by dof, each on its own pair's multipliers. Every solve method takes it as it takes one
+//! pair. A triangle may touch one pair's side only (γ0's bound, [`crate::contact::gamma0`], is per triangle
+//! and one side's), and two sides share no edge.
+
+use crate::contact::gamma0::{admissible_gamma0, Gamma0Bound};
+use crate::contact::mortar::MortarMatrices;
+use crate::contact::multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace};
+use crate::contact::obstacle::{Obstacle, ObstacleShape};
+use crate::contact::operators::ContactStress;
+use crate::contact::pair::PrimarySide;
+use crate::contact::ContactBoundary;
+use crate::error::{Error, Result};
+use crate::fem::elasticity::{MaterialField, Model};
+use crate::fem::supports::Dofs;
+use crate::mesh::Mesh;
+use crate::problem::Problem;
+
+/// A further contact pair of a problem: a contact edge set of the body against its own rigid obstacle.
+#[derive(Debug, Clone)]
+pub struct PairSpec {
+    /// Name of the contact edge set (the pair's name in the outputs).
+    pub contact: String,
+    /// Its rigid obstacle (shape, approach δ, shift s; a turned one is placed once).
+    pub obstacle: Obstacle,
+    /// Points of its multiplier mesh (the space is the problem's, `spec.multiplier_space`).
+    pub multiplier_points: MultiplierPoints,
+}
+
+impl PairSpec {
+    /// The edge set `contact` against `obstacle`, T_H on its FE edges.
+    pub fn new(contact: impl Into<String>, obstacle: Obstacle) -> Self {
+        Self { contact: contact.into(), obstacle, multiplier_points: MultiplierPoints::default() }
+    }
+
+    /// A pair from the keywords of the bindings: its edge set, its obstacle's shape (flat by default), approach and
+    /// shift (0 by default), and the first pair's multiplier points where they are not tied to that side
+    /// ([`MultiplierPoints::for_another_side`]).
+    pub fn from_keywords(
+        contact: String,
+        shape: Option<ObstacleShape>,
+        approach: Option<f64>,
+        shift: Option<f64>,
+        first: &MultiplierPoints,
+    ) -> Self {
+        let obstacle = Obstacle::from_keywords(shape.unwrap_or(ObstacleShape::Flat), approach, shift, None);
+        Self { contact, obstacle, multiplier_points: first.for_another_side() }
+    }
+}
+
+/// A further contact pair, assembled: its Γ_C, T_H, Γ_C matrices, the gap at its FE nodes and the stresses the
+/// stabilization reads on its edges.
+#[derive(Debug, Clone)]
+pub struct ContactSide {
+    /// The pair's name (its contact edge set).
+    pub name: String,
+    /// Its obstacle, as given ([`Obstacle::placed`] turns it).
+    pub obstacle: Obstacle,
+    /// Its Γ_C.
+    pub contact: ContactBoundary,
+    /// Its T_H.
+    pub multipliers: MultiplierMesh,
+    /// Its Γ_C matrices.
+    pub mortar: MortarMatrices,
+    /// The gap `g₀ − δ` at its FE nodes.
+    pub gap: Vec<f64>,
+    /// σ_n(v), σ_t(v) on its edges.
+    pub stress: ContactStress,
+    /// The admissible γ0 of its triangles.
+    pub gamma0_bound: Gamma0Bound,
+}
+
+/// One pair's parts, borrowed: the first pair's from the problem's own fields, the others' from their
+/// [`ContactSide`].
+#[derive(Debug, Clone, Copy)]
+pub struct PairParts<'a> {
+    /// The pair's name (its contact edge set).
+    pub name: &'a str,
+    /// Its obstacle (as the problem was given it: [`Obstacle::placed`] turns it).
+    pub obstacle: &'a Obstacle,
+    /// Its Γ_C.
+    pub contact: &'a ContactBoundary,
+    /// Its T_H.
+    pub multipliers: &'a MultiplierMesh,
+    /// Its Γ_C matrices.
+    pub mortar: &'a MortarMatrices,
+    /// The gap at its FE nodes.
+    pub gap: &'a [f64],
+    /// σ_n(v), σ_t(v) on its edges.
+    pub stress: &'a ContactStress,
+    /// The primary side of a two-body pair (the first pair only).
+    pub primary: Option<&'a PrimarySide>,
+}
+
+impl ContactSide {
+    /// Builds pair `pair` on `mesh` (the problem's supports `dofs`, the stiffness's `materials`).
+    ///
+    /// # Errors
+    /// As the first pair's: an unknown or broken edge set, an edge on Γ_D, a side clamped everywhere, a bad
+    /// obstacle or multiplier points.
+    pub(crate) fn new(
+        mesh: &Mesh,
+        model: Model,
+        materials: &impl MaterialField,
+        mixed: bool,
+        dofs: &Dofs,
+        pair: &PairSpec,
+        space: MultiplierSpace,
+    ) -> Result<Self> {
+        pair.obstacle.validate()?;
+        if model.is_axisymmetric() && pair.obstacle.rotation.is_some() {
+            return Err(Error::BadAxisymmetry {
+                what: format!(
+                    "the obstacle of '{}' turns: a body of revolution has none in its meridian plane",
+                    pair.contact
+                ),
+            });
+        }
+        let mut contact = ContactBoundary::new(mesh, &pair.contact)?;
+        let placed = pair.obstacle.placed();
+        contact.orient_to(&placed.shape)?;
+        let gap = contact.node_xi.iter().map(|&xi| placed.gap(&contact, xi)).collect::<Result<Vec<f64>>>()?;
+        for e in &contact.edges {
+            if dofs.edges.contains(&[e.left.min(e.right), e.left.max(e.right)]) {
+                return Err(Error::ContactOverlapsDirichlet { set: pair.contact.clone(), a: e.left, b: e.right });
+            }
+        }
+        if contact.nodes.iter().all(|&node| matches!(dofs.nodes[node], crate::fem::supports::NodeSupport::Fixed { .. }))
+        {
+            return Err(Error::ContactFullyClamped { set: pair.contact.clone() });
+        }
+        let multipliers = MultiplierMesh::new(&contact, &pair.multiplier_points, space)?;
+        let h_t: Vec<f64> = contact.edges.iter().map(|e| mesh.diameter(e.triangle)).collect();
+        let mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &placed, model)?;
+        let stress = ContactStress::new(mesh, model, materials, &contact, mixed);
+        let gamma0_bound = admissible_gamma0(mesh, model, materials, &contact);
+        Ok(Self {
+            name: pair.contact.clone(),
+            obstacle: pair.obstacle.clone(),
+            contact,
+            multipliers,
+            mortar,
+            gap,
+            stress,
+            gamma0_bound,
+        })
+    }
+}
+
+impl Problem {
+    /// The contact pairs, the problem's own first.
+    pub fn pairs(&self) -> Vec<PairParts<'_>> {
+        let first = PairParts {
+            name: &self.spec.contact,
+            obstacle: &self.spec.obstacle,
+            contact: &self.contact,
+            multipliers: &self.multipliers,
+            mortar: &self.mortar,
+            gap: &self.contact_gap,
+            stress: &self.contact_stress,
+            primary: self.primary.as_ref(),
+        };
+        let further = self.sides.iter().map(|s| PairParts {
+            name: &s.name,
+            obstacle: &s.obstacle,
+            contact: &s.contact,
+            multipliers: &s.multipliers,
+            mortar: &s.mortar,
+            gap: &s.gap,
+            stress: &s.stress,
+            primary: None,
+        });
+        std::iter::once(first).chain(further).collect()
+    }
+
+    /// Where each pair's multiplier dofs start among the q of one component (one more entry: q).
+    pub fn pair_offsets(&self) -> Vec<usize> {
+        offsets(self.pairs().iter().map(|p| p.multipliers.n_dofs()))
+    }
+
+    /// Where each pair's FE nodes of Γ_C start in the nodal fields of Γ_C (one more entry: their number).
+    pub fn pair_node_offsets(&self) -> Vec<usize> {
+        offsets(self.pairs().iter().map(|p| p.contact.nodes.len()))
+    }
+
+    /// Where each pair's FE edges of Γ_C start in the edge fields of Γ_C (one more entry: their number).
+    pub fn pair_edge_offsets(&self) -> Vec<usize> {
+        offsets(self.pairs().iter().map(|p| p.contact.n_edges()))
+    }
+
+    /// Refuses `what` for a problem of several contact pairs.
+    ///
+    /// # Errors
+    /// [`Error::SeveralPairs`] naming the second pair.
+    pub(crate) fn refuse_several_pairs(&self, what: &str) -> Result<()> {
+        match self.sides.first() {
+            None => Ok(()),
+            Some(side) => Err(Error::SeveralPairs {
+                pair: side.name.clone(),
+                what: format!("{what} take one contact pair today; this problem has {}", self.sides.len() + 1),
+            }),
+        }
+    }
+
+    /// Triplets of `−G` over all dofs, summed over the pairs.
+    pub(crate) fn minus_g_triplets(&self, gamma0: f64) -> Vec<faer::sparse::Triplet<usize, usize, f64>> {
+        self.pairs().iter().flat_map(|p| p.stress.stiffness_triplets(p.mortar, gamma0)).collect()
+    }
+
+    /// The rows of E over all dofs, stacked: the normal rows of every pair, then the tangential ones.
+    pub(crate) fn coupling_rows(&self, gamma0: f64) -> Vec<Vec<(usize, f64)>> {
+        let per_pair =
+            self.pairs().iter().map(|p| p.stress.coupling_rows(p.contact, p.mortar, p.primary, gamma0)).collect();
+        stack(per_pair)
+    }
+
+    /// The entries of `Dγ / γ0` (2q × 2q), block diagonal over the pairs.
+    pub(crate) fn d_h_entries(&self) -> Vec<(usize, usize, f64)> {
+        let (pairs, offsets) = (self.pairs(), self.pair_offsets());
+        let q = offsets[pairs.len()];
+        let mut entries = Vec::new();
+        for (p, &off) in pairs.iter().zip(&offsets) {
+            let qk = p.multipliers.n_dofs();
+            let at = |i: usize| if i < qk { off + i } else { q + off + i - qk };
+            entries.extend(p.mortar.d_h.entries.iter().map(|&(i, j, v)| (at(i), at(j), v)));
+        }
+        entries
+    }
+
+    /// Builds the further pairs of `self.spec` and checks that no two sides share an edge or a triangle.
+    ///
+    /// # Errors
+    /// As [`ContactSide::new`]; [`Error::SeveralPairs`] for sides that share an edge or a triangle, or for
+    /// further pairs of two bodies.
+    pub(crate) fn build_sides(&mut self, materials: &impl MaterialField) -> Result<()> {
+        let spec = &self.spec;
+        let Some(first) = spec.pairs.first() else { return Ok(()) };
+        if self.primary.is_some() {
+            return Err(Error::SeveralPairs {
+                pair: first.contact.clone(),
+                what: "two bodies take one contact pair today".into(),
+            });
+        }
+        let mixed = spec.formulation.is_mixed();
+        let sides = spec
+            .pairs
+            .iter()
+            .map(|p| ContactSide::new(&self.mesh, spec.model, materials, mixed, &self.dofs, p, spec.multiplier_space))
+            .collect::<Result<Vec<_>>>()?;
+        self.sides = sides;
+        // Γ_N and a further pair's Γ_C must not overlap (the first pair's is checked with the problem).
+        for (traction_set, _) in &self.spec.tractions {
+            for &[a, b] in self.mesh.edge_set(traction_set)? {
+                let on = |e: &crate::contact::ContactEdge| [e.left, e.right] == [a, b] || [e.right, e.left] == [a, b];
+                if let Some(side) = self.sides.iter().find(|s| s.contact.edges.iter().any(on)) {
+                    let (set, traction_set) = (side.name.clone(), traction_set.clone());
+                    return Err(Error::TractionOnContact { set, traction_set, a, b });
+                }
+            }
+        }
+        let mut owner: std::collections::HashMap<usize, &str> = std::collections::HashMap::new();
+        for p in self.pairs() {
+            for e in &p.contact.edges {
+                match owner.insert(e.triangle, p.name) {
+                    Some(other) if other != p.name => {
+                        return Err(Error::SeveralPairs {
+                            pair: p.name.to_string(),
+                            what: format!(
+                            "its edge ({}, {}) lies on triangle {}, which touches the side of '{other}' too (an edge \
+                             shared, or a corner triangle: refine the mesh there, so that each triangle touches one \
+                             contact side)",
+                            e.left, e.right, e.triangle
+                        ),
+                        })
+                    }
+                    _ => {}
+                }
+            }
+        }
+        self.gamma0_bound =
+            self.sides
+                .iter()
+                .map(|s| s.gamma0_bound)
+                .fold(self.gamma0_bound, |a, b| if b.value < a.value { b } else { a });
+        Ok(())
+    }
+}
+
+/// `[0, a, a + b, …]` of the counts.
+fn offsets(counts: impl Iterator<Item = usize>) -> Vec<usize> {
+    let mut out = vec![0];
+    for c in counts {
+        out.push(out[out.len() - 1] + c);
+    }
+    out
+}
+
+/// Stacks per-pair vectors of 2q_k entries (normal then tangential) into the problem's: the normal entries of
+/// every pair, then the tangential ones.
+pub(crate) fn stack<T: Clone>(per_pair: Vec<Vec<T>>) -> Vec<T> {
+    let halves: Vec<(&[T], &[T])> = per_pair.iter().map(|v| v.split_at(v.len() / 2)).collect();
+    let normal = halves.iter().flat_map(|(n, _)| n.iter().cloned());
+    let tangential = halves.iter().flat_map(|(_, t)| t.iter().cloned());
+    normal.chain(tangential).collect()
+}
+
+/// The part of pair k's multipliers in a stacked vector of 2q (`offsets` from [`Problem::pair_offsets`]): its
+/// normal then its tangential entries.
+pub fn pair_slice<T: Clone>(stacked: &[T], offsets: &[usize], k: usize) -> Vec<T> {
+    let q = offsets[offsets.len() - 1];
+    let (a, b) = (offsets[k], offsets[k + 1]);
+    stacked[a..b].iter().chain(&stacked[q + a..q + b]).cloned().collect()
+}

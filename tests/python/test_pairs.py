@@ -1,0 +1,56 @@
+"""Several contact pairs through Python: a block pressed by a punch onto a foundation, each pair with its own
+obstacle; its parts of the solution; what takes one pair today refuses several with a typed error."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import tribo
+
+PUNCH = tribo.Obstacle.disc((0.0, 1.5), 0.5)
+FOUNDATION = tribo.Obstacle.line((0.0, 0.0), (0.0, 1.0))
+
+
+def block(n: int = 12, **keywords: object) -> tribo.Problem:
+    """The half block [0, ½] × [0, 1] (a roller on its axis), the punch on its top, the foundation under it."""
+    mesh = tribo.Mesh.rectangle((0.0, 0.5), (0.0, 1.0), n, 2 * n)
+    arguments = dict(young=1.0, poisson=0.3, contact="top", supports=[tribo.Support.roller("left")], obstacle=PUNCH,
+                     approach=0.02, pairs=[("bottom", FOUNDATION, None, None)])
+    return tribo.Problem(mesh, **{**arguments, **keywords})
+
+
+def test_a_block_between_a_punch_and_a_foundation_is_the_block_on_a_roller() -> None:
+    """With γ0 = 0 the foundation, touching everywhere, acts as a roller: the problem of the punch alone on a block
+    whose bottom is a roller has the same displacement and punch pressure; the foundation takes the punch's force."""
+    two = block()
+    assert two.pairs == ["top", "bottom"]
+    one = block(pairs=None, supports=[tribo.Support.roller("left"), tribo.Support.roller("bottom")])
+    s2, s1 = two.solve(gamma0=0.0), one.solve(gamma0=0.0)
+    assert s2.report.converged and s1.report.converged
+    top, bottom = s2.pairs
+    assert (top.name, bottom.name) == ("top", "bottom")
+    assert isinstance(top, tribo.PairResult) and s2.lambda_n.size == bottom.multipliers.stop
+    assert np.all(s2.lambda_n[bottom.multipliers] > 0.0), "the foundation touches everywhere"
+    scale = np.abs(s1.lambda_n).max()
+    assert np.abs(s2.lambda_n[top.multipliers] - s1.lambda_n).max() <= 1e-6 * scale
+    assert np.abs(s2.displacement - s1.displacement).max() <= 1e-6 * np.abs(s1.displacement).max()
+    # The block is held vertically by the two contacts alone: their vertical forces cancel.
+    assert abs(top.contact_force[1] + bottom.contact_force[1]) <= 1e-6 * top.normal_force
+    assert s2.normal_force == pytest.approx(top.normal_force + bottom.normal_force, rel=1e-12)
+    # Each pair's fields are its slices; its contact zone its own side's (the foundation's: all of it).
+    assert s2.node_abscissae[bottom.nodes].size == 13 and s2.sigma_n[bottom.edges].size == 12
+    assert bottom.contact_width == pytest.approx(0.5) and 0.0 < top.contact_width < 0.5
+    assert s2.contact_width == top.contact_width
+
+
+def test_what_takes_one_pair_refuses_several() -> None:
+    problem = block(n=6)
+    with pytest.raises(tribo.ContactGeometryError, match="one contact pair"):
+        problem.solve_history(approach=[0.01, 0.02], shift=0.0)
+    with pytest.raises(tribo.ContactGeometryError, match="one contact pair"):
+        problem.solve_adaptive(tol=0.05)
+    with pytest.raises(tribo.MeshError, match="nowhere"):
+        block(n=6, pairs=[("nowhere", None, None, None)])
+    with pytest.raises(ValueError, match="tuple of length 4"):
+        block(n=6, pairs=[("bottom", FOUNDATION)])
