@@ -67,6 +67,9 @@ def _type(check: Callable[..., Any]) -> Any:
         region = create_model("Region", __config__=STRICT, young=(Num, ...), poisson=(Num, ...),
                               group=(StrictStr | None, None), box=(Annotated[list[Num], Field(min_length=4, max_length=4)] | None, None))
         return list[region]
+    if check.__name__ == "_contact_pairs":
+        keys = {"edge_set": SCHEMA["contact"]["edge_set"], **{k: c for k, c in SCHEMA["obstacle"].items() if k != "rotation"}}
+        return list[_model("Pair", keys, ("edge_set",))]
     if check.__name__ == "_rotation":
         return create_model("Rotation", __config__=STRICT, center=(Pair, ...), angle=(Num, ...))
     if check.__name__ == "_plate":

@@ -96,19 +96,24 @@ def body_extent_along_normal(problem: Problem) -> float:
 def check_solution(problem: Problem, solution: Solution) -> list[str]:
     """The reasons to doubt a solved scene, as sentences (empty when there are none)."""
     reasons = []
-    in_contact = int(np.count_nonzero(solution.states != 0))
-    if in_contact == 0:
-        closest = float(solution.gap.min()) if len(solution.gap) else float("nan")
-        reasons.append(
-            "nothing touches: no multiplier dof is in contact and the contact force is zero "
-            f"(smallest gap after the approach {_g(closest)}; approach {_g(problem.approach)})"
-        )
-    elif in_contact < MIN_CONTACT_DOFS:
-        reasons.append(
-            f"the contact zone holds only {in_contact} multiplier dof{'s' if in_contact > 1 else ''} "
-            f"(fewer than {MIN_CONTACT_DOFS}): its extent and pressure are barely resolved; refine near the "
-            "contact (h_min) or use more multiplier points (multiplier_ratio)"
-        )
+    # Pair by pair (``Solution.pair``), named where there are several.
+    for k, pr in enumerate(solution.pairs or [None]):
+        part = solution.pair(k) if pr is not None else solution
+        which = f"pair '{pr.name}': " if pr is not None and len(solution.pairs) > 1 else ""
+        in_contact = int(np.count_nonzero(part.states != 0))
+        if in_contact == 0:
+            closest = float(part.gap.min()) if len(part.gap) else float("nan")
+            reasons.append(
+                f"{which}nothing touches: no multiplier dof is in contact and the contact force is zero "
+                f"(smallest gap after the approach {_g(closest)}; approach {_g(problem.approach)})"
+            )
+        elif in_contact < MIN_CONTACT_DOFS:
+            reasons.append(
+                f"{which}the contact zone holds only {in_contact} multiplier dof{'s' if in_contact > 1 else ''} "
+                f"(fewer than {MIN_CONTACT_DOFS}): its extent and pressure are barely resolved; refine near the "
+                "contact (h_min) or use more multiplier points (multiplier_ratio)"
+            )
+    first = solution.pair(0)  # the problem's multiplier mesh and contact nodes are the first pair's
     extent = body_extent_along_normal(problem)
     if extent > 0 and abs(problem.approach) > MAX_APPROACH_FRACTION * extent:
         reasons.append(
@@ -116,7 +121,7 @@ def check_solution(problem: Problem, solution: Solution) -> list[str]:
             f"extent along n ({_g(extent)}), more than {_g(MAX_APPROACH_FRACTION * 100)} %: beyond small "
             "strain (check the units)"
         )
-    reasons += _held_contact(problem) + _cut_zone(problem, solution) + _non_unique_multipliers(problem, solution)
+    reasons += _held_contact(problem) + _cut_zone(problem, first) + _non_unique_multipliers(problem, first)
     reasons += _faceted_without_curve(problem)
     nu = max([problem.poisson, *(m[1] for m in getattr(problem, "materials", ()))])  # a body of several materials
     if nu >= MAX_POISSON and problem.model != "plane_stress" and getattr(problem, "formulation", "") != "mixed":
@@ -166,7 +171,7 @@ def _held_nodes(problem: Problem) -> set[int]:
 def _held_contact(problem: Problem) -> list[str]:
     """The reasons to doubt a contact side (the secondary one, or the primary one of two bodies) that a
     support also holds inside its ends (none if both are free there)."""
-    sides = [problem.contact] + ([problem.primary] if problem.primary is not None else [])
+    sides = [problem.contact, *problem.pairs[1:]] + ([problem.primary] if problem.primary is not None else [])
     held_nodes, reasons = _held_nodes(problem), []
     for side in sides:
         edges = np.asarray(problem.mesh.edge_sets[side]).reshape(-1, 2)
@@ -231,7 +236,7 @@ def _faceted_without_curve(problem: Problem) -> list[str]:
     and whose edge set carries no curve: refinement keeps its chords, and the estimates cannot see them; between
     two bodies the facets' gaps also enter the contact."""
     reasons = []
-    for side in [problem.contact] + ([problem.primary] if problem.primary is not None else []):
+    for side in [problem.contact, *problem.pairs[1:]] + ([problem.primary] if problem.primary is not None else []):
         if side in problem.mesh.curves:
             continue
         p = np.asarray(problem.mesh.points)[_chain(np.asarray(problem.mesh.edge_sets[side]))]
@@ -289,11 +294,12 @@ def _cut_zone(problem: Problem, solution: Solution) -> list[str]:
 
 def warn_missing_error_bars(solution: Solution, stacklevel: int = 2) -> bool:
     """Emits a ``SceneWarning`` when error bars were asked for and the solution has none (the solve or the
-    enriched solve did not converge, or the enriched problem did not fit the memory budget: the log says
-    which); returns whether it did."""
+    enriched solve did not converge, the enriched problem did not fit the memory budget, or several contact pairs,
+    which the error bars do not take yet: the log says which); returns whether it did."""
     if solution.report.status == "converged" and math.isnan(solution.report.estimate.get("normal_force_error", math.nan)):
-        warnings.warn("error bars were asked for, but the enriched solve gave none (it did not converge or did not "
-                      "fit the memory budget; the log says which)", SceneWarning, stacklevel=stacklevel + 1)
+        warnings.warn("error bars were asked for, but the enriched solve gave none (it did not converge, did not "
+                      "fit the memory budget, or the problem has several contact pairs; the log says which)",
+                      SceneWarning, stacklevel=stacklevel + 1)
         return True
     return False
 
@@ -308,10 +314,12 @@ def warn_solution(problem: Problem, solution: Solution, stacklevel: int = 2) -> 
 
 def obstacle_points(problem: Problem, solution: Solution) -> np.ndarray:
     """Where the obstacle's surface is, facing each FE node of Γ_C: the node moved by the gap g = g0 − δ
-    along its contact normal n, (n_c, 2)."""
-    xi = solution.node_abscissae
-    p = problem.contact_points(xi)
-    return np.asarray(p + np.asarray(solution.gap)[:, None] * problem.contact_normals(xi))
+    along its contact normal n, (n_c, 2); each pair's nodes facing its own obstacle."""
+    out = []
+    for k, nodes in enumerate([r.nodes for r in solution.pairs] or [slice(None)]):
+        xi = solution.node_abscissae[nodes]
+        out.append(problem.contact_points(xi, k) + np.asarray(solution.gap[nodes])[:, None] * problem.contact_normals(xi, k))
+    return np.concatenate(out)
 
 
 def format_vector(v: tuple[float, float] | np.ndarray) -> str:

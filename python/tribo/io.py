@@ -414,36 +414,39 @@ def write_vtu(path: str | Path, problem: Problem, solution: Solution, *, per_bod
             **({"sigma_hoop": [solution.stress_zz]} if problem.model == "axisymmetric" else {}),
         },
     )
-    n = len(solution.node_abscissae)
-    lines = np.column_stack([np.arange(n - 1), np.arange(1, n)])
-    contact = meshio.Mesh(
-        _xyz(problem.contact_points(solution.node_abscissae)),
-        [("line", lines)],
-        point_data={
-            "u_n": solution.u_n,
-            "slip": solution.slip,
-            "gap": solution.gap,
-            "current_gap": solution.current_gap,
-            "obstacle": _xyz(obstacle_points(problem, solution)),
-        },
-        cell_data={"sigma_n": [solution.sigma_n], "sigma_t": [solution.sigma_t]},
-    )
-    xi = problem.multiplier_mesh
-    k = len(xi)
-    fields: dict[str, npt.NDArray[Any]] = {
-        "lambda_n": solution.lambda_n,
-        "lambda_t": solution.lambda_t,
-        "friction_threshold": solution.friction_threshold,
-        "state": solution.states.astype(np.int32),
-    }
-    mlines = np.column_stack([np.arange(k - 1), np.arange(1, k)])
-    if problem.space == "P1":
-        fields = {name: at_points(v, k) for name, v in fields.items()}
-        multipliers = meshio.Mesh(_xyz(problem.contact_points(xi)), [("line", mlines)], point_data=fields)
+    if len(solution.pairs) > 1:
+        contact, multipliers = _pair_blocks(meshio, problem, solution)
     else:
-        multipliers = meshio.Mesh(
-            _xyz(problem.contact_points(xi)), [("line", mlines)], cell_data={k: [v] for k, v in fields.items()}
+        n = len(solution.node_abscissae)
+        lines = np.column_stack([np.arange(n - 1), np.arange(1, n)])
+        contact = meshio.Mesh(
+            _xyz(problem.contact_points(solution.node_abscissae)),
+            [("line", lines)],
+            point_data={
+                "u_n": solution.u_n,
+                "slip": solution.slip,
+                "gap": solution.gap,
+                "current_gap": solution.current_gap,
+                "obstacle": _xyz(obstacle_points(problem, solution)),
+            },
+            cell_data={"sigma_n": [solution.sigma_n], "sigma_t": [solution.sigma_t]},
         )
+        xi = problem.multiplier_mesh
+        k = len(xi)
+        fields: dict[str, npt.NDArray[Any]] = {
+            "lambda_n": solution.lambda_n,
+            "lambda_t": solution.lambda_t,
+            "friction_threshold": solution.friction_threshold,
+            "state": solution.states.astype(np.int32),
+        }
+        mlines = np.column_stack([np.arange(k - 1), np.arange(1, k)])
+        if problem.space == "P1":
+            fields = {name: at_points(v, k) for name, v in fields.items()}
+            multipliers = meshio.Mesh(_xyz(problem.contact_points(xi)), [("line", mlines)], point_data=fields)
+        else:
+            multipliers = meshio.Mesh(
+                _xyz(problem.contact_points(xi)), [("line", mlines)], cell_data={k: [v] for k, v in fields.items()}
+            )
     paths = [path, Path(f"{stem}_contact.vtu"), Path(f"{stem}_multipliers.vtu")]
     meshes = [body, contact, multipliers]
     if per_body and len(problem.bodies) > 1:
@@ -457,6 +460,32 @@ def write_vtu(path: str | Path, problem: Problem, solution: Solution, *, per_bod
     if per_body and len(problem.bodies) > 1:
         paths.append(_write_vtm(Path(f"{stem}.vtm"), [name for name, _, _ in problem.bodies], parts))
     return paths
+
+
+def _pair_blocks(meshio: Any, problem: Problem, solution: Solution) -> tuple[Any, Any]:
+    """The contact and multiplier meshes of several contact pairs: each pair's side a chain of lines (cell data
+    ``pair``, its index in ``problem.pairs``), each multiplier dof a vertex at its abscissa on its own side."""
+    points, lines, dofs, which, at = [], [], [], [], 0
+    for k, r in enumerate(solution.pairs):
+        xi = solution.node_abscissae[r.nodes]
+        points.append(problem.contact_points(xi, k))
+        lines.append(np.column_stack([np.arange(len(xi) - 1), np.arange(1, len(xi))]) + at)
+        which.append(np.full(len(xi) - 1, k, dtype=np.int32))
+        dofs.append(problem.contact_points(solution.multiplier_abscissae[r.multipliers], k))
+        at += len(xi)
+    contact = meshio.Mesh(
+        _xyz(np.concatenate(points)), [("line", np.concatenate(lines))],
+        point_data={"u_n": solution.u_n, "slip": solution.slip, "gap": solution.gap,
+                    "current_gap": solution.current_gap, "obstacle": _xyz(obstacle_points(problem, solution))},
+        cell_data={"sigma_n": [solution.sigma_n], "sigma_t": [solution.sigma_t], "pair": [np.concatenate(which)]},
+    )
+    q = len(solution.lambda_n)
+    fields = {"lambda_n": solution.lambda_n, "lambda_t": solution.lambda_t,
+              "friction_threshold": solution.friction_threshold, "state": solution.states.astype(np.int32),
+              "pair": np.concatenate([np.full(r.multipliers.stop - r.multipliers.start, k) for k, r in
+                                      enumerate(solution.pairs)]).astype(np.int32)}
+    multipliers = meshio.Mesh(_xyz(np.concatenate(dofs)), [("vertex", np.arange(q).reshape(-1, 1))], point_data=fields)
+    return contact, multipliers
 
 
 def _part(meshio: Any, whole: Any, spans: Sequence[int]) -> Any:
@@ -498,22 +527,29 @@ def stress_tensor(solution: Solution) -> npt.NDArray[np.float64]:
 
 def contact_tables(problem: Problem, solution: Solution) -> dict[str, dict[str, npt.NDArray[Any]]]:
     """The contact fields as three tables (name -> column -> array), one per kind of place on Γ_C:
-    ``multipliers`` (dofs of λ), ``nodes`` (FE nodes) and ``edges`` (FE edges)."""
+    ``multipliers`` (dofs of λ), ``nodes`` (FE nodes) and ``edges`` (FE edges). With several contact pairs the rows
+    hold the pairs one after the other, the first column ``pair`` naming each row's."""
+    pairs = solution.pairs or []
+    spans = [(r.multipliers, r.nodes, r.edges) for r in pairs] or [(slice(None),) * 3]
 
-    def at(xi: npt.NDArray[np.float64]) -> dict[str, npt.NDArray[Any]]:
-        p, n = problem.contact_points(xi), problem.contact_normals(xi)
-        return {"xi": xi, "x": p[:, 0], "y": p[:, 1], "n_x": n[:, 0], "n_y": n[:, 1]}
+    def at(xi: npt.NDArray[np.float64], which: int) -> dict[str, npt.NDArray[Any]]:
+        parts = [(xi[s[which]], problem.contact_points(xi[s[which]], k), problem.contact_normals(xi[s[which]], k))
+                 for k, s in enumerate(spans)]
+        x, p, n = (np.concatenate([part[i] for part in parts]) for i in range(3))
+        names = [[r.name] * len(xi[s[which]]) for r, s in zip(pairs, spans)]
+        named = {"pair": np.concatenate(names)} if len(pairs) > 1 else {}
+        return named | {"xi": x, "x": p[:, 0], "y": p[:, 1], "n_x": n[:, 0], "n_y": n[:, 1]}
 
     po = obstacle_points(problem, solution)
     return {
-        "multipliers": at(solution.multiplier_abscissae)
+        "multipliers": at(solution.multiplier_abscissae, 0)
         | {
             "lambda_n": solution.lambda_n,
             "lambda_t": solution.lambda_t,
             "friction_threshold": solution.friction_threshold,
             "state": np.asarray(solution.state_names),
         },
-        "nodes": at(solution.node_abscissae)
+        "nodes": at(solution.node_abscissae, 1)
         | {
             "u_n": solution.u_n,
             "slip": solution.slip,
@@ -522,7 +558,7 @@ def contact_tables(problem: Problem, solution: Solution) -> dict[str, dict[str, 
             "obstacle_x": po[:, 0],
             "obstacle_y": po[:, 1],
         },
-        "edges": at(solution.edge_abscissae) | {"sigma_n": solution.sigma_n, "sigma_t": solution.sigma_t},
+        "edges": at(solution.edge_abscissae, 2) | {"sigma_n": solution.sigma_n, "sigma_t": solution.sigma_t},
     }
 
 

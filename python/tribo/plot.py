@@ -161,8 +161,8 @@ def contact_pressure(
 ) -> Axes:
     """λ_n (the multiplier) and −σ_n(u_h) (per FE edge) along Γ_C, shaded by contact state; for a circle
     or parabola (``hertz``) also the Hertz pressure of the same force, for comparison (it assumes a
-    half-plane and no friction)."""
-    ax = _axes(ax)
+    half-plane and no friction). With several contact pairs, the first pair's (``Solution.pair``)."""
+    ax, solution = _axes(ax), solution.pair(0)
     handles = _shade(ax, problem, solution)
     reference = hertz_pressure(problem, solution) if hertz else None
     if reference is not None:
@@ -191,8 +191,8 @@ def contact_pressure(
 
 
 def tangential(problem: Problem, solution: Solution, ax: Axes | None = None, *, zoom: bool = True) -> Axes:
-    """λ_t against ±its bound (μ λ_n at the fixed point for Coulomb, the threshold for Tresca)."""
-    ax = _axes(ax)
+    """λ_t against ±its bound (μ λ_n at the fixed point for Coulomb, the threshold for Tresca); the first pair's."""
+    ax, solution = _axes(ax), solution.pair(0)
     handles = _shade(ax, problem, solution)
     bound_label = r"$\pm\mu\,\lambda_n$" if solution.friction == "coulomb" else r"$\pm$ threshold"
     x, g = _multiplier_curve(problem, solution, solution.friction_threshold)
@@ -261,7 +261,8 @@ def von_mises(
             # Given by its geometry: its surface faces each node along the node's contact normal.
             surface = obstacle_points(problem, solution)
         else:
-            xi = np.linspace(float(solution.node_abscissae[0]), float(solution.node_abscissae[-1]), 2001)
+            ends = solution.pair(0).node_abscissae  # the first pair's obstacle (a further pair's is drawn by geometry)
+            xi = np.linspace(float(ends[0]), float(ends[-1]), 2001)
             g = np.asarray(problem.obstacle.gap0(xi)) - problem.approach
             surface = problem.contact_points(xi) + np.outer(g, problem.contact_normal)
         moved = format_vector(solution.obstacle_motion)

@@ -239,18 +239,18 @@ class Solution(_Record):
             or 0, (q,).
         states: contact state per multiplier dof as int8: 0 separation, 1 stick, 2 slip (see
             STATE_NAMES), (q,).
-        edge_abscissae: abscissae of the midpoints of the FE edges of Γ_C, (n_c − 1,).
+        edge_abscissae: abscissae of the midpoints of the FE edges of Γ_C, (n_c − 1,) (n_c less the number of pairs).
         sigma_n: σ_n(u_h) on each FE edge of Γ_C.
         sigma_t: σ_t(u_h) on each FE edge of Γ_C.
         node_abscissae: abscissae of the FE nodes of Γ_C, (n_c,).
-        closed: whether Γ_C is a closed loop: its abscissae wrap with its length (the last node abscissa less
-            the first), and a contact or stick zone may cross its cut (its first node, also its last).
+        closed: whether Γ_C (the first pair's) is a closed loop: its abscissae wrap with its length (the last node
+            abscissa less the first), and a contact or stick zone may cross its cut (its first node, also its last).
         u_n: u_n at the FE nodes of Γ_C.
         slip: u_t − s (slip relative to the obstacle) at the FE nodes of Γ_C; in a history, the slip
             increment of the step.
         gap: gap g = g0 − δ at the FE nodes of Γ_C.
         contact_force: total force (Fx, Fy) the obstacle exerts on the body in global axes:
-            −(normal_force n + tangential_force t).
+            −(normal_force n + tangential_force t); with several pairs the sum of theirs (``pairs``).
         obstacle_motion: how the obstacle moved, in global axes: −approach n + shift t (a turned obstacle's
             rotation is not in it: ``summary.json`` gives it as ``obstacle_rotation``).
         normal_force: total normal contact force ∫ λ_n.
@@ -325,6 +325,25 @@ class Solution(_Record):
         pairs = [PairResult.from_tuple(p) for p in data.get("pairs", [])]
         return cls(**{**data, "report": Report(**data["report"]), "pairs": pairs})
 
+    def pair(self, k: int) -> Solution:
+        """This solution with its fields on Γ_C those of pair ``k`` alone (``pairs[k]``), its forces, zone widths
+        and ``closed`` the pair's: what a plot of one contact side reads (the plots show the first pair's)."""
+        if len(self.pairs) <= 1 and k == 0:
+            return self
+        r = self.pairs[k]
+        spans = [(r.multipliers, ("multiplier_abscissae", "lambda_n", "lambda_t", "friction_threshold", "states")),
+                 (r.nodes, ("node_abscissae", "u_n", "slip", "gap")), (r.edges, ("edge_abscissae", "sigma_n", "sigma_t"))]
+        fields = {name: getattr(self, name)[span] for span, names in spans for name in names}
+
+        def shifted(s: slice) -> slice:
+            return slice(0, s.stop - s.start)
+
+        alone = [dataclasses.replace(r, multipliers=shifted(r.multipliers), nodes=shifted(r.nodes),
+                                     edges=shifted(r.edges))]
+        return dataclasses.replace(self, **fields, normal_force=r.normal_force, tangential_force=r.tangential_force,
+                                   contact_force=r.contact_force, contact_width=r.contact_width,
+                                   stick_width=r.stick_width, closed=r.closed, pairs=alone)
+
     @property
     def state_names(self) -> list[str]:
         """Contact state per multiplier dof as strings."""
@@ -338,9 +357,11 @@ class Solution(_Record):
 
     def extent(self, mask: npt.ArrayLike) -> float:
         """The length of Γ_C from the first to the last multiplier dof ``mask`` picks (0 for none); on a closed
-        Γ_C the shortest arc that holds them, which may cross the cut (``dof_span``)."""
-        x = self.node_abscissae
-        span = dof_span(self.multiplier_abscissae, mask, float(x[-1] - x[0]) if self.closed else None)
+        Γ_C the shortest arc that holds them, which may cross the cut (``dof_span``). The first pair's dofs."""
+        first = self.pairs[0].multipliers if len(self.pairs) > 1 else slice(None)  # the first pair's dofs
+        x = self.pair(0).node_abscissae
+        at = self.multiplier_abscissae[first]
+        span = dof_span(at, np.asarray(mask)[first], float(x[-1] - x[0]) if self.closed else None)
         return span[1] - span[0] if span else 0.0
 
     @property

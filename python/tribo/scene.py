@@ -79,20 +79,13 @@ class Scene:
     def obstacle(self) -> Obstacle:
         """The obstacle (its keys were checked by ``parse_scene``; the core checks their values); between two
         bodies, the initial gap ``contact.gap``."""
-        o = self.get("contact", "gap", {}) if self.is_two_bodies else self.sections.get("obstacle", {})
-        shape = o.get("shape", "flat")
-        if shape in ("circle", "parabola"):
-            make = Obstacle.circle if shape == "circle" else Obstacle.parabola
-            return make(o["radius"], o.get("center", 0.0))
-        if shape == "polyline":
-            return Obstacle.polyline(o["xi"], o["gap"])
-        if shape == "line":
-            return Obstacle.line(o["point"], o["normal"])
-        if shape in ("disc", "hole"):
-            return (Obstacle.disc if shape == "disc" else Obstacle.hole)(o["center"], o["radius"])
-        if shape == "profile":
-            return Obstacle.profile(o["points"])
-        return Obstacle.flat()
+        return _obstacle_of(self.get("contact", "gap", {}) if self.is_two_bodies else self.sections.get("obstacle", {}))
+
+    def pairs(self) -> list[tuple[str, Obstacle, float | None, float | None]] | None:
+        """The further contact pairs ``[[contact.pairs]]`` as ``Problem`` takes them (None without)."""
+        given = self.get("contact", "pairs")
+        return None if given is None else [(p["edge_set"], _obstacle_of(p), p.get("approach"), p.get("shift"))
+                                           for p in given]
 
     def _approach(self) -> float:
         """How far contact reaches into the gap: the obstacle's approach; between two bodies, the largest
@@ -363,6 +356,7 @@ class Scene:
                 multiplier_ratio=d.get("multiplier_ratio"),
                 multiplier_size=d.get("multiplier_size"),
                 space=d.get("space"),
+                pairs=self.pairs(),
             )
         except TriboError as e:
             if not isinstance(e, SceneError):
@@ -482,6 +476,23 @@ class Scene:
         for section, values in self.sections.items():
             out[section] = {k: list(v) if isinstance(v, tuple) else v for k, v in values.items()}
         return out
+
+
+def _obstacle_of(o: Mapping[str, Any]) -> Obstacle:
+    """The obstacle of a table of the keys of ``[obstacle]`` (checked by ``parse_scene``; the core checks the values)."""
+    shape = o.get("shape", "flat")
+    if shape in ("circle", "parabola"):
+        make = Obstacle.circle if shape == "circle" else Obstacle.parabola
+        return make(o["radius"], o.get("center", 0.0))
+    if shape == "polyline":
+        return Obstacle.polyline(o["xi"], o["gap"])
+    if shape == "line":
+        return Obstacle.line(o["point"], o["normal"])
+    if shape in ("disc", "hole"):
+        return (Obstacle.disc if shape == "disc" else Obstacle.hole)(o["center"], o["radius"])
+    if shape == "profile":
+        return Obstacle.profile(o["points"])
+    return Obstacle.flat()
 
 
 def _support(entry: Mapping[str, Any]) -> Support:

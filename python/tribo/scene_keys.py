@@ -94,6 +94,9 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
                         "each other, their gap the geometry's)", "—", "—"),
     "contact.gap": ("Two bodies: the initial gap between the sides, as an obstacle shape", "length",
                     "flat (touching)"),
+    "contact.pairs": ("Further contact pairs (`[[contact.pairs]]`): each an `edge_set` of the body against its own "
+                      "rigid obstacle, given by the keys of `[obstacle]` (`shape` and its keys, `approach`, `shift`; "
+                      "it does not turn); not with `[history]` or `[adapt]`", "—", "none: one pair"),
     "obstacle.shape": ("The rigid obstacle: a gap function of the abscissa on Γ_C (`flat`, `circle`, `parabola`, "
                        "`polyline`) or a shape given by its geometry (`line`, `disc`, `hole`, `profile`)", "—",
                        '`"flat"`'),

@@ -34,7 +34,9 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     ``[loads.pressures]``: ``edge_set = p`` (the traction −p n along each edge's outward normal).
 ``[contact]``
     ``edge_set`` (*required*): the edge set Γ_C, one chain of edges (straight, or bent against an
-    obstacle given by its geometry; open, or closed: a full ring's rim).
+    obstacle given by its geometry; open, or closed: a full ring's rim). ``[[contact.pairs]]``: further contact
+    pairs, each an ``edge_set`` against its own rigid obstacle given by the keys of ``[obstacle]`` (``shape`` and
+    its keys, ``approach``, ``shift``; it does not turn); not with a ``[history]`` or ``[adapt]`` (yet).
 ``[obstacle]``
     ``shape``: ``"flat"`` (default), ``"circle"``, ``"parabola"`` (both with ``radius`` *required* and
     ``center``, an abscissa on Γ_C, default 0) or ``"polyline"`` (``xi`` and ``gap`` lists, *required*):
@@ -256,6 +258,32 @@ _regions.json_schema = {  # type: ignore[attr-defined]
 }
 
 
+def _contact_pairs(key: str, v: Any) -> list[dict[str, Any]]:
+    """A list of tables ``[[contact.pairs]]``: each a further contact pair, an ``edge_set`` of the body against its
+    own rigid obstacle, given by the keys of ``[obstacle]`` (its shape and their keys, approach and shift)."""
+    if not isinstance(v, list) or not all(isinstance(e, dict) for e in v):
+        raise SceneError(f"scene key '{key}' must be a list of tables [[{key}]], got {v!r}", key)
+    out = []
+    for k, entry in enumerate(v):
+        where = f"{key}[{k}]"
+        if "edge_set" not in entry:
+            raise SceneError(f"scene key '{where}.edge_set' is required", f"{where}.edge_set")
+        pair: dict[str, Any] = {"edge_set": _string(f"{where}.edge_set", entry["edge_set"])}
+        for name, value in entry.items():
+            check = SCHEMA["obstacle"].get(name) if name not in ("edge_set", "rotation") else None
+            if check is None and name != "edge_set":
+                known = ", ".join(["edge_set", *(n for n in SCHEMA["obstacle"] if n != "rotation")])
+                raise SceneError(f"scene key '{where}.{name}' is not known (known keys: {known})", f"{where}.{name}")
+            if check is not None:
+                pair[name] = check(f"{where}.{name}", value)
+        _check_obstacle(pair, where)
+        out.append(pair)
+    return out
+
+
+_contact_pairs.json_schema = {"type": "array", "items": {"type": "object", "required": ["edge_set"]}}  # type: ignore[attr-defined]
+
+
 def _setting_checker(spec: dict[str, Any]) -> Checker:
     """The checker of one solver setting, from its kind in the core's table."""
     kind = spec["kind"]
@@ -274,7 +302,7 @@ SCHEMA: dict[str, dict[str, Checker]] = {
                  "formulation": _choice(*CHOICES["formulation"]), "regions": _regions},
     "supports": {"clamped": _names},
     "loads": {"body_force": _pair, "tractions": _pairs, "pressures": _pressures},
-    "contact": {"edge_set": _string, "secondary": _string, "primary": _string, "gap": _shape},
+    "contact": {"edge_set": _string, "secondary": _string, "primary": _string, "gap": _shape, "pairs": _contact_pairs},
     "obstacle": {
         "shape": _choice("flat", "circle", "parabola", "polyline", "line", "disc", "hole", "profile"),
         "radius": _number,
@@ -355,7 +383,7 @@ BODY_TABLES: dict[str, dict[str, Checker]] = {
 # What [[bodies]] replaces, and the keys of the other tables that are per body or do not apply to two bodies.
 ONE_BODY_TABLES = ("body", "material", "supports", "obstacle")
 NOT_FOR_TWO_BODIES = {
-    "contact": ("edge_set",),
+    "contact": ("edge_set", "pairs"),
     "loads": ("tractions", "pressures"),
     "discretization": tuple(BODY_TABLES["discretization"]),
     "history": ("approach", "shift", "angle"),
@@ -393,7 +421,7 @@ def _check_obstacle(o: Mapping[str, Any], table: str = "obstacle") -> None:
     if "center" in o and isinstance(o["center"], tuple) != (shape in GEOMETRY_SHAPES):
         what = "two numbers [x, y]" if shape in GEOMETRY_SHAPES else "a number (an abscissa on Γ_C)"
         raise SceneError(f"scene key '{table}.center' must be {what} for a {shape}", f"{table}.center")
-    if table != "obstacle" and shape in GEOMETRY_SHAPES:
+    if table == "contact.gap" and shape in GEOMETRY_SHAPES:
         raise SceneError(f"scene key '{table}.shape': the gap between two bodies is a function of the abscissa "
                          f"(flat, circle, parabola or polyline), not a {shape}", f"{table}.shape")
 
@@ -557,6 +585,9 @@ def check_scene(data: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
     if "angle" in sections.get("history", {}) and "rotation" not in sections.get("obstacle", {}):
         raise SceneError("scene key 'history.angle' turns the obstacle about the centre of 'obstacle.rotation', which "
                          "the scene does not give (give it with angle = 0)", "history.angle")
+    for table in ("history", "adapt"):
+        if "pairs" in sections.get("contact", {}) and table in sections:
+            raise SceneError(f"scene key 'contact.pairs': a [{table}] takes one contact pair today", "contact.pairs")
     if "on" in sections.get("adapt", {}) and "history" not in sections:
         raise SceneError("scene key 'adapt.on' names steps of a [history], and the scene has none", "adapt.on")
     d = sections.get("discretization", {})

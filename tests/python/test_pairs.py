@@ -3,10 +3,16 @@ obstacle; its parts of the solution; what takes one pair today refuses several w
 
 from __future__ import annotations
 
+import json
+import tomllib
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 import tribo
+from tribo.run import run_scene
+from tribo.scene import load_scene, parse_scene, scene_path
 
 PUNCH = tribo.Obstacle.disc((0.0, 1.5), 0.5)
 FOUNDATION = tribo.Obstacle.line((0.0, 0.0), (0.0, 1.0))
@@ -54,3 +60,53 @@ def test_what_takes_one_pair_refuses_several() -> None:
         block(n=6, pairs=[("nowhere", None, None, None)])
     with pytest.raises(ValueError, match="tuple of length 4"):
         block(n=6, pairs=[("bottom", FOUNDATION)])
+
+
+def test_a_scene_of_two_pairs_runs_and_writes_each_pair(tmp_path: Path) -> None:
+    """The shipped scene `punch_on_foundation.toml` through `tribo run`'s code: summary.json gives each pair's forces
+    (the foundation's balances the punch's vertical force), the contact CSVs name each row's pair, read back with
+    pandas; a two-pair scene with a [history] is refused when read, naming the key."""
+    import pandas as pd
+
+    scene = load_scene(scene_path("punch_on_foundation"))
+    problem, solution, files = run_scene(scene, tmp_path)
+    assert problem.pairs == ["top", "bottom"] and solution.report.converged
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    top, bottom = summary["pairs"]
+    assert (top["name"], bottom["name"]) == ("top", "bottom")
+    assert bottom["normal_force"] == pytest.approx(-top["contact_force"][1], rel=1e-6)
+    assert summary["normal_force"] == pytest.approx(top["normal_force"] + bottom["normal_force"], rel=1e-12)
+    multipliers = pd.read_csv(tmp_path / "contact.csv", comment="#")
+    nodes = pd.read_csv(tmp_path / "contact_nodes.csv", comment="#")
+    assert list(multipliers["pair"].unique()) == ["top", "bottom"] and len(multipliers) == solution.lambda_n.size
+    # Each row's point lies on its own side: y = 1 on the top, y = 0 on the bottom.
+    assert np.allclose(nodes.loc[nodes["pair"] == "top", "y"], 1.0)
+    assert np.allclose(nodes.loc[nodes["pair"] == "bottom", "y"], 0.0)
+    assert np.allclose(nodes.loc[nodes["pair"] == "bottom", "obstacle_y"], 0.0)
+    # The VTU files, read back with meshio: each pair's side a chain of lines on its own side, the dofs vertices.
+    import meshio
+
+    contact = meshio.read(tmp_path / "result_contact.vtu")
+    pair_of_line = contact.cell_data["pair"][0]
+    assert sorted(set(pair_of_line.tolist())) == [0, 1] and len(pair_of_line) == solution.sigma_n.size
+    bottom_lines = contact.cells_dict["line"][pair_of_line == 1]
+    assert np.allclose(contact.points[bottom_lines.ravel(), 1], 0.0)
+    dofs = meshio.read(tmp_path / "result_multipliers.vtu")
+    assert np.allclose(dofs.point_data["lambda_n"], solution.lambda_n)
+    assert np.allclose(dofs.points[dofs.point_data["pair"] == 1, 1], 0.0)
+    # The plots read the first pair's side.
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from tribo import plot
+
+    ax = plot.contact_pressure(problem, solution)
+    assert ax.get_lines() and solution.pair(0).lambda_n.size == solution.pairs[0].multipliers.stop
+    plot.tangential(problem, solution)
+    plot.von_mises(problem, solution, obstacle=True)
+    data = tomllib.loads(scene_path("punch_on_foundation").read_text(encoding="utf-8"))
+    with pytest.raises(tribo.SceneError, match="contact.pairs"):
+        parse_scene({**data, "history": {"approach": [0.01, 0.02]}})
+    bad = {**data, "contact": {**data["contact"], "pairs": [{"edge_set": "bottom", "shape": "line", "rotation": 1}]}}
+    with pytest.raises(tribo.SceneError, match=r"contact.pairs\[0\].rotation"):
+        parse_scene(bad)

@@ -8,7 +8,7 @@ use std::ops::ControlFlow;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::conversion::FromPyObjectOwned;
-use pyo3::exceptions::PyTypeError;
+use pyo3::exceptions::{PyIndexError, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use tribo::error::ErrorCategory::{ContactGeometry, Settings};
@@ -52,7 +52,7 @@ pub struct ProblemData {
     space: &'static str,
     /// Number of unknowns: the free displacement dofs, and in the mixed formulation one pressure per node.
     n_free: usize,
-    /// Number of multiplier dofs q (per component).
+    /// Number of multiplier dofs q (per component), of every pair.
     n_multipliers: usize,
     /// The admissible bound on γ0 (K − G stays positive definite, or quasi-definite when mixed, below it).
     gamma0_bound: f64,
@@ -64,7 +64,7 @@ pub struct ProblemData {
     contact_tangent: (f64, f64),
     /// d · t = ±1: +1 when the abscissa ξ increases along t.
     tangent_sign: f64,
-    /// FE nodes of Γ_C by increasing abscissa, (n_c,) int64.
+    /// FE nodes of Γ_C by increasing abscissa, (n_c,) int64 (the first pair's, as the fields below).
     contact_nodes: Py<PyAny>,
     /// Abscissae of the FE nodes of Γ_C (in the order of `contact_nodes`).
     node_abscissae: Py<PyAny>,
@@ -207,6 +207,16 @@ impl SolveOptions {
         })
     }
 }
+
+type Points<'py> = PyResult<Bound<'py, PyArray2<f64>>>;
+/// `f` of Γ_C at abscissae `xi` (M, 2) on the side of pair `pair` (an index into `pairs`; IndexError beyond them).
+fn on_side<'py>(p: &tribo::Problem, py: Python<'py>, xi: &Bound<'_, PyAny>, pair: usize, f: Along) -> Points<'py> {
+    let x = floats(xi, "xi", &[None], ContactGeometry)?;
+    let bad = || PyIndexError::new_err(format!("pair {pair}: the problem has {} contact pairs", p.sides.len() + 1));
+    let c = p.pairs().get(pair).map(|p| p.contact).ok_or_else(bad)?;
+    Ok(Array2::from(x.iter().map(|&x| f(c, x)).collect::<Vec<_>>()).into_pyarray(py))
+}
+type Along = fn(&tribo::ContactBoundary, f64) -> [f64; 2];
 
 /// A core call with callbacks: its error (a gap's exception chained), else theirs, else a gap's, else the value.
 fn finish<T>(py: Python<'_>, result: tribo::Result<T>, error: Option<PyErr>) -> PyResult<T> {
@@ -431,27 +441,28 @@ impl PyProblem {
         (answer, levels, stop.as_str()).into_pyobject(py)
     }
 
-    /// Points of Γ_C's line at abscissae `xi`, (M, 2).
-    fn contact_points<'py>(&self, py: Python<'py>, xi: &Bound<'_, PyAny>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let x = floats(xi, "xi", &[None], ContactGeometry)?;
-        Ok(Array2::from(x.iter().map(|&x| self.inner.contact.point_at(x)).collect::<Vec<_>>()).into_pyarray(py))
+    /// Points of Γ_C's line at abscissae `xi`, (M, 2), on the side of pair `pair` (`pairs`; the first by default).
+    #[pyo3(signature = (xi, pair = 0))]
+    fn contact_points<'py>(&self, py: Python<'py>, xi: &Bound<'_, PyAny>, pair: usize) -> Points<'py> {
+        on_side(&self.inner, py, xi, pair, tribo::ContactBoundary::point_at)
     }
 
     /// The contact normal n at abscissae `xi` of Γ_C, (M, 2): one for a straight side against a gap function;
-    /// on a bent side or against an obstacle given by its geometry, each edge's (a node's: its edges' mean).
-    fn contact_normals<'py>(&self, py: Python<'py>, xi: &Bound<'_, PyAny>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let x = floats(xi, "xi", &[None], ContactGeometry)?;
-        Ok(Array2::from(x.iter().map(|&x| self.inner.contact.normal_at(x)).collect::<Vec<_>>()).into_pyarray(py))
+    /// on a bent side or against an obstacle given by its geometry, each edge's (a node's: its edges' mean). `pair`
+    /// as for `contact_points`.
+    #[pyo3(signature = (xi, pair = 0))]
+    fn contact_normals<'py>(&self, py: Python<'py>, xi: &Bound<'_, PyAny>, pair: usize) -> Points<'py> {
+        on_side(&self.inner, py, xi, pair, tribo::ContactBoundary::normal_at)
     }
 
-    /// Values at abscissae `xi` of the multiplier with dof values `values` (P0 or P1 on T_H).
+    /// Values at abscissae `xi` of the multiplier with dof values `values` (P0 or P1 on T_H; the first pair's).
     fn evaluate_multiplier<'py>(
         &self,
         py: Python<'py>,
         values: &Bound<'_, PyAny>,
         xi: &Bound<'_, PyAny>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let v = floats(values, "values", &[Some(self.inner.n_multipliers())], Settings)?;
+        let v = floats(values, "values", &[Some(self.inner.multipliers.n_dofs())], Settings)?;
         let x = floats(xi, "xi", &[None], ContactGeometry)?;
         Ok(PyArray1::from_vec(py, x.iter().map(|&x| self.inner.multipliers.evaluate(&v, x)).collect()))
     }

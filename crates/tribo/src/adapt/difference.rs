@@ -10,7 +10,8 @@ use crate::results::Solution;
 /// The L²(Γ_C) norms of `λ_a − λ_b` and of `λ_b`, normal and tangential together, for the multipliers
 /// of two problems on one Γ_C line (each on its own T_H): Gauss on the union of both T_H's points,
 /// exact for piecewise linear multipliers. Beyond a T_H a multiplier is 0. NaN (both) where a solution is not of
-/// its problem (not as many multiplier values as the problem's dofs).
+/// its problem (not as many multiplier values as the problem's dofs), or where a problem has several contact pairs
+/// (their sides are not one line).
 pub fn multiplier_difference(a: &Problem, sa: &Solution, b: &Problem, sb: &Solution) -> (f64, f64) {
     multiplier_difference_on(a, sa, b, sb, f64::NEG_INFINITY, f64::INFINITY)
 }
@@ -27,7 +28,7 @@ pub fn multiplier_difference_on(
     // A solution of another problem (its multipliers not as many as the problem's) has no difference here.
     let fits =
         |p: &Problem, s: &Solution| s.lambda_n.len() == p.n_multipliers() && s.lambda_t.len() == p.n_multipliers();
-    if !fits(a, sa) || !fits(b, sb) {
+    if !fits(a, sa) || !fits(b, sb) || !a.sides.is_empty() || !b.sides.is_empty() {
         return (f64::NAN, f64::NAN);
     }
     let (xa, xb) = (&a.multipliers.xi, &b.multipliers.xi);

@@ -23,9 +23,9 @@ pub struct LoadCase {
     pub d: Vec<f64>,
     /// `c = d − E A⁻¹ f` (2q), the QP's linear term.
     pub c: Vec<f64>,
-    /// The gap `g = g₀ − δ` at the FE nodes of Γ_C.
+    /// The gap `g = g₀ − δ` at the FE nodes of Γ_C (of every pair, the first first).
     pub gap: Vec<f64>,
-    /// The obstacle's approach δ and tangential position s.
+    /// The (first pair's) obstacle's approach δ and tangential position s.
     pub approach: f64,
     /// See `approach`.
     pub shift: f64,

@@ -338,7 +338,9 @@ impl Problem {
             timings: SetupTimings { assembly, contact_matrices },
             factor_cache: FactorCache::default(),
         };
+        let clock = Instant::now();
         problem.build_sides(&shear_for_sides)?;
+        problem.timings.contact_matrices += clock.elapsed().as_secs_f64();
         if problem.spec.obstacle.shift != 0.0 {
             problem.check_axisymmetric_shift()?;
         }

@@ -120,15 +120,20 @@ impl ContactSide {
         space: MultiplierSpace,
     ) -> Result<Self> {
         pair.obstacle.validate()?;
-        if model.is_axisymmetric() && pair.obstacle.rotation.is_some() {
-            return Err(Error::BadAxisymmetry {
-                what: format!(
-                    "the obstacle of '{}' turns: a body of revolution has none in its meridian plane",
-                    pair.contact
-                ),
-            });
+        // In axisymmetry a further pair's obstacle neither turns nor shifts (a solid of revolution slides along the
+        // axis only; the first pair's shift is checked edge by edge, `Problem::check_axisymmetric_shift`).
+        if model.is_axisymmetric() && (pair.obstacle.rotation.is_some() || pair.obstacle.shift != 0.0) {
+            let what = format!("the obstacle of the further pair '{}' turns or shifts: it may not", pair.contact);
+            return Err(Error::BadAxisymmetry { what });
         }
         let mut contact = ContactBoundary::new(mesh, &pair.contact)?;
+        // A contact edge on the axis is a line of the solid, not a surface.
+        let on_axis = |i: usize| dofs.axis.binary_search(&i).is_ok();
+        if let Some(e) = contact.edges.iter().find(|e| model.is_axisymmetric() && on_axis(e.left) && on_axis(e.right)) {
+            let what =
+                format!("the contact edge ({}, {}) of '{}' lies on the axis (r = 0)", e.left, e.right, pair.contact);
+            return Err(Error::BadAxisymmetry { what });
+        }
         let placed = pair.obstacle.placed();
         contact.orient_to(&placed.shape)?;
         let gap = contact.node_xi.iter().map(|&xi| placed.gap(&contact, xi)).collect::<Result<Vec<f64>>>()?;
@@ -226,17 +231,12 @@ impl Problem {
         stack(per_pair)
     }
 
-    /// The entries of `Dγ / γ0` (2q × 2q), block diagonal over the pairs.
+    /// The entries of `Dγ / γ0` on one component (q × q, applied to the normal and the tangential multipliers
+    /// alike), block diagonal over the pairs.
     pub(crate) fn d_h_entries(&self) -> Vec<(usize, usize, f64)> {
         let (pairs, offsets) = (self.pairs(), self.pair_offsets());
-        let q = offsets[pairs.len()];
-        let mut entries = Vec::new();
-        for (p, &off) in pairs.iter().zip(&offsets) {
-            let qk = p.multipliers.n_dofs();
-            let at = |i: usize| if i < qk { off + i } else { q + off + i - qk };
-            entries.extend(p.mortar.d_h.entries.iter().map(|&(i, j, v)| (at(i), at(j), v)));
-        }
-        entries
+        let blocks = pairs.iter().zip(&offsets);
+        blocks.flat_map(|(p, &off)| p.mortar.d_h.entries.iter().map(move |&(i, j, v)| (off + i, off + j, v))).collect()
     }
 
     /// Builds the further pairs of `self.spec` and checks that no two sides share an edge or a triangle.
@@ -270,11 +270,19 @@ impl Problem {
                 }
             }
         }
-        let mut owner: std::collections::HashMap<usize, &str> = std::collections::HashMap::new();
-        for p in self.pairs() {
+        let pairs = self.pairs();
+        for (k, p) in pairs.iter().enumerate() {
+            if let Some(first) = pairs[..k].iter().find(|q| q.name == p.name) {
+                let what =
+                    format!("its edge set is that of an earlier pair too ('{}'): one side, one pair", first.name);
+                return Err(Error::SeveralPairs { pair: p.name.to_string(), what });
+            }
+        }
+        let mut owner: std::collections::HashMap<usize, (usize, &str)> = std::collections::HashMap::new();
+        for (k, p) in pairs.iter().enumerate() {
             for e in &p.contact.edges {
-                match owner.insert(e.triangle, p.name) {
-                    Some(other) if other != p.name => {
+                match owner.insert(e.triangle, (k, p.name)) {
+                    Some((j, other)) if j != k => {
                         return Err(Error::SeveralPairs {
                             pair: p.name.to_string(),
                             what: format!(

@@ -54,9 +54,9 @@ pub struct Solution {
     pub sigma_t: Vec<f64>,
     /// Abscissae of the FE nodes of Γ_C.
     pub node_abscissae: Vec<f64>,
-    /// Whether Γ_C is a closed loop ([`crate::ContactBoundary::is_closed`]): its abscissae wrap with its
-    /// length, the last of `node_abscissae` less the first, and a zone may cross the cut
-    /// ([`Solution::contact_zone`]).
+    /// Whether Γ_C (the first pair's, [`Solution::pairs`]) is a closed loop ([`crate::ContactBoundary::is_closed`]):
+    /// its abscissae wrap with its length, the last of its `node_abscissae` less the first, and a zone may cross the
+    /// cut ([`Solution::contact_zone`]).
     pub closed: bool,
     /// u_n at the FE nodes of Γ_C.
     pub u_n: Vec<f64>,
@@ -66,22 +66,23 @@ pub struct Solution {
     /// Gap g = g₀ − δ at the FE nodes of Γ_C (δ of the load case). `u_n` and `slip` at a node read the
     /// node's normal ([`crate::ContactBoundary::node_normal`]; Γ_C's own where it is straight).
     pub gap: Vec<f64>,
-    /// Total normal contact force `∫ λ_n` (in axisymmetry over the surface of revolution, `∫ λ_n 2π r ds`: the
-    /// axial force on a Γ_C across the axis, the total of the pressure on a bore).
+    /// Total normal contact force `∫ λ_n`, summed over the pairs (in axisymmetry over the surface of revolution, `∫ λ_n
+    /// 2π r ds`: the axial force on a Γ_C across the axis, the total of the pressure on a bore).
     pub normal_force: f64,
-    /// Total tangential contact force `∫ λ_t`. The friction traction the obstacle exerts on the body is
-    /// `−λ_t t`, so a positive `tangential_force` pulls the body toward −t.
+    /// Total tangential contact force `∫ λ_t`, summed over the pairs. The friction traction the obstacle exerts on the
+    /// body is `−λ_t t`, so a positive `tangential_force` pulls the body toward −t.
     pub tangential_force: f64,
     /// The total force the obstacle exerts on the body, `(F_x, F_y) = −(N n + T t)` in global axes (n, t
     /// the normal and tangent of [`crate::ContactBoundary`]), with
     /// `N` = [`Solution::normal_force`] and `T` = [`Solution::tangential_force`] (the traction on Γ_C is
     /// `σ(u)·n = −λ_n n − λ_t t`). On a bent Γ_C, `−∫ (λ_n n_e + λ_t t_e)` edge by edge. In axisymmetry the
-    /// resultant on the whole turn: its radial component is 0 (the radial tractions cancel over the turn).
+    /// resultant on the whole turn: its radial component is 0 (the radial tractions cancel over the turn). With
+    /// several pairs, the sum of theirs ([`crate::PairResult::contact_force`], each in its own frames).
     pub contact_force: [f64; 2],
     /// How the obstacle moved, in global axes: `−δ n + s t` (the approach δ toward the body, against
     /// the outward normal, and the shift s along t; where the frames vary along Γ_C, in the contact frame of
     /// its first edge: against a line obstacle, the line's motion). A turned obstacle's rotation is not in it
-    /// ([`crate::ObstacleRotation`]; its surface's motion is in the slip origin).
+    /// ([`crate::ObstacleRotation`]; its surface's motion is in the slip origin). The first pair's obstacle.
     pub obstacle_motion: [f64; 2],
     /// Largest pointwise penetration `max(u_n − g)₊` over the FE nodes of Γ_C.
     pub max_penetration: f64,

@@ -157,15 +157,15 @@ impl Solution {
         zone(abscissae, ends, states, keep)
     }
 
-    /// The contact zone of the first pair: the dofs not in separation, from the first to the last (on a closed Γ_C the shortest
-    /// arc that holds them, which may begin before the start: the module documentation; `None` when nothing
+    /// The contact zone of the first pair: the dofs not in separation, from the first to the last (on a closed Γ_C the
+    /// shortest arc that holds them, which may begin before the start: the module documentation; `None` when nothing
     /// touches).
     pub fn contact_zone(&self) -> Option<Zone> {
         self.zone_of(|s| s != ContactState::Separation)
     }
 
-    /// The stick zone: the dofs that stick, from the first to the last (on a loop, as [`Solution::contact_zone`];
-    /// `None` when none sticks).
+    /// The stick zone of the first pair: the dofs that stick, from the first to the last (on a loop, as
+    /// [`Solution::contact_zone`]; `None` when none sticks).
     pub fn stick_zone(&self) -> Option<Zone> {
         self.zone_of(|s| s == ContactState::Stick)
     }
