@@ -105,7 +105,8 @@ def check_solution(problem: Problem, solution: Solution) -> list[str]:
             closest = float(part.gap.min()) if len(part.gap) else float("nan")
             reasons.append(
                 f"{which}nothing touches: no multiplier dof is in contact and the contact force is zero "
-                f"(smallest gap after the approach {_g(closest)}; approach {_g(problem.approach)})"
+                f"(smallest gap after the approach {_g(closest)}"
+                + (f"; approach {_g(problem.approach)})" if k == 0 else ")")
             )
         elif in_contact < MIN_CONTACT_DOFS:
             reasons.append(
@@ -316,7 +317,7 @@ def obstacle_points(problem: Problem, solution: Solution) -> np.ndarray:
     """Where the obstacle's surface is, facing each FE node of Γ_C: the node moved by the gap g = g0 − δ
     along its contact normal n, (n_c, 2); each pair's nodes facing its own obstacle."""
     out = []
-    for k, nodes in enumerate([r.nodes for r in solution.pairs] or [slice(None)]):
+    for k, nodes in [(r.index, r.nodes) for r in solution.pairs] or [(0, slice(None))]:
         xi = solution.node_abscissae[nodes]
         out.append(problem.contact_points(xi, k) + np.asarray(solution.gap[nodes])[:, None] * problem.contact_normals(xi, k))
     return np.concatenate(out)
@@ -410,6 +411,14 @@ def conventions(problem: Problem, solution: Solution) -> dict[str, str]:
         "current_gap": "g − u_n along n: 0 in contact, negative where the body penetrates",
         "states": "separation λ_n = 0; stick |λ_t| below the bound; slip |λ_t| at the bound",
     }
+    if len(problem.pairs) > 1:
+        out.update({
+            "pair": "the contact pair of the row (its contact edge set); n, t and ξ are the row's own pair's",
+            "n": "the contact normal of each row's pair and edge (n_x, n_y): the body's outward normal, or the "
+            "obstacle's (−∇d) where it is given by its geometry",
+            "t": "unit tangent t = (−n₂, n₁) of each row's pair and edge",
+            "xi": "the abscissa along the row's own pair's side (each pair's from its own start)",
+        })
     if problem.primary is not None:
         secondary, primary = problem.contact, problem.primary
         out.update({

@@ -466,7 +466,8 @@ def _pair_blocks(meshio: Any, problem: Problem, solution: Solution) -> tuple[Any
     """The contact and multiplier meshes of several contact pairs: each pair's side a chain of lines (cell data
     ``pair``, its index in ``problem.pairs``), each multiplier dof a vertex at its abscissa on its own side."""
     points, lines, dofs, which, at = [], [], [], [], 0
-    for k, r in enumerate(solution.pairs):
+    for r in solution.pairs:
+        k = r.index
         xi = solution.node_abscissae[r.nodes]
         points.append(problem.contact_points(xi, k))
         lines.append(np.column_stack([np.arange(len(xi) - 1), np.arange(1, len(xi))]) + at)
@@ -482,8 +483,8 @@ def _pair_blocks(meshio: Any, problem: Problem, solution: Solution) -> tuple[Any
     q = len(solution.lambda_n)
     fields = {"lambda_n": solution.lambda_n, "lambda_t": solution.lambda_t,
               "friction_threshold": solution.friction_threshold, "state": solution.states.astype(np.int32),
-              "pair": np.concatenate([np.full(r.multipliers.stop - r.multipliers.start, k) for k, r in
-                                      enumerate(solution.pairs)]).astype(np.int32)}
+              "pair": np.concatenate([np.full(r.multipliers.stop - r.multipliers.start, r.index) for r in
+                                      solution.pairs]).astype(np.int32)}
     multipliers = meshio.Mesh(_xyz(np.concatenate(dofs)), [("vertex", np.arange(q).reshape(-1, 1))], point_data=fields)
     return contact, multipliers
 
@@ -530,13 +531,13 @@ def contact_tables(problem: Problem, solution: Solution) -> dict[str, dict[str, 
     ``multipliers`` (dofs of λ), ``nodes`` (FE nodes) and ``edges`` (FE edges). With several contact pairs the rows
     hold the pairs one after the other, the first column ``pair`` naming each row's."""
     pairs = solution.pairs or []
-    spans = [(r.multipliers, r.nodes, r.edges) for r in pairs] or [(slice(None),) * 3]
+    spans = [(r.index, (r.multipliers, r.nodes, r.edges)) for r in pairs] or [(0, (slice(None),) * 3)]
 
     def at(xi: npt.NDArray[np.float64], which: int) -> dict[str, npt.NDArray[Any]]:
         parts = [(xi[s[which]], problem.contact_points(xi[s[which]], k), problem.contact_normals(xi[s[which]], k))
-                 for k, s in enumerate(spans)]
+                 for k, s in spans]
         x, p, n = (np.concatenate([part[i] for part in parts]) for i in range(3))
-        names = [[r.name] * len(xi[s[which]]) for r, s in zip(pairs, spans)]
+        names = [[r.name] * len(xi[s[which]]) for r, (_, s) in zip(pairs, spans)]
         named = {"pair": np.concatenate(names)} if len(pairs) > 1 else {}
         return named | {"xi": x, "x": p[:, 0], "y": p[:, 1], "n_x": n[:, 0], "n_y": n[:, 1]}
 
@@ -578,7 +579,7 @@ def write_contact_csv(directory: str | Path, problem: Problem, solution: Solutio
         columns = list(table)
         with path.open("w", encoding="utf-8") as f:
             f.write(",".join(columns) + "\n")
-            stated = ["n", "t", "xi"] + [c for c in columns if c in said and c not in ("xi",)]
+            stated = ["pair"] * ("pair" in columns) + ["n", "t", "xi"] + [c for c in columns if c in said and c not in ("xi", "pair")]
             stated += ["states"] if key == "multipliers" else []
             if key == "nodes":
                 stated += ["shift"]

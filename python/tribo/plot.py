@@ -108,6 +108,15 @@ def _zoom(ax: Axes, problem: Problem, solution: Solution) -> None:
     ax.set_xlim(max(float(xi[0]), a - w), min(float(xi[-1]), b + w))
 
 
+def _first_pair(solution: Solution) -> Solution:
+    """The first pair's part of ``solution`` (``Solution.pair``): the plots of Γ_C read the problem's multiplier mesh,
+    the first pair's. ``ValueError`` for another pair's part."""
+    first = solution.pair(0)
+    if first.pairs and first.pairs[0].index != 0:
+        raise ValueError(f"the plots of Γ_C show the first contact pair; this is pair {first.pairs[0].name!r}")
+    return first
+
+
 def _multiplier_curve(
     problem: Problem, solution: Solution, values: npt.NDArray[np.float64]
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
@@ -162,7 +171,7 @@ def contact_pressure(
     """λ_n (the multiplier) and −σ_n(u_h) (per FE edge) along Γ_C, shaded by contact state; for a circle
     or parabola (``hertz``) also the Hertz pressure of the same force, for comparison (it assumes a
     half-plane and no friction). With several contact pairs, the first pair's (``Solution.pair``)."""
-    ax, solution = _axes(ax), solution.pair(0)
+    ax, solution = _axes(ax), _first_pair(solution)
     handles = _shade(ax, problem, solution)
     reference = hertz_pressure(problem, solution) if hertz else None
     if reference is not None:
@@ -192,7 +201,7 @@ def contact_pressure(
 
 def tangential(problem: Problem, solution: Solution, ax: Axes | None = None, *, zoom: bool = True) -> Axes:
     """λ_t against ±its bound (μ λ_n at the fixed point for Coulomb, the threshold for Tresca); the first pair's."""
-    ax, solution = _axes(ax), solution.pair(0)
+    ax, solution = _axes(ax), _first_pair(solution)
     handles = _shade(ax, problem, solution)
     bound_label = r"$\pm\mu\,\lambda_n$" if solution.friction == "coulomb" else r"$\pm$ threshold"
     x, g = _multiplier_curve(problem, solution, solution.friction_threshold)
@@ -257,16 +266,19 @@ def von_mises(
     if edges:
         ax.triplot(tri, color="k", lw=0.15, alpha=0.5)
     if obstacle and problem.primary is None:  # between two bodies, the other body is drawn
-        if problem.obstacle.kind in ("line", "disc", "hole", "profile", "distance"):
-            # Given by its geometry: its surface faces each node along the node's contact normal.
-            surface = obstacle_points(problem, solution)
-        else:
-            ends = solution.pair(0).node_abscissae  # the first pair's obstacle (a further pair's is drawn by geometry)
+        # Each pair's obstacle facing its own nodes (their gap along their contact normal); the first's, given by a
+        # gap function, as that function between its nodes.
+        facing = obstacle_points(problem, solution)
+        pieces = [facing[r.nodes] for r in solution.pairs] or [facing]
+        if problem.obstacle.kind not in ("line", "disc", "hole", "profile", "distance"):
+            ends = solution.pair(0).node_abscissae
             xi = np.linspace(float(ends[0]), float(ends[-1]), 2001)
             g = np.asarray(problem.obstacle.gap0(xi)) - problem.approach
-            surface = problem.contact_points(xi) + np.outer(g, problem.contact_normal)
+            pieces[0] = problem.contact_points(xi) + np.outer(g, problem.contact_normal)
         moved = format_vector(solution.obstacle_motion)
-        ax.plot(surface[:, 0], surface[:, 1], color="C3", lw=1.5, label=f"obstacle (moved by {moved})")
+        for k, surface in enumerate(pieces):
+            label = f"obstacle (moved by {moved})" if k == 0 else None
+            ax.plot(surface[:, 0], surface[:, 1], color="C3", lw=1.5, label=label)
         ax.legend(loc="upper right", fontsize="small")
     ax.figure.colorbar(art, ax=ax, label="von Mises stress" + (" (recovered, nodal)" if recovered else " (per cell)"))
     ax.set_aspect("equal")

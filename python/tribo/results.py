@@ -193,11 +193,12 @@ class Report(_Record):
 @dataclass(frozen=True, eq=False, repr=False)
 class PairResult(_Record):
     """One contact pair's part of a solution (``Solution.pairs``): the fields on Γ_C hold the pairs one after the
-    other, in the order of ``Problem.pairs``; ``multipliers``, ``nodes`` and ``edges`` are the slices of the fields
+    other, in the order of ``Problem.pairs`` (``index`` its place there); ``multipliers``, ``nodes`` and ``edges`` are the slices of the fields
     per multiplier dof, per FE node and per FE edge of Γ_C that are this pair's; its forces (``contact_force`` the
     force its obstacle exerts on the body, global axes) and the widths of its contact and stick zones."""
 
     name: str
+    index: int
     multipliers: slice
     nodes: slice
     edges: slice
@@ -209,10 +210,10 @@ class PairResult(_Record):
     closed: bool
 
     @classmethod
-    def from_tuple(cls, data: tuple[Any, ...]) -> PairResult:
-        """A pair from the tuple the compiled module gives: (name, three spans, six numbers, closed)."""
+    def from_tuple(cls, index: int, data: tuple[Any, ...]) -> PairResult:
+        """Pair ``index`` from the tuple the compiled module gives: (name, three spans, six numbers, closed)."""
         name, ((m0, m1), (n0, n1), (e0, e1)), (n, t, fx, fy, contact, stick), closed = data
-        return cls(name, slice(m0, m1), slice(n0, n1), slice(e0, e1), n, t, (fx, fy), contact, stick, closed)
+        return cls(name, index, slice(m0, m1), slice(n0, n1), slice(e0, e1), n, t, (fx, fy), contact, stick, closed)
 
 
 @dataclass(frozen=True, eq=False, repr=False, kw_only=True)
@@ -251,7 +252,7 @@ class Solution(_Record):
         gap: gap g = g0 − δ at the FE nodes of Γ_C.
         contact_force: total force (Fx, Fy) the obstacle exerts on the body in global axes:
             −(normal_force n + tangential_force t); with several pairs the sum of theirs (``pairs``).
-        obstacle_motion: how the obstacle moved, in global axes: −approach n + shift t (a turned obstacle's
+        obstacle_motion: how the (first pair's) obstacle moved, in global axes: −approach n + shift t (a turned obstacle's
             rotation is not in it: ``summary.json`` gives it as ``obstacle_rotation``).
         normal_force: total normal contact force ∫ λ_n.
         tangential_force: total tangential contact force ∫ λ_t (the obstacle pulls the body by
@@ -322,12 +323,14 @@ class Solution(_Record):
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Solution:
         """A solution from the dict of fields the compiled module gives (the report as a dict too)."""
-        pairs = [PairResult.from_tuple(p) for p in data.get("pairs", [])]
+        pairs = [PairResult.from_tuple(k, p) for k, p in enumerate(data.get("pairs", []))]
         return cls(**{**data, "report": Report(**data["report"]), "pairs": pairs})
 
     def pair(self, k: int) -> Solution:
-        """This solution with its fields on Γ_C those of pair ``k`` alone (``pairs[k]``), its forces, zone widths
-        and ``closed`` the pair's: what a plot of one contact side reads (the plots show the first pair's)."""
+        """This solution with its fields on Γ_C those of pair ``k`` alone (``pairs[k]``, which keeps its ``index``), its
+        forces, zone widths and ``closed`` the pair's: what a plot of one contact side reads (the plots take the first
+        pair's). The displacement, stresses, ``obstacle_motion`` (the first pair's), ``max_penetration``, ``kkt``
+        and the report stay the whole solution's."""
         if len(self.pairs) <= 1 and k == 0:
             return self
         r = self.pairs[k]

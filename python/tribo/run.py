@@ -385,8 +385,9 @@ def _plots(out: Path, problem: Problem, solution: Solution) -> list[Path]:
     plt.close(fig)
     files.append(out / "von_mises.png")
     # A close-up of the contact zone, where the stresses concentrate.
-    x = solution.node_abscissae
-    span = dof_span(solution.multiplier_abscissae, solution.states != 0, x[-1] - x[0] if solution.closed else None)
+    first = solution.pair(0)  # the first pair's zone (the problem's points are its side's)
+    x = first.node_abscissae
+    span = dof_span(first.multiplier_abscissae, first.states != 0, x[-1] - x[0] if first.closed else None)
     if span is not None:
         a, b = span
         w = max(b - a, problem.mesh.max_diameter * 1e-3)

@@ -338,6 +338,11 @@ class Scene:
                     formulation=self.sections["bodies"]["entries"][0]["material"].get("formulation"),
                 )
             mesh = self.mesh()
+            for k, pair in enumerate(self.get("contact", "pairs", [])):
+                if pair["edge_set"] not in mesh.edge_sets:
+                    key = f"contact.pairs[{k}].edge_set"
+                    raise SceneError(f"scene key '{key}' = {pair['edge_set']!r}: the mesh has no such edge set (it has: "
+                                     f"{', '.join(sorted(mesh.edge_sets))})", key)
             return Problem(
                 mesh,
                 **self.materials(mesh),

@@ -269,6 +269,11 @@ def _key(name: str, check: Callable[..., Any]) -> dict[str, Any]:
     if check.__name__ == "_shape":
         shape = {k: _key(f"obstacle.{k}", c) for k, c in SCHEMA["obstacle"].items() if k not in ("approach", "shift")}
         own: dict[str, Any] = {"type": "object", "additionalProperties": False, "properties": shape}
+    elif check.__name__ == "_contact_pairs":  # an edge set and the keys of [obstacle] but its rotation
+        keys = {k: _key(f"obstacle.{k}", c) for k, c in SCHEMA["obstacle"].items() if k != "rotation"}
+        keys["edge_set"] = _key("contact.edge_set", SCHEMA["contact"]["edge_set"])
+        own = {"type": "array", "items": {"type": "object", "required": ["edge_set"], "additionalProperties": False,
+                                          "properties": keys}}
     else:
         own = getattr(check, "json_schema", None) or _BY_CHECKER[check.__name__]
     return {**own, "description": _description(name)}

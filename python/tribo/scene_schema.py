@@ -271,6 +271,8 @@ def _contact_pairs(key: str, v: Any) -> list[dict[str, Any]]:
         pair: dict[str, Any] = {"edge_set": _string(f"{where}.edge_set", entry["edge_set"])}
         for name, value in entry.items():
             check = SCHEMA["obstacle"].get(name) if name not in ("edge_set", "rotation") else None
+            if name == "rotation":
+                raise SceneError(f"scene key '{where}.rotation': a further pair's obstacle does not turn", f"{where}.rotation")
             if check is None and name != "edge_set":
                 known = ", ".join(["edge_set", *(n for n in SCHEMA["obstacle"] if n != "rotation")])
                 raise SceneError(f"scene key '{where}.{name}' is not known (known keys: {known})", f"{where}.{name}")
@@ -281,7 +283,6 @@ def _contact_pairs(key: str, v: Any) -> list[dict[str, Any]]:
     return out
 
 
-_contact_pairs.json_schema = {"type": "array", "items": {"type": "object", "required": ["edge_set"]}}  # type: ignore[attr-defined]
 
 
 def _setting_checker(spec: dict[str, Any]) -> Checker:
@@ -585,9 +586,9 @@ def check_scene(data: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
     if "angle" in sections.get("history", {}) and "rotation" not in sections.get("obstacle", {}):
         raise SceneError("scene key 'history.angle' turns the obstacle about the centre of 'obstacle.rotation', which "
                          "the scene does not give (give it with angle = 0)", "history.angle")
-    for table in ("history", "adapt"):
-        if "pairs" in sections.get("contact", {}) and table in sections:
-            raise SceneError(f"scene key 'contact.pairs': a [{table}] takes one contact pair today", "contact.pairs")
+    busy = [t for t in ("history", "adapt") if t in sections] + ["estimate"] * bool(sections.get("estimate", {}).get("error_bars"))
+    if "pairs" in sections.get("contact", {}) and busy:
+        raise SceneError(f"scene key 'contact.pairs': [{busy[0]}] takes one contact pair today", "contact.pairs")
     if "on" in sections.get("adapt", {}) and "history" not in sections:
         raise SceneError("scene key 'adapt.on' names steps of a [history], and the scene has none", "adapt.on")
     d = sections.get("discretization", {})

@@ -301,11 +301,12 @@ def cases(
 
 # ----- one case, on a worker -----
 def _oscillation(solution: Any) -> float:
-    """TV(λ_n) over the multiplier dofs in abscissa order / (2 max λ_n): 1 for a single smooth hump, more
-    for a pressure that oscillates (a checkerboard); NaN when nothing presses."""
-    lam = solution.lambda_n[np.argsort(solution.multiplier_abscissae)]
-    top = float(lam.max()) if len(lam) else 0.0
-    return float(np.abs(np.diff(lam)).sum() / (2.0 * top)) if top > 0.0 else math.nan
+    """TV(λ_n) over the multiplier dofs in abscissa order / (2 max λ_n): 1 for a single smooth hump, more for a
+    pressure that oscillates (a checkerboard); NaN when nothing presses; the largest of the contact pairs'."""
+    parts = [solution.pair(k) for k in range(max(len(solution.pairs), 1))]
+    lams = [part.lambda_n[np.argsort(part.multiplier_abscissae)] for part in parts]
+    values = [float(np.abs(np.diff(lam)).sum() / (2.0 * lam.max())) for lam in lams if len(lam) and lam.max() > 0.0]
+    return max(values, default=math.nan)
 
 
 def _row(summary: Mapping[str, Any], solution: Any) -> dict[str, Any]:

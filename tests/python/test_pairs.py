@@ -50,6 +50,15 @@ def test_a_block_between_a_punch_and_a_foundation_is_the_block_on_a_roller() -> 
     assert s2.contact_width == top.contact_width
 
 
+def test_the_checks_name_the_pair() -> None:
+    """A further pair whose obstacle never reaches its side is said by name (without the first pair's approach)."""
+    wall = tribo.Obstacle.line((0.6, 0.0), (-1.0, 0.0))
+    problem = block(n=8, pairs=[("bottom", FOUNDATION, None, None), ("right", wall, None, None)])
+    reasons = tribo.check_solution(problem, problem.solve())
+    assert any(r.startswith("pair 'right': nothing touches") and "approach 0.02" not in r for r in reasons), reasons
+    assert not any(r.startswith("pair 'bottom': nothing touches") for r in reasons), reasons
+
+
 def test_what_takes_one_pair_refuses_several() -> None:
     problem = block(n=6)
     with pytest.raises(tribo.ContactGeometryError, match="one contact pair"):
@@ -105,8 +114,18 @@ def test_a_scene_of_two_pairs_runs_and_writes_each_pair(tmp_path: Path) -> None:
     plot.tangential(problem, solution)
     plot.von_mises(problem, solution, obstacle=True)
     data = tomllib.loads(scene_path("punch_on_foundation").read_text(encoding="utf-8"))
-    with pytest.raises(tribo.SceneError, match="contact.pairs"):
-        parse_scene({**data, "history": {"approach": [0.01, 0.02]}})
-    bad = {**data, "contact": {**data["contact"], "pairs": [{"edge_set": "bottom", "shape": "line", "rotation": 1}]}}
-    with pytest.raises(tribo.SceneError, match=r"contact.pairs\[0\].rotation"):
-        parse_scene(bad)
+    for refused in ({"history": {"approach": [0.01, 0.02]}}, {"estimate": {"error_bars": True}}):
+        with pytest.raises(tribo.SceneError, match="contact.pairs"):
+            parse_scene({**data, **refused})
+    pairs = data["contact"]["pairs"]
+    turned = {**data, "contact": {**data["contact"], "pairs": [{**pairs[0], "rotation": {"center": [0, 0], "angle": 1}}]}}
+    with pytest.raises(tribo.SceneError, match=r"contact.pairs\[0\].rotation': a further pair's obstacle does not turn"):
+        parse_scene(turned)
+    misspelled = {**data, "contact": {**data["contact"], "pairs": [{**pairs[0], "edge_set": "botom"}]}}
+    with pytest.raises(tribo.SceneError, match=r"contact.pairs\[0\].edge_set' = 'botom'"):
+        parse_scene(misspelled).build()
+    # The plots of Γ_C show the first pair; another pair's part is refused, not drawn on the first side.
+    with pytest.raises(ValueError, match="first contact pair"):
+        plot.contact_pressure(problem, solution.pair(1))
+    second = solution.pair(1)
+    assert second.pairs[0].index == 1 and second.lambda_n.size == solution.lambda_n[solution.pairs[1].multipliers].size

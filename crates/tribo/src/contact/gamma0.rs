@@ -75,6 +75,21 @@ pub fn admissible_gamma0(
     materials: &impl MaterialField,
     contact: &ContactBoundary,
 ) -> Gamma0Bound {
+    let bounds = edge_bounds(mesh, model, materials, contact);
+    let (value, triangle) =
+        bounds.into_iter().fold((f64::INFINITY, 0), |best, cur| if cur.0 < best.0 { cur } else { best });
+    Gamma0Bound { value, triangle }
+}
+
+/// Each contact edge's bound with its triangle, `(γ0_T, T)` ([`admissible_gamma0`] is the smallest). Several
+/// contact pairs whose sides meet at a triangle add their terms of G there: its bound is then `1 / Σ 1/γ0_T` over
+/// the pairs (`crate::problem::sides`).
+pub fn edge_bounds(
+    mesh: &Mesh,
+    model: Model,
+    materials: &impl MaterialField,
+    contact: &ContactBoundary,
+) -> Vec<(f64, usize)> {
     // |σ m|² = σ_n² + σ_t² does not depend on the direction of m for an isotropic C, nor on the frame (n, t)
     // it is split in: one normal serves every edge of a bent Γ_C.
     let (a_n, a_t) = traction_components(contact.normal, contact.normal);
@@ -110,7 +125,7 @@ pub fn admissible_gamma0(
         by_poisson.push((poisson, l));
         l
     };
-    let (value, triangle) = contact
+    contact
         .edges
         .iter()
         .map(|e| {
@@ -128,6 +143,5 @@ pub fn admissible_gamma0(
             }
             (shape / m.young, e.triangle)
         })
-        .fold((f64::INFINITY, 0), |best, cur| if cur.0 < best.0 { cur } else { best });
-    Gamma0Bound { value, triangle }
+        .collect()
 }

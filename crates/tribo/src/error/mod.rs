@@ -357,7 +357,7 @@ pub enum Error {
         /// What is wrong.
         what: String,
     },
-    /// Several contact pairs in one problem that do not fit together (sides sharing an edge or a triangle), or a
+    /// Several contact pairs in one problem that do not fit together (sides sharing an edge, an edge set twice), or a
     /// capability not yet available with more than one pair (histories, adaptivity, two bodies).
     #[error("contact pair '{pair}': {what}")]
     SeveralPairs {

@@ -12,10 +12,10 @@
 //!
 //! and the QP (3.2) over the stacked multipliers is the one of the pairs together: its bounds and its friction
 //! thresholds act dof by dof, each on its own pair's multipliers. Every solve method takes it as it takes one
-//! pair. A triangle may touch one pair's side only (γ0's bound, [`crate::contact::gamma0`], is per triangle
-//! and one side's), and two sides share no edge.
+//! pair. Two pairs share no edge (nor an edge set); a triangle whose edges lie on two pairs' sides (a corner)
+//! carries both pairs' terms of G, so its bound on γ0 ([`crate::contact::gamma0`]) is the harmonic sum of theirs.
 
-use crate::contact::gamma0::{admissible_gamma0, Gamma0Bound};
+use crate::contact::gamma0::{admissible_gamma0, edge_bounds, Gamma0Bound};
 use crate::contact::mortar::MortarMatrices;
 use crate::contact::multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace};
 use crate::contact::obstacle::{Obstacle, ObstacleShape};
@@ -239,11 +239,11 @@ impl Problem {
         blocks.flat_map(|(p, &off)| p.mortar.d_h.entries.iter().map(move |&(i, j, v)| (off + i, off + j, v))).collect()
     }
 
-    /// Builds the further pairs of `self.spec` and checks that no two sides share an edge or a triangle.
+    /// Builds the further pairs of `self.spec`, checks that no two sides share an edge, and bounds γ0 over them all.
     ///
     /// # Errors
-    /// As [`ContactSide::new`]; [`Error::SeveralPairs`] for sides that share an edge or a triangle, or for
-    /// further pairs of two bodies.
+    /// As [`ContactSide::new`]; [`Error::SeveralPairs`] for an edge set of two pairs, or for further pairs of two
+    /// bodies.
     pub(crate) fn build_sides(&mut self, materials: &impl MaterialField) -> Result<()> {
         let spec = &self.spec;
         let Some(first) = spec.pairs.first() else { return Ok(()) };
@@ -278,30 +278,28 @@ impl Problem {
                 return Err(Error::SeveralPairs { pair: p.name.to_string(), what });
             }
         }
-        let mut owner: std::collections::HashMap<usize, (usize, &str)> = std::collections::HashMap::new();
-        for (k, p) in pairs.iter().enumerate() {
+        let mut owner: std::collections::HashMap<[usize; 2], &str> = std::collections::HashMap::new();
+        for p in &pairs {
             for e in &p.contact.edges {
-                match owner.insert(e.triangle, (k, p.name)) {
-                    Some((j, other)) if j != k => {
-                        return Err(Error::SeveralPairs {
-                            pair: p.name.to_string(),
-                            what: format!(
-                            "its edge ({}, {}) lies on triangle {}, which touches the side of '{other}' too (an edge \
-                             shared, or a corner triangle: refine the mesh there, so that each triangle touches one \
-                             contact side)",
-                            e.left, e.right, e.triangle
-                        ),
-                        })
-                    }
-                    _ => {}
+                if let Some(other) = owner.insert([e.left.min(e.right), e.left.max(e.right)], p.name) {
+                    let what = format!("its edge ({}, {}) is on the side of '{other}' too", e.left, e.right);
+                    return Err(Error::SeveralPairs { pair: p.name.to_string(), what });
                 }
             }
         }
-        self.gamma0_bound =
-            self.sides
-                .iter()
-                .map(|s| s.gamma0_bound)
-                .fold(self.gamma0_bound, |a, b| if b.value < a.value { b } else { a });
+        // A triangle whose edges lie on the sides of several pairs carries the G terms of each: its bound is the
+        // harmonic sum of the pairs' (each pair's the smallest of its edges' there, as for one side).
+        let mut by_triangle: std::collections::BTreeMap<usize, Vec<f64>> = std::collections::BTreeMap::new();
+        for p in &pairs {
+            let mut own: std::collections::BTreeMap<usize, f64> = std::collections::BTreeMap::new();
+            for (b, t) in edge_bounds(&self.mesh, self.spec.model, materials, p.contact) {
+                own.entry(t).and_modify(|v| *v = v.min(b)).or_insert(b);
+            }
+            own.into_iter().for_each(|(t, b)| by_triangle.entry(t).or_default().push(b));
+        }
+        let combined = by_triangle.into_iter().map(|(t, b)| (1.0 / b.iter().map(|b| 1.0 / b).sum::<f64>(), t));
+        let (value, triangle) = combined.fold((f64::INFINITY, 0), |best, cur| if cur.0 < best.0 { cur } else { best });
+        self.gamma0_bound = Gamma0Bound { value, triangle };
         Ok(())
     }
 }

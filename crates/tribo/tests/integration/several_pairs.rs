@@ -363,7 +363,7 @@ fn a_pair_that_never_touches_changes_nothing() {
 }
 
 /// What takes one pair today refuses several with [`Error::SeveralPairs`]: loading histories, adaptive refinement,
-/// the hierarchical estimates and error bars; and two sides on one triangle. A further pair's side is checked as the
+/// the hierarchical estimates and error bars; and two pairs on one edge. A further pair's side is checked as the
 /// first's: its edge set, Γ_D and Γ_N on it.
 #[test]
 fn what_takes_one_pair_refuses_several() {
@@ -381,11 +381,15 @@ fn what_takes_one_pair_refuses_several() {
     // The error bars' solve keeps its answer, without bars.
     let with_bars = problem.solve_with_error_bars(&friction, &settings, None).unwrap();
     assert!(with_bars.report.estimate.error_bars.is_none());
-    // A 1 × 1 block: its first triangle has an edge on the bottom and one on the right.
-    let mut corner = spec.clone();
-    corner.pairs.push(PairSpec::new("right", Obstacle { shape: ObstacleShape::Flat, ..foundation() }));
-    let e = Problem::new(rectangle([0.0, 0.5], [0.0, 1.0], 1, 1, Diagonal::Right).unwrap(), corner).unwrap_err();
-    assert!(matches!(e, Error::SeveralPairs { .. }), "{e}");
+    // An edge set with an edge of another pair's.
+    let mut mesh = block_mesh(8);
+    let mut sets = mesh.edge_sets().clone();
+    sets.insert("corner".into(), vec![sets["bottom"][0]]);
+    mesh = Mesh::new(mesh.points().to_vec(), mesh.triangles().to_vec(), sets).unwrap();
+    let mut shared = spec.clone();
+    shared.pairs.push(PairSpec::new("corner", foundation()));
+    let e = Problem::new(mesh, shared).unwrap_err();
+    assert!(matches!(e, Error::SeveralPairs { ref pair, .. } if pair == "corner"), "{e}");
     // A pair on an unknown edge set, or on an edge of Γ_D.
     let mut bad = spec.clone();
     bad.pairs[0].contact = "nowhere".into();
@@ -411,4 +415,35 @@ fn what_takes_one_pair_refuses_several() {
     on_axis.pairs[0] = PairSpec::new("left", foundation());
     let e = Problem::new(block_mesh(8), on_axis).unwrap_err();
     assert!(matches!(e, Error::BadAxisymmetry { ref what } if what.contains("axis")), "{e}");
+}
+
+/// A triangle with an edge on each of two pairs' sides (the corner of a block clamped on its top, pressed by a
+/// foundation from below and spreading against a wall touching its right side) carries both pairs' terms of G: its bound on γ0 is the harmonic sum of the two sides' bounds there, below each
+/// side's own; A = K − G stays positive definite just below it (factorized unchecked at 0.99 of it) and is not at
+/// 0.99 of the sides' own bound (measured: 0.263 each, 0.131 together) — what taking them one by one would allow.
+#[test]
+fn a_corner_triangle_of_two_pairs_bounds_gamma0_by_both() {
+    let wall = Obstacle {
+        shape: ObstacleShape::Line { point: [0.5, 0.0], normal: [-1.0, 0.0] },
+        approach: 0.0,
+        shift: 0.0,
+        rotation: None,
+    };
+    let mut spec = spec("bottom", Obstacle { approach: 0.002, ..foundation() }).clamped(["top"]);
+    spec.supports.clear();
+    spec.pairs.push(PairSpec::new("right", wall));
+    let mesh = rectangle([0.0, 0.5], [0.0, 1.0], 4, 8, Diagonal::Right).unwrap();
+    let problem = Problem::new(mesh, spec).expect("two pairs meeting at a corner");
+    let own = [problem.pairs()[0], problem.pairs()[1]].map(|p| {
+        tribo::contact::gamma0::admissible_gamma0(&problem.mesh, problem.spec.model, &problem.in_plane, p.contact).value
+    });
+    let bound = problem.gamma0_bound.value;
+    eprintln!("γ0 bounds: the bottom alone {:.4e}, the right alone {:.4e}, both {bound:.4e}", own[0], own[1]);
+    assert!(bound < own[0].min(own[1]), "the corner triangle's bound is below each side's");
+    let settings = |g: f64| SolverSettings { stabilization: Stabilization::Unchecked(g), ..SolverSettings::default() };
+    let sol = problem.solve(&Friction::Coulomb { mu: 0.3 }, &settings(0.99 * bound), None).expect("positive definite");
+    assert_eq!(sol.report.status, SolveStatus::Converged);
+    assert_eq!(sol.pairs.iter().filter(|p| p.normal_force > 0.0).count(), 2, "both pairs press");
+    let beyond = problem.solve(&Friction::Frictionless, &settings(0.99 * own[0].min(own[1])), None);
+    assert!(matches!(beyond, Err(Error::NotPositiveDefinite { .. })), "{beyond:?}");
 }
