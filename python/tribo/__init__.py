@@ -40,7 +40,7 @@ from tribo._tribo import (
 )
 from tribo.checks import SceneWarning, check_solution
 from tribo.io import read_mesh, write_vtu
-from tribo.problem import Body, Problem
+from tribo.problem import Body, Pair, Problem
 from tribo.results import Adaptive, AdaptiveHistory, History, Level, PairResult, Report, Solution
 from tribo.scene import SceneError, load_scene
 
@@ -55,6 +55,7 @@ __all__ = [
     "Mesh",
     "MeshError",
     "Obstacle",
+    "Pair",
     "PairResult",
     "Problem",
     "Report",

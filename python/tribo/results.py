@@ -195,7 +195,8 @@ class PairResult(_Record):
     """One contact pair's part of a solution (``Solution.pairs``): the fields on Γ_C hold the pairs one after the
     other, in the order of ``Problem.pairs`` (``index`` its place there); ``multipliers``, ``nodes`` and ``edges`` are the slices of the fields
     per multiplier dof, per FE node and per FE edge of Γ_C that are this pair's; its forces (``contact_force`` the
-    force its obstacle exerts on the body, global axes) and the widths of its contact and stick zones."""
+    force its obstacle exerts on the body, global axes), the widths of its contact and stick zones, and its
+    Coulomb coefficient ``mu`` as solved (None for the other laws)."""
 
     name: str
     index: int
@@ -208,12 +209,13 @@ class PairResult(_Record):
     contact_width: float
     stick_width: float
     closed: bool
+    mu: float | None = None
 
     @classmethod
     def from_tuple(cls, index: int, data: tuple[Any, ...]) -> PairResult:
-        """Pair ``index`` from the tuple the compiled module gives: (name, three spans, six numbers, closed)."""
-        name, ((m0, m1), (n0, n1), (e0, e1)), (n, t, fx, fy, contact, stick), closed = data
-        return cls(name, index, slice(m0, m1), slice(n0, n1), slice(e0, e1), n, t, (fx, fy), contact, stick, closed)
+        """Pair ``index`` from the tuple the compiled module gives: (name, three spans, six numbers, closed, μ)."""
+        name, ((m0, m1), (n0, n1), (e0, e1)), (n, t, fx, fy, contact, stick), closed, mu = data
+        return cls(name, index, slice(m0, m1), slice(n0, n1), slice(e0, e1), n, t, (fx, fy), contact, stick, closed, mu)
 
 
 @dataclass(frozen=True, eq=False, repr=False, kw_only=True)

@@ -129,7 +129,7 @@ def summary(
         "stick_width": solution.stick_width,
         "pairs": [{"name": r.name, "normal_force": r.normal_force, "tangential_force": r.tangential_force,
                    "contact_force": list(r.contact_force), "contact_width": r.contact_width,
-                   "stick_width": r.stick_width} for r in solution.pairs],
+                   "stick_width": r.stick_width, "mu": r.mu} for r in solution.pairs],
         "states": {name: states.count(name) for name in ("separation", "stick", "slip")},
         "kkt": solution.kkt,
         "kkt_max": solution.kkt_max,

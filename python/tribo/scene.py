@@ -29,7 +29,7 @@ import numpy as np
 from tribo._tribo import Mesh, Obstacle, Support, TriboError
 from tribo.checks import warn_missing_error_bars, warn_solution
 from tribo.io import read_mesh, read_triangle_groups
-from tribo.problem import Body, Problem, check_adapt
+from tribo.problem import Body, Pair, Problem, check_adapt
 from tribo.results import Adaptive, AdaptiveHistory, History, Solution
 # The schema's names, importable from here as before the split (``X as X``: re-exported).
 from tribo.scene_schema import CHOICES as CHOICES
@@ -81,11 +81,11 @@ class Scene:
         bodies, the initial gap ``contact.gap``."""
         return _obstacle_of(self.get("contact", "gap", {}) if self.is_two_bodies else self.sections.get("obstacle", {}))
 
-    def pairs(self) -> list[tuple[str, Obstacle, float | None, float | None]] | None:
+    def pairs(self) -> list[Pair] | None:
         """The further contact pairs ``[[contact.pairs]]`` as ``Problem`` takes them (None without)."""
         given = self.get("contact", "pairs")
-        return None if given is None else [(p["edge_set"], _obstacle_of(p), p.get("approach"), p.get("shift"))
-                                           for p in given]
+        return None if given is None else [Pair(p["edge_set"], _obstacle_of(p), p.get("approach"), p.get("shift"),
+                                                p.get("mu")) for p in given]
 
     def _approach(self) -> float:
         """How far contact reaches into the gap: the obstacle's approach; between two bodies, the largest
@@ -343,6 +343,10 @@ class Scene:
                     key = f"contact.pairs[{k}].edge_set"
                     raise SceneError(f"scene key '{key}' = {pair['edge_set']!r}: the mesh has no such edge set (it has: "
                                      f"{', '.join(sorted(mesh.edge_sets))})", key)
+                if "mu" in pair and "mu" not in self.sections.get("friction", {}):
+                    key = f"contact.pairs[{k}].mu"
+                    raise SceneError(f"scene key '{key}': a pair's own mu needs Coulomb friction; give 'friction.mu' "
+                                     "(0: the first pair frictionless)", key)
             return Problem(
                 mesh,
                 **self.materials(mesh),

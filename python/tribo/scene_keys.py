@@ -96,7 +96,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
                     "flat (touching)"),
     "contact.pairs": ("Further contact pairs (`[[contact.pairs]]`): each an `edge_set` of the body against its own "
                       "rigid obstacle, given by the keys of `[obstacle]` (`shape` and its keys, `approach`, `shift`; "
-                      "it does not turn); not with `[history]` or `[adapt]`", "—", "none: one pair"),
+                      "it does not turn) and its own Coulomb coefficient `mu` (default `friction.mu`; it needs "
+                      "`friction.mu`); not with `[history]` or `[adapt]`", "—", "none: one pair"),
     "obstacle.shape": ("The rigid obstacle: a gap function of the abscissa on Γ_C (`flat`, `circle`, `parabola`, "
                        "`polyline`) or a shape given by its geometry (`line`, `disc`, `hole`, `profile`)", "—",
                        '`"flat"`'),
@@ -272,6 +273,7 @@ def _key(name: str, check: Callable[..., Any]) -> dict[str, Any]:
     elif check.__name__ == "_contact_pairs":  # an edge set and the keys of [obstacle] but its rotation
         keys = {k: _key(f"obstacle.{k}", c) for k, c in SCHEMA["obstacle"].items() if k != "rotation"}
         keys["edge_set"] = _key("contact.edge_set", SCHEMA["contact"]["edge_set"])
+        keys["mu"] = _key("friction.mu", SCHEMA["friction"]["mu"])
         own = {"type": "array", "items": {"type": "object", "required": ["edge_set"], "additionalProperties": False,
                                           "properties": keys}}
     else:

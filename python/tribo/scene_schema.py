@@ -259,8 +259,8 @@ _regions.json_schema = {  # type: ignore[attr-defined]
 
 
 def _contact_pairs(key: str, v: Any) -> list[dict[str, Any]]:
-    """A list of tables ``[[contact.pairs]]``: each a further contact pair, an ``edge_set`` of the body against its
-    own rigid obstacle, given by the keys of ``[obstacle]`` (its shape and their keys, approach and shift)."""
+    """A list of tables ``[[contact.pairs]]``: each a further contact pair, an ``edge_set`` of the body against its own
+    rigid obstacle, given by the keys of ``[obstacle]`` (its shape, their keys, approach, shift), and its own ``mu``."""
     if not isinstance(v, list) or not all(isinstance(e, dict) for e in v):
         raise SceneError(f"scene key '{key}' must be a list of tables [[{key}]], got {v!r}", key)
     out = []
@@ -270,11 +270,11 @@ def _contact_pairs(key: str, v: Any) -> list[dict[str, Any]]:
             raise SceneError(f"scene key '{where}.edge_set' is required", f"{where}.edge_set")
         pair: dict[str, Any] = {"edge_set": _string(f"{where}.edge_set", entry["edge_set"])}
         for name, value in entry.items():
-            check = SCHEMA["obstacle"].get(name) if name not in ("edge_set", "rotation") else None
+            check = {**SCHEMA["obstacle"], "mu": _number}.get(name) if name not in ("edge_set", "rotation") else None
             if name == "rotation":
                 raise SceneError(f"scene key '{where}.rotation': a further pair's obstacle does not turn", f"{where}.rotation")
             if check is None and name != "edge_set":
-                known = ", ".join(["edge_set", *(n for n in SCHEMA["obstacle"] if n != "rotation")])
+                known = ", ".join(["edge_set", *(n for n in SCHEMA["obstacle"] if n != "rotation"), "mu"])
                 raise SceneError(f"scene key '{where}.{name}' is not known (known keys: {known})", f"{where}.{name}")
             if check is not None:
                 pair[name] = check(f"{where}.{name}", value)

@@ -32,7 +32,7 @@ def test_the_binding_only_converts() -> None:
 # circle cli -> sweep -> cli). ``__init__`` is the facade above them all; nothing inside imports it.
 LAYERS: list[set[str]] = [
     {"_tribo"},
-    {"results"},
+    {"results", "inputs"},
     {"problem"},
     {"checks"},
     {"io", "plot"},

@@ -22,7 +22,7 @@ def block(n: int = 12, **keywords: object) -> tribo.Problem:
     """The half block [0, ½] × [0, 1] (a roller on its axis), the punch on its top, the foundation under it."""
     mesh = tribo.Mesh.rectangle((0.0, 0.5), (0.0, 1.0), n, 2 * n)
     arguments = dict(young=1.0, poisson=0.3, contact="top", supports=[tribo.Support.roller("left")], obstacle=PUNCH,
-                     approach=0.02, pairs=[("bottom", FOUNDATION, None, None)])
+                     approach=0.02, pairs=[tribo.Pair("bottom", FOUNDATION)])
     return tribo.Problem(mesh, **{**arguments, **keywords})
 
 
@@ -53,7 +53,7 @@ def test_a_block_between_a_punch_and_a_foundation_is_the_block_on_a_roller() -> 
 def test_the_checks_name_the_pair() -> None:
     """A further pair whose obstacle never reaches its side is said by name (without the first pair's approach)."""
     wall = tribo.Obstacle.line((0.6, 0.0), (-1.0, 0.0))
-    problem = block(n=8, pairs=[("bottom", FOUNDATION, None, None), ("right", wall, None, None)])
+    problem = block(n=8, pairs=[("bottom", FOUNDATION), tribo.Pair("right", wall)])
     reasons = tribo.check_solution(problem, problem.solve())
     assert any(r.startswith("pair 'right': nothing touches") and "approach 0.02" not in r for r in reasons), reasons
     assert not any(r.startswith("pair 'bottom': nothing touches") for r in reasons), reasons
@@ -67,8 +67,32 @@ def test_what_takes_one_pair_refuses_several() -> None:
         problem.solve_adaptive(tol=0.05)
     with pytest.raises(tribo.MeshError, match="nowhere"):
         block(n=6, pairs=[("nowhere", None, None, None)])
-    with pytest.raises(ValueError, match="tuple of length 4"):
-        block(n=6, pairs=[("bottom", FOUNDATION)])
+    with pytest.raises(TypeError, match="a contact pair must be a tribo.Pair"):
+        block(n=6, pairs=[42])
+    with pytest.raises(tribo.ContactGeometryError, match="obstacle must be a tribo.Obstacle"):
+        block(n=6, pairs=[tribo.Pair("bottom", "flat")])
+
+
+def test_each_pair_has_its_own_mu() -> None:
+    """The punch dragging the block (μ = 0.5) beside a foundation of its own μ = 0: the foundation carries no
+    tangential traction, and the problem is the block on a roller (γ0 = 0) with the punch's law; a pair's own μ
+    needs Coulomb friction, said naming the pair; the two spellings of a pair (Pair, tuple) are one problem."""
+    own = block(shift=0.0005, approach=0.01, pairs=[tribo.Pair("bottom", FOUNDATION, mu=0.0)])
+    roller = block(shift=0.0005, approach=0.01, pairs=None,
+                   supports=[tribo.Support.roller("left"), tribo.Support.roller("bottom")])
+    s2, s1 = own.solve(mu=0.5, gamma0=0.0), roller.solve(mu=0.5, gamma0=0.0)
+    top, bottom = s2.pairs
+    assert (top.mu, bottom.mu, s2.mu) == (0.5, 0.0, 0.5) and s1.pairs[0].mu == 0.5
+    assert abs(s1.tangential_force) > 0.05 * s1.normal_force, "the punch drags the top"
+    scale = np.abs(s1.lambda_n).max()
+    assert np.abs(s2.lambda_t[top.multipliers] - s1.lambda_t).max() <= 1e-6 * scale
+    assert np.abs(s2.lambda_t[bottom.multipliers]).max() <= 1e-8 * scale
+    tupled = block(shift=0.0005, approach=0.01, pairs=[("bottom", FOUNDATION, None, None, 0.0)]).solve(mu=0.5, gamma0=0.0)
+    assert np.array_equal(tupled.lambda_t, s2.lambda_t)
+    with pytest.raises(tribo.ContactGeometryError, match="'bottom': its own mu needs Coulomb friction"):
+        own.solve()
+    with pytest.raises(tribo.SettingsError, match="mu"):
+        block(pairs=[tribo.Pair("bottom", FOUNDATION, mu=-1.0)])
 
 
 def test_a_scene_of_two_pairs_runs_and_writes_each_pair(tmp_path: Path) -> None:
@@ -82,7 +106,7 @@ def test_a_scene_of_two_pairs_runs_and_writes_each_pair(tmp_path: Path) -> None:
     assert problem.pairs == ["top", "bottom"] and solution.report.converged
     summary = json.loads((tmp_path / "summary.json").read_text())
     top, bottom = summary["pairs"]
-    assert (top["name"], bottom["name"]) == ("top", "bottom")
+    assert (top["name"], bottom["name"], top["mu"], bottom["mu"]) == ("top", "bottom", 0.3, 0.6)
     assert bottom["normal_force"] == pytest.approx(-top["contact_force"][1], rel=1e-6)
     assert summary["normal_force"] == pytest.approx(top["normal_force"] + bottom["normal_force"], rel=1e-12)
     multipliers = pd.read_csv(tmp_path / "contact.csv", comment="#")
@@ -121,6 +145,9 @@ def test_a_scene_of_two_pairs_runs_and_writes_each_pair(tmp_path: Path) -> None:
     turned = {**data, "contact": {**data["contact"], "pairs": [{**pairs[0], "rotation": {"center": [0, 0], "angle": 1}}]}}
     with pytest.raises(tribo.SceneError, match=r"contact.pairs\[0\].rotation': a further pair's obstacle does not turn"):
         parse_scene(turned)
+    without_law = {k: v for k, v in data.items() if k != "friction"}
+    with pytest.raises(tribo.SceneError, match=r"contact.pairs\[0\].mu': a pair's own mu needs Coulomb friction"):
+        parse_scene(without_law).build()
     misspelled = {**data, "contact": {**data["contact"], "pairs": [{**pairs[0], "edge_set": "botom"}]}}
     with pytest.raises(tribo.SceneError, match=r"contact.pairs\[0\].edge_set' = 'botom'"):
         parse_scene(misspelled).build()

@@ -96,8 +96,8 @@ fn tractions_of(t: Vec<(String, Vec<f64>)>) -> PyResult<Vec<(String, tribo::Trac
     t.into_iter().map(|(set, v)| Ok((set, tribo::Traction::try_from(v.as_slice()).map_err(to_pyerr)?))).collect()
 }
 
-/// A further contact pair: (edge set, obstacle or None: flat, approach or None, shift or None).
-type PairArgs = (String, Option<Py<PyObstacle>>, Option<f64>, Option<f64>);
+/// A further contact pair (`tribo.Pair`): (edge set, obstacle or None: flat, approach, shift, own μ; None: default).
+type PairArgs = (String, Option<Py<PyObstacle>>, Option<f64>, Option<f64>, Option<f64>);
 /// A body of `tribo.Body`: (name, mesh, materials, regions or None for one material, clamped, supports, tractions).
 type BodyArgs =
     (String, Py<PyMesh>, Vec<(f64, f64)>, Option<Vec<usize>>, Vec<String>, Vec<PySupport>, Vec<(String, Vec<f64>)>);
@@ -310,8 +310,8 @@ impl PyProblem {
                 contact,
                 obstacle: tribo::Obstacle::from_keywords(shape, approach, shift, rotation.map(Into::into)),
                 pairs: (pairs.unwrap_or_default().into_iter())
-                    .map(|(c, o, a, s)| {
-                        tribo::PairSpec::from_keywords(c, o.map(|o| o.get().shape.clone()), a, s, &points)
+                    .map(|(c, o, a, s, mu)| {
+                        tribo::PairSpec::from_keywords(c, o.map(|o| o.get().shape.clone()), (a, s), mu, &points)
                     })
                     .collect(),
                 multiplier_points: points,

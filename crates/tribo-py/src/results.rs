@@ -49,7 +49,8 @@ pub fn solution<'py>(py: Python<'py>, s: &tribo::Solution) -> PyResult<Bound<'py
     let forces = |r: &tribo::PairResult| {
         [r.normal_force, r.tangential_force, r.contact_force[0], r.contact_force[1], r.contact_width, r.stick_width]
     };
-    d.set_item("pairs", s.pairs.iter().map(|r| (r.name.clone(), spans(r), forces(r), r.closed)).collect::<Vec<_>>())?;
+    let each = |r: &tribo::PairResult| (r.name.clone(), spans(r), forces(r), r.closed, r.mu);
+    d.set_item("pairs", s.pairs.iter().map(each).collect::<Vec<_>>())?;
     d.set_item("kkt", s.kkt.named().into_py_dict(py)?)?;
     d.set_item("report", report(py, &s.report)?)?;
     Ok(d)

@@ -36,6 +36,7 @@ use crate::fem::mixed::{self, Formulation};
 use crate::fem::supports::{Dofs, NodeSupport, Support};
 use crate::mesh::Mesh;
 use condense::FactorCache;
+use sides::{ContactSide, PairSpec};
 
 /// Everything that defines a contact problem besides the mesh. [`ProblemSpec::new`] takes the two parts
 /// without a default (the material and the contact edge set) and sets the others by name.
@@ -250,19 +251,17 @@ impl Problem {
         let assembly = clock.elapsed().as_secs_f64();
 
         let clock = Instant::now();
-        let mut contact = ContactBoundary::new(&mesh, &spec.contact)?;
-        // The obstacle as the contact meets it: turned, where it turns.
-        let obstacle = spec.obstacle.placed();
-        contact.orient_to(&obstacle.shape)?;
-        // The gap at the nodes of Γ_C: every value the solver and its results use is checked.
-        let contact_gap = contact.node_xi.iter().map(|&xi| obstacle.gap(&contact, xi)).collect::<Result<Vec<f64>>>()?;
+        // The first pair is built as every pair is (`sides.rs`); the problem keeps its parts in its own fields.
+        let first = PairSpec {
+            contact: spec.contact.clone(),
+            obstacle: spec.obstacle.clone(),
+            multiplier_points: spec.multiplier_points.clone(),
+            mu: None,
+        };
+        let ContactSide { contact, multipliers, mut mortar, gap: mut contact_gap, stress: contact_stress, .. } =
+            ContactSide::new(&mesh, spec.model, shear, mixed, &dofs, &first, spec.multiplier_space)?;
         let contact_edges: std::collections::HashSet<[usize; 2]> =
             contact.edges.iter().map(|e| [e.left.min(e.right), e.left.max(e.right)]).collect();
-        for e in &contact.edges {
-            if dofs.edges.contains(&[e.left.min(e.right), e.left.max(e.right)]) {
-                return Err(Error::ContactOverlapsDirichlet { set: spec.contact.clone(), a: e.left, b: e.right });
-            }
-        }
         let primary_edges: std::collections::HashSet<[usize; 2]> = match primary {
             Some(set) => mesh.edge_set(set)?.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect(),
             None => Default::default(),
@@ -284,34 +283,13 @@ impl Problem {
                 }
             }
         }
-        if contact.nodes.iter().all(|&node| matches!(dofs.nodes[node], NodeSupport::Fixed { .. })) {
-            return Err(Error::ContactFullyClamped { set: spec.contact.clone() });
-        }
-        if spec.model.is_axisymmetric() {
-            // A contact edge on the axis is a line of the solid, not a surface: it has no area to press.
-            let on_axis = |i: usize| dofs.axis.binary_search(&i).is_ok();
-            if let Some(e) = contact.edges.iter().find(|e| on_axis(e.left) && on_axis(e.right)) {
-                return Err(Error::BadAxisymmetry {
-                    what: format!(
-                        "the contact edge ({}, {}) of '{}' lies on the axis (r = 0): a line of the solid, with no surface to touch",
-                        e.left, e.right, spec.contact
-                    ),
-                });
-            }
-        }
-        let multipliers = MultiplierMesh::new(&contact, &spec.multiplier_points, spec.multiplier_space)?;
-        let h_t: Vec<f64> = contact.edges.iter().map(|e| mesh.diameter(e.triangle)).collect();
-        let mut mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &obstacle, spec.model)?;
         let primary =
             primary.map(|set| PrimarySide::new(&mesh, &contact, set, &multipliers, spec.model)).transpose()?;
         // A bent pair's gap from the geometry adds to the pair's gap shape.
-        let mut contact_gap = contact_gap;
         if let Some(geometry) = primary.as_ref().and_then(|p| p.geometry.as_ref()) {
             mortar.gap_moments.iter_mut().zip(&geometry.gap_moments).for_each(|(m, g)| *m += g);
             contact_gap.iter_mut().zip(&geometry.node_gap).for_each(|(m, g)| *m += g);
         }
-        // Γ_C's triangles with their own materials (one body's, the secondary's for two, a coating's).
-        let contact_stress = ContactStress::new(&mesh, spec.model, shear, &contact, mixed);
         let gamma0_bound = admissible_gamma0(&mesh, spec.model, shear, &contact);
         let shear_for_sides = shear.clone();
         let contact_matrices = clock.elapsed().as_secs_f64();

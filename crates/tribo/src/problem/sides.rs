@@ -15,18 +15,19 @@
 //! pair. Two pairs share no edge (nor an edge set); a triangle whose edges lie on two pairs' sides (a corner)
 //! carries both pairs' terms of G, so its bound on γ0 ([`crate::contact::gamma0`]) is the harmonic sum of theirs.
 
-use crate::contact::gamma0::{admissible_gamma0, edge_bounds, Gamma0Bound};
+use crate::contact::gamma0::{edge_bounds, Gamma0Bound};
 use crate::contact::mortar::MortarMatrices;
 use crate::contact::multiplier::{MultiplierMesh, MultiplierPoints, MultiplierSpace};
 use crate::contact::obstacle::{Obstacle, ObstacleShape};
 use crate::contact::operators::ContactStress;
 use crate::contact::pair::PrimarySide;
 use crate::contact::ContactBoundary;
-use crate::error::{Error, Result};
+use crate::error::{check_setting, Error, Result};
 use crate::fem::elasticity::{MaterialField, Model};
 use crate::fem::supports::Dofs;
 use crate::mesh::Mesh;
 use crate::problem::Problem;
+use crate::settings::friction::Friction;
 
 /// A further contact pair of a problem: a contact edge set of the body against its own rigid obstacle.
 #[derive(Debug, Clone)]
@@ -37,26 +38,34 @@ pub struct PairSpec {
     pub obstacle: Obstacle,
     /// Points of its multiplier mesh (the space is the problem's, `spec.multiplier_space`).
     pub multiplier_points: MultiplierPoints,
+    /// Its own Coulomb coefficient μ (None: the law's, [`Friction::Coulomb`]); it needs Coulomb friction.
+    pub mu: Option<f64>,
 }
 
 impl PairSpec {
     /// The edge set `contact` against `obstacle`, T_H on its FE edges.
     pub fn new(contact: impl Into<String>, obstacle: Obstacle) -> Self {
-        Self { contact: contact.into(), obstacle, multiplier_points: MultiplierPoints::default() }
+        Self { contact: contact.into(), obstacle, multiplier_points: MultiplierPoints::default(), mu: None }
+    }
+
+    /// This pair with its own Coulomb coefficient μ.
+    pub fn with_mu(mut self, mu: f64) -> Self {
+        self.mu = Some(mu);
+        self
     }
 
     /// A pair from the keywords of the bindings: its edge set, its obstacle's shape (flat by default), approach and
-    /// shift (0 by default), and the first pair's multiplier points where they are not tied to that side
-    /// ([`MultiplierPoints::for_another_side`]).
+    /// shift (0 by default), its own μ (the law's by default), and the first pair's multiplier points where they
+    /// are not tied to that side ([`MultiplierPoints::for_another_side`]).
     pub fn from_keywords(
         contact: String,
         shape: Option<ObstacleShape>,
-        approach: Option<f64>,
-        shift: Option<f64>,
+        (approach, shift): (Option<f64>, Option<f64>),
+        mu: Option<f64>,
         first: &MultiplierPoints,
     ) -> Self {
         let obstacle = Obstacle::from_keywords(shape.unwrap_or(ObstacleShape::Flat), approach, shift, None);
-        Self { contact, obstacle, multiplier_points: first.for_another_side() }
+        Self { contact, obstacle, multiplier_points: first.for_another_side(), mu }
     }
 }
 
@@ -78,8 +87,8 @@ pub struct ContactSide {
     pub gap: Vec<f64>,
     /// σ_n(v), σ_t(v) on its edges.
     pub stress: ContactStress,
-    /// The admissible γ0 of its triangles.
-    pub gamma0_bound: Gamma0Bound,
+    /// Its own Coulomb coefficient (None: the law's).
+    pub mu: Option<f64>,
 }
 
 /// One pair's parts, borrowed: the first pair's from the problem's own fields, the others' from their
@@ -102,14 +111,17 @@ pub struct PairParts<'a> {
     pub stress: &'a ContactStress,
     /// The primary side of a two-body pair (the first pair only).
     pub primary: Option<&'a PrimarySide>,
+    /// Its own Coulomb coefficient (None: the law's; the first pair's is the law's).
+    pub mu: Option<f64>,
 }
 
 impl ContactSide {
-    /// Builds pair `pair` on `mesh` (the problem's supports `dofs`, the stiffness's `materials`).
+    /// Builds pair `pair` on `mesh` (the problem's supports `dofs`, the stiffness's `materials`): every pair's, the
+    /// first's too ([`Problem`] keeps its parts in its own fields).
     ///
     /// # Errors
-    /// As the first pair's: an unknown or broken edge set, an edge on Γ_D, a side clamped everywhere, a bad
-    /// obstacle or multiplier points.
+    /// An unknown or broken edge set, an edge on Γ_D, a side clamped everywhere or on the axis, a bad obstacle or
+    /// multiplier points, a bad μ.
     pub(crate) fn new(
         mesh: &Mesh,
         model: Model,
@@ -120,22 +132,14 @@ impl ContactSide {
         space: MultiplierSpace,
     ) -> Result<Self> {
         pair.obstacle.validate()?;
-        // In axisymmetry a further pair's obstacle neither turns nor shifts (a solid of revolution slides along the
-        // axis only; the first pair's shift is checked edge by edge, `Problem::check_axisymmetric_shift`).
-        if model.is_axisymmetric() && (pair.obstacle.rotation.is_some() || pair.obstacle.shift != 0.0) {
-            let what = format!("the obstacle of the further pair '{}' turns or shifts: it may not", pair.contact);
-            return Err(Error::BadAxisymmetry { what });
+        if let Some(mu) = pair.mu {
+            check_setting("mu", mu, mu >= 0.0, "a pair's friction coefficient must be ≥ 0")?;
         }
         let mut contact = ContactBoundary::new(mesh, &pair.contact)?;
-        // A contact edge on the axis is a line of the solid, not a surface.
-        let on_axis = |i: usize| dofs.axis.binary_search(&i).is_ok();
-        if let Some(e) = contact.edges.iter().find(|e| model.is_axisymmetric() && on_axis(e.left) && on_axis(e.right)) {
-            let what =
-                format!("the contact edge ({}, {}) of '{}' lies on the axis (r = 0)", e.left, e.right, pair.contact);
-            return Err(Error::BadAxisymmetry { what });
-        }
+        // The obstacle as the contact meets it: turned, where it turns.
         let placed = pair.obstacle.placed();
         contact.orient_to(&placed.shape)?;
+        // The gap at the nodes of Γ_C: every value the solver and its results use is checked.
         let gap = contact.node_xi.iter().map(|&xi| placed.gap(&contact, xi)).collect::<Result<Vec<f64>>>()?;
         for e in &contact.edges {
             if dofs.edges.contains(&[e.left.min(e.right), e.left.max(e.right)]) {
@@ -146,11 +150,20 @@ impl ContactSide {
         {
             return Err(Error::ContactFullyClamped { set: pair.contact.clone() });
         }
+        // A contact edge on the axis is a line of the solid, not a surface: it has no area to press.
+        let on_axis = |i: usize| dofs.axis.binary_search(&i).is_ok();
+        if let Some(e) = contact.edges.iter().find(|e| model.is_axisymmetric() && on_axis(e.left) && on_axis(e.right)) {
+            let what = format!(
+                "the contact edge ({}, {}) of '{}' lies on the axis (r = 0): a line of the solid, with no surface to \
+                 touch",
+                e.left, e.right, pair.contact
+            );
+            return Err(Error::BadAxisymmetry { what });
+        }
         let multipliers = MultiplierMesh::new(&contact, &pair.multiplier_points, space)?;
         let h_t: Vec<f64> = contact.edges.iter().map(|e| mesh.diameter(e.triangle)).collect();
         let mortar = MortarMatrices::new(&contact, &multipliers, &h_t, &placed, model)?;
         let stress = ContactStress::new(mesh, model, materials, &contact, mixed);
-        let gamma0_bound = admissible_gamma0(mesh, model, materials, &contact);
         Ok(Self {
             name: pair.contact.clone(),
             obstacle: pair.obstacle.clone(),
@@ -159,7 +172,7 @@ impl ContactSide {
             mortar,
             gap,
             stress,
-            gamma0_bound,
+            mu: pair.mu,
         })
     }
 }
@@ -176,6 +189,7 @@ impl Problem {
             gap: &self.contact_gap,
             stress: &self.contact_stress,
             primary: self.primary.as_ref(),
+            mu: None,
         };
         let further = self.sides.iter().map(|s| PairParts {
             name: &s.name,
@@ -186,6 +200,7 @@ impl Problem {
             gap: &s.gap,
             stress: &s.stress,
             primary: None,
+            mu: s.mu,
         });
         std::iter::once(first).chain(further).collect()
     }
@@ -203,6 +218,31 @@ impl Problem {
     /// Where each pair's FE edges of Γ_C start in the edge fields of Γ_C (one more entry: their number).
     pub fn pair_edge_offsets(&self) -> Vec<usize> {
         offsets(self.pairs().iter().map(|p| p.contact.n_edges()))
+    }
+
+    /// The friction law as it is solved and, for Coulomb, the coefficient μ at each of the q multiplier dofs (empty
+    /// for the other laws): the first pair's is the law's μ, a further pair's its own ([`PairSpec::mu`]) or the
+    /// law's. Coulomb is solved as frictionless only where every pair's μ is 0 ([`Friction::normalized`]).
+    ///
+    /// # Errors
+    /// [`Error::SeveralPairs`] for a pair's own μ under a law other than Coulomb.
+    pub(crate) fn friction_as_solved(&self, friction: &Friction) -> Result<(Friction, Vec<f64>)> {
+        let (pairs, offsets) = (self.pairs(), self.pair_offsets());
+        let Friction::Coulomb { mu } = *friction else {
+            return match pairs.iter().find(|p| p.mu.is_some()) {
+                Some(p) => Err(Error::SeveralPairs {
+                    pair: p.name.to_string(),
+                    what: format!("its own mu needs Coulomb friction; the law is {}", friction.law()),
+                }),
+                None => Ok((friction.normalized(), Vec::new())),
+            };
+        };
+        let own = |p: &PairParts<'_>| p.mu.unwrap_or(mu);
+        if pairs.iter().all(|p| own(p) == 0.0) {
+            return Ok((Friction::Frictionless, Vec::new()));
+        }
+        let per_dof = pairs.iter().zip(offsets.windows(2)).flat_map(|(p, w)| std::iter::repeat_n(own(p), w[1] - w[0]));
+        Ok((friction.clone(), per_dof.collect()))
     }
 
     /// Refuses `what` for a problem of several contact pairs.
@@ -252,6 +292,14 @@ impl Problem {
                 pair: first.contact.clone(),
                 what: "two bodies take one contact pair today".into(),
             });
+        }
+        // In axisymmetry a further pair's obstacle neither turns nor shifts (a solid of revolution slides along the
+        // axis only; the first pair's shift is checked edge by edge, `Problem::check_axisymmetric_shift`).
+        if let Some(p) = spec.pairs.iter().find(|p| p.obstacle.rotation.is_some() || p.obstacle.shift != 0.0) {
+            if spec.model.is_axisymmetric() {
+                let what = format!("the obstacle of the further pair '{}' turns or shifts: it may not", p.contact);
+                return Err(Error::BadAxisymmetry { what });
+            }
         }
         let mixed = spec.formulation.is_mixed();
         let sides = spec

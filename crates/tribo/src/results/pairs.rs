@@ -36,6 +36,8 @@ pub struct PairResult {
     pub contact_width: f64,
     /// See `contact_width`.
     pub stick_width: f64,
+    /// Its Coulomb coefficient as solved (None for the other laws).
+    pub mu: Option<f64>,
 }
 
 /// The fields on Γ_C of every pair, one pair after the other.
@@ -131,6 +133,7 @@ pub(crate) fn gamma_c_fields(
             closed: contact.is_closed(),
             contact_width: 0.0,
             stick_width: 0.0,
+            mu: None,
         });
     }
     out

@@ -173,9 +173,10 @@ impl Timings {
 pub struct Report {
     /// How it ended.
     pub status: SolveStatus,
-    /// The friction law solved (Coulomb with μ = 0 is solved, and reported, as frictionless).
+    /// The friction law solved (Coulomb with μ = 0 on every contact pair is solved, and reported, as frictionless).
     pub friction: FrictionLaw,
-    /// The Coulomb coefficient μ (`None` unless the law is Coulomb).
+    /// The Coulomb coefficient μ (`None` unless the law is Coulomb): the law's, the first pair's (a further pair's
+    /// own in [`crate::PairResult::mu`]).
     pub mu: Option<f64>,
     /// Iterations of the Coulomb method that answered: fixed-point iterations (one QP each) or Newton steps
     /// (one dense LU each); 0 for frictionless and Tresca.

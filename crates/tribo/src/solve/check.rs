@@ -84,13 +84,13 @@ impl Condensed<'_> {
     /// Φ at the answer `sol` (its λ_n, the QP started from its λ), or `None` where that QP failed or was refused.
     fn evaluate_phi(
         &self,
-        mu: f64,
+        mu: &[f64],
         settings: &SolverSettings,
         loading: &LoadCase,
         sol: &Solution,
     ) -> Option<Evaluation> {
         let start = [sol.lambda_n.as_slice(), sol.lambda_t.as_slice()].concat();
-        let bound: Vec<f64> = sol.lambda_n.iter().map(|l| mu * l.max(0.0)).collect();
+        let bound: Vec<f64> = sol.lambda_n.iter().zip(mu).map(|(l, m)| m * l.max(0.0)).collect();
         let out = self.contact_qp(loading, Some(&bound), settings, Some(&start)).and_then(|mut qp| qp.solve());
         let out = out.map_err(|e| log::warn!("the check's evaluation of Φ_H: {e}")).ok()?;
         let tol = match out.status {
@@ -101,12 +101,12 @@ impl Condensed<'_> {
         Some(Evaluation { phi: out.nu[..self.q()].to_vec(), tol })
     }
 
-    /// Checks the converged Coulomb answer `answer` (coefficient `mu`) by the other method, solving `loading`
-    /// again from `start` as the answer was. Never an error: what keeps the check from a verdict makes it
-    /// undecided (the log says why).
+    /// Checks the converged Coulomb answer `answer` (of the law `friction`, coefficients `mu` per multiplier dof)
+    /// by the other method, solving `loading` again from `start` as the answer was. Never an error: what keeps the
+    /// check from a verdict makes it undecided (the log says why).
     pub(super) fn check_coulomb(
         &self,
-        mu: f64,
+        (friction, mu): (&Friction, &[f64]),
         settings: &SolverSettings,
         loading: &LoadCase,
         start: Option<&[f64]>,
@@ -116,8 +116,7 @@ impl Condensed<'_> {
             Some(CoulombMethod::Newton) => CoulombMethod::FixedPoint,
             _ => CoulombMethod::Newton,
         };
-        let friction = Friction::Coulomb { mu };
-        let other = match self.solve_loading_by(&friction, method, settings, loading, start, None) {
+        let other = match self.solve_loading_by(friction, method, settings, loading, start, None) {
             Ok(other) => other,
             Err(e) => {
                 log::warn!("the check of the Coulomb answer by {method}: {e}: no verdict");

@@ -11,7 +11,7 @@ use crate::problem::Condensed;
 use crate::qp::working_set::ContactQp;
 use crate::qp::{QpOutcome, QpStatus};
 use crate::results::{CoulombCheck, ErrorEstimate, Report, Solution, SolveStatus, Timings};
-use crate::settings::friction::Friction;
+use crate::settings::friction::{Friction, FrictionLaw};
 use crate::settings::{Condensation, CoulombMethod, QpMethod, SolverSettings};
 use crate::solve::progress::{Observer, Phase, Progress};
 
@@ -88,7 +88,7 @@ impl Condensed<'_> {
     /// QP errors of the fixed point; [`Error::MemoryBudget`] from Newton.
     fn coulomb(
         &self,
-        mu: f64,
+        mu: &[f64],
         method: CoulombMethod,
         settings: &SolverSettings,
         loading: &LoadCase,
@@ -178,14 +178,15 @@ impl Condensed<'_> {
         } else {
             first?
         };
-        if let (true, Some(mu), SolveStatus::Converged) =
+        if let (true, Some(_), SolveStatus::Converged) =
             (settings.coulomb_check, solution.report.mu, solution.report.status)
         {
             let clock = Instant::now();
+            let (_, mu) = self.problem().friction_as_solved(friction)?;
             solution.report.coulomb_check = Some(match newton_failed {
                 // Newton did not converge from this start: it is not run again.
                 Some(status) => CoulombCheck::undecided(CoulombMethod::Newton, status),
-                None => self.check_coulomb(mu, settings, loading, start, &solution),
+                None => self.check_coulomb((friction, &mu), settings, loading, start, &solution),
             });
             solution.report.timings.qp += clock.elapsed().as_secs_f64();
         }
@@ -203,7 +204,8 @@ impl Condensed<'_> {
         mut observer: Option<Observer<'_>>,
     ) -> Result<Solution> {
         let (problem, factor) = (self.problem(), self.factor());
-        let friction = friction.normalized();
+        // Coulomb's μ at each multiplier dof (each pair's own, `Problem::friction_as_solved`).
+        let (friction, mu) = problem.friction_as_solved(friction)?;
         let clock = Instant::now();
         let condensation_before = factor.condensation_seconds();
         let q = self.q();
@@ -268,9 +270,9 @@ impl Condensed<'_> {
             }
         }
         let coulomb_method = matches!(friction, Friction::Coulomb { .. }).then_some(method);
-        if let (Friction::Coulomb { mu }, SolveStatus::Converged) = (&friction, phase.status) {
+        if let (Friction::Coulomb { .. }, SolveStatus::Converged) = (&friction, phase.status) {
             // (not after an interrupted or failed initial QP)
-            self.coulomb(*mu, method, settings, loading, &mut phase, &mut notify)?;
+            self.coulomb(&mu, method, settings, loading, &mut phase, &mut notify)?;
         }
         // Columns of H computed on demand during the QPs count as condensation, not QP time.
         let condensation_during = factor.condensation_seconds() - condensation_before;
@@ -287,15 +289,15 @@ impl Condensed<'_> {
             recovery,
             fields: 0.0,
         };
-        let mu = friction.mu();
-        let threshold = match mu {
-            Some(mu) => phase.lambda[..q].iter().map(|l| mu * l.max(0.0)).collect(),
-            None => phase.bound,
+        let threshold = match friction {
+            Friction::Coulomb { .. } => phase.lambda[..q].iter().zip(&mu).map(|(l, m)| m * l.max(0.0)).collect(),
+            _ => phase.bound,
         };
         let report = Report {
             status: phase.status,
-            friction: friction.law(),
-            mu,
+            // (Coulomb of μ = 0 on the first pair is Coulomb where a further pair has its own μ > 0)
+            friction: if let Friction::Coulomb { .. } = friction { FrictionLaw::Coulomb } else { friction.law() },
+            mu: if let Friction::Coulomb { mu } = friction { Some(mu) } else { None },
             iterations: phase.iterations,
             residual_history: phase.history,
             coulomb_method,
@@ -343,6 +345,9 @@ impl Condensed<'_> {
             &moved
         };
         let mut solution = Solution::new(self, loading, &u, phase.lambda, threshold, settings.qp.tol, report);
+        if let Friction::Coulomb { mu: law } = friction {
+            solution.pairs.iter_mut().zip(problem.pairs()).for_each(|(r, p)| r.mu = Some(p.mu.unwrap_or(law)));
+        }
         solution.report.timings.fields = clock.elapsed().as_secs_f64();
         // The equation of (3.1) is solved directly: a residual that lost half of the digits is a singular
         // stiffness (a mechanism), not a numerical outcome of the contact solve.

@@ -44,7 +44,7 @@ impl Stagnation {
 impl Condensed<'_> {
     pub(super) fn fixed_point(
         &self,
-        mu: f64,
+        mu: &[f64],
         settings: &SolverSettings,
         loading: &LoadCase,
         phase: &mut QpPhase,
@@ -53,7 +53,7 @@ impl Condensed<'_> {
         let q = self.q();
         let fp = settings.fp;
         let mut g: Vec<f64> = phase.lambda[..q].to_vec();
-        let bound: Vec<f64> = g.iter().map(|v| mu * v.max(0.0)).collect();
+        let bound: Vec<f64> = g.iter().zip(mu).map(|(v, m)| m * v.max(0.0)).collect();
         // Warm start: the frictionless λ_n with λ_t = 0.
         let mut qp = self.contact_qp(loading, Some(&bound), settings, Some(&phase.lambda))?;
         phase.status = SolveStatus::MaxIterations;
@@ -73,7 +73,7 @@ impl Condensed<'_> {
             let change = if norm > 0.0 { diff / norm } else { diff };
             phase.history.push(change);
             let flow = notify(Progress::qp(self.factor(), it, change, &out));
-            phase.bound = g.iter().map(|v| mu * v.max(0.0)).collect();
+            phase.bound = g.iter().zip(mu).map(|(v, m)| m * v.max(0.0)).collect();
             phase.lambda = out.nu;
             // Converged when the relative change is small, or when the change is at the QP's own noise
             // level (tol × the natural size of λ): e.g. λ ≡ 0 without contact, where a relative change
@@ -97,7 +97,7 @@ impl Condensed<'_> {
             for (gj, lj) in g.iter_mut().zip(&phase.lambda[..q]) {
                 *gj = ((1.0 - w) * *gj + w * lj).max(0.0);
             }
-            let bound: Vec<f64> = g.iter().map(|v| mu * v).collect();
+            let bound: Vec<f64> = g.iter().zip(mu).map(|(v, m)| m * v).collect();
             qp.set_bounds(&bound)?;
         }
         Ok(())

@@ -128,18 +128,19 @@ enum Pass {
     Singular(f64),
 }
 
-/// The equations of one Coulomb problem: q, μ, the linear term c (2q) and, for bodies held only by the
-/// contact, `E R` (2q × r, column-major) and `Rᵀ f` (r), with the Euclidean norm of each column of `E R`.
+/// The equations of one Coulomb problem: q, μ at each multiplier dof (q), the linear term c (2q) and, for bodies
+/// held only by the contact, `E R` (2q × r, column-major) and `Rᵀ f` (r), with the Euclidean norm of each column of
+/// `E R`.
 struct Equations<'a> {
     q: usize,
-    mu: f64,
+    mu: &'a [f64],
     c: &'a [f64],
     rigid: Option<(&'a [f64], &'a [f64])>,
     e_r_norms: Vec<f64>,
 }
 
 impl<'a> Equations<'a> {
-    fn new(q: usize, mu: f64, c: &'a [f64], rigid: Option<(&'a [f64], &'a [f64])>) -> Self {
+    fn new(q: usize, mu: &'a [f64], c: &'a [f64], rigid: Option<(&'a [f64], &'a [f64])>) -> Self {
         let mut eq = Self { q, mu, c, rigid, e_r_norms: Vec::new() };
         eq.e_r_norms = (0..eq.r()).map(|m| euclidean(eq.e_r(m).iter().copied())).collect();
         eq
@@ -158,9 +159,9 @@ impl<'a> Equations<'a> {
 }
 
 impl Condensed<'_> {
-    /// The Coulomb problem with friction coefficient `mu` by the semismooth Newton method, from
-    /// `phase.lambda` (the first QP's answer, or a nearby problem's) and, for bodies held only by the contact,
-    /// `phase.alpha`. Ends with `phase.status` converged, stagnated or max_iterations (or interrupted),
+    /// The Coulomb problem with friction coefficients `mu` (one per multiplier dof) by the semismooth Newton
+    /// method, from `phase.lambda` (the first QP's answer, or a nearby problem's) and, for bodies held only by the
+    /// contact, `phase.alpha`. Ends with `phase.status` converged, stagnated or max_iterations (or interrupted),
     /// `phase.lambda` and `phase.alpha` its last iterate (the one whose merit ends `phase.history`, but after an
     /// interruption: the step just taken).
     ///
@@ -168,7 +169,7 @@ impl Condensed<'_> {
     /// [`Error::MemoryBudget`] when the columns of H and the dense system it needs exceed `memory_budget`.
     pub(super) fn newton(
         &self,
-        mu: f64,
+        mu: &[f64],
         settings: &SolverSettings,
         loading: &LoadCase,
         phase: &mut QpPhase,
@@ -280,7 +281,7 @@ impl Condensed<'_> {
             }
         }
         phase.alpha = x.split_off(2 * q);
-        phase.bound = x[..q].iter().map(|v| mu * v.max(0.0)).collect();
+        phase.bound = x[..q].iter().zip(mu).map(|(v, m)| m * v.max(0.0)).collect();
         phase.lambda = x;
         Ok(())
     }
@@ -292,7 +293,7 @@ impl Condensed<'_> {
     /// Newton steps: `phase.status` says so, as the fixed point's would, at iteration `steps + 1`).
     fn fixed_point_step(
         &self,
-        mu: f64,
+        mu: &[f64],
         settings: &SolverSettings,
         loading: &LoadCase,
         phase: &mut QpPhase,
@@ -300,7 +301,7 @@ impl Condensed<'_> {
         steps: usize,
     ) -> Result<Option<Vec<f64>>> {
         let q = self.q();
-        let bound: Vec<f64> = x[..q].iter().map(|v| mu * v.max(0.0)).collect();
+        let bound: Vec<f64> = x[..q].iter().zip(mu).map(|(v, m)| m * v.max(0.0)).collect();
         let out = self.contact_qp(loading, Some(&bound), settings, Some(&x[..2 * q]))?.solve()?;
         phase.book(&out);
         log::debug!("newton: stalled after {steps} steps; one fixed-point iteration restarts it");
@@ -385,7 +386,7 @@ fn step<'c>(
         .map(|&j| {
             if x[j] <= 0.0 {
                 Piece::Open
-            } else if x[q + j].abs() < mu * x[j] {
+            } else if x[q + j].abs() < mu[j] * x[j] {
                 Piece::Stick
             } else {
                 Piece::Slip(x[q + j].signum())
@@ -436,7 +437,7 @@ fn linearized<'c>(
     let lambda_column = |a: usize, value: &dyn Fn(usize) -> f64| -> f64 {
         if a < contact.len() {
             let (j, piece) = contact[a];
-            let slip = if let Piece::Slip(s) = piece { mu * s * value(q + j) } else { 0.0 };
+            let slip = if let Piece::Slip(s) = piece { mu[j] * s * value(q + j) } else { 0.0 };
             value(j) + slip
         } else {
             value(rows[a])
@@ -465,7 +466,7 @@ fn linearized<'c>(
     }
     for &(j, piece) in &contact {
         if let Piece::Slip(s) = piece {
-            next[q + j] = mu * s * next[j];
+            next[q + j] = mu[j] * s * next[j];
         }
     }
     Some((next, m))
@@ -479,7 +480,7 @@ fn point(eq: &Equations<'_>, set: &[usize], rho: &[[f64; 2]], x: &[f64], r: Vec<
     let mut pieces = Vec::with_capacity(set.len());
     for (&j, [rn, rt]) in set.iter().zip(rho) {
         let n = x[j] - rn * r[j];
-        let b = mu * n.max(0.0);
+        let b = mu[j] * n.max(0.0);
         let t = x[q + j] - rt * r[q + j];
         parts.push(x[j] - n.max(0.0));
         parts.push(x[q + j] - t.clamp(-b, b));

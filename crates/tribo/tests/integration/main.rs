@@ -56,6 +56,7 @@ mod methods;
 mod mixed;
 mod moved_supports;
 mod outputs;
+mod pair_friction;
 mod patch;
 mod paths;
 mod plane_stress;

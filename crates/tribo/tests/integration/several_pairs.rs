@@ -15,20 +15,20 @@ use std::f64::consts::{FRAC_PI_2, PI};
 
 use tribo::*;
 
-const MATERIAL: Material = Material { young: 1.0, poisson: 0.3 };
+pub(crate) const MATERIAL: Material = Material { young: 1.0, poisson: 0.3 };
 
 /// The block [0, ½] × [0, 1], `n` × `2n` cells, a roller on its left side (the axis of the whole block).
-fn block_mesh(n: usize) -> Mesh {
+pub(crate) fn block_mesh(n: usize) -> Mesh {
     rectangle([0.0, 0.5], [0.0, 1.0], n, 2 * n, Diagonal::Right).expect("a block")
 }
 
 /// A rigid cylinder of radius 0.5 above the block's top left corner, approaching by `approach`.
-fn punch(approach: f64) -> Obstacle {
+pub(crate) fn punch(approach: f64) -> Obstacle {
     Obstacle { shape: ObstacleShape::Disc { center: [0.0, 1.5], radius: 0.5 }, approach, shift: 0.0, rotation: None }
 }
 
 /// The rigid half-plane under the block (its surface y = 0), touching it.
-fn foundation() -> Obstacle {
+pub(crate) fn foundation() -> Obstacle {
     Obstacle {
         shape: ObstacleShape::Line { point: [0.0, 0.0], normal: [0.0, 1.0] },
         approach: 0.0,
@@ -37,7 +37,7 @@ fn foundation() -> Obstacle {
     }
 }
 
-fn spec(contact: &str, obstacle: Obstacle) -> ProblemSpec {
+pub(crate) fn spec(contact: &str, obstacle: Obstacle) -> ProblemSpec {
     let mut spec = ProblemSpec::new(MATERIAL, contact)
         .support(Support::roller("left"))
         .multipliers(MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
@@ -45,13 +45,13 @@ fn spec(contact: &str, obstacle: Obstacle) -> ProblemSpec {
     spec
 }
 
-fn solve(problem: &Problem, friction: &Friction, settings: &SolverSettings) -> Solution {
+pub(crate) fn solve(problem: &Problem, friction: &Friction, settings: &SolverSettings) -> Solution {
     let sol = problem.solve(friction, settings, None).expect("solves");
     assert_eq!(sol.report.status, SolveStatus::Converged, "{:?}", sol.report);
     sol
 }
 
-fn sup(v: &[f64]) -> f64 {
+pub(crate) fn sup(v: &[f64]) -> f64 {
     v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
 }
 
