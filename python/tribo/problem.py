@@ -121,6 +121,7 @@ class Problem(_tribo.Problem):
         space: Literal["P0", "P1", "p0", "p1"] | None = None,
         model: Literal["plane_strain", "plane_stress", "axisymmetric"] | None = None,
         formulation: Literal["auto", "displacement", "mixed"] | None = None,
+        pairs: Sequence[Pair | tuple[Any, ...]] | None = None,
     ) -> Problem:
         """Two elastic bodies in contact along one line, straight or bent: ``secondary`` ('body.edge_set') carries
         the multipliers T_H and the stabilization, ``primary`` meets it with the opposite normal; ``gap``
@@ -132,14 +133,16 @@ class Problem(_tribo.Problem):
         either body reaches ν = 0.49 in plane strain or axisymmetry); a motion its supports
         leave free is held by the contact alone (a punch pushed by a load); ``body_force`` acts on both. The problem solves, solves histories and plots
         as a one-body problem; ``bodies`` says where each body lies in ``mesh`` (the two joined, edge sets
-        renamed 'body.set'); adaptive refinement bisects both bodies."""
+        renamed 'body.set'); adaptive refinement bisects both bodies. ``pairs``: further contact pairs, each an edge
+        set of either body ('body.set') against its own rigid obstacle (``tribo.Pair``): a block pressed by a second
+        body onto a foundation."""
         if not (isinstance(first, Body) and isinstance(second, Body)):
             raise TypeError(f"two_bodies takes two tribo.Body, got {type(first).__name__} and {type(second).__name__}")
         return cls(
             [first._compiled(), second._compiled()],
             contact=secondary, primary=primary, obstacle=gap, body_force=body_force,
             multiplier_ratio=multiplier_ratio, multiplier_size=multiplier_size, multiplier_points=multiplier_points,
-            space=space, model=model, formulation=formulation,
+            space=space, model=model, formulation=formulation, pairs=pairs,
         )
 
     def __repr__(self) -> str:

@@ -234,7 +234,8 @@ class Solution(_Record):
             formulation), 0 in plane stress, the
             hoop stress σ_θθ in axisymmetry (where x is r, y the axis and ``stress`` is (σ_rr, σ_zz, σ_rz)).
         von_mises: von Mises stress per triangle (with that σ_zz), (T,).
-        reactions: reaction forces K u − f per node, (N, 2) (zero off the supported nodes).
+        reactions: the supports' forces per node, (N, 2) (zero off the supported nodes): (K − G) u − f + Eᵀ λ,
+            the equation of (3.1) at the supported dofs (the contact's and the stabilization's shares left out).
         multiplier_abscissae: abscissae of the multiplier dofs, (q,).
         lambda_n: λ_n at the multiplier dofs (a contact pressure: ≥ 0), (q,).
         lambda_t: λ_t at the multiplier dofs (along t), (q,).

@@ -328,6 +328,11 @@ class Scene:
         loads = self.sections.get("loads", {})
         try:
             obstacle = self.obstacle()  # before the mesh, whose grading uses the obstacle's values
+            for k, pair in enumerate(self.get("contact", "pairs", [])):
+                if "mu" in pair and "mu" not in self.sections.get("friction", {}):
+                    key = f"contact.pairs[{k}].mu"
+                    raise SceneError(f"scene key '{key}': a pair's own mu needs Coulomb friction; give 'friction.mu' "
+                                     "(0: the first pair frictionless)", key)
             if self.is_two_bodies:
                 first, second = self.bodies()
                 return Problem.two_bodies(
@@ -336,6 +341,7 @@ class Scene:
                     multiplier_size=d.get("multiplier_size"), space=d.get("space"),
                     model=self.sections["bodies"]["entries"][0]["material"].get("model"),
                     formulation=self.sections["bodies"]["entries"][0]["material"].get("formulation"),
+                    pairs=self.pairs(),
                 )
             mesh = self.mesh()
             for k, pair in enumerate(self.get("contact", "pairs", [])):
@@ -343,10 +349,6 @@ class Scene:
                     key = f"contact.pairs[{k}].edge_set"
                     raise SceneError(f"scene key '{key}' = {pair['edge_set']!r}: the mesh has no such edge set (it has: "
                                      f"{', '.join(sorted(mesh.edge_sets))})", key)
-                if "mu" in pair and "mu" not in self.sections.get("friction", {}):
-                    key = f"contact.pairs[{k}].mu"
-                    raise SceneError(f"scene key '{key}': a pair's own mu needs Coulomb friction; give 'friction.mu' "
-                                     "(0: the first pair frictionless)", key)
             return Problem(
                 mesh,
                 **self.materials(mesh),

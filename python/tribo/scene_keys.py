@@ -94,7 +94,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
                         "each other, their gap the geometry's)", "—", "—"),
     "contact.gap": ("Two bodies: the initial gap between the sides, as an obstacle shape", "length",
                     "flat (touching)"),
-    "contact.pairs": ("Further contact pairs (`[[contact.pairs]]`): each an `edge_set` of the body against its own "
+    "contact.pairs": ("Further contact pairs (`[[contact.pairs]]`): each an `edge_set` of the body (with "
+                      "`[[bodies]]`: of either body, `body.set`) against its own "
                       "rigid obstacle, given by the keys of `[obstacle]` (`shape` and its keys, `approach`, `shift`; "
                       "it does not turn) and its own Coulomb coefficient `mu` (default `friction.mu`; it needs "
                       "`friction.mu`); not with `[history]` or `[adapt]`", "—", "none: one pair"),

@@ -384,7 +384,7 @@ BODY_TABLES: dict[str, dict[str, Checker]] = {
 # What [[bodies]] replaces, and the keys of the other tables that are per body or do not apply to two bodies.
 ONE_BODY_TABLES = ("body", "material", "supports", "obstacle")
 NOT_FOR_TWO_BODIES = {
-    "contact": ("edge_set", "pairs"),
+    "contact": ("edge_set",),
     "loads": ("tractions", "pressures"),
     "discretization": tuple(BODY_TABLES["discretization"]),
     "history": ("approach", "shift", "angle"),

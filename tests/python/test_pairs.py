@@ -156,3 +156,49 @@ def test_a_scene_of_two_pairs_runs_and_writes_each_pair(tmp_path: Path) -> None:
         plot.contact_pressure(problem, solution.pair(1))
     second = solution.pair(1)
     assert second.pairs[0].index == 1 and second.lambda_n.size == solution.lambda_n[solution.pairs[1].multipliers].size
+
+
+def test_two_bodies_with_a_foundation_pair() -> None:
+    """Two stacked blocks, the lower one resting on a rigid foundation (a further pair, its only vertical hold),
+    pressed in uniaxial strain: λ_n is the pressure p = δ / Σ h_i/M_i at every dof of both pairs, frictionless and
+    Coulomb with the foundation's own μ; a further pair on the primary side is refused."""
+    def p_modulus(e: float, nu: float) -> float:
+        return e * (1 - nu) / ((1 + nu) * (1 - 2 * nu))
+
+    rollers = [tribo.Support.roller("left"), tribo.Support.roller("right")]
+    lower = tribo.Body("lower", tribo.Mesh.rectangle((0.0, 2.0), (-1.0, 0.0), 5, 3), young=100.0, poisson=0.3,
+                       supports=rollers)
+    upper = tribo.Body("upper", tribo.Mesh.rectangle((0.0, 2.0), (0.0, 0.5), 7, 2), young=300.0, poisson=0.2,
+                       supports=[*rollers, tribo.Support.displacement("top", y=-0.01)])
+    p = 0.01 / (1.0 / p_modulus(100.0, 0.3) + 0.5 / p_modulus(300.0, 0.2))
+    ground = tribo.Obstacle.line((0.0, -1.0), (0.0, 1.0))
+    for own_mu, mu in ((None, None), (0.5, 0.3)):
+        problem = tribo.Problem.two_bodies(lower, upper, secondary="upper.bottom", primary="lower.top",
+                                           multiplier_ratio=1.0, pairs=[tribo.Pair("lower.bottom", ground, mu=own_mu)])
+        assert problem.pairs == ["upper.bottom", "lower.bottom"]
+        sol = problem.solve(mu=mu)
+        assert sol.report.converged
+        for r in sol.pairs:
+            assert np.abs(sol.lambda_n[r.multipliers] - p).max() <= 1e-9 * p, r.name
+        assert [r.mu for r in sol.pairs] == ([None, None] if mu is None else [0.3, 0.5])
+    with pytest.raises(tribo.ContactGeometryError, match="primary side 'lower.top'"):
+        tribo.Problem.two_bodies(lower, upper, secondary="upper.bottom", primary="lower.top",
+                                 pairs=[tribo.Pair("lower.top", ground)])
+
+
+def test_a_two_body_scene_with_a_foundation_pair_runs(tmp_path: Path) -> None:
+    """The two-body Hertz scene with the lower block on a rigid foundation instead of its clamp (rollers on its
+    sides): the foundation alone holds it vertically, so it carries the contact force; the summary names both pairs."""
+    text = scene_path("hertz_two_bodies").read_text(encoding="utf-8")
+    text = text.replace('supports = [{ kind = "clamp", edge_set = "bottom" }]',
+                        'supports = [{ kind = "roller", edge_set = "left" }, { kind = "roller", edge_set = "right" }]')
+    text = text.replace("h_min = 0.005", "h_min = 0.02")
+    text += '\n[[contact.pairs]]\nedge_set = "lower.bottom"\nshape = "line"\npoint = [0.0, -2.0]\nnormal = [0.0, 1.0]\n'
+    scene = tmp_path / "stack.toml"
+    scene.write_text(text, encoding="utf-8")
+    problem, solution, _ = run_scene(load_scene(scene), tmp_path / "out")
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["status"] == "converged" and [r["name"] for r in summary["pairs"]] == ["lower.top", "lower.bottom"]
+    top, bottom = summary["pairs"]
+    assert bottom["normal_force"] == pytest.approx(top["normal_force"], rel=1e-6)
+    assert abs(summary["bodies"][0]["reaction"][1]) <= 1e-6 * top["normal_force"]

@@ -272,11 +272,15 @@ impl PyProblem {
         let formulation = formulation.map_or(Ok(Default::default()), tribo::Formulation::parse).map_err(to_pyerr)?;
         let body_force = body_force.map_or(Ok([0.0, 0.0]), |b| pair(b, "body_force", Settings))?;
         take_gap_error();
+        let shape_of = |o: Option<Py<PyObstacle>>| o.map(|o| o.get().shape.clone());
+        let further: Vec<_> = (pairs.unwrap_or_default().into_iter())
+            .map(|(c, o, a, s, mu)| tribo::PairSpec::from_keywords(c, shape_of(o), (a, s), mu, &points))
+            .collect();
         let p = if let Some(primary) = &primary {
             // Two bodies (`tribo.Problem.two_bodies`): `mesh` is their list, each with its own materials, supports
             // and tractions; they move through their supports.
             let given = [materials.is_some(), regions.is_some(), clamped.is_some(), supports.is_some()];
-            let moved = [tractions.is_some(), approach.or(shift).is_some(), rotation.is_some(), pairs.is_some()];
+            let moved = [tractions.is_some(), approach.or(shift).is_some(), rotation.is_some()];
             if given.into_iter().chain(moved).any(|g| g) {
                 return Err(PyTypeError::new_err(
                     "with primary=, material, supports and tractions are per body (one pair)",
@@ -288,7 +292,7 @@ impl PyProblem {
             let pair =
                 tribo::ContactPair { secondary, primary, gap, multiplier_points, multiplier_space, model, formulation };
             let bodies = [body(first)?, body(second)?];
-            py.detach(|| tribo::Problem::two_bodies(bodies, pair, body_force))
+            py.detach(|| tribo::Problem::two_bodies_with_pairs(bodies, pair, further, body_force))
         } else {
             // One material or several (`tribo.Problem` gives `young`, `poisson` as one), each triangle's region.
             let mesh_inner = mesh.cast::<PyMesh>()?.get().inner.clone();
@@ -309,11 +313,7 @@ impl PyProblem {
                 tractions,
                 contact,
                 obstacle: tribo::Obstacle::from_keywords(shape, approach, shift, rotation.map(Into::into)),
-                pairs: (pairs.unwrap_or_default().into_iter())
-                    .map(|(c, o, a, s, mu)| {
-                        tribo::PairSpec::from_keywords(c, o.map(|o| o.get().shape.clone()), (a, s), mu, &points)
-                    })
-                    .collect(),
+                pairs: further,
                 multiplier_points: points,
                 multiplier_space: space,
             };

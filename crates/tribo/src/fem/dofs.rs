@@ -31,7 +31,8 @@
 //! triangle, some of which may be prescribed: so `Tᵀ G ū` and `E ū` are formed per γ0, when A is
 //! factorized ([`crate::Problem::condense_with`]); `Tᵀ K ū` once, in [`crate::Problem::new`]
 //! (`Problem::f_free`). The displacement is `T x + ū` ([`crate::Problem::expand`]) and the reactions
-//! `K u − f` on every constrained dof (their component along a roller's normal at a sliding node).
+//! `(K − G) u − f + Eᵀ λ` on every constrained dof (their component along a roller's normal at a sliding node;
+//! [`crate::Solution::reactions`]).
 //!
 
 use std::collections::HashSet;

@@ -28,6 +28,7 @@ use crate::error::{Error, Result};
 use crate::fem::elasticity::{Materials, Model, Traction};
 use crate::fem::supports::Support;
 use crate::mesh::Mesh;
+use crate::problem::sides::PairSpec;
 use crate::problem::{Problem, ProblemSpec};
 
 /// One elastic body of a two-body problem. Edge set names are the body's own (`"top"`); the problem
@@ -119,6 +120,22 @@ impl Problem {
     /// supports nor the contact hold (naming the body and the free motion); [`Error::BadObstacle`] for a gap
     /// given by its geometry ([`crate::ObstacleShape::is_geometry`]); the other errors of [`Problem::new`].
     pub fn two_bodies(bodies: [Body; 2], pair: ContactPair, body_force: [f64; 2]) -> Result<Self> {
+        Self::two_bodies_with_pairs(bodies, pair, Vec::new(), body_force)
+    }
+
+    /// [`Problem::two_bodies`] with further contact `pairs`, each an edge set of either body (`"body.edge_set"`)
+    /// against its own rigid obstacle ([`crate::problem::sides`]): a block pressed by a second body onto a
+    /// foundation.
+    ///
+    /// # Errors
+    /// As [`Problem::two_bodies`] and, for the further pairs, as [`Problem::new`]'s (an edge set of two pairs, or one
+    /// on the primary side: [`Error::SeveralPairs`]).
+    pub fn two_bodies_with_pairs(
+        bodies: [Body; 2],
+        pair: ContactPair,
+        pairs: Vec<PairSpec>,
+        body_force: [f64; 2],
+    ) -> Result<Self> {
         let bad = |what: String| Error::ContactPair {
             secondary: pair.secondary.clone(),
             primary: pair.primary.clone(),
@@ -203,7 +220,7 @@ impl Problem {
             obstacle: Obstacle { shape: pair.gap.clone(), ..Obstacle::default() },
             multiplier_points: pair.multiplier_points.clone(),
             multiplier_space: pair.multiplier_space,
-            pairs: Vec::new(),
+            pairs,
         };
         let materials =
             Materials { materials: bodies.iter().flat_map(|b| b.materials.materials.clone()).collect(), region };

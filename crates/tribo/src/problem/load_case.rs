@@ -130,19 +130,17 @@ impl Problem {
     /// Checks that the supports do not prescribe a node of Γ_C into the obstacle: at every FE node of Γ_C
     /// whose normal displacement a support fixes (a fixed node, or a sliding one whose condition is along
     /// n), that displacement `u · n` from the lifting `lifting` (2N) is at most the gap `gap` (at the nodes
-    /// of the first pair's Γ_C; every further pair with its own gap), to `√ε` of the larger of the two. Two
-    /// bodies are not checked (the jump needs both sides).
+    /// of the first pair's Γ_C; every further pair with its own gap), to `√ε` of the larger of the two. The pair
+    /// of two bodies is not checked (the jump needs both sides); their further pairs are.
     ///
     /// # Errors
     /// [`crate::Error::PrescribedPenetration`] naming the node (and `step`, of a history).
     pub fn check_prescribed_contact(&self, gap: &[f64], lifting: &[f64], step: Option<usize>) -> crate::Result<()> {
         use crate::fem::supports::NodeSupport;
-        if self.primary.is_some() {
-            return Ok(());
-        }
         let tol = crate::mesh::line::geometric_tol_rel();
-        // The first pair's side with `gap`, the others with their own.
-        let sides = std::iter::once((&self.contact, gap)).chain(self.sides.iter().map(|s| (&s.contact, &s.gap[..])));
+        // The first pair's side with `gap` (not that of two bodies), the others with their own.
+        let first = self.primary.is_none().then_some((&self.contact, gap));
+        let sides = first.into_iter().chain(self.sides.iter().map(|s| (&s.contact, &s.gap[..])));
         for (contact, gap) in sides {
             for (k, (&node, &g)) in contact.nodes.iter().zip(gap).enumerate() {
                 let n = contact.node_normal(k);

@@ -2,9 +2,10 @@
 //! platens, a body touching two obstacles at once.
 //!
 //! The first pair is the problem's own (`spec.contact` against `spec.obstacle`, or the secondary side of two
-//! bodies); each further pair ([`PairSpec`]) is another contact side of the body against its own rigid obstacle,
-//! with its own multiplier mesh T_H^k ([`ContactSide`]). Nothing couples the pairs but the body: the multipliers
-//! of pair k test only pair k's side, so every Γ_C matrix of the method is block diagonal over the pairs,
+//! bodies); each further pair ([`PairSpec`]) is another contact side of the body (of either body) against its own
+//! rigid obstacle, with its own multiplier mesh T_H^k and its own Coulomb μ ([`ContactSide`]). Nothing couples the
+//! pairs but the body: the multipliers of pair k test only pair k's side, so every Γ_C matrix of the method is block
+//! diagonal over the pairs,
 //!
 //! ```text
 //! λ = (λ_n¹, …, λ_nᵐ, λ_t¹, …, λ_tᵐ),   E = [E_n¹; …; E_nᵐ; E_t¹; …; E_tᵐ],   Dγ = diag(Dγᵏ),   −G = Σ_k −Gᵏ,
@@ -282,16 +283,12 @@ impl Problem {
     /// Builds the further pairs of `self.spec`, checks that no two sides share an edge, and bounds γ0 over them all.
     ///
     /// # Errors
-    /// As [`ContactSide::new`]; [`Error::SeveralPairs`] for an edge set of two pairs, or for further pairs of two
-    /// bodies.
+    /// As [`ContactSide::new`]; [`Error::SeveralPairs`] for an edge set or an edge of two pairs (the primary side of
+    /// two bodies included).
     pub(crate) fn build_sides(&mut self, materials: &impl MaterialField) -> Result<()> {
         let spec = &self.spec;
-        let Some(first) = spec.pairs.first() else { return Ok(()) };
-        if self.primary.is_some() {
-            return Err(Error::SeveralPairs {
-                pair: first.contact.clone(),
-                what: "two bodies take one contact pair today".into(),
-            });
+        if spec.pairs.is_empty() {
+            return Ok(());
         }
         // In axisymmetry a further pair's obstacle neither turns nor shifts (a solid of revolution slides along the
         // axis only; the first pair's shift is checked edge by edge, `Problem::check_axisymmetric_shift`).
@@ -327,6 +324,19 @@ impl Problem {
             }
         }
         let mut owner: std::collections::HashMap<[usize; 2], &str> = std::collections::HashMap::new();
+        // Two bodies: the primary side is the first pair's too.
+        let primary = self.primary.iter().flat_map(|p| p.boundary.edges.iter().map(move |e| (e, &p.boundary.set)));
+        let primary: std::collections::HashMap<[usize; 2], &String> =
+            primary.map(|(e, set)| ([e.left.min(e.right), e.left.max(e.right)], set)).collect();
+        for s in &self.sides {
+            if let Some((e, set)) =
+                s.contact.edges.iter().find_map(|e| primary.get_key_value(&[e.left.min(e.right), e.left.max(e.right)]))
+            {
+                let what =
+                    format!("its edge ({}, {}) is on the primary side '{set}' of the two bodies' pair", e[0], e[1]);
+                return Err(Error::SeveralPairs { pair: s.name.clone(), what });
+            }
+        }
         for p in &pairs {
             for e in &p.contact.edges {
                 if let Some(other) = owner.insert([e.left.min(e.right), e.left.max(e.right)], p.name) {

@@ -31,7 +31,10 @@ pub struct Solution {
     /// The pressure p per node (N) of the mixed formulation, `σ = 2μ ε(u) − p̄_T I`
     /// ([`crate::fem::mixed`]); empty for the displacement formulation.
     pub pressure: Vec<f64>,
-    /// Reaction forces on clamped dofs (2N, zero elsewhere): `K u − f` (f the load of the load case).
+    /// Reaction forces on the supported dofs (2N, zero elsewhere; along a roller's normal): `(K − G) u − f + Eᵀ λ`,
+    /// f the load of the load case, the equation of (3.1) at those dofs. At a supported node of a triangle that
+    /// touches Γ_C, the contact's share (Eᵀ λ) and the stabilization's (G u) are not the support's: the
+    /// reactions and the contact forces balance the loads.
     pub reactions: Vec<f64>,
     /// Abscissae of the multiplier dofs.
     pub multiplier_abscissae: Vec<f64>,
@@ -136,10 +139,20 @@ impl Solution {
         let nodal_stress4 = crate::fem::elasticity::recovered_stress(mesh, &stress4);
         let nodal_stress = nodal_stress4.iter().map(|s| [s[0], s[1], s[2]]).collect();
         let nodal_von_mises: Vec<f64> = nodal_stress4.iter().map(|s| crate::fem::elasticity::von_mises(*s)).collect();
-        // Reactions K u − f on all dofs (zero up to round-off on free dofs), K u from the stresses.
+        // Reactions (K − G) u − f + Eᵀ λ on all dofs (zero up to round-off on free dofs), K u from the stresses.
         let mut reactions = internal_forces(model, mesh, &stress4);
         for (r, f) in reactions.iter_mut().zip(&loading.f_full) {
             *r -= f;
+        }
+        let n = reactions.len();
+        let at = |dof: usize| if dof < n { displacement[dof] } else { pressure[dof - n] };
+        for t in problem.minus_g_triplets(condensed.gamma0) {
+            if t.row < n {
+                reactions[t.row] += t.val * at(t.col);
+            }
+        }
+        for (row, l) in problem.coupling_rows(condensed.gamma0).iter().zip(&lambda) {
+            row.iter().filter(|(dof, _)| *dof < n).for_each(|&(dof, v)| reactions[dof] += v * l);
         }
         problem.dofs.keep_reactions(&mut reactions);
         let (lambda_n, lambda_t) = (lambda[..q].to_vec(), lambda[q..].to_vec());

@@ -38,6 +38,7 @@ mod adaptive;
 mod axisymmetric;
 mod axisymmetric_mixed;
 mod bent_pair;
+mod bodies_and_pairs;
 mod coulomb_newton;
 mod curved;
 mod curved_patch;
