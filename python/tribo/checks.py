@@ -421,16 +421,22 @@ def conventions(problem: Problem, solution: Solution) -> dict[str, str]:
         })
     if problem.primary is not None:
         secondary, primary = problem.contact, problem.primary
+        # With further pairs the two bodies' texts are the first pair's rows; n, t and ξ stay each row's pair's.
+        first = f"the rows of the pair '{secondary}': " if len(problem.pairs) > 1 else ""
+        out.update({} if first else {
+            "n": f"outward unit normal of the secondary body on its contact side '{secondary}', n = {format_vector(n)}"})
+        total = "the sum over the pairs (each pair's in pairs); for the bodies' pair: " if first else ""
         out.update({
-            "n": f"outward unit normal of the secondary body on its contact side '{secondary}', n = {format_vector(n)}",
-            "lambda_t": f"λ_t = −σ_t, along t: the friction traction of '{primary}' on the secondary side is −λ_t t",
-            "tangential_force": f"∫ λ_t: '{primary}' pulls the secondary body by −tangential_force along t",
-            "contact_force": f"(Fx, Fy) = −(normal_force n + tangential_force t): the force '{primary}' exerts on the "
-            "secondary body (the primary body takes the opposite), global axes",
+            "lambda_t": first + f"λ_t = −σ_t, along t: the friction traction of '{primary}' on the secondary side is "
+            "−λ_t t",
+            "tangential_force": total + f"∫ λ_t: '{primary}' pulls the secondary body by −tangential_force along t",
+            "contact_force": total + f"(Fx, Fy) = −(normal_force n + tangential_force t): the force '{primary}' "
+            "exerts on the secondary body (the primary body takes the opposite), global axes",
             "shift": "none: two bodies move through their prescribed displacements",
             "obstacle_motion": "none: two bodies move through their prescribed displacements",
-            "slip": "the jump [u]_t = (u¹ − u²∘Π)·t of the two sides, along t (in a history: since the previous step)",
-            "current_gap": "g₀ − [u]_n: the gap between the two sides, 0 in contact",
+            "slip": first + "the jump [u]_t = (u¹ − u²∘Π)·t of the two sides, along t (in a history: since the "
+            "previous step)",
+            "current_gap": first + "g₀ − [u]_n: the gap between the two sides, 0 in contact",
         })
     if problem.model == "axisymmetric":
         out["model"] = (

@@ -151,7 +151,8 @@ class Body:
 
 @dataclass(frozen=True)
 class Pair:
-    """A further contact pair of one body (``Problem(pairs=[…])``): its edge set ``edge_set`` against its own rigid
+    """A further contact pair (``Problem(pairs=[…])``, ``Problem.two_bodies(pairs=[…])``): the edge set ``edge_set``
+    (of either body, 'body.set', for two) against its own rigid
     ``obstacle`` (a ``tribo.Obstacle``; None: a flat one), moved by its own ``approach`` δ and ``shift`` s (None: 0),
     with its own Coulomb coefficient ``mu`` (None: the friction law's; a pair's own μ needs Coulomb friction, and
     μ = 0 makes it frictionless). Its multiplier mesh is of the problem's ratio or size."""

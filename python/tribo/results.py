@@ -227,7 +227,7 @@ class Solution(_Record):
 
     Attributes:
         friction: friction law solved: 'frictionless', 'tresca' or 'coulomb'.
-        mu: Coulomb coefficient μ, or None.
+        mu: Coulomb coefficient μ, or None: the law's, the first pair's (each pair's in ``pairs``).
         displacement: nodal displacements, (N, 2).
         stress: constant stress (σ_xx, σ_yy, σ_xy) per triangle, (T, 3).
         stress_zz: out-of-plane stress per triangle, (T,): ν (σ_xx + σ_yy) in plane strain (−p̄ in the mixed
@@ -331,8 +331,8 @@ class Solution(_Record):
 
     def pair(self, k: int) -> Solution:
         """This solution with its fields on Γ_C those of pair ``k`` alone (``pairs[k]``, which keeps its ``index``), its
-        forces, zone widths and ``closed`` the pair's: what a plot of one contact side reads (the plots take the first
-        pair's). The displacement, stresses, ``obstacle_motion`` (the first pair's), ``max_penetration``, ``kkt``
+        forces, zone widths, ``closed`` and ``mu`` the pair's: what a plot of one contact side reads (the plots take the
+        first pair's). The displacement, stresses, ``obstacle_motion`` (the first pair's), ``max_penetration``, ``kkt``
         and the report stay the whole solution's."""
         if len(self.pairs) <= 1 and k == 0:
             return self
@@ -348,7 +348,7 @@ class Solution(_Record):
                                      edges=shifted(r.edges))]
         return dataclasses.replace(self, **fields, normal_force=r.normal_force, tangential_force=r.tangential_force,
                                    contact_force=r.contact_force, contact_width=r.contact_width,
-                                   stick_width=r.stick_width, closed=r.closed, pairs=alone)
+                                   stick_width=r.stick_width, closed=r.closed, mu=r.mu, pairs=alone)
 
     @property
     def state_names(self) -> list[str]:

@@ -335,6 +335,12 @@ class Scene:
                                      "(0: the first pair frictionless)", key)
             if self.is_two_bodies:
                 first, second = self.bodies()
+                sets = {f"{b.name}.{s}" for b in (first, second) for s in b.mesh.edge_sets}
+                for k, pair in enumerate(self.get("contact", "pairs", [])):
+                    if pair["edge_set"] not in sets:
+                        key = f"contact.pairs[{k}].edge_set"
+                        raise SceneError(f"scene key '{key}' = {pair['edge_set']!r}: no body has that edge set (the "
+                                         f"sets: {', '.join(sorted(sets))})", key)
                 return Problem.two_bodies(
                     first, second, secondary=self.get("contact", "secondary"), primary=self.get("contact", "primary"),
                     gap=obstacle, body_force=loads.get("body_force"), multiplier_ratio=d.get("multiplier_ratio"),

@@ -274,7 +274,8 @@ def _key(name: str, check: Callable[..., Any]) -> dict[str, Any]:
     elif check.__name__ == "_contact_pairs":  # an edge set and the keys of [obstacle] but its rotation
         keys = {k: _key(f"obstacle.{k}", c) for k, c in SCHEMA["obstacle"].items() if k != "rotation"}
         keys["edge_set"] = _key("contact.edge_set", SCHEMA["contact"]["edge_set"])
-        keys["mu"] = _key("friction.mu", SCHEMA["friction"]["mu"])
+        own_mu = "The pair's own Coulomb coefficient μ (it needs friction.mu). Unit: —. Default: friction.mu."
+        keys["mu"] = {**_key("friction.mu", SCHEMA["friction"]["mu"]), "description": own_mu}
         own = {"type": "array", "items": {"type": "object", "required": ["edge_set"], "additionalProperties": False,
                                           "properties": keys}}
     else:

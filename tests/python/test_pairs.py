@@ -156,6 +156,7 @@ def test_a_scene_of_two_pairs_runs_and_writes_each_pair(tmp_path: Path) -> None:
         plot.contact_pressure(problem, solution.pair(1))
     second = solution.pair(1)
     assert second.pairs[0].index == 1 and second.lambda_n.size == solution.lambda_n[solution.pairs[1].multipliers].size
+    assert (second.mu, solution.pair(0).mu, solution.mu) == (0.6, 0.3, 0.3)
 
 
 def test_two_bodies_with_a_foundation_pair() -> None:
@@ -201,4 +202,8 @@ def test_a_two_body_scene_with_a_foundation_pair_runs(tmp_path: Path) -> None:
     assert summary["status"] == "converged" and [r["name"] for r in summary["pairs"]] == ["lower.top", "lower.bottom"]
     top, bottom = summary["pairs"]
     assert bottom["normal_force"] == pytest.approx(top["normal_force"], rel=1e-6)
-    assert abs(summary["bodies"][0]["reaction"][1]) <= 1e-6 * top["normal_force"]
+    misspelled = text.replace('edge_set = "lower.bottom"', 'edge_set = "bottom"')
+    with pytest.raises(tribo.SceneError, match=r"contact.pairs\[0\].edge_set' = 'bottom': no body has"):
+        parse_scene(tomllib.loads(misspelled)).build()
+    # The upper block's support and the foundation hold the stack: their forces balance (no body force).
+    assert summary["bodies"][1]["reaction"][1] == pytest.approx(-bottom["normal_force"], rel=1e-6)

@@ -282,9 +282,7 @@ impl PyProblem {
             let given = [materials.is_some(), regions.is_some(), clamped.is_some(), supports.is_some()];
             let moved = [tractions.is_some(), approach.or(shift).is_some(), rotation.is_some()];
             if given.into_iter().chain(moved).any(|g| g) {
-                return Err(PyTypeError::new_err(
-                    "with primary=, material, supports and tractions are per body (one pair)",
-                ));
+                return Err(PyTypeError::new_err("with primary=, material, supports and tractions are per body"));
             }
             let [first, second]: [BodyArgs; 2] = mesh.extract()?;
             let (secondary, primary, gap, multiplier_points) = (contact.clone(), primary.clone(), shape, points);

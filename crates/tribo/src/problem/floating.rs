@@ -46,12 +46,15 @@ impl Problem {
     }
 
     /// Checks that the contact can hold every free rigid motion: `E R` on the multipliers the friction
-    /// law uses (the normal ones only without friction) has full column rank.
+    /// law uses (the normal ones, and the tangential one of each dof j where `frictional(j)`: its pair has
+    /// friction) has full column rank.
     ///
     /// # Errors
     /// [`Error::HeldOnlyByContact`] naming the body and the motion the contact cannot hold.
-    pub(crate) fn check_held_by_contact(&self, rigid: &RigidLoad, frictional: bool) -> Result<()> {
-        let rows: Vec<usize> = (0..if frictional { 2 } else { 1 } * self.n_multipliers()).collect();
+    pub(crate) fn check_held_by_contact(&self, rigid: &RigidLoad, frictional: &dyn Fn(usize) -> bool) -> Result<()> {
+        let q = self.n_multipliers();
+        let rows: Vec<usize> = (0..q).chain((0..q).filter(|&j| frictional(j)).map(|j| q + j)).collect();
+        let frictional = rows.len() > q;
         let what = if frictional {
             "the contact line cannot hold it"
         } else {

@@ -240,7 +240,13 @@ impl Condensed<'_> {
             qp_inaccurate: 0,
             alpha: vec![0.0; loading.rigid.load.len()],
         };
-        problem.check_held_by_contact(&loading.rigid, !matches!(friction, Friction::Frictionless))?;
+        // The tangential rows hold a motion where the dof's pair has friction (a pair's own μ = 0 has none).
+        let frictional = |j: usize| match friction {
+            Friction::Frictionless => false,
+            Friction::Coulomb { .. } => mu[j] > 0.0,
+            Friction::Tresca(_) => true,
+        };
+        problem.check_held_by_contact(&loading.rigid, &frictional)?;
         let condensed = Progress {
             phase: Phase::Condensation,
             condensation_seconds: factor.factorization_seconds + factor.condensation_seconds(),

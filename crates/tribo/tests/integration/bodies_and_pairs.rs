@@ -174,3 +174,30 @@ fn a_further_pair_of_two_bodies_is_checked() {
     assert!(matches!(make("lower.bottom").unwrap_err(), Error::ContactOverlapsDirichlet { .. }));
     assert!(make("lower.right").is_ok());
 }
+
+/// The upper block free along x (its top pressed down only), frictionless against the lower block (the law's
+/// μ = 0) while the foundation has its own μ = 0.5: nothing holds the upper block along x, and the solve says so
+/// before it starts (the foundation's friction holds the lower block only). With μ = 0.3 between the blocks it is
+/// held.
+#[test]
+fn a_pairs_own_mu_does_not_hold_another_pairs_body() {
+    let make = || {
+        let lower = rectangle([0.0, 2.0], [-1.0, 0.0], 6, 3, Diagonal::Right).unwrap();
+        let upper = rectangle([0.5, 1.5], [0.0, 0.5], 5, 3, Diagonal::Right).unwrap();
+        let bodies = [
+            body("lower", lower, LOWER, vec![Support::roller("left")]),
+            body("upper", upper, UPPER, vec![Support::displacement("top", None, Some(-0.005))]),
+        ];
+        let ground = PairSpec::new("lower.bottom", foundation()).with_mu(0.5);
+        let pair = contact("upper.bottom", "lower.top", MultiplierSpace::P1);
+        Problem::two_bodies_with_pairs(bodies, pair, vec![ground], [0.0, 0.0]).unwrap()
+    };
+    let problem = make();
+    let e = problem.solve(&Friction::Coulomb { mu: 0.0 }, &SolverSettings::default(), None).unwrap_err();
+    // (Counting the tangential rows of the frictionless pair too, the check passed and the solve ended "nothing
+    // presses it against the contact along that motion".)
+    let said = |body: &str, what: &str| body == "upper" && what.contains("cannot hold");
+    assert!(matches!(e, Error::HeldOnlyByContact { ref body, ref what, .. } if said(body, what)), "{e}");
+    let sol = problem.solve(&Friction::Coulomb { mu: 0.3 }, &SolverSettings::default(), None).unwrap();
+    assert_eq!(sol.report.status, SolveStatus::Converged);
+}
