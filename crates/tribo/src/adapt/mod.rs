@@ -570,8 +570,8 @@ fn solve_level(
     start: Option<&[f64]>,
 ) -> Result<Solution> {
     let (stabilization, condensation, budget) = (settings.stabilization, settings.condensation, settings.memory_budget);
-    let condensed =
-        problem.condense_for(stabilization, condensation, budget, Expected::solving(friction, start.is_some()))?;
+    let expected = Expected::solving(problem.friction_law_as_solved(friction), start.is_some());
+    let condensed = problem.condense_for(stabilization, condensation, budget, expected)?;
     let load = LoadCase::of_problem(problem, condensed.factor());
     condensed.solve_loading(friction, settings, &load, start, None)
 }

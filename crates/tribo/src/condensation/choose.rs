@@ -3,7 +3,7 @@
 //! ([`crate::linalg::schur`]), or no H at all (the saddle-point system, [`crate::linalg::saddle`]) —
 //! calibrated on the measured Hertz families (the numbers are stated with each rule).
 
-use crate::settings::friction::Friction;
+use crate::settings::friction::FrictionLaw;
 
 /// `nnz(L) / nnz(K)` of the Cholesky factor of A on these meshes (measured 5.5–7).
 pub(super) const CHOLESKY_FILL: usize = 6;
@@ -182,9 +182,10 @@ pub(crate) struct Expected {
 }
 
 impl Expected {
-    /// The solves of `friction` (a fixed point for Coulomb with μ > 0), warm or not.
-    pub(crate) fn solving(friction: &Friction, warm: bool) -> Self {
-        Self { warm, fixed_point: friction.mu().is_some() }
+    /// The solves of the friction law `law` as solved (`Problem::friction_law_as_solved`: Coulomb where the μ of
+    /// some contact pair is positive), warm or not: a fixed point for Coulomb.
+    pub(crate) fn solving(law: FrictionLaw, warm: bool) -> Self {
+        Self { warm, fixed_point: law == FrictionLaw::Coulomb }
     }
 }
 

@@ -28,7 +28,7 @@ use crate::fem::elasticity::{MaterialField, Model};
 use crate::fem::supports::Dofs;
 use crate::mesh::Mesh;
 use crate::problem::Problem;
-use crate::settings::friction::Friction;
+use crate::settings::friction::{Friction, FrictionLaw};
 
 /// A further contact pair of a problem: a contact edge set of the body against its own rigid obstacle.
 #[derive(Debug, Clone)]
@@ -244,6 +244,16 @@ impl Problem {
         }
         let per_dof = pairs.iter().zip(offsets.windows(2)).flat_map(|(p, w)| std::iter::repeat_n(own(p), w[1] - w[0]));
         Ok((friction.clone(), per_dof.collect()))
+    }
+
+    /// The name of the law as [`Problem::friction_as_solved`] solves `friction` here: Coulomb where the μ of some
+    /// pair is positive, else as [`Friction::law`] (also where the friction is refused).
+    pub(crate) fn friction_law_as_solved(&self, friction: &Friction) -> FrictionLaw {
+        match self.friction_as_solved(friction) {
+            Ok((Friction::Coulomb { .. }, _)) => FrictionLaw::Coulomb,
+            Ok((solved, _)) => solved.law(),
+            Err(_) => friction.law(),
+        }
     }
 
     /// Refuses `what` for a problem of several contact pairs.

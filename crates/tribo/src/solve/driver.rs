@@ -11,7 +11,7 @@ use crate::problem::Condensed;
 use crate::qp::working_set::ContactQp;
 use crate::qp::{QpOutcome, QpStatus};
 use crate::results::{CoulombCheck, ErrorEstimate, Report, Solution, SolveStatus, Timings};
-use crate::settings::friction::{Friction, FrictionLaw};
+use crate::settings::friction::Friction;
 use crate::settings::{Condensation, CoulombMethod, QpMethod, SolverSettings};
 use crate::solve::progress::{Observer, Phase, Progress};
 
@@ -301,8 +301,7 @@ impl Condensed<'_> {
         };
         let report = Report {
             status: phase.status,
-            // (Coulomb of μ = 0 on the first pair is Coulomb where a further pair has its own μ > 0)
-            friction: if let Friction::Coulomb { .. } = friction { FrictionLaw::Coulomb } else { friction.law() },
+            friction: problem.friction_law_as_solved(&friction),
             mu: if let Friction::Coulomb { mu } = friction { Some(mu) } else { None },
             iterations: phase.iterations,
             residual_history: phase.history,

@@ -125,7 +125,7 @@ impl Problem {
         settings.validate()?;
         friction.validate(self.n_multipliers())?;
         self.check_prescribed_contact(&self.contact_gap, &self.dofs.lifting, None)?;
-        let expected = Expected::solving(friction, false);
+        let expected = Expected::solving(self.friction_law_as_solved(friction), false);
         self.condense_for(settings.stabilization, settings.condensation, settings.memory_budget, expected)?
             .solve_validated(friction, settings, observer)
     }
@@ -145,7 +145,7 @@ impl Problem {
         self.refuse_several_pairs("loading histories")?;
         settings.validate()?;
         history_fits(self, steps, settings)?;
-        let expected = Expected::solving(friction, false);
+        let expected = Expected::solving(self.friction_law_as_solved(friction), false);
         self.condense_for(settings.stabilization, settings.condensation, settings.memory_budget, expected)?
             .solve_history(friction, steps, settings, observer)
     }
