@@ -12,10 +12,13 @@ writes its results:
   displacement components the history moves (one column each, named 'set.x'/'set.y'), the normal and
   tangential contact forces, the stick/slip/separation counts, the extents of the contact and stick
   zones, and the step's error estimate η, relative traction estimate (the bound) and hierarchical estimate
-  (``traction_error_hierarchical``, NaN where the adaptive loop did not compute it);
+  (``traction_error_hierarchical``, NaN where the adaptive loop did not compute it); with several contact pairs
+  the forces and counts are totals, the zones the first pair's, and each pair has its own columns
+  ``pair.normal_force``, ``pair.tangential_force``, ``pair.contact_from`` … ``pair.gross_sliding`` (``pair`` its
+  edge set);
 * with ``tribo run --plots``, ``history_loop.png``: the tangential force Q against the obstacle's
   tangential position s (for a fretting cycle, the hysteresis loop), and ``history_tractions.png``: λ_t
-  against ±μλ_n at chosen steps.
+  against ±μλ_n at chosen steps (the first pair's, with several contact pairs: the one the steps move).
 
 Conventions: s is the obstacle's position along the tangent t = (−n₂, n₁) of Γ_C (n the outward normal, or the
 obstacle's where it is given by its geometry),
@@ -91,7 +94,21 @@ def history_table(history: History) -> dict[str, np.ndarray]:
         "error_estimate": history.error_estimate,
         "traction_error": history.traction_error,
         "traction_error_hierarchical": history.traction_error_hierarchical,
+        **(_pair_columns(history) if len(history.pairs) > 1 else {}),
     }
+
+
+def _pair_columns(history: History) -> dict[str, np.ndarray]:
+    """Each pair's forces, zones and gross sliding, its columns named 'pair.column' (several pairs)."""
+    columns: dict[str, np.ndarray] = {}
+    for name, series in history.pairs.items():
+        contact, stick = series["contact_zone"], series["stick_zone"]
+        for column, values in (("normal_force", series["normal_force"]), ("tangential_force", series["tangential_force"]),
+                               ("contact_from", contact[:, 0]), ("contact_to", contact[:, 1]),
+                               ("stick_from", stick[:, 0]), ("stick_to", stick[:, 1]),
+                               ("gross_sliding", series["gross_sliding"].astype(int))):
+            columns[f"{name}.{column}"] = values
+    return columns
 
 
 def vtu_every(n: int, every: int | None = None) -> int:

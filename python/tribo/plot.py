@@ -298,7 +298,10 @@ def history_loop(history: History, ax: Axes | None = None) -> Axes:
     cycle moves back and forth)."""
     ax = _axes(ax)
     k = len(history)
-    s, q = history.shift[:k], history.tangential_force
+    # With several contact pairs, the first pair's forces (its obstacle is the one the steps move).
+    first = next(iter(history.pairs.values())) if len(history.pairs) > 1 else None
+    q, p = (first["tangential_force"], first["normal_force"]) if first else (history.tangential_force, history.normal_force)
+    s = history.shift[:k]
     label = "obstacle tangential position s (along t)"
     spans = {name: float(np.abs(np.diff(v[:k])).sum()) for name, v in history.displacements.items() if k}
     turn = history.rotation[:k]
@@ -311,8 +314,8 @@ def history_loop(history: History, ax: Axes | None = None) -> Axes:
     ax.plot(s, q, "o-", ms=3, lw=1.2, label="Q = ∫λ_t")
     mu = history.solutions[0].mu if k else None
     if mu is not None:
-        ax.plot(s, mu * history.normal_force, "k--", lw=0.8, label="±μP")
-        ax.plot(s, -mu * history.normal_force, "k--", lw=0.8)
+        ax.plot(s, mu * p, "k--", lw=0.8, label="±μP")
+        ax.plot(s, -mu * p, "k--", lw=0.8)
     ax.set_xlabel(label)
     ax.set_ylabel("tangential force Q (along t)")
     ax.set_title("Tangential force along the loading path")
@@ -330,17 +333,20 @@ def history_tractions(
     ax = _axes(ax)
     moved = [(name, values) for name, values in (("s", history.shift), ("load factor", history.load_factor))
              if len(values) and float(np.ptp(values)) > 0]
+    lead = next(iter(history.pairs.values())) if len(history.pairs) > 1 else None
+    q = lead["tangential_force"] if lead else history.tangential_force
     for i, k in enumerate(steps):
         sol = history.solution(k)
+        sol = sol.pair(0) if lead else sol  # several pairs: the first's side
         x = sol.multiplier_abscissae
-        said = ", ".join([*(f"{name} = {values[k]:.3g}" for name, values in moved), f"Q = {history.tangential_force[k]:.3g}"])
+        said = ", ".join([*(f"{name} = {values[k]:.3g}" for name, values in moved), f"Q = {q[k]:.3g}"])
         (line,) = ax.plot(x, sol.lambda_t, "-", lw=1.4, label=f"λ_t, step {k} ({said})")
         ax.plot(x, sol.friction_threshold, ":", color=line.get_color(), lw=1.0,
                 label="±μλ_n" if i == 0 else None)
         ax.plot(x, -sol.friction_threshold, ":", color=line.get_color(), lw=1.0)
     zone = history.contact_zone[list(steps)] if len(steps) else np.empty((0, 2))
     zone = zone[np.isfinite(zone).all(axis=1)]
-    first = history.solutions[0] if history.solutions else None
+    first = history.solutions[0].pair(0) if history.solutions else None
     if first is not None and first.closed and len(zone) and float(zone[:, 0].min()) < first.node_abscissae[0]:
         ax.set_xlim(float(first.node_abscissae[0]), float(first.node_abscissae[-1]))  # across a loop's cut: all of it
     elif len(zone):

@@ -418,7 +418,7 @@ class History(_Record):
         stick_count: multiplier dofs that stick, per converged step.
         slip_count: multiplier dofs that slip, per converged step.
         separation_count: multiplier dofs separated from the obstacle, per converged step.
-        contact_zone: (first, last) abscissa of the multiplier dofs in contact, per converged step, (K, 2);
+        contact_zone: (first, last) abscissa of the (first pair's) multiplier dofs in contact, per converged step, (K, 2);
             NaN when nothing touches. On a closed Γ_C the shortest arc that holds them: first < the side's
             start where it crosses the cut (first + its length is where it begins).
         stick_zone: (first, last) abscissa of the multiplier dofs that stick, per converged step, (K, 2);
@@ -427,8 +427,10 @@ class History(_Record):
             sticks and a neighbour that slips) of every converged step, in step order: one array however
             long the history (``stick_slip_boundaries[stick_slip_steps == k]`` are those of step k).
         stick_slip_steps: the step (0-based) of each of ``stick_slip_boundaries``.
-        gross_sliding: per converged step, True when the contact slides as a whole (something touches and
-            every dof in contact slips: ``|Q| = μP`` for Coulomb friction).
+        gross_sliding: per converged step, True when the (first pair's) contact slides as a whole (something touches
+            and every dof in contact slips: ``|Q| = μP`` for Coulomb friction).
+        pairs: each contact pair's series by its name (``Problem.pairs``, the first pair's too): 'normal_force',
+            'tangential_force', 'contact_zone', 'stick_zone' and 'gross_sliding' as above (zones on its own side).
         step_seconds: wall time of each step solved (the converged ones, then the failed one), in seconds.
         factorizations: factorizations of K − G done for the history: 1, or 0 when an earlier solve's was
             reused.
@@ -458,6 +460,7 @@ class History(_Record):
     stick_slip_boundaries: _Floats
     stick_slip_steps: _Ints
     gross_sliding: npt.NDArray[np.bool_]
+    pairs: dict[str, dict[str, npt.NDArray[Any]]] = dataclasses.field(default_factory=dict)
     step_seconds: _Floats
     factorizations: int
     setup_seconds: float
@@ -465,9 +468,12 @@ class History(_Record):
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> History:
         """A history from the dict the compiled module gives (its solutions as dicts too)."""
-        failed = data["failed"]
+        failed, pairs = data["failed"], dict(data["pairs"])
+        first = next(iter(pairs.values()))
         return cls(**{
             **data,
+            "pairs": pairs,
+            **{key: first[key] for key in ("contact_zone", "stick_zone", "gross_sliding")},
             "solutions": [Solution.from_dict(s) for s in data["solutions"]],
             "failed": None if failed is None else Solution.from_dict(failed),
         })

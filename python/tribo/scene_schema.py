@@ -34,9 +34,9 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     ``[loads.pressures]``: ``edge_set = p`` (the traction −p n along each edge's outward normal).
 ``[contact]``
     ``edge_set`` (*required*): the edge set Γ_C, one chain of edges (straight, or bent against an
-    obstacle given by its geometry; open, or closed: a full ring's rim). ``[[contact.pairs]]``: further contact
-    pairs, each an ``edge_set`` against its own rigid obstacle given by the keys of ``[obstacle]`` (``shape`` and
-    its keys, ``approach``, ``shift``; it does not turn); not with a ``[history]`` or ``[adapt]`` (yet).
+    obstacle given by its geometry; open, or closed: a full ring's rim). ``[[contact.pairs]]``: further pairs, each
+    an ``edge_set`` against its own rigid obstacle given by the keys of ``[obstacle]`` (``shape`` and its keys,
+    ``approach``, ``shift``; it does not turn, nor move in a ``[history]``); not with ``[adapt]`` (yet).
 ``[obstacle]``
     ``shape``: ``"flat"`` (default), ``"circle"``, ``"parabola"`` (both with ``radius`` *required* and
     ``center``, an abscissa on Γ_C, default 0) or ``"polyline"`` (``xi`` and ``gap`` lists, *required*):
@@ -586,7 +586,7 @@ def check_scene(data: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
     if "angle" in sections.get("history", {}) and "rotation" not in sections.get("obstacle", {}):
         raise SceneError("scene key 'history.angle' turns the obstacle about the centre of 'obstacle.rotation', which "
                          "the scene does not give (give it with angle = 0)", "history.angle")
-    busy = [t for t in ("history", "adapt") if t in sections] + ["estimate"] * bool(sections.get("estimate", {}).get("error_bars"))
+    busy = ["adapt"] * ("adapt" in sections) + ["estimate"] * bool(sections.get("estimate", {}).get("error_bars"))
     if "pairs" in sections.get("contact", {}) and busy:
         raise SceneError(f"scene key 'contact.pairs': [{busy[0]}] takes one contact pair today", "contact.pairs")
     if "on" in sections.get("adapt", {}) and "history" not in sections:

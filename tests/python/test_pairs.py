@@ -62,15 +62,45 @@ def test_the_checks_name_the_pair() -> None:
 def test_what_takes_one_pair_refuses_several() -> None:
     problem = block(n=6)
     with pytest.raises(tribo.ContactGeometryError, match="one contact pair"):
-        problem.solve_history(approach=[0.01, 0.02], shift=0.0)
-    with pytest.raises(tribo.ContactGeometryError, match="one contact pair"):
         problem.solve_adaptive(tol=0.05)
+    with pytest.raises(tribo.ContactGeometryError, match="one contact pair"):
+        problem.solve_history_adaptive(approach=[0.01, 0.02], shift=0.0, tol=0.05)
     with pytest.raises(tribo.MeshError, match="nowhere"):
         block(n=6, pairs=[("nowhere", None, None, None)])
     with pytest.raises(TypeError, match="a contact pair must be a tribo.Pair"):
         block(n=6, pairs=[42])
     with pytest.raises(tribo.ContactGeometryError, match="obstacle must be a tribo.Obstacle"):
         block(n=6, pairs=[tribo.Pair("bottom", "flat")])
+
+
+def test_a_history_of_two_pairs_moves_the_first_pairs_obstacle(tmp_path: Path) -> None:
+    """A history moves the punch (the first pair's obstacle), the foundation stays: frictionless, each step is the
+    static solve of its approach; the history gives each pair's series by name, and history.csv each pair's columns
+    (read back with pandas)."""
+    import pandas as pd
+
+    from tribo.history import write_history
+
+    problem = block(n=8)
+    approaches = [0.01, 0.02, 0.015]
+    history = problem.solve_history(approach=approaches, shift=0.0, gamma0=0.0)
+    assert history.converged and list(history.pairs) == ["top", "bottom"]
+    for k, a in enumerate(approaches):
+        static = block(n=8, approach=a).solve(gamma0=0.0)
+        step = history.solution(k)
+        assert np.abs(step.displacement - static.displacement).max() <= 1e-6 * np.abs(static.displacement).max()
+        for name, pair in zip(history.pairs, static.pairs, strict=True):
+            assert history.pairs[name]["normal_force"][k] == pytest.approx(pair.normal_force, rel=1e-6)
+        assert history.normal_force[k] == pytest.approx(static.normal_force, rel=1e-6)
+    bottom = history.pairs["bottom"]
+    assert bottom["contact_zone"].shape == (3, 2) and np.allclose(bottom["contact_zone"], [0.0, 0.5])
+    np.testing.assert_array_equal(history.contact_zone, history.pairs["top"]["contact_zone"])
+    write_history(tmp_path, problem, history, plots=True)
+    table = pd.read_csv(tmp_path / "history.csv", comment="#")
+    assert {"top.normal_force", "bottom.normal_force", "bottom.gross_sliding"} <= set(table.columns)
+    np.testing.assert_allclose(table["bottom.normal_force"], bottom["normal_force"], rtol=1e-12)
+    np.testing.assert_allclose(table["normal_force"], table["top.normal_force"] + table["bottom.normal_force"], rtol=1e-12)
+    assert (tmp_path / "history_loop.png").exists() and (tmp_path / "history_tractions.png").exists()
 
 
 def test_each_pair_has_its_own_mu() -> None:
@@ -98,7 +128,8 @@ def test_each_pair_has_its_own_mu() -> None:
 def test_a_scene_of_two_pairs_runs_and_writes_each_pair(tmp_path: Path) -> None:
     """The shipped scene `punch_on_foundation.toml` through `tribo run`'s code: summary.json gives each pair's forces
     (the foundation's balances the punch's vertical force), the contact CSVs name each row's pair, read back with
-    pandas; a two-pair scene with a [history] is refused when read, naming the key."""
+    pandas; a two-pair scene with an [adapt] or error bars is refused when read, naming the key; one with a [history]
+    runs."""
     import pandas as pd
 
     scene = load_scene(scene_path("punch_on_foundation"))
@@ -138,9 +169,13 @@ def test_a_scene_of_two_pairs_runs_and_writes_each_pair(tmp_path: Path) -> None:
     plot.tangential(problem, solution)
     plot.von_mises(problem, solution, obstacle=True)
     data = tomllib.loads(scene_path("punch_on_foundation").read_text(encoding="utf-8"))
-    for refused in ({"history": {"approach": [0.01, 0.02]}}, {"estimate": {"error_bars": True}}):
+    for refused in ({"adapt": {"tol": 0.05}}, {"estimate": {"error_bars": True}}):
         with pytest.raises(tribo.SceneError, match="contact.pairs"):
             parse_scene({**data, **refused})
+    _, last, _ = run_scene(parse_scene({**data, "history": {"approach": [0.01, 0.02]}}), tmp_path / "history")
+    assert last.report.converged and [p.name for p in last.pairs] == ["top", "bottom"]
+    steps = pd.read_csv(tmp_path / "history" / "history.csv", comment="#")
+    assert steps["bottom.normal_force"].iloc[-1] == pytest.approx(last.pairs[1].normal_force, rel=1e-12)
     pairs = data["contact"]["pairs"]
     turned = {**data, "contact": {**data["contact"], "pairs": [{**pairs[0], "rotation": {"center": [0, 0], "angle": 1}}]}}
     with pytest.raises(tribo.SceneError, match=r"contact.pairs\[0\].rotation': a further pair's obstacle does not turn"):

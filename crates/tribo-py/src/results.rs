@@ -59,7 +59,7 @@ pub fn solution<'py>(py: Python<'py>, s: &tribo::Solution) -> PyResult<Bound<'py
 /// `History` as a dict: its solutions as dicts, and the per-step series the core derives from them.
 pub fn history<'py>(py: Python<'py>, h: &tribo::History) -> PyResult<Bound<'py, PyDict>> {
     let count = |state| ints(py, h.count(state));
-    let (boundary_steps, boundaries) = h.stick_slip_table();
+    let (steps, at) = h.stick_slip_table();
     let d = PyDict::new(py);
     d.set_item("status", h.status.name()).and(d.set_item("ended_at", h.ended_at))?;
     d.set_item("solutions", h.solutions.iter().map(|s| solution(py, s)).collect::<PyResult<Vec<_>>>()?)?;
@@ -68,11 +68,16 @@ pub fn history<'py>(py: Python<'py>, h: &tribo::History) -> PyResult<Bound<'py, 
     h.series().into_iter().try_for_each(|(name, v)| d.set_item(name, vec1(py, v)?))?;
     d.set_item("stick_count", count(ContactState::Stick)?).and(d.set_item("slip_count", count(ContactState::Slip)?))?;
     d.set_item("separation_count", count(ContactState::Separation)?)?;
-    d.set_item("contact_zone", mat(py, &h.extent(|s| s != ContactState::Separation))?)?;
-    d.set_item("stick_zone", mat(py, &h.extent(|s| s == ContactState::Stick))?)?;
-    d.set_item("stick_slip_steps", ints(py, boundary_steps)?)?;
-    d.set_item("stick_slip_boundaries", vec1(py, boundaries)?)?;
-    d.set_item("gross_sliding", vec1(py, h.gross_sliding())?)?;
+    d.set_item("stick_slip_steps", ints(py, steps)?).and(d.set_item("stick_slip_boundaries", vec1(py, at)?))?;
+    // Each pair's series by its name (the first pair's zones and gross sliding are the history's own).
+    let pair = |k: usize| -> PyResult<_> {
+        let ([p, q], s) = (h.pair_forces(k), PyDict::new(py));
+        s.set_item("normal_force", vec1(py, p)?).and(s.set_item("tangential_force", vec1(py, q)?))?;
+        s.set_item("contact_zone", mat(py, &h.pair_extent(k, |s| s != ContactState::Separation))?)?;
+        s.set_item("stick_zone", mat(py, &h.pair_extent(k, |s| s == ContactState::Stick))?)?;
+        s.set_item("gross_sliding", vec1(py, h.pair_gross_sliding(k))?).map(|()| (h.pairs[k].name.as_str(), s))
+    };
+    d.set_item("pairs", (0..h.pairs.len()).map(pair).collect::<PyResult<Vec<_>>>()?)?;
     d.set_item("factorizations", h.factorizations).and(d.set_item("setup_seconds", h.setup_seconds))?;
     Ok(d)
 }

@@ -168,7 +168,7 @@ pub use settings::{
     QpMethod, QpSettings, SettingInfo, SettingKind, SettingValue, SolverSettings, Stabilization, StopOn,
 };
 pub use solve::history::LoadStep;
-pub use solve::history::{History, StepObserver, StepProgress, StepRecord};
+pub use solve::history::{History, HistoryPair, StepObserver, StepProgress, StepRecord};
 pub use solve::{Observer, Phase, Progress};
 
 // The module paths of the flat layout that the folders replaced: they keep resolving, so that code

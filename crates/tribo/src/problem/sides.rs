@@ -206,6 +206,21 @@ impl Problem {
         std::iter::once(first).chain(further).collect()
     }
 
+    /// The displacement the contact law reads at every pair's FE nodes of Γ_C, stacked (the first pair's first): the
+    /// jump between two bodies on the first pair's side ([`Problem::contact_displacement`]), `u` itself on the others.
+    pub fn contact_displacements(&self, u: &[f64]) -> Vec<[f64; 2]> {
+        let first = (0..self.contact.nodes.len()).map(|i| self.contact_displacement(i, u));
+        let further =
+            self.sides.iter().flat_map(|s| s.contact.nodes.iter().map(|&node| [u[2 * node], u[2 * node + 1]]));
+        first.chain(further).collect()
+    }
+
+    /// The tangent at every pair's FE nodes of Γ_C, stacked as [`Problem::contact_displacements`].
+    pub fn contact_node_tangents(&self) -> Vec<[f64; 2]> {
+        let pairs = self.pairs();
+        pairs.iter().flat_map(|p| (0..p.contact.nodes.len()).map(|i| p.contact.node_tangent(i))).collect()
+    }
+
     /// Where each pair's multiplier dofs start among the q of one component (one more entry: q).
     pub fn pair_offsets(&self) -> Vec<usize> {
         offsets(self.pairs().iter().map(|p| p.multipliers.n_dofs()))

@@ -82,6 +82,7 @@ pub(crate) fn gamma_c_fields(
         contact_u: Vec::new(),
         pairs: Vec::new(),
     };
+    let contact_u = problem.contact_displacements(displacement);
     for (k, p) in problem.pairs().into_iter().enumerate() {
         let PairParts { contact, multipliers, mortar, .. } = p;
         let dofs = offsets[k]..offsets[k + 1];
@@ -92,12 +93,7 @@ pub(crate) fn gamma_c_fields(
         out.node_abscissae.extend_from_slice(&contact.node_xi);
         out.multiplier_abscissae.extend(multipliers.dof_abscissae());
         for i in 0..contact.nodes.len() {
-            let u = if k == 0 {
-                problem.contact_displacement(i, displacement)
-            } else {
-                let node = contact.nodes[i];
-                [displacement[2 * node], displacement[2 * node + 1]]
-            };
+            let u = contact_u[node_offsets[k] + i];
             let (n, t) = (contact.node_normal(i), contact.node_tangent(i));
             out.u_n.push(u[0] * n[0] + u[1] * n[1]);
             out.slip.push(u[0] * t[0] + u[1] * t[1] - loading.slip_origin[node_offsets[k] + i]);

@@ -80,14 +80,13 @@
 use std::ops::ControlFlow;
 use std::time::Instant;
 
-use crate::condensation::Factor;
-use crate::error::{Error, Result};
+use crate::error::Result;
 pub use crate::problem::load_case::LoadStep;
-use crate::problem::load_case::{LoadCase, MovedSupports, Placement};
-use crate::problem::{Condensed, Problem};
+use crate::problem::Condensed;
 use crate::results::{dof_span, ContactState, ErrorEstimate, Solution, SolveStatus};
 use crate::settings::friction::Friction;
 use crate::settings::SolverSettings;
+use crate::solve::increment::{after, step_load_case, PreviousStep};
 pub use crate::solve::progress::{StepObserver, StepProgress};
 
 /// The result of a loading history.
@@ -106,8 +105,10 @@ pub struct History {
     pub kept: Vec<usize>,
     /// One record per converged step, in order.
     pub records: Vec<StepRecord>,
-    /// The abscissae of the multiplier dofs (the same at every step).
+    /// The abscissae of the multiplier dofs (the same at every step; of every pair, the first first).
     pub multiplier_abscissae: Vec<f64>,
+    /// The contact pairs, the problem's own first (one for a problem of one pair).
+    pub pairs: Vec<HistoryPair>,
     /// [`SolveStatus::Converged`] when every step converged; otherwise the status of the step that ended
     /// the history ([`SolveStatus::Interrupted`] when the observer stopped it).
     pub status: SolveStatus,
@@ -123,33 +124,67 @@ pub struct History {
     pub setup_seconds: f64,
 }
 
+/// One contact pair of a history: where its multiplier dofs lie in a step's states, and its side's shape.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HistoryPair {
+    /// Its name (its contact edge set).
+    pub name: String,
+    /// Its multiplier dofs (as [`crate::PairResult::multipliers`]).
+    pub multipliers: std::ops::Range<usize>,
+    /// The abscissa of its side's first FE node.
+    pub start: f64,
+    /// Its side's length where the side is a closed loop (the period of its abscissae), else `None`.
+    pub period: Option<f64>,
+}
+
+impl HistoryPair {
+    /// The pairs of a problem.
+    pub fn of(problem: &crate::Problem) -> Vec<Self> {
+        let offsets = problem.pair_offsets();
+        let pair = |(k, p): (usize, crate::problem::sides::PairParts<'_>)| {
+            let x = &p.contact.node_xi;
+            let (start, end) = (x.first().copied().unwrap_or(0.0), x.last().copied().unwrap_or(0.0));
+            let period = p.contact.is_closed().then_some(end - start);
+            Self { name: p.name.to_string(), multipliers: offsets[k]..offsets[k + 1], start, period }
+        };
+        problem.pairs().into_iter().enumerate().map(pair).collect()
+    }
+}
+
 /// What a history keeps of every converged step, kept or not.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StepRecord {
-    /// `∫ λ_n`.
+    /// `∫ λ_n` (over every pair).
     pub normal_force: f64,
-    /// `∫ λ_t`.
+    /// `∫ λ_t` (over every pair).
     pub tangential_force: f64,
     /// The state of every multiplier dof.
     pub states: Vec<ContactState>,
     /// The error estimate's totals.
     pub estimate: ErrorEstimate,
+    /// Each pair's `∫ λ_n` and `∫ λ_t` where the problem has several pairs (empty for one: the totals are its).
+    pub pair_forces: Vec<[f64; 2]>,
 }
 
 impl StepRecord {
     /// The record of a solution.
     pub fn of(solution: &Solution) -> Self {
+        let several = solution.pairs.len() > 1;
+        let pair_forces = solution.pairs.iter().filter(|_| several).map(|p| [p.normal_force, p.tangential_force]);
         Self {
             normal_force: solution.normal_force,
             tangential_force: solution.tangential_force,
             states: solution.states.clone(),
             estimate: solution.report.estimate,
+            pair_forces: pair_forces.collect(),
         }
     }
 
-    /// Bytes a record of a problem with `q` multiplier dofs takes (its states allocated in words).
-    pub fn bytes(q: usize) -> usize {
-        size_of::<Self>() + (q * size_of::<ContactState>()).next_multiple_of(8)
+    /// Bytes a record of a problem with `q` multiplier dofs and `pairs` contact pairs takes (its states allocated in
+    /// words).
+    pub fn bytes(q: usize, pairs: usize) -> usize {
+        let forces = if pairs > 1 { pairs * size_of::<[f64; 2]>() } else { 0 };
+        size_of::<Self>() + (q * size_of::<ContactState>()).next_multiple_of(8) + forces
     }
 }
 
@@ -185,67 +220,99 @@ impl History {
         self.records.iter().map(|s| s.tangential_force).collect()
     }
 
-    /// Number of multiplier dofs in `state` per converged step.
+    /// Pair `k`'s `∫ λ_n` and `∫ λ_t` per converged step (the totals for a problem of one pair; empty for a pair
+    /// it does not have).
+    pub fn pair_forces(&self, k: usize) -> [Vec<f64>; 2] {
+        if self.pairs.len() <= 1 {
+            return if k == 0 { [self.normal_force(), self.tangential_force()] } else { [Vec::new(), Vec::new()] };
+        }
+        let component = |c: usize| self.records.iter().filter_map(|r| r.pair_forces.get(k).map(|f| f[c])).collect();
+        [component(0), component(1)]
+    }
+
+    /// Number of multiplier dofs in `state` per converged step (over every pair).
     pub fn count(&self, state: ContactState) -> Vec<usize> {
         self.records.iter().map(|s| s.states.iter().filter(|&&x| x == state).count()).collect()
     }
 
-    /// Per converged step, the smallest interval of abscissae holding the multiplier dofs whose state
+    /// Per converged step, the smallest interval of abscissae holding the first pair's multiplier dofs whose state
     /// `keep` accepts (NaN, NaN when there are none): e.g. the contact zone or the stick zone. On a closed
     /// Γ_C ([`Solution::closed`]) the shortest arc, which begins before Γ_C's start where it crosses the cut
     /// (as [`Solution::contact_zone`]).
     pub fn extent(&self, keep: impl Fn(ContactState) -> bool) -> Vec<[f64; 2]> {
-        let (x, period) = (&self.multiplier_abscissae, self.solutions.first().and_then(Solution::loop_length));
-        let span = |s: &StepRecord| dof_span(&x[..x.len().min(s.states.len())], period, |k| keep(s.states[k]));
+        self.pair_extent(0, keep)
+    }
+
+    /// [`History::extent`] of pair `k` (on its own side; empty for a pair the history does not have).
+    pub fn pair_extent(&self, k: usize, keep: impl Fn(ContactState) -> bool) -> Vec<[f64; 2]> {
+        let Some(pair) = self.pairs.get(k) else { return Vec::new() };
+        let x = self.multiplier_abscissae.get(pair.multipliers.clone()).unwrap_or_default();
+        let span = |s: &StepRecord| {
+            let states = &s.states[pair.multipliers.clone()];
+            dof_span(x, pair.period, |k| keep(states[k]))
+        };
         self.records.iter().map(|s| span(s).map_or([f64::NAN; 2], |(a, b)| [a, b])).collect()
     }
 
-    /// Per converged step, whether the contact slides as a whole: something touches and every multiplier
-    /// dof in contact slips (then `|Q| = μP` for Coulomb friction).
+    /// Per converged step, whether the first pair's contact slides as a whole: something touches and every
+    /// multiplier dof in contact slips (then `|Q| = μP` for Coulomb friction).
     pub fn gross_sliding(&self) -> Vec<bool> {
+        self.pair_gross_sliding(0)
+    }
+
+    /// [`History::gross_sliding`] of pair `k` (empty for a pair the history does not have).
+    pub fn pair_gross_sliding(&self, k: usize) -> Vec<bool> {
+        let Some(pair) = self.pairs.get(k) else { return Vec::new() };
         self.records
             .iter()
             .map(|s| {
-                let touching = s.states.iter().filter(|&&x| x != ContactState::Separation);
+                let touching = s.states[pair.multipliers.clone()].iter().filter(|&&x| x != ContactState::Separation);
                 touching.clone().count() > 0 && touching.into_iter().all(|&x| x == ContactState::Slip)
             })
             .collect()
     }
 
-    /// Per converged step, the stick–slip boundaries: the midpoints between neighbouring multiplier dofs
-    /// of which one sticks and the other slips (on a closed Γ_C, the last dof and the first across the cut
-    /// too, the midpoint then wrapped onto Γ_C).
+    /// Per converged step, the stick–slip boundaries of the first pair: the midpoints between neighbouring
+    /// multiplier dofs of which one sticks and the other slips (on a closed Γ_C, the last dof and the first across
+    /// the cut too, the midpoint then wrapped onto Γ_C).
     pub fn stick_slip_boundaries(&self) -> Vec<Vec<f64>> {
-        self.records.iter().map(|r| self.boundaries_of(r).collect()).collect()
+        self.pair_stick_slip_boundaries(0)
     }
 
-    /// The stick–slip boundaries of every converged step as one table, in step order: the step (0-based)
-    /// of each boundary and its abscissa (as [`History::stick_slip_boundaries`] places it). Two arrays
+    /// [`History::stick_slip_boundaries`] of pair `k` (empty for a pair the history does not have).
+    pub fn pair_stick_slip_boundaries(&self, k: usize) -> Vec<Vec<f64>> {
+        let Some(pair) = self.pairs.get(k) else { return Vec::new() };
+        self.records.iter().map(|r| self.boundaries_of(pair, r).collect()).collect()
+    }
+
+    /// The first pair's stick–slip boundaries of every converged step as one table, in step order: the step
+    /// (0-based) of each boundary and its abscissa (as [`History::stick_slip_boundaries`] places it). Two arrays
     /// whatever the number of steps, as the bindings hand them over.
     pub fn stick_slip_table(&self) -> (Vec<usize>, Vec<f64>) {
-        let rows = self.records.iter().enumerate().flat_map(|(k, r)| self.boundaries_of(r).map(move |x| (k, x)));
+        let Some(pair) = self.pairs.first() else { return (Vec::new(), Vec::new()) };
+        let rows = self.records.iter().enumerate().flat_map(|(k, r)| self.boundaries_of(pair, r).map(move |x| (k, x)));
         rows.unzip()
     }
 
-    fn boundaries_of<'a>(&'a self, record: &'a StepRecord) -> impl Iterator<Item = f64> + 'a {
+    fn boundaries_of<'a>(&'a self, pair: &'a HistoryPair, record: &'a StepRecord) -> impl Iterator<Item = f64> + 'a {
         let boundary = |a: ContactState, b: ContactState| {
             matches!((a, b), (ContactState::Stick, ContactState::Slip) | (ContactState::Slip, ContactState::Stick))
         };
-        let pairs = record.states.windows(2).zip(self.multiplier_abscissae.windows(2));
+        let (x, states) =
+            (&self.multiplier_abscissae[pair.multipliers.clone()], &record.states[pair.multipliers.clone()]);
+        let pairs = states.windows(2).zip(x.windows(2));
         let inner = pairs.filter(move |(st, _)| boundary(st[0], st[1])).map(|(_, x)| 0.5 * (x[0] + x[1]));
         // Across a loop's cut: the last dof and the first, a period apart.
-        let x = &self.multiplier_abscissae;
-        let n = x.len().min(record.states.len());
-        let across = self.solutions.first().and_then(|s| Some((*s.node_abscissae.first()?, s.loop_length()?)));
-        let across =
-            across.filter(|_| n > 1 && boundary(record.states[n - 1], record.states[0])).map(|(start, period)| {
-                let mid = 0.5 * (x[n - 1] + x[0] + period);
-                if mid >= start + period {
-                    (Some(mid - period), None) // wrapped onto the start: the first boundary
-                } else {
-                    (None, Some(mid)) // before the end: the last
-                }
-            });
+        let n = x.len();
+        let across = pair.period.map(|period| (pair.start, period));
+        let across = across.filter(|_| n > 1 && boundary(states[n - 1], states[0])).map(|(start, period)| {
+            let mid = 0.5 * (x[n - 1] + x[0] + period);
+            if mid >= start + period {
+                (Some(mid - period), None) // wrapped onto the start: the first boundary
+            } else {
+                (None, Some(mid)) // before the end: the last
+            }
+        });
         let (first, last) = across.unwrap_or((None, None));
         first.into_iter().chain(inner).chain(last)
     }
@@ -262,7 +329,8 @@ impl History {
         let kept = kept_solutions(steps.len(), keep_every);
         let load_steps: usize = steps.iter().map(|s| size_of::<LoadStep>() + 8 * s.displacements.len()).sum();
         // 10 series + 3 counts + 4 zone ends + 2 × (step, abscissa) of the boundaries, and the flag.
-        let per_step = StepRecord::bytes(problem.n_multipliers()) + 8 + (10 + 3 + 4 + 4) * 8 + 1;
+        let per_step =
+            StepRecord::bytes(problem.n_multipliers(), problem.sides.len() + 1) + 8 + (10 + 3 + 4 + 4) * 8 + 1;
         Solution::estimated_bytes(problem) as f64 * kept as f64
             + 2.0 * load_steps as f64
             + per_step as f64 * steps.len() as f64
@@ -302,6 +370,7 @@ impl Condensed<'_> {
             kept: Vec::with_capacity(steps.len().div_ceil(every) + 1),
             records: Vec::with_capacity(steps.len()),
             multiplier_abscissae: Vec::new(),
+            pairs: HistoryPair::of(problem),
             status: SolveStatus::Converged,
             ended_at: None,
             failed: None,
@@ -367,231 +436,4 @@ impl Condensed<'_> {
         }
         Ok(history)
     }
-}
-
-/// The state a converged step leaves for the next: `E_t (u^k − ū) − Dγ λ_t^k` (ū the problem's own
-/// lifting), `u_t^k` at the FE nodes of Γ_C and s_k.
-fn after(
-    condensed: &Condensed<'_>,
-    solution: &Solution,
-    loading: &LoadCase,
-    placed: Option<Placement>,
-) -> PreviousStep {
-    let (problem, factor) = (condensed.problem(), condensed.factor());
-    let q = condensed.q();
-    // The unknowns x = Tᵀ (u − ū_k) (T has orthonormal columns: a node's unknowns are its free
-    // directions) and the pressures; `E (u − ū) = E T x + E (ū_k − ū)` (+ E R α for a body held by the contact).
-    let relative: Vec<f64> = solution.displacement.iter().zip(loading.lifting(problem)).map(|(u, l)| u - l).collect();
-    let lambda = solution.multipliers();
-    // A body held only by the contact also moves by R α, which the unknowns do not carry at the pins.
-    let eu = if problem.dofs.floating.is_empty() {
-        factor.apply_e(&problem.unknowns_of(&relative, &solution.pressure))
-    } else {
-        problem.e_action(factor.gamma0, &[relative.as_slice(), &solution.pressure].concat())
-    };
-    let dl = factor.apply_d(&lambda);
-    let moved = |j: usize| loading.moved_supports.as_ref().map_or(0.0, |m| m.e_change[j]);
-    let tangential = (q..2 * q).map(|j| eu[j] + moved(j) - dl[j]).collect();
-    let shift = loading.shift;
-    let n = problem.contact.nodes.len();
-    let u_nodes: Vec<[f64; 2]> = (0..n).map(|i| problem.contact_displacement(i, &solution.displacement)).collect();
-    let u_t = |i: usize| {
-        let t = problem.contact.node_tangent(i);
-        u_nodes[i][0] * t[0] + u_nodes[i][1] * t[1]
-    };
-    PreviousStep { tangential, u_t_nodes: (0..n).map(u_t).collect(), u_nodes, shift, placed }
-}
-
-/// Where a history stands before a step: the tangential displacement at rest is 0 and the obstacle at
-/// shift 0.
-#[derive(Debug, Clone)]
-struct PreviousStep {
-    /// `(E_t (u^{k−1} − ū) − Dγ λ_t^{k−1})_j` (q values), ū the problem's own lifting: the previous step's
-    /// stabilized tangential displacement, `∫ ψ_j u_t^{k−1} − ∫ γ ψ_j (λ_t^{k−1} + σ_t(u^{k−1}))`, without
-    /// the part of the problem's prescribed displacements (the lifted moments `d` hold it).
-    pub tangential: Vec<f64>,
-    /// `u_t^{k−1}` at the FE nodes of Γ_C.
-    pub u_t_nodes: Vec<f64>,
-    /// `u^{k−1}` at the FE nodes of Γ_C.
-    pub u_nodes: Vec<[f64; 2]>,
-    /// `s_{k−1}`.
-    pub shift: f64,
-    /// Where the obstacle turns, its step's placement (its surface's motion from rest, at rest 0); `None` else.
-    pub placed: Option<Placement>,
-}
-
-impl PreviousStep {
-    /// The state at rest: the body undeformed (u = 0, also where a support prescribes ū: the first step
-    /// moves it there), the obstacle at shift 0 and, where it turns, at angle 0. Its tangential data is then
-    /// `−(E ū)_t`, the tangential part of the lifting in the problem's own `d` (exactly 0 without prescribed
-    /// displacements).
-    fn rest(problem: &Problem, factor: &Factor) -> Self {
-        let q = problem.n_multipliers();
-        let own = problem.obstacle_moments();
-        let tangential = own[q..].iter().zip(&factor.d[q..]).map(|(o, d)| d - o).collect();
-        let n = problem.contact.nodes.len();
-        let placed = problem.spec.obstacle.rotation.map(|_| Placement {
-            gap_moments: Vec::new(),
-            motion: vec![0.0; q],
-            node_gap: Vec::new(),
-            node_motion: vec![0.0; n],
-        });
-        Self { tangential, u_t_nodes: vec![0.0; n], u_nodes: vec![[0.0, 0.0]; n], shift: 0.0, placed }
-    }
-}
-
-/// The load case of one step of a history (see [`crate::solve::history`] for the derivation): loads
-/// `α f` (the lifting of prescribed displacements is not scaled), gap moments `∫ψ_j (g₀ − δ_k)`,
-/// tangential data `∫ψ_j (s_k − s_{k−1}) + (E_t u^{k−1} − Dγ λ_t^{k−1})_j` (`∫ψ_j (m_k − m_{k−1})` for the first
-/// term where the obstacle turns: the module documentation), and where the step moves the
-/// prescribed displacements to ū_k, the change `Δū = ū_k − ū` lifted: `− Tᵀ A Δū` in the load, `− E Δū`
-/// in the moments. From rest with α = 1, the problem's own approach and its own prescribed values, this
-/// is bit for bit the static load case.
-///
-/// # Errors
-/// [`crate::Error::MemoryBudget`] if the solve for a changed load cannot allocate its workspace;
-/// [`Error::BadLoadStep`] if the step's prescribed values conflict (checked before the history too).
-fn step_load_case(
-    problem: &Problem,
-    factor: &Factor,
-    step: &LoadStep,
-    previous: &PreviousStep,
-) -> Result<(LoadCase, Option<Placement>)> {
-    let alpha = step.load_factor;
-    let q = problem.n_multipliers();
-    let w = &problem.mortar.psi_integrals;
-    // g_k = g₀ − δ_k = (g₀ − δ) + (δ − δ_k): the problem's gap moved by the change of approach.
-    let moved = problem.spec.obstacle.approach - step.approach;
-    let ds = step.shift - previous.shift;
-    let angle = problem.spec.obstacle.rotation.map(|r| step.rotation.unwrap_or(r.angle));
-    let placed = angle.map(|a| problem.placement(step.shift, a)).transpose()?;
-    let mut d: Vec<f64> = factor.d[..q]
-        .iter()
-        .zip(w)
-        .map(|(m, w)| m + moved * w)
-        .chain(w.iter().zip(&previous.tangential).map(|(w, t)| w * ds + t))
-        .collect();
-    let (mut gap, mut slip_origin): (Vec<f64>, Vec<f64>) =
-        (problem.contact_gap.iter().map(|g| g + moved).collect(), previous.u_t_nodes.iter().map(|u| u + ds).collect());
-    // A turned obstacle: the gap of its new angle, the motion of its surface since the previous step.
-    if let (Some(p), Some(before)) = (&placed, &previous.placed) {
-        let own = &problem.mortar.gap_moments;
-        d[..q].iter_mut().zip(own.iter().zip(&p.gap_moments)).for_each(|(d, (o, g))| *d += g - o);
-        let change = p.motion.iter().zip(&before.motion).map(|(a, b)| a - b);
-        d[q..].iter_mut().zip(previous.tangential.iter().zip(change)).for_each(|(d, (t, c))| *d = c + t);
-        gap = p.node_gap.iter().map(|g| g + moved).collect();
-        let node_change = p.node_motion.iter().zip(&before.node_motion).map(|(a, b)| a - b);
-        slip_origin = previous.u_t_nodes.iter().zip(node_change).map(|(u, c)| u + c).collect();
-    }
-    let moved_supports = moved_supports(problem, factor, step)?;
-    let (f_free, c) = if alpha == 1.0 && moved_supports.is_none() {
-        let c = d.iter().zip(&factor.e_ainv_f).map(|(d, e)| d - e).collect();
-        (factor.f.clone(), c)
-    } else {
-        // f̃ + (α − 1) Tᵀ f − Tᵀ A Δū: the load scaled, its lifting moved; one more solve for E A⁻¹ f.
-        let load = problem.load_on_unknowns();
-        let mut f: Vec<f64> = factor.f.iter().zip(&load).map(|(f, l)| f + (alpha - 1.0) * l).collect();
-        if let Some(m) = &moved_supports {
-            f.iter_mut().zip(&m.a_change).for_each(|(f, a)| *f -= a);
-            d.iter_mut().zip(&m.e_change).for_each(|(d, e)| *d -= e);
-        }
-        let u = factor.displacement(&f, &vec![0.0; d.len()])?;
-        let c = d.iter().zip(factor.apply_e(&u)).map(|(d, e)| d - e).collect();
-        (f, c)
-    };
-    let loading = LoadCase {
-        f_free,
-        f_full: problem.f_full.iter().map(|f| alpha * f).collect(),
-        d,
-        c,
-        gap,
-        approach: step.approach,
-        shift: step.shift,
-        angle,
-        load_factor: alpha,
-        slip_origin,
-        previous_u: previous.u_nodes.clone(),
-        moved_supports,
-        rigid: problem.rigid_load(&problem.f_full.iter().map(|f| alpha * f).collect::<Vec<_>>()),
-    };
-    Ok((loading, placed))
-}
-
-/// The step's prescribed displacements, where they differ from the problem's: the lifting ū_k and the
-/// change `Δū = ū_k − ū` lifted (`Tᵀ A Δū`, `E Δū`).
-fn moved_supports(problem: &Problem, factor: &Factor, step: &LoadStep) -> Result<Option<MovedSupports>> {
-    let own: Vec<f64> = problem.spec.prescribed_components().into_iter().map(|(_, v)| v).collect();
-    if step.displacements.is_empty() || step.displacements == own {
-        return Ok(None);
-    }
-    let supports = problem.spec.all_supports(Some(&step.displacements));
-    let lifting = problem.dofs.lifting_of(&problem.mesh, &supports)?;
-    let change: Vec<f64> = lifting.iter().zip(&problem.dofs.lifting).map(|(a, b)| a - b).collect();
-    let (a_change, e_change) = problem.lifting_terms(factor.gamma0, &change);
-    Ok(Some(MovedSupports { lifting, a_change, e_change }))
-}
-
-/// Checks the steps against the problem before a history runs: two bodies move through their prescribed
-/// displacements only (no obstacle motion); as many prescribed values as the problem has components (or
-/// none: the problem's own), values that agree where supports meet, and no node of Γ_C prescribed into
-/// the obstacle.
-///
-/// # Errors
-/// [`Error::BadLoadStep`] naming the step; [`Error::PrescribedPenetration`] naming the node and the step.
-pub(crate) fn check_steps(problem: &Problem, steps: &[LoadStep]) -> Result<()> {
-    let components = problem.spec.prescribed_components();
-    let mut last: Option<&[f64]> = None;
-    let mut lifting: Option<Vec<f64>> = None;
-    for (k, step) in steps.iter().enumerate() {
-        if let (Some(angle), None) = (step.rotation, problem.spec.obstacle.rotation) {
-            return Err(Error::BadLoadStep {
-                step: k,
-                what: format!(
-                    "the step turns the obstacle to {angle} rad, but the problem's obstacle has no rotation: give it \
-                     one (its centre, the angle 0: ProblemSpec::obstacle_rotation)"
-                ),
-            });
-        }
-        if problem.is_two_bodies() && (step.approach != 0.0 || step.shift != 0.0) {
-            return Err(Error::BadLoadStep {
-                step: k,
-                what: format!(
-                    "two bodies move through their prescribed displacements, not by an approach ({}) or a shift ({})",
-                    step.approach, step.shift
-                ),
-            });
-        }
-        if step.shift != 0.0 {
-            problem.check_axisymmetric_shift().map_err(|e| Error::BadLoadStep { step: k, what: e.to_string() })?;
-        }
-        let values = step.displacements.as_slice();
-        let moved = problem.spec.obstacle.approach - step.approach;
-        let turned = step.rotation.map(|a| problem.placement(step.shift, a)).transpose();
-        let turned = turned.map_err(|e| Error::BadLoadStep { step: k, what: e.to_string() })?;
-        let gap0 = turned.as_ref().map_or(&problem.contact_gap, |p| &p.node_gap);
-        let gap: Vec<f64> = gap0.iter().map(|g| g + moved).collect();
-        if values.is_empty() || last == Some(values) {
-            let own = if values.is_empty() { None } else { lifting.as_deref() };
-            problem.check_prescribed_contact(&gap, own.unwrap_or(&problem.dofs.lifting), Some(k))?;
-            continue;
-        }
-        let bad = |what: String| Error::BadLoadStep { step: k, what };
-        if values.len() != components.len() {
-            let names: Vec<&str> = components.iter().map(|(n, _)| n.as_str()).collect();
-            return Err(bad(format!(
-                "{} prescribed displacement values for {} components ({})",
-                values.len(),
-                names.len(),
-                if names.is_empty() { "the problem prescribes none".to_string() } else { names.join(", ") }
-            )));
-        }
-        let moved_lifting = problem
-            .dofs
-            .lifting_of(&problem.mesh, &problem.spec.all_supports(Some(values)))
-            .map_err(|e| bad(e.to_string()))?;
-        problem.check_prescribed_contact(&gap, &moved_lifting, Some(k))?;
-        lifting = Some(moved_lifting);
-        last = Some(values);
-    }
-    Ok(())
 }

@@ -12,11 +12,12 @@ pub mod check;
 mod driver;
 mod fixed_point;
 pub mod history;
+mod increment;
 pub mod newton;
 mod progress;
 
 pub use fixed_point::STAGNATION_WINDOW;
-pub use history::{History, StepObserver, StepProgress};
+pub use history::{History, HistoryPair, StepObserver, StepProgress};
 pub use progress::{Observer, Phase, Progress};
 
 use crate::condensation::Expected;
@@ -73,7 +74,6 @@ impl Condensed<'_> {
         observer: Option<StepObserver<'_>>,
         starts: &[Vec<f64>],
     ) -> Result<History> {
-        self.problem().refuse_several_pairs("loading histories")?;
         settings.validate()?;
         friction.validate(self.q())?;
         if steps.is_empty() {
@@ -82,7 +82,7 @@ impl Condensed<'_> {
         for (k, s) in steps.iter().enumerate() {
             s.validate(k)?;
         }
-        history::check_steps(self.problem(), steps)?;
+        increment::check_steps(self.problem(), steps)?;
         history_fits(self.problem(), steps, settings)?;
         self.run_history(friction, steps, settings, observer, starts)
     }
@@ -142,7 +142,6 @@ impl Problem {
         settings: &SolverSettings,
         observer: Option<StepObserver<'_>>,
     ) -> Result<History> {
-        self.refuse_several_pairs("loading histories")?;
         settings.validate()?;
         history_fits(self, steps, settings)?;
         let expected = Expected::solving(self.friction_law_as_solved(friction), false);

@@ -34,18 +34,18 @@ fn foundation() -> Obstacle {
     Obstacle { shape, approach: 0.0, shift: 0.0, rotation: None }
 }
 
-const LOWER: Material = Material { young: 100.0, poisson: 0.3 };
-const UPPER: Material = Material { young: 300.0, poisson: 0.2 };
+pub(crate) const LOWER: Material = Material { young: 100.0, poisson: 0.3 };
+pub(crate) const UPPER: Material = Material { young: 300.0, poisson: 0.2 };
 
 /// Plane-strain P-wave modulus E (1 − ν) / ((1 + ν)(1 − 2ν)): σ_yy / ε_yy in uniaxial strain.
-fn p_modulus(m: &Material) -> f64 {
+pub(crate) fn p_modulus(m: &Material) -> f64 {
     m.young * (1.0 - m.poisson) / ((1.0 + m.poisson) * (1.0 - 2.0 * m.poisson))
 }
 
 /// The lower block [0, 2] × [−1, 0] (rollers on its sides, the foundation under it) and the upper block
 /// [0, 2] × [0, ½] (rollers on its sides, its top pressed down by δ), the pair `lower_secondary` or not; the
 /// uniaxial-strain pressure p = δ / (h₁/M₁ + h₂/M₂).
-fn stacked(lower_secondary: bool, space: MultiplierSpace, foundation_mu: Option<f64>) -> (Problem, f64) {
+pub(crate) fn stacked(lower_secondary: bool, space: MultiplierSpace, foundation_mu: Option<f64>) -> (Problem, f64) {
     let lower = rectangle([0.0, 2.0], [-1.0, 0.0], 5, 3, Diagonal::Alternating).unwrap();
     let upper = rectangle([0.0, 2.0], [0.0, 0.5], 7, 2, Diagonal::Right).unwrap();
     let delta = 0.01;

@@ -362,7 +362,8 @@ fn a_pair_that_never_touches_changes_nothing() {
     assert_eq!(s2.states[q1..].iter().filter(|s| **s != ContactState::Separation).count(), 0);
 }
 
-/// What takes one pair today refuses several with [`Error::SeveralPairs`]: loading histories, adaptive refinement,
+/// What takes one pair today refuses several with [`Error::SeveralPairs`]: adaptive refinement (of one solve or a
+/// history),
 /// the hierarchical estimates and error bars; and two pairs on one edge. A further pair's side is checked as the
 /// first's: its edge set, Γ_D and Γ_N on it.
 #[test]
@@ -373,7 +374,10 @@ fn what_takes_one_pair_refuses_several() {
     let settings = SolverSettings::default();
     let friction = Friction::Frictionless;
     let several = |e: Error| assert!(matches!(e, Error::SeveralPairs { ref pair, .. } if pair == "bottom"), "{e}");
-    several(problem.solve_history(&friction, &[LoadStep::new(0.0, 0.0)], &settings, None).unwrap_err());
+    let steps = [LoadStep::new(0.02, 0.0)];
+    several(
+        problem.solve_history_adaptive(&friction, &steps, &settings, &AdaptSettings::default(), &[], None).unwrap_err(),
+    );
     several(problem.solve_adaptive(&friction, &settings, &AdaptSettings::default(), None).unwrap_err());
     let sol = problem.solve(&friction, &settings, None).unwrap();
     several(problem.estimate_hierarchical(&sol, &friction, &settings).unwrap_err());
