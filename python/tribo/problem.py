@@ -396,6 +396,12 @@ class Problem(_tribo.Problem):
         ``problem.bodies``; default this problem's). A body of several materials needs the ``regions`` of
         the new mesh's triangles, indices into ``problem.materials`` (for two bodies the first body's materials,
         then the second's; an adaptive level's are its own)."""
+        ratio, size = self._arguments.get("multiplier_ratio"), self._arguments.get("multiplier_size")
+        if self.pairs[1:] and (size is not None or ratio not in (None, 1.0)):
+            # A further pair's T_H takes the first pair's ratio or size, which given points would replace.
+            raise _contact_error("on_mesh (a level's problem) takes several contact pairs with the default multiplier "
+                                 "mesh only (multiplier_ratio 1, no multiplier_size): build the level's problem in Rust "
+                                 "(Problem::on_level)")
         arguments = {**self._arguments, "multiplier_ratio": None, "multiplier_size": None}
         arguments["multiplier_points"] = multiplier_points
         if self._arguments.get("materials") is not None:

@@ -571,7 +571,7 @@ impl Problem {
         let ratio = super::multipliers::ratio(&self.multipliers.xi, &self.contact);
         let refined =
             bisect(&self.mesh.without_curves(), marked, Bisection::AllEdges)?.with_curves(self.mesh.curves().clone());
-        super::next_problem(self, solutions, refined, ratio)
+        super::multipliers::next_problem(self, solutions, refined, ratio)
     }
 
     /// The W_H function of this problem's dof values `v` at the multiplier dofs of `to` (a problem on the

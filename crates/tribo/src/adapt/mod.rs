@@ -89,6 +89,13 @@
 //! level in 25 (1.00 in all but the block's, whose estimates are the dearest), in [X/3, X] in 19: on two
 //! bodies the answer ends at 0.12–0.29 X; the enriched answers' estimate is 1.01–7.16 times their error.
 //!
+//! # Several contact pairs
+//! Every pair's indicators mark (the estimate reads every side); the first pair's T_H is refined as above, a further
+//! pair's follows its refined FE edges as its points say (the first pair's ratio or size), so a level's problem is
+//! made again from its mesh and the first pair's T_H ([`Problem::on_level`]); the next level starts from every
+//! pair's multipliers. The hierarchical estimate takes one pair: with several the loop stops on the bound, whatever
+//! `stop_on`.
+//!
 //! A refinement that would exceed `max_unknowns` is not made; the loop then stops with the last level
 //! and says so ([`AdaptStop::MaxUnknowns`]), as it does at `max_levels` or when a level does not converge.
 
@@ -108,7 +115,7 @@ use std::time::Instant;
 use crate::condensation::Expected;
 use crate::contact::multiplier::{MultiplierPoints, MultiplierSpace};
 use crate::error::{Error, Result};
-use crate::mesh::refine::{bisect, label_longest_edge, Refinement};
+use crate::mesh::refine::{bisect, label_longest_edge};
 use crate::problem::load_case::LoadCase;
 use crate::problem::Problem;
 use crate::results::{ContactState, ErrorEstimate, Solution, SolveStatus};
@@ -270,7 +277,6 @@ impl Problem {
 
     /// The checks every adaptive entry point makes before its first solve.
     fn check_adaptive(&self, friction: &Friction, settings: &SolverSettings, adapt: &AdaptSettings) -> Result<()> {
-        self.refuse_several_pairs("adaptive refinement and the hierarchical estimates")?;
         settings.validate().and_then(|()| adapt.validate())?;
         friction.validate(self.n_multipliers())?;
         self.check_prescribed_contact(&self.contact_gap, &self.dofs.lifting, None)?;
@@ -310,6 +316,11 @@ impl Problem {
         let mut levels = Vec::new();
         // The last hierarchical estimate over the bound, and the unknowns of its level.
         let mut measured: Option<(f64, usize)> = None;
+        // The hierarchical estimate takes one contact pair: with several the loop stops on the bound.
+        let sharp = sharp.filter(|_| adapt.stop_on != StopOn::Bound && self.sides.is_empty());
+        if !self.sides.is_empty() && adapt.stop_on != StopOn::Bound {
+            log::info!("{} contact pairs: the adaptive loop stops on the bound", self.sides.len() + 1);
+        }
         loop {
             let clock = Instant::now();
             let mut loose = *settings;
@@ -321,7 +332,7 @@ impl Problem {
             let mut level = new_level(&problem, read(&answer), ended(&answer).0);
             // The enriched problem, its answer and its level, where its estimate meets the tolerance.
             let mut finer: Option<(Problem, T, Level)> = None;
-            if let Some(sharp) = sharp.filter(|_| adapt.stop_on != StopOn::Bound) {
+            if let Some(sharp) = sharp {
                 let bound = level.estimate.traction_relative;
                 // Due where it may stop the loop before the bound does (the last ratio below 1, see the module
                 // documentation), or where the last ratio is stale.
@@ -432,7 +443,7 @@ impl Problem {
                     if problem.unknowns_per_node() * refined.mesh().n_nodes() > adapt.max_unknowns {
                         None
                     } else {
-                        Some(next_problem(&problem, &solutions, refined, ratio)?)
+                        Some(multipliers::next_problem(&problem, &solutions, refined, ratio)?)
                     }
                 }
             };
@@ -477,10 +488,7 @@ impl Problem {
             }
             match (stop, next) {
                 (None, Some(p)) if flow.is_continue() => {
-                    let dofs =
-                        multipliers::abscissae_back(&problem.contact, &p.contact, &p.multipliers.dof_abscissae());
-                    let at = |v: &[f64]| dofs.iter().map(|&x| problem.multipliers.evaluate(v, x)).collect::<Vec<_>>();
-                    start = read(&answer).last().map(|s| [at(&s.lambda_n), at(&s.lambda_t)].concat());
+                    start = read(&answer).last().map(|s| multipliers::carried_start(&problem, &p, &s.multipliers()));
                     problem = p;
                 }
                 (stop, next) => {
@@ -574,27 +582,4 @@ fn solve_level(
     let condensed = problem.condense_for(stabilization, condensation, budget, expected)?;
     let load = LoadCase::of_problem(problem, condensed.factor());
     condensed.solve_loading(friction, settings, &load, start, None)
-}
-
-/// The problem of the next level: the refined mesh, and T_H refined where contact is or may be in any
-/// of the solutions.
-fn next_problem(problem: &Problem, solutions: &[&Solution], refined: Refinement, ratio: f64) -> Result<Problem> {
-    let mut spec = problem.spec.clone();
-    let contact = crate::contact::ContactBoundary::new(refined.mesh(), &spec.contact)?;
-    // Surely apart: every node of the segment has a current gap beyond the largest displacement on Γ_C,
-    // in every solution.
-    let old = &problem.contact.node_xi;
-    let views: Vec<(f64, Vec<f64>)> = solutions
-        .iter()
-        .map(|s| (s.u_n.iter().chain(&s.slip).fold(0.0_f64, |m, v| m.max(v.abs())), s.current_gap()))
-        .collect();
-    let apart = |a: f64, b: f64| {
-        let lo = old.partition_point(|&x| x < a).saturating_sub(1);
-        let hi = old.partition_point(|&x| x <= b).min(old.len() - 1);
-        views.iter().all(|(scale, gap)| (lo..=hi).all(|k| gap[k] > *scale) && *scale > 0.0)
-    };
-    let xi = multipliers::refine_onto(&problem.contact, &problem.multipliers.xi, &contact, ratio, apart);
-    spec.multiplier_points = MultiplierPoints::Abscissae(xi);
-    let (mesh, parent, midpoints) = refined.into_parts();
-    problem.refined(mesh, &parent, &midpoints, spec)
 }

@@ -2,7 +2,58 @@
 //! ratio H/h of the first level, but only where contact is or may be. Multipliers cost solve time, so
 //! where the body is surely apart from the obstacle T_H stays as it was.
 
+use crate::contact::multiplier::MultiplierPoints;
 use crate::contact::ContactBoundary;
+use crate::error::Result;
+use crate::mesh::refine::Refinement;
+use crate::problem::Problem;
+use crate::results::Solution;
+
+/// The problem of the next level: the refined mesh, and the first pair's T_H refined where contact is or may be in
+/// any of the solutions ([`refine_onto`], keeping its ratio `ratio`), given by its abscissae. A further pair's T_H
+/// follows its refined FE edges as its points say (the first pair's ratio or size: a level's problem is made again
+/// from its mesh and the first pair's T_H alone, [`Problem::on_level`]).
+pub(crate) fn next_problem(
+    problem: &Problem,
+    solutions: &[&Solution],
+    refined: Refinement,
+    ratio: f64,
+) -> Result<Problem> {
+    let mut spec = problem.spec.clone();
+    let contact = ContactBoundary::new(refined.mesh(), &spec.contact)?;
+    // Surely apart: every node of the segment has a current gap beyond the largest displacement on Γ_C (of every
+    // pair), in every solution (the first pair's nodes come first in its fields).
+    let old = &problem.contact.node_xi;
+    let views: Vec<(f64, Vec<f64>)> = solutions
+        .iter()
+        .map(|s| (s.u_n.iter().chain(&s.slip).fold(0.0_f64, |m, v| m.max(v.abs())), s.current_gap()))
+        .collect();
+    let apart = |a: f64, b: f64| {
+        let lo = old.partition_point(|&x| x < a).saturating_sub(1);
+        let hi = old.partition_point(|&x| x <= b).min(old.len() - 1);
+        views.iter().all(|(scale, gap)| (lo..=hi).all(|k| gap[k] > *scale) && *scale > 0.0)
+    };
+    let xi = refine_onto(&problem.contact, &problem.multipliers.xi, &contact, ratio, apart);
+    spec.multiplier_points = MultiplierPoints::Abscissae(xi);
+    let (mesh, parent, midpoints) = refined.into_parts();
+    problem.refined(mesh, &parent, &midpoints, spec)
+}
+
+/// The multipliers `lambda` (2q, stacked over the pairs) of `old` as W_H functions, at the multiplier dofs of `new`
+/// (the next level's problem: each pair's dofs taken back to its side on `old` where refinement moved them), stacked
+/// alike: a start for `new`'s solve.
+pub(crate) fn carried_start(old: &Problem, new: &Problem, lambda: &[f64]) -> Vec<f64> {
+    let (q, offsets) = (old.n_multipliers(), old.pair_offsets());
+    let (mut normal, mut tangential) = (Vec::new(), Vec::new());
+    for (k, (from, to)) in old.pairs().iter().zip(new.pairs()).enumerate() {
+        let dofs = abscissae_back(from.contact, to.contact, &to.multipliers.dof_abscissae());
+        let own = offsets[k]..offsets[k + 1];
+        let at = |v: &[f64]| dofs.iter().map(|&x| from.multipliers.evaluate(v, x)).collect::<Vec<_>>();
+        normal.extend(at(&lambda[own.clone()]));
+        tangential.extend(at(&lambda[q + own.start..q + own.end]));
+    }
+    [normal, tangential].concat()
+}
 
 /// The ratio H/h of a multiplier mesh over the FE edges of Γ_C: the largest, over the segments of T_H,
 /// of the segment's length over the shortest FE edge it overlaps (1 for T_H on the FE edges).

@@ -57,6 +57,7 @@ mod methods;
 mod mixed;
 mod moved_supports;
 mod outputs;
+mod pair_adaptive;
 mod pair_friction;
 mod pair_history;
 mod patch;

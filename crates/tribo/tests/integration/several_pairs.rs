@@ -362,9 +362,7 @@ fn a_pair_that_never_touches_changes_nothing() {
     assert_eq!(s2.states[q1..].iter().filter(|s| **s != ContactState::Separation).count(), 0);
 }
 
-/// What takes one pair today refuses several with [`Error::SeveralPairs`]: adaptive refinement (of one solve or a
-/// history),
-/// the hierarchical estimates and error bars; and two pairs on one edge. A further pair's side is checked as the
+/// What takes one pair today refuses several with [`Error::SeveralPairs`]: the hierarchical estimates and error bars; and two pairs on one edge. A further pair's side is checked as the
 /// first's: its edge set, Γ_D and Γ_N on it.
 #[test]
 fn what_takes_one_pair_refuses_several() {
@@ -374,11 +372,6 @@ fn what_takes_one_pair_refuses_several() {
     let settings = SolverSettings::default();
     let friction = Friction::Frictionless;
     let several = |e: Error| assert!(matches!(e, Error::SeveralPairs { ref pair, .. } if pair == "bottom"), "{e}");
-    let steps = [LoadStep::new(0.02, 0.0)];
-    several(
-        problem.solve_history_adaptive(&friction, &steps, &settings, &AdaptSettings::default(), &[], None).unwrap_err(),
-    );
-    several(problem.solve_adaptive(&friction, &settings, &AdaptSettings::default(), None).unwrap_err());
     let sol = problem.solve(&friction, &settings, None).unwrap();
     several(problem.estimate_hierarchical(&sol, &friction, &settings).unwrap_err());
     several(problem.estimate_error_bars(&sol, &friction, &settings).unwrap_err());
