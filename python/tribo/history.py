@@ -161,7 +161,8 @@ def write_history(out: str | Path, problem: Problem, history: History, *, plots:
         f.write(
             "# s (shift): obstacle position along t = (-n2, n1); angle: its turn about its rotation's centre (rad); "
             "tangential_force = ∫λ_t along t; "
-            f"zones are positions on Γ_C as the {abscissa_description(problem)}\n"
+            + ("a further pair's zones are on its own side; " if len(history.pairs) > 1 else "")
+            + f"zones are positions on Γ_C as the {abscissa_description(problem)}\n"
         )
         w = csv.writer(f)
         w.writerow(table)

@@ -415,15 +415,15 @@ class History(_Record):
         traction_error_hierarchical: the hierarchical estimate of the relative traction error per converged step
             (NaN where it was not computed: ``solve_history_adaptive(stop_on='hierarchical')`` computes it on
             the levels where it may stop the loop).
-        stick_count: multiplier dofs that stick, per converged step.
+        stick_count: multiplier dofs that stick, per converged step (the counts are over every pair).
         slip_count: multiplier dofs that slip, per converged step.
         separation_count: multiplier dofs separated from the obstacle, per converged step.
-        contact_zone: (first, last) abscissa of the (first pair's) multiplier dofs in contact, per converged step, (K, 2);
+        contact_zone: (first, last) abscissa of the first pair's multiplier dofs in contact, per converged step, (K, 2);
             NaN when nothing touches. On a closed Γ_C the shortest arc that holds them: first < the side's
             start where it crosses the cut (first + its length is where it begins).
-        stick_zone: (first, last) abscissa of the multiplier dofs that stick, per converged step, (K, 2);
+        stick_zone: (first, last) abscissa of the first pair's multiplier dofs that stick, per converged step, (K, 2);
             NaN when none sticks.
-        stick_slip_boundaries: the abscissae of the stick–slip boundaries (midpoints between a dof that
+        stick_slip_boundaries: the abscissae of the (first pair's) stick–slip boundaries (midpoints between a dof that
             sticks and a neighbour that slips) of every converged step, in step order: one array however
             long the history (``stick_slip_boundaries[stick_slip_steps == k]`` are those of step k).
         stick_slip_steps: the step (0-based) of each of ``stick_slip_boundaries``.
@@ -470,6 +470,8 @@ class History(_Record):
         """A history from the dict the compiled module gives (its solutions as dicts too)."""
         failed, pairs = data["failed"], dict(data["pairs"])
         first = next(iter(pairs.values()))
+        first.setdefault("normal_force", data["normal_force"])  # one pair: the totals are its own
+        first.setdefault("tangential_force", data["tangential_force"])
         return cls(**{
             **data,
             "pairs": pairs,

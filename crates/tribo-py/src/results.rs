@@ -71,8 +71,8 @@ pub fn history<'py>(py: Python<'py>, h: &tribo::History) -> PyResult<Bound<'py, 
     d.set_item("stick_slip_steps", ints(py, steps)?).and(d.set_item("stick_slip_boundaries", vec1(py, at)?))?;
     // Each pair's series by its name (the first pair's zones and gross sliding are the history's own).
     let pair = |k: usize| -> PyResult<_> {
-        let ([p, q], s) = (h.pair_forces(k), PyDict::new(py));
-        s.set_item("normal_force", vec1(py, p)?).and(s.set_item("tangential_force", vec1(py, q)?))?;
+        let s = PyDict::new(py);
+        h.pair_series(k).into_iter().try_for_each(|(name, v)| s.set_item(name, vec1(py, v)?))?;
         s.set_item("contact_zone", mat(py, &h.pair_extent(k, |s| s != ContactState::Separation))?)?;
         s.set_item("stick_zone", mat(py, &h.pair_extent(k, |s| s == ContactState::Stick))?)?;
         s.set_item("gross_sliding", vec1(py, h.pair_gross_sliding(k))?).map(|()| (h.pairs[k].name.as_str(), s))

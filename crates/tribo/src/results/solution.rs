@@ -177,7 +177,7 @@ impl Solution {
         let placed = loading.angle.map(|a| problem.obstacle_at(spec.obstacle.shift, a));
         let obstacle = placed.as_ref().unwrap_or(&spec.obstacle);
         let gap_at = |xi: f64| obstacle.initial_gap_on(contact, xi) + geometric(xi) - obstacle.approach + moved;
-        // The further pairs' obstacles, placed once (a history takes one pair).
+        // The further pairs' obstacles, placed once (a history moves the first pair's only: `solve::increment`).
         let further: Vec<_> = problem.sides.iter().map(|s| (s, s.obstacle.placed())).collect();
         let further_gaps: Vec<Box<dyn Fn(f64) -> f64 + '_>> = further
             .iter()

@@ -109,6 +109,9 @@ pub struct History {
     pub multiplier_abscissae: Vec<f64>,
     /// The contact pairs, the problem's own first (one for a problem of one pair).
     pub pairs: Vec<HistoryPair>,
+    /// Each pair's `∫ λ_n` and `∫ λ_t` per converged step, the pairs of a step one after the other, where the problem
+    /// has several pairs (empty for one: the totals are its; [`History::pair_forces`]).
+    pub pair_forces: Vec<[f64; 2]>,
     /// [`SolveStatus::Converged`] when every step converged; otherwise the status of the step that ended
     /// the history ([`SolveStatus::Interrupted`] when the observer stopped it).
     pub status: SolveStatus,
@@ -162,29 +165,22 @@ pub struct StepRecord {
     pub states: Vec<ContactState>,
     /// The error estimate's totals.
     pub estimate: ErrorEstimate,
-    /// Each pair's `∫ λ_n` and `∫ λ_t` where the problem has several pairs (empty for one: the totals are its).
-    pub pair_forces: Vec<[f64; 2]>,
 }
 
 impl StepRecord {
     /// The record of a solution.
     pub fn of(solution: &Solution) -> Self {
-        let several = solution.pairs.len() > 1;
-        let pair_forces = solution.pairs.iter().filter(|_| several).map(|p| [p.normal_force, p.tangential_force]);
         Self {
             normal_force: solution.normal_force,
             tangential_force: solution.tangential_force,
             states: solution.states.clone(),
             estimate: solution.report.estimate,
-            pair_forces: pair_forces.collect(),
         }
     }
 
-    /// Bytes a record of a problem with `q` multiplier dofs and `pairs` contact pairs takes (its states allocated in
-    /// words).
-    pub fn bytes(q: usize, pairs: usize) -> usize {
-        let forces = if pairs > 1 { pairs * size_of::<[f64; 2]>() } else { 0 };
-        size_of::<Self>() + (q * size_of::<ContactState>()).next_multiple_of(8) + forces
+    /// Bytes a record of a problem with `q` multiplier dofs takes (its states allocated in words).
+    pub fn bytes(q: usize) -> usize {
+        size_of::<Self>() + (q * size_of::<ContactState>()).next_multiple_of(8)
     }
 }
 
@@ -226,8 +222,19 @@ impl History {
         if self.pairs.len() <= 1 {
             return if k == 0 { [self.normal_force(), self.tangential_force()] } else { [Vec::new(), Vec::new()] };
         }
-        let component = |c: usize| self.records.iter().filter_map(|r| r.pair_forces.get(k).map(|f| f[c])).collect();
+        let m = self.pairs.len();
+        let component = |c: usize| self.pair_forces.iter().skip(k).step_by(m).map(|f| f[c]).collect();
         [component(0), component(1)]
+    }
+
+    /// Pair `k`'s forces per converged step by name, `normal_force` and `tangential_force`, where the history has
+    /// several pairs (none for one: the totals are its).
+    pub fn pair_series(&self, k: usize) -> Vec<(&'static str, Vec<f64>)> {
+        if self.pairs.len() <= 1 {
+            return Vec::new();
+        }
+        let [p, q] = self.pair_forces(k);
+        vec![("normal_force", p), ("tangential_force", q)]
     }
 
     /// Number of multiplier dofs in `state` per converged step (over every pair).
@@ -323,14 +330,17 @@ impl History {
     /// [`LoadStep`] twice (the caller's and the history's copy), its wall time, and the per-step series a
     /// reader takes from it at once, as the bindings and the files do: the ten of [`History::series`],
     /// the three counts, the two zones' ends, the gross-sliding flag and two stick–slip boundaries (a step
-    /// has as many as its stick zone has ends). The memory budget of a history is checked against it
+    /// has as many as its stick zone has ends); with several pairs, each pair's forces (kept, and as series), the
+    /// ends of its zones and its flag. The memory budget of a history is checked against it
     /// before any step runs (`docs/history_memory.md` measures it against the peak of long histories).
     pub fn estimated_bytes(problem: &crate::Problem, steps: &[LoadStep], keep_every: usize) -> f64 {
         let kept = kept_solutions(steps.len(), keep_every);
         let load_steps: usize = steps.iter().map(|s| size_of::<LoadStep>() + 8 * s.displacements.len()).sum();
         // 10 series + 3 counts + 4 zone ends + 2 × (step, abscissa) of the boundaries, and the flag.
+        // With several pairs, each pair's forces and their series, zones' ends and gross-sliding flag besides.
+        let pairs = if problem.sides.is_empty() { 0 } else { problem.sides.len() + 1 };
         let per_step =
-            StepRecord::bytes(problem.n_multipliers(), problem.sides.len() + 1) + 8 + (10 + 3 + 4 + 4) * 8 + 1;
+            StepRecord::bytes(problem.n_multipliers()) + 8 + (10 + 3 + 4 + 4) * 8 + 1 + pairs * (16 + 48 + 1);
         Solution::estimated_bytes(problem) as f64 * kept as f64
             + 2.0 * load_steps as f64
             + per_step as f64 * steps.len() as f64
@@ -371,6 +381,11 @@ impl Condensed<'_> {
             records: Vec::with_capacity(steps.len()),
             multiplier_abscissae: Vec::new(),
             pairs: HistoryPair::of(problem),
+            pair_forces: Vec::with_capacity(if problem.sides.is_empty() {
+                0
+            } else {
+                steps.len() * (problem.sides.len() + 1)
+            }),
             status: SolveStatus::Converged,
             ended_at: None,
             failed: None,
@@ -413,6 +428,9 @@ impl Condensed<'_> {
             previous = after(self, &solution, &loading, placed);
             start = Some(solution.multipliers());
             history.records.push(StepRecord::of(&solution));
+            if solution.pairs.len() > 1 {
+                history.pair_forces.extend(solution.pairs.iter().map(|p| [p.normal_force, p.tangential_force]));
+            }
             if history.multiplier_abscissae.is_empty() {
                 history.multiplier_abscissae.clone_from(&solution.multiplier_abscissae);
             }

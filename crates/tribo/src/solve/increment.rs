@@ -1,5 +1,5 @@
 //! The data of one step of a loading history (derived in [`crate::solve::history`]): where a converged step leaves
-//! the contact for the next ([`PreviousStep`]), the load case of the next step from it (`step_load_case`), and the
+//! the contact for the next (`PreviousStep`), the load case of the next step from it (`step_load_case`), and the
 //! checks of the steps before a history runs (`check_steps`).
 //!
 //! # Several contact pairs
@@ -8,8 +8,8 @@
 //! pair's multipliers read only its own side, so the step's data are the one-pair data pair by pair: the first
 //! pair's as derived in [`crate::solve::history`], a further pair's with its gap `g₀ − δ` and, in Coulomb's slip
 //! increment, its surface's motion since the previous step, `m_k − m_{k−1}`: its own shift at the first step from
-//! rest (`m_0 = 0`), 0 after. Its tangential data is then `∫ψ_j s + (E_t u^0 − Dγ λ_t^0)_j` at the first step, the
-//! static data (the problem's own `d`), and `(E_t u^{k−1} − Dγ λ_t^{k−1})_j` after it.
+//! rest (`m_0 = 0`), 0 after. Its tangential data is then `∫ψ_j s − (E_t ū)_j` at the first step (u^0 = 0, λ^0 = 0),
+//! the static data (the problem's own `d`), and `(E_t (u^{k−1} − ū) − Dγ λ_t^{k−1})_j` after it.
 
 use crate::condensation::Factor;
 use crate::error::{Error, Result};
@@ -129,10 +129,10 @@ pub(crate) fn step_load_case(
         let own = &problem.mortar.gap_moments;
         d[..q0].iter_mut().zip(own.iter().zip(&p.gap_moments)).for_each(|(d, (o, g))| *d += g - o);
         let change = p.motion.iter().zip(&before.motion).map(|(a, b)| a - b);
-        d[q..q + q0].iter_mut().zip(previous.tangential.iter().zip(change)).for_each(|(d, (t, c))| *d = c + t);
+        d[q..q + q0].iter_mut().zip(previous.tangential[..q0].iter().zip(change)).for_each(|(d, (t, c))| *d = c + t);
         gap = p.node_gap.iter().map(|g| g + moved).collect();
         let node_change = p.node_motion.iter().zip(&before.node_motion).map(|(a, b)| a - b);
-        slip_origin = previous.u_t_nodes.iter().zip(node_change).map(|(u, c)| u + c).collect();
+        slip_origin = previous.u_t_nodes[..n0].iter().zip(node_change).map(|(u, c)| u + c).collect();
     }
     // The further pairs: their own gap; slip measured from their obstacle's shift at the first step, from u_t^{k−1}
     // after.

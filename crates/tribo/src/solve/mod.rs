@@ -12,7 +12,7 @@ pub mod check;
 mod driver;
 mod fixed_point;
 pub mod history;
-mod increment;
+pub mod increment;
 pub mod newton;
 mod progress;
 

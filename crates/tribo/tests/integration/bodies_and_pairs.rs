@@ -34,11 +34,11 @@ fn foundation() -> Obstacle {
     Obstacle { shape, approach: 0.0, shift: 0.0, rotation: None }
 }
 
-pub(crate) const LOWER: Material = Material { young: 100.0, poisson: 0.3 };
-pub(crate) const UPPER: Material = Material { young: 300.0, poisson: 0.2 };
+const LOWER: Material = Material { young: 100.0, poisson: 0.3 };
+const UPPER: Material = Material { young: 300.0, poisson: 0.2 };
 
 /// Plane-strain P-wave modulus E (1 − ν) / ((1 + ν)(1 − 2ν)): σ_yy / ε_yy in uniaxial strain.
-pub(crate) fn p_modulus(m: &Material) -> f64 {
+fn p_modulus(m: &Material) -> f64 {
     m.young * (1.0 - m.poisson) / ((1.0 + m.poisson) * (1.0 - 2.0 * m.poisson))
 }
 

@@ -158,7 +158,7 @@ fn interrupted_and_refused_histories() {
     assert!(matches!(e, Error::MemoryBudget { .. }), "{e}");
     // A step keeping its solution: the solution, its record, its step and its series.
     let per_step = History::estimated_bytes(&problem, &long[..1], 1);
-    let record = tribo::StepRecord::bytes(problem.n_multipliers(), 1) as f64;
+    let record = tribo::StepRecord::bytes(problem.n_multipliers()) as f64;
     assert!(per_step > Solution::estimated_bytes(&problem) as f64 + record);
     let budget = SolverSettings { memory_budget: 1 << 20, ..Default::default() };
     let fit = ((1 << 20) as f64 / per_step) as usize;
