@@ -108,7 +108,7 @@ def _run(scene_path: Path, out: Path, plots: bool, all_files: bool = False) -> i
     if all(math.isfinite(bar) for _, _, bar in bars):
         shown = ", ".join(f"{name} = {value:.6g} ± {bar:.2g}" for name, value, bar in bars)
         print(f"  {shown} (error bars: twice the change under enrichment, sharp but not bounds)")
-    elif not scene.has_history and not scene.get("estimate", "error_bars", False) and not scene.get("contact", "pairs"):
+    elif not scene.has_history and not scene.get("estimate", "error_bars", False):
         print("  error bars of P, Q and the zone widths: set error_bars = true in [estimate] (one more solve, enriched "
               "everywhere: about 4 times the unknowns)")
     sharp = est.get("traction_hierarchical_relative", math.nan)

@@ -99,7 +99,7 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
                       "rigid obstacle, given by the keys of `[obstacle]` (`shape` and its keys, `approach`, `shift`; "
                       "it does not turn) and its own Coulomb coefficient `mu` (default `friction.mu`; it needs "
                       "`friction.mu`); with a `[history]` it stays where it is (the steps move the first pair's "
-                      "obstacle); `[adapt]` stops on the bound with them", "—", "none: one pair"),
+                      "obstacle)", "—", "none: one pair"),
     "obstacle.shape": ("The rigid obstacle: a gap function of the abscissa on Γ_C (`flat`, `circle`, `parabola`, "
                        "`polyline`) or a shape given by its geometry (`line`, `disc`, `hole`, `profile`)", "—",
                        '`"flat"`'),

@@ -36,7 +36,7 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     ``edge_set`` (*required*): the edge set Γ_C, one chain of edges (straight, or bent against an
     obstacle given by its geometry; open, or closed: a full ring's rim). ``[[contact.pairs]]``: further pairs, each
     an ``edge_set`` against its own rigid obstacle given by the keys of ``[obstacle]`` (``shape`` and its keys,
-    ``approach``, ``shift``; it does not turn, nor move in a ``[history]``; ``[adapt]`` stops on the bound).
+    ``approach``, ``shift``; it does not turn, nor move in a ``[history]``).
 ``[obstacle]``
     ``shape``: ``"flat"`` (default), ``"circle"``, ``"parabola"`` (both with ``radius`` *required* and
     ``center``, an abscissa on Γ_C, default 0) or ``"polyline"`` (``xi`` and ``gap`` lists, *required*):
@@ -586,8 +586,6 @@ def check_scene(data: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
     if "angle" in sections.get("history", {}) and "rotation" not in sections.get("obstacle", {}):
         raise SceneError("scene key 'history.angle' turns the obstacle about the centre of 'obstacle.rotation', which "
                          "the scene does not give (give it with angle = 0)", "history.angle")
-    if "pairs" in sections.get("contact", {}) and sections.get("estimate", {}).get("error_bars"):
-        raise SceneError("scene key 'contact.pairs': [estimate] error bars take one contact pair today", "contact.pairs")
     if "on" in sections.get("adapt", {}) and "history" not in sections:
         raise SceneError("scene key 'adapt.on' names steps of a [history], and the scene has none", "adapt.on")
     d = sections.get("discretization", {})

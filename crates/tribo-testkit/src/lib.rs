@@ -91,7 +91,7 @@ pub struct AdaptiveCase {
 }
 
 /// The names [`adaptive_case`] knows, with what each is.
-pub const ADAPTIVE_CASES: [(&str, &str); 7] = [
+pub const ADAPTIVE_CASES: [(&str, &str); 8] = [
     ("hertz", "Hertz, the cylinder centred, frictionless"),
     ("hertz@X", "Hertz, the cylinder at x = X, frictionless"),
     ("hertz-coulomb", "Hertz, centred, Coulomb mu = 0.3, the obstacle shifted 0.004 (partial slip)"),
@@ -99,6 +99,7 @@ pub const ADAPTIVE_CASES: [(&str, &str); 7] = [
     ("block", "the block scene (full contact, Coulomb mu = 0.3, shifted 0.008)"),
     ("two-body", "two-body Hertz, steel under aluminium, frictionless"),
     ("two-body-coulomb", "two-body Hertz, steel under aluminium, Coulomb mu = 0.3 (slip from the mismatch)"),
+    ("pairs", "two contact pairs: a half block pressed by a cylindrical punch onto a foundation, frictionless"),
 ];
 
 /// The adaptive case named `name` ([`ADAPTIVE_CASES`]). The Hertz cases start from the 8 × 4 mesh and
@@ -120,6 +121,7 @@ pub fn adaptive_case(name: &str) -> Result<AdaptiveCase> {
         "block" => (block_problem(8, 2).0, coulomb),
         "two-body" => (two_body_hertz(0.5, steel, aluminium, false, 0.01), Friction::Frictionless),
         "two-body-coulomb" => (two_body_hertz(0.5, steel, aluminium, false, 0.01), coulomb),
+        "pairs" => return punch_and_foundation_case(),
         _ => match name.strip_prefix("hertz@").and_then(|x| x.parse::<f64>().ok()) {
             Some(center) => return adaptive_hertz_case(center, 0.0, MultiplierSpace::P1),
             None => {
@@ -352,6 +354,47 @@ pub fn block_problem(nx: usize, ny: usize) -> (Problem, f64) {
         pairs: Vec::new(),
     };
     (Problem::new(mesh, spec).expect("valid block problem"), n("friction", "mu"))
+}
+
+/// Two contact pairs: the half block [0, ½] × [0, 1] (E = 1, ν = 0.3, `n` × `2n` cells, a roller on its left side,
+/// the axis of the whole block) pressed by a rigid cylinder of radius ½ centred above its top left corner
+/// (approach 0.01; the pair "top", P1 multipliers on the FE edges) onto a rigid foundation touching its bottom (the
+/// pair "bottom"): the block is held vertically by the contacts alone.
+pub fn punch_and_foundation(n: usize) -> Problem {
+    punch_and_foundation_on(rectangle([0.0, 0.5], [0.0, 1.0], n, 2 * n, Diagonal::Right).expect("a block"))
+}
+
+/// [`punch_and_foundation`] on `mesh` (of the block [0, ½] × [0, 1], its edge sets those of [`rectangle`]).
+pub fn punch_and_foundation_on(mesh: Mesh) -> Problem {
+    let line = |y: f64| ObstacleShape::Line { point: [0.0, y], normal: [0.0, 1.0] };
+    let mut spec = ProblemSpec::new(Material { young: 1.0, poisson: 0.3 }, "top")
+        .support(Support::roller("left"))
+        .multipliers(MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    spec.obstacle = Obstacle {
+        shape: ObstacleShape::Disc { center: [0.0, 1.5], radius: 0.5 },
+        approach: 0.01,
+        shift: 0.0,
+        rotation: None,
+    };
+    let foundation = Obstacle { shape: line(0.0), approach: 0.0, shift: 0.0, rotation: None };
+    spec.pairs.push(PairSpec::new("bottom", foundation));
+    Problem::new(mesh, spec).expect("the block between a punch and a foundation")
+}
+
+/// The adaptive case `pairs` (frictionless): its coarse start [`punch_and_foundation`] on 4 × 8 cells, and its
+/// reference on a mesh graded toward the punch's contact zone (half-width 0.048: the segment [0, 0.06] of the top,
+/// h_min 1.5625e-4, growth 0.02, so h = 0.02 along the foundation, whose pressure is smooth: the block's corner on a
+/// frictionless flat is its mirror image's straight side).
+///
+/// # Errors
+/// Those of the mesh and of the solve.
+pub fn punch_and_foundation_case() -> Result<AdaptiveCase> {
+    let grading = Grading { side: Side::Top, segment: [0.0, 0.06], h_min: 1.5625e-4, h_max: 0.05, growth: 0.02 };
+    let reference = punch_and_foundation_on(graded_rectangle([0.0, 0.5], [0.0, 1.0], &grading)?);
+    let friction = Friction::Frictionless;
+    let solution = reference.solve(&friction, &SolverSettings::default(), None)?;
+    let reference_source = format!("a graded mesh of {} unknowns (h_min 1.5625e-4, growth 0.02)", reference.n_free);
+    Ok(AdaptiveCase { friction, reference: (reference, solution), reference_source, coarse: punch_and_foundation(4) })
 }
 
 /// The Hertz cylinder (R = 1) pushed `approach` into the uniform 80 × 40 mesh of the Hertz block (h = 0.05),

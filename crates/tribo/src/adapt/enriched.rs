@@ -66,6 +66,33 @@
 //! so it ends within the accuracy asked either way. The second enrichment costs a solve as large as the
 //! first (the first's factorization freed before it is made); it is made only where an end touches.
 //!
+//! An end is measured only where the difference concentrates there: where `d_R² / |R|` exceeds
+//! `(d_P² − d_R²) / (|Z| − |R|)`, d_P the difference on its pair's side and Z its pair's contact zone (out to the T_H
+//! points around it; a zone not longer than 2|R| is all end and always measured). A singular λ puts its error at the
+//! end (the block: 25 times the rest's density there), a smooth one does not, and there the second enrichment
+//! measures nothing: where λ is smooth at the end (a symmetry axis, a frictionless corner: the half block between a
+//! punch and a foundation) `d_R` is a few percent of d, the second enrichment moved λ there by up to 5 times `d_R`,
+//! `q_R ≥ 1` left no estimate, and the adaptive loop fell back to the bound on every level from 25k unknowns. Such an
+//! end stays in the rest, with the rest's factor 2.
+//!
+//! # Several contact pairs
+//! Γ_C is then every pair's side, and `‖·‖_{L²(Γ_C)}` adds the squares of each pair's norm on its own side
+//! ([`multiplier_difference`]). The strip is the union of each pair's: the triangles within one contact width of that
+//! pair's contact zone (`adapt/strip.rs`); the enriched problem halves every pair's T_H where its FE edges
+//! were halved (the first pair's where contact is or may be, as for one pair; a further pair's where its FE edges
+//! were), and starts from every pair's multipliers. Every end of a pair's side that its contact zone reaches is an end
+//! region R, measured as above. Nothing else changes: the argument for `q₀ = ½` is the same on each side. The error
+//! bars of the forces are those of the totals (the sums over the pairs); those of the widths are the first pair's, as
+//! [`Solution::contact_width`] is. Tested: a side cut into two pairs, contact on one, gives the estimate of the
+//! side as one pair to 1e-14 (`tests/integration/pair_estimate.rs`).
+//!
+//! # The level's ratio H/h
+//! The enriched T_H keeps the level's ratio H/h where contact is: the largest ratio over the segments of the first
+//! pair's T_H that hold a touching dof. Over the whole of T_H it would read the segments kept coarse where the body is
+//! surely apart ([`crate::adapt`]) above FE edges that refinement halved, and with ratio 2 leave T_H unhalved in the
+//! strip: λ_f then differs from λ_H by the FE refinement alone (measured: 0.087 against 0.120 on a level of the cut
+//! side's test, whose zone kept its ratio 1).
+//!
 //! # Error bars of the forces and the zone widths
 //! The answer of the problem enriched everywhere (every triangle bisected, T_H halved: h and H halved)
 //! gives the error bars ([`ErrorBars`]) of what users read ([`Problem::estimate_error_bars`]). For a
@@ -88,11 +115,14 @@
 //! `scripts/plot_error_bars.py`) measure their effectivity against a reference on every adaptive case.
 
 // Where they were first: `tribo::adapt::enriched::multiplier_difference` still names them.
+use super::difference::pair_difference_on;
 pub use super::difference::{multiplier_difference, multiplier_difference_on};
+pub use super::strip::near_contact;
+use super::strip::{end_regions, first_pair_span, near_ends, pair_span, strip, EndRegion};
 use crate::error::{Error, Result};
 use crate::mesh::refine::bisect;
 use crate::problem::Problem;
-use crate::results::{dof_span, ContactState, ErrorBars, Solution, SolveStatus, Zone};
+use crate::results::{ErrorBars, Solution, SolveStatus, Zone};
 use crate::settings::friction::{Friction, Threshold};
 use crate::settings::{Bisection, FixedPointSettings, SolverSettings};
 use crate::solve::Observer;
@@ -232,59 +262,6 @@ pub(super) fn estimate_of(difference: f64, norm: f64, ends: &[EndReduction], fp_
     })
 }
 
-fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
-    (a[0] - b[0]).hypot(a[1] - b[1])
-}
-
-/// The triangles within `width` of the contact zone of `solution` (the span of the multiplier dofs not in
-/// separation), the distance taken from a triangle's nearest vertex to that segment of the Γ_C line. All
-/// triangles when `width` is infinite; none when nothing touches.
-pub fn near_contact(problem: &Problem, solution: &Solution, width: f64) -> Vec<usize> {
-    let Some(span) = touching_span(problem, solution) else {
-        return Vec::new();
-    };
-    // The zone reaches the neighbouring T_H points (a P1 multiplier is not zero up to them).
-    let (lo, hi) = neighbouring_points(problem, span);
-    let pts = problem.mesh.points();
-    let distance = |v: usize| problem.contact.distance_to_span(pts[v], lo, hi);
-    problem
-        .mesh
-        .triangles()
-        .iter()
-        .enumerate()
-        .filter(|(_, tri)| tri.iter().any(|&v| distance(v) <= width))
-        .map(|(t, _)| t)
-        .collect()
-}
-
-/// The first and last abscissae of the multiplier dofs of `solution` not in separation
-/// ([`Solution::states`]: an interior-point answer has no exact zeros), `None` when nothing touches. On a
-/// closed Γ_C the shortest arc that holds them, beginning before Γ_C's start where it crosses the cut.
-fn touching_span(problem: &Problem, solution: &Solution) -> Option<(f64, f64)> {
-    let period = problem.contact.is_closed().then(|| problem.contact.length());
-    let touching = |k: usize| solution.states.get(k).is_some_and(|&c| c != ContactState::Separation);
-    dof_span(&problem.multipliers.dof_abscissae(), period, touching)
-}
-
-/// The width of the strip [`Problem::estimate_hierarchical`] (and a history's estimate, for each step)
-/// enriches for `solution`: the span of the multiplier dofs not in separation ([`Solution::contact_width`]
-/// less the half cells at its ends), or where one dof touches, the span of the T_H points on either side of
-/// it (a window of two cells; the whole mesh, which it took before, costs 4 times the unknowns, for every
-/// step of a history); `None` when nothing touches.
-pub(super) fn strip_width(problem: &Problem, solution: &Solution) -> Option<f64> {
-    let (lo, hi) = touching_span(problem, solution)?;
-    if hi > lo {
-        return Some(hi - lo);
-    }
-    let (below, above) = neighbouring_points(problem, (lo, hi));
-    Some(above - below)
-}
-
-/// The T_H points on either side of the span `(lo, hi)` of multiplier dofs ([`crate::MultiplierMesh::points_around`]).
-fn neighbouring_points(problem: &Problem, span: (f64, f64)) -> (f64, f64) {
-    problem.multipliers.points_around(span, problem.contact.is_closed())
-}
-
 impl Problem {
     /// The hierarchical estimate of the traction error of `solution`, a solve of this problem with
     /// `friction` (see the module documentation): the problem enriched within one contact width of the
@@ -310,10 +287,7 @@ impl Problem {
         friction: &Friction,
         settings: &SolverSettings,
     ) -> Result<(Hierarchical, Problem, Solution)> {
-        let marked = match strip_width(self, solution) {
-            Some(width) => near_contact(self, solution, width),
-            None => (0..self.mesh.n_triangles()).collect(),
-        };
+        let marked = strip(self, &[solution]);
         let (h, enriched, answer) = self.hierarchical_on(solution, &marked, friction, settings)?;
         Ok((Hierarchical { error_bars: None, ..h }, enriched, answer))
     }
@@ -409,11 +383,11 @@ impl Problem {
         friction: &Friction,
         settings: &SolverSettings,
     ) -> Result<Vec<EndReduction>> {
-        let regions = self.end_regions(solution);
+        let regions = self.concentrated(&end_regions(self, solution), solution, (enriched, answer));
         if regions.is_empty() {
             return Ok(Vec::new());
         }
-        let near = self.near_ends(enriched, &regions);
+        let near = near_ends(self, enriched, &regions);
         let friction = self.carried_friction(friction, enriched);
         // The first enrichment's factorization is not needed again: the second solve does not hold both.
         enriched.forget_factorization();
@@ -422,61 +396,50 @@ impl Problem {
         Ok(self.reductions(&regions, (solution, (enriched, answer)), converged.then_some((&twice, &again))))
     }
 
+    /// The regions of `regions` whose difference `‖λ_H − λ_f‖²_R` per length is above that of the rest of their
+    /// pair's contact zone (the module documentation, "Ends of Γ_C in contact"): an end whose λ is singular
+    /// concentrates the difference there; one that carries no more than the rest is left to it.
+    pub(super) fn concentrated(
+        &self,
+        regions: &[EndRegion],
+        solution: &Solution,
+        (enriched, answer): (&Problem, &Solution),
+    ) -> Vec<EndRegion> {
+        let concentrated = |r: &&EndRegion| {
+            let Some((lo, hi)) = pair_span(self, solution, r.pair) else { return true };
+            let length = r.span[1] - r.span[0];
+            // The zone reaches the neighbouring T_H points: a zone within R (or hardly beyond) is all end.
+            let rest = (hi - lo) - length;
+            if rest <= length {
+                return true;
+            }
+            let d = |[a, b]: [f64; 2]| pair_difference_on(self, solution, enriched, answer, r.pair, a, b).0;
+            let (at_end, all) = (d(r.span), d([f64::NEG_INFINITY, f64::INFINITY]));
+            let rest_squared = all.powi(2) - at_end.powi(2);
+            // Not where the difference is NaN (a solve of another problem): kept, it then leaves no estimate.
+            let (density, rest_density) = (at_end.powi(2) / length, rest_squared / rest);
+            density > rest_density || density.is_nan() || rest_density.is_nan()
+        };
+        regions.iter().filter(concentrated).copied().collect()
+    }
+
     /// At each region R of `regions`: `d_R = ‖λ_H − λ_f‖_R` and `q_R = ‖λ_f − λ_ff‖_R / d_R` (infinite when
     /// the second enrichment `twice` did not converge: it measures nothing). Regions with `d_R = 0` are left out.
     pub(super) fn reductions(
         &self,
-        regions: &[[f64; 2]],
+        regions: &[EndRegion],
         (solution, (enriched, answer)): (&Solution, (&Problem, &Solution)),
         twice: Option<(&Problem, &Solution)>,
     ) -> Vec<EndReduction> {
         let mut out = Vec::new();
-        for &[lo, hi] in regions {
-            let (d1, _) = multiplier_difference_on(self, solution, enriched, answer, lo, hi);
-            let d2 = twice.map_or(f64::INFINITY, |(p, s)| multiplier_difference_on(enriched, answer, p, s, lo, hi).0);
+        for &EndRegion { pair, span: [lo, hi], .. } in regions {
+            let (d1, _) = pair_difference_on(self, solution, enriched, answer, pair, lo, hi);
+            let d2 = twice.map_or(f64::INFINITY, |(p, s)| pair_difference_on(enriched, answer, p, s, pair, lo, hi).0);
             if d1 > 0.0 {
                 out.push(EndReduction { difference: d1, reduction: d2 / d1 });
             }
         }
         out
-    }
-
-    /// The regions R (the two cells of T_H at an end of Γ_C) at each end whose multiplier dof touches in
-    /// `solution` (not in separation); none on a T_H of fewer than 4 cells, nor on a closed Γ_C (a loop has no
-    /// end: its cut is not one).
-    pub(super) fn end_regions(&self, solution: &Solution) -> Vec<[f64; 2]> {
-        let xi = &self.multipliers.xi;
-        let dofs = self.multipliers.dof_abscissae();
-        let touches = |x: f64| {
-            let nearest = dofs.iter().enumerate().min_by(|a, b| (a.1 - x).abs().total_cmp(&(b.1 - x).abs()));
-            nearest.is_some_and(|(k, _)| solution.states.get(k).is_some_and(|c| *c != ContactState::Separation))
-        };
-        // Two cells at each end, apart from each other (a T_H of fewer than 4 cells is not measured); a loop has
-        // no end.
-        let n = xi.len();
-        if n < 5 || self.contact.is_closed() {
-            return Vec::new();
-        }
-        [(xi[0], [xi[0], xi[2]]), (xi[n - 1], [xi[n - 3], xi[n - 1]])]
-            .into_iter()
-            .filter(|(end, _)| touches(*end))
-            .map(|(_, region)| region)
-            .collect()
-    }
-
-    /// The triangles of `enriched` (this problem enriched) within a region's length of its end of Γ_C, for
-    /// the regions of [`Problem::end_regions`].
-    pub(super) fn near_ends(&self, enriched: &Problem, regions: &[[f64; 2]]) -> Vec<usize> {
-        let xi = &self.multipliers.xi;
-        let near_an_end = |v: usize| {
-            let p = enriched.mesh.points()[v];
-            regions.iter().any(|r| {
-                let end = if r[0] == xi[0] { xi[0] } else { xi[xi.len() - 1] };
-                distance(p, self.contact.point_at(end)) <= r[1] - r[0]
-            })
-        };
-        let triangles = enriched.mesh.triangles().iter().enumerate();
-        triangles.filter(|(_, t)| t.iter().any(|&v| near_an_end(v))).map(|(t, _)| t).collect()
     }
 
     /// Solves (as [`Problem::solve`]) and, when the solve converged, adds the hierarchical estimate and
@@ -522,7 +485,6 @@ impl Problem {
         friction: &Friction,
         settings: &SolverSettings,
     ) -> Result<(Problem, Solution)> {
-        self.refuse_several_pairs("the hierarchical estimates and the error bars")?;
         self.check_solution_of(solution)?;
         let enriched = self.enriched(&[solution], marked)?;
         let start = [self.carried(&solution.lambda_n, &enriched), self.carried(&solution.lambda_t, &enriched)].concat();
@@ -539,7 +501,8 @@ impl Problem {
     /// # Errors
     /// [`Error::BadSetting`] named `solution`.
     pub(super) fn check_solution_of(&self, solution: &Solution) -> Result<()> {
-        let (q, nodes, dofs) = (self.n_multipliers(), self.contact.node_xi.len(), 2 * self.mesh.n_nodes());
+        let nodes = *self.pair_node_offsets().last().unwrap_or(&0);
+        let (q, dofs) = (self.n_multipliers(), 2 * self.mesh.n_nodes());
         let multipliers = [solution.lambda_n.len(), solution.lambda_t.len(), solution.states.len()];
         if multipliers.iter().all(|&n| n == q)
             && solution.node_abscissae.len() == nodes
@@ -568,16 +531,23 @@ impl Problem {
     /// keep their curves all the same: the gap of a bent pair is that of its curves on both meshes (on the
     /// chords' new nodes it would take their sag, of the order of a shrink fit's interference).
     pub(super) fn enriched(&self, solutions: &[&Solution], marked: &[usize]) -> Result<Problem> {
-        let ratio = super::multipliers::ratio(&self.multipliers.xi, &self.contact);
+        // The level's ratio where contact is: a T_H kept where the body is surely apart may be coarser than the
+        // FE edges refined under it there, and their ratio would leave T_H unhalved in the strip.
+        let spans: Vec<(f64, f64)> = solutions.iter().filter_map(|s| first_pair_span(self, s)).collect();
+        let period = if self.contact.is_closed() { self.contact.length() } else { f64::INFINITY };
+        let overlaps =
+            |a: f64, b: f64, (lo, hi): (f64, f64)| (b > lo && a < hi) || (b > lo + period && a < hi + period);
+        let in_contact = |a: f64, b: f64| spans.iter().any(|&span| overlaps(a, b, span));
+        let ratio = super::multipliers::ratio_over(&self.multipliers.xi, &self.contact, in_contact);
         let refined =
             bisect(&self.mesh.without_curves(), marked, Bisection::AllEdges)?.with_curves(self.mesh.curves().clone());
         super::multipliers::next_problem(self, solutions, refined, ratio)
     }
 
-    /// The W_H function of this problem's dof values `v` at the multiplier dofs of `to` (a problem on the
-    /// same Γ_C line).
+    /// The W_H function of each pair of this problem's dof values `v` (stacked over the pairs) at the multiplier
+    /// dofs of `to` (this problem refined or enriched), stacked alike.
     pub(super) fn carried(&self, v: &[f64], to: &Problem) -> Vec<f64> {
-        to.multipliers.dof_abscissae().iter().map(|&x| self.multipliers.evaluate(v, x)).collect()
+        super::multipliers::carried(self, to, v)
     }
 
     /// `friction` for the problem `to`: a Tresca threshold given per dof carried as the W_H function it

@@ -5,7 +5,8 @@
 
 use std::time::Instant;
 
-use super::enriched::{estimate_of, near_contact, strip_width, EndReduction, Hierarchical};
+use super::enriched::{estimate_of, EndReduction, Hierarchical};
+use super::strip::{end_regions, near_ends, strip, EndRegion};
 use super::{multiplier_difference, AdaptStop, Level, LevelObserver, Sharp, Start};
 use crate::error::{Error, Result};
 use crate::problem::Problem;
@@ -147,31 +148,31 @@ impl Problem {
         friction: &Friction,
         settings: &SolverSettings,
     ) -> Result<super::Estimated<History>> {
-        self.refuse_several_pairs("the hierarchical estimates")?;
         let clock = Instant::now();
         if history.records.is_empty() {
             return Ok((Vec::new(), None));
         }
         self.check_history_of(history)?;
-        let mut strip = vec![false; self.mesh.n_triangles()];
-        for s in &history.solutions {
-            // A step with one multiplier dof touching takes the two T_H cells around it.
-            if let Some(width) = strip_width(self, s) {
-                near_contact(self, s, width).into_iter().for_each(|t| strip[t] = true);
-            }
-        }
-        let whole = !strip.contains(&true);
-        let marked: Vec<usize> = (0..strip.len()).filter(|&t| whole || strip[t]).collect();
+        // A step with one multiplier dof touching takes the two T_H cells around it.
+        let marked = strip(self, &history.solutions.iter().collect::<Vec<_>>());
         // The enriched histories keep every step while this one is held: each must fit what the budget leaves.
         let steps = &history.steps[..history.records.len()];
         let held = History::estimated_bytes(self, steps, 1);
         let (enriched, answer) = self.solve_enriched_history(history, &marked, friction, settings, held)?;
-        let regions: Vec<Vec<[f64; 2]>> = history.solutions.iter().map(|s| self.end_regions(s)).collect();
-        let mut union: Vec<[f64; 2]> = regions.iter().flatten().copied().collect();
-        union.sort_by(|a, b| a[0].total_cmp(&b[0]));
+        // Each step's ends where the difference concentrates (a step without its enriched answer keeps them all).
+        let ends_of = |(i, s): (usize, &Solution)| {
+            let regions = end_regions(self, s);
+            match answer.solution_of(history.kept[i]) {
+                Some(fine) => self.concentrated(&regions, s, (&enriched, fine)),
+                None => regions,
+            }
+        };
+        let regions: Vec<Vec<EndRegion>> = history.solutions.iter().enumerate().map(ends_of).collect();
+        let mut union: Vec<EndRegion> = regions.iter().flatten().copied().collect();
+        union.sort_by(|a, b| a.pair.cmp(&b.pair).then(a.span[0].total_cmp(&b.span[0])));
         union.dedup();
         let twice = if answer.status == SolveStatus::Converged && !union.is_empty() {
-            let near = self.near_ends(&enriched, &union);
+            let near = near_ends(self, &enriched, &union);
             let friction = self.carried_friction(friction, &enriched);
             // The first enrichment's factorization is not needed again: the second history does not hold both.
             enriched.forget_factorization();

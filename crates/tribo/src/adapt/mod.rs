@@ -93,8 +93,8 @@
 //! Every pair's indicators mark (the estimate reads every side); the first pair's T_H is refined as above, a further
 //! pair's follows its refined FE edges as its points say (the first pair's ratio or size), so a level's problem is
 //! made again from its mesh and the first pair's T_H ([`Problem::on_level`]); the next level starts from every
-//! pair's multipliers. The hierarchical estimate takes one pair: with several the loop stops on the bound, whatever
-//! `stop_on`.
+//! pair's multipliers. The hierarchical estimate reads every pair ([`enriched`], section "Several contact pairs"),
+//! and the loop stops on it as with one.
 //!
 //! A refinement that would exceed `max_unknowns` is not made; the loop then stops with the last level
 //! and says so ([`AdaptStop::MaxUnknowns`]), as it does at `max_levels` or when a level does not converge.
@@ -104,10 +104,12 @@ pub mod enriched;
 mod history;
 mod marking;
 mod multipliers;
+mod strip;
 
-pub use difference::{multiplier_difference, multiplier_difference_on};
-pub use enriched::{near_contact, Hierarchical};
+pub use difference::{multiplier_difference, multiplier_difference_on, pair_difference_on};
+pub use enriched::Hierarchical;
 pub use history::AdaptiveHistory;
+pub use strip::near_contact;
 
 use std::ops::ControlFlow;
 use std::time::Instant;
@@ -316,11 +318,7 @@ impl Problem {
         let mut levels = Vec::new();
         // The last hierarchical estimate over the bound, and the unknowns of its level.
         let mut measured: Option<(f64, usize)> = None;
-        // The hierarchical estimate takes one contact pair: with several the loop stops on the bound.
-        let sharp = sharp.filter(|_| adapt.stop_on != StopOn::Bound && self.sides.is_empty());
-        if !self.sides.is_empty() && adapt.stop_on != StopOn::Bound {
-            log::info!("{} contact pairs: the adaptive loop stops on the bound", self.sides.len() + 1);
-        }
+        let sharp = sharp.filter(|_| adapt.stop_on != StopOn::Bound);
         loop {
             let clock = Instant::now();
             let mut loose = *settings;

@@ -40,28 +40,41 @@ pub(crate) fn next_problem(
 }
 
 /// The multipliers `lambda` (2q, stacked over the pairs) of `old` as W_H functions, at the multiplier dofs of `new`
-/// (the next level's problem: each pair's dofs taken back to its side on `old` where refinement moved them), stacked
-/// alike: a start for `new`'s solve.
+/// (the next level's problem, or `old` enriched), stacked alike: a start for `new`'s solve.
 pub(crate) fn carried_start(old: &Problem, new: &Problem, lambda: &[f64]) -> Vec<f64> {
-    let (q, offsets) = (old.n_multipliers(), old.pair_offsets());
-    let (mut normal, mut tangential) = (Vec::new(), Vec::new());
+    let q = old.n_multipliers();
+    [carried(old, new, &lambda[..q]), carried(old, new, &lambda[q..])].concat()
+}
+
+/// Values `v` at `old`'s q multiplier dofs (stacked over the pairs) as the W_H function of each pair, at the
+/// multiplier dofs of `new` (each pair's dofs taken back to its side on `old` where refinement moved them), stacked
+/// alike.
+pub(crate) fn carried(old: &Problem, new: &Problem, v: &[f64]) -> Vec<f64> {
+    let offsets = old.pair_offsets();
+    let mut out = Vec::with_capacity(new.n_multipliers());
     for (k, (from, to)) in old.pairs().iter().zip(new.pairs()).enumerate() {
         let dofs = abscissae_back(from.contact, to.contact, &to.multipliers.dof_abscissae());
-        let own = offsets[k]..offsets[k + 1];
-        let at = |v: &[f64]| dofs.iter().map(|&x| from.multipliers.evaluate(v, x)).collect::<Vec<_>>();
-        normal.extend(at(&lambda[own.clone()]));
-        tangential.extend(at(&lambda[q + own.start..q + own.end]));
+        let own = &v[offsets[k]..offsets[k + 1]];
+        out.extend(dofs.iter().map(|&x| from.multipliers.evaluate(own, x)));
     }
-    [normal, tangential].concat()
+    out
 }
 
 /// The ratio H/h of a multiplier mesh over the FE edges of Γ_C: the largest, over the segments of T_H,
 /// of the segment's length over the shortest FE edge it overlaps (1 for T_H on the FE edges).
 pub(crate) fn ratio(xi: &[f64], contact: &ContactBoundary) -> f64 {
-    xi.windows(2)
-        .map(|w| w[1] - w[0])
-        .zip(xi.windows(2))
-        .fold(0.0_f64, |r, (len, w)| r.max(len / shortest_under(contact, w[0], w[1])))
+    ratio_over(xi, contact, |_, _| true)
+}
+
+/// [`ratio`] over the segments `(a, b)` of T_H that `keep` accepts (all where it accepts none).
+pub(crate) fn ratio_over(xi: &[f64], contact: &ContactBoundary, keep: impl Fn(f64, f64) -> bool) -> f64 {
+    let of = |w: &[f64]| (w[1] - w[0]) / shortest_under(contact, w[0], w[1]);
+    let kept = xi.windows(2).filter(|w| keep(w[0], w[1])).fold(f64::NAN, |r, w| r.max(of(w)));
+    if kept.is_nan() {
+        xi.windows(2).fold(0.0_f64, |r, w| r.max(of(w)))
+    } else {
+        kept
+    }
 }
 
 /// The shortest FE edge of Γ_C that overlaps `(a, b)`.

@@ -357,9 +357,8 @@ pub enum Error {
         /// What is wrong.
         what: String,
     },
-    /// Several contact pairs in one problem that do not fit together (sides sharing an edge, an edge set twice), or a
-    /// capability not yet available with more than one pair (the hierarchical estimates, error bars), an edge of a
-    /// further pair on the primary side of two bodies, or a pair's own μ under a law other than Coulomb.
+    /// Several contact pairs in one problem that do not fit together (sides sharing an edge, an edge set twice), an
+    /// edge of a further pair on the primary side of two bodies, or a pair's own μ under a law other than Coulomb.
     #[error("contact pair '{pair}': {what}")]
     SeveralPairs {
         /// The pair (its contact edge set).

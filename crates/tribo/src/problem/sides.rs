@@ -271,20 +271,6 @@ impl Problem {
         }
     }
 
-    /// Refuses `what` for a problem of several contact pairs.
-    ///
-    /// # Errors
-    /// [`Error::SeveralPairs`] naming the second pair.
-    pub(crate) fn refuse_several_pairs(&self, what: &str) -> Result<()> {
-        match self.sides.first() {
-            None => Ok(()),
-            Some(side) => Err(Error::SeveralPairs {
-                pair: side.name.clone(),
-                what: format!("{what} take one contact pair today; this problem has {}", self.sides.len() + 1),
-            }),
-        }
-    }
-
     /// Triplets of `−G` over all dofs, summed over the pairs.
     pub(crate) fn minus_g_triplets(&self, gamma0: f64) -> Vec<faer::sparse::Triplet<usize, usize, f64>> {
         self.pairs().iter().flat_map(|p| p.stress.stiffness_triplets(p.mortar, gamma0)).collect()

@@ -58,6 +58,7 @@ mod mixed;
 mod moved_supports;
 mod outputs;
 mod pair_adaptive;
+mod pair_estimate;
 mod pair_friction;
 mod pair_history;
 mod patch;

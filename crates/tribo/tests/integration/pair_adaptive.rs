@@ -1,6 +1,6 @@
 //! Adaptive refinement with several contact pairs (issue 41, item 4): the loop marks on every pair's indicators,
 //! refines the first pair's T_H where contact is or may be (a further pair's follows its FE edges), carries every
-//! pair's multipliers to the next level, and stops on the bound (the hierarchical estimate takes one pair).
+//! pair's multipliers to the next level, and stops on the hierarchical estimate of every pair (or on the bound).
 //!
 //! * The half block pressed by a punch onto a foundation: the adaptive answer's punch pressure against a reference
 //!   of the same physics (the foundation touching everywhere is a roller: the punch alone on the block with its
@@ -49,11 +49,16 @@ fn a_block_between_a_punch_and_a_foundation_adapts_to_the_tolerance() {
         let out = two.solve_adaptive(&friction, &settings, &adapt, None).unwrap();
         assert_eq!(out.stop, AdaptStop::Tolerance, "{stop_on:?}");
         assert!(out.levels.len() > 2, "{stop_on:?}: it refined");
-        // The loop stopped on the bound: no level read a hierarchical estimate.
+        // What each level read: the bound, or the smaller of it and the hierarchical estimate.
         for level in &out.levels {
-            assert_eq!(level.relative, level.estimate.traction_relative, "{stop_on:?}");
-            assert!(level.estimate.traction_hierarchical_relative.is_none());
+            let (bound, sharp) = (level.estimate.traction_relative, level.estimate.traction_hierarchical_relative);
+            match stop_on {
+                StopOn::Bound => assert!(level.relative == bound && sharp.is_none()),
+                _ => assert_eq!(level.relative, sharp.map_or(bound, |h| h.min(bound)), "{stop_on:?}"),
+            }
         }
+        let read = out.levels.iter().filter(|l| l.estimate.traction_hierarchical_relative.is_some()).count();
+        assert!(read > 0 || stop_on == StopOn::Bound, "{stop_on:?}: the hierarchical estimate was read");
         let s = &out.solution;
         let error = punch_error(&out.problem, s, &reference.problem, &reference.solution);
         eprintln!(
@@ -62,11 +67,16 @@ fn a_block_between_a_punch_and_a_foundation_adapts_to_the_tolerance() {
             out.problem.n_free,
             out.levels.last().unwrap().relative
         );
-        // The bound is above the true error; the reference's own is at most 0.5 %.
+        // The estimate the loop stopped on is above the true error; the reference's own is at most 0.5 %.
         assert!(error <= adapt.tol + fine.tol, "{stop_on:?}: {error:e}");
         let [top, bottom] = [&s.pairs[0], &s.pairs[1]];
         assert!((top.contact_force[1] + bottom.contact_force[1]).abs() <= 1e-6 * top.normal_force);
-        assert!(out.problem.sides[0].multipliers.n_dofs() > two.sides[0].multipliers.n_dofs(), "the foundation's T_H");
+        // The bound reads the foundation's residuals too, which refine its T_H (the hierarchical estimate sees the
+        // error at the punch and stops before).
+        if stop_on == StopOn::Bound {
+            let refined = out.problem.sides[0].multipliers.n_dofs() > two.sides[0].multipliers.n_dofs();
+            assert!(refined, "the foundation's T_H");
+        }
         // A level's problem made again solves to its answer.
         let last = out.levels.last().unwrap();
         let again = two.on_level(last).unwrap().solve(&friction, &settings, None).unwrap();
@@ -75,11 +85,14 @@ fn a_block_between_a_punch_and_a_foundation_adapts_to_the_tolerance() {
     }
 }
 
-/// A history (press, press further, release) adapted on its steps: the estimate meets the tolerance at every step
-/// read, and the history on the last mesh balances at every step.
+/// A history (press, press further, release) adapted on its steps: the estimate the loop stopped on meets the
+/// tolerance at every step read, every step carries the hierarchical estimate, and the history on the last mesh
+/// balances at every step.
 #[test]
 fn a_history_of_two_pairs_adapts() {
-    let settings = SolverSettings::default();
+    // Newton: the fixed point on a body held by the contacts alone is only as accurate as clarabel's QPs, and
+    // stagnates at the tolerance the hierarchical estimate asks of a level (at 624 unknowns here).
+    let settings = SolverSettings { coulomb: CoulombMethod::Newton, ..SolverSettings::default() };
     let steps = [LoadStep::new(0.005, 0.0), LoadStep::new(0.01, 0.0), LoadStep::new(0.007, 0.0)];
     let adapt = AdaptSettings { tol: 0.15, ..AdaptSettings::default() };
     let out = two_pairs().solve_history_adaptive(&Friction::Coulomb { mu: 0.3 }, &steps, &settings, &adapt, &[], None);
@@ -87,7 +100,9 @@ fn a_history_of_two_pairs_adapts() {
     assert_eq!(out.stop, AdaptStop::Tolerance);
     assert_eq!(out.history.status, SolveStatus::Converged);
     for (k, s) in out.history.solutions.iter().enumerate() {
-        assert!(s.report.estimate.traction_relative <= adapt.tol, "step {k}");
+        let e = &s.report.estimate;
+        let sharp = e.traction_hierarchical_relative.expect("every step is estimated");
+        assert!(sharp.min(e.traction_relative) <= adapt.tol, "step {k}");
         let [top, bottom] = [&s.pairs[0], &s.pairs[1]];
         assert!((top.contact_force[1] + bottom.contact_force[1]).abs() <= 1e-6 * top.normal_force, "step {k}");
     }

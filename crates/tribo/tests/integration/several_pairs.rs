@@ -8,7 +8,7 @@
 //! * A disc between two flat platens (half of it, a roller on its axis, held vertically by the contacts alone),
 //!   the platens approaching by different amounts: equal forces, and Hertz's pressure of that force at each contact.
 //! * A second pair that never touches leaves the first pair's answer as it is alone.
-//! * What takes one pair today refuses several with a typed error.
+//! * Two pairs on one edge, or a pair on a support, are refused with a typed error.
 
 use std::collections::BTreeMap;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -362,22 +362,12 @@ fn a_pair_that_never_touches_changes_nothing() {
     assert_eq!(s2.states[q1..].iter().filter(|s| **s != ContactState::Separation).count(), 0);
 }
 
-/// What takes one pair today refuses several with [`Error::SeveralPairs`]: the hierarchical estimates and error bars; and two pairs on one edge. A further pair's side is checked as the
-/// first's: its edge set, Γ_D and Γ_N on it.
+/// Two pairs on one edge are refused with [`Error::SeveralPairs`]. A further pair's side is checked as the first's:
+/// its edge set, Γ_D and Γ_N on it.
 #[test]
-fn what_takes_one_pair_refuses_several() {
+fn pairs_on_one_edge_or_on_a_support_are_refused() {
     let mut spec = spec("top", punch(0.02));
     spec.pairs.push(PairSpec::new("bottom", foundation()));
-    let problem = Problem::new(block_mesh(8), spec.clone()).unwrap();
-    let settings = SolverSettings::default();
-    let friction = Friction::Frictionless;
-    let several = |e: Error| assert!(matches!(e, Error::SeveralPairs { ref pair, .. } if pair == "bottom"), "{e}");
-    let sol = problem.solve(&friction, &settings, None).unwrap();
-    several(problem.estimate_hierarchical(&sol, &friction, &settings).unwrap_err());
-    several(problem.estimate_error_bars(&sol, &friction, &settings).unwrap_err());
-    // The error bars' solve keeps its answer, without bars.
-    let with_bars = problem.solve_with_error_bars(&friction, &settings, None).unwrap();
-    assert!(with_bars.report.estimate.error_bars.is_none());
     // An edge set with an edge of another pair's.
     let mut mesh = block_mesh(8);
     let mut sets = mesh.edge_sets().clone();
