@@ -42,8 +42,8 @@ pub enum StopOn {
     Bound,
     /// The smaller of the bound and the hierarchical estimate ([`crate::Problem::estimate_hierarchical`]):
     /// `2 ‖λ_H − λ_f‖`, λ_f the answer enriched near the contact zone, the reduction measured where the zone
-    /// reaches an end of Γ_C. Sharp (measured 0.98–2.2 times the true error on adaptive Hertz, 1.3–2.0 on
-    /// two bodies, 1.26–1.86 on every step of a Cattaneo–Mindlin history, without drift) but not a
+    /// reaches an end of Γ_C. Sharp (measured 1.79–2.22 times the true error on adaptive Hertz and every step of
+    /// a Cattaneo–Mindlin history, 1.71–2.55 on two bodies, 1.79–2.11 with two contact pairs, without drift) but not a
     /// guaranteed bound, and it costs a solve of about 2.6 times the level's unknowns (twice where an end
     /// touches; a whole history solved again for a history), so the loop computes it only where it may stop
     /// the loop before the bound (see [`crate::adapt`]). While nothing touches the loop reads the energy

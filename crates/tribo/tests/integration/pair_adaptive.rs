@@ -90,9 +90,10 @@ fn a_block_between_a_punch_and_a_foundation_adapts_to_the_tolerance() {
 /// balances at every step.
 #[test]
 fn a_history_of_two_pairs_adapts() {
-    // Newton: the fixed point on a body held by the contacts alone is only as accurate as clarabel's QPs, and
-    // stagnates at the tolerance the hierarchical estimate asks of a level (at 624 unknowns here).
-    let settings = SolverSettings { coulomb: CoulombMethod::Newton, ..SolverSettings::default() };
+    // Auto (Newton, the fixed point where Newton fails): the fixed point alone on a body held by the contacts is only
+    // as accurate as clarabel's QPs and stagnated on a level of 624 unknowns here; Newton alone failed on one of
+    // about 2,000 (the loop then stops `not_converged`, handing back the level before).
+    let settings = SolverSettings { coulomb: CoulombMethod::Auto, ..SolverSettings::default() };
     let steps = [LoadStep::new(0.005, 0.0), LoadStep::new(0.01, 0.0), LoadStep::new(0.007, 0.0)];
     let adapt = AdaptSettings { tol: 0.15, ..AdaptSettings::default() };
     let out = two_pairs().solve_history_adaptive(&Friction::Coulomb { mu: 0.3 }, &steps, &settings, &adapt, &[], None);

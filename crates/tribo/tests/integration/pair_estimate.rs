@@ -4,9 +4,10 @@
 //!
 //! * One contact side cut into two pairs against one obstacle, the contact zone on one of them: the estimate, the
 //!   error bars and the adaptive loop of the problem of one pair, to the solves' accuracy.
-//! * The half block between a punch and a foundation (the foundation touching its whole bottom, both ends of it):
-//!   the estimate against the true error, measured against a solve on a mesh 8 times as fine; each touching end
-//!   measured; a history of one step estimated as the static solve; the adaptive loop stops on the estimate.
+//! * On every level of that side's adaptive run, the enriched T_H halves the cells that hold the contact zone.
+//! * The half block between a punch and a foundation, both touching: the difference summed over the pairs is each
+//!   pair's in squares; a history of one step is estimated as the static solve. (The adaptive loop on it:
+//!   `pair_adaptive.rs`; its effectivity against a graded reference: the `tol` table, study 13.)
 
 use std::collections::BTreeMap;
 
@@ -132,6 +133,25 @@ fn the_enrichment_halves_the_multiplier_mesh_across_the_contact_zone() {
         coarser += usize::from(apart.into_iter().any(|w| under(w) > 0));
     }
     assert!(coarser > 0, "no level had a T_H coarser than its FE edges beyond the zone");
+}
+
+/// Both pairs touch: the difference of two answers (a level and its enriched problem) is the pairs' differences
+/// added in squares, each pair's on its own side, and both are there.
+#[test]
+fn the_difference_adds_the_pairs_in_squares() {
+    let settings = SolverSettings::default();
+    let problem = tribo_testkit::punch_and_foundation(8);
+    let s = problem.solve(&Friction::Frictionless, &settings, None).unwrap();
+    let all: Vec<usize> = (0..problem.mesh.n_triangles()).collect();
+    let (fine, f) = problem.solve_enriched(&s, &all, &Friction::Frictionless, &settings).unwrap();
+    let (d, norm) = adapt::multiplier_difference(&problem, &s, &fine, &f);
+    let each = [0, 1].map(|k| adapt::pair_difference_on(&problem, &s, &fine, &f, k, f64::NEG_INFINITY, f64::INFINITY));
+    eprintln!("{d:e} {norm:e} {each:?}");
+    assert!(each.iter().all(|(dk, nk)| *dk > 1e-3 * d && *nk > 0.1 * norm), "both pairs count: {each:?}");
+    assert!(close(d, each[0].0.hypot(each[1].0), 1e-12) && close(norm, each[0].1.hypot(each[1].1), 1e-12));
+    // The first pair's part on the whole side is `multiplier_difference_on`'s.
+    let first = adapt::multiplier_difference_on(&problem, &s, &fine, &f, f64::NEG_INFINITY, f64::INFINITY);
+    assert_eq!(first, each[0]);
 }
 
 /// A history of one step from rest is estimated as the static solve is: the same strips, ends and enriched answer.
