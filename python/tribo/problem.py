@@ -288,7 +288,7 @@ class Problem(_tribo.Problem):
         error, not a guaranteed bound (the bound is the smaller where the traction is singular at a corner,
         docs/error_bars.md), computed on the levels near ``tol`` with at least 10 multiplier dofs in contact
         at the cost of a solve of about 2.6 times their unknowns; the answer's true error then ended at
-        0.333–0.705 ``tol`` in 31 of 32 runs of eight cases (docs/tol_table.md). With ``stop_on='enriched'`` the
+        0.27–0.55 ``tol`` (in [tol/3, tol] in 30 of 36 runs of nine cases, docs/tol_table.md). With ``stop_on='enriched'`` the
         loop also hands back the answer of a level's enriched problem where its own estimate (half the level's
         away from the ends of Γ_C in contact) meets ``tol`` (P1 multipliers; a history's enriched history alike;
         ``progress``'s return value is not read for that last level): one level sooner as a rule, a more
