@@ -233,6 +233,14 @@ def test_the_docs_quote_the_tol_table_as_generated() -> None:
               f"{in_band} of {len(sharp)} runs), where the bound ends at {_span([r['ratio'] for r in bound], '.2f')} of "
               f"it with {_span(more, '.0f')} times the unknowns")
     assert quoted in guide, quoted
+    assert f"measured on the {_count(cases)} adaptive cases of study 13" in guide
+    assert f"estimate (the default), {_count(cases)} adaptive cases" in studies
+    outside = [r["effectivity"] for rows in eff.values() for r in rows if not 1.0 <= r["effectivity"] <= 2.0]
+    inside = sum(len(rows) for rows in eff.values()) - len(outside)
+    others = [e for c, rows in eff.items() if c != "block" for r in rows if not 1.0 <= (e := r["effectivity"]) <= 2.0]
+    quoted = (f"{inside} of {inside + len(outside)} levels in [1, 2], the block's {len(eff['block'])} at "
+              f"{_span([r['effectivity'] for r in eff['block']], '.2f')} and the rest at {_span(others, '.2f')}")
+    assert quoted in studies, quoted
     block = eff["block"]
     quoted = (f"it is {_span([r['effectivity'] for r in block], '.2f')} times the true error and the bound, "
               f"{_span([r['bound_effectivity'] for r in block], '.2f')}, is the smaller")

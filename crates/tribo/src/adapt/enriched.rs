@@ -22,7 +22,8 @@
 //! loop hands λ_f back where this meets its tolerance with `stop_on = "enriched"` ([`crate::adapt`]).
 //!
 //! Where the enrichment removes much more than half of the error (two bodies: q = 0.22–0.42 on 9 of 10
-//! levels) this overestimates e_f, up to 7 times. Measuring q as at the ends of Γ_C (below) does not mend it: the example
+//! levels, measured before the fix of "The level's ratio H/h" below) this overestimated e_f up to 7 times
+//! (1.30–3.15 times since, study 13). Measuring q as at the ends of Γ_C (below) does not mend it: the example
 //! `measured_reduction` (`docs/measured_reduction.csv`) enriched λ_f once more on every level of adaptive
 //! Hertz and two-body Hertz (484–122k unknowns) and found `‖λ_f − λ_ff‖ / ‖λ_H − λ_f‖` = 0.07–0.40 on the
 //! whole strip and 0.01–0.31 locally, where the cells carrying half of `‖λ_H − λ_f‖²` are, against a true
@@ -32,15 +33,16 @@
 //!
 //! It is no guaranteed bound: where the enrichment removes less than half of the error, it falls below the
 //! truth: a contact edge that the enriched mesh still places in the wrong cell (the coarsest meshes); P0
-//! multipliers, first order everywhere, sit near the limit (1.11–1.61 on adaptive Hertz from 560 unknowns,
-//! studies 14 and 15, `docs/error_bars.md`).
+//! multipliers, first order everywhere, sit near the limit (1.63–1.77 on adaptive Hertz from 560 unknowns,
+//! study 13).
 //!
 //! Measured against references of 152k–500k unknowns on every adaptive case of study 13 (`docs/tol_table.md`,
 //! levels with at least 10 multiplier dofs in contact): 1.79–2.22 times the true error on one-body Hertz and its
 //! histories, 1.63–1.77 with P0 multipliers, 1.71–2.55 on two bodies, 1.79–2.11 with two pairs (48 of 106 levels
-//! in [1, 2], most of the others at 2.0–2.2: the enrichment removes nearly all of the error, q ≈ 0, so d ≈ e_H),
-//! without the drift of the residual bound ζ (effectivity 4 → 20 over the same levels). The strip of one contact width gives the differences of the whole mesh within 11 % at about
-//! two thirds of its unknowns (2.6 times the level's).
+//! in [1, 2]: the block's 22 at 2.33–4.88, the rest at 2.00–2.55; the enrichment removes nearly all of the error,
+//! q ≈ 0, so d ≈ e_H), without the drift of the residual bound ζ (effectivity 4 → 20 over the same levels). The
+//! strip of one contact width gives the differences of the whole mesh within 11 % at about two thirds of its
+//! unknowns (2.6 times the level's).
 //!
 //! # Ends of Γ_C in contact: the reduction measured
 //! The argument for `q₀ = ½` holds where λ vanishes like a square root (a free edge of the contact zone)
@@ -536,9 +538,10 @@ impl Problem {
         // FE edges refined under it there, and their ratio would leave T_H unhalved in the strip.
         let spans: Vec<(f64, f64)> = solutions.iter().filter_map(|s| first_pair_span(self, s)).collect();
         let period = if self.contact.is_closed() { self.contact.length() } else { f64::INFINITY };
-        // Closed: a segment that ends at a single touching dof holds it.
+        // A segment holds a span it overlaps, or a single touching dof at one of its ends (a point span).
+        let holds = |a: f64, b: f64, lo: f64, hi: f64| if lo < hi { b > lo && a < hi } else { b >= lo && a <= hi };
         let overlaps =
-            |a: f64, b: f64, (lo, hi): (f64, f64)| (b >= lo && a <= hi) || (b >= lo + period && a <= hi + period);
+            |a: f64, b: f64, (lo, hi): (f64, f64)| holds(a, b, lo, hi) || holds(a, b, lo + period, hi + period);
         let in_contact = |a: f64, b: f64| spans.iter().any(|&span| overlaps(a, b, span));
         let ratio = super::multipliers::ratio_over(&self.multipliers.xi, &self.contact, in_contact);
         let refined =

@@ -84,8 +84,8 @@
 //! (solved with the caller's settings). Its estimate is less sharp than λ_H's: where the enrichment removes
 //! more than half of the error (`q < ½`), d overestimates `e_f` `1 / (2q)` times as much as 2d does `e_H`.
 //! P0 multipliers converge to first order everywhere: their reduction is about ½, no margin, and λ_f is not
-//! handed back (its estimate was 0.72–1.07 times its error on the P0 `tol` runs of adaptive Hertz). Measured
-//! (study 13, `docs/tol_table.md`, 32 runs of eight cases): within twice the time of the cheapest adequate
+//! handed back (its estimate was 0.72–1.07 times its error on the P0 `tol` runs of adaptive Hertz, measured
+//! before the enrichment fix of [`enriched`]). Measured (study 13, `docs/tol_table.md`, 32 runs of eight cases): within twice the time of the cheapest adequate
 //! level in 27 (1.00–8.37; the block's estimates are the dearest), in [X/3, X] in 26 (0.23–0.58 X); the enriched
 //! answers' estimate is 1.30–3.15 times their error.
 //!
