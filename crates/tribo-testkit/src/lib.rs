@@ -360,11 +360,18 @@ pub fn block_problem(nx: usize, ny: usize) -> (Problem, f64) {
 /// the axis of the whole block) pressed by a rigid cylinder of radius ½ centred above its top left corner
 /// (approach 0.01; the pair "top", P1 multipliers on the FE edges) onto a rigid foundation touching its bottom (the
 /// pair "bottom"): the block is held vertically by the contacts alone.
+///
+/// # Panics
+/// When `n` is 0 (no cells): a test fixture, given its sizes by the tests and studies, never by a user.
 pub fn punch_and_foundation(n: usize) -> Problem {
-    punch_and_foundation_on(rectangle([0.0, 0.5], [0.0, 1.0], n, 2 * n, Diagonal::Right).expect("a block"))
+    punch_and_foundation_on(rectangle([0.0, 0.5], [0.0, 1.0], n, 2 * n, Diagonal::Right).expect("n ≥ 1 cells"))
 }
 
 /// [`punch_and_foundation`] on `mesh` (of the block [0, ½] × [0, 1], its edge sets those of [`rectangle`]).
+///
+/// # Panics
+/// When `mesh` lacks the edge sets "top", "bottom" and "left" of [`rectangle`] or is degenerate: a test fixture,
+/// given its meshes by the tests and studies (this crate's generators), never by a user.
 pub fn punch_and_foundation_on(mesh: Mesh) -> Problem {
     let line = |y: f64| ObstacleShape::Line { point: [0.0, y], normal: [0.0, 1.0] };
     let mut spec = ProblemSpec::new(Material { young: 1.0, poisson: 0.3 }, "top")
