@@ -533,7 +533,7 @@ class Level(_Record):
     status: Status
 
 
-AdaptStop = Literal["tolerance", "max_unknowns", "max_levels", "not_converged", "exact", "interrupted"]
+AdaptStop = Literal["tolerance", "max_unknowns", "max_levels", "memory_budget", "not_converged", "exact", "interrupted"]
 
 
 @dataclass(frozen=True, eq=False, repr=False, kw_only=True)
@@ -565,9 +565,9 @@ class Adaptive(_Levels):
         problem: the Problem on the last mesh (``problem.mesh`` the refined mesh, T_H its multiplier mesh).
         levels: every level, the first (the given mesh) included.
         stop: why the loop stopped: 'tolerance' (the relative estimate reached ``tol``), 'max_unknowns'
-            (the next refinement would have exceeded it), 'max_levels', 'not_converged' (a level's solve
-            did not converge), 'exact' (the estimate is zero) or 'interrupted' (the progress callback
-            returned False).
+            (the next refinement would have exceeded it), 'max_levels', 'memory_budget' (the next level's solve
+            would have exceeded it: the level before is handed back), 'not_converged' (a level's solve did not
+            converge), 'exact' (the estimate is zero) or 'interrupted' (the progress callback returned False).
         meshes: each level's Mesh, T_H points, bodies' spans in the mesh (as ``problem.bodies``:
             [first node, end, first triangle, end] per body) and triangles' regions (as ``problem.regions``);
             ``level_problem(k)`` builds level k's Problem.

@@ -51,6 +51,13 @@ def test_the_loop_stops_before_max_unknowns_and_when_told() -> None:
     assert out.stop == "interrupted" and out.levels[-1].unknowns >= 100
 
 
+def test_a_level_beyond_the_memory_budget_hands_back_the_level_before() -> None:
+    """6 MiB holds clarabel's dense QP over about 200 multiplier unknowns: the loop stops there, converged."""
+    out = off_centre().solve_adaptive(tol=1e-6, stop_on="bound", max_unknowns=400_000, mu=0.3, memory_budget=6 << 20)
+    assert out.stop == "memory_budget" and len(out.levels) > 3
+    assert out.solution.report.status == "converged" and out.levels[-1].unknowns == out.problem.n_free
+
+
 @pytest.mark.parametrize(
     ("keywords", "name"),
     [

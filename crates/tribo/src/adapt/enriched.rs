@@ -480,7 +480,10 @@ impl Problem {
     ///
     /// # Errors
     /// [`Error::BadSetting`] named `solution` when `solution` is not of this problem; those of
-    /// [`crate::mesh::refine::bisect`], of the new problem and of its solve.
+    /// [`Friction::validate`] for this problem's dofs; [`Error::MemoryBudget`] when the factorization this
+    /// problem holds ([`Problem::held_bytes`]) leaves less than 1 MiB of `settings.memory_budget` (the
+    /// enriched solve has the rest); those of [`crate::mesh::refine::bisect`], of the new problem and of
+    /// its solve.
     pub fn solve_enriched(
         &self,
         solution: &Solution,
@@ -489,11 +492,25 @@ impl Problem {
         settings: &SolverSettings,
     ) -> Result<(Problem, Solution)> {
         self.check_solution_of(solution)?;
+        friction.validate(self.n_multipliers())?;
+        // This problem's factorization stays held beside the enriched one's: the budget bounds their sum.
+        let held = self.held_bytes();
+        let memory_budget = settings.memory_budget as f64 - held;
+        if memory_budget < (1 << 20) as f64 {
+            return Err(Error::MemoryBudget {
+                what: format!(
+                    "the enriched problem, beside the factorization this problem holds ({} bytes),",
+                    crate::error::Num(held)
+                ),
+                needed: held + (1 << 20) as f64,
+                budget: settings.memory_budget as f64,
+            });
+        }
         let enriched = self.enriched(&[solution], marked)?;
         let start = [self.carried(&solution.lambda_n, &enriched), self.carried(&solution.lambda_t, &enriched)].concat();
         let friction = self.carried_friction(friction, &enriched);
         // (the enriched answer measures the error of `solution`: no check of its own by a second Coulomb method)
-        let settings = SolverSettings { coulomb_check: false, ..*settings };
+        let settings = SolverSettings { coulomb_check: false, memory_budget: memory_budget as usize, ..*settings };
         let answer = super::solve_level(&enriched, &friction, &settings, Some(&start))?;
         Ok((enriched, answer))
     }

@@ -102,6 +102,7 @@
 mod difference;
 pub mod enriched;
 mod history;
+mod levels;
 mod marking;
 mod multipliers;
 mod strip;
@@ -109,6 +110,7 @@ mod strip;
 pub use difference::{multiplier_difference, multiplier_difference_on, pair_difference_on};
 pub use enriched::Hierarchical;
 pub use history::AdaptiveHistory;
+pub use levels::{AdaptStop, Adaptive, Level, LevelObserver};
 pub use strip::near_contact;
 
 use std::ops::ControlFlow;
@@ -128,87 +130,6 @@ use crate::settings::{AdaptSettings, SolverSettings, StopOn};
 /// estimate: the threshold from which issue 36 asks for its effectivity, and below which the enrichment
 /// of a coarse contact zone is unreliable (study 12).
 pub const MIN_IN_CONTACT: usize = 10;
-
-/// One level of an adaptive solve.
-#[derive(Debug, Clone)]
-pub struct Level {
-    /// Unknowns (displacement dofs after the supports, and the pressures of a mixed formulation).
-    pub unknowns: usize,
-    /// Multiplier dofs q (per component).
-    pub multipliers: usize,
-    /// Triangles.
-    pub triangles: usize,
-    /// The estimate of this level's solution.
-    pub estimate: ErrorEstimate,
-    /// The relative estimate the stopping test reads: of the tractions (the smaller of the hierarchical
-    /// estimate and the bound where the loop computed the former, the bound elsewhere), or of the energy
-    /// when nothing touches.
-    pub relative: f64,
-    /// Wall time of the level (building the problem, solving, estimating, marking and refining); 0 for the
-    /// enriched answer handed back as the last level (module documentation), solved as the estimate of the
-    /// level before it and counted there.
-    pub seconds: f64,
-    /// How the level's solve ended.
-    pub status: SolveStatus,
-    /// The level's mesh (the edge sets and the newest-vertex labels with it), so that a level can be
-    /// looked at or solved again. The levels grow geometrically, so all their meshes together take a few
-    /// times the memory of the last one.
-    pub mesh: crate::mesh::Mesh,
-    /// The points of the level's multiplier mesh T_H (abscissae on Γ_C).
-    pub multiplier_mesh: Vec<f64>,
-    /// Where each body lies in `mesh` (as [`Problem::bodies`]).
-    pub bodies: Vec<crate::problem::bodies::BodyPart>,
-    /// The material of every triangle of `mesh`: an index into the materials of the problem the run
-    /// started from (as [`crate::fem::elasticity::Materials::region`]).
-    pub regions: Vec<usize>,
-}
-
-/// Why the adaptive loop stopped.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum AdaptStop {
-    /// The relative estimate reached `tol` (the last level's, or the enriched answer's, handed back as one more
-    /// level: module documentation).
-    Tolerance,
-    /// The next refinement would have exceeded `max_unknowns`.
-    MaxUnknowns,
-    /// `max_levels` levels were solved.
-    MaxLevels,
-    /// A level's solve did not converge (its status is the last level's).
-    NotConverged,
-    /// The estimate is exactly zero: nothing to refine. Either the discrete answer is exact, or nothing
-    /// touches and nothing penetrates where the estimator looks (its Gauss points on every edge of Γ_C,
-    /// and finely around the obstacle's lowest points, [`crate::ObstacleShape::lowest_points`]: a gap
-    /// *function* that dips below Γ_C only between those points is not seen). It is checked before the
-    /// tolerance, so a relative estimate of 0 / 0 never reads as an accuracy reached.
-    Exact,
-    /// The observer asked to stop.
-    Interrupted,
-}
-
-crate::choice::named_choice!(AdaptStop, "adaptive stop", {
-    AdaptStop::Tolerance => "tolerance",
-    AdaptStop::MaxUnknowns => "max_unknowns",
-    AdaptStop::MaxLevels => "max_levels",
-    AdaptStop::NotConverged => "not_converged",
-    AdaptStop::Exact => "exact",
-    AdaptStop::Interrupted => "interrupted",
-});
-
-/// The result of an adaptive solve: the problem on the last mesh, its solution, and every level.
-#[derive(Debug, Clone)]
-pub struct Adaptive {
-    /// The problem on the last mesh.
-    pub problem: Problem,
-    /// The last level's solution.
-    pub solution: Solution,
-    /// Every level, the first (the given mesh) included.
-    pub levels: Vec<Level>,
-    /// Why the loop stopped.
-    pub stop: AdaptStop,
-}
-
-/// An observer of the levels: called after each one; `ControlFlow::Break(())` stops the loop there.
-pub type LevelObserver<'a> = &'a mut dyn FnMut(&Level) -> ControlFlow<()>;
 
 /// The relative estimate the stopping test reads.
 fn relative(e: &ErrorEstimate) -> f64 {
@@ -318,6 +239,8 @@ impl Problem {
         let mut levels = Vec::new();
         // The last hierarchical estimate over the bound, and the unknowns of its level.
         let mut measured: Option<(f64, usize)> = None;
+        // The last level's answer, and whether it was solved to `fp_tol`.
+        let mut previous: Option<(T, bool)> = None;
         let sharp = sharp.filter(|_| adapt.stop_on != StopOn::Bound);
         loop {
             let clock = Instant::now();
@@ -325,7 +248,30 @@ impl Problem {
             if let Some(r) = levels.last().map(|l: &Level| l.relative).filter(|r| r.is_finite()) {
                 loose.fp.tol = settings.fp.tol.max((adapt.algebraic * r).min(0.1));
             }
-            let mut answer = solve(&problem, &loose, start.as_deref().map_or(Start::Rest, Start::Lambda))?;
+            let mut answer = match solve(&problem, &loose, start.as_deref().map_or(Start::Rest, Start::Lambda)) {
+                // A level beyond the memory budget: the loop stops with the level before, as at `max_unknowns`.
+                Err(e @ Error::MemoryBudget { .. }) if previous.is_some() && !levels.is_empty() => {
+                    log::warn!(
+                        "level {} ({} unknowns): {e}; the loop stops at the level before",
+                        levels.len(),
+                        problem.n_free
+                    );
+                    drop(problem);
+                    let (answer, strict) = previous.take().ok_or(e)?;
+                    let last = levels.len() - 1;
+                    let problem = self.on_level(&levels[last])?;
+                    let (answer, stop) = strictly(
+                        &problem,
+                        answer,
+                        strict,
+                        AdaptStop::MemoryBudget,
+                        (settings, solve, read, ended),
+                        &mut levels,
+                    )?;
+                    return Ok((problem, answer, levels, stop));
+                }
+                answer => answer?,
+            };
             let mut strict = loose.fp.tol <= settings.fp.tol || ended(&answer).1 == 0;
             let mut level = new_level(&problem, read(&answer), ended(&answer).0);
             // The enriched problem, its answer and its level, where its estimate meets the tolerance.
@@ -491,29 +437,52 @@ impl Problem {
             match (stop, next) {
                 (None, Some(p)) if flow.is_continue() => {
                     start = read(&answer).last().map(|s| multipliers::carried_start(&problem, &p, &s.multipliers()));
+                    // Kept without its problem (rebuilt from its level if the next one does not fit the budget).
+                    previous = Some((answer, strict));
                     problem = p;
                 }
                 (stop, next) => {
                     let mut stop =
                         stop.unwrap_or(if next.is_none() { AdaptStop::MaxUnknowns } else { AdaptStop::Interrupted });
-                    if matches!(stop, AdaptStop::MaxUnknowns | AdaptStop::Interrupted) && !strict {
-                        // Stopped short of the tolerance, on a level solved loosely: the answer handed back
-                        // is converged to fp_tol all the same (defect D34), and its level says so.
-                        let clock = Instant::now();
-                        answer = solve(&problem, settings, Start::Answer(&answer))?;
-                        let resolved = new_level(&problem, read(&answer), ended(&answer).0);
-                        if resolved.status != SolveStatus::Converged {
-                            stop = AdaptStop::NotConverged;
-                        }
-                        if let Some(last) = levels.last_mut() {
-                            *last = Level { seconds: last.seconds + clock.elapsed().as_secs_f64(), ..resolved };
-                        }
+                    if matches!(stop, AdaptStop::MaxUnknowns | AdaptStop::Interrupted) {
+                        (answer, stop) =
+                            strictly(&problem, answer, strict, stop, (settings, solve, read, ended), &mut levels)?;
                     }
                     return Ok((problem, answer, levels, stop));
                 }
             }
         }
     }
+}
+
+/// The answer handed back when the loop stops short of the tolerance (`stop`): solved again to `fp_tol` from
+/// itself where its level was solved loosely (defect D34), its level (the last of `levels`) replaced by the
+/// new solve's, the stop [`AdaptStop::NotConverged`] if that does not converge.
+#[allow(clippy::type_complexity)]
+fn strictly<T>(
+    problem: &Problem,
+    answer: T,
+    strict: bool,
+    stop: AdaptStop,
+    (settings, solve, read, ended): (
+        &SolverSettings,
+        &dyn Fn(&Problem, &SolverSettings, Start<'_, T>) -> Result<T>,
+        &dyn Fn(&T) -> Vec<&Solution>,
+        &dyn Fn(&T) -> (SolveStatus, usize),
+    ),
+    levels: &mut [Level],
+) -> Result<(T, AdaptStop)> {
+    if strict {
+        return Ok((answer, stop));
+    }
+    let clock = Instant::now();
+    let answer = solve(problem, settings, Start::Answer(&answer))?;
+    let resolved = new_level(problem, read(&answer), ended(&answer).0);
+    let stop = if resolved.status == SolveStatus::Converged { stop } else { AdaptStop::NotConverged };
+    if let Some(last) = levels.last_mut() {
+        *last = Level { seconds: last.seconds + clock.elapsed().as_secs_f64(), ..resolved };
+    }
+    Ok((answer, stop))
 }
 
 /// The hierarchical estimates of an answer (one per solution it holds), with the enriched problem and its

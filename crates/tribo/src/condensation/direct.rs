@@ -25,6 +25,15 @@ pub(super) enum Direct {
 }
 
 impl Direct {
+    /// Bytes of the factor's values: what [`fits_budget`] counted for it before they were allocated.
+    pub(super) fn value_bytes(&self) -> f64 {
+        let len = match self {
+            Self::Columns(_, values) | Self::Ldlt(_, values) => values.len(),
+            Self::Schur(f) => f.len_values(),
+        };
+        8.0 * len as f64
+    }
+
     pub(super) fn solve_in_place(&self, x: MatMut<'_, f64>) -> Result<()> {
         let par = faer::get_global_parallelism();
         // The workspace of a solve with a factor in the fill-reducing ordering.

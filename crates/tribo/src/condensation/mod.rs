@@ -431,6 +431,48 @@ impl Factor {
         f(&guard.cols)
     }
 
+    /// Bytes this factorization holds now: the factor's values and the columns of H formed so far (all of
+    /// them with the partial factorization).
+    pub fn held_bytes(&self) -> f64 {
+        let guard = self.columns.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let formed = guard.cols.iter().filter(|c| c.is_some()).count();
+        self.direct.value_bytes() + 8.0 * (formed * self.e_rows.len()) as f64
+    }
+
+    /// Checks that dense parts of `dense` bytes, and the columns `idx` of H they need that are not formed
+    /// yet, fit `budget` beside what this factorization holds ([`Factor::held_bytes`]): the memory budget
+    /// bounds their sum, not each part on its own (an adaptive loop whose contact zone kept refining was
+    /// killed at 24 GB while its H and its QP each fitted).
+    ///
+    /// # Errors
+    /// [`Error::MemoryBudget`] naming `what` and the bytes held.
+    pub(crate) fn fits_beside(
+        &self,
+        what: impl FnOnce() -> String,
+        idx: &[usize],
+        dense: f64,
+        budget: usize,
+    ) -> Result<()> {
+        let held = self.held_bytes();
+        let missing = {
+            let guard = self.columns.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+            idx.iter().filter(|&&i| guard.cols.get(i).is_some_and(Option::is_none)).count()
+        };
+        let needed = held + 8.0 * (missing * self.e_rows.len()) as f64 + dense;
+        if needed > budget as f64 {
+            return Err(Error::MemoryBudget {
+                what: format!(
+                    "{} beside the factor of A and the columns of H already formed ({} bytes)",
+                    what(),
+                    Num(held)
+                ),
+                needed,
+                budget: budget as f64,
+            });
+        }
+        Ok(())
+    }
+
     /// The sub-matrix `H[rows, cols]` (column-major), computing the columns it needs.
     pub fn h_block(&self, rows: &[usize], cols: &[usize]) -> Vec<f64> {
         self.with_columns(cols, |all| {

@@ -436,6 +436,11 @@ pub struct SchurFactor {
 }
 
 impl SchurFactor {
+    /// Number of values the factor holds (supernodal storage).
+    pub fn len_values(&self) -> usize {
+        self.values.len()
+    }
+
     /// The symbolic analysis this factor was computed with.
     pub fn symbolic(&self) -> &Arc<SchurSymbolic> {
         &self.symbolic

@@ -275,4 +275,11 @@ impl Problem {
     pub fn forget_factorization(&self) {
         *self.factor_cache.0.lock().unwrap_or_else(PoisonError::into_inner) = None;
     }
+
+    /// Bytes the cached factorization holds ([`Factor::held_bytes`]: its factor's values and the columns of H
+    /// formed so far); 0 when none is cached. A solve of another problem made while this one is held (an
+    /// enriched problem, the adaptive loop's estimate) has that much less of the memory budget.
+    pub fn held_bytes(&self) -> f64 {
+        self.factor_cache.0.lock().unwrap_or_else(PoisonError::into_inner).as_ref().map_or(0.0, |(_, f)| f.held_bytes())
+    }
 }

@@ -34,7 +34,7 @@ mod scaling;
 pub(crate) mod sparse;
 pub mod working_set;
 
-pub use clarabel::BoxQp;
+pub use clarabel::{BoxQp, DENSE_BYTES_PER_K2};
 pub(crate) use scaling::{diagonal, Scaling};
 
 use crate::settings::QpMethod;

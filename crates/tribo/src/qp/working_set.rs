@@ -24,13 +24,18 @@
 use std::time::Instant;
 
 use crate::condensation::Factor;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::qp::active_set::{self, Bounds, Place, Start};
 use crate::qp::dense::DenseBlock;
 use crate::qp::sparse;
+use crate::qp::DENSE_BYTES_PER_K2;
 use crate::qp::{BoxQp, QpData, QpOutcome, QpStatus, Scaling};
 use crate::settings::friction::check_thresholds;
 use crate::settings::{Condensation, QpMethod, QpSettings};
+
+/// Bytes of the active-set method's dense QP over k unknowns, per k²: its copy of the block of H and the factor of
+/// its free unknowns' part (at most k² values each), with as much again of margin.
+const ACTIVE_SET_BYTES_PER_K2: f64 = 8.0 * 4.0;
 
 /// The Γ_C QP solved over a growing working set; the columns of H come from a [`Factor`], computed when
 /// the set first needs them.
@@ -186,6 +191,7 @@ impl<'a> ContactQp<'a> {
         let qp = match self.qp.take() {
             Some(qp) => qp,
             None => {
+                self.check_budget(DENSE_BYTES_PER_K2)?;
                 let (h, c, bounds) = self.block();
                 BoxQp::new(&h, &c, self.set.len(), bounds.as_deref(), &self.settings)?
             }
@@ -239,24 +245,19 @@ impl<'a> ContactQp<'a> {
         out.certified.then(|| done(out.x, out.newton_steps + out.gradient_steps, op.factorizations - factorizations))
     }
 
-    /// Refuses a set whose dense parts exceed the budget: its columns of H (each 2q long), the dense QP
-    /// on it and clarabel's or the active-set method's copy and factor of it (about 4 k² values).
-    fn check_budget(&self) -> Result<()> {
-        let k = self.unknowns().len() as f64;
-        let needed = 8.0 * (k * self.condensed.e_rows.len() as f64 + 4.0 * k * k);
-        if needed > self.budget as f64 {
-            return Err(Error::MemoryBudget {
-                what: format!("the dense Γ_C QP over {k} multiplier unknowns (2q = {})", self.condensed.e_rows.len()),
-                needed,
-                budget: self.budget as f64,
-            });
-        }
-        Ok(())
+    /// Refuses a set whose dense parts exceed the budget beside what the factor holds
+    /// ([`Factor::fits_beside`]): its columns of H not formed yet (each 2q long), and the dense QP on it,
+    /// `per_k2` bytes per k² (k the set's unknowns): clarabel's [`crate::qp::DENSE_BYTES_PER_K2`],
+    /// or the active-set method's copy of the block and its factor (4 × 8).
+    fn check_budget(&self, per_k2: f64) -> Result<()> {
+        let unknowns = self.unknowns();
+        let k = unknowns.len();
+        let what = || format!("the dense Γ_C QP over {k} multiplier unknowns (2q = {})", self.condensed.e_rows.len());
+        self.condensed.fits_beside(what, &unknowns, per_k2 * (k * k) as f64, self.budget)
     }
 
     /// Solves the QP on the set with the method the settings ask for (see the module documentation).
     fn solve_on_set(&mut self) -> Result<QpOutcome> {
-        self.check_budget()?;
         if self.settings.method == QpMethod::Clarabel {
             return self.solve_clarabel();
         }
@@ -266,6 +267,7 @@ impl<'a> ContactQp<'a> {
             None => vec![0.0; idx.len()],
         };
         let places: Option<Vec<Option<Place>>> = self.places.as_ref().map(|p| idx.iter().map(|&i| p[i]).collect());
+        self.check_budget(ACTIVE_SET_BYTES_PER_K2)?;
         let clock = Instant::now();
         if let Some(out) = self.solve_active_set(Start { x: &start, places: places.as_deref() }) {
             return Ok(out);
@@ -325,7 +327,7 @@ impl<'a> ContactQp<'a> {
         if self.set.len() < q {
             self.set = (0..q).collect();
         }
-        self.check_budget()?;
+        self.check_budget(DENSE_BYTES_PER_K2)?;
         let (h, c, bounds) = self.block();
         let g: Vec<f64> = (0..load.len()).flat_map(|m| e_r[m * 2 * q..m * 2 * q + k].iter().copied()).collect();
         // Without friction (the start of a Coulomb solve) only the motions the normal multipliers see

@@ -80,7 +80,7 @@ use std::time::Instant;
 use faer::linalg::solvers::{PartialPivLu, Solve};
 use faer::Mat;
 
-use crate::error::{Error, Num, Result};
+use crate::error::{Num, Result};
 use crate::problem::load_case::LoadCase;
 use crate::problem::Condensed;
 use crate::results::SolveStatus;
@@ -196,21 +196,13 @@ impl Condensed<'_> {
         loop {
             let clock = Instant::now();
             let cols: Vec<usize> = set.iter().flat_map(|&j| [j, q + j]).collect();
-            // The columns of H it forms (kept by the factor) and its dense system, within the memory budget as the
-            // QPs' dense parts are.
-            let k = (cols.len() + eq.r()) as f64;
-            // (The LU copies the k × k system into its factors: twice k² values.)
-            let needed = 8.0 * (cols.len() as f64 * (2 * q) as f64 + 2.0 * k * k);
-            if needed > settings.memory_budget as f64 {
-                return Err(Error::MemoryBudget {
-                    what: format!(
-                        "the Newton method's columns of H and its dense system over {k} unknowns (2q = {})",
-                        2 * q
-                    ),
-                    needed,
-                    budget: settings.memory_budget as f64,
-                });
-            }
+            // The columns of H it forms (kept by the factor) and its dense system, within the memory budget beside
+            // what the factor holds, as the QPs' dense parts are. (The LU copies the k × k system into its
+            // factors: twice k² values.)
+            let k = cols.len() + eq.r();
+            let what =
+                || format!("the Newton method's columns of H and its dense system over {k} unknowns (2q = {})", 2 * q);
+            factor.fits_beside(what, &cols, 8.0 * 2.0 * (k * k) as f64, settings.memory_budget)?;
             let norm = euclidean(x[..q].iter().copied());
             let relative = |merit: f64| if norm > 0.0 { merit / norm } else { merit };
             let tolerance = (settings.fp.tol * norm).max(noise);

@@ -309,6 +309,32 @@ fn a_stop_on_max_unknowns_keeps_the_hierarchical_estimate() {
     assert!(out.solution.kkt.max() <= bound, "converged to fp_tol: {:?}", out.solution.kkt);
 }
 
+/// A level whose solve would exceed the memory budget stops the loop with the level before (`memory_budget`),
+/// solved to `fp_tol` like every answer handed back short of the tolerance; the same level solved on its own
+/// within that budget gives the same answer. (The loop used to return the error and lose every level; an
+/// adaptive run on two contact pairs to 500k unknowns was killed by the kernel at 24 GB.)
+#[test]
+fn a_level_beyond_the_memory_budget_stops_the_loop_with_the_level_before() -> Result<()> {
+    let problem = off_centre_problem();
+    let friction = Friction::Coulomb { mu: 0.3 };
+    // 6 MiB: a dense QP of clarabel over about 200 unknowns (16 × 8 k² bytes), reached after a few levels.
+    let settings = SolverSettings { memory_budget: 6 << 20, ..Default::default() };
+    let adapt = AdaptSettings { tol: 1e-6, stop_on: StopOn::Bound, max_unknowns: 400_000, ..Default::default() };
+    let out = problem.solve_adaptive(&friction, &settings, &adapt, None)?;
+    assert_eq!(out.stop, AdaptStop::MemoryBudget, "{:?}", out.levels.iter().map(|l| l.unknowns).collect::<Vec<_>>());
+    let last = out.levels.last().expect("levels");
+    assert!(out.levels.len() > 3 && last.unknowns == out.problem.n_free, "{} levels", out.levels.len());
+    assert_eq!(out.solution.report.status, SolveStatus::Converged);
+    let bound = Solution::accuracy_bound(settings.qp.tol, out.solution.report.qp_inaccurate, settings.fp.tol);
+    assert!(out.solution.kkt.max() <= bound, "converged to fp_tol: {:?}", out.solution.kkt);
+    // The problem handed back is the last level's (rebuilt from it): solved again within the budget, it gives
+    // the answer handed back.
+    let again = problem.on_level(last)?.solve(&friction, &settings, None)?;
+    let (d, n) = adapt::multiplier_difference(&out.problem, &out.solution, &out.problem, &again);
+    assert!(d <= 10.0 * settings.fp.tol * n, "{d:e} of {n:e}");
+    Ok(())
+}
+
 /// A history of one step from rest is the static problem (its data bit for bit): its hierarchical estimate
 /// is the static one, to the accuracy of the solves, on adaptive Hertz with Coulomb friction (no end of Γ_C
 /// touches) and on an adaptive level of the block (both ends touch: the second enrichment measures the

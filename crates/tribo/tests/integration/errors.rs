@@ -354,6 +354,47 @@ fn fuzzing_holes_are_typed_errors() {
     assert_eq!(sol.report.status, SolveStatus::Converged);
 }
 
+/// The memory budget bounds the sum of what a solve holds at once, not each dense part on its own: an
+/// adaptive loop whose contact zone kept refining was killed by the kernel at 24 GB while its H (held by the
+/// partial factorization) and its dense QP each fitted the 22 GB budget.
+#[test]
+fn the_memory_budget_bounds_the_sum_of_the_dense_parts() {
+    // 401 P1 multiplier dofs: all of H (802² values, 5.1 MB) from the partial factorization, and a
+    // frictionless QP over every dof (no working set): 4 q² values (5.1 MB) of its own.
+    let fine = MultiplierPoints::Abscissae((0..=400).map(|i| i as f64 / 400.0).collect());
+    let problem = Problem::new(square(), ProblemSpec { multiplier_points: fine, ..spec() }).unwrap();
+    let q = problem.n_multipliers() as f64;
+    let qp = QpSettings { working_set: false, ..Default::default() };
+    let settings = SolverSettings { condensation: Condensation::Schur, qp, ..Default::default() };
+    let sol = problem.solve(&Friction::Frictionless, &settings, None).unwrap();
+    assert_eq!(sol.report.status, SolveStatus::Converged);
+    // The factorization stays cached: its values and all 2q columns of H.
+    let held = problem.held_bytes();
+    assert!(held >= 8.0 * (2.0 * q).powi(2), "{held} bytes held");
+    // A budget that holds H and the factor, and the QP's dense parts on their own (counted as 8 (2q·q + 4q²)
+    // bytes, its columns of H included, they fit: 48 q² ≤ 32 q² + 16 q²), but not both.
+    let qp_bytes = 8.0 * 4.0 * q * q;
+    for (budget, fits) in [(held + 0.5 * qp_bytes, false), (held + 1.01 * qp_bytes, true)] {
+        let settings = SolverSettings { memory_budget: budget as usize, ..settings };
+        let result = problem.solve(&Friction::Frictionless, &settings, None);
+        match result {
+            Ok(sol) if fits => assert_eq!(sol.report.status, SolveStatus::Converged),
+            Err(Error::MemoryBudget { what, needed, .. }) if !fits => {
+                assert!(what.contains("beside the factor of A"), "{what}");
+                assert!((needed - (held + qp_bytes)).abs() <= 1e-9 * needed, "{needed} against {}", held + qp_bytes);
+            }
+            other => panic!("budget {budget}: {other:?}"),
+        }
+    }
+    // The enriched problem of an estimate is solved beside this problem's factorization: a budget that
+    // leaves it less than 1 MiB is refused before anything is built.
+    let settings = SolverSettings { memory_budget: (held + 1e5) as usize, ..settings };
+    match problem.estimate_hierarchical(&sol, &Friction::Frictionless, &settings).unwrap_err() {
+        Error::MemoryBudget { what, .. } => assert!(what.contains("enriched problem"), "{what}"),
+        e => panic!("{e}"),
+    }
+}
+
 /// A Solution reports the gap, von Mises and KKT residuals that do not overflow or divide by a
 /// vanishing scale.
 #[test]
