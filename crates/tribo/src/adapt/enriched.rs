@@ -392,9 +392,12 @@ impl Problem {
         }
         let near = near_ends(self, enriched, &regions);
         let friction = self.carried_friction(friction, enriched);
-        // The first enrichment's factorization is not needed again: the second solve does not hold both.
+        // The first enrichment's factorization is not needed again: the second solve does not hold both. This
+        // problem's may be held (the adaptive loop's level): the second solve has what it leaves of the budget.
         enriched.forget_factorization();
-        let (twice, again) = enriched.solve_enriched(answer, &near, &friction, settings)?;
+        let rest = (settings.memory_budget as f64 - self.held_bytes()).max(0.0) as usize;
+        let settings = SolverSettings { memory_budget: rest, ..*settings };
+        let (twice, again) = enriched.solve_enriched(answer, &near, &friction, &settings)?;
         let converged = again.report.status == SolveStatus::Converged;
         Ok(self.reductions(&regions, (solution, (enriched, answer)), converged.then_some((&twice, &again))))
     }

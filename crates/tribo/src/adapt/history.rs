@@ -8,7 +8,7 @@ use std::time::Instant;
 use super::enriched::{estimate_of, EndReduction, Hierarchical};
 use super::strip::{end_regions, near_ends, strip, EndRegion};
 use super::{multiplier_difference, AdaptStop, Level, LevelObserver, Sharp, Start};
-use crate::error::{Error, Result};
+use crate::error::{Error, Num, Result};
 use crate::problem::Problem;
 use crate::results::{Solution, SolveStatus};
 use crate::settings::friction::Friction;
@@ -157,7 +157,8 @@ impl Problem {
         let marked = strip(self, &history.solutions.iter().collect::<Vec<_>>());
         // The enriched histories keep every step while this one is held: each must fit what the budget leaves.
         let steps = &history.steps[..history.records.len()];
-        let held = History::estimated_bytes(self, steps, 1);
+        // (And this problem's factorization, held by the adaptive loop's level.)
+        let held = History::estimated_bytes(self, steps, 1) + self.held_bytes();
         let (enriched, answer) = self.solve_enriched_history(history, &marked, friction, settings, held)?;
         // Each step's ends where the difference concentrates (a step without its enriched answer keeps them all).
         let ends_of = |(i, s): (usize, &Solution)| {
@@ -280,7 +281,18 @@ impl Problem {
         let starts: Vec<Vec<f64>> =
             if history.kept.len() == steps.len() { solutions.iter().map(carry).collect() } else { Vec::new() };
         let friction = self.carried_friction(friction, &enriched);
-        let memory_budget = (settings.memory_budget as f64 - held).max(0.0) as usize;
+        let memory_budget = settings.memory_budget as f64 - held;
+        if memory_budget < (1 << 20) as f64 {
+            return Err(Error::MemoryBudget {
+                what: format!(
+                    "the enriched history, beside the histories and factorization held ({} bytes),",
+                    Num(held)
+                ),
+                needed: held + (1 << 20) as f64,
+                budget: settings.memory_budget as f64,
+            });
+        }
+        let memory_budget = memory_budget as usize;
         let every = SolverSettings { keep_every: 1, memory_budget, ..*settings };
         let condensed = enriched.condense_with(every.stabilization, every.condensation, every.memory_budget)?;
         let answer = condensed.solve_history_from(&friction, steps, &every, None, &starts)?;

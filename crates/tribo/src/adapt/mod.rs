@@ -36,7 +36,7 @@
 //! a tenth of the discretization error (the idea of Fontana and Di Pietro for Newton's method). The level
 //! the loop stops on is then solved again to `fp_tol` from its own answer (the factorization is kept), so
 //! the solution handed back is converged as asked (whatever the stop: at the tolerance, at `max_levels`,
-//! at `max_unknowns` or when the observer stops the loop); in a loading history every step starts again
+//! at `max_unknowns`, at the memory budget or when the observer stops the loop); in a loading history every step starts again
 //! from its own loose answer (study 6b, tol 0.07: the last level 1.98 s from rest, 1.31 s so). A history's steps
 //! already start from the previous step's answer, so loosening saves little there: the same study with
 //! `algebraic = 0` took 2.93 s against 3.17 s (0.78 s against 0.83 s at tol 0.1).
@@ -98,6 +98,11 @@
 //!
 //! A refinement that would exceed `max_unknowns` is not made; the loop then stops with the last level
 //! and says so ([`AdaptStop::MaxUnknowns`]), as it does at `max_levels` or when a level does not converge.
+//! A level whose first solve would exceed the memory budget ([`crate::Error::MemoryBudget`]: its factor, H and
+//! the dense QP together, [`crate::Factor::held_bytes`] and the new part) stops the loop with the level before,
+//! rebuilt from its record ([`Problem::on_level`]) and handed back ([`AdaptStop::MemoryBudget`]); the answer of
+//! the level before is kept for that beside the next level's solve, uncounted (a solution, or a history's kept
+//! solutions). A level beyond the budget when it is solved again to `fp_tol` still ends the loop with the error.
 
 mod difference;
 pub mod enriched;
@@ -153,7 +158,8 @@ impl Problem {
     /// # Errors
     /// Bad friction, solver or adaptive settings ([`Error::BadSetting`] names `adapt_tol`,
     /// `adapt_theta`, `adapt_max_levels`, or `adapt_max_unknowns` when it is below the first level's
-    /// unknowns); errors of a level's problem or solve (as [`Problem::solve`]).
+    /// unknowns); errors of a level's problem or solve (as [`Problem::solve`]), except a level beyond the memory
+    /// budget after the first, which stops the loop ([`AdaptStop::MemoryBudget`]).
     pub fn solve_adaptive(
         &self,
         friction: &Friction,

@@ -23,19 +23,21 @@ use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
 use faer::{Mat, Par, Side};
 
 use crate::error::{Error, Num, Result};
-use crate::linalg::saddle::{SaddleError, SaddleOptions, SaddleSystem};
+use crate::linalg::saddle::SaddleSystem;
 use crate::linalg::schur::SchurSymbolic;
 use crate::settings::Condensation;
 
 mod choose;
 mod diagonal;
 mod direct;
+mod saddle;
 
 use direct::{factorize_plain, factorize_quasi_definite, fits_budget, schur_error, solve, Direct};
+use saddle::saddle_system;
 
 pub(crate) use choose::Expected;
 use choose::{
-    margin_before_factorizing, path_costs, prefer_saddle, prefer_schur, pushed_estimate, quasi_definite, saddle_clique,
+    margin_before_factorizing, path_costs, prefer_saddle, prefer_schur, pushed_estimate, quasi_definite,
     saddle_pays_for, touched_dofs, warm_saddle_beats_schur, AFTER_FACTORIZING, BEFORE_FACTORIZING, CHOLESKY_FILL,
 };
 
@@ -47,49 +49,6 @@ const BLOCK: usize = 64;
 struct Columns {
     cols: Vec<Option<Vec<f64>>>,
     seconds: f64,
-}
-
-/// The saddle-point kernel's errors as the crate's (its inputs come from the core, so only size and
-/// breakdowns can occur; a breakdown is reported by the caller as an uncertified QP).
-pub(crate) fn saddle_error(e: SaddleError) -> Error {
-    match e {
-        SaddleError::TooLarge(what) => Error::MemoryBudget {
-            what: format!("the saddle-point factorization: {what}"),
-            needed: f64::NAN,
-            budget: f64::NAN,
-        },
-        e => Error::Assembly { matrix: "the saddle-point system [[A, Eᵀ], [E, −Dγ]]", what: e.to_string() },
-    }
-}
-
-/// The saddle-point system of `A`, `E` and `Dγ` (by columns), refused beyond `max_len` factor values
-/// (and beyond `budget` bytes, as [`Error::MemoryBudget`]); A's last `pressures` unknowns are a mixed
-/// formulation's (A quasi-definite).
-fn saddle_system(
-    a: SparseColMatRef<'_, usize, f64>,
-    e_rows: &[Vec<(usize, f64)>],
-    d_cols: &[Vec<(usize, f64)>],
-    [max_len, budget, pressures]: [usize; 3],
-) -> Result<SaddleSystem> {
-    let d: Vec<(usize, usize, f64)> =
-        d_cols.iter().enumerate().flat_map(|(j, col)| col.iter().map(move |&(i, v)| (i, j, v))).collect();
-    let opts = SaddleOptions { max_factor_len: max_len.min(budget / 8), negative: pressures, ..Default::default() };
-    let (c, clique) = saddle_clique(e_rows, a.nrows());
-    if clique > opts.max_factor_len {
-        let what = format!(
-            "the sparse factor of the saddle-point system [[A, Eᵀ], [E, −Dγ]] (at least: {c} multiplier \
-                            unknowns couple to one displacement dof)"
-        );
-        return Err(Error::MemoryBudget { what, needed: 8.0 * clique as f64, budget: budget as f64 });
-    }
-    SaddleSystem::with_options(a, e_rows, &d, opts).map_err(|e| match e {
-        SaddleError::FactorTooLarge { values } => Error::MemoryBudget {
-            what: "the sparse factor of the saddle-point system [[A, Eᵀ], [E, −Dγ]]".to_string(),
-            needed: 8.0 * values as f64,
-            budget: budget as f64,
-        },
-        e => saddle_error(e),
-    })
 }
 
 /// The factorization of `A = K − G` for one γ0 and the condensed operators it defines: `E`, `Dγ`, `c`,
@@ -267,9 +226,20 @@ impl Factor {
             }
             Ok((Direct::Schur(factor), factorization_seconds, clock.elapsed().as_secs_f64()))
         };
-        let (mut direct, mut factorization_seconds, mut schur_seconds) = if use_schur {
+        // Chosen by `auto`, a partial factor whose values and H exceed the budget (known after its symbolic
+        // analysis) leaves H to the plain factor's columns; asked for, it is an error.
+        let or_plain = |r: Result<(Direct, f64, f64)>| match r {
+            Err(Error::MemoryBudget { what, .. }) if condensation == Condensation::Auto => {
+                log::info!("{what}: beyond the memory budget, H is formed by columns");
+                Ok(None)
+            }
+            r => r.map(Some),
+        };
+        let schur = if use_schur { or_plain(partial(&mut cols))? } else { None };
+        use_schur = schur.is_some();
+        let (mut direct, mut factorization_seconds, mut schur_seconds) = if let Some((direct, _, schur_seconds)) = schur
+        {
             // The factorization's time counts from the start (A's values included), as for the plain one.
-            let (direct, _, schur_seconds) = partial(&mut cols)?;
             (direct, clock.elapsed().as_secs_f64() - schur_seconds, schur_seconds)
         } else {
             let symbolic = match symbolic.get() {
@@ -300,21 +270,25 @@ impl Factor {
         let mut c_seconds = clock.elapsed().as_secs_f64();
         if undecided && schur_pays(pushed, AFTER_FACTORIZING).0 {
             // The load pushes enough of Γ_C for all of H to pay: factorize again, C last (c stands).
-            let (partial_direct, seconds, h_seconds) = partial(&mut cols)?;
-            (direct, use_schur) = (partial_direct, true);
-            factorization_seconds += seconds;
-            schur_seconds = h_seconds;
-            c_seconds = 0.0;
+            if let Some((partial_direct, seconds, h_seconds)) = or_plain(partial(&mut cols))? {
+                (direct, use_schur) = (partial_direct, true);
+                factorization_seconds += seconds;
+                schur_seconds = h_seconds;
+                c_seconds = 0.0;
+            }
         }
         let columns = Mutex::new(Columns { cols, seconds: schur_seconds + c_seconds });
         // The saddle-point system, if asked for or preferred: its symbolic analysis says how large its
         // factor is before anything of that size is allocated. Asked for, a factor beyond the budget is an
         // error; preferred, one that fills in much beyond a Cholesky of A (T_H far finer than the FE edges:
         // the multipliers' block fills) or beyond the budget leaves H to the columns.
+        // Beside the factor of A, which it is held with: its own factor's values, and as many again for the border
+        // columns of nearby partitions.
+        let beside = (budget as f64 - direct.value_bytes()).max(0.0) as usize / 2;
         let saddle = match condensation {
-            Condensation::Saddle => Some(saddle_system(a, &e_rows, &d_cols, [budget / 8, budget, pressures])?),
+            Condensation::Saddle => Some(saddle_system(a, &e_rows, &d_cols, [beside / 8, beside, pressures])?),
             Condensation::Auto if !use_schur && prefer_saddle(nnz_k, pushed, warm) && definite => {
-                saddle_system(a, &e_rows, &d_cols, [2 * CHOLESKY_FILL * nnz_k, budget, pressures]).ok()
+                saddle_system(a, &e_rows, &d_cols, [2 * CHOLESKY_FILL * nnz_k, beside, pressures]).ok()
             }
             _ => None,
         };
@@ -431,12 +405,23 @@ impl Factor {
         f(&guard.cols)
     }
 
-    /// Bytes this factorization holds now: the factor's values and the columns of H formed so far (all of
-    /// them with the partial factorization).
+    /// Bytes this factorization holds now: the factor's values, the columns of H formed so far (all of them
+    /// with the partial factorization) and the saddle-point system, if any.
     pub fn held_bytes(&self) -> f64 {
         let guard = self.columns.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        let formed = guard.cols.iter().filter(|c| c.is_some()).count();
-        self.direct.value_bytes() + 8.0 * (formed * self.e_rows.len()) as f64
+        self.held_with(&guard)
+    }
+
+    /// [`Factor::held_bytes`] with the column cache locked by the caller.
+    fn held_with(&self, columns: &Columns) -> f64 {
+        let formed = columns.cols.iter().filter(|c| c.is_some()).count();
+        let saddle = self
+            .saddle
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .as_ref()
+            .map_or(0.0, SaddleSystem::held_bytes);
+        self.direct.value_bytes() + 8.0 * (formed * self.e_rows.len()) as f64 + saddle
     }
 
     /// Checks that dense parts of `dense` bytes, and the columns `idx` of H they need that are not formed
@@ -453,10 +438,10 @@ impl Factor {
         dense: f64,
         budget: usize,
     ) -> Result<()> {
-        let held = self.held_bytes();
-        let missing = {
+        let (held, missing) = {
             let guard = self.columns.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-            idx.iter().filter(|&&i| guard.cols.get(i).is_some_and(Option::is_none)).count()
+            let missing = idx.iter().filter(|&&i| guard.cols.get(i).is_some_and(Option::is_none)).count();
+            (self.held_with(&guard), missing)
         };
         let needed = held + 8.0 * (missing * self.e_rows.len()) as f64 + dense;
         if needed > budget as f64 {

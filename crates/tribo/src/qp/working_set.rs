@@ -191,6 +191,8 @@ impl<'a> ContactQp<'a> {
         let qp = match self.qp.take() {
             Some(qp) => qp,
             None => {
+                // The active-set method's block (a QP it could not certify) is dropped first: not held beside.
+                self.dense = None;
                 self.check_budget(DENSE_BYTES_PER_K2)?;
                 let (h, c, bounds) = self.block();
                 BoxQp::new(&h, &c, self.set.len(), bounds.as_deref(), &self.settings)?
@@ -267,7 +269,9 @@ impl<'a> ContactQp<'a> {
             None => vec![0.0; idx.len()],
         };
         let places: Option<Vec<Option<Place>>> = self.places.as_ref().map(|p| idx.iter().map(|&i| p[i]).collect());
-        self.check_budget(ACTIVE_SET_BYTES_PER_K2)?;
+        // clarabel's set-up on this set, if a QP fell back to it, is held beside the active-set method's block.
+        let beside = if self.qp.is_some() { DENSE_BYTES_PER_K2 } else { 0.0 };
+        self.check_budget(ACTIVE_SET_BYTES_PER_K2 + beside)?;
         let clock = Instant::now();
         if let Some(out) = self.solve_active_set(Start { x: &start, places: places.as_deref() }) {
             return Ok(out);

@@ -395,6 +395,53 @@ fn the_memory_budget_bounds_the_sum_of_the_dense_parts() {
     }
 }
 
+/// Under `auto`, a partial factorization (all of H at once) that the memory budget cannot hold leaves H to
+/// the plain factor's columns: `auto` never fails where the plain path solves, and asked for, the partial
+/// factorization beyond the budget is a typed error.
+#[test]
+fn auto_falls_back_to_columns_when_the_partial_factor_exceeds_the_budget() {
+    // 81 P1 multiplier dofs on an 80 × 80 square pushed all along its base: H is small beside K's factor.
+    let mesh = rectangle([0.0, 1.0], [0.0, 1.0], 80, 80, Diagonal::Right).unwrap();
+    let problem = || Problem::new(mesh.clone(), spec()).unwrap();
+    let with = |condensation, memory_budget| SolverSettings { condensation, memory_budget, ..Default::default() };
+    let held = |condensation| {
+        let p = problem();
+        let sol = p.solve(&Friction::Frictionless, &with(condensation, usize::MAX), None).unwrap();
+        assert_eq!(sol.report.status, SolveStatus::Converged);
+        (p.held_bytes(), sol.report.condensation)
+    };
+    let (schur, chosen) = held(Condensation::Auto);
+    assert_eq!(chosen, Condensation::Schur, "auto forms all of H on a fully pushed side");
+    let (plain, _) = held(Condensation::Columns);
+    assert!(plain < schur, "{plain} ≥ {schur}");
+    let (mut fell_back, mut refused) = (0, 0);
+    for i in 0..=24 {
+        let budget = (plain * (4.0 * schur / plain).powf(f64::from(i) / 24.0)) as usize;
+        let columns = problem().solve(&Friction::Frictionless, &with(Condensation::Columns, budget), None);
+        let auto = problem().solve(&Friction::Frictionless, &with(Condensation::Auto, budget), None);
+        let asked = problem().solve(&Friction::Frictionless, &with(Condensation::Schur, budget), None);
+        match (&columns, &auto) {
+            (Ok(c), Ok(a)) => {
+                assert_eq!((c.report.status, a.report.status), (SolveStatus::Converged, SolveStatus::Converged));
+                let apart = c.lambda_n.iter().zip(&a.lambda_n).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+                assert!(apart <= 1e-6 * c.lambda_n.iter().fold(0.0, |m, x| x.abs().max(m)), "{apart}");
+                if a.report.condensation == Condensation::Columns {
+                    fell_back += 1;
+                }
+            }
+            (Ok(_), Err(e)) => panic!("budget {budget}: auto failed where the plain path solves: {e}"),
+            (Err(Error::MemoryBudget { .. }), _) => {}
+            (Err(e), _) => panic!("budget {budget}: {e}"),
+        }
+        match asked {
+            Err(Error::MemoryBudget { .. }) => refused += 1,
+            Ok(sol) => assert_eq!(sol.report.status, SolveStatus::Converged),
+            Err(e) => panic!("budget {budget}: {e}"),
+        }
+    }
+    assert!(fell_back > 0 && refused > 0, "{fell_back} fallbacks, {refused} refusals of the partial factorization");
+}
+
 /// A Solution reports the gap, von Mises and KKT residuals that do not overflow or divide by a
 /// vanishing scale.
 #[test]

@@ -254,6 +254,12 @@ pub(super) struct Border {
 }
 
 impl Border {
+    /// Values the border columns hold (their W; at most the factor's, see [`SaddleSystem::solve`]).
+    pub(super) fn held_values(&self) -> usize {
+        self.columns.iter().map(|c| c.w.len() + 2 * c.v.len()).sum::<usize>()
+            + self.gram.iter().map(Vec::len).sum::<usize>()
+    }
+
     /// The border columns held.
     #[cfg(test)]
     pub(super) fn columns_len(&self) -> usize {

@@ -211,6 +211,8 @@ pub struct SaddleSystem {
     symbolic: SymbolicCholesky<usize>,
     l_values: Vec<f64>,
     factor_mem: MemBuffer,
+    /// Bytes of `factor_mem`.
+    factor_mem_bytes: usize,
     free: Vec<bool>,
     factorized: bool,
     regularized: usize,
@@ -416,9 +418,8 @@ impl SaddleSystem {
             return Err(SaddleError::FactorTooLarge { values: symbolic.len_val() });
         }
         let l_values = try_zeroed::<f64>(symbolic.len_val())?;
-        let factor_mem =
-            MemBuffer::try_new(symbolic.factorize_numeric_ldlt_scratch::<f64>(opts.par, Default::default()))
-                .map_err(too_large)?;
+        let scratch = symbolic.factorize_numeric_ldlt_scratch::<f64>(opts.par, Default::default());
+        let factor_mem = MemBuffer::try_new(scratch).map_err(too_large)?;
         let signs: Vec<i8> = (0..nk).map(|i| if i + opts.negative < n { 1 } else { -1 }).collect();
         Ok(Self {
             n,
@@ -435,11 +436,19 @@ impl SaddleSystem {
             symbolic,
             l_values,
             factor_mem,
+            factor_mem_bytes: scratch.size_bytes(),
             free: vec![true; m],
             factorized: false,
             regularized: 0,
             border: Border::default(),
         })
+    }
+
+    /// Bytes this system holds: its matrix (values and row indices), the factor's values and workspace, and
+    /// the border columns computed since the last factorization.
+    pub fn held_bytes(&self) -> f64 {
+        let values = self.l_values.len() + self.border.held_values() + 2 * self.k.compute_nnz();
+        8.0 * values as f64 + self.factor_mem_bytes as f64
     }
 
     /// Whether faer chose the supernodal factorization.

@@ -1,0 +1,53 @@
+//! The saddle-point system `[[A, Eᵀ], [E, −Dγ]]` of the condensation's saddle path, built within the memory
+//! budget: refused as [`Error::MemoryBudget`] before its factorization when one displacement dof already couples
+//! more multiplier unknowns than the budget's factor can hold.
+
+use faer::sparse::SparseColMatRef;
+
+use crate::error::{Error, Result};
+use crate::linalg::saddle::{SaddleError, SaddleOptions, SaddleSystem};
+
+use super::choose::saddle_clique;
+
+/// The saddle-point kernel's errors as the crate's (its inputs come from the core, so only size and
+/// breakdowns can occur; a breakdown is reported by the caller as an uncertified QP).
+fn saddle_error(e: SaddleError) -> Error {
+    match e {
+        SaddleError::TooLarge(what) => Error::MemoryBudget {
+            what: format!("the saddle-point factorization: {what}"),
+            needed: f64::NAN,
+            budget: f64::NAN,
+        },
+        e => Error::Assembly { matrix: "the saddle-point system [[A, Eᵀ], [E, −Dγ]]", what: e.to_string() },
+    }
+}
+
+/// The saddle-point system of `A`, `E` and `Dγ` (by columns), refused beyond `max_len` factor values
+/// (and beyond `budget` bytes, as [`Error::MemoryBudget`]); A's last `pressures` unknowns are a mixed
+/// formulation's (A quasi-definite).
+pub(super) fn saddle_system(
+    a: SparseColMatRef<'_, usize, f64>,
+    e_rows: &[Vec<(usize, f64)>],
+    d_cols: &[Vec<(usize, f64)>],
+    [max_len, budget, pressures]: [usize; 3],
+) -> Result<SaddleSystem> {
+    let d: Vec<(usize, usize, f64)> =
+        d_cols.iter().enumerate().flat_map(|(j, col)| col.iter().map(move |&(i, v)| (i, j, v))).collect();
+    let opts = SaddleOptions { max_factor_len: max_len.min(budget / 8), negative: pressures, ..Default::default() };
+    let (c, clique) = saddle_clique(e_rows, a.nrows());
+    if clique > opts.max_factor_len {
+        let what = format!(
+            "the sparse factor of the saddle-point system [[A, Eᵀ], [E, −Dγ]] (at least: {c} multiplier \
+                            unknowns couple to one displacement dof)"
+        );
+        return Err(Error::MemoryBudget { what, needed: 8.0 * clique as f64, budget: budget as f64 });
+    }
+    SaddleSystem::with_options(a, e_rows, &d, opts).map_err(|e| match e {
+        SaddleError::FactorTooLarge { values } => Error::MemoryBudget {
+            what: "the sparse factor of the saddle-point system [[A, Eᵀ], [E, −Dγ]]".to_string(),
+            needed: 8.0 * values as f64,
+            budget: budget as f64,
+        },
+        e => saddle_error(e),
+    })
+}
