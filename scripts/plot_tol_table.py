@@ -128,8 +128,8 @@ def summary(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, An
     """What the tables show, counted from them (``effectivity_levels``: every level row, for the enriched answers
     handed back)."""
     lines = []
-    for stop, what in (("hierarchical", "stopping on the hierarchical estimate** (the default)"),
-                       ("enriched", "handing back the enriched answer** (`stop_on = \"enriched\"`)")):
+    for stop, what in (("hierarchical", "stopping on the hierarchical estimate** (`stop_on = \"hierarchical\"`)"),
+                       ("enriched", "handing back the enriched answer** (`stop_on = \"enriched\"`, the default)")):
         sharp = [r for r in runs if r["stop_on"] == stop]
         if not sharp:
             continue
@@ -140,11 +140,12 @@ def summary(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, An
         lines.append(f"* **True error over X, {what}: {len(band)} of {len(sharp)} runs in [X/3, X] "
                      f"({_range([r['ratio'] for r in sharp])})" + (f"; outside: {out}" if out else "")
                      + f". Time over the cheapest adequate level: {len(fast)} of {len(timed)} runs within {TIME:g}× "
-                     f"({_range([r['time_ratio'] for r in timed])}).")
+                     f"({_range([r['time_ratio'] for r in timed])}). Both at once: "
+                     f"{sum(1 for r in timed if r['in_band'] and r['in_time'])} of {len(sharp)} runs.")
     if any(r["stop_on"] == "hierarchical" for r in runs):
-        lines.append("* The default stop ends only on a level whose estimate is at most X, so where the first adequate "
-                     "level's true error is above X over the effectivity, it pays another level and its estimate "
-                     "(each about twice the level's unknowns); handing back the enriched answer, whose estimate is "
+        lines.append("* Stopping on the hierarchical estimate ends only on a level whose estimate is at most X, so "
+                     "where the first adequate level's true error is above X over the effectivity, it pays another "
+                     "level and its estimate (each about twice the level's unknowns); handing back the enriched answer, whose estimate is "
                      "half the level's, stops at that level or before it wherever the effectivity is at most 2.")
     bound = [r for r in runs if r["stop_on"] == "bound"]
     if bound:

@@ -53,28 +53,30 @@ def adapt_table(adaptive: Adaptive | AdaptiveHistory) -> dict[str, list[Any]]:
 
 
 def write_levels(out: str | Path, adaptive: Adaptive | AdaptiveHistory, **solve: Any) -> list[Path]:
-    """Solves every level's problem again (``solve`` keywords, to their full tolerances) and writes the
-    series ``levels/level_NNN.vtu`` (+ ``_contact``, ``_multipliers``) with ``adapt.pvd`` (and
-    ``adapt_contact.pvd``, ``adapt_multipliers.pvd``): ParaView steps through the refinement, the level
-    as the time (two bodies in one mesh, cell data ``body``). For an adaptive history, each level solves the whole history again (its steps are
-    ``adaptive.history``'s) and writes its last converged step (the failed one if none converged; a level
-    with neither is left out of the series, with a log line)."""
+    """Solves every level's problem but the last again (``solve`` keywords, to their full tolerances; the last is
+    the answer handed back, as it is) and writes the series ``levels/level_NNN.vtu`` (+ ``_contact``,
+    ``_multipliers``) with ``adapt.pvd`` (and ``adapt_contact.pvd``, ``adapt_multipliers.pvd``): ParaView steps
+    through the refinement, the level as the time (two bodies in one mesh, cell data ``body``). For an adaptive
+    history, each level solves the whole history again (its steps are ``adaptive.history``'s) and writes its last
+    converged step (the failed one if none converged; a level with neither is left out of the series, with a log
+    line)."""
     out = Path(out)
     (out / "levels").mkdir(parents=True, exist_ok=True)
     series: list[list[Path]] = [[], [], []]
     levels: list[int] = []
+    last = len(adaptive.levels) - 1
     for k in range(len(adaptive.levels)):
-        problem = adaptive.level_problem(k)
+        problem = adaptive.problem if k == last else adaptive.level_problem(k)
         if isinstance(adaptive, AdaptiveHistory):
             h = adaptive.history
-            history = problem.solve_history(h.approach, h.shift, h.load_factor, displacements=h.displacements or None,
-                                            rotation=h.rotation, **solve)
+            history = h if k == last else problem.solve_history(
+                h.approach, h.shift, h.load_factor, displacements=h.displacements or None, rotation=h.rotation, **solve)
             solution = history.solutions[-1] if len(history) else history.failed
             if solution is None:
                 log.info("level %d: the history's first step ended with status '%s'; not written", k, history.status)
                 continue
         else:
-            solution = problem.solve(**solve)
+            solution = adaptive.solution if k == last else problem.solve(**solve)
         # Two bodies: the joined mesh, whose cell data 'body' tells them apart (as a history's series).
         paths = write_vtu(out / "levels" / f"level_{k:03d}.vtu", problem, solution, per_body=False)
         for part, p in zip(series, paths, strict=True):

@@ -234,7 +234,7 @@ def test_the_docs_quote_the_tol_table_as_generated() -> None:
               f"it with {_span(more, '.0f')} times the unknowns")
     assert quoted in guide, quoted
     assert f"measured on the {_count(cases)} adaptive cases of study 13" in guide
-    assert f"estimate (the default), {_count(cases)} adaptive cases" in studies
+    assert f"stopping on the hierarchical estimate, {_count(cases)} adaptive cases" in studies
     outside = [r["effectivity"] for rows in eff.values() for r in rows if not 1.0 <= r["effectivity"] <= 2.0]
     inside = sum(len(rows) for rows in eff.values()) - len(outside)
     others = [e for c, rows in eff.items() if c != "block" for r in rows if not 1.0 <= (e := r["effectivity"]) <= 2.0]
@@ -269,6 +269,9 @@ def test_the_docs_quote_the_tol_table_as_generated() -> None:
     quoted = (f"{in_time} of {len(enriched)} runs within twice that time ({min(timed):.2f}–{max(timed):.2f}), "
               f"{in_band} of {len(enriched)} in [X/3, X] ({_span(ratios, '.2f')} X")
     assert quoted in measured, quoted
+    both = sum(r["in_time"] and r["in_band"] for r in enriched)
+    quoted = f"{both} of {len(enriched)} both"
+    assert quoted in measured and quoted in studies, quoted
 
 
 def _count(n: int) -> str:

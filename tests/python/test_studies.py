@@ -338,7 +338,9 @@ def test_plot_tol_table(tmp_path: Path) -> None:
     assert "the smaller of the hierarchical estimate and the bound (both are reported): 2 of 2 levels in [1, 2] " \
            "(1.50–1.50)." in md, md
     assert "| hertz | 2 | 1.50–2.50 | 1.50–10.00 | 1.50–1.50 |" in md, md
-    assert "handing back the enriched answer** (`stop_on = \"enriched\"`): 0 of 1 runs in [X/3, X] (0.20–0.20)" in md
+    assert "handing back the enriched answer** (`stop_on = \"enriched\"`, the default): 0 of 1 runs in [X/3, X] " \
+           "(0.20–0.20)" in md, md
+    assert "Both at once: 1 of 3 runs." in md and "Both at once: 0 of 1 runs." in md, md
     assert "the estimate of their own error: 3.00–3.00 times it (0 of 1 in [1, 2])" in md, md
     # A row cut short (a run killed while writing) is named, not read as numbers.
     (folder / "hertz_levels.csv").write_text("\n".join(levels[:2] + ["hertz,hierarchical,0.05,4"]) + "\n")
