@@ -6,14 +6,15 @@ mesh is the refined one):
 
 * ``adapt.csv``: per level, the unknowns, multiplier dofs and triangles, the relative estimate the loop
   stops on (of the contact tractions, or of the energy while nothing touches), the estimate η with its
-  bulk, Γ_C, contact and friction parts, the traction bound and (where ``stop_on = "hierarchical"``
-  computed it) the hierarchical traction estimate, the level's seconds and status;
+  bulk, Γ_C, contact and friction parts, the traction bound and (where the loop computed it, unless
+  ``stop_on = "bound"``) the hierarchical traction estimate (on an enriched answer handed back, the last level
+  with 0 seconds, ‖λ_H − λ_f‖: that answer's own), the level's seconds and status;
 * ``adapt.png`` (``tribo run --plots``): the relative estimate, the bound and the hierarchical estimate,
   and η against the unknowns (log-log), with the tolerance;
 * ``levels/level_NNN.vtu`` and ``adapt.pvd`` (``write_levels``, only with the scene's ``[adapt]
-  write_levels = true``: the loop keeps no level's solution, so each level is solved again, to full
-  tolerance, for a history the whole history with its last step written; it costs about what the loop
-  did): every level's mesh and solution, a series ParaView steps through.
+  write_levels = true``: the loop keeps no level's solution but the last, so each level before it is solved
+  again, to full tolerance, for a history the whole history with its last step written; it costs about what
+  the loop did): every level's mesh and solution, a series ParaView steps through.
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ from tribo.history import write_pvd
 from tribo.io import write_vtu
 from tribo.results import Adaptive, AdaptiveHistory
 
-__all__ = ["adapt_table", "write_adaptive", "write_levels"]
+__all__ = ["adapt_table", "handed_back", "write_adaptive", "write_levels"]
 
 log = logging.getLogger("tribo")
 
@@ -50,6 +51,14 @@ def adapt_table(adaptive: Adaptive | AdaptiveHistory) -> dict[str, list[Any]]:
     table["seconds"] = [x.seconds for x in lv]
     table["status"] = [x.status for x in lv]
     return table
+
+
+def handed_back(adaptive: Adaptive | AdaptiveHistory) -> bool:
+    """Whether the loop handed back the answer enriched for the last estimated level (``stop_on='enriched'``, the
+    default): that last level, solved as the estimate of the one before it, has no time of its own. Its
+    hierarchical estimate is then ‖λ_H − λ_f‖, its change from the level it enriched."""
+    levels = adaptive.levels
+    return adaptive.stop == "tolerance" and len(levels) > 1 and levels[-1].seconds == 0.0
 
 
 def write_levels(out: str | Path, adaptive: Adaptive | AdaptiveHistory, **solve: Any) -> list[Path]:

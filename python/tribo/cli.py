@@ -105,14 +105,19 @@ def _run(scene_path: Path, out: Path, plots: bool, all_files: bool = False) -> i
     )
     est = r.estimate
     bars = [(name, getattr(solution, key), est.get(f"{key}_error", math.nan)) for name, key in _BARS]
-    if all(math.isfinite(bar) for _, _, bar in bars):
+    with_bars = all(math.isfinite(bar) for _, _, bar in bars)
+    if with_bars:
         shown = ", ".join(f"{name} = {value:.6g} ± {bar:.2g}" for name, value, bar in bars)
         print(f"  {shown} (error bars: twice the change under enrichment, sharp but not bounds)")
     elif not scene.has_history and not scene.get("estimate", "error_bars", False):
         print("  error bars of P, Q and the zone widths: set error_bars = true in [estimate] (one more solve, enriched "
               "everywhere: about 4 times the unknowns)")
+    said_json = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    # An enriched answer handed back carries its change from the level it enriched (unless solved again for its bars).
+    kind = "its change from the level it enriched" if said_json["adapt_handed_back"] and not with_bars else \
+        "hierarchical"
     sharp = est.get("traction_hierarchical_relative", math.nan)
-    traction = (f"{_percent(sharp)} in the contact tractions (L2 of Γ_C; hierarchical, sharp but not a bound; "
+    traction = (f"{_percent(sharp)} in the contact tractions (L2 of Γ_C; {kind}, sharp but not a bound; "
                 f"the bound: {_percent(est['traction_relative'])}), " if math.isfinite(sharp) else
                 f"{_percent(est['traction_relative'])} in the contact tractions (L2 of Γ_C, a bound), ")
     print(
@@ -130,9 +135,10 @@ def _run(scene_path: Path, out: Path, plots: bool, all_files: bool = False) -> i
         "  multiplier dofs: "
         + ", ".join(f"{states.count(n)} {n}" for n in ("separation", "stick", "slip"))
     )
-    said_json = json.loads((out / "summary.json").read_text(encoding="utf-8"))
     if said_json["adapt_stop"] is not None:
-        print(f"  adaptive loop stopped on {said_json['adapt_stop']}")
+        enriched = ", the answer enriched for the last level's estimate handed back" if said_json["adapt_handed_back"] \
+            else ""
+        print(f"  adaptive loop stopped on {said_json['adapt_stop']}{enriched}")
     peak = said_json["process_peak_memory_mb"]
     t = r.timings
     print(
@@ -224,8 +230,8 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--plots", action=argparse.BooleanOptionalAction, default=False,
                      help="draw the PNG plots too (default: the data files only, for ParaView, pandas, JSON)")
     run.add_argument("--all-files", action="store_true",
-                     help="write every level of an adaptive run (each solved again, into levels/) and every step "
-                          "of a history (default: the last level, and up to 200 steps)")
+                     help="write every level of an adaptive run (each but the last solved again, into levels/) and "
+                          "every step of a history (default: the last level, and up to 200 steps)")
     sw = sub.add_parser("sweep", help="run a scene over axes of parameters on Dask (pip install 'tribo[sweep]')")
     sw.add_argument("scene", type=Path, help="scene file (TOML)")
     sw.add_argument("--set", dest="axes", action="append", default=[], metavar="KEY=V1,V2,…",

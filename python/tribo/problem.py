@@ -303,7 +303,8 @@ class Problem(_tribo.Problem):
         (``bisection='all_edges'``, the default: fewer levels) or on its refinement edge only
         (``'refinement_edge'``); ``max_levels`` (default 40) bounds the levels. A level's Coulomb
         fixed point stops once its change is ``algebraic`` (default 0.1) times the previous level's relative
-        estimate (never below ``fp_tol``); the last level is solved again to ``fp_tol``. T_H is refined
+        estimate (never below ``fp_tol``); the last level is solved again to ``fp_tol`` (an enriched answer handed
+        back was solved to it). T_H is refined
         where the FE edges under it are, keeping the ratio H/h of this problem, except where the body is
         surely apart from the obstacle. The friction, γ0 and settings keywords are those of ``solve``;
         ``progress``, if given, is called as progress(unknowns, relative, seconds) after every level, and
@@ -346,7 +347,7 @@ class Problem(_tribo.Problem):
         steps ``on`` (0-based indices; default all) are; the loop stops when the largest relative estimate
         over those steps is at most ``tol``. Returns an AdaptiveHistory with the ``history`` on the last
         mesh, its ``problem``, every level (each with the estimate of its worst step) and the stop reason.
-        The adaptive keywords are those of ``solve_adaptive``; with ``stop_on='hierarchical'`` the whole history
+        The adaptive keywords are those of ``solve_adaptive``; unless ``stop_on='bound'`` the whole history
         is solved again on the enriched mesh where the loop computes the estimate, and every step carries its
         own (``Problem::estimate_history_hierarchical`` in the crate). Levels start their steps from rest, as a
         history does, not from the previous level.

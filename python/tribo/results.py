@@ -146,9 +146,9 @@ class Report(_Record):
             when nothing touches); ``traction_hierarchical`` and ``traction_hierarchical_relative``, the
             hierarchical estimate (2‖λ_H − λ_f‖, the reduction measured where the contact zone reaches an end
             of Γ_C) and its ratio to ‖λ_f‖ (sharp but not a bound; inf where a measured reduction is 1 or
-            more: no estimate; NaN unless an adaptive solve with ``stop_on='hierarchical'`` or
-            ``solve(error_bars=True)`` computed it; on the enriched answer ``stop_on='enriched'`` hands back,
-            ‖λ_H − λ_f‖, the estimate of that answer's own error); from the
+            more: no estimate; NaN unless an adaptive solve (``stop_on`` ``'enriched'``, the default, or
+            ``'hierarchical'``) or ``solve(error_bars=True)`` computed it; on the enriched answer an adaptive solve
+            hands back, ‖λ_H − λ_f‖, the estimate of that answer's own error); from the
             same enriched solve, the error bars ``normal_force_error``, ``tangential_force_error``,
             ``contact_width_error`` and ``stick_width_error`` (estimated absolute errors of those quantities
             of the Solution, NaN unless computed). Empty for a report built without one.
@@ -413,8 +413,8 @@ class History(_Record):
         error_estimate: the error estimate η (energy norm) per converged step.
         traction_error: the relative traction error estimate per converged step (NaN where nothing touches).
         traction_error_hierarchical: the hierarchical estimate of the relative traction error per converged step
-            (NaN where it was not computed: ``solve_history_adaptive(stop_on='hierarchical')`` computes it on
-            the levels where it may stop the loop).
+            (NaN where not computed: ``solve_history_adaptive`` does, unless ``stop_on='bound'``, where it may stop
+            the loop; on an enriched history handed back, each step's ‖λ_H − λ_f‖, that history's own error).
         stick_count: multiplier dofs that stick, per converged step (the counts are over every pair).
         slip_count: multiplier dofs that slip, per converged step.
         separation_count: multiplier dofs separated from the obstacle, per converged step.

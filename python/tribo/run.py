@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from tribo._tribo import __version__
-from tribo.adaptive import write_adaptive, write_levels
+from tribo.adaptive import handed_back, write_adaptive, write_levels
 from tribo.checks import SceneWarning, conventions, warn_missing_error_bars, warn_solution
 from tribo.history import vtu_every, write_history
 from tribo.io import write_contact_csv, write_text_atomic, write_vtu
@@ -82,9 +82,10 @@ def _rotation(problem: Problem) -> dict[str, Any] | None:
 
 def summary(
     scene: Scene, problem: Problem, solution: Solution, seconds: float, warned: Sequence[str] = (),
-    adapt_stop: str | None = None,
+    adapt_stop: str | None = None, adapt_handed_back: bool | None = None,
 ) -> dict[str, Any]:
-    """The JSON summary of a run; ``adapt_stop``: why an adaptive loop stopped (None without ``[adapt]``)."""
+    """The JSON summary of a run; ``adapt_stop``: why an adaptive loop stopped (None without ``[adapt]``), and
+    ``adapt_handed_back`` whether it handed back an enriched answer (``tribo.adaptive.handed_back``)."""
     r = solution.report
     states = solution.state_names
     return {
@@ -92,6 +93,7 @@ def summary(
         "scene": scene.to_dict(),
         "status": r.status,
         "adapt_stop": adapt_stop,
+        "adapt_handed_back": adapt_handed_back,
         "failure": {"iteration": r.failed_iteration, "reason": r.failure_reason} if r.status == "qp_failed" else None,
         "friction": solution.friction,
         "mu": solution.mu,
@@ -322,7 +324,8 @@ def run_scene(
                 history_files += write_levels(out, adaptive, **scene.solve_kwargs())
         files = []
         path = out / "summary.json"
-        said = summary(scene, problem, solution, seconds, warned, adapt_stop)
+        said = summary(scene, problem, solution, seconds, warned, adapt_stop,
+                       None if adaptive is None else handed_back(adaptive))
         write_text_atomic(path, json.dumps(said, indent=2) + "\n")
         files.append(path)
         if vtu is None:

@@ -89,8 +89,8 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     ``[history]``, every level solves the whole history (``Problem.solve_history_adaptive``) and is refined on
     the largest indicators over the steps ``on`` (a list of step numbers; default all of them), and the
     history's outputs are those of the last mesh. ``write_levels`` (true/false, default false): ``tribo run``
-    also writes every level, solved again to full tolerance (a solve, or a history, per level: it costs about
-    what the loop did), as ``levels/level_NNN.vtu`` with the ParaView series ``adapt.pvd``; by default only
+    also writes every level, each but the last (the answer) solved again to full tolerance (a solve, or a
+    history, per level: it costs about what the loop did), as ``levels/level_NNN.vtu`` with the ParaView series ``adapt.pvd``; by default only
     the last level is written (the ``result`` files).
 ``[solver]``
     Any solver setting by the name ``Problem.solve`` takes (``tribo.solver_settings()`` lists them with

@@ -463,13 +463,15 @@ tol = 0.05
 """
 
 
-def test_run_adapts_a_scene_with_an_adapt_table(tmp_path: Path) -> None:
-    """``[adapt]``: the outputs are the last level's, on its refined mesh, and adapt.csv lists the levels."""
+def test_run_adapts_a_scene_with_an_adapt_table(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """``[adapt]``: the outputs are the last level's, on its refined mesh, and adapt.csv lists the levels; the
+    enriched answer handed back (by default) is said, and so is what its estimate is."""
     import meshio
 
     path = tmp_path / "a.toml"
     path.write_text(ADAPT_SCENE, encoding="utf-8")
     assert main(["run", str(path), "--out", str(tmp_path / "o"), "--plots"]) == 0
+    printed = capsys.readouterr().out
     with (tmp_path / "o" / "adapt.csv").open(encoding="utf-8") as f:
         assert f.readline().startswith("# stop: tolerance")
         rows = list(csv.DictReader(f))
@@ -478,6 +480,9 @@ def test_run_adapts_a_scene_with_an_adapt_table(tmp_path: Path) -> None:
     summary = json.loads((tmp_path / "o" / "summary.json").read_text())
     assert summary["n_free"] == int(rows[-1]["unknowns"]) and summary["status"] == "converged"
     assert summary["adapt_stop"] == "tolerance" and summary["warnings"] == []
+    assert summary["adapt_handed_back"] is True and float(rows[-1]["seconds"]) == 0.0
+    assert "the answer enriched for the last level's estimate handed back" in printed
+    assert "its change from the level it enriched, sharp but not a bound" in printed
     assert _read(summary["estimate"]) == pytest.approx(float(rows[-1]["relative"]))
     vtu = meshio.read(tmp_path / "o" / "result.vtu")
     assert len(vtu.cells_dict["triangle"]) == int(rows[-1]["triangles"])

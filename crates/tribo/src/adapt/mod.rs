@@ -357,6 +357,11 @@ impl Problem {
                             if let Some((fine, mut fine_answer)) =
                                 enriched.filter(|(p, _)| handing && p.n_free <= adapt.max_unknowns)
                             {
+                                if settings.coulomb_check {
+                                    // Solved as an estimate, without the check the caller asked for: handed back,
+                                    // it is checked (from itself, converged: the check's solve is most of it).
+                                    fine_answer = solve(&fine, settings, Start::Answer(&fine_answer))?;
+                                }
                                 (sharp.store_enriched)(&mut fine_answer, &hs);
                                 let reading = worst(read(&fine_answer)).map(|s| relative(&s.report.estimate));
                                 let converged = ended(&fine_answer).0 == SolveStatus::Converged;

@@ -15,6 +15,7 @@
 //! displacement is recovered at the end with one more solve (about half a solve on the partial
 //! factorization, whose last rows hold `Eᵀ λ`: [`crate::linalg::schur::SchurFactor::solve_from_contact`]).
 
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
@@ -88,6 +89,10 @@ pub struct Factor {
     /// The sparse saddle-point system of the QPs that do without H ([`Condensation::Saddle`]), analysed
     /// when first needed.
     saddle: Mutex<Option<SaddleSystem>>,
+    /// The bytes the saddle-point system holds (the bits of an f64), noted whenever it changes
+    /// ([`Factor::note_saddle_bytes`]): read by [`Factor::held_bytes`] without its lock, which a sparse QP
+    /// holds while it forms diag H from the columns' lock (the two locks are never taken the other way round).
+    saddle_bytes: AtomicU64,
     /// The cost model's estimates of one solve by columns and by the saddle-point system, when
     /// [`Condensation::Auto`] chose the saddle-point system (a loading history may prefer the columns
     /// after all: [`Factor::saddle_for`]); `None` when it was asked for or not chosen.
@@ -206,8 +211,8 @@ impl Factor {
             });
         }
         let mut cols = vec![None; m];
-        // The partial factorization and all of H from it: (the factor, its seconds, H's seconds).
-        let partial = |cols: &mut Vec<Option<Vec<f64>>>| -> Result<(Direct, f64, f64)> {
+        // The partial factorization and all of H from it within `budget` bytes: (the factor, its seconds, H's seconds).
+        let partial = |cols: &mut Vec<Option<Vec<f64>>>, budget: usize| -> Result<(Direct, f64, f64)> {
             let clock = Instant::now();
             let sym = SchurSymbolic::new(a.symbolic(), &e_rows).map_err(schur_error)?;
             let req = sym.symbolic().factorize_numeric_llt_scratch::<f64>(Par::rayon(0), Default::default());
@@ -235,7 +240,7 @@ impl Factor {
             }
             r => r.map(Some),
         };
-        let schur = if use_schur { or_plain(partial(&mut cols))? } else { None };
+        let schur = if use_schur { or_plain(partial(&mut cols, budget))? } else { None };
         use_schur = schur.is_some();
         let (mut direct, mut factorization_seconds, mut schur_seconds) = if let Some((direct, _, schur_seconds)) = schur
         {
@@ -269,12 +274,17 @@ impl Factor {
         let pushed = c[..q].iter().filter(|v: &&f64| **v < 0.0).count();
         let mut c_seconds = clock.elapsed().as_secs_f64();
         if undecided && schur_pays(pushed, AFTER_FACTORIZING).0 {
-            // The load pushes enough of Γ_C for all of H to pay: factorize again, C last (c stands).
-            if let Some((partial_direct, seconds, h_seconds)) = or_plain(partial(&mut cols))? {
-                (direct, use_schur) = (partial_direct, true);
-                factorization_seconds += seconds;
-                schur_seconds = h_seconds;
-                c_seconds = 0.0;
+            // The load pushes enough of Γ_C for all of H to pay: factorize again, C last (c stands), beside the
+            // plain factor held until then (a try beyond the budget counts in the factorization's time).
+            let (clock, held) = (Instant::now(), direct.value_bytes() as usize);
+            match or_plain(partial(&mut cols, budget.saturating_sub(held)))? {
+                Some((partial_direct, seconds, h_seconds)) => {
+                    (direct, use_schur) = (partial_direct, true);
+                    factorization_seconds += seconds;
+                    schur_seconds = h_seconds;
+                    c_seconds = 0.0;
+                }
+                None => factorization_seconds += clock.elapsed().as_secs_f64(),
             }
         }
         let columns = Mutex::new(Columns { cols, seconds: schur_seconds + c_seconds });
@@ -326,6 +336,7 @@ impl Factor {
             f: f.to_vec(),
             columns,
             factorization_seconds,
+            saddle_bytes: AtomicU64::new(saddle.as_ref().map_or(0.0, SaddleSystem::held_bytes).to_bits()),
             saddle: Mutex::new(saddle),
             h_diagonal_estimates: Mutex::new(Vec::new()),
             auto_saddle,
@@ -415,12 +426,7 @@ impl Factor {
     /// [`Factor::held_bytes`] with the column cache locked by the caller.
     fn held_with(&self, columns: &Columns) -> f64 {
         let formed = columns.cols.iter().filter(|c| c.is_some()).count();
-        let saddle = self
-            .saddle
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner)
-            .as_ref()
-            .map_or(0.0, SaddleSystem::held_bytes);
+        let saddle = f64::from_bits(self.saddle_bytes.load(Ordering::Relaxed));
         self.direct.value_bytes() + 8.0 * (formed * self.e_rows.len()) as f64 + saddle
     }
 
@@ -508,6 +514,11 @@ impl Factor {
     /// caller (`None` unless H is [`Condensation::Saddle`]).
     pub(crate) fn saddle_system(&self) -> std::sync::MutexGuard<'_, Option<SaddleSystem>> {
         self.saddle.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    /// Notes what the saddle-point system holds after a solve on it grew its border.
+    pub(crate) fn note_saddle_bytes(&self, saddle: &SaddleSystem) {
+        self.saddle_bytes.store(saddle.held_bytes().to_bits(), Ordering::Relaxed);
     }
 
     /// `A x` (free dofs) for the stiffness `k` this factor was built from: `K x − G x`.

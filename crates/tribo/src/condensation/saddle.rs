@@ -38,13 +38,15 @@ pub(super) fn saddle_system(
     if clique > opts.max_factor_len {
         let what = format!(
             "the sparse factor of the saddle-point system [[A, Eᵀ], [E, −Dγ]] (at least: {c} multiplier \
-                            unknowns couple to one displacement dof)"
+                            unknowns couple to one displacement dof), in half the budget left beside the factor of A"
         );
         return Err(Error::MemoryBudget { what, needed: 8.0 * clique as f64, budget: budget as f64 });
     }
     SaddleSystem::with_options(a, e_rows, &d, opts).map_err(|e| match e {
         SaddleError::FactorTooLarge { values } => Error::MemoryBudget {
-            what: "the sparse factor of the saddle-point system [[A, Eᵀ], [E, −Dγ]]".to_string(),
+            what: "the sparse factor of the saddle-point system [[A, Eᵀ], [E, −Dγ]], in half the budget left beside \
+                   the factor of A"
+                .to_string(),
             needed: 8.0 * values as f64,
             budget: budget as f64,
         },

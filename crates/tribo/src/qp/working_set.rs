@@ -370,6 +370,7 @@ impl<'a> ContactQp<'a> {
             Start { x: &start, places: places.as_deref() },
             (self.settings.tol, self.settings.max_iter),
         );
+        self.condensed.note_saddle_bytes(saddle);
         Ok(answer.map(|(nu, steps, factorizations)| {
             self.remember(&nu, true);
             QpOutcome {

@@ -170,10 +170,26 @@ fn stopping_on_the_hierarchical_estimate_ends_near_the_asked_accuracy() {
     }
 }
 
+/// The enriched answer handed back by default is solved as an estimate, without a check of its own: with
+/// `coulomb_check` asked for, it is checked all the same (the levels before it are, as every solve is).
+#[test]
+fn the_enriched_answer_handed_back_is_checked_when_asked() -> Result<()> {
+    let friction = Friction::Coulomb { mu: 0.3 };
+    let settings = SolverSettings { coulomb_check: true, ..SolverSettings::default() };
+    let adapt = AdaptSettings { tol: 0.05, ..AdaptSettings::default() };
+    let out = off_centre_problem().solve_adaptive(&friction, &settings, &adapt, None)?;
+    let last = out.levels.last().expect("levels");
+    assert!(out.stop == AdaptStop::Tolerance && last.seconds == 0.0, "handed back: {:?} {}", out.stop, last.seconds);
+    assert_eq!(out.solution.report.status, SolveStatus::Converged);
+    let check = out.solution.report.coulomb_check.as_ref().expect("the answer handed back is checked");
+    assert_eq!(check.agreement, Agreement::Agree, "{check:?}");
+    Ok(())
+}
+
 /// With `stop_on = "enriched"`, where the answer of a level's enriched problem has an estimate of its own
 /// (half the level's: `‖λ_H − λ_f‖` against `2 ‖λ_H − λ_f‖`, both over `‖λ_f‖`) within `tol`, the loop hands it
 /// back as one more level: converged to `fp_tol`, nested in the level before it, solved again alike, closer to
-/// Hertz than that level's answer, and reached no later than the default stop.
+/// Hertz than that level's answer, and reached no later than the hierarchical stop (which never hands it back).
 #[test]
 fn the_enriched_answer_is_handed_back_where_its_estimate_meets_tol() -> Result<()> {
     let problem = off_centre_problem();
@@ -213,9 +229,9 @@ fn the_enriched_answer_is_handed_back_where_its_estimate_meets_tol() -> Result<(
     let (e_fine, e_coarse) = (hertz_error(&out.problem, &out.solution), hertz_error(&before, &at_coarse));
     println!("error against Hertz: {e_coarse:.3e} on the level, {e_fine:.3e} handed back");
     assert!(e_fine < e_coarse);
-    // The default stop computes the same levels up to `coarse` and goes on from there.
-    let default = AdaptSettings { stop_on: StopOn::Hierarchical, ..adapt };
-    let sharp = problem.solve_adaptive(&friction, &settings, &default, None)?;
+    // The hierarchical stop computes the same levels up to `coarse` and goes on from there.
+    let hierarchical = AdaptSettings { stop_on: StopOn::Hierarchical, ..adapt };
+    let sharp = problem.solve_adaptive(&friction, &settings, &hierarchical, None)?;
     assert!(
         sharp.levels.len() >= out.levels.len() - 1 && sharp.levels[out.levels.len() - 2].unknowns == coarse.unknowns
     );
