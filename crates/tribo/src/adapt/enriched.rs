@@ -498,22 +498,17 @@ impl Problem {
         friction.validate(self.n_multipliers())?;
         // This problem's factorization stays held beside the enriched one's: the budget bounds their sum.
         let held = self.held_bytes();
-        let memory_budget = settings.memory_budget as f64 - held;
-        if memory_budget < (1 << 20) as f64 {
-            return Err(Error::MemoryBudget {
-                what: format!(
-                    "the enriched problem, beside the factorization this problem holds ({} bytes),",
-                    crate::error::Num(held)
-                ),
-                needed: held + (1 << 20) as f64,
-                budget: settings.memory_budget as f64,
-            });
-        }
+        let memory_budget = crate::settings::memory::left_beside(settings.memory_budget, held, || {
+            format!(
+                "the enriched problem, beside the factorization this problem holds ({} bytes),",
+                crate::error::Num(held)
+            )
+        })?;
         let enriched = self.enriched(&[solution], marked)?;
         let start = [self.carried(&solution.lambda_n, &enriched), self.carried(&solution.lambda_t, &enriched)].concat();
         let friction = self.carried_friction(friction, &enriched);
         // (the enriched answer measures the error of `solution`: no check of its own by a second Coulomb method)
-        let settings = SolverSettings { coulomb_check: false, memory_budget: memory_budget as usize, ..*settings };
+        let settings = SolverSettings { coulomb_check: false, memory_budget, ..*settings };
         let answer = super::solve_level(&enriched, &friction, &settings, Some(&start))?;
         Ok((enriched, answer))
     }

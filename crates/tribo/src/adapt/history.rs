@@ -12,6 +12,7 @@ use crate::error::{Error, Num, Result};
 use crate::problem::Problem;
 use crate::results::{Solution, SolveStatus};
 use crate::settings::friction::Friction;
+use crate::settings::memory::left_beside;
 use crate::settings::{AdaptSettings, SolverSettings};
 use crate::solve::history::{History, LoadStep};
 
@@ -281,18 +282,9 @@ impl Problem {
         let starts: Vec<Vec<f64>> =
             if history.kept.len() == steps.len() { solutions.iter().map(carry).collect() } else { Vec::new() };
         let friction = self.carried_friction(friction, &enriched);
-        let memory_budget = settings.memory_budget as f64 - held;
-        if memory_budget < (1 << 20) as f64 {
-            return Err(Error::MemoryBudget {
-                what: format!(
-                    "the enriched history, beside the histories and factorization held ({} bytes),",
-                    Num(held)
-                ),
-                needed: held + (1 << 20) as f64,
-                budget: settings.memory_budget as f64,
-            });
-        }
-        let memory_budget = memory_budget as usize;
+        let memory_budget = left_beside(settings.memory_budget, held, || {
+            format!("the enriched history, beside the histories and factorization held ({} bytes),", Num(held))
+        })?;
         let every = SolverSettings { keep_every: 1, memory_budget, ..*settings };
         let condensed = enriched.condense_with(every.stabilization, every.condensation, every.memory_budget)?;
         let answer = condensed.solve_history_from(&friction, steps, &every, None, &starts)?;

@@ -16,6 +16,21 @@
 
 use std::fs::read_to_string;
 
+use crate::error::{Error, Result};
+
+/// What `budget` leaves beside `held` bytes already held, for a solve that gets it as its own budget (an enriched
+/// problem beside the one it estimates).
+///
+/// # Errors
+/// [`Error::MemoryBudget`] naming `what()` when that is less than 1 MiB, the least budget a solve takes.
+pub(crate) fn left_beside(budget: usize, held: f64, what: impl FnOnce() -> String) -> Result<usize> {
+    let left = budget as f64 - held;
+    if left < (1 << 20) as f64 {
+        return Err(Error::MemoryBudget { what: what(), needed: held + (1 << 20) as f64, budget: budget as f64 });
+    }
+    Ok(left as usize)
+}
+
 /// The default memory budget: [`available_memory`], or 4 GiB where it cannot be read; at least 1 MiB.
 pub fn default_memory_budget() -> usize {
     available_memory().unwrap_or(4 << 30).max(1 << 20)

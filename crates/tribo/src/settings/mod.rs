@@ -10,7 +10,7 @@
 
 pub mod adapt;
 pub mod friction;
-mod memory;
+pub(crate) mod memory;
 mod stabilization;
 mod table;
 
