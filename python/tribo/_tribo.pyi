@@ -268,6 +268,7 @@ class Problem(ProblemData):
                 tuple[int, int, int, list[tuple[str, float]], float, float],
                 str,
                 tuple[list[tuple[int, int, int, int]], Mesh, _Floats1, _Ints],
+                bool,
             ]
         ],
         str,

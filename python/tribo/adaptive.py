@@ -50,15 +50,15 @@ def adapt_table(adaptive: Adaptive | AdaptiveHistory) -> dict[str, list[Any]]:
         table[f"estimate_{key}"] = [x.estimate[key] for x in lv]
     table["seconds"] = [x.seconds for x in lv]
     table["status"] = [x.status for x in lv]
+    table["enriched"] = [x.enriched for x in lv]
     return table
 
 
 def handed_back(adaptive: Adaptive | AdaptiveHistory) -> bool:
     """Whether the loop handed back the answer enriched for the last estimated level (``stop_on='enriched'``, the
-    default): that last level, solved as the estimate of the one before it, has no time of its own. Its
-    hierarchical estimate is then ‖λ_H − λ_f‖, its change from the level it enriched."""
-    levels = adaptive.levels
-    return adaptive.stop == "tolerance" and len(levels) > 1 and levels[-1].seconds == 0.0
+    default): the last level is ``enriched``. Its hierarchical estimate is then ‖λ_H − λ_f‖, its change from the
+    level it enriched."""
+    return adaptive.levels[-1].enriched
 
 
 def write_levels(out: str | Path, adaptive: Adaptive | AdaptiveHistory, **solve: Any) -> list[Path]:

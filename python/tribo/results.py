@@ -518,10 +518,11 @@ class Level(_Record):
         estimate: the level's a posteriori estimate (the keys of ``Report.estimate``).
         relative: the relative estimate the stopping test reads: of the contact tractions, or of the
             energy while nothing touches (inf when the body has not moved yet).
-        seconds: wall time of the level (building the problem, solving, estimating, marking, refining); 0 for
-            the enriched answer ``stop_on='enriched'`` hands back as the last level (solved as the estimate of
-            the level before it, whose seconds count it).
+        seconds: wall time of the level (building the problem, solving, estimating, marking, refining); 0 if
+            ``enriched`` (solved as the estimate of the level before it, whose seconds count it).
         status: how the level's solve ended.
+        enriched: whether the level is the answer enriched for the estimate of the level before it, handed back
+            as the last (``stop_on='enriched'``); its hierarchical estimate is then its change from that level.
     """
 
     unknowns: int
@@ -531,6 +532,7 @@ class Level(_Record):
     relative: float
     seconds: float
     status: Status
+    enriched: bool = False
 
 
 AdaptStop = Literal["tolerance", "max_unknowns", "max_levels", "memory_budget", "not_converged", "exact", "interrupted"]
@@ -589,9 +591,7 @@ class AdaptiveHistory(_Levels):
         levels: every level, the first (the given mesh) included; a level's estimate is that of its step
             (among those adapted on) with the largest relative estimate.
         stop: why the loop stopped, as ``Adaptive.stop``.
-        meshes: each level's Mesh, T_H points, bodies' spans in the mesh (as ``problem.bodies``:
-            [first node, end, first triangle, end] per body) and triangles' regions (as ``problem.regions``);
-            ``level_problem(k)`` builds level k's Problem.
+        meshes: each level's Mesh, T_H points, bodies' spans and triangles' regions, as ``Adaptive.meshes``.
     """
 
     history: History

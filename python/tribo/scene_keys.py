@@ -156,7 +156,8 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
                         "—", "0.1"),
     "adapt.stop_on": ("The estimate `tol` is read against: `\"enriched\"` the smaller of the bound and the "
                       "hierarchical estimate (sharp, not a bound), the answer enriched for a level's estimate handed "
-                      "back where its own estimate meets `tol` (P1 multipliers, a mesh without curves); "
+                      "back where its own estimate meets `tol` and the level's does not (P1 multipliers, a mesh without "
+                      "curves); "
                       "`\"hierarchical\"` the same, never handing it back; `\"bound\"` the bound alone (safe, "
                       "pessimistic)", "—", '`"enriched"`'),
     "adapt.on": ("With `[history]`: the steps whose indicators mark", "—", "every step"),

@@ -128,7 +128,7 @@ def test_the_enriched_answer_is_handed_back_from_python() -> None:
     before, and its estimate is the answer's; the history's every step carries it."""
     out = off_centre().solve_adaptive(tol=0.05, stop_on="enriched")
     last, before = out.levels[-1], out.levels[-2]
-    assert out.stop == "tolerance" and last.seconds == 0.0 and before.seconds > 0.0
+    assert out.stop == "tolerance" and last.enriched and last.seconds == 0.0 and not before.enriched
     assert last.unknowns == out.problem.n_free > before.unknowns
     sharp = out.solution.report.estimate["traction_hierarchical_relative"]
     assert 0 < sharp <= 0.05 and last.relative == min(sharp, out.solution.report.estimate["traction_relative"])
@@ -138,7 +138,7 @@ def test_the_enriched_answer_is_handed_back_from_python() -> None:
     hierarchical = off_centre().solve_adaptive(tol=0.05, stop_on="hierarchical")
     assert len(hierarchical.levels) >= len(out.levels) - 1
     history = off_centre().solve_history_adaptive(0.01, [0.0, 0.001], mu=0.3, tol=0.05, stop_on="enriched")
-    assert history.stop == "tolerance" and history.levels[-1].seconds == 0.0
+    assert history.stop == "tolerance" and history.levels[-1].enriched and history.levels[-1].seconds == 0.0
     assert history.levels[-1].unknowns == history.problem.n_free
     for solution in history.history.solutions:
         assert np.isfinite(solution.report.estimate["traction_hierarchical_relative"])

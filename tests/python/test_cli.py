@@ -481,6 +481,7 @@ def test_run_adapts_a_scene_with_an_adapt_table(tmp_path: Path, capsys: pytest.C
     assert summary["n_free"] == int(rows[-1]["unknowns"]) and summary["status"] == "converged"
     assert summary["adapt_stop"] == "tolerance" and summary["warnings"] == []
     assert summary["adapt_handed_back"] is True and float(rows[-1]["seconds"]) == 0.0
+    assert [r["enriched"] for r in rows[-2:]] == ["False", "True"]
     assert "the answer enriched for the last level's estimate handed back" in printed
     assert "its change from the level it enriched, sharp but not a bound" in printed
     assert _read(summary["estimate"]) == pytest.approx(float(rows[-1]["relative"]))

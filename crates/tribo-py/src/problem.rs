@@ -433,7 +433,7 @@ impl PyProblem {
         let spans = |l: &Level| l.bodies.iter().map(|b| b.spans()).collect::<Vec<_>>();
         let mesh = |l: Level| {
             let at = (spans(&l), ints(py, l.regions.iter().copied())?, vec1(py, &l.multiplier_mesh)?);
-            Ok((level(&l), l.status.name(), (at.0, PyMesh::from_core(py, l.mesh)?, at.2, at.1)))
+            Ok((level(&l), l.status.name(), (at.0, PyMesh::from_core(py, l.mesh)?, at.2, at.1), l.enriched))
         };
         let levels = levels.into_iter().map(mesh).collect::<PyResult<Vec<_>>>()?;
         (answer, levels, stop.as_str()).into_pyobject(py)

@@ -23,7 +23,7 @@
 //!
 //! Where the enrichment removes much more than half of the error (two bodies: q = 0.22–0.42 on 9 of 10
 //! levels, measured before the fix of "The level's ratio H/h" below) this overestimated e_f up to 7 times
-//! (1.30–3.15 times since, study 13). Measuring q as at the ends of Γ_C (below) does not mend it: the example
+//! (1.30–3.17 times since, study 13). Measuring q as at the ends of Γ_C (below) does not mend it: the example
 //! `measured_reduction` (`docs/measured_reduction.csv`) enriched λ_f once more on every level of adaptive
 //! Hertz and two-body Hertz (484–122k unknowns) and found `‖λ_f − λ_ff‖ / ‖λ_H − λ_f‖` = 0.07–0.40 on the
 //! whole strip and 0.01–0.31 locally, where the cells carrying half of `‖λ_H − λ_f‖²` are, against a true
@@ -38,9 +38,9 @@
 //!
 //! Measured against references of 152k–500k unknowns on every adaptive case of study 13 (`docs/tol_table.md`,
 //! levels with at least 10 multiplier dofs in contact): 1.79–2.22 times the true error on one-body Hertz and its
-//! histories, 1.63–1.77 with P0 multipliers, 1.71–2.55 on two bodies, 1.79–2.11 with two pairs (48 of 106 levels
-//! in [1, 2]: the block's 22 at 2.33–4.88, the rest at 2.00–2.55; the enrichment removes nearly all of the error,
-//! q ≈ 0, so d ≈ e_H), without the drift of the residual bound ζ (effectivity 4 → 20 over the same levels). The
+//! histories, 1.63–1.77 with P0 multipliers, 1.71–2.55 on two bodies, 1.79–2.11 with two pairs (48 of 90 levels
+//! in [1, 2]: the block's 6 at 2.33–3.41, the rest at 2.00–2.55; d ≈ e_H although the enriched answer keeps
+//! 0.3–0.8 of the error, its error and the difference pointing apart), without the drift of the residual bound ζ (effectivity 4 → 20 over the same levels). The
 //! strip of one contact width gives the differences of the whole mesh within 11 % at about two thirds of its
 //! unknowns (2.6 times the level's).
 //!
@@ -106,7 +106,7 @@
 //!   `P_H − P = ‖u − u_h‖²_a / δ` (Galerkin orthogonality), of order h² where the energy error is of order
 //!   h, so `q_P ≈ ¼` and the bar overestimates by about `2 (1 − ¼) = 1.5`. This is why the bars take the
 //!   whole mesh and not the strip along the contact zone: measured on adaptive Hertz (study 14), the strip
-//!   gives 0.33–0.72 times the error of P, the whole mesh 1.44–1.51 times on the coarse levels (up to 2.81
+//!   gives 0.33–0.76 times the error of P, the whole mesh 1.47–1.53 times on the coarse levels (up to 2.81
 //!   where the reference's own error of P matters);
 //! - the contact and stick widths end at the edges of their zones, which the answer places to within
 //!   the multiplier cells there ([`crate::results::Zone`]): their error falls like H, halved by the
