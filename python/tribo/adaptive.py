@@ -7,8 +7,8 @@ mesh is the refined one):
 * ``adapt.csv``: per level, the unknowns, multiplier dofs and triangles, the relative estimate the loop
   stops on (of the contact tractions, or of the energy while nothing touches), the estimate η with its
   bulk, Γ_C, contact and friction parts, the traction bound and (where the loop computed it, unless
-  ``stop_on = "bound"``) the hierarchical traction estimate (on an enriched answer handed back, the last level
-  with 0 seconds, ‖λ_H − λ_f‖: that answer's own), the level's seconds and status;
+  ``stop_on = "bound"``) the hierarchical traction estimate (on an enriched answer handed back, the last level,
+  ``enriched`` and with 0 seconds, ‖λ_H − λ_f‖: that answer's own), the level's seconds, status and ``enriched``;
 * ``adapt.png`` (``tribo run --plots``): the relative estimate, the bound and the hierarchical estimate,
   and η against the unknowns (log-log), with the tolerance;
 * ``levels/level_NNN.vtu`` and ``adapt.pvd`` (``write_levels``, only with the scene's ``[adapt]

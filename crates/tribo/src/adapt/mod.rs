@@ -287,16 +287,19 @@ impl Problem {
             };
             let mut strict = loose.fp.tol <= settings.fp.tol || ended(&answer).1 == 0;
             let mut level = new_level(&problem, read(&answer), ended(&answer).0);
-            // The enriched problem, its answer and its level, where its estimate meets the tolerance.
+            // The enriched problem, its answer and its level, where its estimate meets the tolerance and the level's
+            // does not.
             let mut finer: Option<(Problem, T, Level)> = None;
             if let Some(sharp) = sharp {
                 let bound = level.estimate.traction_relative;
                 // Whether an enriched answer may be handed back: P1 multipliers (P0, first order everywhere,
                 // reduce the error by ½: no margin), on a mesh without curves (the enriched mesh leaves its new
-                // nodes on their chords). The stop then reads its estimate, half the level's away from the ends.
+                // nodes on their chords), within max_levels (max_unknowns is read on the enriched problem). The
+                // stop then reads its estimate, half the level's away from the ends.
                 let may_hand_back = adapt.stop_on == StopOn::Enriched
                     && problem.spec.multiplier_space == MultiplierSpace::P1
-                    && problem.mesh.curves().is_empty();
+                    && problem.mesh.curves().is_empty()
+                    && levels.len() + 2 <= adapt.max_levels;
                 let reads = if may_hand_back { 2.0 } else { 1.0 };
                 // Due where it may stop the loop before the bound does (the last ratio below 1 and the estimate
                 // it predicts within 3 times what the stop reads, see the module documentation), or where the last
@@ -354,17 +357,20 @@ impl Problem {
                                  {seconds:.3} s",
                                 levels.len(),
                             );
+                            // The bound the next level's due test scales: the largest over the steps, of the answer
+                            // estimated (over the loose answer's, the rounding of the two decided whether the next
+                            // level was due where the bound is the smaller and the ratio 1).
+                            let strict_bound = level.estimate.traction_relative;
                             (sharp.store)(&mut answer, &hs);
                             level = new_level(&problem, read(&answer), ended(&answer).0);
-                            // What the level reads over the bound: a step without an estimate (nothing touches,
-                            // or not among those read) does not hold the ratio at infinity. Both of the answer
-                            // estimated: 1 exactly where the bound is the smaller (over the bound of the loose
-                            // answer before it, the rounding of the two decided whether the next level was due).
-                            measured = Some((level.relative / level.estimate.traction_relative, level.unknowns));
-                            // Within max_levels (and max_unknowns, below), where the level does not meet the
-                            // tolerance itself (the first answer that does is handed back).
-                            let handing =
-                                may_hand_back && level.relative > adapt.tol && levels.len() + 2 <= adapt.max_levels;
+                            // What the level reads over that bound: a step without an estimate (nothing touches,
+                            // or not among those read) does not hold the ratio at infinity; a ratio that is not a
+                            // number (no bound) leaves the estimate to the fourfold growth.
+                            let ratio = level.relative / strict_bound;
+                            measured = Some((if ratio.is_finite() { ratio } else { f64::INFINITY }, level.unknowns));
+                            // Where the level does not meet the tolerance itself (the first answer that does is
+                            // handed back), and within max_unknowns (below).
+                            let handing = may_hand_back && level.relative > adapt.tol;
                             if let Some((fine, mut fine_answer)) =
                                 enriched.filter(|(p, _)| handing && p.n_free <= adapt.max_unknowns)
                             {
@@ -440,14 +446,8 @@ impl Problem {
             if let (Some(AdaptStop::Tolerance), Some((fine, fine_answer, fine_level))) = (stop, finer) {
                 if flow.is_break() {
                     // The observer stopped the loop at this level: it is handed back (solved to fp_tol before its
-                    // estimate), at the tolerance only if it meets it itself.
-                    let met = levels.last().is_some_and(|l| l.relative <= adapt.tol);
-                    return Ok((
-                        problem,
-                        answer,
-                        levels,
-                        if met { AdaptStop::Tolerance } else { AdaptStop::Interrupted },
-                    ));
+                    // estimate), interrupted (an enriched answer follows only a level outside the tolerance).
+                    return Ok((problem, answer, levels, AdaptStop::Interrupted));
                 }
                 // The enriched answer meets the tolerance: it is handed back as the last level.
                 log::info!(
