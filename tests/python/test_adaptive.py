@@ -123,9 +123,10 @@ def test_a_history_stops_on_the_hierarchical_estimate() -> None:
 
 
 def test_the_enriched_answer_is_handed_back_from_python() -> None:
-    """``stop_on='enriched'``, the default: a static loop and a history hand back the answer enriched for the last estimated
-    level where its own estimate meets ``tol`` and the level's does not: the last level is ``enriched``, has no time of
-    its own, more unknowns than the one before, and its estimate is the answer's; the history's every step carries it."""
+    """``stop_on='enriched'``, the default: a static loop and a history hand back the answer enriched for the last
+    estimated level where its own estimate meets ``tol`` and the level's does not: the last level is ``enriched``, has
+    no time of its own, more unknowns than the one before, and its estimate is the answer's; the history's every step
+    carries it."""
     out = off_centre().solve_adaptive(tol=0.05, stop_on="enriched")
     last, before = out.levels[-1], out.levels[-2]
     assert out.stop == "tolerance" and last.enriched and last.seconds == 0.0 and not before.enriched

@@ -79,8 +79,8 @@
 //! (e_f + d) ⇒ e_f ≤ q d / (1 − q) ≤ d` ([`Hierarchical::enriched_estimate`]; `q_R d_R / (1 − q_R)` at the ends of Γ_C
 //! measured as for λ_H). With [`StopOn::Enriched`], P1 multipliers, a mesh without curves (the enriched mesh leaves its
 //! new nodes on the chords of a curve, [`Problem::solve_enriched`]: handed back, its Γ_C would sag by h²/8R there), and
-//! within `max_unknowns` and `max_levels`, where that estimate (or λ_f's own bound, if smaller) is at most `tol` and the
-//! level's own is not (where it is, the level is the first answer that meets `tol`, at the same cost, on fewer
+//! within `max_unknowns` and `max_levels`, where that estimate (or λ_f's own bound, if smaller) is at most `tol` and
+//! the level's own is not (where it is, the level is the first answer that meets `tol`, at the same cost, on fewer
 //! unknowns, and it is handed back: study 13 found two runs whose λ_f then ended below `tol / 3`), the
 //! loop hands back the enriched problem and its answer as one more level (`seconds` 0: solved as the estimate of the
 //! level before it, whose seconds count it; its strip bisected on all three edges whatever `bisection`). Away from
