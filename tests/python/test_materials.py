@@ -127,7 +127,7 @@ def test_physical_surfaces_of_a_gmsh_file_are_the_regions(tmp_path: Path) -> Non
         ({"materials": [STIFF], "regions": [0] * 72, "young": 1.0}, tribo.SettingsError, "without young"),
         ({"materials": [], "regions": [0] * 72}, tribo.SettingsError, "one or more pairs"),
         ({"materials": [[1.0, 0.3, 2.0]], "regions": [0] * 72}, tribo.SettingsError, "shape"),
-        ({"materials": [STIFF], "regions": [0] * 71}, tribo.SettingsError, "shape"),
+        ({"materials": [STIFF], "regions": [0] * 71}, tribo.SettingsError, "71 regions given for 72 triangles"),
         ({"materials": [STIFF], "regions": [-1] + [0] * 71}, tribo.SettingsError, "non-negative"),
         ({"materials": [STIFF], "regions": [0.5] * 72}, tribo.SettingsError, "integers"),
         ({"materials": [STIFF], "regions": [1] * 72}, tribo.SettingsError, "beyond the 1 materials"),

@@ -83,8 +83,9 @@ def test_bad_pairs_are_errors() -> None:
         tribo.Problem.two_bodies(a, b, secondary="a.top", primary="b.side")
     with pytest.raises(tribo.SettingsError, match="traction on 'top'"):
         tribo.Body("b", mesh, young=1.0, poisson=0.3, clamped="top", tractions={"top": (1.0, 2.0, 3.0)})._compiled()
-    with pytest.raises(TypeError, match="per body"):
+    with pytest.raises(tribo.SettingsError, match="per body") as info:
         tribo.Problem([a._compiled(), b._compiled()], contact="a.top", primary="b.bottom", young=1.0)
+    assert info.value.kind == "BadSettingValue"
     with pytest.raises(TypeError, match="two tribo.Body"):
         tribo.Problem.two_bodies(a, mesh, secondary="a.top", primary="b.bottom")  # type: ignore[arg-type]
     # A punch held in y only by the contact, with nothing pressing it down: its position is undetermined.

@@ -95,7 +95,6 @@ fn _tribo(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SolverError", py.get_type::<errors::SolverError>())?;
     m.add_class::<mesh::PyMesh>()?;
     m.add_class::<obstacle::PyObstacle>()?;
-    m.add_class::<problem::ProblemData>()?;
     m.add_class::<problem::PyProblem>()?;
     m.add_class::<supports::PySupport>()?;
     m.add_function(wrap_pyfunction!(solver_defaults, m)?).and(m.add_function(wrap_pyfunction!(solver_settings, m)?))?;

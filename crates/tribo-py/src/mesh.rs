@@ -45,6 +45,12 @@ pub struct PyMesh {
     curves: BTreeMap<String, (f64, f64, f64)>,
 }
 
+/// A count (of cells, rings, nodes): a Python integer, not negative.
+fn count(v: &Bound<'_, PyAny>, name: &str) -> PyResult<usize> {
+    let n: i64 = v.extract().map_err(|_| bad_input(Mesh, format!("{name} must be an integer count, got {v}")))?;
+    usize::try_from(n).map_err(|_| bad_input(Mesh, format!("{name} = {n} must be positive")))
+}
+
 impl PyMesh {
     pub(crate) fn from_core(py: Python<'_>, m: tribo::Mesh) -> PyResult<Self> {
         let ints = |r: &[[usize; 2]]| mat(py, &r.iter().map(|e| e.map(|i| i as i64)).collect::<Vec<_>>());
@@ -105,11 +111,6 @@ impl PyMesh {
         ny: &Bound<'_, PyAny>,
         diagonal: Option<&str>,
     ) -> PyResult<Self> {
-        let count = |v: &Bound<'_, PyAny>, name: &str| -> PyResult<usize> {
-            let n: i64 =
-                v.extract().map_err(|_| bad_input(Mesh, format!("{name} must be an integer cell count, got {v}")))?;
-            usize::try_from(n).map_err(|_| bad_input(Mesh, format!("{name} = {n} must be a positive cell count")))
-        };
         let (nx, ny) = (count(nx, "nx")?, count(ny, "ny")?);
         let diagonal = diagonal.map_or(Ok(Diagonal::default()), Diagonal::parse).map_err(to_pyerr)?;
         let (x, y) = (pair(x, "x", Mesh)?, pair(y, "y", Mesh)?);
@@ -173,8 +174,14 @@ impl PyMesh {
     /// about radius / rings). Edge sets 'rim' (on its circle; a loop for a whole disc), 'start', 'end' (a sector's).
     #[staticmethod]
     #[pyo3(signature = (center, radius, *, rings, angles=(0.0, std::f64::consts::TAU)))]
-    fn disc(py: Python<'_>, center: (f64, f64), radius: f64, rings: i64, angles: (f64, f64)) -> PyResult<Self> {
-        let rings = usize::try_from(rings).map_err(|_| bad_input(Mesh, format!("rings = {rings} must be positive")))?;
+    fn disc(
+        py: Python<'_>,
+        center: (f64, f64),
+        radius: f64,
+        rings: &Bound<'_, PyAny>,
+        angles: (f64, f64),
+    ) -> PyResult<Self> {
+        let rings = count(rings, "rings")?;
         let sector = DiscSector { center: center.into(), radius, angles: angles.into() };
         Self::from_core(py, py.detach(|| tribo::disc(&sector, rings)).map_err(to_pyerr)?)
     }
@@ -189,11 +196,9 @@ impl PyMesh {
         center: (f64, f64),
         radius: f64,
         half_widths: (f64, f64),
-        around: i64,
-        across: i64,
+        around: &Bound<'_, PyAny>,
+        across: &Bound<'_, PyAny>,
     ) -> PyResult<Self> {
-        let count =
-            |n: i64, name| usize::try_from(n).map_err(|_| bad_input(Mesh, format!("{name} = {n} must be positive")));
         let (around, across) = (count(around, "around")?, count(across, "across")?);
         let plate = PlateWithHole { center: center.into(), radius, half_widths: half_widths.into() };
         Self::from_core(py, py.detach(|| tribo::plate_with_hole(&plate, around, across)).map_err(to_pyerr)?)

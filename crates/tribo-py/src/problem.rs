@@ -10,11 +10,12 @@ use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::conversion::FromPyObjectOwned;
 use pyo3::exceptions::{PyIndexError, PyTypeError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple};
+use pyo3::types::{IntoPyDict, PyDict, PyTuple};
+use pyo3::IntoPyObjectExt;
 use tribo::error::ErrorCategory::{ContactGeometry, Settings};
 use tribo::{
-    AdaptSettings, Choice, Friction, FrictionLaw, Level, LevelObserver, LoadStep, Material, MultiplierPoints,
-    MultiplierSpace, ObstacleShape, Phase, ProblemSpec, Progress, SolverSettings, Stabilization, StepProgress,
+    AdaptSettings, Bodies, Choice, Friction, FrictionLaw, Level, LevelObserver, LoadStep, MultiplierPoints,
+    MultiplierSpace, ObstacleShape, Phase, ProblemKeywords, Progress, SolverSettings, Stabilization, StepProgress,
     Threshold,
 };
 
@@ -25,70 +26,14 @@ use crate::obstacle::{chain_gap_error, take_gap_error, PyObstacle};
 use crate::results;
 use crate::supports::PySupport;
 
-/// The attributes of a problem, plain data built once with it: the base class of `Problem`.
-#[pyclass(frozen, subclass, get_all, name = "ProblemData", module = "tribo._tribo")]
-pub struct ProblemData {
-    /// The mesh.
-    mesh: Py<PyMesh>,
-    /// The obstacle shape.
-    obstacle: Py<PyObstacle>,
-    /// Normal approach δ of the obstacle.
-    approach: f64,
-    /// Tangential shift s of the obstacle.
-    shift: f64,
-    /// Young's modulus E and Poisson's ratio ν (under Γ_C's first edge for several materials; the secondary's for two).
-    young: f64,
-    poisson: f64,
-    /// Every material (E, ν) by region, and the region of each triangle, (n_triangles,) int64.
-    materials: Vec<(f64, f64)>,
-    regions: Py<PyAny>,
-    /// Name of the contact edge set.
-    contact: String,
-    /// Names of the clamped edge sets.
-    clamped: Vec<String>,
-    /// The supports given besides `clamped` (rollers, prescribed displacements, clamps).
-    supports: Vec<PySupport>,
-    /// Multiplier space, 'P0' or 'P1'.
-    space: &'static str,
-    /// Number of unknowns: the free displacement dofs, and in the mixed formulation one pressure per node.
-    n_free: usize,
-    /// Number of multiplier dofs q (per component), of every pair.
-    n_multipliers: usize,
-    /// The admissible bound on γ0 (K − G stays positive definite, or quasi-definite when mixed, below it).
-    gamma0_bound: f64,
-    /// The triangle that sets the admissible bound on γ0.
-    gamma0_bound_element: usize,
-    /// Outward unit normal n on Γ_C.
-    contact_normal: (f64, f64),
-    /// Tangent t = (−n₂, n₁) on Γ_C (tangential quantities are components along t).
-    contact_tangent: (f64, f64),
-    /// d · t = ±1: +1 when the abscissa ξ increases along t.
-    tangent_sign: f64,
-    /// FE nodes of Γ_C by increasing abscissa, (n_c,) int64 (the first pair's, as the fields below).
-    contact_nodes: Py<PyAny>,
-    /// Abscissae of the FE nodes of Γ_C (in the order of `contact_nodes`).
-    node_abscissae: Py<PyAny>,
-    /// Points x_0 < … < x_N of the multiplier mesh T_H (abscissae).
-    multiplier_mesh: Py<PyAny>,
-    /// Abscissae of the multiplier dofs (segment midpoints for P0, points for P1).
-    multiplier_abscissae: Py<PyAny>,
-    /// Set-up wall times in seconds: {'assembly', 'contact_matrices'}.
-    setup_timings: BTreeMap<&'static str, f64>,
-    /// The primary contact set of two bodies ('body.set'), or None against the rigid obstacle.
-    primary: Option<String>,
-    /// The bodies: (name, [first node, end, first triangle, end] in `mesh`, unknowns); one, 'body', for one body.
-    bodies: Vec<(String, [usize; 4], usize)>,
-    /// The prescribed displacement components a history may move, ('set.x' or 'set.y', value), in order.
-    prescribed: Vec<(String, f64)>,
-    /// The contact pairs by their edge sets, `contact` first (the solution's `pairs` in this order).
-    pairs: Vec<String>,
-}
-
 /// A contact problem, validated and assembled once (independent of γ0 and friction). It keeps the
 /// factorization of its last solve, reused by the next solve with the same γ0.
-#[pyclass(frozen, subclass, extends = ProblemData, name = "Problem", module = "tribo._tribo")]
+#[pyclass(frozen, subclass, name = "Problem", module = "tribo._tribo")]
 pub struct PyProblem {
     inner: tribo::Problem,
+    /// Its attributes, plain data built once with it (`tribo.Problem` reads them).
+    #[pyo3(get, name = "_data")]
+    data: Py<PyDict>,
 }
 
 /// Tractions as `tribo.Problem` hands them over: (edge set, `[p]` a pressure or `[tx, ty]` a vector).
@@ -256,7 +201,7 @@ impl PyProblem {
         rotation: Option<([f64; 2], f64)>,
         formulation: Option<&str>,
         pairs: Option<Vec<PairArgs>>,
-    ) -> PyResult<PyClassInitializer<Self>> {
+    ) -> PyResult<Self> {
         let obstacle = obstacle.map_or_else(|| Py::new(py, PyObstacle::checked(ObstacleShape::Flat)?), Ok)?;
         let shape = obstacle.get().shape.clone();
         let points = match multiplier_points {
@@ -267,92 +212,84 @@ impl PyProblem {
             Some(p) => Some(MultiplierPoints::Abscissae(floats(p, "multiplier_points", &[None], ContactGeometry)?)),
         };
         let points = MultiplierPoints::from_keywords(multiplier_ratio, multiplier_size, points).map_err(to_pyerr)?;
-        let space = space.map_or(Ok(MultiplierSpace::default()), MultiplierSpace::parse).map_err(to_pyerr)?;
-        let model_given = model.map(tribo::Model::parse).transpose().map_err(to_pyerr)?;
-        let formulation = formulation.map_or(Ok(Default::default()), tribo::Formulation::parse).map_err(to_pyerr)?;
-        let body_force = body_force.map_or(Ok([0.0, 0.0]), |b| pair(b, "body_force", Settings))?;
         take_gap_error();
         let shape_of = |o: Option<Py<PyObstacle>>| o.map(|o| o.get().shape.clone());
-        let further: Vec<_> = (pairs.unwrap_or_default().into_iter())
-            .map(|(c, o, a, s, mu)| tribo::PairSpec::from_keywords(c, shape_of(o), (a, s), mu, &points))
-            .collect();
-        let p = if let Some(primary) = &primary {
-            // Two bodies (`tribo.Problem.two_bodies`): `mesh` is their list, each with its own materials, supports
-            // and tractions; they move through their supports.
-            let given = [materials.is_some(), regions.is_some(), clamped.is_some(), supports.is_some()];
-            let moved = [tractions.is_some(), approach.or(shift).is_some(), rotation.is_some()];
-            if given.into_iter().chain(moved).any(|g| g) {
-                return Err(PyTypeError::new_err("with primary=, material, supports and tractions are per body"));
+        // Two bodies (`tribo.Problem.two_bodies`): `mesh` is their list, each with its own materials, supports and
+        // tractions; one body: `tribo.Problem` gives `young`, `poisson` as one material.
+        let bodies = match &primary {
+            Some(_) => {
+                let [first, second]: [BodyArgs; 2] = mesh.extract()?;
+                Bodies::Two(Box::new([body(first)?, body(second)?]))
             }
-            let [first, second]: [BodyArgs; 2] = mesh.extract()?;
-            let (secondary, primary, gap, multiplier_points) = (contact.clone(), primary.clone(), shape, points);
-            let (model, multiplier_space) = (model_given.unwrap_or_default(), space);
-            let pair =
-                tribo::ContactPair { secondary, primary, gap, multiplier_points, multiplier_space, model, formulation };
-            let bodies = [body(first)?, body(second)?];
-            py.detach(|| tribo::Problem::two_bodies_with_pairs(bodies, pair, further, body_force))
-        } else {
-            // One material or several (`tribo.Problem` gives `young`, `poisson` as one), each triangle's region.
-            let mesh_inner = mesh.cast::<PyMesh>()?.get().inner.clone();
-            let n = mesh_inner.n_triangles();
-            let region = regions.map(|r| indices(r, "regions", &[Some(n)], Settings)).transpose()?;
-            let given = materials.ok_or_else(|| PyTypeError::new_err("Problem() missing keyword 'materials'"))?;
-            let materials = tribo::Materials::from_pairs(&given, region, n);
-            let supports = supports.unwrap_or_default().into_iter().map(|s| s.inner).collect();
-            let tractions = tractions_of(tractions.unwrap_or_default())?;
-            let spec = ProblemSpec {
-                // A placeholder where none is given: `with_materials` says so.
-                material: materials.materials.first().copied().unwrap_or(Material { young: f64::NAN, poisson: 0.0 }),
-                model: model_given.unwrap_or_default(),
-                formulation,
-                clamped: clamped.unwrap_or_default(),
-                supports,
-                body_force,
-                tractions,
-                contact,
-                obstacle: tribo::Obstacle::from_keywords(shape, approach, shift, rotation.map(Into::into)),
-                pairs: further,
-                multiplier_points: points,
-                multiplier_space: space,
-            };
-            py.detach(|| tribo::Problem::with_materials(mesh_inner, spec, materials))
-        }
-        .map_err(|e| chain_gap_error(py, to_pyerr(e)))?;
-        let (c, spec) = (&p.contact, &p.spec);
-        let data = ProblemData {
-            mesh: match mesh.cast::<PyMesh>() {
-                Ok(m) => m.clone().unbind(),
-                Err(_) => Py::new(py, PyMesh::from_core(py, p.mesh.clone())?)?,
-            },
-            obstacle,
-            approach: spec.obstacle.approach,
-            shift: spec.obstacle.shift,
-            young: spec.material.young,
-            poisson: spec.material.poisson,
-            materials: p.materials.materials.iter().map(|m| (m.young, m.poisson)).collect(),
-            regions: ints(py, p.materials.region.iter().copied())?,
-            contact: spec.contact.clone(),
-            clamped: spec.clamped.clone(),
-            supports: spec.supports.iter().map(|s| PySupport { inner: s.clone() }).collect(),
-            space: p.multipliers.space.as_str(),
-            n_free: p.n_free,
-            n_multipliers: p.n_multipliers(),
-            gamma0_bound: p.gamma0_bound.value,
-            gamma0_bound_element: p.gamma0_bound.triangle,
-            contact_normal: (c.normal[0], c.normal[1]),
-            contact_tangent: (c.tangent[0], c.tangent[1]),
-            tangent_sign: c.tangent_sign(),
-            contact_nodes: ints(py, c.nodes.iter().copied())?,
-            node_abscissae: vec1(py, &c.node_xi)?,
-            multiplier_mesh: vec1(py, &p.multipliers.xi)?,
-            multiplier_abscissae: vec1(py, p.multipliers.dof_abscissae())?,
-            setup_timings: BTreeMap::from(p.timings.named()),
-            primary,
-            bodies: p.bodies.iter().map(|b| (b.name.clone(), b.spans(), b.unknowns)).collect(),
-            prescribed: spec.prescribed_components(),
-            pairs: p.pairs().iter().map(|p| p.name.to_string()).collect(),
+            None => Bodies::One(mesh.cast::<PyMesh>()?.get().inner.clone()),
         };
-        Ok(PyClassInitializer::from(data).add_subclass(Self { inner: p }))
+        let keywords = ProblemKeywords {
+            pairs: (pairs.unwrap_or_default().into_iter())
+                .map(|(c, o, a, s, mu)| tribo::PairSpec::from_keywords(c, shape_of(o), (a, s), mu, &points))
+                .collect(),
+            contact,
+            primary: primary.clone(),
+            materials,
+            regions: regions.map(|r| indices(r, "regions", &[None], Settings)).transpose()?,
+            clamped,
+            supports: supports.map(|s| s.into_iter().map(|s| s.inner).collect()),
+            tractions: tractions.map(tractions_of).transpose()?,
+            obstacle: shape,
+            approach,
+            shift,
+            rotation,
+            body_force: body_force.map_or(Ok([0.0, 0.0]), |b| pair(b, "body_force", Settings))?,
+            model: model.map(tribo::Model::parse).transpose().map_err(to_pyerr)?,
+            formulation: formulation.map_or(Ok(Default::default()), tribo::Formulation::parse).map_err(to_pyerr)?,
+            multiplier_points: points,
+            multiplier_space: space.map_or(Ok(MultiplierSpace::default()), MultiplierSpace::parse).map_err(to_pyerr)?,
+        };
+        let p = py
+            .detach(|| tribo::Problem::from_keywords(bodies, keywords))
+            .map_err(|e| chain_gap_error(py, to_pyerr(e)))?;
+        let (c, spec) = (&p.contact, &p.spec);
+        let mesh = match mesh.cast::<PyMesh>() {
+            Ok(m) => m.clone().into_any().unbind(),
+            Err(_) => Py::new(py, PyMesh::from_core(py, p.mesh.clone())?)?.into_any(),
+        };
+        let supports: Vec<_> = spec.supports.iter().map(|s| PySupport { inner: s.clone() }).collect();
+        let data = [
+            ("mesh", mesh),
+            ("obstacle", obstacle.into_any()),
+            ("approach", spec.obstacle.approach.into_py_any(py)?),
+            ("shift", spec.obstacle.shift.into_py_any(py)?),
+            ("young", spec.material.young.into_py_any(py)?),
+            ("poisson", spec.material.poisson.into_py_any(py)?),
+            (
+                "materials",
+                p.materials.materials.iter().map(|m| (m.young, m.poisson)).collect::<Vec<_>>().into_py_any(py)?,
+            ),
+            ("regions", ints(py, p.materials.region.iter().copied())?),
+            ("contact", spec.contact.clone().into_py_any(py)?),
+            ("clamped", spec.clamped.clone().into_py_any(py)?),
+            ("supports", supports.into_py_any(py)?),
+            ("space", p.multipliers.space.as_str().into_py_any(py)?),
+            ("n_free", p.n_free.into_py_any(py)?),
+            ("n_multipliers", p.n_multipliers().into_py_any(py)?),
+            ("gamma0_bound", p.gamma0_bound.value.into_py_any(py)?),
+            ("gamma0_bound_element", p.gamma0_bound.triangle.into_py_any(py)?),
+            ("contact_normal", (c.normal[0], c.normal[1]).into_py_any(py)?),
+            ("contact_tangent", (c.tangent[0], c.tangent[1]).into_py_any(py)?),
+            ("tangent_sign", c.tangent_sign().into_py_any(py)?),
+            ("contact_nodes", ints(py, c.nodes.iter().copied())?),
+            ("node_abscissae", vec1(py, &c.node_xi)?),
+            ("multiplier_mesh", vec1(py, &p.multipliers.xi)?),
+            ("multiplier_abscissae", vec1(py, p.multipliers.dof_abscissae())?),
+            ("setup_timings", BTreeMap::from(p.timings.named()).into_py_any(py)?),
+            ("primary", primary.into_py_any(py)?),
+            (
+                "bodies",
+                p.bodies.iter().map(|b| (b.name.clone(), b.spans(), b.unknowns)).collect::<Vec<_>>().into_py_any(py)?,
+            ),
+            ("prescribed", spec.prescribed_components().into_py_any(py)?),
+            ("pairs", p.pairs().iter().map(|p| p.name.to_string()).collect::<Vec<_>>().into_py_any(py)?),
+        ];
+        Ok(Self { inner: p, data: data.into_py_dict(py)?.unbind() })
     }
 
     /// Solves with the keywords of `tribo.Problem.solve` in `options`; returns a Solution's fields (dict).

@@ -157,7 +157,7 @@ pub use problem::load_case::LoadCase;
 #[allow(deprecated)]
 pub use problem::load_case::Loading;
 pub use problem::sides::{ContactSide, PairParts, PairSpec};
-pub use problem::{Condensed, Problem, ProblemSpec};
+pub use problem::{Bodies, Condensed, Problem, ProblemKeywords, ProblemSpec};
 pub use qp::{QpOutcome, QpStatus};
 pub use results::{
     Agreement, ContactState, CoulombCheck, KktResiduals, PairResult, Report, Solution, SolveStatus, Timings,

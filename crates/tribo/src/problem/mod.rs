@@ -8,6 +8,7 @@
 
 pub mod bodies;
 pub mod floating;
+pub mod keywords;
 pub mod load_case;
 pub mod sides;
 
@@ -15,6 +16,7 @@ mod condense;
 mod spec;
 
 pub use condense::Condensed;
+pub use keywords::{Bodies, ProblemKeywords};
 
 use std::sync::OnceLock;
 use std::time::Instant;
