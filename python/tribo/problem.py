@@ -8,7 +8,7 @@ and spreads a scalar approach, shift or load factor over the steps of a history 
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from typing import Any, Literal
+from typing import Any, Generic, Literal, NoReturn, TypeVar, cast, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -50,9 +50,31 @@ def check_adapt(
     _tribo.check_adapt(_adapt_args(tol, max_unknowns, theta, marking, bisection, stop_on, max_levels, algebraic))
 
 
-def _attribute(name: str, doc: str) -> Any:
-    """A read-only attribute of a problem: built once with it by the core (``_tribo.Problem._data``)."""
-    return property(lambda self: self._data[name], doc=doc)
+_T = TypeVar("_T")
+
+
+class _Attribute(Generic[_T]):
+    """A read-only attribute of a problem, built once with it by the core (``_tribo.Problem._data``); a list or a
+    dict is read as a copy, so that no reader changes it for the others (the arrays are read-only)."""
+
+    def __init__(self, doc: str) -> None:
+        self.__doc__ = doc
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name = name
+
+    @overload
+    def __get__(self, problem: None, owner: type) -> _Attribute[_T]: ...
+    @overload
+    def __get__(self, problem: _tribo.Problem, owner: type) -> _T: ...
+    def __get__(self, problem: _tribo.Problem | None, owner: type) -> _Attribute[_T] | _T:
+        if problem is None:
+            return self
+        value = problem._data[self.name]
+        return cast(_T, type(value)(value) if isinstance(value, (list, dict)) else value)
+
+    def __set__(self, problem: _tribo.Problem, value: NoReturn) -> None:
+        raise AttributeError(f"Problem.{self.name} is read-only: build another problem")
 
 
 def _body_mesh(mesh: _tribo.Mesh, name: str, spans: Sequence[int]) -> _tribo.Mesh:
@@ -92,48 +114,46 @@ class Problem(_tribo.Problem):
     _arguments: dict[str, Any]
     _source: Any
 
-    mesh: _tribo.Mesh = _attribute("mesh", "The mesh (for two bodies: both, joined; ``bodies`` says where each is).")
-    obstacle: _tribo.Obstacle = _attribute("obstacle", "The obstacle's shape (flat where none was given).")
-    approach: float = _attribute("approach", "The normal approach δ of the obstacle.")
-    shift: float = _attribute("shift", "The tangential shift s of the obstacle.")
-    young: float = _attribute("young", "Young's modulus E (under Γ_C's first edge for several materials; the "
-                              "secondary body's for two).")
-    poisson: float = _attribute("poisson", "Poisson's ratio ν (as ``young``).")
-    materials: list[tuple[float, float]] = _attribute("materials", "Every material (E, ν), by region.")
-    regions: npt.NDArray[np.int64] = _attribute("regions", "The region of each triangle, (n_triangles,) int64.")
-    contact: str = _attribute("contact", "The contact edge set Γ_C (the secondary side for two bodies).")
-    clamped: list[str] = _attribute("clamped", "The clamped edge sets.")
-    supports: list[_tribo.Support] = _attribute("supports", "The supports given besides ``clamped``.")
-    space: Literal["P0", "P1"] = _attribute("space", "The multiplier space, 'P0' or 'P1'.")
-    n_free: int = _attribute("n_free", "The number of unknowns: the free displacement dofs, and in the mixed "
-                             "formulation one pressure per node.")
-    n_multipliers: int = _attribute("n_multipliers", "The number of multiplier dofs q (per component), of every "
-                                    "pair.")
-    gamma0_bound: float = _attribute("gamma0_bound", "The admissible bound on γ0 (K − G stays positive definite, or "
-                                     "quasi-definite when mixed, below it).")
-    gamma0_bound_element: int = _attribute("gamma0_bound_element", "The triangle that sets ``gamma0_bound``.")
-    contact_normal: tuple[float, float] = _attribute("contact_normal", "The outward unit normal n on Γ_C (its "
-                                                     "first edge's on a bent side).")
-    contact_tangent: tuple[float, float] = _attribute("contact_tangent", "The tangent t = (−n₂, n₁): tangential "
-                                                      "quantities are components along t.")
-    tangent_sign: float = _attribute("tangent_sign", "d · t = ±1: +1 where the abscissa ξ increases along t.")
-    contact_nodes: npt.NDArray[np.int64] = _attribute("contact_nodes", "The FE nodes of Γ_C by increasing abscissa, "
-                                                      "(n_c,) int64 (the first pair's, as the fields below).")
-    node_abscissae: npt.NDArray[np.float64] = _attribute("node_abscissae", "The abscissae of ``contact_nodes``.")
-    multiplier_mesh: npt.NDArray[np.float64] = _attribute("multiplier_mesh", "The points x_0 < … < x_N of the "
-                                                          "multiplier mesh T_H (abscissae).")
-    multiplier_abscissae: npt.NDArray[np.float64] = _attribute("multiplier_abscissae", "The abscissae of the "
-                                                               "multiplier dofs (midpoints for P0, points for P1).")
-    setup_timings: dict[str, float] = _attribute("setup_timings", "The set-up wall times in seconds: {'assembly', "
+    mesh = _Attribute[_tribo.Mesh]("The mesh (for two bodies: both, joined; ``bodies`` says where each is).")
+    obstacle = _Attribute[_tribo.Obstacle]("The obstacle's shape (flat where none was given).")
+    approach = _Attribute[float]("The normal approach δ of the obstacle.")
+    shift = _Attribute[float]("The tangential shift s of the obstacle.")
+    young = _Attribute[float]("Young's modulus E (under Γ_C's first edge for several materials; the secondary "
+                              "body's for two).")
+    poisson = _Attribute[float]("Poisson's ratio ν (as ``young``).")
+    materials = _Attribute[list[tuple[float, float]]]("Every material (E, ν), by region.")
+    regions = _Attribute[npt.NDArray[np.int64]]("The region of each triangle, (n_triangles,) int64.")
+    contact = _Attribute[str]("The contact edge set Γ_C (the secondary side for two bodies).")
+    clamped = _Attribute[list[str]]("The clamped edge sets.")
+    supports = _Attribute[list[_tribo.Support]]("The supports given besides ``clamped``.")
+    space = _Attribute[Literal["P0", "P1"]]("The multiplier space, 'P0' or 'P1'.")
+    n_free = _Attribute[int]("The number of unknowns: the free displacement dofs, and in the mixed formulation one "
+                             "pressure per node.")
+    n_multipliers = _Attribute[int]("The number of multiplier dofs q (per component), of every pair.")
+    gamma0_bound = _Attribute[float]("The admissible bound on γ0 (K − G stays positive definite, or quasi-definite "
+                                     "when mixed, below it).")
+    gamma0_bound_element = _Attribute[int]("The triangle that sets ``gamma0_bound``.")
+    contact_normal = _Attribute[tuple[float, float]]("The outward unit normal n on Γ_C (its first edge's on a bent "
+                                                     "side).")
+    contact_tangent = _Attribute[tuple[float, float]]("The tangent t = (−n₂, n₁): tangential quantities are "
+                                                      "components along t.")
+    tangent_sign = _Attribute[float]("d · t = ±1: +1 where the abscissa ξ increases along t.")
+    contact_nodes = _Attribute[npt.NDArray[np.int64]]("The FE nodes of Γ_C by increasing abscissa, (n_c,) int64 (the "
+                                                      "first pair's, as the fields below).")
+    node_abscissae = _Attribute[npt.NDArray[np.float64]]("The abscissae of ``contact_nodes``.")
+    multiplier_mesh = _Attribute[npt.NDArray[np.float64]]("The points x_0 < … < x_N of the multiplier mesh T_H "
+                                                          "(abscissae).")
+    multiplier_abscissae = _Attribute[npt.NDArray[np.float64]]("The abscissae of the multiplier dofs (midpoints for "
+                                                               "P0, points for P1).")
+    setup_timings = _Attribute[dict[str, float]]("The set-up wall times in seconds: {'assembly', "
                                                  "'contact_matrices'}.")
-    primary: str | None = _attribute("primary", "The primary contact set of two bodies ('body.set'), or None "
-                                     "against a rigid obstacle.")
-    bodies: list[tuple[str, list[int], int]] = _attribute("bodies", "The bodies: (name, [first node, end, first "
-                                                          "triangle, end] in ``mesh``, unknowns); one, 'body', for "
-                                                          "one body.")
-    prescribed: list[tuple[str, float]] = _attribute("prescribed", "The prescribed displacement components a "
-                                                     "history may move, ('set.x' or 'set.y', value), in order.")
-    pairs: list[str] = _attribute("pairs", "The contact pairs by their edge sets, ``contact`` first (the order of "
+    primary = _Attribute[str | None]("The primary contact set of two bodies ('body.set'), or None against a rigid "
+                                     "obstacle.")
+    bodies = _Attribute[list[tuple[str, tuple[int, int, int, int], int]]](
+        "The bodies: (name, (first node, end, first triangle, end) in ``mesh``, unknowns); one, 'body', for one body.")
+    prescribed = _Attribute[list[tuple[str, float]]]("The prescribed displacement components a history may move, "
+                                                     "('set.x' or 'set.y', value), in order.")
+    pairs = _Attribute[list[str]]("The contact pairs by their edge sets, ``contact`` first (the order of "
                                   "``Solution.pairs``).")
 
     def __new__(cls, mesh: _tribo.Mesh | Sequence[tuple[Any, ...]], **arguments: Any) -> Problem:

@@ -84,6 +84,8 @@ COLUMNS: dict[str, str] = {
     "status": "the solve's status (converged, max_iterations, qp_failed, …); error: the scene could not be "
     "built or solved (failure says why); killed_worker: the case killed every worker that tried it",
     "adapt_stop": "why the adaptive loop stopped (tolerance, exact, max_unknowns, …); empty without [adapt]",
+    "adapt_handed_back": "whether the adaptive loop handed back the answer enriched for its last level's estimate "
+                         "(traction_hierarchical is then its change from that level); False without [adapt]",
     "failure": "why a case did not converge or failed (empty when it converged)",
     "friction": "the friction law the solve used",
     "formulation": "what the body was solved with: displacement (P1) or mixed (displacement–pressure; auto's choice)",
@@ -317,6 +319,7 @@ def _row(summary: Mapping[str, Any], solution: Any) -> dict[str, Any]:
     return {
         "status": summary["status"],
         "adapt_stop": summary.get("adapt_stop") or "",
+        "adapt_handed_back": bool(summary.get("adapt_handed_back")),
         "failure": failure,
         "friction": summary["friction"],
         "formulation": summary["formulation"],
@@ -440,14 +443,10 @@ def _attempts_recorded(case_dir: Path) -> int:
         return 0
 
 
-def _attempts(case_dir: Path) -> int:
-    return max(1, _attempts_recorded(case_dir))
-
-
 def _finish(case_dir: Path, result: Mapping[str, Any]) -> dict[str, Any]:
     """Writes a finished case's cache marker (and its summary, when the worker's filesystem is not ours)."""
     row = dict(result["row"])
-    row["attempts"] = _attempts(case_dir)
+    row["attempts"] = max(1, _attempts_recorded(case_dir))
     case_dir.mkdir(parents=True, exist_ok=True)
     if result["summary"] is not None and not (case_dir / "summary.json").exists():
         write_text_atomic(case_dir / "summary.json", json.dumps(result["summary"], indent=2) + "\n")

@@ -231,6 +231,22 @@ def test_evaluate_multiplier_and_contact_points(hertz: tribo.Problem) -> None:
     assert set(hertz.setup_timings) == {"assembly", "contact_matrices"}
 
 
+def test_a_problems_attributes_are_read_only_and_its_lists_copies() -> None:
+    """The attributes are built once by the core: none can be set, and no reader changes a list for the others."""
+    m = tribo.Mesh.rectangle((0.0, 1.0), (0.0, 1.0), 4, 4)
+    p = tribo.Problem(m, young=10.0, poisson=0.25, clamped="bottom", contact="top", approach=0.01)
+    assert (p.young, p.poisson, p.approach, p.clamped, p.materials) == (10.0, 0.25, 0.01, ["bottom"], [(10.0, 0.25)])
+    assert p.bodies == [("body", (0, m.n_nodes, 0, m.n_triangles), p.n_free)]
+    for name in ("young", "clamped", "bodies", "mesh"):
+        with pytest.raises(AttributeError, match=f"Problem.{name} is read-only"):
+            setattr(p, name, None)
+    p.clamped.append("left")
+    p.materials.clear()
+    p.setup_timings.clear()
+    assert p.clamped == ["bottom"] and p.materials == [(10.0, 0.25)] and len(p.setup_timings) == 2
+    assert "Young's modulus" in (type(p).young.__doc__ or "")
+
+
 def test_working_set_matches_the_full_qp() -> None:
     """The working-set QP (default) and the QP over all of Γ_C give the same frictionless solution.
 

@@ -193,6 +193,24 @@ def test_the_numbers_are_those_of_single_runs(tmp_path: Path, client: Any) -> No
         assert row.kkt_max == pytest.approx(s["kkt_max"], rel=1e-3, abs=1e-13)
 
 
+def test_the_table_says_which_adaptive_answers_were_handed_back(tmp_path: Path, client: Any) -> None:
+    """An adaptive scene stopped on the enriched estimate hands back the enriched answer (as ``tribo run`` says in
+    summary.json); stopped on the level's own estimate, it does not; a case without ``[adapt]`` has False."""
+    from test_cli import ADAPT_SCENE
+
+    scene = tmp_path / "adapt.toml"
+    scene.write_text(ADAPT_SCENE + 'stop_on = "enriched"\n', encoding="utf-8")
+    df = sweep(scene, {"adapt.stop_on": ["enriched", "hierarchical"]}, out=tmp_path / "out", client=client)
+    rows = df.set_index("adapt.stop_on")
+    assert (rows["adapt_stop"] == "tolerance").all() and (rows["status"] == "converged").all()
+    assert rows.loc["enriched", "adapt_handed_back"] and not rows.loc["hierarchical", "adapt_handed_back"]
+    for row in df.itertuples():
+        summary = json.loads((tmp_path / "out" / "cases" / row.case / "summary.json").read_text())
+        assert summary["adapt_handed_back"] is bool(row.adapt_handed_back)
+    plain = sweep(scene_file(tmp_path), {"friction.mu": [0.2]}, out=tmp_path / "plain", client=client)
+    assert plain["adapt_handed_back"].tolist() == [False] and plain["adapt_stop"].tolist() == [""]
+
+
 def test_a_failing_case_is_a_row_and_not_the_end(tmp_path: Path, client: Any) -> None:
     df = sweep(scene_file(tmp_path), {"material.poisson": [0.3, 0.5], "solver.fp_max_iter": [1, 50]},
                out=tmp_path / "out", client=client)

@@ -217,9 +217,9 @@ impl PyProblem {
         // Two bodies (`tribo.Problem.two_bodies`): `mesh` is their list, each with its own materials, supports and
         // tractions; one body: `tribo.Problem` gives `young`, `poisson` as one material.
         let bodies = match &primary {
-            Some(_) => {
+            Some(primary) => {
                 let [first, second]: [BodyArgs; 2] = mesh.extract()?;
-                Bodies::Two(Box::new([body(first)?, body(second)?]))
+                Bodies::Two { bodies: Box::new([body(first)?, body(second)?]), primary: primary.clone() }
             }
             None => Bodies::One(mesh.cast::<PyMesh>()?.get().inner.clone()),
         };
@@ -228,7 +228,6 @@ impl PyProblem {
                 .map(|(c, o, a, s, mu)| tribo::PairSpec::from_keywords(c, shape_of(o), (a, s), mu, &points))
                 .collect(),
             contact,
-            primary: primary.clone(),
             materials,
             regions: regions.map(|r| indices(r, "regions", &[None], Settings)).transpose()?,
             clamped,
@@ -253,6 +252,8 @@ impl PyProblem {
             Err(_) => Py::new(py, PyMesh::from_core(py, p.mesh.clone())?)?.into_any(),
         };
         let supports: Vec<_> = spec.supports.iter().map(|s| PySupport { inner: s.clone() }).collect();
+        // Each body's name, (first node, end, first triangle, end) and unknowns.
+        let part = |b: &tribo::BodyPart| (b.name.clone(), <(usize, usize, usize, usize)>::from(b.spans()), b.unknowns);
         let data = [
             ("mesh", mesh),
             ("obstacle", obstacle.into_any()),
@@ -282,10 +283,7 @@ impl PyProblem {
             ("multiplier_abscissae", vec1(py, p.multipliers.dof_abscissae())?),
             ("setup_timings", BTreeMap::from(p.timings.named()).into_py_any(py)?),
             ("primary", primary.into_py_any(py)?),
-            (
-                "bodies",
-                p.bodies.iter().map(|b| (b.name.clone(), b.spans(), b.unknowns)).collect::<Vec<_>>().into_py_any(py)?,
-            ),
+            ("bodies", p.bodies.iter().map(part).collect::<Vec<_>>().into_py_any(py)?),
             ("prescribed", spec.prescribed_components().into_py_any(py)?),
             ("pairs", p.pairs().iter().map(|p| p.name.to_string()).collect::<Vec<_>>().into_py_any(py)?),
         ];

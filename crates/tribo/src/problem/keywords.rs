@@ -35,8 +35,6 @@ use crate::problem::{Problem, ProblemSpec};
 pub struct ProblemKeywords {
     /// Γ_C: an edge set of one body; of two, the secondary side `"body.edge_set"`.
     pub contact: String,
-    /// The primary side of two bodies, `"body.edge_set"`; `None` for one body against a rigid obstacle.
-    pub primary: Option<String>,
     /// One body's materials (E, ν) by region.
     pub materials: Option<Vec<(f64, f64)>>,
     /// One body's region of each triangle (`None`: every triangle of the first material).
@@ -74,8 +72,14 @@ pub struct ProblemKeywords {
 pub enum Bodies {
     /// One body's mesh; its materials, supports and loads are keywords.
     One(Mesh),
-    /// Two bodies, each with its own materials, supports and tractions.
-    Two(Box<[Body; 2]>),
+    /// Two bodies, each with its own materials, supports and tractions, and the primary side of their pair,
+    /// `"body.edge_set"` (the secondary side is `contact`).
+    Two {
+        /// The bodies.
+        bodies: Box<[Body; 2]>,
+        /// The primary side.
+        primary: String,
+    },
 }
 
 impl Problem {
@@ -88,7 +92,7 @@ impl Problem {
     /// [`Error::BadMaterial`] where no material was given.
     pub fn from_keywords(bodies: Bodies, k: ProblemKeywords) -> Result<Self> {
         match bodies {
-            Bodies::Two(bodies) => {
+            Bodies::Two { bodies, primary } => {
                 let given = [k.materials.is_some(), k.regions.is_some(), k.clamped.is_some(), k.supports.is_some()];
                 let moved = [k.tractions.is_some(), k.approach.or(k.shift).is_some(), k.rotation.is_some()];
                 if given.into_iter().chain(moved).any(|g| g) {
@@ -101,7 +105,7 @@ impl Problem {
                 }
                 let pair = ContactPair {
                     secondary: k.contact,
-                    primary: k.primary.unwrap_or_default(),
+                    primary,
                     gap: k.obstacle,
                     multiplier_points: k.multiplier_points,
                     multiplier_space: k.multiplier_space,
@@ -111,9 +115,11 @@ impl Problem {
                 Self::two_bodies_with_pairs(*bodies, pair, k.pairs, k.body_force)
             }
             Bodies::One(mesh) => {
-                let pairs = k.materials.unwrap_or_default();
+                let none =
+                    || Error::BadMaterial { what: "none given (materials by region, or young and poisson)".into() };
+                let pairs = k.materials.ok_or_else(none)?;
                 let materials = Materials::from_pairs(&pairs, k.regions, mesh.n_triangles());
-                // Where none is given, `with_materials` says so.
+                // Where the list is empty, `with_materials` says so.
                 let material =
                     materials.materials.first().copied().unwrap_or(Material { young: f64::NAN, poisson: 0.0 });
                 let spec = ProblemSpec {
@@ -141,37 +147,69 @@ mod tests {
     use super::*;
     use crate::mesh::generate::{rectangle, Diagonal};
 
-    fn body(name: &str, y: [f64; 2], clamped: &str) -> Body {
-        let mesh = rectangle([0.0, 1.0], y, 4, 2, Diagonal::default()).unwrap();
-        let materials = Materials::uniform(Material { young: 1.0, poisson: 0.3 }, mesh.n_triangles());
+    fn body(name: &str, y: [f64; 2], nx: usize, material: Material, clamped: &str) -> Body {
+        let mesh = rectangle([0.0, 1.0], y, nx, 2, Diagonal::default()).unwrap();
+        let materials = Materials::uniform(material, mesh.n_triangles());
         Body { name: name.into(), mesh, materials, clamped: vec![clamped.into()], supports: vec![], tractions: vec![] }
     }
 
-    fn two() -> Bodies {
-        Bodies::Two(Box::new([body("a", [0.0, 1.0], "bottom"), body("b", [1.0, 2.0], "top")]))
+    /// Two bodies of their own meshes and materials.
+    fn bodies() -> [Body; 2] {
+        let (a, b) = (Material { young: 1.0, poisson: 0.3 }, Material { young: 3.0, poisson: 0.2 });
+        [body("a", [0.0, 1.0], 4, a, "bottom"), body("b", [1.0, 2.0], 6, b, "top")]
     }
 
-    /// Two bodies from keywords are `two_bodies_with_pairs`'s; a keyword of one body is refused, naming why.
+    fn two() -> Bodies {
+        Bodies::Two { bodies: Box::new(bodies()), primary: "b.bottom".into() }
+    }
+
+    /// What `Debug` prints of a problem's set-up: its specification, bodies, unknowns and T_H.
+    fn fingerprint(p: &Problem) -> String {
+        format!("{:?} {:?} {} {:?} {:?}", p.spec, p.bodies, p.n_free, p.multipliers.xi, p.multipliers.space)
+    }
+
+    /// Two bodies from keywords are `two_bodies_with_pairs`'s, every keyword of the pair passed on.
     #[test]
-    fn two_bodies_take_no_keyword_of_one_body() {
-        let k = ProblemKeywords { contact: "a.top".into(), primary: Some("b.bottom".into()), ..Default::default() };
+    fn two_bodies_from_keywords_are_the_pair_given() {
+        let k = ProblemKeywords {
+            contact: "a.top".into(),
+            obstacle: ObstacleShape::Parabola { center: 0.5, radius: 4.0 },
+            body_force: [0.0, -0.5],
+            model: Some(Model::PlaneStress),
+            formulation: Formulation::Displacement,
+            multiplier_points: MultiplierPoints::RatioToFe(2.0),
+            multiplier_space: MultiplierSpace::P0,
+            ..Default::default()
+        };
         let p = Problem::from_keywords(two(), k.clone()).unwrap();
         let pair = ContactPair {
             secondary: "a.top".into(),
             primary: "b.bottom".into(),
-            gap: ObstacleShape::Flat,
-            multiplier_points: MultiplierPoints::default(),
-            multiplier_space: MultiplierSpace::default(),
-            model: Model::default(),
-            formulation: Formulation::default(),
+            gap: k.obstacle.clone(),
+            multiplier_points: MultiplierPoints::RatioToFe(2.0),
+            multiplier_space: MultiplierSpace::P0,
+            model: Model::PlaneStress,
+            formulation: Formulation::Displacement,
         };
-        let [a, b] = [body("a", [0.0, 1.0], "bottom"), body("b", [1.0, 2.0], "top")];
-        let q = Problem::two_bodies_with_pairs([a, b], pair, vec![], [0.0, 0.0]).unwrap();
-        assert_eq!((p.n_free, p.n_multipliers(), p.bodies.len()), (q.n_free, q.n_multipliers(), 2));
+        let q = Problem::two_bodies_with_pairs(bodies(), pair, vec![], [0.0, -0.5]).unwrap();
+        assert_eq!(fingerprint(&p), fingerprint(&q));
+        assert_eq!((p.bodies.len(), p.spec.model, p.multipliers.space), (2, Model::PlaneStress, MultiplierSpace::P0));
+        assert_eq!((p.multipliers.xi.len(), p.spec.body_force), (3, [0.0, -0.5]), "H = 2h on a.top's 4 edges");
+    }
+
+    /// A keyword of one body given with two is refused, naming why, each of them.
+    #[test]
+    fn two_bodies_take_no_keyword_of_one_body() {
+        let k = ProblemKeywords { contact: "a.top".into(), ..Default::default() };
+        assert!(Problem::from_keywords(two(), k.clone()).is_ok());
         let one_body = [
             ProblemKeywords { materials: Some(vec![(1.0, 0.3)]), ..k.clone() },
+            ProblemKeywords { regions: Some(vec![0; 16]), ..k.clone() },
             ProblemKeywords { clamped: Some(vec!["a.bottom".into()]), ..k.clone() },
+            ProblemKeywords { supports: Some(vec![Support::roller("a.left")]), ..k.clone() },
+            ProblemKeywords { tractions: Some(vec![("b.top".into(), [0.0, -1.0].into())]), ..k.clone() },
             ProblemKeywords { approach: Some(0.01), ..k.clone() },
+            ProblemKeywords { shift: Some(0.01), ..k.clone() },
             ProblemKeywords { rotation: Some(([0.0, 0.0], 0.1)), ..k.clone() },
         ];
         for k in one_body {
@@ -180,11 +218,46 @@ mod tests {
         }
     }
 
-    /// One body without a material is refused as such, not solved with a placeholder.
+    /// One body from keywords is `with_materials`'s, every keyword passed on; without a material it is refused.
     #[test]
-    fn one_body_needs_a_material() {
-        let mesh = rectangle([0.0, 1.0], [0.0, 1.0], 4, 2, Diagonal::default()).unwrap();
-        let k = ProblemKeywords { contact: "top".into(), clamped: Some(vec!["bottom".into()]), ..Default::default() };
-        assert!(matches!(Problem::from_keywords(Bodies::One(mesh), k), Err(Error::BadMaterial { .. })));
+    fn one_body_from_keywords_is_the_spec_given() {
+        let mesh = rectangle([0.0, 1.0], [0.0, 1.0], 4, 4, Diagonal::default()).unwrap();
+        let regions: Vec<usize> = (0..mesh.n_triangles()).map(|t| t % 2).collect();
+        let k = ProblemKeywords {
+            contact: "top".into(),
+            materials: Some(vec![(1.0, 0.3), (2.0, 0.25)]),
+            regions: Some(regions.clone()),
+            clamped: Some(vec!["bottom".into()]),
+            supports: Some(vec![Support::roller("left")]),
+            tractions: Some(vec![("right".into(), [0.5, 0.0].into())]),
+            obstacle: ObstacleShape::Parabola { center: 0.5, radius: 2.0 },
+            approach: Some(0.01),
+            shift: Some(0.002),
+            body_force: [0.0, -1.0],
+            model: Some(Model::PlaneStress),
+            formulation: Formulation::Displacement,
+            multiplier_points: MultiplierPoints::RatioToFe(2.0),
+            multiplier_space: MultiplierSpace::P0,
+            ..Default::default()
+        };
+        let p = Problem::from_keywords(Bodies::One(mesh.clone()), k.clone()).unwrap();
+        let spec = ProblemSpec::new(Material { young: 1.0, poisson: 0.3 }, "top")
+            .clamped(["bottom"])
+            .support(Support::roller("left"))
+            .traction("right", [0.5, 0.0])
+            .obstacle(ObstacleShape::Parabola { center: 0.5, radius: 2.0 })
+            .approach(0.01)
+            .shift(0.002)
+            .body_force([0.0, -1.0])
+            .model(Model::PlaneStress)
+            .formulation(Formulation::Displacement)
+            .multipliers(MultiplierPoints::RatioToFe(2.0), MultiplierSpace::P0);
+        let materials = Materials::from_pairs(&[(1.0, 0.3), (2.0, 0.25)], Some(regions), mesh.n_triangles());
+        let q = Problem::with_materials(mesh.clone(), spec, materials).unwrap();
+        assert_eq!(fingerprint(&p), fingerprint(&q));
+        assert_eq!((p.spec.obstacle.approach, p.spec.obstacle.shift, p.materials.materials.len()), (0.01, 0.002, 2));
+        let none = ProblemKeywords { materials: None, regions: None, ..k };
+        let e = Problem::from_keywords(Bodies::One(mesh), none).unwrap_err();
+        assert!(matches!(e, Error::BadMaterial { .. }) && e.to_string().contains("none given"), "{e}");
     }
 }
