@@ -24,12 +24,14 @@
 //! Where the enrichment removes much more than half of the error (two bodies: q = 0.22–0.42 on 9 of 10
 //! levels, measured before the fix of "The level's ratio H/h" below) this overestimated e_f up to 7 times
 //! (1.30–3.17 times since, study 13). Measuring q as at the ends of Γ_C (below) does not mend it: the example
-//! `measured_reduction` (`docs/measured_reduction.csv`) enriched λ_f once more on every level of adaptive
-//! Hertz and two-body Hertz (484–122k unknowns) and found `‖λ_f − λ_ff‖ / ‖λ_H − λ_f‖` = 0.07–0.40 on the
-//! whole strip and 0.01–0.31 locally, where the cells carrying half of `‖λ_H − λ_f‖²` are, against a true
-//! `e_f / e_H` of 0.18–0.67: `d q̂ / (1 − q̂)` fell to 0.09–1.34 (strip) and 0.03–0.97 (local) times e_f. The
-//! error left in λ_f lies where neither enrichment refines (the body away from Γ_C), so a further strip does
-//! not see it, and a q measured there is no bound.
+//! `measured_reduction` (`docs/measured_reduction.csv`, measured again after that fix) enriched λ_f once more on
+//! every level of adaptive Hertz and two-body Hertz (484–122k unknowns) and found `q̂ = ‖λ_f − λ_ff‖ / ‖λ_H −
+//! λ_f‖` = 0.38–0.78 on the whole strip (to 40k unknowns) and 0.25–0.80 locally, where the cells carrying half of
+//! `‖λ_H − λ_f‖²` are, against a true `e_f / e_H` of 0.40–0.98: `d q̂ / (1 − q̂)` was 1.39–4.66 (strip, 7 of 16
+//! levels in [1, 2]) and 0.74–5.13 (local, 10 of 20) times e_f, where `d` is 1.30–2.52 times it (7 of 20), and
+//! `d / (1 − q̂)` 1.49–5.84 and 1.36–6.30 times e_H, where `2 d` is 1.71–2.55 times it. The measured q̂ follows the
+//! true one loosely, and where the enrichment removes almost nothing (a two-body level with q = 0.98) it extrapolates
+//! the difference fivefold. (Before that fix, q̂ was 0.07–0.40 and 0.01–0.31, far below the truth.)
 //!
 //! It is no guaranteed bound: where the enrichment removes less than half of the error, it falls below the
 //! truth: a contact edge that the enriched mesh still places in the wrong cell (the coarsest meshes); P0
