@@ -364,7 +364,7 @@ class Problem(_tribo.Problem):
         level's own does not (P1 multipliers, a mesh without curves; a history's enriched history alike;
         ``progress``'s return value is not read for that last level): one level sooner as a rule, a more accurate
         answer, an estimate less sharp (in [tol/3, tol] in 29 of 32 runs, within twice the time of the cheapest
-        adequate level in 28, against 4 of 36 for ``'hierarchical'``). With ``stop_on='bound'`` it is the residual bound alone, above
+        adequate level in 29, against 5 of 36 for ``'hierarchical'``). With ``stop_on='bound'`` it is the residual bound alone, above
         the true error but pessimistically (on Hertz by 3 on coarse meshes and up to 24 on fine ones,
         docs/STUDIES.md, study 6): the answer is usually many times more accurate than ``tol``, at many times
         the unknowns. Marking is Dörfler's with ``theta`` (default 0.5), or the maximum
