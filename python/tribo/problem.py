@@ -466,7 +466,7 @@ class Problem(_tribo.Problem):
         """This problem (materials, supports, loads, obstacle or contact pair, multiplier space) on another
         mesh with the multiplier mesh T_H through ``multiplier_points`` (abscissae on Γ_C): how an adaptive
         solve hands back the problem of a level. For two bodies ``mesh`` is the two joined, as in
-        ``problem.mesh``, and ``bodies`` gives each body's [first node, end, first triangle, end] in it (as
+        ``problem.mesh``, and ``bodies`` gives each body's first node, end, first triangle, end in it (as
         ``problem.bodies``; default this problem's). A body of several materials needs the ``regions`` of
         the new mesh's triangles, indices into ``problem.materials`` (for two bodies the first body's materials,
         then the second's; an adaptive level's are its own)."""

@@ -571,7 +571,7 @@ class Adaptive(_Levels):
             would have exceeded it: the level before is handed back), 'not_converged' (a level's solve did not
             converge), 'exact' (the estimate is zero) or 'interrupted' (the progress callback returned False).
         meshes: each level's Mesh, T_H points, bodies' spans in the mesh (as ``problem.bodies``:
-            [first node, end, first triangle, end] per body) and triangles' regions (as ``problem.regions``);
+            first node, end, first triangle, end per body) and triangles' regions (as ``problem.regions``);
             ``level_problem(k)`` builds level k's Problem.
     """
 

@@ -84,8 +84,8 @@ COLUMNS: dict[str, str] = {
     "status": "the solve's status (converged, max_iterations, qp_failed, …); error: the scene could not be "
     "built or solved (failure says why); killed_worker: the case killed every worker that tried it",
     "adapt_stop": "why the adaptive loop stopped (tolerance, exact, max_unknowns, …); empty without [adapt]",
-    "adapt_handed_back": "whether the adaptive loop handed back the answer enriched for its last level's estimate "
-                         "(traction_hierarchical is then its change from that level); False without [adapt]",
+    "adapt_handed_back": "whether the adaptive loop handed back the answer enriched for its last level's estimate; "
+                         "False without [adapt]",
     "failure": "why a case did not converge or failed (empty when it converged)",
     "friction": "the friction law the solve used",
     "formulation": "what the body was solved with: displacement (P1) or mixed (displacement–pressure; auto's choice)",

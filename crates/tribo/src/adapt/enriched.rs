@@ -44,7 +44,7 @@
 //! in [1, 2]: the block's 6 at 2.33–3.41, the rest at 2.00–2.55; d ≈ e_H although the enriched answer keeps
 //! 0.4–0.6 of the error on one-body Hertz, its error and the difference pointing apart), without the drift of the
 //! residual bound ζ (effectivity 4 → 20 over the same levels). The strip of one contact width gives the
-//! differences of the whole mesh within 11 % at about two thirds of its unknowns (2.6 times the level's).
+//! differences of the whole mesh within 8 % at about two thirds of its unknowns (2.6 times the level's).
 //!
 //! # Ends of Γ_C in contact: the reduction measured
 //! The argument for `q₀ = ½` holds where λ vanishes like a square root (a free edge of the contact zone)

@@ -325,6 +325,7 @@ fn no_estimate_where_the_bound_meets_tol_already() -> Result<()> {
         let last = run.levels.last().expect("levels");
         let (h, bound) = (last.estimate.traction_hierarchical_relative, last.estimate.traction_relative);
         assert!(!last.enriched && bound <= adapt.tol && h.is_none(), "{stop_on:?}: {bound} {h:?}");
+        assert!(last.relative <= adapt.tol, "{stop_on:?}: the level handed back meets tol itself (strict answer)");
         // The fourfold growth since the last estimate would have made it due.
         let estimated = run.levels.iter().rev().find(|l| l.estimate.traction_hierarchical_relative.is_some());
         assert!(estimated.is_some_and(|l| last.unknowns >= 4 * l.unknowns), "{stop_on:?}: not a stale estimate");
