@@ -147,20 +147,27 @@ mod tests {
     use super::*;
     use crate::mesh::generate::{rectangle, Diagonal};
 
-    fn body(name: &str, y: [f64; 2], nx: usize, material: Material, clamped: &str) -> Body {
-        let mesh = rectangle([0.0, 1.0], y, nx, 2, Diagonal::default()).unwrap();
+    fn body(name: &str, y: [f64; 2], nx: usize, material: Material, clamped: &str) -> Result<Body> {
+        let mesh = rectangle([0.0, 1.0], y, nx, 2, Diagonal::default())?;
         let materials = Materials::uniform(material, mesh.n_triangles());
-        Body { name: name.into(), mesh, materials, clamped: vec![clamped.into()], supports: vec![], tractions: vec![] }
+        Ok(Body {
+            name: name.into(),
+            mesh,
+            materials,
+            clamped: vec![clamped.into()],
+            supports: vec![],
+            tractions: vec![],
+        })
     }
 
     /// Two bodies of their own meshes and materials.
-    fn bodies() -> [Body; 2] {
+    fn bodies() -> Result<[Body; 2]> {
         let (a, b) = (Material { young: 1.0, poisson: 0.3 }, Material { young: 3.0, poisson: 0.2 });
-        [body("a", [0.0, 1.0], 4, a, "bottom"), body("b", [1.0, 2.0], 6, b, "top")]
+        Ok([body("a", [0.0, 1.0], 4, a, "bottom")?, body("b", [1.0, 2.0], 6, b, "top")?])
     }
 
-    fn two() -> Bodies {
-        Bodies::Two { bodies: Box::new(bodies()), primary: "b.bottom".into() }
+    fn two() -> Result<Bodies> {
+        Ok(Bodies::Two { bodies: Box::new(bodies()?), primary: "b.bottom".into() })
     }
 
     /// What `Debug` prints of a problem's set-up: its specification, bodies, unknowns and T_H.
@@ -170,7 +177,7 @@ mod tests {
 
     /// Two bodies from keywords are `two_bodies_with_pairs`'s, every keyword of the pair passed on.
     #[test]
-    fn two_bodies_from_keywords_are_the_pair_given() {
+    fn two_bodies_from_keywords_are_the_pair_given() -> Result<()> {
         let k = ProblemKeywords {
             contact: "a.top".into(),
             obstacle: ObstacleShape::Parabola { center: 0.5, radius: 4.0 },
@@ -181,7 +188,7 @@ mod tests {
             multiplier_space: MultiplierSpace::P0,
             ..Default::default()
         };
-        let p = Problem::from_keywords(two(), k.clone()).unwrap();
+        let p = Problem::from_keywords(two()?, k.clone())?;
         let pair = ContactPair {
             secondary: "a.top".into(),
             primary: "b.bottom".into(),
@@ -191,17 +198,18 @@ mod tests {
             model: Model::PlaneStress,
             formulation: Formulation::Displacement,
         };
-        let q = Problem::two_bodies_with_pairs(bodies(), pair, vec![], [0.0, -0.5]).unwrap();
+        let q = Problem::two_bodies_with_pairs(bodies()?, pair, vec![], [0.0, -0.5])?;
         assert_eq!(fingerprint(&p), fingerprint(&q));
         assert_eq!((p.bodies.len(), p.spec.model, p.multipliers.space), (2, Model::PlaneStress, MultiplierSpace::P0));
         assert_eq!((p.multipliers.xi.len(), p.spec.body_force), (3, [0.0, -0.5]), "H = 2h on a.top's 4 edges");
+        Ok(())
     }
 
     /// A keyword of one body given with two is refused, naming why, each of them.
     #[test]
-    fn two_bodies_take_no_keyword_of_one_body() {
+    fn two_bodies_take_no_keyword_of_one_body() -> Result<()> {
         let k = ProblemKeywords { contact: "a.top".into(), ..Default::default() };
-        assert!(Problem::from_keywords(two(), k.clone()).is_ok());
+        Problem::from_keywords(two()?, k.clone())?;
         let one_body = [
             ProblemKeywords { materials: Some(vec![(1.0, 0.3)]), ..k.clone() },
             ProblemKeywords { regions: Some(vec![0; 16]), ..k.clone() },
@@ -213,15 +221,17 @@ mod tests {
             ProblemKeywords { rotation: Some(([0.0, 0.0], 0.1)), ..k.clone() },
         ];
         for k in one_body {
-            let e = Problem::from_keywords(two(), k).unwrap_err();
-            assert!(matches!(e, Error::BadSettingValue { name: "primary", .. }) && e.to_string().contains("per body"));
+            let refused = Problem::from_keywords(two()?, k);
+            let per_body = |e: &Error| e.to_string().contains("per body");
+            assert!(matches!(&refused, Err(e @ Error::BadSettingValue { name: "primary", .. }) if per_body(e)));
         }
+        Ok(())
     }
 
     /// One body from keywords is `with_materials`'s, every keyword passed on; without a material it is refused.
     #[test]
-    fn one_body_from_keywords_is_the_spec_given() {
-        let mesh = rectangle([0.0, 1.0], [0.0, 1.0], 4, 4, Diagonal::default()).unwrap();
+    fn one_body_from_keywords_is_the_spec_given() -> Result<()> {
+        let mesh = rectangle([0.0, 1.0], [0.0, 1.0], 4, 4, Diagonal::default())?;
         let regions: Vec<usize> = (0..mesh.n_triangles()).map(|t| t % 2).collect();
         let k = ProblemKeywords {
             contact: "top".into(),
@@ -240,7 +250,7 @@ mod tests {
             multiplier_space: MultiplierSpace::P0,
             ..Default::default()
         };
-        let p = Problem::from_keywords(Bodies::One(mesh.clone()), k.clone()).unwrap();
+        let p = Problem::from_keywords(Bodies::One(mesh.clone()), k.clone())?;
         let spec = ProblemSpec::new(Material { young: 1.0, poisson: 0.3 }, "top")
             .clamped(["bottom"])
             .support(Support::roller("left"))
@@ -253,11 +263,12 @@ mod tests {
             .formulation(Formulation::Displacement)
             .multipliers(MultiplierPoints::RatioToFe(2.0), MultiplierSpace::P0);
         let materials = Materials::from_pairs(&[(1.0, 0.3), (2.0, 0.25)], Some(regions), mesh.n_triangles());
-        let q = Problem::with_materials(mesh.clone(), spec, materials).unwrap();
+        let q = Problem::with_materials(mesh.clone(), spec, materials)?;
         assert_eq!(fingerprint(&p), fingerprint(&q));
         assert_eq!((p.spec.obstacle.approach, p.spec.obstacle.shift, p.materials.materials.len()), (0.01, 0.002, 2));
         let none = ProblemKeywords { materials: None, regions: None, ..k };
-        let e = Problem::from_keywords(Bodies::One(mesh), none).unwrap_err();
-        assert!(matches!(e, Error::BadMaterial { .. }) && e.to_string().contains("none given"), "{e}");
+        let refused = Problem::from_keywords(Bodies::One(mesh), none);
+        assert!(matches!(&refused, Err(e @ Error::BadMaterial { .. }) if e.to_string().contains("none given")));
+        Ok(())
     }
 }
