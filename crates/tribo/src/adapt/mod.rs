@@ -59,8 +59,8 @@
 //! about 1.4 times per level below 2000 unknowns, 1.1 times beyond; where the ratio is above 1 the bound
 //! is the smaller and stops the loop by itself), or where the unknowns have grown fourfold since it was
 //! last computed (so the ratio stays fresh); never where the level meets `tol` already by the bound (it stops
-//! there and is handed back itself: the estimate would change nothing but the cost). A Coulomb level's answer is first converged to `fp_tol`, so
-//! that the difference is not the fixed point's algebraic error. The level's [`Level::relative`] is then
+//! there and is handed back itself: the estimate would change nothing but the cost). A Coulomb level's answer is
+//! first converged to `fp_tol`, so that the difference is not the fixed point's algebraic error. The level's [`Level::relative`] is then
 //! the smaller of the hierarchical estimate and the bound, and the solution handed back carries it in its
 //! [`crate::results::ErrorEstimate`]. In a loading history the whole history is solved on the enriched
 //! mesh (friction depends on the path: a step cannot be enriched alone), and each kept step gets its own
