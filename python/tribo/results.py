@@ -144,11 +144,12 @@ class Report(_Record):
             triangles, in stress × length), ``energy_relative`` ((Σ η_K² / E*_K)^½ / a(u_h, u_h)^½, η / (E* a(u_h, u_h))^½ for one material), ``traction``
             (ζ, the estimate of ‖λ − λ_H‖ in L²(Γ_C), a bound) and ``traction_relative`` (ζ / ‖λ_H‖, NaN
             when nothing touches); ``traction_hierarchical`` and ``traction_hierarchical_relative``, the
-            hierarchical estimate (2‖λ_H − λ_f‖, the reduction measured where the contact zone reaches an end
+            hierarchical estimate (1.5‖λ_H − λ_f‖, λ_f the answer with the whole mesh bisected and the strip
+            along the contact zone again; the reduction measured where the contact zone reaches an end
             of Γ_C) and its ratio to ‖λ_f‖ (sharp but not a bound; inf where a measured reduction is 1 or
             more: no estimate; NaN unless an adaptive solve (``stop_on`` ``'enriched'``, the default, or
             ``'hierarchical'``) or ``solve(error_bars=True)`` computed it; on the enriched answer an adaptive solve
-            hands back, ‖λ_H − λ_f‖, the estimate of that answer's own error); from the
+            hands back, ½‖λ_H − λ_f‖, the estimate of that answer's own error); from the
             same enriched solve, the error bars ``normal_force_error``, ``tangential_force_error``,
             ``contact_width_error`` and ``stick_width_error`` (estimated absolute errors of those quantities
             of the Solution, NaN unless computed). Empty for a report built without one.

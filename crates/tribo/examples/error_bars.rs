@@ -5,20 +5,20 @@
 //! `hertz@X`, Coulomb, with P0 multipliers; the block; two-body Hertz, frictionless and Coulomb) adapted from
 //! its coarse start to `MAX_UNKNOWNS` (80k by default). Every level with at least 10 multiplier dofs in
 //! contact is solved again on its mesh (`Problem::on_level`), its error bars computed
-//! (`Problem::estimate_error_bars`: the whole mesh enriched; with `STRIP` = 1, the strip of one contact width
-//! that the adaptive stop enriches), and each error bar (`tribo::results::ErrorBars`) compared with the true
+//! (`Problem::estimate_error_bars`, the same enrichment as the hierarchical estimate: the whole mesh bisected and the
+//! strip of half a contact width again; with `STRIP` = 1, the strip of one contact width bisected, then its half
+//! again, without the rest of the mesh), and each error bar (`tribo::results::ErrorBars`) compared with the true
 //! error of its quantity against the case's reference (for Hertz a graded mesh of 466k unknowns, study 12's;
 //! else the adaptive loop run to 500k unknowns): the normal force P, the tangential force Q, the width of the
 //! contact zone and of the stick zone. The traction estimates are compared with the true relative L²(Γ_C)
-//! error of λ: the hierarchical estimate the adaptive stop computes (`Problem::estimate_hierarchical`, the
-//! strip), the same from the enriched solve of the bars (the whole mesh; the strip with `STRIP` = 1), the bound
-//! (`traction_relative`), and the smaller of the strip's and the bound (what the adaptive stop reads).
+//! error of λ: the hierarchical estimate the adaptive stop computes (`Problem::estimate_hierarchical`), the same
+//! from the enriched solve of the bars (the same solve; the strip's with `STRIP` = 1), the bound
+//! (`traction_relative`), and the smaller of the hierarchical estimate and the bound (what the adaptive stop reads).
 //! Printed per level: each true error and the effectivity (estimate over true error); then per quantity the
 //! smallest and largest effectivity, and the levels where it fell below 1. The reference's own errors bound
 //! how small a true error can be read: a true error below twice the reference's resolution of that quantity
-//! is marked `~` (not counted): the zone resolution of a width, half the error bar of a force on the
-//! reference (its own enriched solve, 4 times its unknowns; skipped, and the floor of the forces taken as 0,
-//! with `SKIP` = 1).
+//! is marked `~` (not counted): the zone resolution of a width, the change of a force when the reference's whole mesh
+//! is bisected once (4 times its unknowns; skipped, and the floor of the forces taken as 0, with `SKIP` = 1).
 //!
 //! `cargo run --release -p tribo --example error_bars [CASE] [MAX_UNKNOWNS] [STRIP] [SKIP] [OUT]` (a few
 //! minutes: the reference solve and the re-solves of the levels are most of it). Every level counted is also
@@ -48,7 +48,9 @@ fn bar(b: &ErrorBars, k: usize) -> f64 {
 
 /// The header of `OUT/CASE.csv`: per level, the true relative error of λ and its estimates (relative), then
 /// per quantity its true error (absolute), its bar and how well the reference knows it (`floor`).
-/// `traction_whole` is the estimate of the bars' enriched solve: the whole mesh, or the strip with `STRIP` = 1.
+/// `traction_strip` is the hierarchical estimate (`Problem::estimate_hierarchical`; the name is that of the enrichment
+/// it had before 2026-12-01), `traction_whole` the estimate of the bars' enriched solve: the same, or the strip's with
+/// `STRIP` = 1.
 const HEADER: &str = "case,level,unknowns,in_contact,solve_seconds,enriched_seconds,traction_true,\
                       traction_strip,traction_whole,traction_bound,P_true,P_bar,P_floor,Q_true,Q_bar,Q_floor,\
                       contact_width_true,contact_width_bar,contact_width_floor,stick_width_true,stick_width_bar,\
@@ -73,13 +75,17 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let (reference, rsol) = case.reference;
     let settings = SolverSettings::default();
     let exact: Vec<f64> = QUANTITIES.iter().map(|(_, f)| f(&rsol)).collect();
-    // How well the reference itself knows each quantity: the widths to its zones' resolution; the forces
-    // to their change from the reference's own hierarchical estimate, halved (its error bar over 2).
-    let rh =
-        if skip_reference_bars { None } else { reference.estimate_error_bars(&rsol, &friction, &settings)?.error_bars };
+    // How well the reference itself knows each quantity: the widths to its zones' resolution; the forces to
+    // their change when the reference's whole mesh is bisected once.
+    let rh = if skip_reference_bars {
+        None
+    } else {
+        let all: Vec<usize> = (0..reference.mesh.n_triangles()).collect();
+        Some(reference.solve_enriched(&rsol, &all, &friction, &settings)?.1)
+    };
     let floor = [
-        rh.map_or(0.0, |b| 0.5 * b.normal_force),
-        rh.map_or(0.0, |b| 0.5 * b.tangential_force),
+        rh.as_ref().map_or(0.0, |r| (r.normal_force - rsol.normal_force).abs()),
+        rh.as_ref().map_or(0.0, |r| (r.tangential_force - rsol.tangential_force).abs()),
         rsol.contact_zone().map_or(0.0, |z| z.resolution),
         rsol.stick_zone().map_or(0.0, |z| z.resolution),
     ];
@@ -117,7 +123,8 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
         let mut line = format!("{level:>3} {:>7} {in_contact:>5} {solve_seconds:.2} {:.2}", p.n_free, h.seconds);
         let (e, norm) = multiplier_difference(&p, &sol, &reference, &rsol);
         let truth = e / norm;
-        let sharp = p.estimate_hierarchical(&sol, &friction, &settings)?.relative;
+        // The same enrichment as the bars' unless STRIP: not solved twice.
+        let sharp = if strip { p.estimate_hierarchical(&sol, &friction, &settings)?.relative } else { h.relative };
         let bound = sol.report.estimate.traction_relative;
         let estimates = [sharp, h.relative, bound, sharp.min(bound)];
         line += &format!(" | {truth:.2e}");

@@ -6,7 +6,7 @@
 use std::time::Instant;
 
 use super::enriched::{estimate_of, EndReduction, Hierarchical};
-use super::strip::{end_regions, near_ends, strip, EndRegion};
+use super::strip::{end_regions, near_ends, EndRegion};
 use super::{multiplier_difference, AdaptStop, Level, LevelObserver, Sharp, Start};
 use crate::error::{Error, Num, Result};
 use crate::problem::Problem;
@@ -116,14 +116,14 @@ impl Problem {
     /// The hierarchical estimate of the traction error of every kept step of `history`, a history of this
     /// problem solved with `friction` (in the order of [`History::kept`]): as [`Problem::estimate_hierarchical`]
     /// for one solve, with the whole history solved on the enriched mesh (friction depends on the path, so a
-    /// step cannot be enriched alone). The mesh is enriched within one contact width of the contact zone of
-    /// every kept step (for a step with one multiplier dof touching, within the two T_H cells around it; the
-    /// whole mesh when no step touches); where an end of Γ_C touches in a step, the history is solved once more
+    /// step cannot be enriched alone). The whole mesh is bisected, then the triangles within half a contact width of
+    /// the contact zone of every kept step again (for a step with one multiplier dof touching, within the two T_H
+    /// cells around it; nothing more when no step touches); where an end of Γ_C touches in a step, the history is solved once more
     /// on the mesh enriched again at the ends, and that step's reduction there is measured. Each step's
     /// enriched solve starts from its own multipliers when every step was kept. The steps solved are the
     /// converged ones of `history`; the estimates carry the enriched history's status, and a step it did not
     /// reach has a NaN estimate. Every step of the enriched
-    /// histories is kept (about 2.6 times the unknowns of `history`'s): each must fit the memory budget less
+    /// histories is kept (8–9 times the unknowns of `history`'s): each must fit the memory budget less
     /// the histories already held ([`History::estimated_bytes`]), or the estimate is refused with
     /// [`Error::MemoryBudget`] (the adaptive loop then reads the bound). No estimate for a history
     /// without a converged step.
@@ -155,12 +155,13 @@ impl Problem {
         }
         self.check_history_of(history)?;
         // A step with one multiplier dof touching takes the two T_H cells around it.
-        let marked = strip(self, &history.solutions.iter().collect::<Vec<_>>());
+        let all: Vec<usize> = (0..self.mesh.n_triangles()).collect();
         // The enriched histories keep every step while this one is held: each must fit what the budget leaves.
         let steps = &history.steps[..history.records.len()];
         // (And this problem's factorization, held by the adaptive loop's level.)
         let held = History::estimated_bytes(self, steps, 1) + self.held_bytes();
-        let (enriched, answer) = self.solve_enriched_history(history, &marked, friction, settings, held)?;
+        let build = |p: &Problem, s: &[&Solution]| p.enriched_twice(s, &all);
+        let (enriched, answer) = self.solve_enriched_history(history, build, friction, settings, held)?;
         // Each step's ends where the difference concentrates (a step without its enriched answer keeps them all).
         let ends_of = |(i, s): (usize, &Solution)| {
             let regions = end_regions(self, s);
@@ -179,7 +180,8 @@ impl Problem {
             // The first enrichment's factorization is not needed again: the second history does not hold both.
             enriched.forget_factorization();
             let held = held + History::estimated_bytes(&enriched, steps, 1);
-            let twice = enriched.solve_enriched_history(&answer, &near, &friction, settings, held);
+            let build = |p: &Problem, s: &[&Solution]| p.enriched_at_ends(s, &near, self, &union);
+            let twice = enriched.solve_enriched_history(&answer, build, &friction, settings, held);
             Some(twice.inspect_err(|e| {
                 log::warn!("the second enrichment at the ends of Γ_C failed ({e}): no estimate there");
             }))
@@ -269,13 +271,13 @@ impl Problem {
     fn solve_enriched_history(
         &self,
         history: &History,
-        marked: &[usize],
+        build: impl FnOnce(&Problem, &[&Solution]) -> Result<Problem>,
         friction: &Friction,
         settings: &SolverSettings,
         held: f64,
     ) -> Result<(Problem, History)> {
         let solutions: Vec<&Solution> = history.solutions.iter().collect();
-        let enriched = self.enriched(&solutions, marked)?;
+        let enriched = build(self, &solutions)?;
         let steps = &history.steps[..history.records.len()];
         let carry =
             |s: &&Solution| [self.carried(&s.lambda_n, &enriched), self.carried(&s.lambda_t, &enriched)].concat();

@@ -44,17 +44,17 @@
 //! # Stopping on the hierarchical estimate
 //! With [`StopOn::Hierarchical`] and [`StopOn::Enriched`] (the default) the tolerance is read against the
 //! hierarchical estimate
-//! ([`Problem::estimate_hierarchical`], `2 ‖λ_H − λ_f‖ / ‖λ_f‖`, the reduction measured at ends of Γ_C in
+//! ([`Problem::estimate_hierarchical`], `1.5 ‖λ_H − λ_f‖ / ‖λ_f‖`, the reduction measured at ends of Γ_C in
 //! contact) where it was computed, or the bound if smaller (each is above the true error under its own
 //! assumptions: on the block scene, whose corners the enrichment resolves slowly, the bound is the sharper),
 //! and against the bound elsewhere (a level whose bound is already below `tol` stops too). It
-//! tracks the true error where the bound grows pessimistic, but costs a solve of about 2.6 times the
+//! tracks the true error where the bound grows pessimistic, but costs a solve of 8–9 times the
 //! level's unknowns. It is computed on a level whose answer converged, with at least [`MIN_IN_CONTACT`]
 //! multiplier dofs in contact (not in separation, [`crate::Solution::states`]; below, the enriched mesh
 //! may still place the contact edge in the wrong cell), and only where it may be near `tol`:
 //! on the first such level, then where the last measured ratio of the two estimates is below 1 and the
-//! bound times it is at most 3 times what the stop reads (`tol` for the level's estimate; `2 tol` where an
-//! enriched answer, whose estimate is half the level's, may be handed back: the same margin on the estimate that
+//! bound times it is at most 3 times what the stop reads (`tol` for the level's estimate; `3 tol` where an
+//! enriched answer, whose estimate is a third of the level's, may be handed back: the same margin on the estimate that
 //! stops the loop; the bound's pessimism grows from level to level: on adaptive Hertz
 //! about 1.4 times per level below 2000 unknowns, 1.1 times beyond; where the ratio is above 1 the bound
 //! is the smaller and stops the loop by itself), or where the unknowns have grown fourfold since it was
@@ -114,6 +114,7 @@
 
 mod difference;
 pub mod enriched;
+mod enrichment;
 mod history;
 mod levels;
 mod marking;
@@ -303,12 +304,12 @@ impl Problem {
                 // Whether an enriched answer may be handed back: P1 multipliers (P0, first order everywhere,
                 // reduce the error by ½: no margin), on a mesh without curves (the enriched mesh leaves its new
                 // nodes on their chords), within max_levels (max_unknowns is read on the enriched problem). The
-                // stop then reads its estimate, half the level's away from the ends.
+                // stop then reads its estimate, a third of the level's away from the ends.
                 let may_hand_back = adapt.stop_on == StopOn::Enriched
                     && problem.spec.multiplier_space == MultiplierSpace::P1
                     && problem.mesh.curves().is_empty()
                     && levels.len() + 2 <= adapt.max_levels;
-                let reads = if may_hand_back { 2.0 } else { 1.0 };
+                let reads = if may_hand_back { 1.0 / enriched::SATURATION } else { 1.0 };
                 // Due where it may stop the loop before the bound does (the last ratio below 1 and the estimate
                 // it predicts within 3 times what the stop reads, see the module documentation), or where the last
                 // ratio is stale.

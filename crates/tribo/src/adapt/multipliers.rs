@@ -19,20 +19,35 @@ pub(crate) fn next_problem(
     refined: Refinement,
     ratio: f64,
 ) -> Result<Problem> {
-    let mut spec = problem.spec.clone();
-    let contact = ContactBoundary::new(refined.mesh(), &spec.contact)?;
-    // Surely apart: every node of the segment has a current gap beyond the largest displacement on Γ_C (of every
-    // pair), in every solution (the first pair's nodes come first in its fields).
+    next_problem_with(problem, refined, ratio, &surely_apart(problem, solutions))
+}
+
+/// Whether the segment `(a, b)` of `problem`'s first Γ_C (abscissae) is surely apart in every one of `solutions`:
+/// every node of the segment has a current gap beyond the largest displacement on Γ_C (of every pair; the first
+/// pair's nodes come first in its fields). The abscissae stay valid on `problem` refined or enriched (the same
+/// arclength).
+pub(crate) fn surely_apart<'a>(problem: &'a Problem, solutions: &[&Solution]) -> impl Fn(f64, f64) -> bool + 'a {
     let old = &problem.contact.node_xi;
     let views: Vec<(f64, Vec<f64>)> = solutions
         .iter()
         .map(|s| (s.u_n.iter().chain(&s.slip).fold(0.0_f64, |m, v| m.max(v.abs())), s.current_gap()))
         .collect();
-    let apart = |a: f64, b: f64| {
+    move |a: f64, b: f64| {
         let lo = old.partition_point(|&x| x < a).saturating_sub(1);
         let hi = old.partition_point(|&x| x <= b).min(old.len() - 1);
         views.iter().all(|(scale, gap)| (lo..=hi).all(|k| gap[k] > *scale) && *scale > 0.0)
-    };
+    }
+}
+
+/// [`next_problem`] with the segments where T_H stays as it was given by `apart` ([`surely_apart`]).
+pub(crate) fn next_problem_with(
+    problem: &Problem,
+    refined: Refinement,
+    ratio: f64,
+    apart: &dyn Fn(f64, f64) -> bool,
+) -> Result<Problem> {
+    let mut spec = problem.spec.clone();
+    let contact = ContactBoundary::new(refined.mesh(), &spec.contact)?;
     let xi = refine_onto(&problem.contact, &problem.multipliers.xi, &contact, ratio, apart);
     spec.multiplier_points = MultiplierPoints::Abscissae(xi);
     let (mesh, parent, midpoints) = refined.into_parts();

@@ -67,9 +67,19 @@ fn strip_width(pair: &PairParts<'_>, (lo, hi): (f64, f64)) -> f64 {
 /// points, where a P1 multiplier is not yet zero), the distance taken from a triangle's nearest vertex to that part
 /// of the pair's side.
 fn mark_near(problem: &Problem, pair: &PairParts<'_>, span: (f64, f64), width: f64, marked: &mut [bool]) {
-    let (lo, hi) = neighbouring_points(pair, span);
+    mark_within(problem, pair.contact, neighbouring_points(pair, span), width, marked);
+}
+
+/// Marks the triangles of `problem` with a vertex within `width` of the part `(lo, hi)` of the side `contact`.
+fn mark_within(
+    problem: &Problem,
+    contact: &crate::contact::ContactBoundary,
+    (lo, hi): (f64, f64),
+    width: f64,
+    marked: &mut [bool],
+) {
     let pts = problem.mesh.points();
-    let near = |v: usize| pair.contact.distance_to_span(pts[v], lo, hi) <= width;
+    let near = |v: usize| contact.distance_to_span(pts[v], lo, hi) <= width;
     for (t, tri) in problem.mesh.triangles().iter().enumerate() {
         marked[t] |= tri.iter().any(|&v| near(v));
     }
@@ -93,33 +103,21 @@ pub fn near_contact(problem: &Problem, solution: &Solution, width: f64) -> Vec<u
     marked_list(&marked)
 }
 
-/// The strip the hierarchical estimate enriches for `solution`, marked into `marked` (one flag per triangle): along
-/// each pair whose contact zone is not empty, the triangles within the width of that zone ([`strip_width`]).
-/// Whether any pair touches.
-pub(super) fn mark_strip(problem: &Problem, solution: &Solution, marked: &mut [bool]) -> bool {
-    let mut any = false;
-    for (pair, states) in pairs_and_states(problem, solution) {
-        if let Some(span) = touching_span(&pair, states) {
-            mark_near(problem, &pair, span, strip_width(&pair, span), marked);
-            any = true;
+/// The triangles of `target` (`problem` enriched: the same sides, the same arclength) within `fraction` of the strip
+/// width ([`strip_width`]) of each pair's contact zone in any of `solutions` (solutions of `problem`): the second
+/// bisection of the hierarchical estimate's enrichment ([`crate::adapt::enriched`]). None when nothing touches.
+pub(super) fn strip_on(problem: &Problem, solutions: &[&Solution], target: &Problem, fraction: f64) -> Vec<usize> {
+    let mut marked = vec![false; target.mesh.n_triangles()];
+    let sides = target.pairs();
+    for s in solutions {
+        for (k, (pair, states)) in pairs_and_states(problem, s).into_iter().enumerate() {
+            if let (Some(span), Some(side)) = (touching_span(&pair, states), sides.get(k)) {
+                let width = fraction * strip_width(&pair, span);
+                mark_within(target, side.contact, neighbouring_points(&pair, span), width, &mut marked);
+            }
         }
     }
-    any
-}
-
-/// The strip of [`mark_strip`] for `solutions` (a static solve's, or a history's steps), as a list: the whole mesh
-/// when nothing touches in any of them.
-pub(super) fn strip(problem: &Problem, solutions: &[&Solution]) -> Vec<usize> {
-    let mut marked = vec![false; problem.mesh.n_triangles()];
-    let mut any = false;
-    for s in solutions {
-        any |= mark_strip(problem, s, &mut marked);
-    }
-    if any {
-        marked_list(&marked)
-    } else {
-        (0..marked.len()).collect()
-    }
+    marked_list(&marked)
 }
 
 /// The regions R (the two cells of T_H at an end of a pair's side) at each end whose multiplier dof touches in

@@ -113,13 +113,14 @@ pub struct ErrorEstimate {
     pub traction: f64,
     /// `ζ / min(‖λ_H‖, ‖σ_h n‖)` in L²(Γ_C) (NaN when λ_H = 0: nothing touches).
     pub traction_relative: f64,
-    /// The hierarchical estimate of the traction error in L²(Γ_C) (λ_f the answer of the problem enriched
-    /// near the contact zone by the adaptive loop with [`crate::settings::StopOn::Hierarchical`], or on the
-    /// whole mesh by [`crate::Problem::solve_with_error_bars`]): `2 ‖λ_H − λ_f‖`, with the reduction
+    /// The hierarchical estimate of the traction error in L²(Γ_C) (λ_f the answer of the problem enriched, the
+    /// whole mesh bisected and the strip along the contact zone again, by the adaptive loop with
+    /// [`crate::settings::StopOn::Hierarchical`] or by [`crate::Problem::solve_with_error_bars`]): `1.5 ‖λ_H − λ_f‖`,
+    /// with the reduction
     /// measured instead of assumed where the contact zone reaches an end of Γ_C ([`crate::adapt::enriched`]
     /// derives it). Sharp where the bound ζ is pessimistic, but not a guaranteed bound; infinite where
     /// a measured reduction is 1 or more (no estimate). On the enriched answer an adaptive loop with
-    /// [`crate::settings::StopOn::Enriched`] hands back, the estimate of that answer's own error, `‖λ_H − λ_f‖`
+    /// [`crate::settings::StopOn::Enriched`] hands back, the estimate of that answer's own error, `½ ‖λ_H − λ_f‖`
     /// (λ_H the level's answer it enriched; `q_R d_R / (1 − q_R)` at measured ends; [`crate::adapt`]). `None` unless it was computed (NaN by
     /// [`Self::named`]).
     pub traction_hierarchical: Option<f64>,
@@ -131,17 +132,17 @@ pub struct ErrorEstimate {
 }
 
 /// Estimates of the errors of what users read, each from the answer λ_H and the answer λ_f of the problem
-/// enriched on the whole mesh ([`crate::Problem::estimate_error_bars`]; [`crate::adapt::enriched`] derives
+/// enriched for the hierarchical estimate ([`crate::Problem::estimate_error_bars`]; [`crate::adapt::enriched`] derives
 /// them): the absolute errors of [`crate::Solution::normal_force`], [`crate::Solution::tangential_force`],
 /// [`crate::Solution::contact_width`] and [`crate::Solution::stick_width`]. Like the hierarchical traction
 /// estimate, sharp but not guaranteed bounds.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ErrorBars {
-    /// `2 |P_H − P_f|`, P = ∫ λ_n.
+    /// `1.5 |P_H − P_f|`, P = ∫ λ_n.
     pub normal_force: f64,
-    /// `2 |Q_H − Q_f|`, Q = ∫ λ_t.
+    /// `1.5 |Q_H − Q_f|`, Q = ∫ λ_t.
     pub tangential_force: f64,
-    /// `max(2 |w_H − w_f|, r_H)`, w the width of the contact zone and r_H its resolution
+    /// `max(1.5 |w_H − w_f|, r_H)`, w the width of the contact zone and r_H its resolution
     /// ([`crate::results::Zone::resolution`]).
     pub contact_width: f64,
     /// The same for the stick zone.

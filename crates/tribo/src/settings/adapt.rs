@@ -41,10 +41,11 @@ pub enum StopOn {
     /// needed. Free.
     Bound,
     /// The smaller of the bound and the hierarchical estimate ([`crate::Problem::estimate_hierarchical`]):
-    /// `2 ‖λ_H − λ_f‖`, λ_f the answer enriched near the contact zone, the reduction measured where the zone
-    /// reaches an end of Γ_C. Sharp (measured 1.79–2.22 times the true error on adaptive Hertz and every step of
-    /// a Cattaneo–Mindlin history, 1.71–2.55 on two bodies, 1.79–2.11 with two contact pairs, without drift) but not a
-    /// guaranteed bound, and it costs a solve of about 2.6 times the level's unknowns (twice where an end
+    /// `1.5 ‖λ_H − λ_f‖`, λ_f the answer of the problem enriched (the whole mesh bisected, the strip along the contact
+    /// zone again), the reduction measured where the zone reaches an end of Γ_C. Sharp (study 12: 1.39–1.64 times the
+    /// true error on 51 levels of adaptive Hertz, P0 multipliers, Coulomb friction and two bodies, without drift; study
+    /// 13 measures it in the loop) but not a guaranteed bound, and it costs a solve of 8–9 times the level's unknowns
+    /// (twice where an end
     /// touches; a whole history solved again for a history), so the loop computes it only where it may stop
     /// the loop before the bound (see [`crate::adapt`]). While nothing touches the loop reads the energy
     /// estimate, as with the bound. `tol` then means the accuracy reached, but the loop mostly pays a level
@@ -52,7 +53,7 @@ pub enum StopOn {
     /// time of the cheapest adequate level).
     Hierarchical,
     /// As [`StopOn::Hierarchical`], and where the answer of the problem enriched for a level's estimate has an estimate
-    /// of its own error (`‖λ_H − λ_f‖`, half the level's away from the ends of Γ_C in contact) at most `tol` and the
+    /// of its own error (`½ ‖λ_H − λ_f‖`, a third of the level's away from the ends of Γ_C in contact) at most `tol` and the
     /// level's own is not, that answer is handed back as one more level (P1 multipliers, a mesh without curves, within `max_unknowns` and
     /// `max_levels`; its strip bisected on all edges whatever `bisection`; see [`crate::adapt`]): the loop stops at the
     /// cheapest level whose true error is within `tol` or before it wherever the level's estimate is within twice its

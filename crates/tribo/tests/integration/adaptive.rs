@@ -196,7 +196,7 @@ fn the_enriched_answer_handed_back_is_checked_when_asked() -> Result<()> {
 }
 
 /// With `stop_on = "enriched"`, where the answer of a level's enriched problem has an estimate of its own
-/// (half the level's: `‖λ_H − λ_f‖` against `2 ‖λ_H − λ_f‖`, both over `‖λ_f‖`) within `tol`, the loop hands it
+/// (a third of the level's: `½ ‖λ_H − λ_f‖` against `1.5 ‖λ_H − λ_f‖`, both over `‖λ_f‖`) within `tol`, the loop hands it
 /// back as one more level: converged to `fp_tol`, nested in the level before it, solved again alike, closer to
 /// Hertz than that level's answer, and reached no later than the hierarchical stop (which never hands it back).
 #[test]
@@ -222,7 +222,8 @@ fn the_enriched_answer_is_handed_back_where_its_estimate_meets_tol() -> Result<(
     assert_eq!(out.stop, AdaptStop::Tolerance);
     let (h, f) = (h.expect("the level before is estimated"), f.expect("the enriched answer carries its estimate"));
     assert!(h > tol && f <= tol, "{h} {f}");
-    assert!((f - h / 2.0).abs() <= 1e-12 * h, "no end of Γ_C touches: half the level's estimate");
+    let third = h * tribo::adapt::enriched::SATURATION;
+    assert!((f - third).abs() <= 1e-12 * h, "no end of Γ_C touches: a third of the level's estimate");
     assert_eq!((fine.seconds, fine.status, out.problem.n_free), (0.0, SolveStatus::Converged, fine.unknowns));
     assert!(coarse.seconds > 0.0 && fine.unknowns > coarse.unknowns);
     assert_eq!(heard, out.levels.iter().map(|l| l.unknowns).collect::<Vec<_>>(), "the observer heard every level");
@@ -250,7 +251,8 @@ fn the_enriched_answer_is_handed_back_where_its_estimate_meets_tol() -> Result<(
 /// Where a level meets the tolerance itself, it is handed back, not its enriched answer (which meets it too): the
 /// first answer within `tol`, at the same cost, on fewer unknowns. Over a range of tolerances on centred Hertz with
 /// Coulomb friction (study 13's `hertz-coulomb`, which ended at 0.27 `tol` at 2 % before the rule), an enriched
-/// answer only follows a level outside `tol`, and some runs end on a level within it (the rule is not idle).
+/// answer only follows a level outside `tol`, and some runs end on a level within it (the rule is not idle: at
+/// 21 % the first estimated level, 464 unknowns, is within `tol` by its own estimate, 20.3 %).
 #[test]
 fn a_level_within_tol_is_handed_back_itself() -> Result<()> {
     let s = tribo_testkit::hertz_scene();
@@ -259,14 +261,16 @@ fn a_level_within_tol_is_handed_back_itself() -> Result<()> {
     let problem = Problem::new(rectangle(s.x, s.y, 8, 4, Diagonal::Right)?, spec)?;
     let (friction, settings) = (Friction::Coulomb { mu: 0.3 }, SolverSettings::default());
     let mut own = 0;
-    for tol in [0.05, 0.03, 0.02, 0.015, 0.01] {
+    for tol in [0.25, 0.21, 0.1, 0.05, 0.03, 0.02, 0.015, 0.01] {
         let adapt = AdaptSettings { tol, stop_on: StopOn::Enriched, ..Default::default() };
         let run = problem.solve_adaptive(&friction, &settings, &adapt, None)?;
         let [.., before, last] = &run.levels[..] else { panic!("levels") };
         let within = last.relative <= tol && (!last.enriched || before.relative > tol);
-        assert!(run.stop == AdaptStop::Tolerance && within, "tol {tol}: {} unknowns", last.unknowns);
+        let read = |l: &Level| (l.unknowns, l.enriched, l.relative, l.estimate.traction_hierarchical_relative);
+        let levels: Vec<_> = run.levels.iter().map(read).collect();
+        assert!(run.stop == AdaptStop::Tolerance && within, "tol {tol}: {:?} {levels:?}", run.stop);
         let h = last.estimate.traction_hierarchical_relative;
-        own += usize::from(!last.enriched && h.is_some_and(|h| h / 2.0 <= tol));
+        own += usize::from(!last.enriched && h.is_some_and(|h| h * tribo::adapt::enriched::SATURATION <= tol));
     }
     assert!(own > 0, "no run ended on a level whose enriched answer met the tolerance too");
     Ok(())
@@ -274,8 +278,8 @@ fn a_level_within_tol_is_handed_back_itself() -> Result<()> {
 
 /// The hierarchical estimate is computed where it may stop the loop: after the first, on a level where the last
 /// measured ratio r of the stop's reading to the bound is below 1 and r times the level's bound is within 3 times what
-/// the stop reads (`tol` for the level's own estimate, `2 tol` where an enriched answer, whose estimate is half the
-/// level's, may be handed back), or where the unknowns have grown fourfold. Checked from the levels alone over a
+/// the stop reads (`tol` for the level's own estimate, `3 tol` where an enriched answer, whose estimate is a third of
+/// the level's, may be handed back), or where the unknowns have grown fourfold. Checked from the levels alone over a
 /// range of tolerances, with some levels between 3 and 6 `tol` estimated (where the margin of `tol` alone skipped a
 /// level whose enriched answer met `tol`: study 13's Cattaneo–Mindlin history at 5 %, 3.5 times the time of the
 /// cheapest adequate level, 1.0 since).
@@ -283,8 +287,9 @@ fn a_level_within_tol_is_handed_back_itself() -> Result<()> {
 fn the_estimate_is_due_where_what_the_stop_reads_may_meet_tol() -> Result<()> {
     let problem = off_centre_problem();
     let (friction, settings) = (Friction::Frictionless, SolverSettings::default());
-    let mut in_margin = 0; // Enriched levels estimated only on the margin of `2 tol`
-    for (stop_on, reads) in [(StopOn::Enriched, 2.0), (StopOn::Hierarchical, 1.0)] {
+    let mut in_margin = 0; // Enriched levels estimated only on the margin of `3 tol`
+    let third = tribo::adapt::enriched::SATURATION;
+    for (stop_on, reads) in [(StopOn::Enriched, 1.0 / third), (StopOn::Hierarchical, 1.0)] {
         for tol in [0.05, 0.03, 0.02, 0.01] {
             let adapt = AdaptSettings { tol, stop_on, ..Default::default() };
             let run = problem.solve_adaptive(&friction, &settings, &adapt, None)?;
@@ -489,9 +494,9 @@ fn a_one_step_history_is_estimated_as_the_static_problem() -> Result<()> {
     Ok(())
 }
 
-/// A solve (or a step of a history) with one multiplier dof touching has no contact width to enrich within:
-/// the estimate enriches the two T_H cells around that dof, for a solve and a history alike (a history's
-/// step got no strip of its own; a static solve took the whole mesh, 4 times the unknowns).
+/// A solve (or a step of a history) with one multiplier dof touching has no contact width to enrich within: the
+/// estimate's second bisection takes the two T_H cells around that dof, for a solve and a history alike (a history's
+/// step got no strip of its own).
 #[test]
 fn one_dof_touching_enriches_the_two_cells_around_it() -> Result<()> {
     // The problem's own approach is the step's: one step from rest is the static problem.
@@ -502,9 +507,11 @@ fn one_dof_touching_enriches_the_two_cells_around_it() -> Result<()> {
     let touching = |s: &Solution| s.states.iter().filter(|c| **c != ContactState::Separation).count();
     assert_eq!(touching(&history.solutions[0]), 1);
     let one = problem.estimate_hierarchical(&history.solutions[0], &friction, &settings)?;
-    let whole = problem.estimate_error_bars(&history.solutions[0], &friction, &settings)?;
+    let all: Vec<usize> = (0..problem.mesh.n_triangles()).collect();
+    let (whole, _) = problem.solve_enriched(&history.solutions[0], &all, &friction, &settings)?;
     let each = problem.estimate_history_hierarchical(&history, &friction, &settings)?;
-    assert!(problem.n_free < one.unknowns && one.unknowns < whole.unknowns / 2, "{one:?} {whole:?}");
+    // The whole mesh bisected, then a few triangles around the dof again.
+    assert!(whole.n_free < one.unknowns && one.unknowns < whole.n_free + whole.n_free / 10, "{one:?}");
     assert_eq!(each[0].unknowns, one.unknowns);
     assert!((each[0].relative - one.relative).abs() <= 1e-6 * one.relative, "{each:?} {one:?}");
     // With a step of wider contact after it, the history's strip is that step's (the window lies in it).

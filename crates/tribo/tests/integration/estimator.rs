@@ -162,9 +162,10 @@ fn the_hierarchical_estimate_is_within_twice_the_hertz_error() {
         );
         assert_eq!(h.status, SolveStatus::Converged);
         assert!(h.end_reductions.is_empty(), "the Hertz zone reaches no end of Γ_C");
-        assert!(h.estimate == 2.0 * h.difference && h.relative == h.estimate / h.norm);
+        assert!((h.estimate - 1.5 * h.difference).abs() <= 1e-12 * h.estimate && h.relative == h.estimate / h.norm);
         assert!((1.0..=2.0).contains(&effectivity), "h_min {h_min}: effectivity {effectivity} (bound {bound})");
-        assert!(h.unknowns > problem.n_free && h.unknowns < 4 * problem.n_free, "a strip, not the whole mesh");
+        // The whole mesh bisected (about 4 times the unknowns), the strip along the zone again.
+        assert!(h.unknowns > 4 * problem.n_free && h.unknowns < 16 * problem.n_free, "{} unknowns", h.unknowns);
     }
 }
 
