@@ -6,14 +6,15 @@ contact and stick zones) and for traction estimates whose effectivity (estimate 
 on every level with at least 10 multiplier dofs in contact, on one-body Hertz, the block, two bodies and P0
 multipliers. The example adapts each case from its coarse start to 80k unknowns, solves every level with at least
 10 dofs in contact again on its mesh, computes its error bars (the problem solved once more with every triangle
-bisected and T_H halved: about 4 times the unknowns) and compares each with the true error of its quantity
+bisected and those along the contact zone again, T_H halved with them: 8-9 times the unknowns) and compares each with the true error of its quantity
 against the case's reference, and the traction estimates with the true relative L²(Γ_C) error of λ: the
 hierarchical estimate the adaptive stop computes (the whole mesh bisected and the strip of half a contact width
 again, the same enriched solve as the bars'), the bound ζ, and the smaller of the two (what the adaptive stop
 reads). With ``STRIP`` = 1 (file ``CASE-strip.csv``) the bars come from the strip alone instead, to show
 what it misses. The reference's own error limits what can be read: a width is known to its zone's resolution, a
-force to half the reference's own bar (``SKIP`` = 0, the Hertz cases; with ``SKIP`` = 1 that floor is 0: the
-block's and the two bodies' references are not solved again enriched, 4 times their 500k unknowns). A true error
+force to its change when the reference's whole mesh is bisected once (``SKIP`` = 0, the Hertz cases; with
+``SKIP`` = 1 that floor is 0: the block's and the two bodies' references are not solved again enriched, 4 times
+their 500k unknowns). A true error
 below twice its floor is not counted; just above it, the reference's own error (of the same sign: discrete
 answers are stiffer) makes the true error look smaller and the effectivity larger.
 

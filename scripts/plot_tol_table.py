@@ -145,8 +145,9 @@ def summary(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, An
     if any(r["stop_on"] == "hierarchical" for r in runs):
         lines.append("* Stopping on the hierarchical estimate ends only on a level whose estimate is at most X, so "
                      "where the first adequate level's true error is above X over the effectivity, it pays another "
-                     "level and its estimate (each about twice the level's unknowns); handing back the enriched answer, whose estimate is "
-                     "half the level's, stops at that level or before it wherever the effectivity is at most 2.")
+                     "level and its estimate (the level about twice the unknowns of the one before, the estimate 8-9 times "
+                     "the level's); handing back the enriched answer, whose estimate is a third of the level's, stops at "
+                     "that level or before it wherever the effectivity is at most 3.")
     bound = [r for r in runs if r["stop_on"] == "bound"]
     if bound:
         lines.append(f"* **Stopping on the bound** (`stop_on = \"bound\"`): true error over X "
@@ -166,9 +167,9 @@ def summary(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, An
     handed = handed_back(effectivity_levels)
     if handed:
         inside = [r for r in handed if EFFECTIVITY[0] <= r["effectivity"] <= EFFECTIVITY[1]]
-        lines.append(f"* **The enriched answers handed back** carry `‖λ_H − λ_f‖`, the estimate of their own error: "
+        lines.append(f"* **The enriched answers handed back** carry `½ ‖λ_H − λ_f‖`, the estimate of their own error: "
                      f"{_range([r['effectivity'] for r in handed])} times it ({len(inside)} of {len(handed)} in "
-                     "[1, 2]): where the enrichment removes more than half of the coarse error, it overestimates.")
+                     "[1, 2]): where the enrichment removes more than two thirds of the coarse error, it overestimates.")
     return "\n".join(lines) + "\n"
 
 

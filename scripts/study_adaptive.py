@@ -187,7 +187,8 @@ def write(rows: list[dict[str, Any]], out: Path) -> None:
     eff_h = [r["hierarchical"] / r["error"] for r in levels]
     md.append("The traction estimates: the bound (`traction_relative`, what the loop stops on with "
               "`stop_on=\"bound\"`) and the hierarchical estimate of the same answer (`solve(error_bars=True)`: "
-              "twice the change of λ under a bisection of the whole mesh; sharp but not a bound, see study 12).\n\n")
+              "1.5 times the change of λ when the whole mesh is bisected and the strip along the contact zone again; "
+              "sharp but not a bound, see study 12).\n\n")
     md.append(sl.markdown_table(
         ["levels", "unknowns", "dofs in contact", "energy estimate", "energy error", "effectivity",
          "traction bound", "hierarchical", "λ_n error vs reference", "bound / error", "hierarchical / error"],

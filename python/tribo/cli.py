@@ -108,13 +108,14 @@ def _run(scene_path: Path, out: Path, plots: bool, all_files: bool = False) -> i
     with_bars = all(math.isfinite(bar) for _, _, bar in bars)
     if with_bars:
         shown = ", ".join(f"{name} = {value:.6g} ± {bar:.2g}" for name, value, bar in bars)
-        print(f"  {shown} (error bars: twice the change under enrichment, sharp but not bounds)")
+        print(f"  {shown} (error bars: 1.5 times the change under enrichment, sharp but not bounds)")
     elif not scene.has_history and not scene.get("estimate", "error_bars", False):
         print("  error bars of P, Q and the zone widths: set error_bars = true in [estimate] (one more solve, enriched "
-              "everywhere: about 4 times the unknowns)")
+              "everywhere and twice along the contact: 8-9 times the unknowns)")
     said_json = json.loads((out / "summary.json").read_text(encoding="utf-8"))
-    # An enriched answer handed back carries its change from the level it enriched (unless solved again for its bars).
-    kind = "its change from the level it enriched" if said_json["adapt_handed_back"] and not with_bars else \
+    # An enriched answer handed back carries half its change from the level it enriched (unless solved again for its
+    # bars).
+    kind = "half its change from the level it enriched" if said_json["adapt_handed_back"] and not with_bars else \
         "hierarchical"
     sharp = est.get("traction_hierarchical_relative", math.nan)
     traction = (f"{_percent(sharp)} in the contact tractions (L2 of Γ_C; {kind}, sharp but not a bound; "

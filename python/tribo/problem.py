@@ -250,11 +250,12 @@ class Problem(_tribo.Problem):
         answered. ``coulomb_check=True`` solves a converged Coulomb problem again by the other method and
         compares: ``report.coulomb_check`` says 'differ' where the discrete problem has two solutions.
 
-        ``error_bars=True`` also solves the problem enriched on the whole mesh (every triangle bisected,
-        T_H halved: about 4 times the unknowns, twice where the contact reaches an end of Γ_C) and adds to ``report.estimate`` the hierarchical traction
+        ``error_bars=True`` also solves the problem enriched (every triangle bisected and those within half a
+        contact width of the contact zone again, T_H halved with them: 8-9 times the unknowns, twice where the contact
+        reaches an end of Γ_C) and adds to ``report.estimate`` the hierarchical traction
         estimate and the error bars of the normal and tangential forces and of the widths of the contact and
         stick zones (``normal_force_error``, ``tangential_force_error``, ``contact_width_error``,
-        ``stick_width_error``: estimated absolute errors, twice the change under the enrichment; sharp, but
+        ``stick_width_error``: estimated absolute errors, 1.5 times the change under the enrichment; sharp, but
         not guaranteed bounds; the crate documentation of ``tribo::adapt::enriched`` derives them and
         ``docs/error_bars.md`` measures them). They stay NaN without ``error_bars`` and when the solve or the
         enriched solve did not converge.
@@ -352,19 +353,20 @@ class Problem(_tribo.Problem):
         The relative estimate is that of the contact tractions (λ in L²(Γ_C)) when something touches, of
         the energy while nothing does. By default (``stop_on='enriched'``; ``'hierarchical'`` alike but never
         handing back the enriched answer, below) it is the smaller of the residual
-        bound and the hierarchical estimate 2‖λ_H − λ_f‖ / ‖λ_f‖ (λ_f the answer enriched near the contact zone,
-        ``report.estimate["traction_hierarchical_relative"]``; where the contact zone reaches an end of Γ_C,
-        its reduction there is measured by a second enrichment): within a factor of about 1–2 of the true
-        error, not a guaranteed bound (the bound is the smaller where the traction is singular at a corner,
-        docs/error_bars.md), computed on the levels near ``tol`` with at least 10 multiplier dofs in contact
-        at the cost of a solve of about 2.6 times their unknowns; the answer's true error then ended at
-        0.27–0.55 ``tol`` with ``'hierarchical'`` (in [tol/3, tol] in 30 of 36 runs of nine cases,
-        docs/tol_table.md). With ``'enriched'`` the loop also hands back the answer of a level's enriched problem
-        where its own estimate (half the level's away from the ends of Γ_C in contact) meets ``tol`` and the
-        level's own does not (P1 multipliers, a mesh without curves; a history's enriched history alike;
-        ``progress``'s return value is not read for that last level): one level sooner as a rule, a more accurate
-        answer, an estimate less sharp (in [tol/3, tol] in 29 of 32 runs, within twice the time of the cheapest
-        adequate level in 29, against 5 of 36 for ``'hierarchical'``). With ``stop_on='bound'`` it is the residual bound alone, above
+        bound and the hierarchical estimate 1.5‖λ_H − λ_f‖ / ‖λ_f‖ (λ_f the answer with the whole mesh bisected
+        and the strip along the contact zone again, ``report.estimate["traction_hierarchical_relative"]``; where
+        the contact zone reaches an end of Γ_C, its reduction there is measured by a second enrichment): 1.38–1.59
+        times the true error on every level of eight cases of docs/tol_table.md, not a guaranteed bound (the bound
+        is the smaller where the traction is singular at a corner: the block, 1.85–1.98), computed on the levels
+        near ``tol`` with at least 10 multiplier dofs in contact at the cost of a solve of 8–9 times their
+        unknowns; the answer's true error then ended at 0.34–0.68 ``tol`` with ``'hierarchical'`` (in
+        [tol/3, tol] in all 36 runs of nine cases, within twice the time of the cheapest adequate level in 12).
+        With ``'enriched'`` the loop also hands back the answer of a level's enriched problem where its own
+        estimate (a third of the level's away from the ends of Γ_C in contact) meets ``tol`` and the level's own
+        does not (P1 multipliers, a mesh without curves; a history's enriched history alike; ``progress``'s
+        return value is not read for that last level): one level sooner as a rule, a more accurate answer, often
+        more than asked, an estimate less sharp (in [tol/3, tol] in 22 of 32 runs, the others below, within twice
+        the time of the cheapest adequate level in 31). With ``stop_on='bound'`` it is the residual bound alone, above
         the true error but pessimistically (on Hertz by 3 on coarse meshes and up to 24 on fine ones,
         docs/STUDIES.md, study 6): the answer is usually many times more accurate than ``tol``, at many times
         the unknowns. Marking is Dörfler's with ``theta`` (default 0.5), or the maximum

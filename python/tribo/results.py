@@ -144,15 +144,14 @@ class Report(_Record):
             triangles, in stress × length), ``energy_relative`` ((Σ η_K² / E*_K)^½ / a(u_h, u_h)^½, η / (E* a(u_h, u_h))^½ for one material), ``traction``
             (ζ, the estimate of ‖λ − λ_H‖ in L²(Γ_C), a bound) and ``traction_relative`` (ζ / ‖λ_H‖, NaN
             when nothing touches); ``traction_hierarchical`` and ``traction_hierarchical_relative``, the
-            hierarchical estimate (1.5‖λ_H − λ_f‖, λ_f the answer with the whole mesh bisected and the strip
-            along the contact zone again; the reduction measured where the contact zone reaches an end
-            of Γ_C) and its ratio to ‖λ_f‖ (sharp but not a bound; inf where a measured reduction is 1 or
-            more: no estimate; NaN unless an adaptive solve (``stop_on`` ``'enriched'``, the default, or
-            ``'hierarchical'``) or ``solve(error_bars=True)`` computed it; on the enriched answer an adaptive solve
-            hands back, ½‖λ_H − λ_f‖, the estimate of that answer's own error); from the
-            same enriched solve, the error bars ``normal_force_error``, ``tangential_force_error``,
-            ``contact_width_error`` and ``stick_width_error`` (estimated absolute errors of those quantities
-            of the Solution, NaN unless computed). Empty for a report built without one.
+            hierarchical estimate (1.5‖λ_H − λ_f‖, λ_f with the whole mesh bisected and the strip along the
+            contact zone again; the reduction measured where the zone reaches an end of Γ_C) and its ratio
+            to ‖λ_f‖ (sharp but not a bound; inf where a measured reduction is 1 or more: no estimate; NaN
+            unless an adaptive solve (``stop_on`` ``'enriched'``, the default, or ``'hierarchical'``) or
+            ``solve(error_bars=True)`` computed it; on the enriched answer an adaptive solve hands back,
+            ½‖λ_H − λ_f‖, the estimate of that answer's own error); from the same enriched solve, the
+            error bars ``normal_force_error``, ``tangential_force_error``, ``contact_width_error`` and
+            ``stick_width_error`` (estimated absolute errors, NaN unless computed). Empty without an estimate.
     """
 
     status: Status
@@ -415,7 +414,7 @@ class History(_Record):
         traction_error: the relative traction error estimate per converged step (NaN where nothing touches).
         traction_error_hierarchical: the hierarchical estimate of the relative traction error per converged step
             (NaN where not computed: ``solve_history_adaptive`` does, unless ``stop_on='bound'``, where it may stop
-            the loop; on an enriched history handed back, each step's ‖λ_H − λ_f‖, that history's own error).
+            the loop; on an enriched history handed back, each step's ½‖λ_H − λ_f‖, that history's own error).
         stick_count: multiplier dofs that stick, per converged step (the counts are over every pair).
         slip_count: multiplier dofs that slip, per converged step.
         separation_count: multiplier dofs separated from the obstacle, per converged step.
@@ -523,7 +522,7 @@ class Level(_Record):
             ``enriched`` (solved as the estimate of the level before it, whose seconds count it).
         status: how the level's solve ended.
         enriched: whether the level is the answer enriched for the estimate of the level before it, handed back
-            as the last (``stop_on='enriched'``); its hierarchical estimate is then its change from that level.
+            as the last (``stop_on='enriched'``); its hierarchical estimate is then half its change from it.
     """
 
     unknowns: int

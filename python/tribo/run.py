@@ -290,7 +290,10 @@ def run_scene(
             static = run_adaptive(scene, problem)
             problem, solution, adapt_stop = static.problem, static.solution, static.stop
             adaptive = static
-            if scene.get("estimate", "error_bars", False):
+            # The last level's hierarchical estimate brings its bars (the same enriched solve): solved again only
+            # where it has none (the loop stopped on the bound, or handed back an enriched answer).
+            has_bars = math.isfinite(solution.report.estimate.get("normal_force_error", math.nan))
+            if scene.get("estimate", "error_bars", False) and not has_bars:
                 log.info("solving the last level again with its error bars")
                 solution = problem.solve(error_bars=True, **scene.solve_kwargs())
                 warn_missing_error_bars(solution)

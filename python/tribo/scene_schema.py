@@ -99,12 +99,13 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     (``"fixed_point"``, ``"newton"`` or ``"auto"``), ``coulomb_check`` (true/false). Unset keys take the
     core's defaults. The table of keys is built from the core's, so it cannot drift from it.
 ``[estimate]``
-    ``error_bars`` (true/false, default false): also solve the problem enriched on the whole mesh (every
-    triangle bisected, T_H halved; about 4 times the unknowns) and report the error bars of the normal and
-    tangential forces and of the contact and stick widths (``P = 0.851 ± 0.0004`` in ``tribo run``, the
-    ``*_error`` keys of ``estimate`` in ``summary.json``): twice their change under the enrichment, sharp but
-    not guaranteed bounds. With ``[adapt]``, ``tribo run`` solves the last level again with them
-    (``Scene.solve_adaptive`` returns the loop's answer, without). Not with a ``[history]``.
+    ``error_bars`` (true/false, default false): also solve the problem enriched (every triangle bisected and
+    those along the contact zone again, T_H halved with them; 8-9 times the unknowns) and report the error bars
+    of the normal and tangential forces and of the contact and stick widths (``P = 0.851 ± 0.0004`` in
+    ``tribo run``, the ``*_error`` keys of ``estimate`` in ``summary.json``): 1.5 times their change under the
+    enrichment, sharp but not guaranteed bounds. With ``[adapt]``, the last level's hierarchical estimate brings
+    them (the same enriched solve); where it has none (the loop stopped on the bound, or handed back an enriched
+    answer), ``tribo run`` solves the last level again with them. Not with a ``[history]``.
 ``[[bodies]]``
     Two elastic bodies in contact, instead of ``[body]``, ``[material]``, ``[supports]`` and ``[obstacle]``.
     Exactly two entries, each with ``name`` (*required*), ``x``/``y``, ``mesh``, ``ring``, ``disc`` or ``plate`` as

@@ -104,7 +104,7 @@ COLUMNS: dict[str, str] = {
     "unknowns": "free displacement dofs",
     "multipliers": "multiplier dofs",
     "traction_estimate": "the relative a posteriori estimate of the error in the contact tractions (the bound)",
-    "traction_hierarchical": "the hierarchical one, where an adaptive loop computed it (handed back: its change)",
+    "traction_hierarchical": "the hierarchical one, where an adaptive loop computed it (handed back: half its change)",
     "energy_estimate": "the relative a posteriori estimate of the energy error",
     "seconds": "wall time of the case on its worker (build, solve and outputs)",
     "warnings": "the scene warnings of the run (tribo.checks), joined by ' | '",

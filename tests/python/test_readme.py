@@ -239,7 +239,8 @@ def test_the_docs_quote_the_tol_table_as_generated() -> None:
     inside = sum(len(rows) for rows in eff.values()) - len(outside)
     others = [e for c, rows in eff.items() if c != "block" for r in rows if not 1.0 <= (e := r["effectivity"]) <= 2.0]
     quoted = (f"{inside} of {inside + len(outside)} levels in [1, 2], the block's {len(eff['block'])} at "
-              f"{_span([r['effectivity'] for r in eff['block']], '.2f')} and the rest at {_span(others, '.2f')}")
+              f"{_span([r['effectivity'] for r in eff['block']], '.2f')}"
+              + (f" and the rest at {_span(others, '.2f')}" if others else ""))
     assert quoted in studies, quoted
     block = eff["block"]
     quoted = (f"it is {_span([r['effectivity'] for r in block], '.2f')} times the true error and the bound, "

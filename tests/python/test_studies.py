@@ -350,7 +350,7 @@ def test_plot_tol_table(tmp_path: Path) -> None:
 
 def test_plot_error_bars(tmp_path: Path) -> None:
     """Studies 14 and 15 from the example's files: each effectivity, a true error within twice its floor not
-    counted, what the stop reads the smaller of the strip's estimate and the bound, the strip's file apart."""
+    counted, what the stop reads the smaller of the hierarchical estimate and the bound, the strip's file apart."""
     folder = tmp_path / "in"
     folder.mkdir()
     header = ("case,level,unknowns,in_contact,solve_seconds,enriched_seconds,traction_true,traction_strip,"
@@ -367,7 +367,7 @@ def test_plot_error_bars(tmp_path: Path) -> None:
     assert "**The bars of the forces**: 1.50–1.50 (1 of 1 in [1, 2])" in md, md
     assert "**The bars of the widths**: 0.50–2.00 (1 of 2 in [1, 2]); below 1: hertz at 8000 (0.50)." in md, md
     assert "P's bar 0.50–0.50 (0 of 1 in [1, 2])" in md, md
-    assert "**What the adaptive stop reads** (the smaller of the strip's estimate and the bound): 1.20–1.50" in md, md
+    assert "**What the adaptive stop reads** (the smaller of the hierarchical estimate and the bound): 1.20–1.50" in md, md
     assert "the enriched solve of the bars took 4.0–4.0 times" in md and "| hertz | 7 | 8000 | 30 |" in md, md
     assert "1.00e-03, ~" in md and (tmp_path / "error_bars.png").stat().st_size > 0
     (folder / "hertz.csv").write_text("\n".join([header, rows[0][:40]]) + "\n")

@@ -8,8 +8,9 @@
 //! them), against the case's reference, on the levels with at least 10 multiplier dofs in contact:
 //! - `W`: the whole mesh bisected once;
 //! - `WS`: `W`, then on its mesh the strip of half a contact width bisected again (h halved everywhere, quartered
-//!   near the contact zone);
-//! - `S1`: the strip of one contact width bisected once (what `Problem::estimate_hierarchical` enriches);
+//!   near the contact zone): the enrichment of `Problem::estimate_hierarchical` (`Problem::solve_enriched_twice`);
+//! - `S1`: the strip of one contact width bisected once (what `Problem::estimate_hierarchical` enriched until
+//!   2026-12-01);
 //! - `S1S`: `S1`, then its strip of half a contact width bisected again;
 //! - `WW`: the whole mesh bisected twice (on levels of at most `MAX_WW` unknowns, 0 by default).
 //!
@@ -60,7 +61,7 @@ fn main() -> Result<()> {
         let all: Vec<usize> = (0..p.mesh.n_triangles()).collect();
         let (pw, sw) = p.solve_enriched(&sol, &all, &friction, &settings)?;
         line += &record(0, &pw, &sw);
-        let (pws, sws) = pw.solve_enriched(&sw, &near_contact(&pw, &sw, 0.5 * width), &friction, &settings)?;
+        let (pws, sws) = p.solve_enriched_twice(&sol, &all, &friction, &settings)?;
         line += &record(1, &pws, &sws);
         let (ps, ss) = p.solve_enriched(&sol, &near_contact(&p, &sol, width), &friction, &settings)?;
         line += &record(2, &ps, &ss);

@@ -5,7 +5,7 @@
 //! Let λ_H be the answer, λ_f the answer of the same problem on the *enriched* mesh: every triangle bisected on
 //! its three edges, then, on that mesh, the triangles within half a contact width of the contact zone bisected
 //! again (h halved everywhere and quartered along the zone, each with its conforming closure), T_H halved where
-//! the FE edges under it were, both times ([`Problem::enriched_twice`]); and `d = ‖λ_H − λ_f‖_{L²(Γ_C)}` (normal and
+//! the FE edges under it were, both times (`Problem::enriched_twice`); and `d = ‖λ_H − λ_f‖_{L²(Γ_C)}` (normal and
 //! tangential together). By the triangle inequality, `(1 − q) e_H ≤ d ≤ (1 + q) e_H` with `e_H = ‖λ − λ_H‖` and
 //! `q = e_f / e_H` the reduction of the error by the enrichment. The *saturation assumption* of hierarchical
 //! estimators (Bank and Weiser 1985; Bank and Smith 1993; Dörfler and Nochetto 2002 on when it holds; for obstacle
@@ -25,7 +25,7 @@
 //! far field coarse); one bisection alone leaves half of the first. Measured on the levels of eight adaptive cases
 //! with at least 10 multiplier dofs in contact against the references of study 13 (the example `enrichments`, study
 //! 12, `docs/hierarchical.md`): this enrichment left `q` = 0.18–0.26 on one-body Hertz, 0.17–0.27 with P0
-//! multipliers, 0.18–0.36 off-centre, 0.20–0.59 with Coulomb friction (above ⅓ on its two finest levels only, 30k and
+//! multipliers, 0.18–0.36 off-centre, 0.20–0.58 with Coulomb friction (above ⅓ on its two finest levels only, 30k and
 //! 54k unknowns, where the reference's own error is a part of what is measured), 0.22–0.45 and 0.23–0.30 on two
 //! bodies (one level above ⅓): 47 of 51 levels within `q₀ = ⅓`; the strip of one contact width bisected once (this
 //! estimate's enrichment before 2026-12-01, with `q₀ = ½`) left 0.34–0.98 (above ⅓ on every level), the strip
@@ -52,11 +52,12 @@
 //! cell is of order `h^(1/2 − s)` and a halving of h removes only `1 − 2^−(1/2 − s)` of it. On the block
 //! scene (Coulomb, whole bottom in contact) the error of λ lives at the two corners (25 times the rest
 //! within 0.05 of them), one bisection removes 14 % of it there (q = 0.86: s ≈ 0.28) and the enrichment above
-//! (two there: the strip is the whole bottom) 26 % (q = 0.73–0.74 on 19 levels), and `1.5 ‖λ_H − λ_f‖` is 0.96–0.98
-//! times the truth (`2 ‖λ_H − λ_f‖` of the strip once was 0.85–0.99). So at each end of Γ_C whose multiplier dof
+//! (two there: the strip is the whole bottom) 26–30 % (q = 0.70–0.74 on 19 levels to 49k unknowns), and
+//! `1.5 ‖λ_H − λ_f‖` is 0.96–1.02 times the truth (`2 ‖λ_H − λ_f‖` of the strip once was 0.85–0.99). So at each end of
+//! Γ_C whose multiplier dof
 //! touches, the reduction is measured instead of assumed: R is the two cells of T_H at that end, the enriched
 //! problem is enriched again within |R| of the end point, twice (a few triangles, bisected as often as the first
-//! enrichment bisected them, [`Problem::enriched_at_ends`]) and solved from λ_f, and with
+//! enrichment bisected them, `Problem::enriched_at_ends`) and solved from λ_f, and with
 //! `d_R = ‖λ_H − λ_f‖_R`, `q_R = ‖λ_f − λ_ff‖_R / d_R`,
 //!
 //! `η_hier² = (1.5 ‖λ_H − λ_f‖_{Γ_C ∖ R})² + Σ_R (d_R / (1 − max(q_R, ⅓)))²`
@@ -85,7 +86,8 @@
 //! # Several contact pairs
 //! Γ_C is then every pair's side, and `‖·‖_{L²(Γ_C)}` adds the squares of each pair's norm on its own side
 //! ([`multiplier_difference`]). The strip bisected again is the union of each pair's: the triangles within half the
-//! width of that pair's contact zone (`adapt/strip.rs`); the enriched problem halves every pair's T_H where its FE edges
+//! width of that pair's contact zone (`adapt/strip.rs`); the enriched problem halves every pair's T_H where its FE
+//! edges
 //! were halved (the first pair's where contact is or may be, as for one pair; a further pair's where its FE edges
 //! were), and starts from every pair's multipliers. Every end of a pair's side that its contact zone reaches is an end
 //! region R, measured as above. Nothing else changes: the argument for `q₀ = ⅓` is the same on each side. The error
@@ -162,8 +164,8 @@ pub struct Hierarchical {
     /// The reduction `q` measured at each end of Γ_C where the contact zone reaches it (the module
     /// documentation): empty where no end touches.
     pub end_reductions: Vec<f64>,
-    /// The error bars of the forces and zone widths (the module documentation derives them): `None` where the
-    /// estimate was not computed (a history's step without its enriched answer).
+    /// The error bars of the forces and zone widths (the module documentation derives them); `None` for the steps
+    /// of a history ([`Problem::estimate_history_hierarchical`] estimates the tractions only).
     pub error_bars: Option<ErrorBars>,
 }
 
@@ -186,7 +188,7 @@ impl Hierarchical {
     }
 }
 
-/// The error bar of a zone's width: `max(2 |w_H − w_f|, r_H)` (the module documentation), 0 when neither
+/// The error bar of a zone's width: `max(1.5 |w_H − w_f|, r_H)` (the module documentation), 0 when neither
 /// answer has the zone.
 fn width_bar(coarse: Option<Zone>, enriched: Option<Zone>) -> f64 {
     let width = |z: Option<Zone>| z.map_or(0.0, |z| z.width());
@@ -204,10 +206,10 @@ pub(super) struct EndReduction {
 
 impl EndReduction {
     /// The bound of the error of `answer` at this end: `d_R / (1 − q)` for the coarse answer, `d_R q / (1 − q)`
-    /// for the enriched one (the module documentation), `q = max(q_R, ½)`: never a smaller factor than the rest
+    /// for the enriched one (the module documentation), `q = max(q_R, ⅓)`: never a smaller factor than the rest
     /// of Γ_C takes; infinite when the enrichment does not reduce the difference (q ≥ 1) or q is unknown (NaN).
     fn estimate(&self, answer: Answer) -> f64 {
-        // Not `max`, which would turn a NaN reduction into ½.
+        // Not `max`, which would turn a NaN reduction into ⅓.
         let q = if self.reduction < SATURATION { SATURATION } else { self.reduction };
         if q < 1.0 {
             answer.bound(self.difference, q)
@@ -236,7 +238,7 @@ impl Answer {
     }
 }
 
-/// The saturation constant q₀ of the enrichment ([`Problem::enriched_twice`]): the fraction of the error of λ it is
+/// The saturation constant q₀ of the enrichment (`Problem::enriched_twice`): the fraction of the error of λ it is
 /// assumed to leave at most (the module documentation).
 pub const SATURATION: f64 = 1.0 / 3.0;
 
@@ -244,11 +246,11 @@ pub const SATURATION: f64 = 1.0 / 3.0;
 const NOISE: f64 = FixedPointSettings::DEFAULT_TOL;
 
 /// `η_hier` from the difference `d` on all of Γ_C and the parts measured at its ends (the module
-/// documentation): for the error of the coarse answer `(4 (d² − Σ d_R²) + Σ (d_R / (1 − max(q_R, ½)))²)^½`; of
-/// the enriched answer `((d² − Σ d_R²) + Σ (d_R q / (1 − q))²)^½` with `q = max(q_R, ½)` (the factor
+/// documentation): for the error of the coarse answer `(2.25 (d² − Σ d_R²) + Σ (d_R / (1 − max(q_R, ⅓)))²)^½`; of
+/// the enriched answer `(¼ (d² − Σ d_R²) + Σ (d_R q / (1 − q))²)^½` with `q = max(q_R, ⅓)` (the factor
 /// ½ / (1 − ½) = 1 on the rest). An end whose difference is at most `noise` (the accuracy to which the solves
 /// determine λ) measures nothing: its q is a ratio of rounding, and it is left in the rest of Γ_C, where the
-/// factor 2 (1 for the enriched answer) keeps it within twice the noise.
+/// factor 1.5 (½ for the enriched answer) keeps it within 1.5 times the noise.
 pub(super) fn combine_for(answer: Answer, difference: f64, ends: &[EndReduction], noise: f64) -> f64 {
     // Squared in units of the difference, so that no unit of stress under- or overflows (defect D27).
     let unit = if difference > 0.0 && difference.is_finite() { difference } else { 1.0 };
@@ -265,7 +267,7 @@ pub(super) fn combine_for(answer: Answer, difference: f64, ends: &[EndReduction]
 
 /// `η_hier` and `η_hier / ‖λ_f‖` (NaN when `norm` is 0) from the difference and the norm on Γ_C and the
 /// parts measured at the ends ([`combine_for`]), the noise being the solves' accuracy: `fp_tol`, never looser
-/// than the default (a loose `fp_tol` must not leave a singular end to the factor 2, below the truth there);
+/// than the default (a loose `fp_tol` must not leave a singular end to the factor 1.5, below the truth there);
 /// then the same for the enriched answer.
 pub(super) fn estimate_of(difference: f64, norm: f64, ends: &[EndReduction], fp_tol: f64) -> [(f64, f64); 2] {
     [Answer::Coarse, Answer::Enriched].map(|answer| {

@@ -36,9 +36,13 @@ impl Problem {
         self.solve_built(solution, friction, settings, |p| p.enriched(&[solution], marked))
     }
 
-    /// [`Problem::solve_enriched`] with the enrichment of the hierarchical estimate: the triangles `first` bisected,
-    /// then the strip of half a contact width of `solution` on that mesh bisected again ([`Problem::enriched_twice`]).
-    pub(super) fn solve_enriched_twice(
+    /// [`Problem::solve_enriched`] with the enrichment of the hierarchical estimate ([`crate::adapt::enriched`]):
+    /// the triangles `first` bisected (all of them for the estimate), then the triangles within half a contact width
+    /// of `solution`'s contact zone on that mesh bisected again (nothing more where nothing touches).
+    ///
+    /// # Errors
+    /// Those of [`Problem::solve_enriched`].
+    pub fn solve_enriched_twice(
         &self,
         solution: &Solution,
         first: &[usize],

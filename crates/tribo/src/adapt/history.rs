@@ -118,7 +118,8 @@ impl Problem {
     /// for one solve, with the whole history solved on the enriched mesh (friction depends on the path, so a
     /// step cannot be enriched alone). The whole mesh is bisected, then the triangles within half a contact width of
     /// the contact zone of every kept step again (for a step with one multiplier dof touching, within the two T_H
-    /// cells around it; nothing more when no step touches); where an end of Γ_C touches in a step, the history is solved once more
+    /// cells around it; nothing more when no step touches); where an end of Γ_C touches in a step, the history is
+    /// solved once more
     /// on the mesh enriched again at the ends, and that step's reduction there is measured. Each step's
     /// enriched solve starts from its own multipliers when every step was kept. The steps solved are the
     /// converged ones of `history`; the estimates carry the enriched history's status, and a step it did not
@@ -154,7 +155,7 @@ impl Problem {
             return Ok((Vec::new(), None));
         }
         self.check_history_of(history)?;
-        // A step with one multiplier dof touching takes the two T_H cells around it.
+        // The whole mesh, then the strip of every step again (a step with one dof touching: the cells around it).
         let all: Vec<usize> = (0..self.mesh.n_triangles()).collect();
         // The enriched histories keep every step while this one is held: each must fit what the budget leaves.
         let steps = &history.steps[..history.records.len()];
@@ -264,9 +265,9 @@ impl Problem {
         history.solutions.iter().try_for_each(|s| self.check_solution_of(s))
     }
 
-    /// The converged steps of `history` solved on this problem with the triangles `marked` bisected on all
-    /// three edges (and the conforming closure), T_H refined where the FE edges under it were (keeping this
-    /// problem's ratio H/h), every step kept; step k starts from step k's multipliers when every step was kept.
+    /// The converged steps of `history` solved on the problem that `build` makes of this one and the steps'
+    /// solutions (this problem enriched: `Problem::enriched_twice`, `Problem::enriched_at_ends`), every step kept;
+    /// step k starts from step k's multipliers when every step was kept.
     /// The memory budget is what `settings` gives less the `held` bytes of the histories kept meanwhile.
     fn solve_enriched_history(
         &self,

@@ -28,7 +28,8 @@ pub struct Level {
     /// How the level's solve ended.
     pub status: SolveStatus,
     /// Whether the level is the answer enriched for the estimate of the level before it, handed back as the
-    /// last level (`stop_on = "enriched"`: module documentation); its estimate is then its change from that level.
+    /// last level (`stop_on = "enriched"`: module documentation); its estimate is then half its change from that
+    /// level.
     pub enriched: bool,
     /// The level's mesh (the edge sets and the newest-vertex labels with it), so that a level can be
     /// looked at or solved again. The levels grow geometrically, so all their meshes together take a few

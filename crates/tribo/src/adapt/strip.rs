@@ -54,7 +54,7 @@ fn neighbouring_points(pair: &PairParts<'_>, span: (f64, f64)) -> (f64, f64) {
 
 /// The width of the strip along a pair's contact zone `span`: the span itself ([`Solution::contact_width`] less the
 /// half cells at its ends), or where one dof touches, the span of the T_H points on either side of it (a window of
-/// two cells; the whole mesh, which it took before, costs 4 times the unknowns, for every step of a history).
+/// two cells).
 fn strip_width(pair: &PairParts<'_>, (lo, hi): (f64, f64)) -> f64 {
     if hi > lo {
         return hi - lo;

@@ -369,7 +369,8 @@ fn a_full_ring_in_a_hole_refines_adaptively_with_its_cut_in_place() {
 /// rim pushed by 0.00105 toward the loop's cut (the node of the smallest index, on the outer arc). The ring touches
 /// round the cut only; its contact zone is read as that arc (before, from its first dof to its last: nearly the
 /// whole loop), centred on the cut, as wide as the same ring pushed the other way (the zone then in the middle
-/// of the loop), and the hierarchical estimate enriches a strip round the cut, not the whole ring.
+/// of the loop), and the hierarchical estimate, past the whole ring bisected once, bisects again a strip round the
+/// cut (as large as round the zone in the middle), not the whole ring.
 #[test]
 fn a_contact_zone_across_a_loops_cut_is_read_as_one_arc() {
     let (a, b, clearance, push) = (0.5, 1.0, 1e-3, 1.05e-3);

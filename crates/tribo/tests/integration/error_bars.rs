@@ -14,8 +14,9 @@ fn partial_slip() -> (Problem, Friction) {
 
 /// Each bar is at least the error of its quantity against the answer on the mesh refined twice more
 /// everywhere (h / 4: its own error is about 1/16 of the forces' and 1/4 of the widths'); a force's bar is at
-/// most three times its error (the saturation argument gives 1.5, studies 14 and 15 measure 1.29–2.81,
-/// the largest where the true error nears the reference's own), while a width's may be more (its error is
+/// most three times its error (the saturation argument gives about 1.125 under a prescribed approach; studies 14 and
+/// 15 measure them, the largest where the true error nears the reference's own), while a width's may be more (its error
+/// is
 /// quantized by the dof spacing: up to 32 in `docs/error_bars.md`) and is at
 /// least the resolution of its zone. The traction estimate of the same enriched solve comes with them.
 #[test]
@@ -64,9 +65,7 @@ fn bars_come_with_the_hierarchical_estimate_and_only_when_asked_for() {
     assert_eq!(plain.report.estimate.error_bars, None);
     assert!(plain.report.estimate.named().iter().any(|(k, v)| *k == "normal_force_error" && v.is_nan()));
     let estimate = problem.estimate_hierarchical(&plain, &friction, &settings).expect("estimates");
-    assert!(estimate.error_bars.is_some() && estimate.relative > 0.0);
-    let bars = problem.estimate_error_bars(&plain, &friction, &settings).expect("estimates");
-    assert_eq!((bars.error_bars, bars.relative), (estimate.error_bars, estimate.relative));
+    assert!(estimate.error_bars.is_some_and(|b| b.normal_force > 0.0) && estimate.relative > 0.0);
     let apart = tribo_testkit::hertz_problem(0.04, -0.01, 0.0, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
     let nothing = apart.solve_with_error_bars(&friction, &settings, None).expect("solves");
     let bars = nothing.report.estimate.error_bars.expect("computed");

@@ -138,11 +138,11 @@ fn the_enriched_problem_halves_h_and_h_and_its_answer_is_closer() {
     assert!(near_contact(&apart, &none, f64::INFINITY).is_empty());
 }
 
-/// The hierarchical estimate (`Problem::estimate_hierarchical`, 2 ‖λ_H − λ_f‖) on the graded Hertz family
+/// The hierarchical estimate (`Problem::estimate_hierarchical`, 1.5 ‖λ_H − λ_f‖) on the graded Hertz family
 /// of `the_traction_estimate_bounds_the_hertz_error_and_falls_with_it`, against the plane-strain Hertz
-/// pressure: its effectivity stays within [1, 2] on every mesh (issue 36's target; measured 1.96, 1.32,
-/// 1.15), where the bound's grows from 5.8 to 11.9 over the same meshes. The enriched problem is a strip
-/// (1.7 times the unknowns here), not the whole mesh.
+/// pressure: its effectivity stays within [1, 2] on every mesh (issue 36's target; measured 1.46, 1.21,
+/// 1.13), where the bound's grows from 5.8 to 11.9 over the same meshes. The enriched problem is the whole mesh
+/// bisected and the strip along the zone again (5.4 times the unknowns here).
 #[test]
 fn the_hierarchical_estimate_is_within_twice_the_hertz_error() {
     let s = tribo_testkit::hertz_scene();
@@ -216,11 +216,13 @@ fn a_per_dof_threshold_is_estimated_as_its_function() {
 }
 
 /// Where the contact zone reaches an end of Γ_C, λ need not vanish there (issue 36): on the block (Coulomb,
-/// the whole bottom in contact and slipping at its corners) the traction is singular at the corners, an
-/// enrichment removes only about 14 % of the error there, and `2 ‖λ_H − λ_f‖` alone was 0.85–0.99 times the
-/// true error on every level (the changelog). The reduction is measured at each touching end instead of
-/// assumed (studies 14 and 15, `docs/error_bars.md`: the estimate 2.33–3.22 times the truth): both ends measured (above the ½ the rest of Γ_C assumes), and the estimate above the true error against
-/// an adaptive reference of 60–120k unknowns (measured: about 3 times it, where the bound is 1.9 times).
+/// the whole bottom in contact and slipping at its corners) the traction is singular at the corners, a
+/// bisection removes only about 14 % of the error there, and `2 ‖λ_H − λ_f‖` of the strip bisected once was 0.85–0.99
+/// times the true error on every level (the changelog; `1.5 ‖λ_H − λ_f‖` of the enrichment since, 0.96–1.02: study 12).
+/// The reduction is measured at each touching end instead of assumed (studies 14 and 15, `docs/error_bars.md`): both
+/// ends measured (above the ⅓ the rest of Γ_C assumes), and the estimate above the true error against
+/// an adaptive reference of 60–120k unknowns (measured: 2.5 times it, where the bound is 1.9 times; reductions 0.73
+/// and 0.75).
 #[test]
 fn at_the_ends_of_gamma_c_in_contact_the_reduction_is_measured() {
     use tribo::adapt::multiplier_difference;
@@ -235,14 +237,15 @@ fn at_the_ends_of_gamma_c_in_contact_the_reduction_is_measured() {
     let truth = error / norm;
     let h = problem.estimate_hierarchical(&sol, &friction, &settings).expect("estimates");
     println!(
-        "{} unknowns: true {truth:.3e}, hierarchical {:.2} (2 d: {:.2}), bound {:.2}, reductions {:?}",
+        "{} unknowns: true {truth:.3e}, hierarchical {:.2} (1.5 d: {:.2}), bound {:.2}, reductions {:?}",
         problem.n_free,
         h.relative / truth,
-        2.0 * h.difference / h.norm / truth,
+        1.5 * h.difference / h.norm / truth,
         sol.report.estimate.traction_relative / truth,
         h.end_reductions
     );
     assert_eq!(h.end_reductions.len(), 2);
-    assert!(h.end_reductions.iter().all(|q| (0.5..1.0).contains(q)), "{:?}", h.end_reductions);
+    let assumed = tribo::adapt::enriched::SATURATION;
+    assert!(h.end_reductions.iter().all(|q| (assumed..1.0).contains(q)), "{:?}", h.end_reductions);
     assert!(h.relative >= truth && h.relative <= 5.0 * truth, "{} against {truth}", h.relative);
 }
