@@ -291,7 +291,7 @@ def run_scene(
             problem, solution, adapt_stop = static.problem, static.solution, static.stop
             adaptive = static
             # The last level's hierarchical estimate brings its bars (the same enriched solve): solved again only
-            # where it has none (the loop stopped on the bound, or handed back an enriched answer).
+            # where it has none (the loop did not estimate its last level, or handed back an enriched answer).
             has_bars = math.isfinite(solution.report.estimate.get("normal_force_error", math.nan))
             if scene.get("estimate", "error_bars", False) and not has_bars:
                 log.info("solving the last level again with its error bars")

@@ -95,8 +95,8 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     }
     let adapt = AdaptSettings { tol: 1e-5, max_unknowns, stop_on: StopOn::Bound, ..AdaptSettings::default() };
     let run = coarse.solve_adaptive(&friction, &settings, &adapt, None)?;
-    let mut header = "level unknowns in-contact seconds(solve, enriched) | tractions: true error, strip/true \
-                      whole/true bound/true smaller/true"
+    let mut header = "level unknowns in-contact seconds(solve, enriched) | tractions: true error, hierarchical/true \
+                      bars'/true bound/true smaller/true"
         .to_string();
     for (name, _) in QUANTITIES {
         header += &format!(" | {name}: true error, bar/true");
@@ -154,10 +154,10 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     drop(csv);
     std::fs::rename(&partial, &done)?;
     let traction_names = [
-        "tractions, hierarchical (strip)",
-        "tractions, hierarchical (whole mesh)",
+        "tractions, hierarchical",
+        "tractions, hierarchical (the bars' solve)",
         "tractions, bound",
-        "tractions, the smaller of the strip's and the bound (what the adaptive stop reads)",
+        "tractions, the smaller of the hierarchical estimate and the bound (what the adaptive stop reads)",
     ];
     let names = traction_names.iter().copied().chain(QUANTITIES.iter().map(|(name, _)| *name));
     for (name, r) in names.zip(tractions.iter().chain(&ratios)) {

@@ -248,7 +248,7 @@ const NOISE: f64 = FixedPointSettings::DEFAULT_TOL;
 /// `η_hier` from the difference `d` on all of Γ_C and the parts measured at its ends (the module
 /// documentation): for the error of the coarse answer `(2.25 (d² − Σ d_R²) + Σ (d_R / (1 − max(q_R, ⅓)))²)^½`; of
 /// the enriched answer `(¼ (d² − Σ d_R²) + Σ (d_R q / (1 − q))²)^½` with `q = max(q_R, ⅓)` (the factor
-/// ½ / (1 − ½) = 1 on the rest). An end whose difference is at most `noise` (the accuracy to which the solves
+/// ⅓ / (1 − ⅓) = ½ on the rest). An end whose difference is at most `noise` (the accuracy to which the solves
 /// determine λ) measures nothing: its q is a ratio of rounding, and it is left in the rest of Γ_C, where the
 /// factor 1.5 (½ for the enriched answer) keeps it within 1.5 times the noise.
 pub(super) fn combine_for(answer: Answer, difference: f64, ends: &[EndReduction], noise: f64) -> f64 {
