@@ -108,6 +108,37 @@ def effectivity_rows(levels: list[dict[str, Any]]) -> dict[str, list[dict[str, A
     return out
 
 
+def read_rows(levels: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Every distinct level of the hierarchical stop's runs (a history: every step where the steps were estimated)
+    where the stop read a sharp estimate: the hierarchical estimate where it was computed, else the calibrated bound
+    where it was formed (the level after an estimated one); with the effectivity of what the stop read there (the
+    smaller of that and the bound) and of the calibrated bound."""
+    seen: dict[tuple[str, float, str], dict[str, Any]] = {}
+    # The level each run stopped on (its last level's unknowns).
+    ends: dict[tuple[str, float], tuple[float, float]] = {}
+    for r in levels:
+        if r["stop_on"] == "hierarchical" and r["step"] == "":
+            key = (r["case"], r["tol"])
+            ends[key] = max(ends.get(key, (-1.0, 0.0)), (r["level"], r["unknowns"]))
+    stops = {(case, unknowns) for (case, _), (_, unknowns) in ends.items()}
+    for case in sorted({r["case"] for r in levels}, key=order):
+        rows = [r for r in levels if r["case"] == case and r["stop_on"] == "hierarchical"
+                and (r["hierarchical"] is not None or r.get("calibrated") is not None)
+                and r["true_error"] is not None and math.isfinite(r["true_error"]) and r["true_error"] > 0]
+        stepped = {r["unknowns"] for r in rows if r["step"] != ""}
+        for r in rows:
+            if r["unknowns"] in stepped and r["step"] == "":
+                continue
+            sharp = r["hierarchical"] if r["hierarchical"] is not None else r["calibrated"]
+            calibrated = r.get("calibrated")
+            seen.setdefault((case, r["unknowns"], r["step"]), {
+                **r, "kind": "hierarchical" if r["hierarchical"] is not None else "calibrated",
+                "last": (case, r["unknowns"]) in stops,
+                "read_effectivity": sl.smaller(sharp, r["bound"]) / r["true_error"],
+                "calibrated_effectivity": calibrated / r["true_error"] if calibrated is not None else None})
+    return list(seen.values())
+
+
 def _range(values: list[float]) -> str:
     return f"{min(values):.2f}–{max(values):.2f}" if values else "–"
 
@@ -126,10 +157,12 @@ def _counted(levels: list[dict[str, Any]], key: str) -> tuple[int, str]:
 def summary(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, Any]]],
             effectivity_levels: list[dict[str, Any]]) -> str:
     """What the tables show, counted from them (``effectivity_levels``: every level row, for the enriched answers
-    handed back)."""
+    handed back and what the stop read)."""
+    read_levels = read_rows(effectivity_levels)
     lines = []
-    for stop, what in (("hierarchical", "stopping on the hierarchical estimate** (`stop_on = \"hierarchical\"`)"),
-                       ("enriched", "handing back the enriched answer** (`stop_on = \"enriched\"`, the default)")):
+    for stop, what in (("hierarchical", "stopping on the hierarchical estimate** (`stop_on = \"hierarchical\"`, the "
+                                        "default)"),
+                       ("enriched", "handing back the enriched answer** (`stop_on = \"enriched\"`)")):
         sharp = [r for r in runs if r["stop_on"] == stop]
         if not sharp:
             continue
@@ -143,11 +176,13 @@ def summary(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, An
                      f"({_range([r['time_ratio'] for r in timed])}). Both at once: "
                      f"{sum(1 for r in timed if r['in_band'] and r['in_time'])} of {len(sharp)} runs.")
     if any(r["stop_on"] == "hierarchical" for r in runs):
-        lines.append("* Stopping on the hierarchical estimate ends only on a level whose estimate is at most X, so "
-                     "where the first adequate level's true error is above X over the effectivity, it pays another "
-                     "level and its estimate (the level about twice the unknowns of the one before, the estimate 8-9 times "
-                     "the level's); handing back the enriched answer, whose estimate is a third of the level's, stops at "
-                     "that level or before it wherever the effectivity is at most 3.")
+        lines.append("* Stopping on the hierarchical estimate ends on a level whose estimate is at most X, or on the "
+                     "level after an estimated one whose calibrated bound is: where the first adequate level's "
+                     "hierarchical estimate is just above X (its effectivity is about 1.5), the next level stops "
+                     "without an enriched solve of its own (8-9 times its unknowns), at the price of one more level's "
+                     "solve; handing back the enriched answer, whose estimate is a third of the level's, stops at "
+                     "that level or before it wherever the effectivity is at most 3, with an answer that often keeps "
+                     "less than a third of X.")
     bound = [r for r in runs if r["stop_on"] == "bound"]
     if bound:
         lines.append(f"* **Stopping on the bound** (`stop_on = \"bound\"`): true error over X "
@@ -160,10 +195,23 @@ def summary(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, An
                      f"contact: {inside} of {len(resolved)} levels (of a history, steps) in [1, 2] "
                      f"({_range([r['effectivity'] for r in resolved])}); the bound's "
                      f"{_range([r['bound_effectivity'] for r in resolved])}" + (f". Outside: {out}." if out else "."))
-        inside, out = _counted(resolved, "read_effectivity")
-        lines.append(f"* **What the stop reads**, the smaller of the hierarchical estimate and the bound (both are "
-                     f"reported): {inside} of {len(resolved)} levels in [1, 2] "
-                     f"({_range([r['read_effectivity'] for r in resolved])})" + (f". Outside: {out}." if out else "."))
+    read = [r for r in read_levels if r["in_contact"] >= MIN_IN_CONTACT]
+    calibrated = [r for r in read if r["calibrated_effectivity"] is not None]
+    if calibrated:
+        inside, out = _counted(calibrated, "calibrated_effectivity")
+        stopped = [r["calibrated_effectivity"] for r in calibrated if r["kind"] == "calibrated" and r["last"]]
+        lines.append(f"* **The calibrated bound** (the bound times the ratio of the two estimates on the level before) "
+                     f"on the levels where the loop formed it: {inside} of {len(calibrated)} in [1, 2] "
+                     f"({_range([r['calibrated_effectivity'] for r in calibrated])})"
+                     + (f"; outside: {out}" if out else "")
+                     + (f"; on the {len(stopped)} level{'s' if len(stopped) != 1 else ''} that stopped on it "
+                        f"{_range(stopped)}." if stopped else "."))
+    if read:
+        inside, out = _counted(read, "read_effectivity")
+        lines.append(f"* **What the stop reads**, the smaller of the bound and the hierarchical estimate where it was "
+                     f"computed, the calibrated bound on the level after (each is reported): {inside} of {len(read)} "
+                     f"levels in [1, 2] ({_range([r['read_effectivity'] for r in read])})"
+                     + (f". Outside: {out}." if out else "."))
     handed = handed_back(effectivity_levels)
     if handed:
         inside = [r for r in handed if EFFECTIVITY[0] <= r["effectivity"] <= EFFECTIVITY[1]]
@@ -224,15 +272,19 @@ def page(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, Any]]
           f"{r['cheapest_unknowns']:.0f}, {r['cheapest_seconds']:.3g}" if r["cheapest_seconds"] else "none reached X",
           f"{r['time_ratio']:.2f}", r["stop"]] for r in runs])
     per_case = []
+    read = [r for r in read_rows(levels) if r["in_contact"] >= MIN_IN_CONTACT]
     for case, rows in effectivity.items():
         resolved = [r for r in rows if r["in_contact"] >= MIN_IN_CONTACT]
         listed = "; ".join(f"{r['unknowns']:.0f}" + (f" s{r['step']}" if r["step"] != "" else "")
                            + f": {r['effectivity']:.2f} ({r['bound_effectivity']:.1f})" for r in rows)
+        calibrated = [r["calibrated_effectivity"] for r in read
+                      if r["case"] == case and r["calibrated_effectivity"] is not None]
         per_case.append([case, len(resolved), _range([r["effectivity"] for r in resolved]),
-                         _range([r["bound_effectivity"] for r in resolved]),
-                         _range([r["read_effectivity"] for r in resolved]), listed])
+                         _range([r["bound_effectivity"] for r in resolved]), _range(calibrated),
+                         _range([r["read_effectivity"] for r in read if r["case"] == case]), listed])
     eff = sl.markdown_table(["case", f"levels with ≥ {MIN_IN_CONTACT} dofs in contact", "hierarchical / true",
-                             "bound / true", "the smaller / true (what the stop reads)",
+                             "bound / true", "calibrated bound / true",
+                             "what the stop reads / true (the smaller of the bound and the sharp estimate)",
                              "every level computed (a history: sN its step N): unknowns: "
                              "hierarchical / true (bound / true)"], per_case)
     return "\n\n".join([
@@ -249,7 +301,8 @@ def page(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, Any]]
         "## What it shows\n\n" + summary(runs, effectivity, levels), "![tol table](tol_table.png)",
         "## The runs\n\n" + table,
         "## Effectivity of the estimates\n\nEvery level where the loop computed the hierarchical estimate, in any "
-        "run of the case (once each).\n\n" + eff])
+        "run of the case (once each); the calibrated bound and what the stop reads on every level where the loop "
+        "formed the one or computed the other.\n\n" + eff])
 
 
 def main(argv: list[str] | None = None) -> dict[str, Any]:

@@ -9,8 +9,8 @@ every assembly included). Families:
 * graded, growth 0.3 and growth 0.15: `Mesh.graded_rectangle` toward [−0.3, 0.3] (the scene's hint, which
   covers both contact zones), h_max = 0.5, h_min halved from 0.04;
 * adaptive: from the 8 × 4 uniform mesh (no node under either contact zone), tol from 0.2 to 0.01, stopping
-  on the bound (`stop_on="bound"`) and on the hierarchical estimate (`stop_on="hierarchical"`; the default,
-  `"enriched"`, is measured by study 13).
+  on the bound (`stop_on="bound"`) and on the hierarchical estimate (`stop_on="hierarchical"`, the default;
+  `"enriched"` is measured by study 13).
 
 Error: the relative L2 error of λ_n against a converged reference of the same scene (`studylib.REFERENCE`: graded
 toward [c − 0.1, c + 0.1] around the cylinder's centre c, h_min 0.0003125, growth 0.03, h_max 0.05; 175k
@@ -170,7 +170,7 @@ def write(rows: list[dict[str, Any]], out: Path) -> None:
         md.append("\n")
     md.append("## Adaptive runs\n\n")
     md.append("Stopping on the bound (`adaptive`: `stop_on=\"bound\"`) and on the hierarchical estimate (`adaptive, "
-              "hierarchical stop`: `stop_on=\"hierarchical\"`; the default, `\"enriched\"`, is measured by study 13); "
+              "hierarchical stop`: `stop_on=\"hierarchical\"`, the default; `\"enriched\"` is measured by study 13); "
               "`adaptive_asked.png` charts the error reached and "
               "the time against the tolerance asked.\n\n")
     md.append(sl.markdown_table(

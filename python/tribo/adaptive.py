@@ -8,7 +8,8 @@ mesh is the refined one):
   stops on (of the contact tractions, or of the energy while nothing touches), the estimate η with its
   bulk, Γ_C, contact and friction parts, the traction bound and (where the loop computed it, unless
   ``stop_on = "bound"``) the hierarchical traction estimate (on an enriched answer handed back, the last level,
-  ``enriched`` and with 0 seconds, ½‖λ_H − λ_f‖: that answer's own), the level's seconds, status and ``enriched``;
+  ``enriched`` and with 0 seconds, ½‖λ_H − λ_f‖: that answer's own) and on the level after it the calibrated
+  bound, the level's seconds, status and ``enriched``;
 * ``adapt.png`` (``tribo run --plots``): the relative estimate, the bound and the hierarchical estimate,
   and η against the unknowns (log-log), with the tolerance;
 * ``levels/level_NNN.vtu`` and ``adapt.pvd`` (``write_levels``, only with the scene's ``[adapt]
@@ -46,7 +47,7 @@ def adapt_table(adaptive: Adaptive | AdaptiveHistory) -> dict[str, list[Any]]:
         "relative": [x.relative for x in lv],
     }
     for key in ("total", "bulk", "gamma_c", "contact", "friction", "traction_relative", "energy_relative",
-                "traction_hierarchical_relative"):
+                "traction_hierarchical_relative", "traction_calibrated_relative"):
         table[f"estimate_{key}"] = [x.estimate[key] for x in lv]
     table["seconds"] = [x.seconds for x in lv]
     table["status"] = [x.status for x in lv]
@@ -55,8 +56,8 @@ def adapt_table(adaptive: Adaptive | AdaptiveHistory) -> dict[str, list[Any]]:
 
 
 def handed_back(adaptive: Adaptive | AdaptiveHistory) -> bool:
-    """Whether the loop handed back the answer enriched for the last estimated level (``stop_on='enriched'``, the
-    default): the last level is ``enriched``. Its hierarchical estimate is then ½‖λ_H − λ_f‖, half its change from
+    """Whether the loop handed back the answer enriched for the last estimated level (``stop_on='enriched'``): the
+    last level is ``enriched``. Its hierarchical estimate is then ½‖λ_H − λ_f‖, half its change from
     the level it enriched."""
     return adaptive.levels[-1].enriched
 

@@ -118,6 +118,9 @@ def _run(scene_path: Path, out: Path, plots: bool, all_files: bool = False) -> i
     kind = "half its change from the level it enriched" if said_json["adapt_handed_back"] and not with_bars else \
         "hierarchical"
     sharp = est.get("traction_hierarchical_relative", math.nan)
+    if not math.isfinite(sharp):
+        # The level after an estimated one: the bound scaled by the two estimates' ratio measured there.
+        sharp, kind = est.get("traction_calibrated_relative", math.nan), "the bound calibrated on the level before"
     traction = (f"{_percent(sharp)} in the contact tractions (L2 of Γ_C; {kind}, sharp but not a bound; "
                 f"the bound: {_percent(est['traction_relative'])}), " if math.isfinite(sharp) else
                 f"{_percent(est['traction_relative'])} in the contact tractions (L2 of Γ_C, a bound), ")

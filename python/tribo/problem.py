@@ -351,22 +351,22 @@ class Problem(_tribo.Problem):
         last ``solution``, the ``problem`` on the last mesh, every level and the reason it stopped.
 
         The relative estimate is that of the contact tractions (λ in L²(Γ_C)) when something touches, of
-        the energy while nothing does. By default (``stop_on='enriched'``; ``'hierarchical'`` alike but never
-        handing back the enriched answer, below) it is the smaller of the residual
+        the energy while nothing does. By default (``stop_on='hierarchical'``) it is the smaller of the residual
         bound and the hierarchical estimate 1.5‖λ_H − λ_f‖ / ‖λ_f‖ (λ_f the answer with the whole mesh bisected
         and the strip along the contact zone again, ``report.estimate["traction_hierarchical_relative"]``; where
         the contact zone reaches an end of Γ_C, its reduction there is measured by a second enrichment): 1.38–1.59
         times the true error on every level of eight cases of docs/tol_table.md, not a guaranteed bound (the bound
         is the smaller where the traction is singular at a corner: the block, 1.85–1.98), computed on the levels
         near ``tol`` with at least 10 multiplier dofs in contact at the cost of a solve of 8–9 times their
-        unknowns; the answer's true error then ended at 0.34–0.68 ``tol`` with ``'hierarchical'`` (in
-        [tol/3, tol] in all 36 runs of nine cases, within twice the time of the cheapest adequate level in 12).
-        With ``'enriched'`` the loop also hands back the answer of a level's enriched problem where its own
-        estimate (a third of the level's away from the ends of Γ_C in contact) meets ``tol`` and the level's own
-        does not (P1 multipliers, a mesh without curves; a history's enriched history alike; ``progress``'s
-        return value is not read for that last level): one level sooner as a rule, a more accurate answer, often
-        more than asked, an estimate less sharp (in [tol/3, tol] in 22 of 32 runs, the others below, within twice
-        the time of the cheapest adequate level in 31). With ``stop_on='bound'`` it is the residual bound alone, above
+        unknowns. The level right after an estimated one reads the calibrated bound instead, the bound times the
+        ratio of the two measured there (``report.estimate["traction_calibrated_relative"]``), and may stop on it
+        without an enriched solve of its own. The answer's true error then ends in [tol/3, tol] at about the time of
+        the cheapest adequate level (docs/tol_table.md counts the runs). With ``'enriched'`` the loop also hands back
+        the answer of a level's enriched problem where its own estimate (a third of the level's away from the ends
+        of Γ_C in contact) meets ``tol`` and the level's own does not (P1 multipliers, a mesh without curves; a
+        history's enriched history alike; ``progress``'s return value is not read for that last level): a more
+        accurate answer of 8–9 times the level's unknowns, often more than asked, sooner. With
+        ``stop_on='bound'`` it is the residual bound alone, above
         the true error but pessimistically (on Hertz by 3 on coarse meshes and up to 24 on fine ones,
         docs/STUDIES.md, study 6): the answer is usually many times more accurate than ``tol``, at many times
         the unknowns. Marking is Dörfler's with ``theta`` (default 0.5), or the maximum

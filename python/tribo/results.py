@@ -147,11 +147,11 @@ class Report(_Record):
             hierarchical estimate (1.5‖λ_H − λ_f‖, λ_f with the whole mesh bisected and the strip along the
             contact zone again; the reduction measured where the zone reaches an end of Γ_C) and its ratio
             to ‖λ_f‖ (sharp but not a bound; inf where a measured reduction is 1 or more: no estimate; NaN
-            unless an adaptive solve (``stop_on`` ``'enriched'``, the default, or ``'hierarchical'``) or
-            ``solve(error_bars=True)`` computed it; on the enriched answer an adaptive solve hands back,
-            ½‖λ_H − λ_f‖, the estimate of that answer's own error); from the same enriched solve, the
-            error bars ``normal_force_error``, ``tangential_force_error``, ``contact_width_error`` and
-            ``stick_width_error`` (estimated absolute errors, NaN unless computed). Empty without an estimate.
+            unless an adaptive solve (``stop_on`` ``'hierarchical'``, the default, or ``'enriched'``) or
+            ``solve(error_bars=True)`` computed it; on an enriched answer handed back, ½‖λ_H − λ_f‖, its own error); ``traction_calibrated_relative``, on the adaptive level after one so
+            estimated, its bound times their ratio there (NaN elsewhere); from the same enriched solve, the error bars
+            ``normal_force_error``, ``tangential_force_error``, ``contact_width_error``, ``stick_width_error``
+            (estimated absolute errors, NaN unless computed). Empty without an estimate.
     """
 
     status: Status

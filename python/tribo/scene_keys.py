@@ -154,12 +154,11 @@ MEANINGS: dict[str, tuple[str, str, str | None]] = {
     "adapt.max_levels": ("The most levels", "—", "40"),
     "adapt.algebraic": ("A coarse level's fixed point stops at this fraction of the previous level's estimate",
                         "—", "0.1"),
-    "adapt.stop_on": ("The estimate `tol` is read against: `\"enriched\"` the smaller of the bound and the "
-                      "hierarchical estimate (sharp, not a bound), the answer enriched for a level's estimate handed "
-                      "back where its own estimate meets `tol` and the level's does not (P1 multipliers, a mesh without "
-                      "curves); "
-                      "`\"hierarchical\"` the same, never handing it back; `\"bound\"` the bound alone (safe, "
-                      "pessimistic)", "—", '`"enriched"`'),
+    "adapt.stop_on": ("The estimate `tol` is read against: `\"hierarchical\"` the smaller of the bound and the "
+                      "hierarchical estimate (sharp, not a bound), the bound calibrated by it on the level after; "
+                      "`\"enriched\"` the same, and the answer enriched for a level's estimate handed back where its "
+                      "own estimate meets `tol` and the level's does not (P1 multipliers, a mesh without curves); "
+                      "`\"bound\"` the bound alone (safe, pessimistic)", "—", '`"hierarchical"`'),
     "adapt.on": ("With `[history]`: the steps whose indicators mark", "—", "every step"),
     "adapt.write_levels": ("`tribo run` also writes every level, each but the last (the answer) solved again "
                            "(`levels/`, `adapt.pvd`)", "—",

@@ -81,10 +81,10 @@ A scene has these tables (every key is optional unless marked *required*; see ``
     default 0.01), ``max_unknowns`` (default 200 000), ``theta`` (Dörfler's θ, default 0.5), ``marking``
     (``"dorfler"``/``"maximum"``), ``bisection`` (``"all_edges"``, the default, or ``"refinement_edge"``),
     ``max_levels`` (default 40), ``algebraic`` (default 0.1: a coarse level's
-    fixed point stops at that fraction of the previous level's estimate), ``stop_on`` (``"enriched"``, the
+    fixed point stops at that fraction of the previous level's estimate), ``stop_on`` (``"hierarchical"``, the
     default: the smaller of the residual bound and the sharp hierarchical estimate, not a guaranteed bound, at
-    the cost of an enriched solve on the levels near ``tol``, and the enriched answer handed back where its own
-    estimate meets ``tol``; ``"hierarchical"``: the same estimate, never handing back the enriched answer;
+    the cost of an enriched solve on the levels near ``tol``, the bound calibrated by it on the level after;
+    ``"enriched"``: the same, and the enriched answer handed back where its own estimate meets ``tol``;
     ``"bound"``: the residual bound alone, safe but pessimistic). The core checks the values. With a
     ``[history]``, every level solves the whole history (``Problem.solve_history_adaptive``) and is refined on
     the largest indicators over the steps ``on`` (a list of step numbers; default all of them), and the

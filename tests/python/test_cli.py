@@ -423,10 +423,12 @@ def test_run_reports_the_estimated_error(tmp_path: Path, capsys: pytest.CaptureF
     summary = json.loads((tmp_path / "o" / "summary.json").read_text(), parse_constant=lambda c: pytest.fail(c))
     est = summary["estimate"]
     assert set(est) == {"total", "bulk", "gamma_c", "contact", "friction", "energy_relative", "traction", "traction_relative",
-                        "traction_hierarchical", "traction_hierarchical_relative", "normal_force_error",
+                        "traction_hierarchical", "traction_hierarchical_relative", "traction_calibrated_relative",
+                        "normal_force_error",
                         "tangential_force_error", "contact_width_error", "stick_width_error"}
-    # Computed only when asked (an adaptive run with stop_on, or solve(error_bars=True)).
+    # Computed only when asked (an adaptive run with stop_on, or solve(error_bars=True)); formed only by a loop.
     assert est["traction_hierarchical"] is None and est["normal_force_error"] is None
+    assert est["traction_calibrated_relative"] is None
     assert est["total"] ** 2 == pytest.approx(est["bulk"] ** 2 + est["gamma_c"] ** 2 + est["contact"] ** 2 + est["friction"] ** 2)
     assert float(printed.group(1)) == pytest.approx(100 * est["traction_relative"], rel=0.05)
     problem, solution = load_scene(path).solve()
@@ -465,11 +467,12 @@ tol = 0.05
 
 def test_run_adapts_a_scene_with_an_adapt_table(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """``[adapt]``: the outputs are the last level's, on its refined mesh, and adapt.csv lists the levels; the
-    enriched answer handed back (by default) is said, and so is what its estimate is."""
+    enriched answer handed back (``stop_on = "enriched"``) is said, and so is what its estimate is."""
     import meshio
 
     path = tmp_path / "a.toml"
-    path.write_text(ADAPT_SCENE, encoding="utf-8")
+    enriched = ADAPT_SCENE + 'stop_on = "enriched"\n'
+    path.write_text(enriched, encoding="utf-8")
     assert main(["run", str(path), "--out", str(tmp_path / "o"), "--plots"]) == 0
     printed = capsys.readouterr().out
     with (tmp_path / "o" / "adapt.csv").open(encoding="utf-8") as f:
@@ -493,14 +496,14 @@ def test_run_adapts_a_scene_with_an_adapt_table(tmp_path: Path, capsys: pytest.C
     # With write_levels, the level series: one VTU per level in adapt.pvd, each on its level's mesh.
     import xml.etree.ElementTree as ET
 
-    path.write_text(ADAPT_SCENE + "write_levels = true\n", encoding="utf-8")
+    path.write_text(enriched + "write_levels = true\n", encoding="utf-8")
     assert main(["-q", "run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 0
     files = [d.get("file") for d in ET.parse(tmp_path / "o" / "adapt.pvd").getroot().iter("DataSet")]
     assert files == [f"levels/level_{k:03d}.vtu" for k in range(len(rows))]
     for f, row in zip(files, rows, strict=True):
         assert len(meshio.read(tmp_path / "o" / str(f)).cells_dict["triangle"]) == int(row["triangles"])
     # `tribo run --all-files` writes them too, the scene unchanged.
-    path.write_text(ADAPT_SCENE, encoding="utf-8")
+    path.write_text(enriched, encoding="utf-8")
     assert main(["-q", "run", str(path), "--out", str(tmp_path / "all"), "--all-files"]) == 0
     written = [d.get("file") for d in ET.parse(tmp_path / "all" / "adapt.pvd").getroot().iter("DataSet")]
     assert written == files and all((tmp_path / "all" / str(f)).is_file() for f in files)
@@ -508,8 +511,11 @@ def test_run_adapts_a_scene_with_an_adapt_table(tmp_path: Path, capsys: pytest.C
 
 def _read(estimate: dict[str, Any]) -> float:
     """The relative traction estimate the adaptive loop reads in a summary's ``estimate``: the smaller of the
-    bound and the hierarchical estimate where the loop computed the latter (by default), else the bound."""
+    bound and the hierarchical estimate where the loop computed the latter (by default), the calibrated bound on the
+    level after, else the bound."""
     sharp = estimate["traction_hierarchical_relative"]
+    if sharp is None:
+        sharp = estimate.get("traction_calibrated_relative")
     bound = float(estimate["traction_relative"])
     return bound if sharp is None else min(bound, float(sharp))
 
@@ -566,26 +572,33 @@ def test_run_prints_error_bars_when_the_scene_asks(tmp_path: Path, capsys: pytes
 
 
 def test_run_stops_on_the_hierarchical_estimate_and_says_which(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    """``[adapt] stop_on = "hierarchical"``: the run prints the hierarchical estimate and the bound, each
-    named; summary.json and adapt.csv carry both; a name that is not an option is a SceneError."""
+    """``[adapt] stop_on = "hierarchical"`` (the default): the run prints the estimate it stopped on and the bound, each
+    named: here the calibrated bound (the bound times the ratio of the two estimates on the level before, which the
+    loop estimated); summary.json and adapt.csv carry it; a name that is not an option is a SceneError."""
     path = tmp_path / "a.toml"
     path.write_text(ADAPT_SCENE + 'stop_on = "hierarchical"\n', encoding="utf-8")
     assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 0
     out = capsys.readouterr().out
-    printed = re.search(r"estimated error: ([0-9.e+-]+) % in the contact tractions \(L2 of Γ_C; hierarchical, sharp "
-                        r"but not a bound; the bound: ([0-9.e+-]+) %\)", out)
+    printed = re.search(r"estimated error: ([0-9.e+-]+) % in the contact tractions \(L2 of Γ_C; the bound calibrated "
+                        r"on the level before, sharp but not a bound; the bound: ([0-9.e+-]+) %\)", out)
     assert printed, "the run names the estimate it prints"
     est = json.loads((tmp_path / "o" / "summary.json").read_text())["estimate"]
-    # The enrichment of the estimate the loop stopped on bisects the whole mesh: its error bars come with it, printed.
-    assert "P = " in out and " ± " in out and est["normal_force_error"] > 0
-    assert float(printed.group(1)) == pytest.approx(100 * est["traction_hierarchical_relative"], rel=0.05)
+    # No enriched solve on the last level: no error bars from the loop, and the run says how to ask for them.
+    assert " ± " not in out and "set error_bars = true" in out and est["normal_force_error"] is None
+    assert est["traction_hierarchical_relative"] is None
+    assert float(printed.group(1)) == pytest.approx(100 * est["traction_calibrated_relative"], rel=0.05)
     assert float(printed.group(2)) == pytest.approx(100 * est["traction_relative"], rel=0.05)
-    assert est["traction_hierarchical_relative"] <= 0.05 < est["traction_relative"]
+    assert est["traction_calibrated_relative"] <= 0.05 < est["traction_relative"]
     with (tmp_path / "o" / "adapt.csv").open(encoding="utf-8") as f:
         f.readline()
         rows = list(csv.DictReader(f))
-    assert float(rows[-1]["estimate_traction_hierarchical_relative"]) == pytest.approx(est["traction_hierarchical_relative"])
-    assert rows[0]["estimate_traction_hierarchical_relative"] == "nan"
+    last, before = rows[-1], rows[-2]
+    assert float(last["estimate_traction_calibrated_relative"]) == pytest.approx(est["traction_calibrated_relative"])
+    # The level before was estimated: its ratio of the two estimates times the last bound.
+    ratio = float(before["relative"]) / float(before["estimate_traction_relative"])
+    assert float(before["estimate_traction_hierarchical_relative"]) == pytest.approx(float(before["relative"]))
+    assert est["traction_calibrated_relative"] == pytest.approx(ratio * est["traction_relative"], rel=1e-9)
+    assert rows[0]["estimate_traction_hierarchical_relative"] == rows[0]["estimate_traction_calibrated_relative"] == "nan"
     path.write_text(ADAPT_SCENE + 'stop_on = "sharpest"\n', encoding="utf-8")
     with pytest.raises(SceneError, match="adapt.stop_on"):
         load_scene(path)

@@ -320,6 +320,9 @@ def test_plot_tol_table(tmp_path: Path) -> None:
               "hertz,hierarchical,0.05,7,2600,0.1,,40,nan,0.03,0.2"]  # no true error: not a level either
     (folder / "hertz.csv").write_text("\n".join(runs) + "\n")
     (folder / "hertz_levels.csv").write_text("\n".join(levels) + "\n")
+    # A file of the current format: the calibrated bound, on the level after an estimated one, here the last of its run.
+    (folder / "hertz-more_levels.csv").write_text(levels[0] + ",calibrated\n"
+                                                  "hertz,hierarchical,0.05,8,3000,0.1,,45,0.015,,0.2,0.03\n")
     # stop_on = "enriched": its handed-back answer is the level of no time of its own.
     (folder / "hertz-enriched.csv").write_text(runs[0] + "\nhertz,enriched,0.05,0.01,2500,0.2,6,1000,0.2,tolerance\n")
     (folder / "hertz-enriched_levels.csv").write_text(
@@ -334,11 +337,13 @@ def test_plot_tol_table(tmp_path: Path) -> None:
     assert "2 of 3 runs in [X/3, X] (0.40–1.10); outside: hertz at 0.01: 1.100." in md, md
     assert "1 of 2 runs within 2×" in md and "1 of 2 levels (of a history, steps) in [1, 2] (1.50–2.50)" in md, md
     assert "Outside: hertz 1 (2.50)." in md and (tmp_path / "tol_table.png").stat().st_size > 0
-    # The stop reads the smaller of the two: the bound (0.3 / 0.2 = 1.5) where the hierarchical estimate is larger.
-    assert "the smaller of the hierarchical estimate and the bound (both are reported): 2 of 2 levels in [1, 2] " \
-           "(1.50–1.50)." in md, md
-    assert "| hertz | 2 | 1.50–2.50 | 1.50–10.00 | 1.50–1.50 |" in md, md
-    assert "handing back the enriched answer** (`stop_on = \"enriched\"`, the default): 0 of 1 runs in [X/3, X] " \
+    # The stop reads the smaller of the two: the bound (0.3 / 0.2 = 1.5) where the hierarchical estimate is larger,
+    # and on the calibrated level the calibrated bound (0.03 / 0.015 = 2).
+    assert "the calibrated bound on the level after (each is reported): 3 of 3 levels in [1, 2] (1.50–2.00)." in md, md
+    assert "levels where the loop formed it: 1 of 1 in [1, 2] (2.00–2.00); on the 1 level that stopped on it " \
+           "2.00–2.00." in md, md
+    assert "| hertz | 2 | 1.50–2.50 | 1.50–10.00 | 2.00–2.00 | 1.50–2.00 |" in md, md
+    assert "handing back the enriched answer** (`stop_on = \"enriched\"`): 0 of 1 runs in [X/3, X] " \
            "(0.20–0.20)" in md, md
     assert "Both at once: 1 of 3 runs." in md and "Both at once: 0 of 1 runs." in md, md
     assert "the estimate of their own error: 3.00–3.00 times it (0 of 1 in [1, 2])" in md, md

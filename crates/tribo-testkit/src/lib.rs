@@ -186,7 +186,7 @@ pub const TOL_RUNS_HEADER: &str =
 /// The header of a `tol` table's levels file (`CASE-STOP_levels.csv`, one row per level, or per step of a level of a
 /// history: [`LevelRow`]).
 pub const TOL_LEVELS_HEADER: &str =
-    "case,stop_on,tol,level,unknowns,seconds,step,in_contact,true_error,hierarchical,bound";
+    "case,stop_on,tol,level,unknowns,seconds,step,in_contact,true_error,hierarchical,bound,calibrated";
 
 /// Creates `dir` and the runs and levels files of the `tol` table of `case` stopping on `stop_on` in it
 /// (`CASE-STOP.csv`, `CASE-STOP_levels.csv`: the runs of one stop do not overwrite the other's), their headers
@@ -243,6 +243,8 @@ pub struct LevelRow {
     pub hierarchical: Option<f64>,
     /// The relative bound.
     pub bound: f64,
+    /// The calibrated bound where the loop formed it (the level after an estimated one).
+    pub calibrated: Option<f64>,
 }
 
 impl LevelRow {
@@ -250,8 +252,9 @@ impl LevelRow {
     pub fn csv(&self, case: &str, stop_on: StopOn, tol: f64) -> String {
         let step = self.step.map_or(String::new(), |s| s.to_string());
         let sharp = self.hierarchical.map_or(String::new(), |h| format!("{h:.6e}"));
+        let calibrated = self.calibrated.map_or(String::new(), |c| format!("{c:.6e}"));
         format!(
-            "{case},{},{tol},{},{},{:.6},{step},{},{:.6e},{sharp},{:.6e}",
+            "{case},{},{tol},{},{},{:.6},{step},{},{:.6e},{sharp},{:.6e},{calibrated}",
             stop_on.as_str(),
             self.level,
             self.unknowns,

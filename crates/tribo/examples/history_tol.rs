@@ -89,6 +89,7 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
                     true_error: worst(&errors),
                     hierarchical: sharp,
                     bound: level.estimate.traction_relative,
+                    calibrated: level.estimate.traction_calibrated_relative,
                 };
                 writeln!(levels, "{}", row.csv(CASE, stop_on, tol))?;
                 if let (true, Some(sharp)) = (keep, sharp) {
@@ -100,6 +101,7 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
                             true_error: *t,
                             hierarchical: Some(e.relative),
                             bound: s.report.estimate.traction_relative,
+                            calibrated: s.report.estimate.traction_calibrated_relative,
                             ..row
                         };
                         writeln!(levels, "{}", row.csv(CASE, stop_on, tol))?;

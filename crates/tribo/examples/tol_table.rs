@@ -65,6 +65,7 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
                     true_error: truth,
                     hierarchical: e.traction_hierarchical_relative,
                     bound: e.traction_relative,
+                    calibrated: e.traction_calibrated_relative,
                 };
                 writeln!(levels, "{}", row.csv(&name, stop_on, tol))?;
                 let sharp =

@@ -107,7 +107,16 @@ impl Problem {
         };
         let store = |h: &mut History, estimates: &[Hierarchical]| store_with(h, estimates, false);
         let store_enriched = |h: &mut History, estimates: &[Hierarchical]| store_with(h, estimates, true);
-        let sharp = Sharp { estimate: &estimate, store: &store, store_enriched: &store_enriched };
+        let calibrate = |h: &mut History, ratio: f64| {
+            for (i, solution) in h.solutions.iter_mut().enumerate() {
+                super::calibration::calibrate(&mut solution.report.estimate, ratio);
+                if let Some(record) = h.kept.get(i).and_then(|&k| h.records.get_mut(k)) {
+                    record.estimate = solution.report.estimate;
+                }
+            }
+        };
+        let sharp =
+            Sharp { estimate: &estimate, store: &store, store_enriched: &store_enriched, calibrate: &calibrate };
         let (problem, history, levels, stop) =
             self.adapt_loop(settings, adapt, observer, &solve, &read, &ended, Some(&sharp))?;
         Ok(AdaptiveHistory { problem, history, levels, stop })

@@ -18,8 +18,8 @@ pub struct Level {
     /// The estimate of this level's solution.
     pub estimate: ErrorEstimate,
     /// The relative estimate the stopping test reads: of the tractions (the smaller of the hierarchical
-    /// estimate and the bound where the loop computed the former, the bound elsewhere), or of the energy
-    /// when nothing touches.
+    /// estimate and the bound where the loop computed the former, of the calibrated bound and the bound on the level
+    /// after, the bound elsewhere), or of the energy when nothing touches.
     pub relative: f64,
     /// Wall time of the level (building the problem, solving, estimating, marking and refining); 0 for the
     /// enriched answer handed back as the last level (module documentation), solved as the estimate of the

@@ -127,6 +127,11 @@ pub struct ErrorEstimate {
     pub traction_hierarchical: Option<f64>,
     /// `traction_hierarchical / ‖λ_f‖` in L²(Γ_C) (`None` unless computed).
     pub traction_hierarchical_relative: Option<f64>,
+    /// The calibrated bound, on a level of an adaptive loop right after a level where the hierarchical estimate was
+    /// computed and found below the bound: this level's `traction_relative` times that level's ratio of the two
+    /// (`None` elsewhere; [`crate::adapt`], section "The calibrated bound", derives it and says what it assumes).
+    /// Sharp where the bound is pessimistic, not a guaranteed bound.
+    pub traction_calibrated_relative: Option<f64>,
     /// The error bars of the forces and zone widths, from the same enriched solve (`None` unless it was
     /// computed; NaN by [`Self::named`]).
     pub error_bars: Option<ErrorBars>,
@@ -152,7 +157,7 @@ pub struct ErrorBars {
 
 impl ErrorEstimate {
     /// Every total by name, in the order of the fields (an estimate not computed is NaN).
-    pub fn named(&self) -> [(&'static str, f64); 14] {
+    pub fn named(&self) -> [(&'static str, f64); 15] {
         let bars = self.error_bars.unwrap_or(ErrorBars {
             normal_force: f64::NAN,
             tangential_force: f64::NAN,
@@ -170,6 +175,7 @@ impl ErrorEstimate {
             ("traction_relative", self.traction_relative),
             ("traction_hierarchical", self.traction_hierarchical.unwrap_or(f64::NAN)),
             ("traction_hierarchical_relative", self.traction_hierarchical_relative.unwrap_or(f64::NAN)),
+            ("traction_calibrated_relative", self.traction_calibrated_relative.unwrap_or(f64::NAN)),
             ("normal_force_error", bars.normal_force),
             ("tangential_force_error", bars.tangential_force),
             ("contact_width_error", bars.contact_width),

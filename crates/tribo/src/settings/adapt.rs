@@ -47,24 +47,22 @@ pub enum StopOn {
     /// the loop, study 13: 1.38–1.59 on every level of eight cases, the block's 2.20–2.74 where its bound is the
     /// smaller) but not a guaranteed bound, and it costs a solve of 8–9 times the level's unknowns (twice where an end
     /// touches; a whole history solved again for a history), so the loop computes it only where it may stop
-    /// the loop before the bound (see [`crate::adapt`]). While nothing touches the loop reads the energy
-    /// estimate, as with the bound. `tol` then means the accuracy reached, but the loop mostly pays a level
-    /// and an estimate past the cheapest adequate one (study 13: 36 of 36 runs in [X/3, X], 12 within twice the
-    /// time of the cheapest adequate level).
+    /// the loop, or the next level, before the bound (see [`crate::adapt`]). The level right after an estimated one
+    /// reads the calibrated bound, the bound times the ratio of the two estimates measured there
+    /// ([`crate::results::ErrorEstimate::traction_calibrated_relative`]), and may stop on it without an enriched
+    /// solve of its own. While nothing touches the loop reads the energy estimate, as with the bound. `tol` then
+    /// means the accuracy reached, at about the time of the cheapest adequate level (study 13, `docs/tol_table.md`,
+    /// measures the runs). The default.
+    #[default]
     Hierarchical,
     /// As [`StopOn::Hierarchical`], and where the answer of the problem enriched for a level's estimate has an estimate
     /// of its own error (`½ ‖λ_H − λ_f‖`, a third of the level's away from the ends of Γ_C in contact) at most `tol`
-    /// and the
-    /// level's own is not, that answer is handed back as one more level (P1 multipliers, a mesh without curves, within
-    /// `max_unknowns` and
-    /// `max_levels`; bisected on all edges whatever `bisection`; see [`crate::adapt`]): the loop stops at the
-    /// cheapest level whose true error is within `tol` or before it wherever the level's estimate is within three times
-    /// its error, and the answer is the more accurate one, often more than asked (study 13 measures both stops: 22 of
-    /// 32 runs in [X/3, X], the others below a third of `tol`, 31 within twice the time of the cheapest adequate
-    /// level, 21 both). With P0 multipliers nothing is handed back: it stops as [`StopOn::Hierarchical`]. The
-    /// default: on the same runs it never ends above `tol` either and meets the time in 31 of 32 runs (12 of 36 for
-    /// that stop).
-    #[default]
+    /// and the level's own is not, that answer is handed back as one more level (P1 multipliers, a mesh without
+    /// curves, within `max_unknowns` and `max_levels`; bisected on all edges whatever `bisection`; see
+    /// [`crate::adapt`]): the loop stops at the cheapest level whose true error is within `tol` or before it wherever
+    /// the level's estimate is within three times its error, and the answer, of 8–9 times the level's unknowns, is the
+    /// more accurate one, often more than asked (below a third of `tol` in a third of the runs of study 13). With P0
+    /// multipliers nothing is handed back: it stops as [`StopOn::Hierarchical`].
     Enriched,
 }
 
@@ -100,9 +98,9 @@ pub struct AdaptKeywords {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AdaptSettings {
     /// The relative estimated error at which to stop: of the contact tractions when something touches (the
-    /// estimate [`AdaptSettings::stop_on`] names: by default the enriched answer's where it is handed back, else
-    /// the smaller of
-    /// [`crate::results::ErrorEstimate::traction_hierarchical_relative`], where the loop computed it, and
+    /// estimate [`AdaptSettings::stop_on`] names: by default the smaller of
+    /// [`crate::results::ErrorEstimate::traction_hierarchical_relative`] where the loop computed it, or of
+    /// [`crate::results::ErrorEstimate::traction_calibrated_relative`] on the level after, and
     /// [`crate::results::ErrorEstimate::traction_relative`]), of the energy
     /// ([`crate::results::ErrorEstimate::energy_relative`]) when nothing does. Default 0.01.
     pub tol: f64,
@@ -123,8 +121,8 @@ pub struct AdaptSettings {
     /// the answer handed back is converged as asked. Default 0.1; 0 converges every level to `fp_tol`.
     pub algebraic: f64,
     /// Which traction estimate `tol` is read against, and whether the enriched answer may be handed back.
-    /// Default [`StopOn::Enriched`]: the smaller of the hierarchical estimate and the bound, and the enriched
-    /// answer handed back where its own estimate meets `tol`.
+    /// Default [`StopOn::Hierarchical`]: the smaller of the bound and the hierarchical estimate where it was computed,
+    /// the calibrated bound on the level after.
     pub stop_on: StopOn,
 }
 
@@ -138,7 +136,7 @@ impl Default for AdaptSettings {
             bisection: Bisection::AllEdges,
             max_levels: 40,
             algebraic: 0.1,
-            stop_on: StopOn::Enriched,
+            stop_on: StopOn::Hierarchical,
         }
     }
 }

@@ -353,9 +353,11 @@ fn what_axisymmetry_refuses() {
 
 /// The adaptive loop in axisymmetry: from a uniform coarse cylinder (h = 0.5, five times the contact radius) a
 /// sphere on a flat at `tol` = 2 % and 1 % (the default stop, on the hierarchical estimate of the traction error in
-/// L²(Γ_C, 2π r dr), the enriched answer handed back) ends within `tol` of 3D Hertz, on levels that keep the model
-/// and the axis (u_r = 0 there). Measured: 1.68 % at 1.6k unknowns (9 levels) and 0.95 % at 5.5k (11 levels); stopping
-/// on the hierarchical estimate alone, 1.49 % at 2.2k (10 levels) and 0.84 % at 7.8k (12 levels).
+/// L²(Γ_C, 2π r dr), or the bound calibrated by it on the level after) ends within `tol` of the same body's answer
+/// and so within `tol` plus that answer's own distance from 3D Hertz (the body is 40 contact radii across, not a
+/// half-space: the same body graded to a/160 is `floor` from Hertz), on levels that keep the model and the axis
+/// (u_r = 0 there). Measured: 1.49 % at 2.2k unknowns (10 levels) and 1.10 % at 4.2k (11 levels), the floor 0.61 %;
+/// with the enriched answer handed back, 1.68 % at 1.6k unknowns (9 levels) and 0.95 % at 5.5k (11 levels).
 #[test]
 fn the_adaptive_loop_finds_the_sphere() {
     let e_star = STEEL.young / (1.0 - STEEL.poisson.powi(2));
@@ -366,6 +368,10 @@ fn the_adaptive_loop_finds_the_sphere() {
         .approach(0.01)
         .model(Model::Axisymmetric);
     let problem = Problem::new(mesh, spec).expect("valid");
+    let fine = sphere_on_flat(0.000625, 0.01, 4.0, 0.05);
+    let reference = fine.solve(&Friction::Frictionless, &SolverSettings::default(), None).expect("solves");
+    let floor = l2_error(&fine, &reference, e_star);
+    eprintln!("the same body graded to a/160: {floor:.4} from Hertz");
     for tol in [0.02, 0.01] {
         let adapt = AdaptSettings { tol, ..AdaptSettings::default() };
         let run = problem.solve_adaptive(&Friction::Frictionless, &SolverSettings::default(), &adapt, None).unwrap();
@@ -378,7 +384,7 @@ fn the_adaptive_loop_finds_the_sphere() {
             run.levels.len(),
             run.stop
         );
-        assert!(l2 < tol, "tol {tol}: {l2}");
+        assert!(l2 < tol + floor, "tol {tol}: {l2} (the floor {floor})");
         for (i, p) in run.problem.mesh.points().iter().enumerate().filter(|(_, p)| p[0] == 0.0) {
             assert_eq!(run.solution.displacement[2 * i], 0.0, "node {i} at {p:?} on the axis");
         }
