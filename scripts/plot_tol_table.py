@@ -109,11 +109,12 @@ def effectivity_rows(levels: list[dict[str, Any]]) -> dict[str, list[dict[str, A
 
 
 def read_rows(levels: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    """Every distinct level of the hierarchical stop's runs (a history: every step where the steps were estimated)
-    where the stop read a sharp estimate: the hierarchical estimate where it was computed, else the calibrated bound
-    where it was formed (the level after an estimated one); with the effectivity of what the stop read there (the
-    smaller of that and the bound) and of the calibrated bound."""
-    seen: dict[tuple[str, float, str], dict[str, Any]] = {}
+    """Every distinct reading of a sharp estimate in the hierarchical stop's runs: each level (a history: each step
+    where the steps were estimated) where the hierarchical estimate was computed, and each level where the calibrated
+    bound was formed (the level after an estimated one; a history's worst step), once each (one level may be estimated
+    in one run and calibrated in another); with the effectivity of what the stop read there (the smaller of that and
+    the bound) and of the calibrated bound."""
+    seen: dict[tuple[str, float, str, str], dict[str, Any]] = {}
     # The level each run stopped on (its last level's unknowns).
     ends: dict[tuple[str, float], tuple[float, float]] = {}
     for r in levels:
@@ -127,16 +128,30 @@ def read_rows(levels: list[dict[str, Any]]) -> list[dict[str, Any]]:
                 and r["true_error"] is not None and math.isfinite(r["true_error"]) and r["true_error"] > 0]
         stepped = {r["unknowns"] for r in rows if r["step"] != ""}
         for r in rows:
-            if r["unknowns"] in stepped and r["step"] == "":
+            kind = "hierarchical" if r["hierarchical"] is not None else "calibrated"
+            if kind == "hierarchical" and r["unknowns"] in stepped and r["step"] == "":
                 continue
-            sharp = r["hierarchical"] if r["hierarchical"] is not None else r["calibrated"]
+            sharp = r["hierarchical"] if kind == "hierarchical" else r["calibrated"]
             calibrated = r.get("calibrated")
-            seen.setdefault((case, r["unknowns"], r["step"]), {
-                **r, "kind": "hierarchical" if r["hierarchical"] is not None else "calibrated",
+            seen.setdefault((case, r["unknowns"], r["step"], kind), {
+                **r, "kind": kind,
                 "last": (case, r["unknowns"]) in stops,
                 "read_effectivity": sl.smaller(sharp, r["bound"]) / r["true_error"],
                 "calibrated_effectivity": calibrated / r["true_error"] if calibrated is not None else None})
     return list(seen.values())
+
+
+def calibrated_levels(levels: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """The distinct levels of the hierarchical stop's runs where the loop formed the calibrated bound (a history's:
+    its worst step's, the level's row), from ``MIN_IN_CONTACT`` dofs in contact, once each (a level calibrated in one
+    run may be estimated as well in it, or in another), with the calibrated bound's effectivity."""
+    seen: dict[tuple[str, float], dict[str, Any]] = {}
+    for r in levels:
+        if (r["stop_on"] == "hierarchical" and r["step"] == "" and r.get("calibrated") is not None
+                and r["in_contact"] >= MIN_IN_CONTACT and r["true_error"] is not None
+                and math.isfinite(r["true_error"]) and r["true_error"] > 0):
+            seen.setdefault((r["case"], r["unknowns"]), {**r, "calibrated_effectivity": r["calibrated"] / r["true_error"]})
+    return sorted(seen.values(), key=lambda r: (order(r["case"]), r["unknowns"]))
 
 
 def _range(values: list[float]) -> str:
@@ -196,10 +211,10 @@ def summary(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, An
                      f"({_range([r['effectivity'] for r in resolved])}); the bound's "
                      f"{_range([r['bound_effectivity'] for r in resolved])}" + (f". Outside: {out}." if out else "."))
     read = [r for r in read_levels if r["in_contact"] >= MIN_IN_CONTACT]
-    calibrated = [r for r in read if r["calibrated_effectivity"] is not None]
+    calibrated = calibrated_levels(effectivity_levels)
     if calibrated:
         inside, out = _counted(calibrated, "calibrated_effectivity")
-        stopped = [r["calibrated_effectivity"] for r in calibrated if r["kind"] == "calibrated" and r["last"]]
+        stopped = [r["calibrated_effectivity"] for r in read if r["kind"] == "calibrated" and r["last"]]
         lines.append(f"* **The calibrated bound** (the bound times the ratio of the two estimates on the level before) "
                      f"on the levels where the loop formed it: {inside} of {len(calibrated)} in [1, 2] "
                      f"({_range([r['calibrated_effectivity'] for r in calibrated])})"
@@ -209,8 +224,9 @@ def summary(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, An
     if read:
         inside, out = _counted(read, "read_effectivity")
         lines.append(f"* **What the stop reads**, the smaller of the bound and the hierarchical estimate where it was "
-                     f"computed, the calibrated bound on the level after (each is reported): {inside} of {len(read)} "
-                     f"levels in [1, 2] ({_range([r['read_effectivity'] for r in read])})"
+                     f"computed, the calibrated bound on the level after (each is reported), over every distinct "
+                     f"reading (a level estimated in one run and calibrated in another counts as each): {inside} of "
+                     f"{len(read)} levels in [1, 2] ({_range([r['read_effectivity'] for r in read])})"
                      + (f". Outside: {out}." if out else "."))
     handed = handed_back(effectivity_levels)
     if handed:
@@ -277,8 +293,7 @@ def page(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, Any]]
         resolved = [r for r in rows if r["in_contact"] >= MIN_IN_CONTACT]
         listed = "; ".join(f"{r['unknowns']:.0f}" + (f" s{r['step']}" if r["step"] != "" else "")
                            + f": {r['effectivity']:.2f} ({r['bound_effectivity']:.1f})" for r in rows)
-        calibrated = [r["calibrated_effectivity"] for r in read
-                      if r["case"] == case and r["calibrated_effectivity"] is not None]
+        calibrated = [r["calibrated_effectivity"] for r in calibrated_levels(levels) if r["case"] == case]
         per_case.append([case, len(resolved), _range([r["effectivity"] for r in resolved]),
                          _range([r["bound_effectivity"] for r in resolved]), _range(calibrated),
                          _range([r["read_effectivity"] for r in read if r["case"] == case]), listed])

@@ -354,7 +354,7 @@ class Problem(_tribo.Problem):
         the energy while nothing does. By default (``stop_on='hierarchical'``) it is the smaller of the residual
         bound and the hierarchical estimate 1.5‖λ_H − λ_f‖ / ‖λ_f‖ (λ_f the answer with the whole mesh bisected
         and the strip along the contact zone again, ``report.estimate["traction_hierarchical_relative"]``; where
-        the contact zone reaches an end of Γ_C, its reduction there is measured by a second enrichment): 1.38–1.59
+        the contact zone reaches an end of Γ_C, its reduction there is measured by a second enrichment): 1.38–1.58
         times the true error on every level of eight cases of docs/tol_table.md, not a guaranteed bound (the bound
         is the smaller where the traction is singular at a corner: the block, 1.85–1.98), computed on the levels
         near ``tol`` with at least 10 multiplier dofs in contact at the cost of a solve of 8–9 times their
@@ -420,7 +420,7 @@ class Problem(_tribo.Problem):
         mesh, its ``problem``, every level (each with the estimate of its worst step) and the stop reason.
         The adaptive keywords are those of ``solve_adaptive``; unless ``stop_on='bound'`` the whole history
         is solved again on the enriched mesh where the loop computes the estimate, and every step carries its
-        own (``Problem::estimate_history_hierarchical`` in the crate). Levels start their steps from rest, as a
+        own (``Problem::estimate_history_hierarchical`` in the crate), or on the level after, its calibrated bound. Levels start their steps from rest, as a
         history does, not from the previous level.
         """
         steps = self._steps(approach, shift, load_factor, displacements, rotation)

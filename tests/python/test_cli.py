@@ -576,7 +576,7 @@ def test_run_stops_on_the_hierarchical_estimate_and_says_which(tmp_path: Path, c
     named: here the calibrated bound (the bound times the ratio of the two estimates on the level before, which the
     loop estimated); summary.json and adapt.csv carry it; a name that is not an option is a SceneError."""
     path = tmp_path / "a.toml"
-    path.write_text(ADAPT_SCENE + 'stop_on = "hierarchical"\n', encoding="utf-8")
+    path.write_text(ADAPT_SCENE, encoding="utf-8")
     assert main(["run", str(path), "--out", str(tmp_path / "o"), "--no-plots"]) == 0
     out = capsys.readouterr().out
     printed = re.search(r"estimated error: ([0-9.e+-]+) % in the contact tractions \(L2 of Γ_C; the bound calibrated "

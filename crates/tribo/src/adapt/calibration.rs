@@ -16,7 +16,7 @@
 //! multiplier dofs in contact to 55k unknowns (beyond, the references' own error shows): 0.92–1.60, and 0.92–1.32
 //! from a level of 1.4k unknowns to the next. So the first condition holds with a wide margin, and the second on all
 //! but the coarsest levels. Measured in the loop (study 13, `docs/tol_table.md`, nine cases): the calibrated bound is
-//! 1.10–2.65 times the true error on the 50 levels where the loop formed it, 1.10–1.98 from 1.5k unknowns on (the
+//! 1.10–2.65 times the true error on the 52 levels where the loop formed it, 1.10–1.98 from 1.5k unknowns on (the
 //! seven above 2 are each case's first, at 758–1164 unknowns, where it is pessimistic, not unsafe), and 1.40–1.98 on
 //! the levels that stopped on it.
 //!

@@ -93,6 +93,16 @@ impl Problem {
                 log::warn!("{} estimates for {} kept steps: not stored", estimates.len(), h.kept.len());
                 return;
             }
+            if !enriched {
+                // A step without a finite estimate reads its bound, not the calibrated bound of the level before: the
+                // ratio this level passes on is measured on this level's estimates alone.
+                for (i, solution) in h.solutions.iter_mut().enumerate() {
+                    solution.report.estimate.traction_calibrated_relative = None;
+                    if let Some(record) = h.kept.get(i).and_then(|&k| h.records.get_mut(k)) {
+                        record.estimate = solution.report.estimate;
+                    }
+                }
+            }
             for (i, e) in estimates.iter().enumerate() {
                 let (Some(&k), Some(solution)) = (h.kept.get(i), h.solutions.get_mut(i)) else { continue };
                 match enriched {

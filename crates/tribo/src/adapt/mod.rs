@@ -71,7 +71,7 @@
 //! estimate is 1.38–1.58 times the true error on every level of eight cases where it was computed (every step of the
 //! history's included), 2.20–2.74 on the block, where the bound (1.85–1.98) is the smaller and stops the loop; the
 //! calibrated bound 1.10–2.65 (above 2 only on each case's first, at 758–1164 unknowns; 1.40–1.98 where it stopped
-//! the loop); what the loop reads is within [1, 2] on 85 of 89 levels (1.38–2.50). Before the calibrated bound
+//! the loop); what the loop reads is within [1, 2] on 106 of 112 readings (1.38–2.65). Before the calibrated bound
 //! (2026-12-01) it stopped only on a level whose own estimate was computed: in [X/3, X] in all 36 runs too, but
 //! within twice the time in 12,
 //! most paying one more level and its enriched solve.
@@ -96,7 +96,7 @@
 //! the ten below are answers more accurate than asked), the enriched answers' estimate 1.15–2.67 times their error;
 //! both in 21, against 35 of 36 with [`StopOn::Hierarchical`], which is the default since the calibrated bound
 //! (2026-12-01). It is the faster: its 32 runs took 152 s in all, the hierarchical stop's on the same cases and
-//! tolerances 274 s (0.7–11 times as long, 2–3 times on most: the enriched answer ends the run with one solve where
+//! tolerances 274 s (0.7–11 times as long, 2.4 the median: the enriched answer ends the run with one solve where
 //! the hierarchical stop refines on, estimating).
 //!
 //! # Several contact pairs
@@ -268,14 +268,10 @@ impl Problem {
                     let (answer, strict) = previous.take().ok_or(e)?;
                     let last = levels.len() - 1;
                     let problem = self.on_level(&levels[last])?;
-                    let (answer, stop) = strictly(
-                        &problem,
-                        answer,
-                        strict,
-                        AdaptStop::MemoryBudget,
-                        (settings, solve, read, ended),
-                        &mut levels,
-                    )?;
+                    let calibration = sharp.zip(measured.and_then(|m| m.calibration(last)));
+                    let stop = AdaptStop::MemoryBudget;
+                    let with = (settings, solve, read, ended);
+                    let (answer, stop) = strictly(&problem, answer, strict, stop, with, calibration, &mut levels)?;
                     return Ok((problem, answer, levels, stop));
                 }
                 answer => answer?,
@@ -367,9 +363,8 @@ impl Problem {
                                  {seconds:.3} s",
                                 levels.len(),
                             );
-                            // The bound the next level's due test scales: the largest over the steps, of the answer
-                            // estimated (over the loose answer's, the rounding of the two decided whether the next
-                            // level was due where the bound is the smaller and the ratio 1).
+                            // The bound of the step that reads worst, of the answer estimated (the loose answer's
+                            // rounding decided whether the next level was due where the bound was the smaller).
                             let strict_bound = level.estimate.traction_relative;
                             (sharp.store)(&mut answer, &hs);
                             level = leveled(&mut answer);
@@ -486,8 +481,8 @@ impl Problem {
                     let mut stop =
                         stop.unwrap_or(if next.is_none() { AdaptStop::MaxUnknowns } else { AdaptStop::Interrupted });
                     if matches!(stop, AdaptStop::MaxUnknowns | AdaptStop::Interrupted) {
-                        (answer, stop) =
-                            strictly(&problem, answer, strict, stop, (settings, solve, read, ended), &mut levels)?;
+                        let with = (settings, solve, read, ended);
+                        (answer, stop) = strictly(&problem, answer, strict, stop, with, calibration, &mut levels)?;
                     }
                     return Ok((problem, answer, levels, stop));
                 }
@@ -498,7 +493,8 @@ impl Problem {
 
 /// The answer handed back when the loop stops short of the tolerance (`stop`): solved again to `fp_tol` from
 /// itself where its level was solved loosely (defect D34), its level (the last of `levels`) replaced by the
-/// new solve's, the stop [`AdaptStop::NotConverged`] if that does not converge.
+/// new solve's (with the level's calibrated bound, `calibration`), the stop [`AdaptStop::NotConverged`] if that does
+/// not converge.
 #[allow(clippy::type_complexity)]
 fn strictly<T>(
     problem: &Problem,
@@ -511,13 +507,17 @@ fn strictly<T>(
         &dyn Fn(&T) -> Vec<&Solution>,
         &dyn Fn(&T) -> (SolveStatus, usize),
     ),
+    calibration: Option<(&Sharp<'_, T>, f64)>,
     levels: &mut [Level],
 ) -> Result<(T, AdaptStop)> {
     if strict {
         return Ok((answer, stop));
     }
     let clock = Instant::now();
-    let answer = solve(problem, settings, Start::Answer(&answer))?;
+    let mut answer = solve(problem, settings, Start::Answer(&answer))?;
+    if let Some((sharp, ratio)) = calibration {
+        (sharp.calibrate)(&mut answer, ratio);
+    }
     let resolved = new_level(problem, read(&answer), ended(&answer).0);
     let stop = if resolved.status == SolveStatus::Converged { stop } else { AdaptStop::NotConverged };
     if let Some(last) = levels.last_mut() {

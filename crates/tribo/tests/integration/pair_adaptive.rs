@@ -86,7 +86,8 @@ fn a_block_between_a_punch_and_a_foundation_adapts_to_the_tolerance() {
 }
 
 /// A history (press, press further, release) adapted on its steps: the estimate the loop stopped on meets the
-/// tolerance at every step read, every step carries the hierarchical estimate, and the history on the last mesh
+/// tolerance at every step read, every step carries a sharp estimate (the hierarchical one, or the calibrated bound
+/// on the level after an estimated one), and the history on the last mesh
 /// balances at every step.
 #[test]
 fn a_history_of_two_pairs_adapts() {
