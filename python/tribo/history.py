@@ -12,7 +12,8 @@ writes its results:
   displacement components the history moves (one column each, named 'set.x'/'set.y'), the normal and
   tangential contact forces, the stick/slip/separation counts, the extents of the contact and stick
   zones, and the step's error estimate η, relative traction estimate (the bound) and hierarchical estimate
-  (``traction_error_hierarchical``, NaN where the adaptive loop did not compute it); with several contact pairs
+  (``traction_error_hierarchical``, NaN where the adaptive loop did not compute it) and calibrated bound
+  (``traction_error_calibrated``, NaN where it did not form it); with several contact pairs
   the forces and counts are totals, the zones the first pair's, and each pair has its own columns
   ``pair.normal_force``, ``pair.tangential_force``, ``pair.contact_from`` … ``pair.gross_sliding`` (``pair`` its
   edge set);
@@ -94,6 +95,7 @@ def history_table(history: History) -> dict[str, np.ndarray]:
         "error_estimate": history.error_estimate,
         "traction_error": history.traction_error,
         "traction_error_hierarchical": history.traction_error_hierarchical,
+        "traction_error_calibrated": history.traction_error_calibrated,
         **(_pair_columns(history) if len(history.pairs) > 1 else {}),
     }
 

@@ -387,11 +387,10 @@ class Solution(_Record):
 class History(_Record):
     """A quasi-static loading history: per-step arrays for every step that converged, and the solutions kept.
 
-    The arrays have one entry per converged step (``len(history)``); ``approach``, ``shift``, ``load_factor``
-    and ``rotation`` give the steps asked for (all of them). ``solutions`` holds the whole solution of
-    every step by default; with the solve keyword ``keep_every=k`` only of every k-th step (steps with
-    ``step % k == 0``, the first included) and of the last converged one, ``kept`` naming their steps (the arrays still
-    cover every step). ``history.solution(step)`` finds a kept step's solution.
+    The arrays have one entry per converged step (``len(history)``); ``approach``, ``shift``, ``load_factor`` and
+    ``rotation`` give the steps asked for (all of them). ``solutions`` holds every step's solution by default; with
+    ``keep_every=k`` only every k-th step's (``step % k == 0``) and the last converged one's, ``kept`` naming their
+    steps (the arrays still cover every step); ``history.solution(step)`` finds a kept step's solution.
 
     Attributes:
         status: 'converged' when every step converged; otherwise the status of the step that ended the
@@ -410,14 +409,14 @@ class History(_Record):
             kept them as the problem has them.
         normal_force: total normal force ∫λ_n per converged step.
         tangential_force: total tangential force ∫λ_t per converged step.
-        error_estimate: the error estimate η (energy norm) per converged step.
-        traction_error: the relative traction error estimate per converged step (NaN where nothing touches).
+        error_estimate, traction_error: the error estimate η (energy norm) and the relative traction error estimate
+            (the bound; NaN where nothing touches) per converged step.
         traction_error_hierarchical: the hierarchical estimate of the relative traction error per converged step
-            (NaN where not computed: ``solve_history_adaptive`` does, unless ``stop_on='bound'``, where it may stop
-            the loop; on an enriched history handed back, each step's ½‖λ_H − λ_f‖, that history's own error).
-        stick_count: multiplier dofs that stick, per converged step (the counts are over every pair).
-        slip_count: multiplier dofs that slip, per converged step.
-        separation_count: multiplier dofs separated from the obstacle, per converged step.
+            (NaN where not computed: ``solve_history_adaptive`` does, unless ``stop_on='bound'``, near ``tol``; on an
+            enriched history handed back, each step's ½‖λ_H − λ_f‖, its own error); ``traction_error_calibrated``, on
+            the adaptive level after one so estimated, each step's bound times that level's ratio of the two (or NaN).
+        stick_count, slip_count, separation_count: multiplier dofs that stick, slip, or are separated from the
+            obstacle, per converged step (over every pair).
         contact_zone: (first, last) abscissa of the first pair's multiplier dofs in contact, per converged step, (K, 2);
             NaN when nothing touches. On a closed Γ_C the shortest arc that holds them: first < the side's
             start where it crosses the cut (first + its length is where it begins).
@@ -452,6 +451,7 @@ class History(_Record):
     error_estimate: _Floats
     traction_error: _Floats
     traction_error_hierarchical: _Floats
+    traction_error_calibrated: _Floats
     stick_count: _Ints
     slip_count: _Ints
     separation_count: _Ints

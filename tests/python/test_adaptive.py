@@ -136,6 +136,11 @@ def test_a_history_stops_on_the_hierarchical_estimate() -> None:
         # Estimated, or calibrated on the level after an estimated one.
         est = solution.report.estimate
         assert np.isfinite(est["traction_hierarchical_relative"]) or np.isfinite(est["traction_calibrated_relative"])
+    # The per-step series carry the same (history.csv writes them).
+    series = sharp.history.traction_error_hierarchical, sharp.history.traction_error_calibrated
+    assert np.isfinite(series[0]).all() or np.isfinite(series[1]).all()
+    for k, solution in enumerate(sharp.history.solutions):
+        assert series[1][k] == pytest.approx(solution.report.estimate["traction_calibrated_relative"], nan_ok=True)
     assert sharp.problem.n_free < bound.problem.n_free
     with pytest.raises(tribo.SettingsError, match="stop_on"):
         off_centre().solve_history_adaptive(0.01, shift, mu=0.3, stop_on="sharpest")  # type: ignore[arg-type]

@@ -47,7 +47,7 @@ def history(**kw: Any) -> tribo.History:
         status="converged", ended_at=None, solutions=[s, s], kept=np.arange(2), failed=None, approach=np.full(2, 0.01),
         shift=np.array([0.0, 0.001]), load_factor=np.ones(2), rotation=np.full(2, np.nan), normal_force=np.full(2, 1.5),
         tangential_force=np.full(2, 0.2), error_estimate=np.full(2, 0.1), traction_error=np.full(2, 0.05),
-        traction_error_hierarchical=np.full(2, np.nan),
+        traction_error_hierarchical=np.full(2, np.nan), traction_error_calibrated=np.full(2, np.nan),
         stick_count=np.ones(2, dtype=np.int64), slip_count=np.ones(2, dtype=np.int64),
         separation_count=np.ones(2, dtype=np.int64), contact_zone=np.array([[0.5, 1.0], [np.nan, np.nan]]),
         stick_zone=np.array([[0.5, 0.5], [np.nan, np.nan]]), stick_slip_boundaries=np.array([0.75]),

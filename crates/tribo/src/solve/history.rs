@@ -187,9 +187,10 @@ impl StepRecord {
 impl History {
     /// The per-step series of numbers by name: the approach, shift, load factor and obstacle angle (NaN for
     /// the problem's own) of every step asked for, the total forces, the error estimate η, the relative
-    /// traction estimate (the bound) and the hierarchical one (NaN where it was not computed: an adaptive history stopping on it computes it on
-    /// some levels) of the converged steps, and the wall time of each step solved.
-    pub fn series(&self) -> [(&'static str, Vec<f64>); 10] {
+    /// traction estimate (the bound), the hierarchical one (NaN where it was not computed: an adaptive history stopping
+    /// on it computes it on some levels) and the calibrated bound (NaN where the loop did not form it: the level after
+    /// an estimated one) of the converged steps, and the wall time of each step solved.
+    pub fn series(&self) -> [(&'static str, Vec<f64>); 11] {
         let step = |f: fn(&LoadStep) -> f64| self.steps.iter().map(f).collect();
         let record = |f: fn(&StepRecord) -> f64| self.records.iter().map(f).collect();
         [
@@ -202,6 +203,7 @@ impl History {
             ("error_estimate", record(|r| r.estimate.total)),
             ("traction_error", record(|r| r.estimate.traction_relative)),
             ("traction_error_hierarchical", record(|r| r.estimate.traction_hierarchical_relative.unwrap_or(f64::NAN))),
+            ("traction_error_calibrated", record(|r| r.estimate.traction_calibrated_relative.unwrap_or(f64::NAN))),
             ("step_seconds", self.step_seconds.clone()),
         ]
     }
@@ -336,11 +338,11 @@ impl History {
     pub fn estimated_bytes(problem: &crate::Problem, steps: &[LoadStep], keep_every: usize) -> f64 {
         let kept = kept_solutions(steps.len(), keep_every);
         let load_steps: usize = steps.iter().map(|s| size_of::<LoadStep>() + 8 * s.displacements.len()).sum();
-        // 10 series + 3 counts + 4 zone ends + 2 × (step, abscissa) of the boundaries, and the flag.
+        // 11 series + 3 counts + 4 zone ends + 2 × (step, abscissa) of the boundaries, and the flag.
         // With several pairs, each pair's forces and their series, zones' ends and gross-sliding flag besides.
         let pairs = if problem.sides.is_empty() { 0 } else { problem.sides.len() + 1 };
         let per_step =
-            StepRecord::bytes(problem.n_multipliers()) + 8 + (10 + 3 + 4 + 4) * 8 + 1 + pairs * (16 + 48 + 1);
+            StepRecord::bytes(problem.n_multipliers()) + 8 + (11 + 3 + 4 + 4) * 8 + 1 + pairs * (16 + 48 + 1);
         Solution::estimated_bytes(problem) as f64 * kept as f64
             + 2.0 * load_steps as f64
             + per_step as f64 * steps.len() as f64
