@@ -10,7 +10,7 @@ use super::strip::{end_regions, near_ends, EndRegion};
 use super::{multiplier_difference, AdaptStop, Level, LevelObserver, Sharp, Start};
 use crate::error::{Error, Num, Result};
 use crate::problem::Problem;
-use crate::results::{Solution, SolveStatus};
+use crate::results::{ErrorEstimate, Solution, SolveStatus};
 use crate::settings::friction::Friction;
 use crate::settings::memory::left_beside;
 use crate::settings::{AdaptSettings, SolverSettings};
@@ -96,12 +96,7 @@ impl Problem {
             if !enriched {
                 // A step without a finite estimate reads its bound, not the calibrated bound of the level before: the
                 // ratio this level passes on is measured on this level's estimates alone.
-                for (i, solution) in h.solutions.iter_mut().enumerate() {
-                    solution.report.estimate.traction_calibrated_relative = None;
-                    if let Some(record) = h.kept.get(i).and_then(|&k| h.records.get_mut(k)) {
-                        record.estimate = solution.report.estimate;
-                    }
-                }
+                each_kept_estimate(h, |e| e.traction_calibrated_relative = None);
             }
             for (i, e) in estimates.iter().enumerate() {
                 let (Some(&k), Some(solution)) = (h.kept.get(i), h.solutions.get_mut(i)) else { continue };
@@ -117,14 +112,8 @@ impl Problem {
         };
         let store = |h: &mut History, estimates: &[Hierarchical]| store_with(h, estimates, false);
         let store_enriched = |h: &mut History, estimates: &[Hierarchical]| store_with(h, estimates, true);
-        let calibrate = |h: &mut History, ratio: f64| {
-            for (i, solution) in h.solutions.iter_mut().enumerate() {
-                super::calibration::calibrate(&mut solution.report.estimate, ratio);
-                if let Some(record) = h.kept.get(i).and_then(|&k| h.records.get_mut(k)) {
-                    record.estimate = solution.report.estimate;
-                }
-            }
-        };
+        let calibrate =
+            |h: &mut History, ratio: f64| each_kept_estimate(h, |e| super::calibration::calibrate(e, ratio));
         let sharp =
             Sharp { estimate: &estimate, store: &store, store_enriched: &store_enriched, calibrate: &calibrate };
         let (problem, history, levels, stop) =
@@ -312,5 +301,16 @@ impl Problem {
         let answer = condensed.solve_history_from(&friction, steps, &every, None, &starts)?;
         drop(condensed);
         Ok((enriched, answer))
+    }
+}
+
+/// Applies `f` to the estimate of every kept step's solution of `h` (solution i is of step `h.kept[i]`), and writes it
+/// into that step's record alike.
+fn each_kept_estimate(h: &mut History, f: impl Fn(&mut ErrorEstimate)) {
+    for (i, solution) in h.solutions.iter_mut().enumerate() {
+        f(&mut solution.report.estimate);
+        if let Some(record) = h.kept.get(i).and_then(|&k| h.records.get_mut(k)) {
+            record.estimate = solution.report.estimate;
+        }
     }
 }
