@@ -172,7 +172,8 @@ def page(files: dict[str, list[dict[str, Any]]], strip: dict[str, list[dict[str,
         "solves of every level again most of it; read times as orders of magnitude):\n\n" + sl.commands_block(doc),
         "**Scenes** (their coarse starts and references: `tribo_testkit::adaptive_case`): the Hertz cases' "
         "reference is the same scene on a graded mesh of 466k unknowns, the others' the adaptive loop run to 500k "
-        "unknowns. `~` marks a true error within twice what the reference knows (not counted).\n\n" + scenes,
+        "unknowns, the block's then graded toward its corners, where its traction is singular "
+        "(`tribo_testkit::graded_at_ends`). `~` marks a true error within twice what the reference knows (not counted).\n\n" + scenes,
         "## What it shows\n\n" + summary(files, strip), "![error bars](error_bars.png)",
         "## Per case\n\nEffectivity (estimate or bar over true error), smallest–largest over the counted levels.\n\n"
         + per_case,

@@ -242,8 +242,8 @@ def test_the_docs_quote_the_tol_table_as_generated() -> None:
               + (f" and the rest at {_span(others, '.2f')}" if others else ""))
     assert quoted in studies, quoted
     block = eff["block"]
-    quoted = (f"it is {_span([r['effectivity'] for r in block], '.2f')} times the true error and the bound, "
-              f"{_span([r['bound_effectivity'] for r in block], '.2f')}, is the smaller")
+    quoted = (f"it is {_span([r['effectivity'] for r in block], '.2f')} times the true error and the bound "
+              f"{_span([r['bound_effectivity'] for r in block], '.2f')}.")
     assert quoted in guide, quoted
     # What the stop reads: the hierarchical estimate or, on the level after, the calibrated bound (or the bound).
     read = [r["read_effectivity"] for r in tol.read_rows(levels) if r["in_contact"] >= tol.MIN_IN_CONTACT]

@@ -28,19 +28,23 @@
 //! times its unknowns.
 //!
 //! # Where the hierarchical estimate is due
-//! The estimate costs an enriched solve (8–9 times the level's unknowns, 10–20 times its time), so the loop computes
-//! it only where it may stop the loop before the bound does, or make the next level stop on the calibrated bound: on
-//! the first level with enough dofs in contact, then where the last ratio `ρ` is below 1 and `ρ ζ` is at most
-//! `3 G^(s−1)` times what the stop reads, `s` the levels since `ρ` was measured and `G` = [`PESSIMISM_GROWTH`]
-//! (`ρ ζ` overestimates the hierarchical estimate by the growth of the bound's pessimism since, up to `G` per
-//! level: a fresh ratio predicts within a level's reduction, a stale one with a margin that grows as it ages), or
-//! where the unknowns have grown fourfold since (a ratio of 1 or more: the bound was the smaller, and stops the loop
-//! by itself). Never where the level meets `tol` already (it stops there and is handed back itself; the block at 5 %
-//! paid about ten times its last level's solve for it), nor where the bound will meet `tol` on the next level if it
-//! falls as it did from the level before (`ζ_k² / ζ_{k−1} ≤ tol`): there the estimate could only stop the loop one
-//! level sooner, saving a solve of about twice the level's unknowns at the price of one of 8–9 times them (the block
-//! at 2 %, whose bound is sharper than the estimate and stops it, paid 11 s of its 13.7 s for such an estimate; on
-//! the other cases of study 13 no estimated level met this condition).
+//! The estimate costs an enriched solve (8–9 times the level's unknowns, 10–20 times its time), so the loop computes it
+//! only where it may stop the loop before the bound does, or make the next level stop on the calibrated bound: on the
+//! first level with enough dofs in contact, then where the last ratio `ρ` is below 1 and `ρ ζ` is at most `3 G^(s−1)`
+//! times what the stop reads, `s` the levels since `ρ` was measured and `G` = [`PESSIMISM_GROWTH`] (`ρ ζ` overestimates
+//! the hierarchical estimate by the growth of the bound's pessimism since, up to `G` per level: a fresh ratio predicts
+//! within a level's reduction, a stale one with a margin that grows as it ages), or where the unknowns have grown
+//! fourfold since (a ratio of 1 or more: the bound was the smaller, and stops the loop by itself). A ratio not below
+//! the bound's last reduction `ζ_k / ζ_{k−1}` counts as one of 1: the estimate then reads no lower than the bound will
+//! on the next level, and could save that level's solve (of about twice the level's unknowns) at the price of an
+//! enriched solve of 8–9 times them (the block, whose estimate at its singular ends became 0.9–1 times its bound on
+//! 2026-12-01 while the bound falls by 0.8–0.9 a level, paid an estimate on every level near the stop: 2.55 times the
+//! cheapest adequate level's time at 5 %). Never where the level meets `tol` already (it stops there and is handed back
+//! itself; the block at 5 % paid about ten times its last level's solve for it), nor where the bound will meet `tol` on
+//! the next level if it falls as it did from the level before (`ζ_k² / ζ_{k−1} ≤ tol`): there the estimate could only
+//! stop the loop one level sooner, saving a solve of about twice the level's unknowns at the price of one of 8–9 times
+//! them (the block at 2 %, whose bound is sharper than the estimate and stops it, paid 11 s of its 13.7 s for such an
+//! estimate; on the other cases of study 13 no estimated level met this condition).
 
 use crate::results::ErrorEstimate;
 
@@ -72,7 +76,15 @@ pub(super) fn relative(e: &ErrorEstimate) -> f64 {
 /// Whether the bound `bound` (ζ_k) will meet `tol` on the next level if it falls as it did from `before` (ζ_{k−1}):
 /// `ζ_k² / ζ_{k−1} ≤ tol` (the module documentation). False without a finite bound before, or a fall.
 pub(super) fn bound_stops_next(bound: f64, before: Option<f64>, tol: f64) -> bool {
-    before.is_some_and(|b| b.is_finite() && bound < b && bound * bound / b <= tol)
+    bound * fall(bound, before) <= tol && fall(bound, before) < 1.0
+}
+
+/// The bound's last reduction `ζ_k / ζ_{k−1}`: 1 without a finite bound before, or a fall.
+fn fall(bound: f64, before: Option<f64>) -> f64 {
+    match before {
+        Some(b) if b.is_finite() && bound < b => bound / b,
+        _ => 1.0,
+    }
 }
 
 /// Writes the calibrated bound `ratio ζ` into an estimate whose bound ζ is finite.
@@ -105,12 +117,13 @@ impl Measured {
         (self.level + 1 == level && self.ratio < 1.0).then_some(self.ratio)
     }
 
-    /// Whether the estimate is due on level `level` of `unknowns` unknowns whose bound is `bound`, the stop reading
-    /// `reads` (the module documentation).
-    pub fn due(&self, level: usize, unknowns: usize, bound: f64, reads: f64) -> bool {
+    /// Whether the estimate is due on level `level` of `unknowns` unknowns whose bound is `bound` (`before` on the
+    /// level before), the stop reading `reads` (the module documentation).
+    pub fn due(&self, level: usize, unknowns: usize, (bound, before): (f64, Option<f64>), reads: f64) -> bool {
         let since = level.saturating_sub(self.level).max(1);
         let margin = NEAR * PESSIMISM_GROWTH.powi(i32::try_from(since - 1).unwrap_or(i32::MAX));
-        (self.ratio < 1.0 && self.ratio * bound <= margin * reads) || unknowns >= 4 * self.unknowns
+        let sharper = self.ratio < fall(bound, before);
+        (sharper && self.ratio * bound <= margin * reads) || unknowns >= 4 * self.unknowns
     }
 }
 
@@ -148,14 +161,21 @@ mod tests {
         assert_eq!(m.calibration(6), None);
         assert_eq!(Measured { ratio: 1.0, ..m }.calibration(5), None);
         // ρ ζ = 0.29: due on the next level against 0.1 (margin 3), not against 0.09.
-        assert!(m.due(5, 1500, 2.9, 0.1));
-        assert!(!m.due(5, 1500, 2.9, 0.09));
+        assert!(m.due(5, 1500, (2.9, None), 0.1));
+        assert!(!m.due(5, 1500, (2.9, None), 0.09));
         // Two levels on, the margin is 3 × 1.6.
-        assert!(m.due(6, 2500, 4.7, 0.1));
-        assert!(!m.due(6, 2500, 4.9, 0.1));
+        assert!(m.due(6, 2500, (4.7, None), 0.1));
+        assert!(!m.due(6, 2500, (4.9, None), 0.1));
+        // A ratio not below the bound's last reduction saves the next level at most: not due (the block's 0.97
+        // against a fall of 0.86), unless the unknowns have grown fourfold.
+        let block = Measured { ratio: 0.97, ..m };
+        assert!(!block.due(5, 1500, (0.86, Some(1.0)), 1.0));
+        assert!(block.due(5, 1500, (0.86, None), 1.0));
+        assert!(m.due(5, 1500, (0.086, Some(0.1)), 0.1));
+        assert!(block.due(5, 4000, (0.86, Some(1.0)), 1.0));
         // A failed estimate is due again at four times the unknowns.
         let f = Measured::failed(4, 1000);
-        assert!(!f.due(5, 3999, 0.0, 1.0));
-        assert!(f.due(5, 4000, 0.0, 1.0));
+        assert!(!f.due(5, 3999, (0.0, None), 1.0));
+        assert!(f.due(5, 4000, (0.0, None), 1.0));
     }
 }

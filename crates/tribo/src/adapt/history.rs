@@ -223,7 +223,7 @@ impl Problem {
                 None => Vec::new(),
                 // Not measured where this step touches an end: no estimate there.
                 Some(Err(_)) if !regions[i].is_empty() => {
-                    vec![EndReduction { difference: f64::NAN, reduction: f64::INFINITY }]
+                    vec![EndReduction::unmeasured()]
                 }
                 Some(Err(_)) => Vec::new(),
                 Some(Ok((p, h))) => {

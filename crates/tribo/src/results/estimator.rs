@@ -121,7 +121,7 @@ pub struct ErrorEstimate {
     /// derives it). Sharp where the bound ζ is pessimistic, but not a guaranteed bound; infinite where
     /// a measured reduction is 1 or more (no estimate). On the enriched answer an adaptive loop with
     /// [`crate::settings::StopOn::Enriched`] hands back, the estimate of that answer's own error, `½ ‖λ_H − λ_f‖`
-    /// (λ_H the level's answer it enriched; `q_R d_R / (1 − q_R)` at measured ends; [`crate::adapt`]). `None` unless it
+    /// (λ_H the level's answer it enriched; `q D_R / (1 − q²)` at measured ends; [`crate::adapt`]). `None` unless it
     /// was computed (NaN by
     /// [`Self::named`]).
     pub traction_hierarchical: Option<f64>,

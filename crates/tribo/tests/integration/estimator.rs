@@ -220,9 +220,9 @@ fn a_per_dof_threshold_is_estimated_as_its_function() {
 /// bisection removes only about 14 % of the error there, and `2 ‖λ_H − λ_f‖` of the strip bisected once was 0.85–0.99
 /// times the true error on every level (the changelog; `1.5 ‖λ_H − λ_f‖` of the enrichment since, 0.96–1.02: study 12).
 /// The reduction is measured at each touching end instead of assumed (studies 14 and 15, `docs/error_bars.md`): both
-/// ends measured (above the ⅓ the rest of Γ_C assumes), and the estimate above the true error against
-/// an adaptive reference of 60–120k unknowns (measured: 2.5 times it, where the bound is 1.9 times; reductions 0.73
-/// and 0.75).
+/// ends measured (above the ⅓ the rest of Γ_C assumes), and the estimate within [1, 2] times the true error against
+/// an adaptive reference of 60–120k unknowns (measured: 1.85 times it, where the bound is 1.91 times; reductions 0.75
+/// and 0.73; through the answer enriched once at the ends, until 2026-12-01, 2.5 times).
 #[test]
 fn at_the_ends_of_gamma_c_in_contact_the_reduction_is_measured() {
     use tribo::adapt::multiplier_difference;
@@ -247,5 +247,5 @@ fn at_the_ends_of_gamma_c_in_contact_the_reduction_is_measured() {
     assert_eq!(h.end_reductions.len(), 2);
     let assumed = tribo::adapt::enriched::SATURATION;
     assert!(h.end_reductions.iter().all(|q| (assumed..1.0).contains(q)), "{:?}", h.end_reductions);
-    assert!(h.relative >= truth && h.relative <= 5.0 * truth, "{} against {truth}", h.relative);
+    assert!(h.relative >= truth && h.relative <= 2.0 * truth, "{} against {truth}", h.relative);
 }
