@@ -312,7 +312,7 @@ def page(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, Any]]
         "`tribo_testkit::adaptive_hertz_case`). The Hertz cases' reference is the same scene on a graded mesh of "
         "466k unknowns, the two pairs' on a mesh graded toward the punch's zone (152k unknowns); the others' the adaptive "
         "loop run to 500k unknowns, the block's then graded toward its corners, where its traction is singular "
-        "(`tribo_testkit::graded_at_ends`: 7 rounds of bisection). Where a run ends near the reference's "
+        "(`tribo_testkit::graded_at_ends`). Where a run ends near the reference's "
         "own error (about 3e-4 to 8e-4 on the Hertz cases), a \"true error\" is partly the reference's.\n\n" + scenes,
         "## What it shows\n\n" + summary(runs, effectivity, levels), "![tol table](tol_table.png)",
         "## The runs\n\n" + table,

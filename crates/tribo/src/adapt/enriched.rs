@@ -68,7 +68,7 @@
 //! bisections of a self-similar corner), so it reduces the error as the first did: `e_ff = q e_f = q² e_H`, and the
 //! triangle inequality through the answer enriched twice, `e_H ≤ D_R + e_ff`, gives `D_R / (1 − q²)`. Through λ_f
 //! it gave `d_R / (1 − q)` (the estimate until 2026-12-01), never smaller (`D_R ≤ d_R + q d_R`) and as sharp only
-//! where the two differences point the same way; at the block's corners they point nearly apart (the cosine of
+//! where the two differences point the same way; at the block's corners they are nearly orthogonal (the cosine of
 //! λ_f − λ_H and λ_ff − λ_f on R was 0.01–0.19 on 23 levels from 36 to 104k unknowns), and `d_R / (1 − q)` was
 //! 2.4–2.8 times the truth there (q_R = 0.73–0.75 on both ends from 190 unknowns on). Measured in study 13
 //! (`docs/tol_table.md`), against the block's reference graded toward its corners (`tribo_testkit::graded_at_ends`):
@@ -219,11 +219,11 @@ impl EndReduction {
     /// The bound of the error of `answer` at this end: `D_R / (1 − q²)` for the coarse answer, `q D_R / (1 − q²)`
     /// for the enriched one, `D_R = ‖λ_H − λ_ff‖_R` (the module documentation), `q = max(q_R, ⅓)`: never a smaller
     /// factor than the rest of Γ_C takes; infinite when the enrichment does not reduce the difference (q ≥ 1) or q
-    /// is unknown (NaN).
+    /// or `‖λ_H − λ_ff‖_R` is unknown (NaN).
     fn estimate(&self, answer: Answer) -> f64 {
         // Not `max`, which would turn a NaN reduction into ⅓.
         let q = if self.reduction < SATURATION { SATURATION } else { self.reduction };
-        if q < 1.0 {
+        if q < 1.0 && !self.to_twice.is_nan() {
             let coarse = self.to_twice / (1.0 - q * q);
             match answer {
                 Answer::Coarse => coarse,
@@ -533,8 +533,8 @@ mod tests {
         // Where λ_f − λ_H and λ_ff − λ_f point along each other (‖λ_H − λ_ff‖ = d_R (1 + q)), the bound
         // through λ_f: d_R / (1 − q) = 16.
         assert!(close(combine_for(Answer::Coarse, 5.0, &[end(4.0, 0.75, 7.0)], 0.0), (256.0_f64 + 20.25).sqrt()));
-        // A reduction below ⅓ takes ⅓, as the rest does: 1.125 ‖λ_H − λ_ff‖, 1.5 d where they point along each
-        // other.
+        // A reduction below ⅓ takes ⅓, as the rest does: 1.125 ‖λ_H − λ_ff‖ (1.5 d_R where ‖λ_H − λ_ff‖ is
+        // (1 + ⅓) d_R).
         assert!(close(combine_for(Answer::Coarse, 5.0, &[end(4.0, 0.1, 16.0 / 3.0)], 0.0), 7.5));
         assert!(close(combine_for(Answer::Coarse, 5.0, &[end(4.0, 0.1, 4.0)], 0.0), (20.25_f64 + 20.25).sqrt()));
         assert!(close(combine_for(Answer::Coarse, 5.0, &[], 0.0), 7.5));
@@ -555,6 +555,8 @@ mod tests {
     fn an_end_not_reduced_or_not_measured_leaves_no_estimate_unless_it_is_noise() {
         assert_eq!(combine_for(Answer::Coarse, 5.0, &[end(1.0, 1.2, 2.0)], 0.0), f64::INFINITY);
         assert_eq!(combine_for(Answer::Coarse, 5.0, &[end(1.0, f64::NAN, f64::NAN)], 0.0), f64::INFINITY);
+        assert_eq!(combine_for(Answer::Coarse, 5.0, &[end(1.0, 0.75, f64::NAN)], 0.0), f64::INFINITY);
+        assert_eq!(combine_for(Answer::Enriched, 5.0, &[end(1.0, 0.75, f64::NAN)], 0.0), f64::INFINITY);
         assert_eq!(combine_for(Answer::Coarse, 5.0, &[EndReduction::unmeasured()], 1e-8), f64::INFINITY);
         // An end within the solves' accuracy measures nothing: it stays in the rest (1.5 d).
         assert!(close(combine_for(Answer::Coarse, 5.0, &[end(1e-9, 3.0, 3e-9)], 1e-8), 7.5));

@@ -46,7 +46,7 @@
 //! With [`StopOn::Hierarchical`] and [`StopOn::Enriched`] the tolerance is read against the hierarchical estimate
 //! ([`Problem::estimate_hierarchical`], `1.5 ‖λ_H − λ_f‖ / ‖λ_f‖`, the reduction measured at ends of Γ_C in
 //! contact) where it was computed, or the bound if smaller (each is above the true error under its own
-//! assumptions: on the block scene, whose corners the enrichment resolves slowly, the bound is the sharper); on the
+//! assumptions: on the block scene, whose corners the enrichment resolves slowly, the two are about as sharp); on the
 //! level right after, against the calibrated bound, the bound times the ratio of the two measured there, or the bound
 //! if smaller; against the bound elsewhere (a level whose bound is already below `tol` stops too). It tracks the true
 //! error where the bound grows pessimistic, but costs a solve of 8–9 times the level's unknowns. It is computed on a
@@ -55,8 +55,9 @@
 //! where it may stop the loop, or the next level on the calibrated bound, before the bound does (`calibration`
 //! derives both rules: the ratio times the bound within `3 × 1.6^(s−1)` times what the stop reads, `s` the levels
 //! since the ratio was measured, `tol` for the level's estimate, `3 tol` where an enriched answer may be handed
-//! back; or the unknowns grown fourfold since); never where the level meets `tol` already (it stops there and is
-//! handed back itself: the estimate would change nothing but the cost). A Coulomb level's answer is first converged
+//! back, where the ratio is below the bound's last reduction; or the unknowns grown fourfold since); never where the
+//! level meets `tol` already (it stops there and is handed back itself: the estimate would change nothing but the
+//! cost), nor where the bound will meet it on the next level. A Coulomb level's answer is first converged
 //! to `fp_tol`, so that the difference is not the fixed point's algebraic error. The level's [`Level::relative`] is
 //! what the stop read, and the solution handed back carries each estimate in its [`crate::results::ErrorEstimate`]
 //! (with the error bars of the enriched solve where there was one). In a loading history the whole history is solved
