@@ -354,6 +354,28 @@ def test_plot_tol_table(tmp_path: Path) -> None:
         study("plot_tol_table").main(["--csv-dir", str(folder), "--out", str(tmp_path)])
 
 
+def test_plot_estimate_meshes(tmp_path: Path) -> None:
+    """Study 15b from the example's file: each mesh's effectivities, the count in [1, 2] per case and mesh kind, and
+    the committed page is the one its committed file makes."""
+    header = ("case,mesh,size,unknowns,in_contact,true_error,hierarchical,bound,solve_seconds,estimate_seconds")
+    rows = ["hertz,uniform,362,131000,13,0.02,0.03,0.2,1.0,9.0",  # 1.5 and 10
+            "hertz,graded,0.01,15000,14,0.04,0.1,0.3,0.1,1.0",  # 2.5: outside
+            "block,uniform,32,4000,33,0.05,0.09,0.095,0.05,0.5",  # 1.8 and 1.9
+            "block,uniform,64,8000,65,0.04,inf,0.07,0.05,0.5"]  # no estimate (a reduction of 1 at an end)
+    (tmp_path / "estimate_meshes.csv").write_text("\n".join([header, *rows]) + "\n")
+    res = study("plot_estimate_meshes").main(["--csv-dir", str(tmp_path), "--out", str(tmp_path)])
+    assert res == {"meshes": 4}
+    md = (tmp_path / "estimate_meshes.md").read_text()
+    assert ("on every counted mesh: 1.50–2.50 (2 of 3 in [1, 2]), and no estimate on 1 (infinite: a reduction of 1 "
+            "or more measured at an end of Γ_C: block uniform 64); outside [1, 2]: hertz graded 0.01 (2.50). The "
+            "bound: 1.75–10.00 (2 of 4 in [1, 2]).") in md, md
+    assert "| hertz | graded | 1 | 15000–15000 | 2.50–2.50 (0 of 1 in [1, 2]) |" in md, md
+    assert (tmp_path / "estimate_meshes.png").stat().st_size > 0
+    committed = tmp_path / "committed"
+    study("plot_estimate_meshes").main(["--csv-dir", str(DOCS), "--out", str(committed)])
+    assert (committed / "estimate_meshes.md").read_text() == (DOCS / "estimate_meshes.md").read_text()
+
+
 def test_plot_error_bars(tmp_path: Path) -> None:
     """Studies 14 and 15 from the example's files: each effectivity, a true error within twice its floor not
     counted, what the stop reads the smaller of the hierarchical estimate and the bound, the strip's file apart."""
