@@ -120,12 +120,7 @@ def chart(files: dict[str, list[dict[str, Any]]], path: Path) -> None:
                 b.plot([r["unknowns"] for r in counted], [r[f"{q}_effectivity"] for r in counted], style, color=colour,
                        label=f"{case}, {q}")
     for ax in (a, b):
-        ax.axhspan(*EFFECTIVITY, color="0.9", zorder=0)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_yticks([1, 1.5, 2, 3], ["1", "1.5", "2", "3"])
-        ax.yaxis.set_minor_formatter(plt.NullFormatter())
-        ax.set_xlabel("unknowns")
+        sl.effectivity_axes(ax, EFFECTIVITY)
     a.set_ylabel("estimate / true traction error")
     a.set_title("what the adaptive stop reads (band: [1, 2])")
     b.set_ylabel("error bar / true error")

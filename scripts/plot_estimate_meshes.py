@@ -61,12 +61,7 @@ def chart(rows: list[dict[str, Any]], path: Path) -> None:
             if these:
                 ax.plot([r["unknowns"] for r in these], [r["hierarchical_effectivity"] for r in these], style,
                         color=f"C{i}", label=f"{case}, {mesh}")
-    ax.axhspan(*EFFECTIVITY, color="0.9", zorder=0)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_yticks([1, 1.5, 2, 3], ["1", "1.5", "2", "3"])
-    ax.yaxis.set_minor_formatter(plt.NullFormatter())
-    ax.set_xlabel("unknowns")
+    sl.effectivity_axes(ax, EFFECTIVITY)
     ax.set_ylabel("hierarchical estimate / true traction error")
     ax.set_title("uniform and graded meshes (band: [1, 2])")
     ax.legend(fontsize=7, ncol=2)

@@ -286,6 +286,18 @@ def csv_study_args(doc: str | None, folder: str, argv: list[str] | None = None) 
     return ap.parse_args(argv)
 
 
+def effectivity_axes(ax: Any, band: tuple[float, float]) -> None:
+    """An axis of effectivities (estimate over true error) against unknowns: both logarithmic, the band shaded,
+    ticks at 1, 1.5, 2 and 3."""
+    plt = pyplot()
+    ax.axhspan(*band, color="0.9", zorder=0)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_yticks([1, 1.5, 2, 3], ["1", "1.5", "2", "3"])
+    ax.yaxis.set_minor_formatter(plt.NullFormatter())
+    ax.set_xlabel("unknowns")
+
+
 def read_csv_rows(path: Path) -> list[dict[str, str]]:
     """The rows of a CSV file as dicts by its header; a row cut short (a run killed while writing) or too long is
     an error naming the file and the line."""
