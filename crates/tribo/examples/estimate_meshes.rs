@@ -96,7 +96,8 @@ fn meshes(name: &str, coarse: &Problem) -> Result<Meshes> {
     for &nx in sizes {
         out.push(("uniform", nx as f64, with(rectangle(x, y, nx, nx / rows, Diagonal::Right)?)?));
     }
-    let h_mins: &[f64] = if block { &[0.02, 0.01, 0.005] } else { &[0.01, 0.005, 0.0025, 0.00125] };
+    let h_mins: &[f64] =
+        if block { &[0.02, 0.01, 0.005] } else { &[0.01, 0.005, 0.0025, 0.00125, 0.000625, 0.0003125, 0.00015625] };
     for &h_min in h_mins {
         let grading = Grading { side, segment, h_min, h_max: 0.25, growth: 0.3 };
         out.push(("graded", h_min, with(graded_rectangle(x, y, &grading)?)?));
