@@ -42,7 +42,7 @@
 //! the bound would; the rule skips that too, a saving of one or two level solves against the enriched solve's cost.
 //! (On the block, whose estimate at its singular ends is 0.9–1 times its bound while the bound falls by 0.8–0.9 a
 //! level, the estimate through λ_ff without this rule was computed on every level near the stop: 2.55 times the
-//! cheapest adequate level's time at 5 %, 1.19 with it; `stop_on = "enriched"` 1.19 too.) Never where the level meets
+//! cheapest adequate level's time at 5 %, 1.11 with it; `stop_on = "enriched"` 1.11 too.) Never where the level meets
 //! `tol` already (it stops there and is handed back itself; the block at 5 % paid about ten times its last level's
 //! solve for it), nor where the bound will meet `tol` on the next level if it falls as it did from the level before
 //! (`ζ_k² / ζ_{k−1} ≤ tol`): there the estimate could only stop the loop one level sooner, saving a solve of about

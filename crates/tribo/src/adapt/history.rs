@@ -197,6 +197,19 @@ impl Problem {
         } else {
             None
         };
+        // The third, at the ends again: the reduction is read between the two alike (`enriched`'s documentation).
+        let thrice = match &twice {
+            Some(Ok((p2, h2))) if h2.status == SolveStatus::Converged => {
+                p2.forget_factorization();
+                let inner: Vec<EndRegion> = union.iter().map(|r| r.toward_end(0.25)).collect();
+                let (near, friction) = (near_ends(self, p2, &inner), self.carried_friction(friction, p2));
+                let held =
+                    held + History::estimated_bytes(&enriched, steps, 1) + History::estimated_bytes(p2, steps, 1);
+                let build = |p: &Problem, s: &[&Solution]| p.enriched_at_ends(s, &near, self, &inner);
+                p2.solve_enriched_history(h2, build, &friction, settings, held).ok()
+            }
+            _ => None,
+        };
         let seconds = clock.elapsed().as_secs_f64();
         let estimate = |(i, &k): (usize, &usize)| {
             let solution = &history.solutions[i];
@@ -228,7 +241,9 @@ impl Problem {
                 Some(Err(_)) => Vec::new(),
                 Some(Ok((p, h))) => {
                     let again = h.solution_of(k).filter(|_| h.status == SolveStatus::Converged);
-                    self.reductions(&regions[i], (solution, (&enriched, fine)), again.map(|a| (p, a)))
+                    let third = thrice.as_ref().filter(|(_, h3)| h3.status == SolveStatus::Converged);
+                    let third = third.and_then(|(p3, h3)| h3.solution_of(k).map(|s| (p3, s)));
+                    self.reductions(&regions[i], (solution, (&enriched, fine)), again.map(|a| (p, a)), third)
                 }
             };
             let [(estimate, relative), (enriched_estimate, enriched_relative)] =

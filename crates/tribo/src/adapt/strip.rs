@@ -17,6 +17,16 @@ pub(super) struct EndRegion {
     pub(super) end: f64,
 }
 
+impl EndRegion {
+    /// This region shrunk toward its end to `factor` of its length: where the third enrichment at an end is made
+    /// (a quarter: the second quartered the cells there, the third quarters them again within a quartered radius).
+    pub(super) fn toward_end(self, factor: f64) -> Self {
+        let length = factor * (self.span[1] - self.span[0]);
+        let span = if self.end <= self.span[0] { [self.end, self.end + length] } else { [self.end - length, self.end] };
+        Self { span, ..self }
+    }
+}
+
 /// Each pair of `problem` with its part of the multiplier states of `solution` (empty where the solution has fewer).
 fn pairs_and_states<'a>(problem: &'a Problem, solution: &'a Solution) -> Vec<(PairParts<'a>, &'a [ContactState])> {
     let offsets = problem.pair_offsets();
