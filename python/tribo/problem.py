@@ -354,7 +354,7 @@ class Problem(_tribo.Problem):
         the energy while nothing does. By default (``stop_on='hierarchical'``) it is the smaller of the residual
         bound and the hierarchical estimate 1.5‖λ_H − λ_f‖ / ‖λ_f‖ (λ_f the answer with the whole mesh bisected
         and the strip along the contact zone again, ``report.estimate["traction_hierarchical_relative"]``; where
-        the contact zone reaches an end of Γ_C, its reduction there is measured by a second enrichment): 1.38–1.58
+        the contact zone reaches an end of Γ_C, its reduction there is measured by two more enrichments): 1.38–1.58
         times the true error on every level of eight cases of docs/tol_table.md, 1.82–1.88 on the block, whose
         traction is singular at its corners (its bound 1.82–1.91), not a guaranteed bound, computed on the levels
         near ``tol`` with at least 10 multiplier dofs in contact at the cost of a solve of 8–9 times their

@@ -63,21 +63,21 @@
 //!
 //! (infinite where `q_R ≥ 1`, or where the second enriched solve did not converge or could not be made, the memory
 //! budget say: the estimate then says nothing, and the error bars stand; where the third did not, q_R is read between
-//! the first two, `‖λ_f − λ_ff‖_R / d_R`; an end whose `d_R` is within the accuracy of the solves,
-//! `min(fp_tol, 1e-8) ‖λ_f‖`, measures nothing and stays in the rest). Each enrichment at the end repeats the one
-//! before (the same bisections of a self-similar corner), so it reduces the error alike: `e_ff = q² e_H`, and the
-//! triangle inequality through the answer enriched twice, `e_H ≤ D_R + e_ff`, gives `D_R / (1 − q²)`. The reduction
-//! is read between the second and third because those two are alike: the first is global, and on a uniform mesh its
-//! difference is a smaller part of the error (0.53 e_H on the block's uniform meshes of 32 and 64 cells) than a local
-//! one's (0.60 e_f), so `‖λ_f − λ_ff‖_R / d_R` read 0.88–1.01 there where the true reductions are 0.78 and 0.74, and
-//! the estimate 3.6–5.4 times the truth or none; `‖λ_ff − λ_fff‖_R / ‖λ_f − λ_ff‖_R` reads 0.742–0.744 on those meshes
-//! and on adaptive levels alike (the true 0.744; study 15b). Through λ_f the bound was `d_R / (1 − q)` (until
-//! 2026-12-01), never smaller (`D_R ≤ d_R + q d_R`) and as sharp only where the two differences point the same way; at
-//! the block's corners they are nearly orthogonal (cosine 0.01–0.19 on 23 levels from 36 to 104k unknowns), and it was
-//! 2.4–2.8 times the truth there. Measured in study 13 (`docs/tol_table.md`), against the block's reference graded
-//! toward its corners (`tribo_testkit::graded_at_ends`): the estimate is 1.82–1.88 times the truth on the 6 levels the
-//! runs estimated (through λ_f, 2.20–2.74 against the reference before its grading); the adaptive stop reads the
-//! smaller of it and the bound (on the block, 1.82–1.91 times the truth). The second and third enrichments cost a
+//! the first two, `‖λ_f − λ_ff‖_R / d_R`; an end whose `d_R` is within the accuracy of the solves, `min(fp_tol, 1e-8)
+//! ‖λ_f‖`, measures nothing and stays in the rest). Each enrichment at the end repeats the one before (the same
+//! bisections of a self-similar corner), so it reduces the error alike: `e_ff = q² e_H`, and the triangle inequality
+//! through the answer enriched twice, `e_H ≤ D_R + e_ff`, gives `D_R / (1 − q²)`. The reduction is read between the
+//! second and third because those two are alike: the first is global, and on a uniform mesh its difference is a smaller
+//! part of the error (0.53 e_H on the block's uniform meshes of 32 and 64 cells) than a local one's (0.60 e_f), so
+//! `‖λ_f − λ_ff‖_R / d_R` read 0.88–1.01 there where the true reductions are 0.78 (the first) and 0.74 (a local one),
+//! and the estimate 3.6–5.4 times the truth or none; `‖λ_ff − λ_fff‖_R / ‖λ_f − λ_ff‖_R` reads 0.742–0.744 on those
+//! meshes and on adaptive levels alike (a local one's true 0.744; study 15b). Through λ_f the bound was `d_R / (1 − q)`
+//! (until 2026-12-01), never smaller (`D_R ≤ d_R + q d_R`) and as sharp only where the two differences point the same
+//! way; at the block's corners they are nearly orthogonal (cosine 0.01–0.19 on 23 levels from 36 to 104k unknowns), and
+//! it was 2.4–2.8 times the truth there. Measured in study 13 (`docs/tol_table.md`), against the block's reference
+//! graded toward its corners (`tribo_testkit::graded_at_ends`): the estimate is 1.82–1.88 times the truth on the 6
+//! levels the runs estimated (through λ_f, 2.20–2.74 against the reference before its grading); the adaptive stop reads
+//! the smaller of it and the bound (on the block, 1.82–1.91 times the truth). The second and third enrichments cost a
 //! solve each about as large as the first (each factorization freed before the next is made), only where an end
 //! touches.
 //!
@@ -165,8 +165,8 @@ pub struct Hierarchical {
     pub unknowns: usize,
     /// How the enriched solve ended (the estimate means something only when it converged).
     pub status: SolveStatus,
-    /// Wall time of building and solving the enriched problem (and the second enrichment at the ends of
-    /// Γ_C in contact, if any).
+    /// Wall time of building and solving the enriched problem (and the second and third enrichments at the ends
+    /// of Γ_C in contact, if any).
     pub seconds: f64,
     /// The reduction `q` measured at each end of Γ_C where the contact zone reaches it (the module
     /// documentation): empty where no end touches.
@@ -300,9 +300,9 @@ impl Problem {
     /// `friction` (see the module documentation), with the error bars of its forces and zone widths: the whole
     /// mesh bisected, then the triangles within half a contact width of the contact zone again (within the two T_H
     /// cells around a single dof touching; nothing more when none touches), solved with `settings` from
-    /// `solution`'s multipliers (8–9 times the unknowns of this problem; where an end of Γ_C touches, a second
-    /// solve of about that size follows, the first's factorization freed). A Tresca threshold given per dof is
-    /// carried to the enriched T_H as the W_H function it defines.
+    /// `solution`'s multipliers (8–9 times the unknowns of this problem; where an end of Γ_C touches, a second and a
+    /// third solve of about that size follow, each factorization freed before the next). A Tresca threshold given per
+    /// dof is carried to the enriched T_H as the W_H function it defines.
     ///
     /// # Errors
     /// Those of [`Problem::solve_enriched`].
@@ -438,7 +438,8 @@ impl Problem {
             let (near, friction) = (near_ends(self, &twice, &inner), self.carried_friction(law, &twice));
             let build = |p: &Problem| p.enriched_at_ends(&[&again], &near, self, &inner);
             let third = twice.solve_built(&again, &friction, &settings, build);
-            third.ok().filter(|(_, s)| s.report.status == SolveStatus::Converged)
+            let third = third.inspect_err(|e| log::warn!("the third enrichment at the ends of Γ_C failed ({e})")).ok();
+            third.filter(|(_, s)| s.report.status == SolveStatus::Converged)
         });
         let thrice = thrice.flatten();
         let (twice, thrice) = (converged.then_some((&twice, &again)), thrice.as_ref().map(|(p, s)| (p, s)));
@@ -505,7 +506,7 @@ impl Problem {
     /// ([`crate::results::ErrorEstimate::error_bars`]). When the enriched problem cannot be built or solved
     /// (the memory budget, say) or does not converge, the answer keeps `None` there and a warning is logged:
     /// the answer itself is returned either way. The enriched solve has 8–9 times the unknowns (and
-    /// is made twice where an end of Γ_C touches). An infinite hierarchical estimate (a measured reduction of
+    /// is made three times where an end of Γ_C touches). An infinite hierarchical estimate (a measured reduction of
     /// 1 or more at an end) is stored as it is: no estimate of the traction error, the error bars standing.
     ///
     /// # Errors

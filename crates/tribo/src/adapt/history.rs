@@ -125,13 +125,12 @@ impl Problem {
     /// problem solved with `friction` (in the order of [`History::kept`]): as [`Problem::estimate_hierarchical`]
     /// for one solve, with the whole history solved on the enriched mesh (friction depends on the path, so a
     /// step cannot be enriched alone). The whole mesh is bisected, then the triangles within half a contact width of
-    /// the contact zone of every kept step again (for a step with one multiplier dof touching, within the two T_H
-    /// cells around it; nothing more when no step touches); where an end of Γ_C touches in a step, the history is
-    /// solved once more
-    /// on the mesh enriched again at the ends, and that step's reduction there is measured. Each step's
-    /// enriched solve starts from its own multipliers when every step was kept. The steps solved are the
-    /// converged ones of `history`; the estimates carry the enriched history's status, and a step it did not
-    /// reach has a NaN estimate. Every step of the enriched
+    /// the contact zone of every kept step again (for a step with one multiplier dof touching, within the two T_H cells
+    /// around it; nothing more when no step touches); where an end of Γ_C touches in a step, the history is solved
+    /// twice more on the mesh enriched again at the ends, and that step's reduction there is measured between those
+    /// two. Each step's enriched solve starts from its own multipliers when every step was kept. The steps solved are
+    /// the converged ones of `history`; the estimates carry the enriched history's status, and a step it did not reach
+    /// has a NaN estimate. Every step of the enriched
     /// histories is kept (8–9 times the unknowns of `history`'s): each must fit the memory budget less
     /// the histories already held ([`History::estimated_bytes`]), or the estimate is refused with
     /// [`Error::MemoryBudget`] (the adaptive loop then reads the bound). No estimate for a history
@@ -206,7 +205,8 @@ impl Problem {
                 let held =
                     held + History::estimated_bytes(&enriched, steps, 1) + History::estimated_bytes(p2, steps, 1);
                 let build = |p: &Problem, s: &[&Solution]| p.enriched_at_ends(s, &near, self, &inner);
-                p2.solve_enriched_history(h2, build, &friction, settings, held).ok()
+                let third = p2.solve_enriched_history(h2, build, &friction, settings, held);
+                third.inspect_err(|e| log::warn!("the third enrichment at the ends of Γ_C failed ({e})")).ok()
             }
             _ => None,
         };

@@ -251,9 +251,10 @@ fn at_the_ends_of_gamma_c_in_contact_the_reduction_is_measured() {
 }
 
 /// On a uniform mesh the first (global) enrichment's difference at the block's singular corners is a smaller part of
-/// the error than a local enrichment's, so the reduction read between the first two enrichments overstated the true
-/// one (0.88 against 0.78 and 0.74, study 15b) and the estimate was 3.6–5.4 times the truth; read between the second
-/// and third, both local and alike, it is the true reduction of the corner (0.742–0.744, as on adaptive levels).
+/// the error than a local enrichment's, so the reduction read between the first two enrichments overstated the true one
+/// (0.88 where the first enrichment's true reduction is 0.78 and a local one's 0.74, study 15b) and the estimate was
+/// 3.6–5.4 times the truth; read between the second and third, both local and alike, it is the local one's (0.742, as
+/// on adaptive levels).
 #[test]
 fn on_a_uniform_mesh_the_reduction_is_read_between_two_local_enrichments() {
     let (block, mu) = tribo_testkit::block_problem(32, 8);
@@ -261,7 +262,8 @@ fn on_a_uniform_mesh_the_reduction_is_read_between_two_local_enrichments() {
     let sol = block.solve(&friction, &settings, None).expect("solves");
     let h = block.estimate_hierarchical(&sol, &friction, &settings).expect("estimates");
     assert_eq!(h.end_reductions.len(), 2, "{:?}", h.end_reductions);
-    // Measured 0.742 at x = 0 (0.882 between the first two).
-    assert!((0.7..0.8).contains(&h.end_reductions[0]), "{:?}", h.end_reductions);
-    assert!(h.relative.is_finite() && h.relative < 2.0 * sol.report.estimate.traction_relative, "{h:?}");
+    // Measured 0.742 at x = 0 and 0.777 at x = 4 (0.882 and 0.889 between the first two).
+    assert!(h.end_reductions.iter().all(|q| (0.7..0.8).contains(q)), "{:?}", h.end_reductions);
+    // Measured 1.03 times the bound (2.06 times with the reduction between the first two).
+    assert!(h.relative.is_finite() && h.relative < 1.2 * sol.report.estimate.traction_relative, "{h:?}");
 }
