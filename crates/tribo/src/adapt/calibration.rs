@@ -79,7 +79,8 @@ pub(super) fn relative(e: &ErrorEstimate) -> f64 {
 /// Whether the bound `bound` (ζ_k) will meet `tol` on the next level if it falls as it did from `before` (ζ_{k−1}):
 /// `ζ_k² / ζ_{k−1} ≤ tol` (the module documentation). False without a finite bound before, or a fall.
 pub(super) fn bound_stops_next(bound: f64, before: Option<f64>, tol: f64) -> bool {
-    bound * fall(bound, before) <= tol && fall(bound, before) < 1.0
+    let fall = fall(bound, before);
+    fall < 1.0 && bound * fall <= tol
 }
 
 /// The bound's last reduction `ζ_k / ζ_{k−1}`: 1 without a finite bound before, or a fall.
