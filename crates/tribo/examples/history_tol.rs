@@ -38,7 +38,7 @@ fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
     let stops: Vec<StopOn> = stops.split(',').map(|s| Choice::parse(s.trim())).collect::<Result<_>>()?;
     let out = std::env::args().nth(3).map_or_else(tribo_testkit::tol_table_dir, std::path::PathBuf::from);
     let steps: Vec<LoadStep> = std::iter::once(0.0).chain(shifts).map(|s| LoadStep::new(0.01, s)).collect();
-    let case = tribo_testkit::adaptive_hertz_case(0.0, 0.3, MultiplierSpace::P1)?;
+    let case = tribo_testkit::adaptive_hertz_case(0.0, Friction::Coulomb { mu: 0.3 }, MultiplierSpace::P1)?;
     let (friction, coarse, reference) = (case.friction, case.coarse, case.reference.0);
     let settings = SolverSettings::default();
     let clock = std::time::Instant::now();

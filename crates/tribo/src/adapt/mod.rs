@@ -20,7 +20,8 @@
 //!    triangles are labelled by their longest edges.
 //! 5. Refine T_H where the FE edges under it were, keeping the first level's ratio H/h, but not where
 //!    the body is surely apart from the obstacle (`multipliers`): a segment whose every node has a
-//!    current gap `g − u_n` larger than the largest displacement on Γ_C stays as it was. T_H is given to
+//!    current gap `g − u_n` larger than the largest displacement on Γ_C stays as it was (under Coulomb or no
+//!    friction: a Tresca threshold acts where nothing touches, and T_H follows the FE edges there). T_H is given to
 //!    the next level by its abscissae (carried through Γ_C's old nodes where refinement moved the nodes of
 //!    a bent Γ_C onto its curve, [`crate::Mesh::with_curve`], and its arclength grew). A bent Γ_C without a
 //!    curve keeps the first level's chords: the levels converge to the answer on that polygon, whose

@@ -81,6 +81,26 @@ fn a_level_beyond_max_unknowns_is_not_made() {
     assert_eq!(out.problem.n_free, out.levels.last().map_or(0, |l| l.unknowns));
 }
 
+/// A Tresca threshold acts where nothing touches, so T_H follows the FE edges of Γ_C everywhere, not only where
+/// contact is or may be (Coulomb's saving): kept coarse under refined FE edges, the bound of Hertz with a uniform
+/// threshold grew from 5.6e-2 at 15k unknowns to 0.46 at 82k, the multipliers held at 551.
+#[test]
+fn under_a_tresca_threshold_the_multipliers_follow_the_fe_edges_where_nothing_touches() {
+    let adapt = AdaptSettings { tol: 1e-6, max_unknowns: 10_000, stop_on: StopOn::Bound, ..Default::default() };
+    let run = |friction: &Friction| {
+        let coarse = tribo_testkit::hertz_coarse(0.0, friction, MultiplierSpace::P1).expect("valid");
+        coarse.solve_adaptive(friction, &SolverSettings::default(), &adapt, None).expect("adapts")
+    };
+    let tresca = run(&Friction::Tresca(Threshold::Uniform(tribo_testkit::TRESCA_THRESHOLD)));
+    assert_eq!(tresca.stop, AdaptStop::MaxUnknowns);
+    assert_eq!(tresca.problem.multipliers.xi, tresca.problem.contact.node_xi, "T_H on the FE edges of Γ_C");
+    let bounds: Vec<f64> = tresca.levels.iter().map(|l| l.estimate.traction_relative).collect();
+    assert!(bounds.windows(2).rev().take(4).all(|w| w[1] < w[0]), "the bound falls on the last levels: {bounds:?}");
+    let coulomb = run(&Friction::Coulomb { mu: 0.3 });
+    let (t_h, fe) = (coulomb.problem.multipliers.xi.len(), coulomb.problem.contact.node_xi.len());
+    assert!(t_h < fe, "Coulomb keeps T_H coarse where the body is surely apart: {t_h} points, {fe} FE nodes");
+}
+
 /// `Problem::on_level` solves a level of a run of that problem again, and refuses with a typed error (no
 /// panic) a level of another problem on the same body name, and a level whose body ranges were edited.
 #[test]
