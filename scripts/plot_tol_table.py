@@ -12,7 +12,7 @@ them all and writes docs/tol_table.{md,png}. A run's time is the sum of its leve
 solves included; the cheapest level reaching X is the first level of the same run whose true error is at most X,
 its time the run's time up to and including it.
 
-    for c in hertz hertz@0.3 hertz-coulomb two-body two-body-coulomb block pairs; do
+    for c in hertz hertz@0.3 hertz-coulomb hertz-tresca two-body two-body-coulomb block pairs; do
         cargo run --release -p tribo --example tol_table $c hierarchical,enriched; done
     cargo run --release -p tribo --example tol_table hertz-p0 hierarchical
     cargo run --release -p tribo --example history_tol default hierarchical,enriched
@@ -38,6 +38,8 @@ CASES = {
     "hertz-coulomb": "Hertz centred, Coulomb μ = 0.3, shift 0.004 (partial slip)",
     "hertz-coulomb-history": "Cattaneo–Mindlin history: Hertz centred, Coulomb μ = 0.3, pressed then dragged to "
                              "s = 0.001…0.004 (five steps; the worst step's error)",
+    "hertz-tresca": "Hertz centred, Tresca threshold 1 on all of the top, shift 0.004 (stick and slip; the threshold "
+                    "acts where nothing touches too)",
     "hertz-p0": "Hertz centred, frictionless, P0 multipliers",
     "block": "the block, Coulomb μ = 0.3, the whole bottom in contact (singular corners)",
     "two-body": "two-body Hertz (steel on aluminium), frictionless",
@@ -310,8 +312,10 @@ def page(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, Any]]
         "`stop_on = \"enriched\"` hands nothing back with P0 multipliers):\n\n" + sl.commands_block(doc),
         "**Scenes** (their coarse starts and references: `tribo_testkit::adaptive_case`, "
         "`tribo_testkit::adaptive_hertz_case`). The Hertz cases' reference is the same scene on a graded mesh of "
-        "466k unknowns, the two pairs' on a mesh graded toward the punch's zone (152k unknowns); the others' the adaptive "
-        "loop run to 500k unknowns, the block's then graded toward its corners, where its traction is singular "
+        "466k unknowns (but Tresca's, whose λ_t lives on all of the top, where that mesh is coarse), the two pairs' on "
+        "a mesh graded toward the punch's zone (152k unknowns); the others' the adaptive loop run to 500k unknowns "
+        "(Tresca's stops at 423k, the next level would pass 500k), the block's then graded toward its corners, where "
+        "its traction is singular "
         "(`tribo_testkit::graded_at_ends`). Where a run ends near the reference's "
         "own error (about 3e-4 to 8e-4 on the Hertz cases), a \"true error\" is partly the reference's.\n\n" + scenes,
         "## What it shows\n\n" + summary(runs, effectivity, levels), "![tol table](tol_table.png)",

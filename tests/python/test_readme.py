@@ -224,7 +224,7 @@ def test_the_docs_quote_the_tol_table_as_generated() -> None:
     eff = {case: [r for r in rows if r["in_contact"] >= tol.MIN_IN_CONTACT]
            for case, rows in tol.effectivity_rows(levels).items()}
     of = lambda *names: [r["effectivity"] for c in names for r in eff[c]]  # noqa: E731
-    one = of("hertz", "hertz@0.3", "hertz-coulomb", "hertz-coulomb-history")
+    one = of("hertz", "hertz@0.3", "hertz-coulomb", "hertz-tresca", "hertz-coulomb-history")
     p0, two, pairs = of("hertz-p0"), of("two-body", "two-body-coulomb"), of("pairs")
     quoted = (f"its effectivity is {_span(one, '.2f')} on one-body Hertz and histories, {_span(p0, '.2f')} with P0 "
               f"multipliers, {_span(two, '.2f')} on two bodies and {_span(pairs, '.2f')} with two contact pairs, and "

@@ -4,8 +4,8 @@
 //! Studies 13–15 measure the traction estimates on the levels of the adaptive loop. Here the same estimate
 //! (`Problem::estimate_hierarchical`: the whole mesh bisected, the strip of half a contact width again, the reduction
 //! measured at the ends of Γ_C in contact) is measured on meshes a user makes without the loop, against the
-//! references of `tribo_testkit::adaptive_case`: Hertz (centred, frictionless; Coulomb μ = 0.3 with a shift; P0
-//! multipliers) on uniform meshes of the (−2, 2) × (−2, 0) block (`nx × nx/2`, right diagonals) and on meshes graded
+//! references of `tribo_testkit::adaptive_case`: Hertz (centred, frictionless; Coulomb μ = 0.3 with a shift; Tresca
+//! with a shift; P0 multipliers) on uniform meshes of the (−2, 2) × (−2, 0) block (`nx × nx/2`, right diagonals) and on meshes graded
 //! toward [−0.2, 0.2] of its top (`h_min`, growth 0.3, h_max 0.25); the block (Coulomb, the whole bottom in contact)
 //! on uniform meshes (`nx × nx/4`) and on meshes graded toward its bottom (`h_min`, growth 0.3, h_max 0.25); two-body
 //! Hertz (steel on aluminium, frictionless) on the scene's graded blocks (`tribo_testkit::two_body_hertz`, `h_min`).
@@ -13,8 +13,9 @@
 //! mesh: the unknowns, the dofs in contact, the true relative L²(Γ_C) error of λ, the hierarchical estimate and the
 //! bound (`traction_relative`) over it, and the seconds of the solve and of the estimate.
 //!
-//! `cargo run --release -p tribo --example estimate_meshes [CASES [OUT]]` (CASES comma-separated, all five by
-//! default: `hertz,hertz-coulomb,hertz-p0,block,two-body`; about 15 minutes, the references most of it) writes
+//! `cargo run --release -p tribo --example estimate_meshes [CASES [OUT]]` (CASES comma-separated, all six by
+//! default: `hertz,hertz-coulomb,hertz-tresca,hertz-p0,block,two-body`; about 20 minutes, the references and the
+//! Tresca estimates most of it) writes
 //! `OUT/estimate_meshes.csv` (OUT `docs` by default), from which `python scripts/plot_estimate_meshes.py` writes
 //! `docs/estimate_meshes.md`.
 use std::io::Write;
@@ -27,7 +28,8 @@ use tribo::*;
 type Meshes = Vec<(&'static str, f64, Problem)>;
 
 fn main() -> std::result::Result<(), Box<dyn std::error::Error>> {
-    let names = std::env::args().nth(1).unwrap_or_else(|| "hertz,hertz-coulomb,hertz-p0,block,two-body".into());
+    let names =
+        std::env::args().nth(1).unwrap_or_else(|| "hertz,hertz-coulomb,hertz-tresca,hertz-p0,block,two-body".into());
     let docs = || std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs");
     let out = std::env::args().nth(2).map_or_else(docs, std::path::PathBuf::from);
     let (done, partial) = (out.join("estimate_meshes.csv"), out.join("estimate_meshes.csv.partial"));

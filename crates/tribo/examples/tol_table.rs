@@ -1,11 +1,11 @@
 //! Does `tol` mean what it says? (issue 36, item 2: the `tol` table)
 //!
-//! The adaptive case `CASE` (`tribo_testkit::ADAPTIVE_CASES`: Hertz centred, off-centre, Coulomb, with P0
+//! The adaptive case `CASE` (`tribo_testkit::ADAPTIVE_CASES`: Hertz centred, off-centre, Coulomb, Tresca, with P0
 //! multipliers; the block; two-body Hertz, frictionless and Coulomb; `hertz` by default) solved by
 //! `solve_adaptive` from its coarse start with `tol` = 5 %, 2 %, 1 %, 0.5 %, stopping on the bound and on
 //! the hierarchical estimate. The true error is the relative L²(Γ_C) error of λ against the case's
-//! reference (for Hertz a graded mesh of 466k unknowns, study 12's; else the adaptive loop run to 500k
-//! unknowns); every level of every run is solved again on its mesh (`Problem::on_level`) to measure it. Printed per run: the asked X, the true error
+//! reference (for Hertz a graded mesh of 466k unknowns, study 12's; else, Tresca Hertz's too, the adaptive loop run to
+//! 500k unknowns); every level of every run is solved again on its mesh (`Problem::on_level`) to measure it. Printed per run: the asked X, the true error
 //! of the answer handed back and its ratio to X, the unknowns, the run's time (the sum of its levels'
 //! seconds, the hierarchical solves included), and the cheapest level of the same run whose true error is
 //! at most X with the time the run took to reach it; then, per level where the hierarchical estimate was
