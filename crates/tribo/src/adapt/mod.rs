@@ -73,9 +73,8 @@
 //! history's included), 1.82–1.88 on the block (its bound 1.82–1.91: at its singular corners the reduction measured);
 //! the calibrated bound 1.10–2.65 (above 2 on each case's first, at 692–1164 unknowns, and on one of 27.6k, 2.04;
 //! 1.40–2.04 where it stopped the loop); what the loop reads is within [1, 2] on 119 of 127 readings (1.38–2.65).
-//! Before the calibrated bound
-//! (2026-12-01) it stopped only on a level whose own estimate was computed: in [X/3, X] in all 36 runs too, but within
-//! twice the time in 12, most paying one more level and its enriched solve.
+//! Before the calibrated bound (2026-12-01) it stopped only on a level whose own estimate was computed: in [X/3, X]
+//! in all 36 runs of nine cases too, but within twice the time in 12, most paying one more level and an estimate.
 //!
 //! # The enriched answer handed back (`stop_on = "enriched"`)
 //! Level k's estimate solves the problem enriched (the whole mesh bisected, the strip along the contact zone again);
