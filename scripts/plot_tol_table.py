@@ -308,8 +308,9 @@ def page(runs: list[dict[str, Any]], effectivity: dict[str, list[dict[str, Any]]
         "# Study 13: does `tol` mean what it says?", doc.split("\n\n")[1],
         "Regenerate with the commands below (from 15 seconds per case, one-body Hertz, to 6 minutes, the block, on "
         "two cores: the references and the solves of every level again are most of it; the timings of the machine "
-        "of the studies vary by tens of percent between runs; the bound's runs are those of the Hertz cases, and "
-        "`stop_on = \"enriched\"` hands nothing back with P0 multipliers):\n\n" + sl.commands_block(doc),
+        "of the studies vary by tens of percent between runs; the bound's runs are those of three Hertz cases "
+        "(centred, off-centre, Coulomb), and `stop_on = \"enriched\"` hands nothing back with P0 multipliers):\n\n"
+        + sl.commands_block(doc),
         "**Scenes** (their coarse starts and references: `tribo_testkit::adaptive_case`, "
         "`tribo_testkit::adaptive_hertz_case`). The Hertz cases' reference is the same scene on a graded mesh of "
         "466k unknowns (but Tresca's, whose λ_t lives on all of the top, where that mesh is coarse), the two pairs' on "

@@ -355,7 +355,7 @@ class Problem(_tribo.Problem):
         bound and the hierarchical estimate 1.5‖λ_H − λ_f‖ / ‖λ_f‖ (λ_f the answer with the whole mesh bisected
         and the strip along the contact zone again, ``report.estimate["traction_hierarchical_relative"]``; where
         the contact zone reaches an end of Γ_C, its reduction there is measured by two more enrichments): 1.38–1.58
-        times the true error on every level of eight cases of docs/tol_table.md, 1.82–1.88 on the block, whose
+        times the true error on every level of nine cases of docs/tol_table.md, 1.82–1.88 on the block, whose
         traction is singular at its corners (its bound 1.82–1.91), not a guaranteed bound, computed on the levels
         near ``tol`` with at least 10 multiplier dofs in contact at the cost of a solve of 8–9 times their
         unknowns. The level right after an estimated one reads the calibrated bound instead, the bound times the
@@ -377,7 +377,8 @@ class Problem(_tribo.Problem):
         estimate (never below ``fp_tol``); the last level is solved again to ``fp_tol`` (an enriched answer handed
         back was solved to it). T_H is refined
         where the FE edges under it are, keeping the ratio H/h of this problem, except where the body is
-        surely apart from the obstacle. The friction, γ0 and settings keywords are those of ``solve``;
+        surely apart from the obstacle and no Tresca threshold acts (a threshold per dof is carried to each
+        level as the W_H function it defines). The friction, γ0 and settings keywords are those of ``solve``;
         ``progress``, if given, is called as progress(unknowns, relative, seconds) after every level, and
         returning False stops the loop there (stop 'interrupted'). Defaults come from the core.
         """

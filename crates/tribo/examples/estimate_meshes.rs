@@ -3,11 +3,11 @@
 //!
 //! Studies 13–15 measure the traction estimates on the levels of the adaptive loop. Here the same estimate
 //! (`Problem::estimate_hierarchical`: the whole mesh bisected, the strip of half a contact width again, the reduction
-//! measured at the ends of Γ_C in contact) is measured on meshes a user makes without the loop, against the
-//! references of `tribo_testkit::adaptive_case`: Hertz (centred, frictionless; Coulomb μ = 0.3 with a shift; Tresca
-//! with a shift; P0 multipliers) on uniform meshes of the (−2, 2) × (−2, 0) block (`nx × nx/2`, right diagonals) and on meshes graded
-//! toward [−0.2, 0.2] of its top (`h_min`, growth 0.3, h_max 0.25); the block (Coulomb, the whole bottom in contact)
-//! on uniform meshes (`nx × nx/4`) and on meshes graded toward its bottom (`h_min`, growth 0.3, h_max 0.25); two-body
+//! measured at the ends of Γ_C in contact) is measured on meshes a user makes without the loop, against the references
+//! of `tribo_testkit::adaptive_case`: Hertz (centred, frictionless; Coulomb μ = 0.3 with a shift; Tresca with a shift;
+//! P0 multipliers) on uniform meshes of the (−2, 2) × (−2, 0) block (`nx × nx/2`, right diagonals) and on meshes graded
+//! toward [−0.2, 0.2] of its top (`h_min`, growth 0.3, h_max 0.25); the block (Coulomb, the whole bottom in contact) on
+//! uniform meshes (`nx × nx/4`) and on meshes graded toward its bottom (`h_min`, growth 0.3, h_max 0.25); two-body
 //! Hertz (steel on aluminium, frictionless) on the scene's graded blocks (`tribo_testkit::two_body_hertz`, `h_min`).
 //! Every mesh with at least 10 multiplier dofs in contact is counted (the threshold). Printed and written per
 //! mesh: the unknowns, the dofs in contact, the true relative L²(Γ_C) error of λ, the hierarchical estimate and the

@@ -94,20 +94,21 @@
 //! Γ_C is then every pair's side, and `‖·‖_{L²(Γ_C)}` adds the squares of each pair's norm on its own side
 //! ([`multiplier_difference`]). The strip bisected again is the union of each pair's: the triangles within half the
 //! width of that pair's contact zone (`adapt/strip.rs`); the enriched problem halves every pair's T_H where its FE
-//! edges
-//! were halved (the first pair's where contact is or may be, as for one pair; a further pair's where its FE edges
-//! were), and starts from every pair's multipliers. Every end of a pair's side that its contact zone reaches is an end
-//! region R, measured as above. Nothing else changes: the argument for `q₀ = ⅓` is the same on each side. The error
-//! bars of the forces are those of the totals (the sums over the pairs); those of the widths are the first pair's, as
-//! [`Solution::contact_width`] is. Tested: a side cut into two pairs, contact on one, gives the estimate of the
-//! side as one pair (measured to 1e-14, asserted to 1e-6: `tests/integration/pair_estimate.rs`).
+//! edges were halved (the first pair's where contact is or may be, or a Tresca threshold acts, as for one pair; a
+//! further pair's where its FE edges were), and starts from every pair's multipliers. Every end of a pair's side that
+//! its contact zone reaches is an end region R, measured as above. Nothing else changes: the argument for `q₀ = ⅓` is
+//! the same on each side. The error bars of the forces are those of the totals (the sums over the pairs); those of the
+//! widths are the first pair's, as [`Solution::contact_width`] is. Tested: a side cut into two pairs, contact on one,
+//! gives the estimate of the side as one pair (measured to 1e-14, asserted to 1e-6:
+//! `tests/integration/pair_estimate.rs`).
 //!
 //! # The level's ratio H/h
 //! The enriched T_H keeps the level's ratio H/h where contact is: the largest ratio over the segments of the first
-//! pair's T_H that hold a touching dof. Over the whole of T_H it would read the segments kept coarse where the body is
-//! surely apart ([`crate::adapt`]) above FE edges that refinement halved, and with ratio 2 leave T_H unhalved in the
-//! strip: λ_f then differs from λ_H by the FE refinement alone (measured: 0.087 against 0.120 on a level of the cut
-//! side's test, whose zone kept its ratio 1).
+//! pair's T_H that hold a touching dof (or a dof of a positive Tresca threshold, which acts where nothing touches and
+//! is refined there as where it touches, [`crate::adapt`]). Over the whole of T_H it would read the segments kept
+//! coarse where the body is surely apart ([`crate::adapt`]) above FE edges that refinement halved, and with ratio 2
+//! leave T_H unhalved in the strip: λ_f then differs from λ_H by the FE refinement alone (measured: 0.087 against 0.120
+//! on a level of the cut side's test, whose zone kept its ratio 1).
 //!
 //! # Error bars of the forces and the zone widths
 //! The same enriched answer gives the error bars ([`ErrorBars`]) of what users read

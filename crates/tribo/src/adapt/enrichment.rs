@@ -1,6 +1,7 @@
 //! The enriched problem of the hierarchical estimate ([`crate::adapt::enriched`]): the triangles to enrich
 //! bisected on their three edges (and the conforming closure), T_H refined where the FE edges under it were, keeping
-//! the level's ratio H/h where contact is and T_H as it was where the body is surely apart; the enrichment that
+//! the level's ratio H/h where contact is and T_H as it was where the body is surely apart (and no Tresca threshold
+//! acts); the enrichment that
 //! bisects the whole mesh and then the strip along the contact zone again; the same twice at the ends of Γ_C; and
 //! the solve of such a problem from the coarse answer's multipliers.
 
@@ -150,16 +151,20 @@ impl Problem {
         self.bisected(&once, &again, self.level_ratio(solutions), &apart)
     }
 
-    /// The level's ratio H/h where contact is in any of `solutions`: a T_H kept where the body is surely apart may
-    /// be coarser than the FE edges refined under it there, and their ratio would leave T_H unhalved in the strip.
+    /// The level's ratio H/h where contact is in any of `solutions`, or a Tresca threshold acts: a T_H kept where the
+    /// body is surely apart may be coarser than the FE edges refined under it there, and their ratio would leave T_H
+    /// unhalved in the strip.
     pub(super) fn level_ratio(&self, solutions: &[&Solution]) -> f64 {
         let spans: Vec<(f64, f64)> = solutions.iter().filter_map(|s| first_pair_span(self, s)).collect();
+        let held = super::multipliers::tresca_held(solutions);
         let period = if self.contact.is_closed() { self.contact.length() } else { f64::INFINITY };
         // A segment holds a span it overlaps, or a single touching dof at one of its ends (a point span).
         let holds = |a: f64, b: f64, lo: f64, hi: f64| if lo < hi { b > lo && a < hi } else { b >= lo && a <= hi };
         let overlaps =
             |a: f64, b: f64, (lo, hi): (f64, f64)| holds(a, b, lo, hi) || holds(a, b, lo + period, hi + period);
-        let in_contact = |a: f64, b: f64| spans.iter().any(|&span| overlaps(a, b, span));
+        let in_contact = |a: f64, b: f64| {
+            spans.iter().any(|&span| overlaps(a, b, span)) || super::multipliers::holds_any(&held, a, b)
+        };
         super::multipliers::ratio_over(&self.multipliers.xi, &self.contact, in_contact)
     }
 

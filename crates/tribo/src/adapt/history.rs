@@ -67,14 +67,21 @@ impl Problem {
         }
         // A loose answer solved again to fp_tol starts every step from its own (a history from rest would
         // cost a whole history again); the coarser level's multipliers are not carried over.
+        // A Tresca threshold given per dof is carried to each level's T_H as the W_H function it defines.
+        let on_level = |p: &Problem| self.carried_friction(friction, p);
         let solve = |p: &Problem, s: &SolverSettings, start: Start<'_, History>| match start {
             Start::Answer(h) => {
                 let starts: Vec<Vec<f64>> = h.solutions.iter().map(Solution::multipliers).collect();
                 // This level's problem holds its factorization: condensing again takes it from the cache.
-                p.condense_with(s.stabilization, s.condensation, s.memory_budget)?
-                    .solve_history_from(friction, steps, s, None, &starts)
+                p.condense_with(s.stabilization, s.condensation, s.memory_budget)?.solve_history_from(
+                    &on_level(p),
+                    steps,
+                    s,
+                    None,
+                    &starts,
+                )
             }
-            Start::Rest | Start::Lambda(_) => p.solve_history(friction, steps, s, None),
+            Start::Rest | Start::Lambda(_) => p.solve_history(&on_level(p), steps, s, None),
         };
         let read = super::reader(|h: &History| {
             if on.is_empty() {
@@ -84,7 +91,7 @@ impl Problem {
             }
         });
         let ended = |h: &History| (h.status, h.solutions.iter().map(|s| s.report.iterations).sum());
-        let estimate = |p: &Problem, h: &History| p.history_hierarchical_and_enriched(h, friction, settings);
+        let estimate = |p: &Problem, h: &History| p.history_hierarchical_and_enriched(h, &on_level(p), settings);
         // Only the finite estimates: a step without one reads its bound.
         let store_with = |h: &mut History, estimates: &[Hierarchical], enriched: bool| {
             // Estimate i is of kept step i; both histories keep every step (keep_every is 1 here, and 1 in the

@@ -1,8 +1,8 @@
-//! Adaptive refinement: solve, estimate, mark, refine, until the estimated error is below a tolerance
-//! or the next level would be too large ([`crate::Problem::solve_adaptive`]; for a loading history,
-//! [`crate::Problem::solve_history_adaptive`], whose level solves the whole history and reads the
-//! estimates of its steps: the level's estimate is its worst step's, each triangle is marked by its
-//! largest indicators over the steps, and T_H is kept coarse only where every step is surely apart).
+//! Adaptive refinement: solve, estimate, mark, refine, until the estimated error is below a tolerance or the next level
+//! would be too large ([`crate::Problem::solve_adaptive`]; for a loading history,
+//! [`crate::Problem::solve_history_adaptive`], whose level solves the whole history and reads the estimates of its
+//! steps: the level's estimate is its worst step's, each triangle is marked by its largest indicators over the steps,
+//! and T_H is kept coarse only where every step is surely apart).
 //!
 //! # One level
 //! 1. Solve the problem on the current mesh; its [`crate::results::ErrorEstimate`] comes with the solution.
@@ -18,30 +18,28 @@
 //!    marked triangle by default, [`crate::settings::Bisection`]): conforming, nested, shape regular; the
 //!    edge sets (Γ_C, the supports, the loaded edges) are inherited by the halves. The first level's
 //!    triangles are labelled by their longest edges.
-//! 5. Refine T_H where the FE edges under it were, keeping the first level's ratio H/h, but not where
-//!    the body is surely apart from the obstacle (`multipliers`): a segment whose every node has a
-//!    current gap `g − u_n` larger than the largest displacement on Γ_C stays as it was (under Coulomb or no
-//!    friction: a Tresca threshold acts where nothing touches, and T_H follows the FE edges there). T_H is given to
-//!    the next level by its abscissae (carried through Γ_C's old nodes where refinement moved the nodes of
-//!    a bent Γ_C onto its curve, [`crate::Mesh::with_curve`], and its arclength grew). A bent Γ_C without a
-//!    curve keeps the first level's chords: the levels converge to the answer on that polygon, whose
-//!    distance from an arc of radius R is up to h²/8R of the first level's h, and the estimates do not see it.
+//! 5. Refine T_H where the FE edges under it were, keeping the first level's ratio H/h, but not where the body is
+//!    surely apart from the obstacle (`multipliers`): a segment whose every node has a current gap `g − u_n` larger
+//!    than the largest displacement on Γ_C stays as it was, unless a Tresca threshold is positive at one of its dofs
+//!    (it acts where nothing touches; one given per dof is carried to each level as the W_H function it defines).
+//!    T_H is given to the next level by its abscissae (carried through Γ_C's old nodes where refinement moved the
+//!    nodes of a bent Γ_C onto its curve, [`crate::Mesh::with_curve`], and its arclength grew). A bent Γ_C without a
+//!    curve keeps the first level's chords: the levels converge to the answer on that polygon, whose distance from an
+//!    arc of radius R is up to h²/8R of the first level's h, and the estimates do not see it.
 //! 6. The next level starts its QPs from the multipliers of this one (λ evaluated at the new dofs), so a
 //!    Coulomb fixed point starts near its answer. The displacement needs no start: A is factorized.
 //!
 //! # Algebraic and discretization errors
-//! A coarse level's answer only steers the refinement, so its Coulomb fixed point need not converge far
-//! below its discretization error. Level k stops its fixed point at a relative change of
-//! `max(fp_tol, algebraic · r_{k−1})` (r the previous level's relative estimate, `algebraic` = 0.1 by
-//! default): the fixed point's change measures its algebraic error in λ_n, so this keeps that error about
-//! a tenth of the discretization error (the idea of Fontana and Di Pietro for Newton's method). The level
-//! the loop stops on is then solved again to `fp_tol` from its own answer (the factorization is kept), so
-//! the solution handed back is converged as asked (whatever the stop: at the tolerance, at `max_levels`,
-//! at `max_unknowns`, at the memory budget or when the observer stops the loop); in a loading history every step starts
-//! again
-//! from its own loose answer (study 6b, tol 0.07: the last level 1.98 s from rest, 1.31 s so). A history's steps
-//! already start from the previous step's answer, so loosening saves little there: the same study with
-//! `algebraic = 0` took 2.93 s against 3.17 s (0.78 s against 0.83 s at tol 0.1).
+//! A coarse level's answer only steers the refinement, so its Coulomb fixed point need not converge far below its
+//! discretization error. Level k stops its fixed point at a relative change of `max(fp_tol, algebraic · r_{k−1})` (r
+//! the previous level's relative estimate, `algebraic` = 0.1 by default): the fixed point's change measures its
+//! algebraic error in λ_n, so this keeps that error about a tenth of the discretization error (the idea of Fontana and
+//! Di Pietro for Newton's method). The level the loop stops on is then solved again to `fp_tol` from its own answer
+//! (the factorization is kept), so the solution handed back is converged as asked (whatever the stop: at the tolerance,
+//! at `max_levels`, at `max_unknowns`, at the memory budget or when the observer stops the loop); in a loading history
+//! every step starts again from its own loose answer (study 6b, tol 0.07: the last level 1.98 s from rest, 1.31 s so).
+//! A history's steps already start from the previous step's answer, so loosening saves little there: the same study
+//! with `algebraic = 0` took 2.93 s against 3.17 s (0.78 s against 0.83 s at tol 0.1).
 //!
 //! # Stopping on the hierarchical estimate (`stop_on = "hierarchical"`, the default)
 //! With [`StopOn::Hierarchical`] and [`StopOn::Enriched`] the tolerance is read against the hierarchical estimate
@@ -101,18 +99,18 @@
 //!
 //! # Several contact pairs
 //! Every pair's indicators mark (the estimate reads every side); the first pair's T_H is refined as above, a further
-//! pair's follows its refined FE edges as its points say (the first pair's ratio or size), so a level's problem is
-//! made again from its mesh and the first pair's T_H ([`Problem::on_level`]); the next level starts from every
-//! pair's multipliers. The hierarchical estimate reads every pair ([`enriched`], section "Several contact pairs"),
-//! and the loop stops on it as with one.
+//! pair's follows its refined FE edges as its points say (the first pair's ratio or size), so a level's problem is made
+//! again from its mesh and the first pair's T_H ([`Problem::on_level`]); the next level starts from every pair's
+//! multipliers. The hierarchical estimate reads every pair ([`enriched`], section "Several contact pairs"), and the
+//! loop stops on it as with one.
 //!
-//! A refinement that would exceed `max_unknowns` is not made; the loop then stops with the last level
-//! and says so ([`AdaptStop::MaxUnknowns`]), as it does at `max_levels` or when a level does not converge.
-//! A level whose first solve would exceed the memory budget ([`crate::Error::MemoryBudget`]: its factor, H and
-//! the dense QP together, [`crate::Factor::held_bytes`] and the new part) stops the loop with the level before,
-//! rebuilt from its record ([`Problem::on_level`]) and handed back ([`AdaptStop::MemoryBudget`]); the answer of
-//! the level before is kept for that beside the next level's solve, uncounted (a solution, or a history's kept
-//! solutions). A level beyond the budget when it is solved again to `fp_tol` still ends the loop with the error.
+//! A refinement that would exceed `max_unknowns` is not made; the loop then stops with the last level and says so
+//! ([`AdaptStop::MaxUnknowns`]), as it does at `max_levels` or when a level does not converge. A level whose first
+//! solve would exceed the memory budget ([`crate::Error::MemoryBudget`]: its factor, H and the dense QP together,
+//! [`crate::Factor::held_bytes`] and the new part) stops the loop with the level before,
+//! rebuilt from its record ([`Problem::on_level`]) and handed back ([`AdaptStop::MemoryBudget`]); the answer of the
+//! level before is kept for that beside the next level's solve, uncounted (a solution, or a history's kept solutions).
+//! A level beyond the budget when it is solved again to `fp_tol` still ends the loop with the error.
 
 mod calibration;
 mod difference;
@@ -167,15 +165,16 @@ impl Problem {
         observer: Option<LevelObserver<'_>>,
     ) -> Result<Adaptive> {
         self.check_adaptive(friction, settings, adapt)?;
+        let on_level = |p: &Problem| self.carried_friction(friction, p); // a threshold per dof: item 5 above
         let solve = |p: &Problem, s: &SolverSettings, start: Start<'_, Solution>| match start {
-            Start::Rest => solve_level(p, friction, s, None),
-            Start::Lambda(v) => solve_level(p, friction, s, Some(v)),
-            Start::Answer(a) => solve_level(p, friction, s, Some(&a.multipliers())),
+            Start::Rest => solve_level(p, &on_level(p), s, None),
+            Start::Lambda(v) => solve_level(p, &on_level(p), s, Some(v)),
+            Start::Answer(a) => solve_level(p, &on_level(p), s, Some(&a.multipliers())),
         };
         let read = reader(|s: &Solution| vec![s]);
         let ended = |s: &Solution| (s.report.status, s.report.iterations);
         let estimate = |p: &Problem, s: &Solution| {
-            let (h, enriched, answer) = p.hierarchical_and_enriched(s, friction, settings)?;
+            let (h, enriched, answer) = p.hierarchical_and_enriched(s, &on_level(p), settings)?;
             Ok((vec![h], Some((enriched, answer))))
         };
         let store = |s: &mut Solution, h: &[Hierarchical]| {

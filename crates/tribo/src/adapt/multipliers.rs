@@ -1,7 +1,7 @@
 //! The multiplier mesh of the next level: T_H is refined where the FE edges under it were, keeping the
 //! ratio H/h of the first level, but only where contact is or may be. Multipliers cost solve time, so
-//! where the body is surely apart from the obstacle T_H stays as it was (not under a Tresca threshold, which
-//! acts there too).
+//! where the body is surely apart from the obstacle T_H stays as it was (not where a Tresca threshold acts:
+//! it acts there too).
 
 use crate::contact::multiplier::MultiplierPoints;
 use crate::contact::ContactBoundary;
@@ -27,11 +27,12 @@ pub(crate) fn next_problem(
 /// Whether the segment `(a, b)` of `problem`'s first Γ_C (abscissae) is surely apart in every one of `solutions`:
 /// every node of the segment has a current gap beyond the largest displacement on Γ_C (of every pair; the first
 /// pair's nodes come first in its fields). The abscissae stay valid on `problem` refined or enriched (the same
-/// arclength). Nothing is apart under a Tresca threshold: it acts where nothing touches, and λ_t lives there (on
-/// Hertz with a uniform threshold, T_H kept coarse there while the FE mesh was refined under it, the bound grew from
-/// 5.6e-2 at 15k unknowns to 0.46 at 82k with the multipliers held at 551, and the loop's memory grew beyond 24 GB).
+/// arclength). Nor is a segment that holds a dof of a positive Tresca threshold ([`tresca_held`]): it acts where
+/// nothing touches, and λ_t lives there (on Hertz with a uniform threshold, T_H kept coarse there while the FE mesh
+/// was refined under it, the bound grew from 5.6e-2 at 15k unknowns to 0.46 at 82k with the multipliers held at 551,
+/// and the loop's memory grew beyond 24 GB).
 pub(crate) fn surely_apart<'a>(problem: &'a Problem, solutions: &[&Solution]) -> impl Fn(f64, f64) -> bool + 'a {
-    let tresca = solutions.iter().any(|s| s.report.friction == FrictionLaw::Tresca);
+    let held = tresca_held(solutions);
     let old = &problem.contact.node_xi;
     let views: Vec<(f64, Vec<f64>)> = solutions
         .iter()
@@ -40,8 +41,26 @@ pub(crate) fn surely_apart<'a>(problem: &'a Problem, solutions: &[&Solution]) ->
     move |a: f64, b: f64| {
         let lo = old.partition_point(|&x| x < a).saturating_sub(1);
         let hi = old.partition_point(|&x| x <= b).min(old.len() - 1);
-        !tresca && views.iter().all(|(scale, gap)| (lo..=hi).all(|k| gap[k] > *scale) && *scale > 0.0)
+        !holds_any(&held, a, b) && views.iter().all(|(scale, gap)| (lo..=hi).all(|k| gap[k] > *scale) && *scale > 0.0)
     }
+}
+
+/// The abscissae (sorted) of the first pair's multiplier dofs where the Tresca threshold of any of `solutions` is
+/// positive: it acts there whether or not the body touches, and λ_t lives there. None under Coulomb or no friction.
+pub(crate) fn tresca_held(solutions: &[&Solution]) -> Vec<f64> {
+    let mut held: Vec<f64> = (solutions.iter().filter(|s| s.report.friction == FrictionLaw::Tresca))
+        .flat_map(|s| {
+            let first = s.pairs.first().map_or(0..s.multiplier_abscissae.len(), |p| p.multipliers.clone());
+            first.filter(|&j| s.friction_threshold[j] > 0.0).map(|j| s.multiplier_abscissae[j])
+        })
+        .collect();
+    held.sort_by(f64::total_cmp);
+    held
+}
+
+/// Whether one of the sorted abscissae `held` lies in `[a, b]`.
+pub(crate) fn holds_any(held: &[f64], a: f64, b: f64) -> bool {
+    held.get(held.partition_point(|&x| x < a)).is_some_and(|&x| x <= b)
 }
 
 /// [`next_problem`] with the segments where T_H stays as it was given by `apart` ([`surely_apart`]).

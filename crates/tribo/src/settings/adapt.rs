@@ -44,7 +44,7 @@ pub enum StopOn {
     /// `1.5 ‖λ_H − λ_f‖`, λ_f the answer of the problem enriched (the whole mesh bisected, the strip along the contact
     /// zone again), the reduction measured where the zone reaches an end of Γ_C. Sharp (study 12: 1.39–1.64 times the
     /// true error on 51 levels of adaptive Hertz, P0 multipliers, Coulomb friction and two bodies, without drift; in
-    /// the loop, study 13: 1.38–1.58 on every level of eight cases, the block's 1.82–1.88 at its singular corners)
+    /// the loop, study 13: 1.38–1.58 on every level of nine cases, the block's 1.82–1.88 at its singular corners)
     /// but not a guaranteed bound, and it costs a solve of 8–9 times the level's unknowns (three times where an end
     /// touches; a whole history solved again for a history), so the loop computes it only where it may stop
     /// the loop, or the next level, before the bound (see [`crate::adapt`]). The level right after an estimated one

@@ -81,11 +81,11 @@ fn a_level_beyond_max_unknowns_is_not_made() {
     assert_eq!(out.problem.n_free, out.levels.last().map_or(0, |l| l.unknowns));
 }
 
-/// A Tresca threshold acts where nothing touches, so T_H follows the FE edges of Γ_C everywhere, not only where
-/// contact is or may be (Coulomb's saving): kept coarse under refined FE edges, the bound of Hertz with a uniform
-/// threshold grew from 5.6e-2 at 15k unknowns to 0.46 at 82k, the multipliers held at 551.
+/// A Tresca threshold acts where nothing touches, so T_H follows the FE edges of Γ_C wherever it is positive, not
+/// only where contact is or may be (Coulomb's saving): kept coarse under refined FE edges, the bound of Hertz with a
+/// uniform threshold grew from 5.6e-2 at 15k unknowns to 0.46 at 82k, the multipliers held at 551.
 #[test]
-fn under_a_tresca_threshold_the_multipliers_follow_the_fe_edges_where_nothing_touches() {
+fn where_a_tresca_threshold_acts_the_multipliers_follow_the_fe_edges_though_nothing_touches() {
     let adapt = AdaptSettings { tol: 1e-6, max_unknowns: 10_000, stop_on: StopOn::Bound, ..Default::default() };
     let run = |friction: &Friction| {
         let coarse = tribo_testkit::hertz_coarse(0.0, friction, MultiplierSpace::P1).expect("valid");
@@ -94,11 +94,48 @@ fn under_a_tresca_threshold_the_multipliers_follow_the_fe_edges_where_nothing_to
     let tresca = run(&Friction::Tresca(Threshold::Uniform(tribo_testkit::TRESCA_THRESHOLD)));
     assert_eq!(tresca.stop, AdaptStop::MaxUnknowns);
     assert_eq!(tresca.problem.multipliers.xi, tresca.problem.contact.node_xi, "T_H on the FE edges of Γ_C");
-    let bounds: Vec<f64> = tresca.levels.iter().map(|l| l.estimate.traction_relative).collect();
-    assert!(bounds.windows(2).rev().take(4).all(|w| w[1] < w[0]), "the bound falls on the last levels: {bounds:?}");
     let coulomb = run(&Friction::Coulomb { mu: 0.3 });
     let (t_h, fe) = (coulomb.problem.multipliers.xi.len(), coulomb.problem.contact.node_xi.len());
     assert!(t_h < fe, "Coulomb keeps T_H coarse where the body is surely apart: {t_h} points, {fe} FE nodes");
+    // A threshold per dof, positive on the three middle dofs of the 9 (abscissae within 1 of the middle), zero
+    // elsewhere: T_H follows the FE edges where it is positive, and is kept where it is zero and the body apart.
+    let hat: Vec<f64> = (0..9).map(|k| if (3..=5).contains(&k) { 1.0 } else { 0.0 }).collect();
+    let held = run(&Friction::Tresca(Threshold::PerDof(hat)));
+    let (xi, nodes) = (&held.problem.multipliers.xi, &held.problem.contact.node_xi);
+    let middle = 0.5 * (nodes[0] + nodes[nodes.len() - 1]);
+    let on_t_h = |x: f64| xi.iter().any(|p| (p - x).abs() < 1e-9);
+    assert!(nodes.iter().filter(|x| (*x - middle).abs() <= 1.0).all(|&x| on_t_h(x)), "T_H on the FE edges held");
+    assert!(xi.len() < nodes.len(), "T_H kept where the threshold is 0: {} points, {} FE nodes", xi.len(), nodes.len());
+}
+
+/// A Tresca threshold per dof is the W_H function of the first T_H: every level of a history (and its enriched
+/// problems, for the hierarchical stop) solves with it carried to the level's dofs, not refused for its length.
+#[test]
+fn a_threshold_per_dof_is_carried_to_every_level_of_a_history() {
+    let f = Friction::Tresca(Threshold::Uniform(1.0));
+    let problem = tribo_testkit::hertz_coarse(0.0, &f, MultiplierSpace::P1).expect("valid");
+    let hat: Vec<f64> = (0..9).map(|k| if k == 4 { 2.0 } else { 0.0 }).collect();
+    let steps: Vec<LoadStep> = [0.002, 0.004].iter().map(|&s| LoadStep::new(0.01, s)).collect();
+    let adapt = AdaptSettings { tol: 0.1, max_unknowns: 20_000, ..Default::default() };
+    let settings = SolverSettings::default();
+    let out = (problem.solve_history_adaptive(
+        &Friction::Tresca(Threshold::PerDof(hat)),
+        &steps,
+        &settings,
+        &adapt,
+        &[],
+        None,
+    ))
+    .expect("adapts");
+    assert_eq!(out.history.status, SolveStatus::Converged);
+    assert!(out.levels.len() > 3, "{} levels", out.levels.len());
+    // The hat of height 2 on the middle dof, 0 one coarse cell (0.5) away: at the dofs of the last level.
+    let s = &out.history.solutions[1];
+    let middle = 0.5 * (s.multiplier_abscissae[0] + s.multiplier_abscissae[s.multiplier_abscissae.len() - 1]);
+    for (x, g) in s.multiplier_abscissae.iter().zip(&s.friction_threshold) {
+        let hat = 2.0 * (1.0 - (x - middle).abs() / 0.5).max(0.0);
+        assert!((g - hat).abs() < 1e-12, "threshold {g} at {x}, the hat {hat}");
+    }
 }
 
 /// `Problem::on_level` solves a level of a run of that problem again, and refuses with a typed error (no
