@@ -228,3 +228,18 @@ def test_a_body_read_from_a_gmsh_file_refines(tmp_path: Path) -> None:
     top = last.points[np.unique(last.edge_sets["top"])]
     assert np.allclose(top[:, 1], 1.0) and len(top) > 10, "the top edge set was refined along with the mesh"
     assert np.allclose(last.points[np.unique(last.edge_sets["bottom"])][:, 1], 0.0)
+
+
+def test_a_tresca_threshold_per_dof_is_carried_to_every_level() -> None:
+    """A threshold given per multiplier dof of the first T_H is the W_H function it defines on every level."""
+    problem = tribo.Problem(tribo.Mesh.rectangle((-2.0, 2.0), (-2.0, 0.0), 8, 4), young=200.0, poisson=0.3,
+                            clamped="bottom", contact="top", obstacle=tribo.Obstacle.circle(1.0), approach=0.01,
+                            shift=0.004)
+    assert problem.n_multipliers == 9
+    hat = np.where(np.arange(9) == 4, 2.0, 0.0)
+    out = problem.solve_adaptive(threshold=hat, tol=1e-6, max_unknowns=5000, stop_on="bound")
+    assert out.stop == "max_unknowns" and out.solution.report.converged and len(out.levels) > 3
+    s = out.solution
+    middle = 0.5 * (s.multiplier_abscissae[0] + s.multiplier_abscissae[-1])
+    expected = 2.0 * np.maximum(0.0, 1.0 - np.abs(s.multiplier_abscissae - middle) / 0.5)
+    np.testing.assert_allclose(s.friction_threshold, expected, atol=1e-12)
