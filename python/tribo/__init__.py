@@ -23,21 +23,8 @@ import os as _os
 # when pages were never returned; docs/python_memory.md, study 17). A user's own MIMALLOC_PURGE_DELAY wins.
 _os.environ.setdefault("MIMALLOC_PURGE_DELAY", "250")
 
-from tribo._tribo import (
-    STATE_NAMES,
-    ContactGeometryError,
-    Mesh,
-    MeshError,
-    Obstacle,
-    SettingsError,
-    SolverError,
-    Support,
-    TriboError,
-    __version__,
-    choices,
-    solver_defaults,
-    solver_settings,
-)
+from tribo._tribo import STATE_NAMES, Mesh, Obstacle, Support, __version__, choices, solver_defaults, solver_settings
+from tribo.errors import ContactGeometryError, MeshError, SettingsError, SolverError, TriboError
 from tribo.checks import SceneWarning, check_solution
 from tribo.io import read_mesh, write_vtu
 from tribo.problem import Body, Pair, Problem

@@ -17,11 +17,6 @@ __all__ = [
     "__version__",
     "STATE_NAMES",
     "MAX_CELLS",
-    "TriboError",
-    "MeshError",
-    "ContactGeometryError",
-    "SettingsError",
-    "SolverError",
     "Mesh",
     "Obstacle",
     "Problem",
@@ -36,17 +31,6 @@ __all__ = [
 __version__: str
 STATE_NAMES: list[str]
 MAX_CELLS: int
-
-class TriboError(ValueError):
-    """Base class of tribo's errors: bad input, never a numerical outcome (see Report.status)."""
-
-    kind: str
-    details: dict[str, Any]
-
-class MeshError(TriboError): ...
-class ContactGeometryError(TriboError): ...
-class SettingsError(TriboError): ...
-class SolverError(TriboError): ...
 
 def solver_defaults() -> dict[str, Any]: ...
 def solver_settings() -> dict[str, dict[str, Any]]: ...

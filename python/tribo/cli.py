@@ -51,7 +51,8 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from tribo._tribo import TriboError, __version__
+from tribo._tribo import __version__
+from tribo.errors import TriboError
 from tribo.checks import actors, conventions
 from tribo.run import log, run_scene
 from tribo.scene import demo_scene_path, load_scene

@@ -13,7 +13,7 @@ import numpy as np
 import numpy.typing as npt
 
 from tribo import _tribo
-from tribo._tribo import SettingsError
+from tribo.errors import ContactGeometryError, SettingsError
 
 __all__ = ["Body", "Pair", "history_steps"]
 
@@ -26,9 +26,9 @@ def _settings_error(message: str) -> SettingsError:
     return e
 
 
-def _contact_error(message: str) -> _tribo.ContactGeometryError:
+def _contact_error(message: str) -> ContactGeometryError:
     """A ContactGeometryError for input refused before it reaches the core (``kind`` 'BadInput')."""
-    e = _tribo.ContactGeometryError(message)
+    e = ContactGeometryError(message)
     e.kind, e.details = "BadInput", {}
     return e
 

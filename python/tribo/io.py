@@ -47,7 +47,8 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 import numpy.typing as npt
 
-from tribo._tribo import Mesh, MeshError
+from tribo._tribo import Mesh
+from tribo.errors import MeshError
 from tribo.checks import conventions, obstacle_points
 from tribo.problem import Problem
 from tribo.results import Solution, at_points

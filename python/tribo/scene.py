@@ -26,7 +26,8 @@ from typing import Any
 
 import numpy as np
 
-from tribo._tribo import Mesh, Obstacle, Support, TriboError
+from tribo._tribo import Mesh, Obstacle, Support
+from tribo.errors import TriboError
 from tribo.checks import warn_missing_error_bars, warn_solution
 from tribo.io import read_mesh, read_triangle_groups
 from tribo.problem import Body, Pair, Problem, check_adapt

@@ -8,7 +8,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-from tribo._tribo import TriboError
+from tribo.errors import TriboError
 
 __all__ = ["MAX_HISTORY_STEPS", "Checker", "SceneError"]
 

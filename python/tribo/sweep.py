@@ -62,7 +62,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from tribo._tribo import TriboError, __version__
+from tribo._tribo import __version__
+from tribo.errors import TriboError
 from tribo.io import write_text_atomic
 from tribo.run import run_scene
 from tribo.scene import SceneError, parse_scene, read_scene_data

@@ -1,61 +1,27 @@
-//! The exception hierarchy and the one conversion `tribo::Error` → Python exception.
+//! The one conversion `tribo::Error` → Python exception.
 //!
-//! `TriboError(ValueError)` is the base; every core error maps to one subclass by its category
-//! ([`tribo::error::ErrorCategory`]: mesh, contact geometry, settings, solver). The exception carries the
-//! core's message (what and where), the variant name as `kind` and the variant's fields as the dict
+//! The hierarchy is `tribo.errors` (Python): `TriboError(ValueError)` the base, and every core error maps to one
+//! subclass by its category ([`tribo::error::ErrorCategory`]: mesh, contact geometry, settings, solver). The exception
+//! carries the core's message (what and where), the variant name as `kind` and the variant's fields as the dict
 //! `details`.
 
-use pyo3::create_exception;
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyType};
 use tribo::error::{Detail, ErrorCategory};
 use tribo::Error;
 
-create_exception!(
-    tribo,
-    TriboError,
-    PyValueError,
-    "Base class of tribo's errors: bad input, never a numerical outcome (see Report.status).\n\n\
-     Attributes: `kind` (the name of the core's error variant, e.g. 'DegenerateTriangle') and `details` \
-     (a dict of its fields, e.g. {'element': 3, 'area': 0.0, ...})."
-);
-create_exception!(
-    tribo,
-    MeshError,
-    TriboError,
-    "A bad mesh: arrays of the wrong shape or dtype, non-finite coordinates, degenerate or inverted \
-     triangles, unknown or bad edge sets, bad generator parameters."
-);
-create_exception!(
-    tribo,
-    ContactGeometryError,
-    TriboError,
-    "A bad contact set-up: Γ_C not one chain of edges (open or closed) or clamped, two sides that do not face, \
-     a bad obstacle, bad multiplier points."
-);
-create_exception!(
-    tribo,
-    SettingsError,
-    TriboError,
-    "A bad material, load, support, friction law or solver setting (γ0 above its admissible bound among \
-     them)."
-);
-create_exception!(
-    tribo,
-    SolverError,
-    TriboError,
-    "The linear algebra refused the problem (factorization or QP set-up failed)."
-);
-
-/// The exception of a category, with the message.
+/// The exception of a category, with the message: the class of `tribo.errors` (the hierarchy is Python's).
 fn new_err(category: ErrorCategory, msg: String) -> PyErr {
-    match category {
-        ErrorCategory::Mesh => MeshError::new_err(msg),
-        ErrorCategory::ContactGeometry => ContactGeometryError::new_err(msg),
-        ErrorCategory::Settings => SettingsError::new_err(msg),
-        ErrorCategory::Solver => SolverError::new_err(msg),
-    }
+    let name = match category {
+        ErrorCategory::Mesh => "MeshError",
+        ErrorCategory::ContactGeometry => "ContactGeometryError",
+        ErrorCategory::Settings => "SettingsError",
+        ErrorCategory::Solver => "SolverError",
+    };
+    Python::attach(|py| {
+        let class = py.import("tribo.errors").and_then(|m| m.getattr(name)).and_then(|c| Ok(c.cast_into::<PyType>()?));
+        class.map_or_else(|e| e, |class| PyErr::from_type(class, msg))
+    })
 }
 
 /// The exception of `category` for input the binding rejects before it reaches the core (kind

@@ -1,10 +1,10 @@
 //! `tribo._tribo`: the compiled half of the `tribo` Python package.
 //!
-//! This crate only converts: numpy arrays ↔ Rust vectors, keyword options ↔ the core's settings
-//! (names, kinds and defaults come from the core's tables), core results → dicts of read-only arrays,
-//! core errors ↔ Python exceptions. It releases the GIL around every heavy call and re-attaches only to
-//! call back into Python (a gap function, a progress callback). The user-facing API is the pure-Python
-//! package `tribo` (`tribo.problem.Problem` and the result classes of `tribo.results` among it).
+//! This crate only converts: numpy arrays ↔ Rust vectors, keyword options ↔ the core's settings (names, kinds and
+//! defaults come from the core's tables), core results → dicts of read-only arrays, core errors → the Python exceptions
+//! of `tribo.errors`. It releases the GIL around every heavy call and re-attaches only to call back into Python (a gap
+//! function, a progress callback). The user-facing API is the pure-Python package `tribo` (`tribo.problem.Problem` and
+//! the result classes of `tribo.results` among it).
 
 mod convert;
 mod errors;
@@ -84,15 +84,9 @@ fn check_adapt(a: problem::AdaptArgs) -> PyResult<()> {
 
 #[pymodule]
 fn _tribo(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    let py = m.py();
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("STATE_NAMES", ContactState::names())?;
     m.add("MAX_CELLS", tribo::generate::MAX_CELLS)?;
-    m.add("TriboError", py.get_type::<errors::TriboError>())?;
-    m.add("MeshError", py.get_type::<errors::MeshError>())?;
-    m.add("ContactGeometryError", py.get_type::<errors::ContactGeometryError>())?;
-    m.add("SettingsError", py.get_type::<errors::SettingsError>())?;
-    m.add("SolverError", py.get_type::<errors::SolverError>())?;
     m.add_class::<mesh::PyMesh>()?;
     m.add_class::<obstacle::PyObstacle>()?;
     m.add_class::<problem::PyProblem>()?;
