@@ -1,9 +1,8 @@
-//! The enriched problem of the hierarchical estimate ([`crate::adapt::enriched`]): the triangles to enrich
-//! bisected on their three edges (and the conforming closure), T_H refined where the FE edges under it were, keeping
-//! the level's ratio H/h where contact is and T_H as it was where the body is surely apart (and no Tresca threshold
-//! acts); the enrichment that
-//! bisects the whole mesh and then the strip along the contact zone again; the same twice at the ends of Γ_C; and
-//! the solve of such a problem from the coarse answer's multipliers.
+//! The enriched problem of the hierarchical estimate ([`crate::adapt::enriched`]): the triangles to enrich bisected on
+//! their three edges (and the conforming closure), T_H refined where the FE edges under it were, keeping the level's
+//! ratio H/h where contact is and T_H as it was where the body is surely apart (and no Tresca threshold acts); the
+//! enrichment that bisects the whole mesh and then the strip along the contact zone again; the same twice at the ends
+//! of Γ_C; and the solve of such a problem from the coarse answer's multipliers.
 
 use super::strip::{first_pair_span, near_ends, strip_on, EndRegion};
 use crate::error::{Error, Result};

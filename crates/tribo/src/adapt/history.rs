@@ -65,10 +65,10 @@ impl Problem {
                 what: format!("is not a step of the history (0 to {})", steps.len().saturating_sub(1)),
             });
         }
-        // A loose answer solved again to fp_tol starts every step from its own (a history from rest would
-        // cost a whole history again); the coarser level's multipliers are not carried over.
         // A Tresca threshold given per dof is carried to each level's T_H as the W_H function it defines.
         let on_level = |p: &Problem| self.carried_friction(friction, p);
+        // A loose answer solved again to fp_tol starts every step from its own (a history from rest would
+        // cost a whole history again); the coarser level's multipliers are not carried over.
         let solve = |p: &Problem, s: &SolverSettings, start: Start<'_, History>| match start {
             Start::Answer(h) => {
                 let starts: Vec<Vec<f64>> = h.solutions.iter().map(Solution::multipliers).collect();
