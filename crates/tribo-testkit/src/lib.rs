@@ -8,10 +8,12 @@
 
 use tribo::*;
 
+mod energy;
 mod roller;
 mod shrink_fit;
 mod singular_ends;
 mod wedge;
+pub use energy::*;
 pub use roller::*;
 pub use shrink_fit::*;
 pub use singular_ends::*;

@@ -66,6 +66,22 @@ impl Scaling {
         Self { w, r, root_phi, c_max }
     }
 
+    /// This scaling with the objective divided further by `|f̃|` where `f̃`, the objective at a feasible point in
+    /// these units, is smaller than 1 in magnitude (unchanged otherwise, or where `f̃` is 0 or not finite).
+    /// clarabel's relative gap is the gap over `max(1, |objective|)`: an answer whose objective is 1e-5 of the
+    /// data's units is held to an absolute gap, 1e5 times looser than asked. The optimum lies below any feasible
+    /// point, so afterwards `|objective| ≥ 1` at the answer and the gap is relative.
+    pub(crate) fn with_objective_at_least_one(mut self, f: f64) -> Self {
+        let size = f.abs();
+        if size < 1.0 && size > 0.0 && size.is_finite() {
+            let root = size.sqrt();
+            self.root_phi *= root;
+            self.r.iter_mut().for_each(|r| *r /= root);
+            self.c_max /= size;
+        }
+        self
+    }
+
     /// The scaled box of the tangential unknowns: `g_j / w_t,j` (1 where the bound vanishes, so that the
     /// box keeps an interior).
     pub(crate) fn tangential_box(&self, q: usize, bounds: &[f64]) -> Vec<f64> {

@@ -241,29 +241,47 @@ fn observer_can_interrupt_the_fixed_point() {
     assert!(sol.normal_force > 0.0);
 }
 
-/// A fixed point that cycles is reported as stagnated after STAGNATION_WINDOW iterations without a new
-/// smallest change, not run to the iteration cap: with clarabel's QPs over all of Γ_C at qp.tol = 1e-10,
-/// the plain fixed point on the finest Hertz mesh falls into a cycle at the QPs' noise level (the change
-/// stays near 1e-3). The active-set method answers the same QPs exactly, and the same fixed point
-/// converges.
+/// clarabel's QPs answer the Coulomb fixed point on the finest Hertz mesh as the active-set method's do. Until
+/// clarabel's objective was brought to 1 ([`tribo::qp::BoxQp`]), its relative gap was an absolute one there (the
+/// answer's objective is about 1e-4 of the data's units): its λ carried a noise of about 1e-3, and this fixed point
+/// fell into a cycle at that level and ended `stagnated` (a genuine cycle is tested on the wedge,
+/// `coulomb_newton.rs`).
+///
+/// How far apart the two may be, from their own residuals (`tribo_testkit::energy`): each answer lies within `√S`
+/// of the exact answer of the Tresca QP with its own bound μ λ_n, in the energy norm; those two exact answers lie
+/// within `√((|r_a| + |r_b|)ᵀ μ |a_n − b_n|)` of each other. Measured: 7.5e-6 of ‖λ‖_H apart; P 2.7e-9 and Q 1.3e-7.
 #[test]
-fn a_cycling_fixed_point_is_reported_as_stagnated() {
+fn clarabel_answers_the_fixed_point_on_the_finest_hertz_mesh_as_the_active_set_does() {
     let problem = hertz_problem(0.005, 0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
-    let mut settings = SolverSettings::default();
+    let (mu, mut settings) = (0.3, SolverSettings::default());
     settings.qp = QpSettings { tol: 1e-10, working_set: false, ..settings.qp };
-    let exact = problem.solve(&Friction::Coulomb { mu: 0.3 }, &settings, None).unwrap();
+    let exact = problem.solve(&Friction::Coulomb { mu }, &settings, None).unwrap();
     assert_eq!(exact.report.status, SolveStatus::Converged, "{:?}", exact.report.residual_history);
     settings.qp.method = QpMethod::Clarabel;
-    let sol = problem.solve(&Friction::Coulomb { mu: 0.3 }, &settings, None).unwrap();
-    let h = &sol.report.residual_history;
-    eprintln!("stagnated after {} iterations: {h:?}", sol.report.iterations);
-    assert_eq!(sol.report.status, SolveStatus::Stagnated);
-    assert!(sol.report.iterations < settings.fp.max_iter);
-    let best = h.iter().copied().fold(f64::INFINITY, f64::min);
-    assert!(h[h.len() - tribo::solve::STAGNATION_WINDOW..].iter().all(|c| *c >= best));
-    // Why it is not an answer (`solve/driver.rs`): its changes stay above what the QPs resolve, or its last
-    // iterate does not meet Coulomb's law to fp_tol.
-    assert!(best > settings.qp.tol.sqrt() || sol.kkt.max() > settings.fp.tol, "{best:e} {:?}", sol.kkt);
+    let sol = problem.solve(&Friction::Coulomb { mu }, &settings, None).unwrap();
+    assert_eq!(sol.report.status, SolveStatus::Converged, "{:?}", sol.report.residual_history);
+    assert!(sol.report.qp_methods.iter().all(|m| *m == QpMethod::Clarabel));
+    let (a, b) =
+        ([exact.lambda_n.as_slice(), &exact.lambda_t].concat(), [sol.lambda_n.as_slice(), &sol.lambda_t].concat());
+    let lambda_n_max = exact.lambda_n.iter().chain(&sol.lambda_n).fold(0.0_f64, |m, v| m.max(*v));
+    let residual = |l: &[f64], ln: &[f64]| {
+        let bound: Vec<f64> = ln.iter().map(|v| mu * v.max(0.0)).collect();
+        tribo_testkit::energy_residual(&problem, settings.stabilization, l, &bound, lambda_n_max)
+    };
+    let (ra, rb) = (residual(&a, &exact.lambda_n), residual(&b, &sol.lambda_n));
+    let bounds_apart: f64 = (0..exact.lambda_n.len())
+        .map(|j| (ra.slip[j] + rb.slip[j]) * mu * (exact.lambda_n[j] - sol.lambda_n[j]).abs())
+        .sum();
+    let bound = ra.sum.sqrt() + rb.sum.sqrt() + bounds_apart.sqrt();
+    let apart = tribo_testkit::energy_distance(&problem, settings.stabilization, &a, &b);
+    eprintln!(
+        "clarabel against the active set: {:e} of ‖λ‖_H (bound {:e}); P {:e}, Q {:e} apart",
+        apart / ra.size,
+        bound / ra.size,
+        (sol.normal_force / exact.normal_force - 1.0).abs(),
+        (sol.tangential_force / exact.tangential_force - 1.0).abs()
+    );
+    assert!(apart <= bound, "{apart:e} apart, more than {bound:e}");
 }
 
 /// Changes of direction of λ_n (sorted by abscissa) where it is positive: 1 for a single smooth peak.
