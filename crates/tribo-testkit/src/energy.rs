@@ -35,7 +35,8 @@ pub struct EnergyResidual {
 }
 
 /// The residual sum of the answer `lambda` (λ_n then λ_t, 2q) of the QP with tangential bounds `bound` (q; empty
-/// for a frictionless answer) on `problem` condensed with `stabilization`; `lambda_n_max` bounds the exact λ*_n.
+/// for a frictionless answer) on `problem` condensed with `stabilization`; `lambda_n_max` bounds the exact λ*_n (the
+/// tests take the larger of two answers', which bracket λ* to their own accuracy: an estimate, not a bound).
 pub fn energy_residual(
     problem: &Problem,
     stabilization: Stabilization,

@@ -358,14 +358,16 @@ impl Factor {
     }
 
     /// A natural size of λ_n for the linear term `c` (2q), `|c_j| / H_jj` at the normal dof j that pushes
-    /// hardest (`c_j < 0` most negative; where none pushes, the dof where `|c_n|` is largest): the multiplier at
-    /// which the quadratic and linear terms of the QP balance there. It is non-zero even when the solution is
-    /// λ = 0, so it serves as the scale of tolerances on λ. A dof that does not push is left out where one does:
-    /// its `c_j` is the gap far from the contact, as large as the obstacle is far, and says nothing of λ.
+    /// hardest (`c_j < 0` most negative; where none pushes by more than √ε of the largest `|c_n|`, the dof where
+    /// `|c_n|` is largest): the multiplier at which the quadratic and linear terms of the QP balance there. It is
+    /// non-zero even when the solution is λ = 0, so it serves as the scale of tolerances on λ. A dof that does not
+    /// push is left out where one does: its `c_j` is the gap far from the contact, as large as the obstacle is far,
+    /// and says nothing of λ. A push at round-off of that gap is none: it would make the scale round-off too.
     pub fn lambda_scale(&self, c: &[f64]) -> f64 {
         let q = self.q();
+        let floor = -(f64::EPSILON.sqrt() * c[..q].iter().fold(0.0_f64, |m, v| m.max(v.abs())));
         let pushing =
-            c[..q].iter().enumerate().filter(|(_, v)| **v < 0.0).max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
+            c[..q].iter().enumerate().filter(|(_, v)| **v < floor).max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
         let Some((j, cj)) =
             pushing.or_else(|| c[..q].iter().enumerate().max_by(|a, b| a.1.abs().total_cmp(&b.1.abs())))
         else {

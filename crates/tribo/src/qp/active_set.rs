@@ -33,8 +33,9 @@
 //! it, the iterates cannot cycle.
 //!
 //! # Certification
-//! The answer is certified with the optimality test of the scaled QP that clarabel solves (see
-//! [`crate::qp`]): with the scaled gradient `g̃_i = w_i g_i / φ` (`w` the variable scaling, `φ` the
+//! The answer is certified with the optimality test of the scaled QP (see [`crate::qp`]; clarabel's objective is
+//! divided further where it would be small, which leaves this test's ratio to `‖q̃‖∞` as it is): with the scaled
+//! gradient `g̃_i = w_i g_i / φ` (`w` the variable scaling, `φ` the
 //! objective scaling), a free dof needs `|g̃_i| ≤ ε`, a dof on its lower bound `g̃_i ≥ −ε`, one on its
 //! upper bound `g̃_i ≤ ε`, with `ε = tol · max(1, ‖q̃‖∞)` (q̃ the scaled linear term) — clarabel's dual
 //! residual with the bound multipliers chosen optimally. Feasibility and complementarity hold exactly

@@ -7,7 +7,15 @@
 //! `h_s` on the tangential unknowns); the box is then `|x_t,j| ≤ g_j / w_t,j ≥ 1`. The objective is divided
 //! by the largest diagonal entry of the resulting P. The scaled data are O(1) whatever the units of E and
 //! of lengths, and a friction bound far above the multiplier it limits (a Tresca threshold of 1e6 where
-//! |λ_t| ≈ 2) only loosens the box instead of shrinking every tangential entry of P by g².
+//! |λ_t| ≈ 2) only loosens the box instead of shrinking every tangential entry of P by g². For clarabel the
+//! objective is divided further where a feasible point's is below 1 in these units
+//! ([`Scaling::with_objective_at_least_one`]): the scales are set by the largest data, often a coarse dof far from
+//! the contact, and on a graded mesh the answer's objective was 1e-4 of them.
+
+/// The smallest objective (in the units of [`Scaling::new`]) that [`Scaling::with_objective_at_least_one`] brings
+/// to 1: √ε. Where the contact is pushed only by round-off (a body unloaded off a curved obstacle), a feasible
+/// point's objective is ε² of the data's units or less, and dividing by that would hand clarabel data of 1e30.
+pub(crate) const OBJECTIVE_FLOOR: f64 = 1.4901161193847656e-8;
 
 /// The scaling of the QP clarabel is handed (see the module documentation): `x̃_i = x_i / w_i` (`w_i = s`
 /// on a normal unknown, `min(g_j, s_t)` on a tangential one, 0 where the bound vanishes) and the objective
@@ -67,13 +75,13 @@ impl Scaling {
     }
 
     /// This scaling with the objective divided further by `|f̃|` where `f̃`, the objective at a feasible point in
-    /// these units, is smaller than 1 in magnitude (unchanged otherwise, or where `f̃` is 0 or not finite).
-    /// clarabel's relative gap is the gap over `max(1, |objective|)`: an answer whose objective is 1e-5 of the
-    /// data's units is held to an absolute gap, 1e5 times looser than asked. The optimum lies below any feasible
-    /// point, so afterwards `|objective| ≥ 1` at the answer and the gap is relative.
+    /// these units, is smaller than 1 in magnitude (unchanged otherwise, or where `f̃` is 0 or not finite), by at
+    /// most [`OBJECTIVE_FLOOR`]. clarabel's relative gap is the gap over `max(1, |objective|)`: an answer whose
+    /// objective is 1e-5 of the data's units is held to an absolute gap, 1e5 times looser than asked. The optimum
+    /// lies below any feasible point, so afterwards `|objective| ≥ 1` at the answer and the gap is relative.
     pub(crate) fn with_objective_at_least_one(mut self, f: f64) -> Self {
-        let size = f.abs();
-        if size < 1.0 && size > 0.0 && size.is_finite() {
+        let size = f.abs().max(OBJECTIVE_FLOOR);
+        if size < 1.0 && f != 0.0 && f.is_finite() {
             let root = size.sqrt();
             self.root_phi *= root;
             self.r.iter_mut().for_each(|r| *r /= root);

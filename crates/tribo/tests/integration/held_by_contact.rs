@@ -391,7 +391,7 @@ fn a_history_that_unloads_a_body_held_by_the_contact_says_why_it_stops() {
 /// (μ = 0.3, no tangential load), follows the obstacle in one static solve; as a history of two or three steps
 /// its last step ended `stagnated`, the change of λ_n between two QPs at clarabel's noise (3e-8 to 2e-6) while
 /// the iterate met Coulomb's law to 5e-12. It converges now, to the static answer; a fixed point that cycles
-/// is still reported (`hertz.rs`, `a_cycling_fixed_point_is_reported_as_stagnated`).
+/// is still reported (`coulomb_newton.rs`, the wedge forced into a groove).
 #[test]
 fn a_history_drags_a_body_held_by_the_contact_as_the_static_solve_does() {
     let problem = block_on_foundation(vec![], [0.0, -2.0]);
