@@ -265,8 +265,8 @@ class Solution(_Record):
             each end placed midway to the neighbouring dof in separation (or at the end of Γ_C); 0 when
             nothing touches. ``report.estimate["contact_width_error"]`` is its error bar when computed.
         stick_width: the same for the dofs that stick (0 when none does).
-        kkt: dimensionless discrete KKT residuals of (3.1): equilibrium, normal_sign, non_penetration,
-            normal_complementarity, friction_bound, stick, slip_direction.
+        kkt: dimensionless KKT residuals of (3.1), each dof against its own terms (``KktResiduals``): equilibrium,
+            normal_sign, non_penetration, normal_complementarity, friction_bound, stick, slip_direction.
         report: the report of the solve.
         estimator: the a posteriori error indicator η_K per triangle, (T,): the residuals of equilibrium,
             of the Barbosa–Hughes term λ_H + σ_h n, of contact and of friction (their totals are
