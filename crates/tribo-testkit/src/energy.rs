@@ -37,6 +37,9 @@ pub struct EnergyResidual {
 /// The residual sum of the answer `lambda` (λ_n then λ_t, 2q) of the QP with tangential bounds `bound` (q; empty
 /// for a frictionless answer) on `problem` condensed with `stabilization`; `lambda_n_max` bounds the exact λ*_n (the
 /// tests take the larger of two answers', which bracket λ* to their own accuracy: an estimate, not a bound).
+///
+/// # Panics
+/// If the problem cannot be condensed or solved (test support: the tests' own scenes, see the crate documentation).
 pub fn energy_residual(
     problem: &Problem,
     stabilization: Stabilization,
@@ -67,6 +70,9 @@ pub fn energy_residual(
 }
 
 /// `‖a − b‖_H` for two answers (2q each) of `problem` condensed with `stabilization` (one more solve).
+///
+/// # Panics
+/// As [`energy_residual`].
 pub fn energy_distance(problem: &Problem, stabilization: Stabilization, a: &[f64], b: &[f64]) -> f64 {
     let condensed = problem.condense(stabilization).expect("condenses");
     let factor = condensed.factor();

@@ -11,7 +11,7 @@ use crate::problem::load_case::LoadCase;
 /// Factor::lambda_scale, ‖bound‖∞)` (the size of the multipliers, tangential ones and a Tresca threshold included) and,
 /// per multiplier dof j, `R_j = max(‖E_j‖₁ ‖u‖∞, |d_j|, (Dγ 1)_j ‖λ‖∞)` (`E_j` the row of E): the size of the terms of
 /// r_j, so that its round-off is ε R_j. Each r_j is a moment `∫ψ_j (…)` and scales with the length of ψ_j's support:
-/// measured against one R for all dofs, as before, a dof of a cell 1/50 of the largest was judged 50 times too
+/// measured against a single R for all dofs, a dof of a cell 1/50 of the largest was judged 50 times too
 /// leniently (and every dof as many times as the obstacle's gap far from the contact was larger than near it, through
 /// the largest |d_j|). On a graded mesh, an answer 13 % off in λ_t at such a dof (an interior-point QP stopped on too
 /// loose a gap) read 5e-11 against one R, and reads 7e-7 against its own R_j: within the 1e-5 that the QP's fallback
@@ -116,16 +116,16 @@ pub(crate) fn kkt_residuals(
     // round-off is ε R_j), which stays positive when the terms cancel. ‖E_j‖₁ ‖u‖∞ and (Dγ 1)_j ‖λ‖∞ rather than
     // Σ_k |E_jk u_k|: the round-off of a solve is relative to the size of its answer, not to each entry (u_n is 0
     // up to ε ‖u‖ where a flat body rests on a flat obstacle). The displacements and a mixed formulation's
-    // pressures apart: their units differ.
+    // pressures apart: their units differ. Dγ's entries are ∫γψψ ≥ 0 (P0, P1), so (Dγ 1)_j ‖λ‖∞ ≥ |(Dγ λ)_j|.
     let lam = inf(lambda).max(c.lambda_scale(&loading.c)).max(inf(bound));
-    let (u_max, p_max) = (inf(&u[..n_u]), inf(&u[n_u..]));
+    let (u_max, p_max, lambda_max) = (inf(&u[..n_u]), inf(&u[n_u..]), inf(lambda));
     let d_ones = c.apply_d(&vec![1.0; lambda.len()]);
     let gap_scale: Vec<f64> = (0..r.len())
         .map(|j| {
             let row =
                 |part: &dyn Fn(usize) -> bool| c.e_rows[j].iter().filter(|e| part(e.0)).map(|e| e.1.abs()).sum::<f64>();
             let terms = (row(&|k| k < n_u) * u_max).max(row(&|k| k >= n_u) * p_max);
-            terms.max(loading.d[j].abs()).max(d_ones[j] * inf(lambda))
+            terms.max(loading.d[j].abs()).max(d_ones[j] * lambda_max)
         })
         .collect();
     let equilibrium = nan_max(ratio(inf(&res[..n_u]), eq_scale), pressure_rows);
