@@ -624,6 +624,45 @@ def test_the_shrink_fit_page_is_its_csv(tmp_path: Path) -> None:
     assert quoted in " ".join((DOCS / "measured.md").read_text().split()), quoted
 
 
+def _persson_files(tmp_path: Path) -> tuple[Path, Path, Path]:
+    """A made-up study 26: two half-angles at ν = 0.3 and one at ν = 0, three meshes each, the difference halving."""
+    csv, profile, curve = (tmp_path / n for n in ("persson_pin.csv", "persson_pin_pressure.csv", "persson_curve.csv"))
+    lines = ["approach,poisson,refinements,unknowns,seconds,load,alpha,alpha_persson,alpha_hertz,l2_persson,peak_persson"]
+    for approach, poisson, alpha in ((0.002, 0.3, 0.7), (0.008, 0.3, 1.2), (0.004, 0.0, 1.0)):
+        for k, n in enumerate((1000, 4000, 16000)):
+            e = 0.03 / 2**k
+            lines.append(f"{approach},{poisson},{k + 1},{n},0.1,1.0,{alpha * (1 - e / 3)},{alpha},{1.1 * alpha},{e},{e}")
+    csv.write_text("\n".join(lines) + "\n")
+    profile.write_text("approach,poisson,angle,lambda_n,persson,hertz\n0.002,0.3,0.0,1.0,1.0,1.1\n0.002,0.3,0.5,0.5,0.5,0.6\n")
+    curve.write_text("alpha,persson,hertz\n0.5,0.2,0.19\n1.0,1.5,0.9\n")
+    return csv, profile, curve
+
+
+def test_plot_persson_pin(tmp_path: Path) -> None:
+    """Study 26's page from a made-up CSV: the first refinement from which every run is within 2 % is the one
+    quoted, the rate is read per case and Hertz's departure from the finest rows."""
+    csv, profile, curve = _persson_files(tmp_path)
+    res = study("plot_persson_pin").main(["--csv", str(csv), "--profile", str(profile), "--curve", str(curve),
+                                          "--out", str(tmp_path)])
+    assert (tmp_path / "persson_pin.png").is_file()
+    assert res["first_all"] == 2 and res["within"] == 6 and res["runs"] == 9
+    assert res["rate"][(0.002, 0.3)] == pytest.approx(-0.5)
+    assert res["hertz"][(0.008, 0.3)] == pytest.approx(0.1)
+    page = (tmp_path / "persson_pin.md").read_text()
+    assert "every run from 2 bisections on is within 2 % on all three" in page
+    assert "at ν = 0 the same δ gives half-angles within 0.25 %" in page
+
+
+def test_the_persson_pin_page_is_its_csv(tmp_path: Path) -> None:
+    """docs/persson_pin.md is what the script writes from the committed CSVs, and issue 39's bar holds there: on
+    the finest meshes the contact half-angle, λ_n in L² and its peak are within 2 % of Persson's, and λ_n's
+    difference falls with refinement on every case."""
+    res = study("plot_persson_pin").main(["--out", str(tmp_path)])
+    assert (tmp_path / "persson_pin.md").read_text() == (DOCS / "persson_pin.md").read_text()
+    assert max(res["finest_alpha"], res["finest_l2"], res["finest_peak"]) < 0.02
+    assert res["falls"] and res["first_all"] is not None
+
+
 def test_locking(tmp_path: Path) -> None:
     """Study 25's smoke run: at ν = 0.4999 the mixed formulation is far closer to Hertz than P1 displacements on
     every mesh, and at ν = 0.3 the two are alike."""

@@ -9,11 +9,15 @@
 use tribo::*;
 
 mod energy;
+mod persson;
+mod pin_in_hole;
 mod roller;
 mod shrink_fit;
 mod singular_ends;
 mod wedge;
 pub use energy::*;
+pub use persson::*;
+pub use pin_in_hole::*;
 pub use roller::*;
 pub use shrink_fit::*;
 pub use singular_ends::*;

@@ -58,6 +58,19 @@ impl ArcGrading {
     }
 }
 
+/// The point at angle θ of the circle of centre c and radius r, on the axes through c exactly at the quarter turns
+/// (where `cos` and `sin` round to 6e-17 and 1.2e-16, not 0), so that the side of a half or quarter model lies on its
+/// symmetry line exactly.
+fn on_circle(c: Point, r: f64, theta: f64) -> Point {
+    let quarter = theta / std::f64::consts::FRAC_PI_2;
+    let k = quarter.round();
+    if (quarter - k).abs() <= 1e-12 {
+        let [x, y] = [[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]][k.rem_euclid(4.0) as usize];
+        return [c[0] + r * x, c[1] + r * y];
+    }
+    [c[0] + r * theta.cos(), c[1] + r * theta.sin()]
+}
+
 /// A mesh of a ring sector, fine along `grading.angles` of its outer arc (module documentation). The edge
 /// sets are `"outer"` and `"inner"` (the arcs, each with its [`Curve`], so that refinement stays on the
 /// circles) and `"start"` and `"end"` (the radial sides at the first and the last angle).
@@ -106,7 +119,7 @@ pub fn ring_sector(sector: &RingSector, grading: &ArcGrading) -> Result<Mesh> {
             } else {
                 t1 - s / r_out
             };
-            [sector.center[0] + r * theta.cos(), sector.center[1] + r * theta.sin()]
+            on_circle(sector.center, r, theta)
         })
         .collect();
     let names = [("top", "outer"), ("bottom", "inner"), ("left", "end"), ("right", "start")];
@@ -237,7 +250,7 @@ pub fn disc(sector: &DiscSector, rings: usize) -> Result<Mesh> {
         let next: Vec<(usize, f64)> = (0..count)
             .map(|i| {
                 let theta = if i == intervals { t1 } else { t0 + span * i as f64 / intervals as f64 };
-                points.push([c[0] + radius * theta.cos(), c[1] + radius * theta.sin()]);
+                points.push(on_circle(c, radius, theta));
                 (points.len() - 1, theta)
             })
             .collect();
@@ -375,7 +388,7 @@ pub fn plate_with_hole(plate: &PlateWithHole, around: usize, across: usize) -> R
     for &tj in &t {
         for i in 0..n {
             let theta = turn * i as f64 / n as f64;
-            let (h, e) = ([c[0] + r * theta.cos(), c[1] + r * theta.sin()], edge(i));
+            let (h, e) = (on_circle(c, r, theta), edge(i));
             points.push(if tj == 1.0 { e } else { [h[0] + tj * (e[0] - h[0]), h[1] + tj * (e[1] - h[1])] });
         }
     }
@@ -443,6 +456,21 @@ mod tests {
         ] {
             assert!(matches!(plate_with_hole(&plate, around, across), Err(Error::BadGenerator { .. })), "{plate:?}");
         }
+    }
+
+    /// The nodes at quarter turns lie on the axes through the centre exactly (`sin π` is 1.2e-16, not 0): a half
+    /// model's symmetry line found by testing `y == c_y` holds the plate's whole cut and the half-disc's diameter.
+    #[test]
+    fn nodes_at_quarter_turns_lie_on_the_axes_exactly() {
+        let plate = plate_with_hole(&PlateWithHole { center: [0.0, 0.0], radius: 1.0, half_widths: [5.0, 5.0] }, 64, 6)
+            .unwrap();
+        let on_axis = plate.points().iter().filter(|p| p[1] == 0.0).count();
+        assert_eq!(on_axis, 2 * 7, "both rays of nodes from the hole at θ = 0 and π");
+        let half =
+            disc(&DiscSector { center: [0.0, 0.0], radius: 1.0, angles: [0.0, std::f64::consts::PI] }, 8).unwrap();
+        let diameter = half.edge_sets()["start"].iter().chain(&half.edge_sets()["end"]).flatten().copied();
+        assert!(diameter.map(|v| half.points()[v][1]).all(|y| y == 0.0));
+        assert_eq!(on_circle([1.0, 2.0], 3.0, 1.5 * std::f64::consts::PI), [1.0, -1.0]);
     }
 
     /// A whole disc, a half-disc and a quarter: the triangles tile the polygon of the rim's nodes and the centre

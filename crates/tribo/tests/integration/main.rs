@@ -21,6 +21,7 @@
 //! * `supports`: rollers and prescribed displacements: patch tests, the half Hertz model against the full one;
 //! * `two_bodies`: two elastic bodies in contact (patch test, action and reaction, the rigid limit, Hertz);
 //! * `bent_pair`: two bodies with a bent interface (a shrink fit against Lamé, turned and moved, adaptive, refusals);
+//! * `conformal`: conformal contact, a pin pushed across a hole with clearance, against Persson's problem;
 //! * `estimator`: the a posteriori estimate (what it sees, and how it tracks the true error of λ_n);
 //! * `error_bars`: the error bars of the forces and zone widths against a finer mesh, only when asked for;
 //! * `materials`: bodies of several materials (the layered block exact, γ0 from Γ_C's materials, adaptive layers);
@@ -39,6 +40,7 @@ mod axisymmetric;
 mod axisymmetric_mixed;
 mod bent_pair;
 mod bodies_and_pairs;
+mod conformal;
 mod coulomb_newton;
 mod curved;
 mod curved_patch;
