@@ -107,14 +107,11 @@ impl PinInHole {
         let disc = disc(&sector, self.rings).expect("the fixture's own disc");
         let centre = 0; // the generator's first node
         let kept: Vec<[usize; 3]> = disc.triangles().iter().filter(|t| !t.contains(&centre)).copied().collect();
+        // (the edge of each centre triangle opposite the centre, counterclockwise)
         let core: Vec<[usize; 2]> = disc
             .triangles()
             .iter()
-            .filter(|t| t.contains(&centre))
-            .map(|t| {
-                let i = t.iter().position(|&v| v == centre).expect("the centre");
-                [t[(i + 1) % 3], t[(i + 2) % 3]]
-            })
+            .filter_map(|t| t.iter().position(|&v| v == centre).map(|i| [t[(i + 1) % 3], t[(i + 2) % 3]]))
             .collect();
         let mut sets = disc.edge_sets().clone();
         for side in ["start", "end"] {
