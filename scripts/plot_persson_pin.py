@@ -2,11 +2,12 @@
 
 docs/persson_pin.csv, docs/persson_pin_pressure.csv and docs/persson_curve.csv are written by the Rust example
 `persson_pin` (its documentation describes the scene: a pin of radius 1 − ΔR, ΔR = 10⁻³, in the hole of radius 1 of
-a square plate of half-width 80, one material, E = 1, ν = 0.3 and at one load also ν = 0 and 0.45, plane strain,
+a square plate of half-width 80, one material, E = 1, ν = 0.3 and at one δ also ν = 0 and 0.45, plane strain,
 frictionless, the upper half by symmetry, the pin's small core moved across by δ, both meshes bisected 1 to 5 times
 along the contact arc; times on two cores, with other work running). The reference is Persson's problem (the pin
-and the plate of one material, the plate infinite) solved to round-off at the load each answer carries
-(`tribo_testkit::Persson`, whose documentation derives it). This script draws the load against the contact
+and the plate of one material, the plate infinite) solved to 1e-9 at the load each answer carries
+(`tribo_testkit::Persson`, whose documentation derives it); λ_n is compared as the force per radian λ_n r the two
+rims share (r the radius of the rim that carries it). This script draws the load against the contact
 half-angle (Persson's, Hertz's and tribo's), λ_n along the rim on the finest meshes, and the differences by
 unknowns, and writes docs/persson_pin.{md,png}. Issue 39 asks for the contact half-angle and the pressure within 2 %.
 
@@ -65,8 +66,11 @@ def findings(rows: list[dict[str, float]]) -> dict[str, Any]:
         "finest_l2": max(errors(r)[1] for r in finest.values()),
         "finest_peak": max(abs(errors(r)[2]) for r in finest.values()),
         "hertz": {k: r["alpha_hertz"] / r["alpha_persson"] - 1.0 for k, r in finest.items()},
-        "falls": all(v[-1]["l2_persson"] < v[0]["l2_persson"] for v in by_case.values()),
-        "rate": {k: sl.fitted_rate([r["unknowns"] for r in v], [r["l2_persson"] for r in v]) for k, v in by_case.items()},
+        "falls": all(a["l2_persson"] > b["l2_persson"] for v in by_case.values() for a, b in zip(v, v[1:])),
+        "rate": {k: sl.fitted_rate([r["unknowns"] for r in v], [r["l2_persson"] for r in v])
+                 for k, v in by_case.items()},
+        "last_step": {k: sl.fitted_rate([r["unknowns"] for r in v[-2:]], [r["l2_persson"] for r in v[-2:]])
+                      for k, v in by_case.items()},
     }
 
 
@@ -96,12 +100,17 @@ def run(csv_path: Path, profile_path: Path, curve_path: Path, out: Path) -> dict
         f"* **Against Persson** (contact half-angles {span} at ν = 0.3): on the finest meshes "
         f"({int(max(r['unknowns'] for r in rows))} unknowns) the half-angle is within {_pct(f['finest_alpha'])}, "
         f"λ_n within {_pct(f['finest_l2'])} in L² and its peak within {_pct(f['finest_peak'])}; {f['within']} of "
-        f"{f['runs']} runs are within 2 % on all three, and {first}. λ_n's difference falls with refinement on every "
-        "case" + ("" if f["falls"] else " except some") + ", like N^"
-        + ", N^".join(f"{f['rate'][k]:.2f}" for k in main) + " (by half-angle).",
-        "* **Not Hertz**: at the same loads Hertz's formula `P = π E* ΔR tan²(α/2)` gives half-angles "
-        + ", ".join(f"{100 * f['hertz'][k]:+.0f} %" for k in main)
-        + " off Persson's: the conformal contact is stiffer than the half-plane idealization as the arc grows.",
+        f"{f['runs']} runs are within 2 % on all three, and {first}. λ_n's difference falls "
+        + ("at every refinement of every case" if f["falls"] else "with refinement, though not at every step")
+        + ", like N^"
+        + ", N^".join(f"{f['rate'][k]:.2f}" for k in main) + " (by half-angle, over all meshes); over the last step "
+        "like N^" + ", N^".join(f"{f['last_step'][k]:.2f}" for k in main) + ", slower: the differences left ("
+        + _pct(min(finest[k]["l2_persson"] for k in main)) + "–" + _pct(max(finest[k]["l2_persson"] for k in main))
+        + ") approach what the scene models apart from Persson's problem (the pin's core stiffens its mode 2 by "
+        "0.24 %, the plate's finite size the hole's by 0.07 %).",
+        "* **Not Hertz**: at the same loads Hertz's semi-width `b = 2R √(P / π E* ΔR)` (the curvature ΔR / R², "
+        "read as the arc R α) gives half-angles " + ", ".join(f"{100 * f['hertz'][k]:+.0f} %" for k in main)
+        + " off Persson's: as the arc grows, the same load closes a smaller arc than the half-plane idealization says.",
         "* **E* alone**: at ν = " + " and ".join(f"{k[1]:g}" for k in others)
         + " the same δ gives half-angles within "
         + " and ".join(_pct(abs(errors(finest[k])[0])) for k in others)

@@ -626,14 +626,18 @@ def test_the_shrink_fit_page_is_its_csv(tmp_path: Path) -> None:
 
 def _persson_files(tmp_path: Path) -> tuple[Path, Path, Path]:
     """A made-up study 26: two half-angles at ν = 0.3 and one at ν = 0, three meshes each, the difference halving."""
-    csv, profile, curve = (tmp_path / n for n in ("persson_pin.csv", "persson_pin_pressure.csv", "persson_curve.csv"))
-    lines = ["approach,poisson,refinements,unknowns,seconds,load,alpha,alpha_persson,alpha_hertz,l2_persson,peak_persson"]
+    names = ("persson_pin.csv", "persson_pin_pressure.csv", "persson_curve.csv")
+    csv, profile, curve = (tmp_path / n for n in names)
+    lines = ["approach,poisson,refinements,unknowns,seconds,load,alpha,alpha_persson,alpha_hertz,l2_persson,"
+             "peak_persson"]
     for approach, poisson, alpha in ((0.002, 0.3, 0.7), (0.008, 0.3, 1.2), (0.004, 0.0, 1.0)):
         for k, n in enumerate((1000, 4000, 16000)):
             e = 0.03 / 2**k
-            lines.append(f"{approach},{poisson},{k + 1},{n},0.1,1.0,{alpha * (1 - e / 3)},{alpha},{1.1 * alpha},{e},{e}")
+            row = (approach, poisson, k + 1, n, 0.1, 1.0, alpha * (1 - e / 3), alpha, 1.1 * alpha, e, e)
+            lines.append(",".join(str(v) for v in row))
     csv.write_text("\n".join(lines) + "\n")
-    profile.write_text("approach,poisson,angle,lambda_n,persson,hertz\n0.002,0.3,0.0,1.0,1.0,1.1\n0.002,0.3,0.5,0.5,0.5,0.6\n")
+    profile.write_text("approach,poisson,angle,lambda_n,persson,hertz\n"
+                       "0.002,0.3,0.0,1.0,1.0,1.1\n0.002,0.3,0.5,0.5,0.5,0.6\n")
     curve.write_text("alpha,persson,hertz\n0.5,0.2,0.19\n1.0,1.5,0.9\n")
     return csv, profile, curve
 

@@ -3,16 +3,17 @@
 //! unit thickness. The contact is an arc |θ| < α of the hole; α grows from Hertz's small angle to the neat fit's as
 //! P / (E* ΔR) grows, E* = E / (2 (1 − ν²)) the two bodies' composite modulus.
 //!
-//! **The problem** (Persson 1964; Ciavarella & Decuzzi 2001 give its closed form, which is not reachable from this
-//! repository's sources: what follows derives the same problem and solves it to round-off). Fourier modes decouple on
-//! a circle. A normal pressure `p_m cos mθ` (m ≥ 2) on the rim of a disc moves the rim by
+//! **The problem.** Persson (1964) solved it in closed form, and Ciavarella & Decuzzi (2001) give that form again;
+//! neither text is reachable from this repository's sources, so what follows derives the same problem and solves it
+//! numerically to within 1e-9 (below). Fourier modes decouple on a circle. A normal pressure `p_m cos mθ` (m ≥ 2) on the rim of a disc moves the rim by
 //! `u_r = −(R p_m / 2μ) (κ / (2 (m + 1)) + 1 / (2 (m − 1))) cos mθ`, and on the rim of a hole in an infinite plane by
 //! `u_r = (R p_m / 2μ) (κ / (2 (m − 1)) + 1 / (2 (m + 1))) cos mθ` (Muskhelishvili's potentials `a z^{m+1} + b z^{m−1}`
 //! inside, `a z^{1−m} + b z^{−1−m}` outside; κ = 3 − 4ν). For one material the opening of the two rims is
 //! `w_m = (2R / E*) p_m m / (m² − 1)`, and a uniform pressure p₀ opens them by `w₀ = R p₀ / E*` (Lamé). Mode 1 carries
 //! the load: a uniform vector field, a point force at the pin's centre and a rigid translation alike give `u_r ∝
-//! cos θ`, so its opening is absorbed into the pin's approach δ (this is why a load spread over the pin, or its core
-//! moved rigidly, poses the same contact problem). Summed (`Σ_{m≥2} 2m cos mψ / (m² − 1) = −2 cos ψ ln|2 sin ψ/2| −
+//! cos θ`, so its opening is absorbed into the pin's approach δ (a load spread uniformly over the pin therefore poses
+//! the same contact problem, and so does a rigid core moved across as its radius r₀ → 0: a core stiffens the modes
+//! m ≥ 2 of the pin, by about 4 r₀² for m = 2). Summed (`Σ_{m≥2} 2m cos mψ / (m² − 1) = −2 cos ψ ln|2 sin ψ/2| −
 //! 1 − ½ cos ψ`), the rims touch on |θ| < α where the gap `ΔR − δ cos θ + w(θ)` vanishes:
 //!
 //! `−(2R / π E*) ∫_{−α}^{α} cos(θ − θ') ln|2 sin((θ − θ') / 2)| p(θ') dθ' − (R / 2π E*) ∫ p = δ' cos θ − ΔR`,
@@ -23,10 +24,12 @@
 //! over even k (U_k Chebyshev's of the second kind: p vanishes like a square root at both ends, Hertz's shape), the
 //! log kernel split into `ln|θ − θ'|`, integrated exactly (`∫ ln|x − y| √(1 − y²) U_k(y) dy = (π/2) (T_{k+2}(x) /
 //! (k + 2) − T_k(x) / k)`, k ≥ 1; `π (T₂(x) / 4 − ln 2 / 2)` for k = 0), and a continuous remainder integrated by
-//! Gauss–Chebyshev; the coefficients and δ' by least squares at collocation points. The residual of the equation is
-//! at round-off (the unit tests); the gap evaluated again by the Fourier series above, a second path, closes on the
-//! arc and is positive off it. For α → 0 it is Hertz's `P = π E* ΔR tan²(α/2)`; at α = 84.83° the load grows without
-//! bound: the neat fit's contact angle.
+//! Gauss–Chebyshev; the coefficients and δ' by least squares at collocation points. The residual at those points is
+//! below 1e-9 of the right-hand side (the remainder's ψ² ln|ψ| kink limits the quadrature), and more terms or points
+//! change the load and the pressure by less than 1e-9 (the unit tests); the gap evaluated again by the Fourier series
+//! above, a second path, closes on the arc and is positive off it. For α → 0 it is Hertz's: the curvature ΔR / R²
+//! gives the semi-width b = 2R √(P / π E* ΔR), here read as the arc R α, so `P = π E* ΔR α² / 4` (the departure
+//! grows like α²); at α = 84.83° the load grows without bound: the neat fit's contact angle.
 
 use std::f64::consts::PI;
 
@@ -48,6 +51,8 @@ pub struct Persson {
     pub load: f64,
     /// The approach δ' / ΔR (with the mode-1 openings, which depend on how the pin is held, taken in).
     pub approach: f64,
+    /// The largest residual of the equation at the collocation points (its right-hand side is 1).
+    pub residual: f64,
     /// The coefficients c_k of even k.
     coefficients: Vec<f64>,
 }
@@ -125,9 +130,10 @@ impl Persson {
             m[(i, terms)] = -(a * xi).cos();
         }
         let rhs = DVector::from_element(rows, -1.0);
-        let solution = m.svd(true, true).solve(&rhs, 1e-14).expect("the SVD of a small dense matrix");
+        let solution = m.clone().svd(true, true).solve(&rhs, 1e-14).expect("the SVD of a small dense matrix");
+        let residual = (&m * &solution - &rhs).amax();
         let coefficients: Vec<f64> = solution.iter().take(terms).copied().collect();
-        let mut p = Self { half_angle: a, load: 0.0, approach: solution[terms], coefficients };
+        let mut p = Self { half_angle: a, load: 0.0, approach: solution[terms], residual, coefficients };
         p.load = a * a * (0..y.len()).map(|j| w[j] * (a * y[j]).cos() * p.shape(y[j])).sum::<f64>();
         p
     }
@@ -200,8 +206,9 @@ mod tests {
     }
 
     /// The second path: the opening summed mode by mode, `w = p₀ + Σ_{m≥2} 2m p_m cos mθ / (m² − 1)`, closes the
-    /// gap `1 − δ cos θ + w` on the arc and leaves it positive off it (δ the approach of the series, which holds the
-    /// mode-1 term −P / 2π cos θ the closed kernel dropped), and the pressure is positive on the arc.
+    /// gap `1 − δ cos θ + w` on the arc to within the series' tail (measured: 4e-7, the tail 6e-6) and leaves it
+    /// positive off it (δ the approach of the series, which holds the mode-1 term −P / 2π cos θ the closed kernel
+    /// dropped), and the pressure is positive on the arc.
     #[test]
     fn the_gap_summed_mode_by_mode_closes_on_the_arc_and_is_open_off_it() {
         for alpha in [0.3, 0.8, 1.2] {
@@ -216,10 +223,11 @@ mod tests {
                         .sum::<f64>();
                 1.0 - delta * theta.cos() + w
             };
-            let scale = 1.0 + delta.abs();
+            // the series stops at `modes`: p_m falls like m^(−3/2) (a square-root edge), its tail like modes^(−3/2)
+            let tail = (1.0 + delta.abs()) * (modes as f64).powf(-1.5);
             for i in 0..=40 {
                 let theta = alpha * i as f64 / 40.0 * 0.999;
-                assert!(gap(theta).abs() < 2e-5 * scale, "α {alpha}: gap {} at θ {theta}", gap(theta));
+                assert!(gap(theta).abs() < tail, "α {alpha}: gap {} at θ {theta}", gap(theta));
                 assert!(p.pressure(theta) > 0.0, "α {alpha}: pressure {} at θ {theta}", p.pressure(theta));
             }
             for i in 1..=40 {
@@ -229,33 +237,35 @@ mod tests {
         }
     }
 
-    /// For a small angle the load and the pressure are Hertz's: `P = π tan²(α/2)` (E* = ΔR = R = 1, the
-    /// curvature ΔR / R² and a = R α), `p = (2P / π a²) √(a² − θ²)`: the conformal corrections of both vanish
-    /// like α² (halving α divides them by 4).
+    /// For a small angle the load and the pressure are Hertz's, `P = π α² / 4` (E* = ΔR = R = 1: the curvature
+    /// ΔR / R², the semi-width the arc α) and `p = (2P / π α²) √(α² − θ²)`: the conformal departures of both vanish
+    /// like α² (halving α divides them by 4; measured 0.54 α² and 0.125 α²).
     #[test]
     fn a_small_contact_angle_is_hertz() {
         let departures = |alpha: f64| {
             let p = Persson::at_half_angle(alpha);
-            let hertz = PI * (0.5 * alpha).tan().powi(2);
+            let hertz = PI * alpha * alpha / 4.0;
             (p.load / hertz - 1.0, p.peak_pressure() / (2.0 * p.load / (PI * alpha)) - 1.0)
         };
         let mut previous = departures(0.2);
         for alpha in [0.1, 0.05, 0.025] {
             let now = departures(alpha);
             for (d, d0) in [(now.0, previous.0), (now.1, previous.1)] {
-                assert!(d.abs() < 0.5 * alpha * alpha, "α {alpha}: departure {d}");
+                assert!(d.abs() < alpha * alpha, "α {alpha}: departure {d}");
                 assert!((d / d0 - 0.25).abs() < 0.02, "α {alpha}: departure {d} after {d0}");
             }
             previous = now;
         }
     }
 
-    /// More terms and quadrature points change the load and the pressure by round-off: the expansion has
-    /// converged; and `at_load` hands back the angle whose load was asked.
+    /// The equation holds at the collocation points to 1e-9 (measured 4e-14 at α = 0.3 to 2e-10 at 1.4), more terms
+    /// and quadrature points change the load and the pressure by less than 1e-9: the expansion has converged; and
+    /// `at_load` hands back the angle whose load was asked.
     #[test]
     fn the_expansion_has_converged_and_the_load_inverts() {
-        for alpha in [0.5, 1.0, 1.3] {
+        for alpha in [0.3, 1.0, MAX_HALF_ANGLE] {
             let p = Persson::at_half_angle(alpha);
+            assert!(p.residual < 1e-9, "α {alpha}: residual {}", p.residual);
             let finer = Persson::solve(alpha, TERMS + 8, 2 * QUADRATURE);
             assert!((p.load / finer.load - 1.0).abs() < 1e-9, "α {alpha}: {} against {}", p.load, finer.load);
             for theta in [0.0, 0.5 * alpha, 0.9 * alpha] {

@@ -3,8 +3,8 @@
 //!
 //! The hole has radius R = 1, the pin 1 − ΔR; both bodies are of one material, in plane strain, frictionless. The
 //! pin is a uniform half-disc whose centre cell is cut out: that small core (radius 1 / `rings`) is moved rigidly
-//! by (δ, 0), which loads the pin as a force at its centre does (Persson's pin; only the pin's mode-1 rim motion
-//! differs, and it is taken into the approach). The plate is a square of half-width `half_width` with the hole at
+//! by (δ, 0), which loads the pin as a force at its centre does as r₀ → 0 (Persson's pin: the mode-1 rim motion
+//! goes into the approach; the core stiffens the higher modes a little, below). The plate is a square of half-width `half_width` with the hole at
 //! its centre, clamped on its three outer sides. Both lie on rollers along y = 0. The pin's rim is the secondary
 //! side (P1 multipliers on its FE edges), the hole's upper half the primary; both carry their circles, and both
 //! meshes are bisected `refinements` times in a band along the arc `0 ≤ θ ≤ window`, each time within 8 cells of
@@ -182,10 +182,18 @@ impl PinInHole {
         solution.contact_width() / if self.multipliers_on_pin { 1.0 - self.clearance } else { 1.0 }
     }
 
-    /// The relative L2(Γ_C) difference of λ_n from Persson's pressure `E* ΔR p̂(θ)` (exactly on T_H's cells by
-    /// 4-point Gauss, θ the angle of each point of the rim).
+    /// The unit of Persson's pressure for λ_n: `E* ΔR / r`, r the radius of the side that carries the multipliers
+    /// (1 − ΔR for the pin's rim, 1 for the hole). The linear theory puts both rims at R = 1; the force per radian
+    /// `λ_n r` is what the two sides share, and it is compared (the pin's λ_n is 1 / (1 − ΔR) times the hole's).
+    pub fn pressure_unit(&self) -> f64 {
+        let r = if self.multipliers_on_pin { 1.0 - self.clearance } else { 1.0 };
+        self.composite_modulus() * self.clearance / r
+    }
+
+    /// The relative L2(Γ_C) difference of λ_n from Persson's pressure `p̂(θ)` in [`PinInHole::pressure_unit`]s
+    /// (exactly on T_H's cells by 4-point Gauss, θ the angle of each point of the rim).
     pub fn pressure_error(&self, problem: &Problem, solution: &Solution, reference: &Persson) -> f64 {
-        let scale = self.composite_modulus() * self.clearance;
+        let scale = self.pressure_unit();
         let mult = &problem.multipliers;
         let gauss =
             [(-0.861_136_311_594_052_6, 0.347_854_845_137_453_9), (-0.339_981_043_584_856, 0.652_145_154_862_546_1)];

@@ -6,7 +6,7 @@
 //! the pin's small core (radius 0.025) is moved across by δ, the plate clamped on its outer sides; both meshes
 //! bisected 1 to 5 times along the contact arc. Each run gives the load P the contact carries, the contact
 //! half-angle α, the relative L2 difference of λ_n from Persson's pressure at that load
-//! (`tribo_testkit::Persson`, the problem solved to round-off) and of its peak, and the half-angle Hertz's
+//! (`tribo_testkit::Persson`, the problem solved to 1e-9) and of its peak, and the half-angle Hertz's
 //! formula would give for that load. `persson_pin_pressure.csv` holds λ_n along the rim on the finest mesh of
 //! each δ with Persson's and Hertz's pressures at the same angles; `persson_curve.csv` Persson's and Hertz's
 //! loads by half-angle.
@@ -24,9 +24,10 @@ use std::time::Instant;
 use tribo::{Friction, SolveStatus, SolverSettings};
 use tribo_testkit::{Persson, PinInHole, MAX_HALF_ANGLE};
 
-/// Hertz's half-angle for a load P̂ = P / (E* ΔR): `P̂ = π tan²(α/2)`.
+/// Hertz's half-angle for a load P̂ = P / (E* ΔR): the semi-width `b = 2R √(P̂ / π)` of the curvature ΔR / R², read
+/// as the arc R α.
 fn hertz_half_angle(load: f64) -> f64 {
-    2.0 * (load / PI).sqrt().atan()
+    2.0 * (load / PI).sqrt()
 }
 
 /// Hertz's pressure over E* ΔR / R at θ for a load P̂: `(2P / π a²) √(a² − θ²)`, a the Hertz half-angle.
@@ -71,7 +72,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 return Err(format!("δ {approach}, ν {poisson}, {refine} bisections: {}", sol.report.status).into());
             }
             let reference = scene.reference(&sol);
-            let (alpha, scale) = (scene.half_angle(&sol), scene.composite_modulus() * scene.clearance);
+            let (alpha, scale) = (scene.half_angle(&sol), scene.pressure_unit());
             let l2 = scene.pressure_error(&problem, &sol, &reference);
             let peak = sol.lambda_n.iter().copied().fold(0.0, f64::max) / (scale * reference.peak_pressure()) - 1.0;
             let load = reference.load;
@@ -119,7 +120,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for i in 1..=56 {
         let alpha = MAX_HALF_ANGLE * i as f64 / 56.0;
         let p = Persson::at_half_angle(alpha);
-        curve.push(format!("{alpha:.9},{:.9e},{:.9e}", p.load, PI * (0.5 * alpha).tan().powi(2)));
+        curve.push(format!("{alpha:.9},{:.9e},{:.9e}", p.load, PI * alpha * alpha / 4.0));
     }
     std::fs::write(docs.join("persson_curve.csv"), curve.join("\n") + "\n")?;
     println!("wrote {}, persson_pin_pressure.csv and persson_curve.csv", path.display());

@@ -60,11 +60,12 @@ impl ArcGrading {
 
 /// The point at angle θ of the circle of centre c and radius r, on the axes through c exactly at the quarter turns
 /// (where `cos` and `sin` round to 6e-17 and 1.2e-16, not 0), so that the side of a half or quarter model lies on its
-/// symmetry line exactly.
+/// symmetry line exactly. The generators' angles `t0 + span i / n` carry a few roundings of θ; an angle within 64 ε
+/// (in quarter turns, relative) of a quarter turn is taken as one.
 fn on_circle(c: Point, r: f64, theta: f64) -> Point {
     let quarter = theta / std::f64::consts::FRAC_PI_2;
     let k = quarter.round();
-    if (quarter - k).abs() <= 1e-12 {
+    if (quarter - k).abs() <= 64.0 * f64::EPSILON * k.abs().max(1.0) {
         let [x, y] = [[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]][k.rem_euclid(4.0) as usize];
         return [c[0] + r * x, c[1] + r * y];
     }
@@ -470,7 +471,13 @@ mod tests {
             disc(&DiscSector { center: [0.0, 0.0], radius: 1.0, angles: [0.0, std::f64::consts::PI] }, 8).unwrap();
         let diameter = half.edge_sets()["start"].iter().chain(&half.edge_sets()["end"]).flatten().copied();
         assert!(diameter.map(|v| half.points()[v][1]).all(|y| y == 0.0));
-        assert_eq!(on_circle([1.0, 2.0], 3.0, 1.5 * std::f64::consts::PI), [1.0, -1.0]);
+        let pi = std::f64::consts::PI;
+        assert_eq!(on_circle([1.0, 2.0], 3.0, 1.5 * pi), [1.0, -1.0]);
+        assert_eq!(on_circle([1.0, 2.0], 3.0, -0.5 * pi), [1.0, -1.0]);
+        assert_eq!(on_circle([1.0, 2.0], 3.0, 0.5 * pi), [1.0, 5.0]);
+        assert_eq!(on_circle([1.0, 2.0], 3.0, 2.0 * pi + 2.0 * pi * 3.0 / 12.0 - 2.0 * pi / 4.0), [4.0, 2.0]);
+        let near = on_circle([1.0, 2.0], 3.0, 0.5 * pi + 1e-9);
+        assert!(near[0] != 1.0 && (near[0] - 1.0).abs() < 4e-9, "an angle off a quarter turn is kept: {near:?}");
     }
 
     /// A whole disc, a half-disc and a quarter: the triangles tile the polygon of the rim's nodes and the centre
