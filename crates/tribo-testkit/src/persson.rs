@@ -130,6 +130,7 @@ impl Persson {
             m[(i, terms)] = -(a * xi).cos();
         }
         let rhs = DVector::from_element(rows, -1.0);
+        // (nalgebra's SVD solve fails only when U or V was not computed; both are asked for here)
         let solution = m.clone().svd(true, true).solve(&rhs, 1e-14).expect("the SVD of a small dense matrix");
         let residual = (&m * &solution - &rhs).amax();
         let coefficients: Vec<f64> = solution.iter().take(terms).copied().collect();

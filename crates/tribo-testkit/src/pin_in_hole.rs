@@ -68,6 +68,12 @@ impl PinInHole {
     }
 
     /// The two-body problem: bodies `"pin"` and `"plate"`, the pair `"pin.rim"` on `"plate.hole"`.
+    ///
+    /// # Panics
+    /// For sizes the generators or the pair refuse (test support: no user input reaches this fixture; the tests and
+    /// the study pass sizes that make a valid scene, and a broken fixture stops with the generator's message). The
+    /// meshes' own steps (the core cut out, the half plate, the curves on their arcs, the bisections) keep a valid
+    /// mesh of a valid one, and panic only if that invariant breaks.
     pub fn problem(&self) -> Problem {
         let (pin_mesh, plate_mesh) =
             (self.refined(self.pin_mesh(), 1.0 - self.clearance), self.refined(self.plate_mesh(), 1.0));
