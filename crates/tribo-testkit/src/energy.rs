@@ -83,3 +83,24 @@ pub fn energy_distance(problem: &Problem, stabilization: Stabilization, a: &[f64
     let quad: f64 = d.iter().zip(eu.iter().zip(&dd)).map(|(x, (e, g))| x * (g - e)).sum();
     quad.max(0.0).sqrt()
 }
+
+/// Two Coulomb answers of `problem` (μ uniform, condensed with `stabilization`) in the energy norm: `(apart, bound,
+/// size)`, `apart = ‖a − b‖_H`, `bound = √S(a) + √S(b) + √((|r_a| + |r_b|)ᵀ μ |a_n − b_n|)` (each answer within
+/// `√S` of the exact answer of the Tresca QP with its own bound μ λ_n, those two within the last term of each other:
+/// the module documentation) and `size = ‖a‖_H`.
+///
+/// # Panics
+/// As [`energy_residual`].
+pub fn coulomb_apart(problem: &Problem, stabilization: Stabilization, mu: f64, a: &Solution, b: &Solution) -> [f64; 3] {
+    let (x, y) = ([a.lambda_n.as_slice(), &a.lambda_t].concat(), [b.lambda_n.as_slice(), &b.lambda_t].concat());
+    let lambda_n_max = a.lambda_n.iter().chain(&b.lambda_n).fold(0.0_f64, |m, v| m.max(*v));
+    let residual = |l: &[f64], ln: &[f64]| {
+        let bound: Vec<f64> = ln.iter().map(|v| mu * v.max(0.0)).collect();
+        energy_residual(problem, stabilization, l, &bound, lambda_n_max)
+    };
+    let (ra, rb) = (residual(&x, &a.lambda_n), residual(&y, &b.lambda_n));
+    let bounds_apart: f64 =
+        (0..a.lambda_n.len()).map(|j| (ra.slip[j] + rb.slip[j]) * mu * (a.lambda_n[j] - b.lambda_n[j]).abs()).sum();
+    let bound = ra.sum.sqrt() + rb.sum.sqrt() + bounds_apart.sqrt();
+    [energy_distance(problem, stabilization, &x, &y), bound, ra.size]
+}

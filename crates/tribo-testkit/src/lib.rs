@@ -693,11 +693,7 @@ pub fn condition_number(c: &Condensed<'_>) -> f64 {
 /// The tolerance the QPs of a solve actually met: `qp.tol`, or [`tribo::qp::FALLBACK_TOL`] if any of
 /// them only reached that (the report counts them).
 pub fn reached_qp_tol(settings: &SolverSettings, sol: &Solution) -> f64 {
-    if sol.report.qp_inaccurate > 0 {
-        settings.qp.tol.max(tribo::qp::FALLBACK_TOL)
-    } else {
-        settings.qp.tol
-    }
+    Solution::reached_qp_tol(settings.qp.tol, sol.report.qp_inaccurate)
 }
 
 /// The peak resident memory of this process so far, in MB (Linux's VmHWM; NaN where there is none): the

@@ -290,8 +290,16 @@ impl Solution {
     /// about `tol`, and at most `√tol` where the QP is degenerate; Coulomb's law holds at the fixed point
     /// to its stopping tolerance.
     pub fn accuracy_bound(qp_tol: f64, qp_inaccurate: usize, fp_tol: f64) -> f64 {
-        let reached = if qp_inaccurate > 0 { qp_tol.max(crate::qp::FALLBACK_TOL) } else { qp_tol };
-        reached.sqrt().max(fp_tol)
+        Self::reached_qp_tol(qp_tol, qp_inaccurate).sqrt().max(fp_tol)
+    }
+
+    /// The QP tolerance the QPs of a solve met: `qp_tol`, or [`crate::qp::FALLBACK_TOL`] if any met only that.
+    pub fn reached_qp_tol(qp_tol: f64, qp_inaccurate: usize) -> f64 {
+        if qp_inaccurate > 0 {
+            qp_tol.max(crate::qp::FALLBACK_TOL)
+        } else {
+            qp_tol
+        }
     }
 
     /// True when every field, total, residual and error indicator is finite (the relative estimates

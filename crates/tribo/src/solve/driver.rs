@@ -13,6 +13,7 @@ use crate::qp::{QpOutcome, QpStatus};
 use crate::results::{CoulombCheck, ErrorEstimate, Report, Solution, SolveStatus, Timings};
 use crate::settings::friction::Friction;
 use crate::settings::{Condensation, CoulombMethod, QpMethod, SolverSettings};
+use crate::solve::fixed_point::settled;
 use crate::solve::progress::{Observer, Phase, Progress};
 
 /// What the QP phase produced: multipliers (2q), the tangential bound used, status, history.
@@ -360,33 +361,28 @@ impl Condensed<'_> {
         if residual > f64::EPSILON.sqrt() {
             return Err(Error::SingularStiffness { residual });
         }
-        // A fixed point that stagnated (no new smallest change for STAGNATION_WINDOW iterations) within what
-        // the QPs resolve of λ (its smallest change at most √qp_tol, the accuracy `converged` grants the KKT
-        // residuals) may still end on an answer: its last iterate meets Coulomb's law with its own λ_n (the
-        // KKT residuals take the friction bound μ λ_n of the answer, not the frozen bound of its QP) to
-        // within fp_tol. The change of λ_n between two QPs then measures the QPs' noise, not a distance from a
-        // solution (defect D30: a block held only by the contact, dragged by the obstacle in a history,
-        // stagnated at changes of 3e-8 to 2e-6 with KKT residuals of 5e-12). A fixed point that cycles
-        // makes larger changes, and one stopped by its cap (`max_iterations`) was still progressing: both
-        // are reported as they ended.
-        let smallest = solution.report.residual_history.iter().copied().fold(f64::INFINITY, f64::min);
-        // (The fixed point's only: Newton's merit at the point it hands back is already its last entry.)
-        let stagnated = solution.report.status == SolveStatus::Stagnated
-            && smallest <= settings.qp.tol.sqrt()
-            && method == CoulombMethod::FixedPoint;
-        if stagnated && solution.all_finite() && solution.kkt.max() <= settings.fp.tol {
+        // A fixed point that stagnated within what its QPs resolve of λ may still end on an answer
+        // (`fixed_point::settled`; the fixed point's only: Newton's merit at the point it hands back is already its
+        // last entry). A fixed point that cycles makes larger changes, and one stopped by its cap
+        // (`max_iterations`) was still progressing: both are reported as they ended.
+        let report = &solution.report;
+        let clarabel = report.qp_methods.contains(&QpMethod::Clarabel);
+        let settled = (report.status == SolveStatus::Stagnated && method == CoulombMethod::FixedPoint)
+            .then(|| settled(&report.residual_history, report.qp_inaccurate, clarabel, solution.kkt.max(), settings))
+            .flatten();
+        if let Some((smallest, met)) = settled.filter(|_| solution.all_finite()) {
             log::info!(
                 "the fixed point stagnated after {} iterations (smallest change {}), its last iterate meeting \
-                 Coulomb's law to {} (fp_tol {}): converged",
-                solution.report.iterations,
+                 Coulomb's law to {} ({}): converged",
+                report.iterations,
                 Num(smallest),
                 Num(solution.kkt.max()),
-                Num(settings.fp.tol)
+                Num(met)
             );
             solution.report.status = SolveStatus::Converged;
         }
+        let bound = Solution::accuracy_bound(settings.qp.tol, solution.report.qp_inaccurate, settings.fp.tol);
         if solution.report.status == SolveStatus::Converged {
-            let bound = Solution::accuracy_bound(settings.qp.tol, solution.report.qp_inaccurate, settings.fp.tol);
             if !solution.all_finite() {
                 solution.report.status = SolveStatus::NonFinite;
             } else if solution.kkt.max() > bound {

@@ -261,23 +261,11 @@ fn clarabel_answers_the_fixed_point_on_the_finest_hertz_mesh_as_the_active_set_d
     let sol = problem.solve(&Friction::Coulomb { mu }, &settings, None).unwrap();
     assert_eq!(sol.report.status, SolveStatus::Converged, "{:?}", sol.report.residual_history);
     assert!(sol.report.qp_methods.iter().all(|m| *m == QpMethod::Clarabel));
-    let (a, b) =
-        ([exact.lambda_n.as_slice(), &exact.lambda_t].concat(), [sol.lambda_n.as_slice(), &sol.lambda_t].concat());
-    let lambda_n_max = exact.lambda_n.iter().chain(&sol.lambda_n).fold(0.0_f64, |m, v| m.max(*v));
-    let residual = |l: &[f64], ln: &[f64]| {
-        let bound: Vec<f64> = ln.iter().map(|v| mu * v.max(0.0)).collect();
-        tribo_testkit::energy_residual(&problem, settings.stabilization, l, &bound, lambda_n_max)
-    };
-    let (ra, rb) = (residual(&a, &exact.lambda_n), residual(&b, &sol.lambda_n));
-    let bounds_apart: f64 = (0..exact.lambda_n.len())
-        .map(|j| (ra.slip[j] + rb.slip[j]) * mu * (exact.lambda_n[j] - sol.lambda_n[j]).abs())
-        .sum();
-    let bound = ra.sum.sqrt() + rb.sum.sqrt() + bounds_apart.sqrt();
-    let apart = tribo_testkit::energy_distance(&problem, settings.stabilization, &a, &b);
+    let [apart, bound, size] = tribo_testkit::coulomb_apart(&problem, settings.stabilization, mu, &exact, &sol);
     eprintln!(
         "clarabel against the active set: {:e} of ‖λ‖_H (bound {:e}); P {:e}, Q {:e} apart",
-        apart / ra.size,
-        bound / ra.size,
+        apart / size,
+        bound / size,
         (sol.normal_force / exact.normal_force - 1.0).abs(),
         (sol.tangential_force / exact.tangential_force - 1.0).abs()
     );

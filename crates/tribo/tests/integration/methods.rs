@@ -289,3 +289,41 @@ fn two_converged_answers_of_a_tresca_qp_on_a_graded_mesh_are_one_in_the_energy_n
         assert!(apart <= bound, "h_min {h_min}: {apart:e} apart, more than {bound:e}");
     }
 }
+
+/// With clarabel forced (the reference QP method), the Coulomb fixed point converges to what its QPs resolve of
+/// λ: on a level of the demo-like Hertz scene's adaptive loop (μ = 1, shift 0.004, ν = 0.3) some QPs meet only
+/// `FALLBACK_TOL`, their λ_n moving by up to √FALLBACK_TOL = 1e-5 from one QP to the next, and the fixed point's
+/// changes stop falling at about 1e-6, above `fp_tol` and √qp_tol. It ended `stagnated` while its last iterate
+/// met Coulomb's law to 2e-9; it ends `converged` (`solve/fixed_point.rs`, `settled`), and its answer is the
+/// active-set method's within what clarabel's answers are determined to.
+#[test]
+fn the_fixed_point_by_clarabel_converges_to_what_its_qps_resolve() {
+    let mut spec = tribo_testkit::hertz_spec(0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
+    spec.material.poisson = 0.3;
+    let coulomb = Friction::Coulomb { mu: 1.0 };
+    let coarse = Problem::new(tribo_testkit::hertz_mesh(0.01), spec.clone()).unwrap();
+    let adapt = AdaptSettings { tol: 0.01, max_levels: 4, ..Default::default() };
+    let levels = coarse.solve_adaptive(&coulomb, &SolverSettings::default(), &adapt, None).unwrap().levels;
+    let last = levels.last().unwrap();
+    spec.multiplier_points = MultiplierPoints::Abscissae(last.multiplier_mesh.clone());
+    let problem = Problem::new(last.mesh.clone(), spec).unwrap();
+    let with = |method| SolverSettings { qp: QpSettings { method, ..Default::default() }, ..Default::default() };
+    let by_clarabel = problem.solve(&coulomb, &with(QpMethod::Clarabel), None).unwrap();
+    let r = &by_clarabel.report;
+    // The case: QPs that met only FALLBACK_TOL, changes that never reached fp_tol nor √qp_tol.
+    let smallest = r.residual_history.iter().copied().fold(f64::INFINITY, f64::min);
+    let settings = with(QpMethod::Clarabel);
+    assert!(r.qp_inaccurate > 0, "some QPs met only FALLBACK_TOL: {r:?}");
+    assert!(smallest > settings.qp.tol.sqrt() && smallest > settings.fp.tol, "smallest change {smallest:e}");
+    assert!(smallest <= qp::FALLBACK_TOL.sqrt(), "smallest change {smallest:e}");
+    assert_eq!(r.status, SolveStatus::Converged, "{:?}", r.residual_history);
+    assert!(by_clarabel.kkt.max() <= settings.fp.tol, "{:?}", by_clarabel.kkt);
+    // The active-set method's answer (exact QPs, its fixed point at fp_tol) is the same answer in the energy norm,
+    // within the bound the two answers' residuals give (`tribo_testkit::energy`).
+    let exact = problem.solve(&coulomb, &with(QpMethod::ActiveSet), None).unwrap();
+    assert_eq!(exact.report.status, SolveStatus::Converged);
+    let [apart, bound, size] =
+        tribo_testkit::coulomb_apart(&problem, settings.stabilization, 1.0, &exact, &by_clarabel);
+    eprintln!("clarabel against the active set: {:e} of ‖λ‖_H (bound {:e})", apart / size, bound / size);
+    assert!(apart <= bound, "{apart:e} apart, more than {bound:e}");
+}
