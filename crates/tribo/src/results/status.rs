@@ -16,8 +16,9 @@ pub enum SolveStatus {
     MaxIterations,
     /// The change of λ_n made no new minimum for [`crate::solve::STAGNATION_WINDOW`] iterations: the
     /// fixed point cycles, or it has reached the accuracy to which the QP determines λ (see the residual
-    /// history; a tighter `qp.tol` or a finer mesh may help). One whose smallest change is within √qp_tol
-    /// and whose last iterate meets Coulomb's law to `fp_tol` is [`SolveStatus::Converged`]. The Newton method
+    /// history; a tighter `qp.tol` or a finer mesh may help). One whose smallest change is within √tol (`tol` the
+    /// QP tolerance its QPs met) and whose last iterate meets Coulomb's law to `fp_tol` (to `max(√tol, fp_tol)`
+    /// where clarabel answered its QPs) is [`SolveStatus::Converged`]. The Newton method
     /// ends so when, after its restarts, its merit makes no new minimum for as many steps, or the linear system of
     /// a step is singular (the log says which).
     Stagnated,

@@ -365,8 +365,10 @@ impl Condensed<'_> {
         // (`fixed_point::settled`; the fixed point's only: Newton's merit at the point it hands back is already its
         // last entry). A fixed point that cycles makes larger changes, and one stopped by its cap
         // (`max_iterations`) was still progressing: both are reported as they ended.
+        // The fixed point's own QPs (the last `iterations`; not a frictionless start, whose noise it does not carry).
         let report = &solution.report;
-        let clarabel = report.qp_methods.contains(&QpMethod::Clarabel);
+        let own = &report.qp_methods[report.qp_methods.len().saturating_sub(report.iterations)..];
+        let clarabel = own.contains(&QpMethod::Clarabel);
         let settled = (report.status == SolveStatus::Stagnated && method == CoulombMethod::FixedPoint)
             .then(|| settled(&report.residual_history, report.qp_inaccurate, clarabel, solution.kkt.max(), settings))
             .flatten();

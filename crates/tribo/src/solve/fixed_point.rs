@@ -48,13 +48,16 @@ impl Stagnation {
 /// tolerance its QPs met ([`Solution::reached_qp_tol`]: `FALLBACK_TOL` when some met only that), the accuracy
 /// `converged` grants the KKT residuals; and when its last iterate meets Coulomb's law with its own λ_n (the KKT
 /// residuals take the friction bound μ λ_n of the answer, not the frozen bound of its QP) to within `fp_tol`,
-/// or, where clarabel answered a QP (`clarabel`), to within what an interior-point answer is determined to
-/// ([`Solution::accuracy_bound`]: its λ_n moves by up to `√tol` from one QP to the next, and the friction bound
-/// of the answer with it). The change of λ_n between two QPs then measures the QPs' noise, not a distance from
-/// a solution. Seen: D30 (a block held only by the contact, dragged by the obstacle in a history, the active-set
-/// method) stagnated at changes of 3e-8 to 2e-6 with KKT residuals of 5e-12; with clarabel forced, the demo
-/// scene at μ = 1 stagnated at changes of 3e-8 to 4e-7 with its friction bound met to 5.5e-8, and an adaptive
-/// level of it where four QPs met only `FALLBACK_TOL` at changes of 1.1e-6.
+/// or, where clarabel answered a QP of the fixed point (`clarabel`), to within what an interior-point answer is
+/// determined to ([`Solution::accuracy_bound`], the limit of every converged answer: its complementarity is about
+/// `tol`, so where the QP is degenerate its λ_n is determined to about `√tol` relative, as `solve/check.rs` reads
+/// it, and the friction bound μ λ_n of the answer with it). The change of λ_n between two QPs then measures the
+/// QPs' noise, not a distance from a solution. The smallest change is read over the whole history: one that
+/// dipped and then cycled must still meet Coulomb's law at its last iterate. Seen: D30 (a block held only by the
+/// contact, dragged by the obstacle in a history: such QPs are clarabel's) stagnated at changes of 3e-8 to 2e-6
+/// with KKT residuals of 5e-12; with clarabel forced, the demo scene at μ = 1 stagnated at changes of 3e-8 to
+/// 4e-7 with its friction bound met to 5.5e-8, and an adaptive level of it where four QPs met only
+/// `FALLBACK_TOL` at changes of 1.1e-6.
 pub(super) fn settled(
     history: &[f64],
     qp_inaccurate: usize,
@@ -155,10 +158,10 @@ mod tests {
     fn a_stagnated_fixed_point_settles_within_what_its_qps_resolve() {
         let s = SolverSettings::default(); // qp_tol 1e-12, fp_tol 1e-8
         let noisy = [9.3e-4, 4.0e-8, 2.9e-7, 3.7e-7, 4.7e-8, 2.7e-8];
-        // The active-set method's answers are exact: Coulomb's law must hold to fp_tol.
+        // The active-set method's answers are exact on their active sets: Coulomb's law must hold to fp_tol.
         assert_eq!(settled(&noisy, 0, false, 5e-12, &s), Some((2.7e-8, 1e-8)));
         assert_eq!(settled(&noisy, 0, false, 5.5e-8, &s), None);
-        // clarabel's λ_n moves by up to √qp_tol = 1e-6 between QPs, and the friction bound with it.
+        // clarabel's λ_n is determined to about √qp_tol = 1e-6 relative, and the friction bound with it.
         assert_eq!(settled(&noisy, 0, true, 5.5e-8, &s), Some((2.7e-8, 1e-6)));
         assert_eq!(settled(&noisy, 0, true, 2e-6, &s), None);
         // Changes of 1.1e-6 are beyond √qp_tol, and within √FALLBACK_TOL = 1e-5 once a QP met only that.

@@ -295,7 +295,9 @@ fn two_converged_answers_of_a_tresca_qp_on_a_graded_mesh_are_one_in_the_energy_n
 /// `FALLBACK_TOL`, their λ_n moving by up to √FALLBACK_TOL = 1e-5 from one QP to the next, and the fixed point's
 /// changes stop falling at about 1e-6, above `fp_tol` and √qp_tol. It ended `stagnated` while its last iterate
 /// met Coulomb's law to 2e-9; it ends `converged` (`solve/fixed_point.rs`, `settled`), and its answer is the
-/// active-set method's within what clarabel's answers are determined to.
+/// active-set method's within what clarabel's answers are determined to. (The other half of the rule, KKT residuals
+/// up to `max(√qp_tol, fp_tol)` where clarabel answered, is the unit test's there: the demo scene's level that
+/// showed it, with clarabel's adaptive loop, takes about a minute.)
 #[test]
 fn the_fixed_point_by_clarabel_converges_to_what_its_qps_resolve() {
     let mut spec = tribo_testkit::hertz_spec(0.01, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
