@@ -254,8 +254,9 @@ fn auto_takes_the_saddle_system_only_where_it_factorizes() {
 /// objective was brought to 1, its answer at h_min 0.005 was 0.13 off at one dof and its objective 7.5e-7 above the
 /// optimum (the gap it stopped on was an absolute one, 1e-10 of an objective of 6.5e-5). The bound holds for any
 /// two answers, so this test states the property rather than guarding the fix; the guards are
-/// `qp::clarabel::tests::a_small_objective_is_solved_to_the_relative_tolerance` and the Hertz fixed point
-/// (`hertz::clarabel_answers_the_fixed_point_on_the_finest_hertz_mesh_as_the_active_set_does`).
+/// `qp::clarabel::tests::a_small_objective_is_solved_to_the_relative_tolerance`, the Hertz fixed point
+/// (`hertz::clarabel_answers_the_fixed_point_on_the_finest_hertz_mesh_as_the_active_set_does`) and, for the
+/// regularization, `clarabel_meets_qp_tol_on_a_fine_adaptive_level`.
 #[test]
 fn two_converged_answers_of_a_tresca_qp_on_a_graded_mesh_are_one_in_the_energy_norm() {
     let friction = Friction::Tresca(Threshold::Uniform(1.0));
