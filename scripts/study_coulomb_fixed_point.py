@@ -1,10 +1,12 @@
 """Study 1c — where the Coulomb fixed point stops converging, and what relaxation recovers.
 
 Hertz with Coulomb friction (approach 0.01, obstacle shift s = 0.004), graded mesh h_min = 0.01, P1, H = h,
-γ0 = 0.5 × bound, working-set QP (the default), fixed point `g ← (1 − ω) g + ω Φ_H(g)` with at most 100
-iterations. Grid: μ from 0 to 2, ν ∈ {0, 0.2, 0.3, 0.45}, ω ∈ {1, 0.5, 0.25} with the QP tolerance 1e-10
-(the fallback tolerance), and ω = 1 with the default qp_tol = 1e-12. Then μ = 0.3, ν = 0.3 under
-refinement (h_min 0.04 → 0.00125) for the three ω.
+γ0 = 0.5 × bound, working-set QP (the default, `qp_method = "auto"`), fixed point `g ← (1 − ω) g + ω Φ_H(g)`
+with at most 100 iterations. Grid: μ from 0 to 2, ν ∈ {0, 0.2, 0.3, 0.45}, ω ∈ {1, 0.5, 0.25} with the QP
+tolerance 1e-10 (the fallback tolerance), and ω = 1 with the default qp_tol = 1e-12; then ω = 1 with clarabel
+answering every QP (`qp_method = "clarabel"`, the reference QP method) at both tolerances, each answer compared
+with the default's of the same setting: the relative difference of the tangential force Q. Then μ = 0.3, ν = 0.3
+under refinement (h_min 0.04 → 0.00125) for every setting.
 
     python scripts/study_coulomb_fixed_point.py     # docs/coulomb_fixed_point.{md,csv,png}
     python scripts/study_coulomb_fixed_point.py --smoke --out /tmp/x
@@ -24,29 +26,41 @@ import studylib as sl  # noqa: E402
 
 MUS = [0.0, 0.1, 0.2, 0.3, 0.5, 0.7, 0.9, 1.1, 1.3, 1.5, 2.0]
 NUS = [0.0, 0.2, 0.3, 0.45]
-# (relaxation ω, QP tolerance): QP tolerance 1e-10 (the fallback tolerance, and the default before 0.1)
-# with three ω, and ω = 1 with the default 1e-12.
-OMEGAS = [(1.0, 1e-10), (0.5, 1e-10), (0.25, 1e-10), (1.0, 1e-12)]
+# (relaxation ω, QP tolerance, QP method): QP tolerance 1e-10 (the fallback tolerance, and the default before 0.1)
+# with three ω, and ω = 1 with the default 1e-12; then clarabel answering every QP at both tolerances.
+OMEGAS = [(1.0, 1e-10, "auto"), (0.5, 1e-10, "auto"), (0.25, 1e-10, "auto"), (1.0, 1e-12, "auto"),
+          (1.0, 1e-10, "clarabel"), (1.0, 1e-12, "clarabel")]
 H_MINS = [0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125]
 SHIFT = 0.004
 
 
-def solve_row(problem: Any, mu: float, setting: tuple[float, float], **extra: Any) -> dict[str, Any]:
-    omega, qp_tol = setting
-    sol, sec = sl.timed(lambda: problem.solve(mu=mu, fp_relaxation=omega, qp_tol=qp_tol))
+Setting = tuple[float, float, str]
+
+
+def solve_row(problem: Any, mu: float, setting: Setting, **extra: Any) -> dict[str, Any]:
+    """One fixed point; with clarabel, ``q_apart`` is the relative difference of its tangential force from the
+    default method's with the same ω and qp_tol (NaN where that one did not converge)."""
+    omega, qp_tol, method = setting
+    sol, sec = sl.timed(lambda: problem.solve(mu=mu, fp_relaxation=omega, qp_tol=qp_tol, qp_method=method))
     rep = sol.report
     hist = rep.residual_history
-    row = dict(mu=mu, omega=omega, qp_tol=qp_tol, setting=setting, status=rep.status, iterations=rep.iterations,
-               last_change=float(hist[-1]) if len(hist) else 0.0, seconds=sec, force=sol.normal_force,
-               stick=int(sum(1 for s in sol.state_names if s == "stick")),
-               slip=int(sum(1 for s in sol.state_names if s == "slip")), **extra)
+    q_apart = math.nan
+    if method != "auto":
+        other = problem.solve(mu=mu, fp_relaxation=omega, qp_tol=qp_tol)
+        if other.report.status == "converged" and rep.status == "converged":
+            q_apart = abs(sol.tangential_force - other.tangential_force) / max(abs(other.tangential_force), 1e-300)
+    row = dict(mu=mu, omega=omega, qp_tol=qp_tol, qp_method=method, setting=setting, status=rep.status,
+               iterations=rep.iterations, last_change=float(hist[-1]) if len(hist) else 0.0, seconds=sec,
+               force=sol.normal_force, stick=int(sum(1 for s in sol.state_names if s == "stick")),
+               slip=int(sum(1 for s in sol.state_names if s == "slip")), qp_inaccurate=rep.qp_inaccurate,
+               q_apart=q_apart, **extra)
     return row
 
 
 def run(smoke: bool, out: Path) -> dict[str, Any]:
     mus = [0.0, 0.3, 1.5] if smoke else MUS
     nus = [0.3] if smoke else NUS
-    omegas = [(1.0, 1e-10), (1.0, 1e-12)] if smoke else OMEGAS
+    omegas = [(1.0, 1e-10, "auto"), (1.0, 1e-12, "auto"), (1.0, 1e-12, "clarabel")] if smoke else OMEGAS
     h_mins = [0.04, 0.02] if smoke else H_MINS
     h_grid = 0.04 if smoke else 0.01
     grid: list[dict[str, Any]] = []
@@ -70,33 +84,36 @@ def run(smoke: bool, out: Path) -> dict[str, Any]:
     return dict(grid=grid, refine=refine)
 
 
-def name(setting: tuple[float, float]) -> str:
-    return f"ω = {setting[0]:g}, qp_tol = {setting[1]:.0e}"
+def name(setting: Setting) -> str:
+    method = "" if setting[2] == "auto" else f", {setting[2]}"
+    return f"ω = {setting[0]:g}, qp_tol = {setting[1]:.0e}{method}"
 
 
-def first_failure(rows: list[dict[str, Any]], nu: float, omega: tuple[float, float]) -> float:
+def first_failure(rows: list[dict[str, Any]], nu: float, omega: Setting) -> float:
     """Smallest μ whose fixed point did not converge (nan if all converged)."""
     bad = [r["mu"] for r in rows if r["nu"] == nu and r["setting"] == omega and r["status"] != "converged"]
     return min(bad) if bad else math.nan
 
 
 def write(grid: list[dict[str, Any]], refine: list[dict[str, Any]], mus: list[float], nus: list[float],
-          omegas: list[tuple[float, float]], h_grid: float, out: Path) -> None:
+          omegas: list[Setting], h_grid: float, out: Path) -> None:
     out.mkdir(parents=True, exist_ok=True)
-    keys = ["h_min", "n_free", "nu", "omega", "qp_tol", "mu", "status", "iterations", "last_change", "seconds", "force",
-            "stick", "slip"]
+    keys = ["h_min", "n_free", "nu", "omega", "qp_tol", "qp_method", "mu", "status", "iterations", "last_change",
+            "seconds", "force", "stick", "slip", "qp_inaccurate", "q_apart"]
     sl.write_csv(out / "coulomb_fixed_point.csv", keys, [[r[k] for k in keys] for r in grid + refine])
     get = {(r["nu"], r["setting"], r["mu"]): r for r in grid}
     md = [f"# Study 1c: the Coulomb fixed point against μ, ν and the relaxation ω\n\n"
           f"Hertz, approach 0.01, shift {SHIFT}, graded h_min = {h_grid}, P1, H = h, γ0 = 0.5 × bound, "
           "working-set QP, at most 100 iterations. Entry: fixed-point iterations; for a run that did not converge "
           "its status (`stagnated`: no new smallest change for 10 iterations) and the last relative change "
-          "of λ_n in brackets. qp_tol = 1e-12 is the default. Regenerate with "
+          "of λ_n in brackets; with clarabel, after the slash, the relative difference of the tangential force Q "
+          "from the default method's answer with the same ω and qp_tol. qp_tol = 1e-12 is the default. Regenerate with "
           "`python scripts/study_coulomb_fixed_point.py`.\n"]
 
     def cell(r: dict[str, Any]) -> str:
+        apart = "" if math.isnan(r["q_apart"]) else f" / {r['q_apart']:.0e}"
         if r["status"] == "converged":
-            return str(r["iterations"])
+            return f"{r['iterations']}{apart}"
         return f"{r['status']} at {r['iterations']} ({r['last_change']:.0e})"
 
     for omega in omegas:
@@ -115,7 +132,11 @@ def write(grid: list[dict[str, Any]], refine: list[dict[str, Any]], mus: list[fl
     (out / "coulomb_fixed_point.md").write_text("".join(md))
 
     plt = sl.pyplot()
-    fig, axes = plt.subplots(1, len(omegas) + 1, figsize=(3.9 * (len(omegas) + 1), 4.4))
+    columns = (len(omegas) + 2) // 2
+    fig, grid_axes = plt.subplots(2, columns, figsize=(3.9 * columns, 8.4))
+    axes = list(grid_axes.flat)
+    for ax in axes[len(omegas) + 1:]:
+        ax.set_visible(False)
     colors = plt.cm.plasma(np.linspace(0.0, 0.8, len(nus)))
     for ax, omega in zip(axes, omegas):
         for nu, c in zip(nus, colors):
@@ -129,8 +150,8 @@ def write(grid: list[dict[str, Any]], refine: list[dict[str, Any]], mus: list[fl
         ax.set_yscale("log")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
-    ax = axes[-1]
-    for omega, c in zip(omegas, ["C0", "C1", "C2", "C3"]):
+    ax = axes[len(omegas)]
+    for omega, c in zip(omegas, [f"C{k}" for k in range(len(omegas))]):
         rs = [rget[(h, omega)] for h in hs]
         ax.plot([r["n_free"] for r in rs], [r["iterations"] for r in rs], "o-", color=c, label=name(omega))
         bad = [r for r in rs if r["status"] != "converged"]
