@@ -87,11 +87,11 @@ def run_ported(name: str, smoke: bool, work: Path) -> Any:
 
 
 def compare_coulomb(df: Any) -> dict[str, Any]:
-    """Case by case against docs/coulomb_fixed_point.csv (its h_min = 0.01 grid)."""
+    """Case by case against docs/coulomb_fixed_point.csv (its h_min = 0.01 grid, by the default QP method)."""
     import pandas as pd
 
     ref = pd.read_csv(sl.DOCS / "coulomb_fixed_point.csv")
-    ref = ref[ref["h_min"] == 0.01]
+    ref = ref[(ref["h_min"] == 0.01) & (ref["qp_method"] == "auto")]
     keys = ["friction.mu", "material.poisson", "solver.fp_relaxation", "solver.qp_tol"]
     ref = ref.rename(columns={"mu": keys[0], "nu": keys[1], "omega": keys[2], "qp_tol": keys[3]})
     both = df.merge(ref, on=keys, suffixes=("", "_study"))

@@ -526,7 +526,9 @@ def test_the_docs_quote_the_stability_and_friction_studies_as_measured() -> None
     small, large = f"{min(n) / 1000:.0f}k", f"{max(n) / 1000:.0f}k"
     assert f"Over {len(n)} uniform, graded, adaptive and full-contact scenes from {small} to {large}" in measured
     assert f"over {len(n)} scenes and both laws (uniform, graded, adaptive, full contact; {small}–{large}" in studies
-    fp = [r for r in _rows("coulomb_fixed_point.csv") if r["h_min"] == "0.01" and r["mu"] != "0"]
+    # (the default QP method's runs: the study runs clarabel beside it)
+    fp = [r for r in _rows("coulomb_fixed_point.csv")
+          if r["h_min"] == "0.01" and r["mu"] != "0" and r["qp_method"] == "auto"]
     plain = {(r["nu"], r["mu"], r["qp_tol"]): int(r["iterations"]) for r in fp if r["omega"] == "1"}
     at_nu0 = {float(r["mu"]): int(r["iterations"]) for r in fp if r["omega"] == "1" and r["nu"] == "0"}
     at_045 = [int(r["iterations"]) for r in fp if r["omega"] == "1" and r["nu"] == "0.45"]
@@ -538,6 +540,13 @@ def test_the_docs_quote_the_stability_and_friction_studies_as_measured() -> None
     more = {w: [int(r["iterations"]) / plain[(r["nu"], r["mu"], r["qp_tol"])] for r in fp if r["omega"] == w]
             for w in ("0.5", "0.25")}
     quoted = f"{_span(more['0.5'], '.3g')} times as many at ω = 0.5, {_span(more['0.25'], '.3g')} times at ω = 0.25"
+    assert quoted in studies, quoted
+    # clarabel beside the default: the largest difference of their tangential forces on the grid (h_min = 0.01).
+    apart = {tol: max(float(r["q_apart"]) for r in _rows("coulomb_fixed_point.csv")
+                      if r["qp_method"] == "clarabel" and r["h_min"] == "0.01" and r["qp_tol"] == tol and r["mu"] != "0")
+             for tol in ("1e-12", "1e-10")}
+    short = {tol: f"{v:.0e}".replace("e-0", "e-") for tol, v in apart.items()}
+    quoted = f"at most {short['1e-12']} relative at 1e-12, {short['1e-10']} at 1e-10"
     assert quoted in studies, quoted
 
 
