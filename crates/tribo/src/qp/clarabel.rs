@@ -7,6 +7,7 @@ use clarabel::algebra::CscMatrix;
 use clarabel::solver::{DefaultSettings, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus, ZeroConeT};
 
 use crate::error::{Error, Result};
+use crate::qp::equality::Elimination;
 use crate::qp::{diagonal, QpOutcome, QpStatus, Scaling, FALLBACK_TOL};
 use crate::settings::friction::check_thresholds;
 use crate::settings::{QpMethod, QpSettings};
@@ -65,17 +66,27 @@ fn status_name(s: SolverStatus) -> &'static str {
     }
 }
 
-/// clarabel's static regularization of the KKT systems of a QP with boxes only (its default, 1e-8, stays for one with
-/// equality rows: the bodies held only by the contact, whose KKT system has a zero block there). clarabel solves the
+/// clarabel's static regularization of the KKT systems of a QP with inequality rows only: boxes, and the rows of the
+/// bodies held only by the contact once eliminated ([`crate::qp::equality`]; its default, 1e-8, stays where they are
+/// dependent and kept as a zero cone, whose zero block needs it). clarabel solves the
 /// regularized system and refines the answer against the exact one; where the scaled H is as ill-conditioned as on fine
 /// graded meshes, 1e-8 is more than the refinement corrects, the search directions are inexact and the interior-point
 /// method stalls short of `tol`. Measured (Hertz, Coulomb μ = 1, ν = 0, P0, the levels of an adaptive loop, clarabel
 /// forced): with 1e-8, 14 of 26 QPs met only `FALLBACK_TOL` at 6.7k unknowns (q = 232), 29 of 40 at 11.5k and 29 of 31
 /// at 36k (q = 751), where the fixed point stagnated at changes of 1e-4; with 1e-12, every QP met `tol` = 1e-12 and
 /// each fixed point converged (26 to 37 iterations, KKT residuals 1.4e-9 to 5.3e-8), in less time. With 1e-12 for
-/// the QPs with equality rows too, 11 tests of bodies held only by the contact failed (`held_by_contact.rs` among
-/// them). A QP that fails is solved again at `FALLBACK_TOL` with clarabel's default, as before.
+/// the equality rows kept as a zero cone, 11 tests of bodies held only by the contact failed (`held_by_contact.rs`
+/// among them). A QP that fails is solved again at `FALLBACK_TOL` with clarabel's default, as before.
 const BOX_REGULARIZATION: f64 = 1e-12;
+
+/// clarabel's static regularization of a QP whose equality rows were eliminated ([`crate::qp::equality`]). Its
+/// pivots' box rows are dense rows over the other unknowns, and 1e-12 left a sticking λ_t of two stacked blocks on a
+/// foundation (`bodies_and_pairs.rs`'s patch test) 2.8e-6 p from 0, above the √qp_tol that `converged` grants; 1e-10
+/// and 1e-9 keep it within. Measured on a block (0, 2) × (0, 1) held only by the contact, 40 × 20 to 320 × 160
+/// cells, Coulomb: with the rows as a zero cone (1e-8), the first Coulomb QP failed from 160 × 80 cells on at
+/// μ = 0.3, ν = 0.3, and 14 of 29 and 23 of 36 QPs met only `FALLBACK_TOL` at ν = 0, μ = 1; eliminated, every fixed
+/// point converges, the QPs at 1e-10 only being 15 of 26 and 17 of 37 there (1e-12: 0 and 5; 1e-8: 15 of 34, 19 of 31).
+const ELIMINATED_REGULARIZATION: f64 = 1e-10;
 
 /// clarabel's settings for our tolerances: presolve off (so data updates work), its KKT solver, and
 /// *reduced* tolerances no looser than ours. clarabel stops early ("almost solved") when it cannot make
@@ -186,13 +197,24 @@ impl BoxQp {
         (rows, rho)
     }
 
+    /// The equality rows solved for one unknown each, in the scaled unknowns of `scaling` (`None` without rows or
+    /// where they are dependent).
+    fn elimination(&self, scaling: &Scaling) -> Option<Elimination> {
+        let (_, eq_b) = self.equality.as_ref()?;
+        let (rows, rho) = self.scaled_equality(&scaling.w);
+        Elimination::new(&rows, &eq_b.iter().zip(&rho).map(|(v, r)| v * r).collect::<Vec<_>>())
+    }
+
     /// Builds clarabel's solver for the current data and settings.
     fn setup(&self) -> Result<DefaultSolver<f64>> {
-        let (q, frictional, settings) = (self.q, self.frictional, &self.settings);
+        let scaling = self.scaling();
+        if let Some(elimination) = self.elimination(&scaling) {
+            return self.setup_eliminated(&elimination, &scaling);
+        }
+        let (q, frictional) = (self.q, self.frictional);
         let k = if frictional { 2 * q } else { q };
         let (p, qv, mut b) = self.scaled_data();
-        let w = self.scaling().w;
-        let (eq_rows, rho) = self.scaled_equality(&w);
+        let (eq_rows, rho) = self.scaled_equality(&scaling.w);
         if let Some((_, eq_b)) = &self.equality {
             b.extend(eq_b.iter().zip(&rho).map(|(v, r)| v * r));
         }
@@ -229,14 +251,83 @@ impl BoxQp {
             colptr.push(rowval.len());
         }
         let a = CscMatrix::new(m + r, k, colptr, rowval, nzval);
-        let mut cs = clarabel_settings(settings);
-        // Boxes only, and not the retry of a QP that failed (`solve`): that retry keeps clarabel's default, the
-        // pair (1e-8, FALLBACK_TOL) that answered such QPs before.
-        if r == 0 && settings.tol <= self.requested_tol {
-            cs.static_regularization_constant = BOX_REGULARIZATION;
-        }
         let cones = if r > 0 { vec![NonnegativeConeT(m), ZeroConeT(r)] } else { vec![NonnegativeConeT(m)] };
+        let cs = self.solver_settings((r == 0).then_some(BOX_REGULARIZATION));
         DefaultSolver::new(&p, &qv, &a, &b, &cones, cs).map_err(|e| Error::QpSetup { what: e.to_string() })
+    }
+
+    /// clarabel's settings for this QP, with the static regularization `regularization` (`None`: clarabel's
+    /// default), except on the retry of a QP that failed ([`BoxQp::solve`]), which keeps clarabel's default, the
+    /// pair (1e-8, [`FALLBACK_TOL`]) that answered such QPs before.
+    fn solver_settings(&self, regularization: Option<f64>) -> DefaultSettings<f64> {
+        let mut cs = clarabel_settings(&self.settings);
+        if let Some(value) = regularization.filter(|_| self.settings.tol <= self.requested_tol) {
+            cs.static_regularization_constant = value;
+        }
+        cs
+    }
+
+    /// The box row of unknown `i` (a normal or a tangential one, `tbox` the scaled tangential boxes) as
+    /// (coefficient, right-hand side) pairs: `−x ≤ 0`, or `x ≤ box` and `−x ≤ box`.
+    fn box_rows(&self, i: usize, tbox: &[f64]) -> Vec<(f64, f64)> {
+        if i < self.q {
+            vec![(-1.0, 0.0)]
+        } else {
+            vec![(1.0, tbox[i - self.q]), (-1.0, tbox[i - self.q])]
+        }
+    }
+
+    /// Builds clarabel's solver for the QP over the unknowns left by `elimination`: their box rows, then those of
+    /// the pivots, `c (x₀ + m x_N) ≤ β` written `c m x_N ≤ β − c x₀` (see [`crate::qp::equality`]).
+    fn setup_eliminated(&self, elimination: &Elimination, scaling: &Scaling) -> Result<DefaultSolver<f64>> {
+        let (upper, qv, _) = self.scaled_data();
+        let at = |i: usize, j: usize| upper[if i <= j { j * (j + 1) / 2 + i } else { i * (i + 1) / 2 + j }];
+        let (p, qn) = elimination.reduce(at, &qv);
+        drop(upper);
+        let tbox = scaling.tangential_box(self.q, &self.bounds);
+        let (rest, pivots) = (&elimination.rest, &elimination.pivots);
+        let own: Vec<Vec<(f64, f64)>> = rest.iter().map(|&i| self.box_rows(i, &tbox)).collect();
+        let theirs: Vec<Vec<(f64, f64)>> = pivots.iter().map(|&i| self.box_rows(i, &tbox)).collect();
+        let n = rest.len();
+        let first_pivot_row: usize = own.iter().map(Vec::len).sum();
+        let rows = first_pivot_row + theirs.iter().map(Vec::len).sum::<usize>();
+        let (mut colptr, mut rowval, mut nzval) = (vec![0], Vec::new(), Vec::new());
+        let mut row = 0;
+        for (ii, own_rows) in own.iter().enumerate() {
+            for (coefficient, _) in own_rows {
+                rowval.push(row);
+                nzval.push(*coefficient);
+                row += 1;
+            }
+            let mut pivot_row = first_pivot_row;
+            for (a, pivot_rows) in theirs.iter().enumerate() {
+                for (coefficient, _) in pivot_rows {
+                    if elimination.m[a][ii] != 0.0 {
+                        rowval.push(pivot_row);
+                        nzval.push(coefficient * elimination.m[a][ii]);
+                    }
+                    pivot_row += 1;
+                }
+            }
+            colptr.push(rowval.len());
+        }
+        let b: Vec<f64> = own
+            .iter()
+            .flatten()
+            .map(|(_, beta)| *beta)
+            .chain(theirs.iter().zip(&elimination.x0).flat_map(|(r, x0)| r.iter().map(move |(c, beta)| beta - c * x0)))
+            .collect();
+        let mut pcol = vec![0];
+        let mut prow = Vec::with_capacity(p.len());
+        for j in 0..n {
+            prow.extend(0..=j);
+            pcol.push(prow.len());
+        }
+        let p = CscMatrix::new(n, n, pcol, prow, p);
+        let a = CscMatrix::new(rows, n, colptr, rowval, nzval);
+        let cs = self.solver_settings(Some(ELIMINATED_REGULARIZATION));
+        DefaultSolver::new(&p, &qn, &a, &b, &[NonnegativeConeT(rows)], cs)
+            .map_err(|e| Error::QpSetup { what: e.to_string() })
     }
 
     /// Values of the upper triangle of the scaled P (column by column) and the scaled q, for the current
@@ -352,6 +443,7 @@ impl BoxQp {
         let k = if self.frictional { 2 * q } else { q };
         let scaling = self.scaling();
         let (_, rho) = self.scaled_equality(&scaling.w);
+        let elimination = self.elimination(&scaling);
         let Some(solver) = self.solver.as_mut() else {
             // Nothing pushes (c = 0, no load on a body held by the contact): ν = 0, α = 0.
             return QpOutcome {
@@ -368,21 +460,33 @@ impl BoxQp {
         let clock = Instant::now();
         solver.solve();
         let sol = &solver.solution;
+        let (sol_x, sol_z, iterations) = (sol.x.clone(), sol.z.clone(), sol.iterations);
         let status = match sol.status {
             SolverStatus::Solved if self.settings.tol <= self.requested_tol => QpStatus::Solved,
             SolverStatus::Solved | SolverStatus::AlmostSolved => QpStatus::Inaccurate,
             s => QpStatus::Failed(status_name(s)),
         };
-        let nu = (0..k).map(|i| sol.x[i] * scaling.w[i]).collect();
-        // The equality rows' duals z: stationarity of the scaled QP, multiplied by φ / w_i, reads
-        // H ν + c + Gᵀ (φ ρ z) + … = 0, so α = −φ ρ z (φ = root_phi², formed as two products).
-        let m = if self.frictional { 3 * q } else { q };
-        let alpha =
-            rho.iter().enumerate().map(|(e, r)| -(scaling.root_phi * (scaling.root_phi * r * sol.z[m + e]))).collect();
+        // The scaled unknowns x, and the equality rows' duals y: where the rows were eliminated, from stationarity
+        // at their pivots (`crate::qp::equality`), else clarabel's own duals of its zero cone.
+        let (x, y) = match elimination {
+            Some(elimination) => {
+                let x = elimination.expand(&sol_x);
+                let y = self.eliminated_duals(&elimination, &scaling, &x, &sol_z);
+                (x, y)
+            }
+            None => {
+                let m = if self.frictional { 3 * q } else { q };
+                (sol_x[..k].to_vec(), (0..rho.len()).map(|e| sol_z[m + e]).collect())
+            }
+        };
+        let nu = (0..k).map(|i| x[i] * scaling.w[i]).collect();
+        // Stationarity of the scaled QP, multiplied by φ / w_i, reads H ν + c + Gᵀ (φ ρ y) + … = 0, so α = −φ ρ y
+        // (φ = root_phi², formed as two products).
+        let alpha = rho.iter().zip(&y).map(|(r, y)| -(scaling.root_phi * (scaling.root_phi * r * y))).collect();
         QpOutcome {
             nu,
             status,
-            iterations: sol.iterations,
+            iterations,
             seconds: clock.elapsed().as_secs_f64(),
             method: QpMethod::Clarabel,
             factorizations: 0,
@@ -390,6 +494,33 @@ impl BoxQp {
             alpha,
         }
     }
+}
+
+impl BoxQp {
+    /// The duals of the eliminated equality rows at the scaled answer `x` (all k unknowns), `z` the duals of the
+    /// reduced QP's rows (the pivots' box rows last): `G̃_pᵀ y = −(P̃ x + q̃ + Ãᵀ z)_p`. NaN if `G̃_p` is singular
+    /// (it is not: the elimination took its largest pivots).
+    fn eliminated_duals(&self, elimination: &Elimination, scaling: &Scaling, x: &[f64], z: &[f64]) -> Vec<f64> {
+        let (k, r, root_phi) = (x.len(), &scaling.r, scaling.root_phi);
+        let tbox = scaling.tangential_box(self.q, &self.bounds);
+        let mut row: usize = elimination.rest.iter().map(|&i| self.box_rows(i, &tbox).len()).sum();
+        let s_p: Vec<f64> = elimination
+            .pivots
+            .iter()
+            .map(|&p| {
+                let px: f64 = (0..k).map(|j| r[p] * self.h[j * k + p] * r[j] * x[j]).sum();
+                let az: f64 = self.box_rows(p, &tbox).iter().map(|(c, _)| c * z[post_inc(&mut row)]).sum();
+                px + r[p] * self.c[p] / root_phi + az
+            })
+            .collect();
+        elimination.duals(&s_p).unwrap_or_else(|| vec![f64::NAN; elimination.pivots.len()])
+    }
+}
+
+/// `*i`, then `*i += 1`.
+fn post_inc(i: &mut usize) -> usize {
+    *i += 1;
+    *i - 1
 }
 
 #[cfg(test)]

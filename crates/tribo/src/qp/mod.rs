@@ -22,7 +22,8 @@
 //!
 //! # Where each part lives
 //! [`QpStatus`] and [`QpOutcome`] (here) are what every method returns. `scaling` non-dimensionalises
-//! the QP; `clarabel` is the interior-point reference ([`BoxQp`]); [`active_set`] the primal–dual
+//! the QP; `clarabel` is the interior-point reference ([`BoxQp`]), `equality` eliminates the equilibrium rows of
+//! the bodies held only by the contact before clarabel sees them; [`active_set`] the primal–dual
 //! active-set method, on a dense block of H (`dense`) or on the sparse saddle-point system (`sparse`);
 //! [`working_set`] is the front door of every Γ_C QP ([`working_set::ContactQp`]): it picks the method
 //! and grows the set of multiplier dofs the QP is solved on.
@@ -30,6 +31,7 @@
 pub mod active_set;
 mod clarabel;
 mod dense;
+mod equality;
 mod scaling;
 pub(crate) mod sparse;
 pub mod working_set;
