@@ -41,6 +41,9 @@ pub struct BoxQp {
     /// Equality constraints `G ν = b` (G r × k row-major, b r): the equilibrium of the bodies held only by
     /// the contact ([`BoxQp::with_equality`]).
     equality: Option<(Vec<f64>, Vec<f64>)>,
+    /// The elimination of those rows the solver was built with ([`BoxQp::rebuild`]), `None` where they are kept as
+    /// a zero cone (dependent) or there are none.
+    elimination: Option<Elimination>,
 }
 
 impl std::fmt::Debug for BoxQp {
@@ -66,9 +69,9 @@ fn status_name(s: SolverStatus) -> &'static str {
     }
 }
 
-/// clarabel's static regularization of the KKT systems of a QP with inequality rows only: boxes, and the rows of the
-/// bodies held only by the contact once eliminated ([`crate::qp::equality`]; its default, 1e-8, stays where they are
-/// dependent and kept as a zero cone, whose zero block needs it). clarabel solves the
+/// clarabel's static regularization of the KKT systems of a QP with boxes only (the QPs of the bodies held only by the
+/// contact take [`ELIMINATED_REGULARIZATION`] once their equality rows are eliminated, and clarabel's default, 1e-8,
+/// where those rows are dependent and kept as a zero cone, whose zero block needs it). clarabel solves the
 /// regularized system and refines the answer against the exact one; where the scaled H is as ill-conditioned as on fine
 /// graded meshes, 1e-8 is more than the refinement corrects, the search directions are inexact and the interior-point
 /// method stalls short of `tol`. Measured (Hertz, Coulomb μ = 1, ν = 0, P0, the levels of an adaptive loop, clarabel
@@ -86,6 +89,7 @@ const BOX_REGULARIZATION: f64 = 1e-12;
 /// cells, Coulomb: with the rows as a zero cone (1e-8), the first Coulomb QP failed from 160 × 80 cells on at
 /// μ = 0.3, ν = 0.3, and 14 of 29 and 23 of 36 QPs met only `FALLBACK_TOL` at ν = 0, μ = 1; eliminated, every fixed
 /// point converges, the QPs at 1e-10 only being 15 of 26 and 17 of 37 there (1e-12: 0 and 5; 1e-8: 15 of 34, 19 of 31).
+/// The retry of a QP that failed keeps clarabel's default, as for the box QPs.
 const ELIMINATED_REGULARIZATION: f64 = 1e-10;
 
 /// clarabel's settings for our tolerances: presolve off (so data updates work), its KKT solver, and
@@ -145,12 +149,13 @@ impl BoxQp {
             n_scale: n_scale.unwrap_or(0.0),
             bounds: bounds.map_or_else(Vec::new, <[f64]>::to_vec),
             equality: None,
+            elimination: None,
         };
         if n_scale.is_none() {
             // Nothing pushes at all (c = 0): λ = 0 solves P(g).
             return Ok(qp);
         }
-        qp.solver = Some(qp.setup()?);
+        qp.rebuild()?;
         Ok(qp)
     }
 
@@ -175,7 +180,7 @@ impl BoxQp {
         }
         self.equality = Some((g, b));
         if self.n_scale > 0.0 {
-            self.solver = Some(self.setup()?);
+            self.rebuild()?;
         }
         Ok(self)
     }
@@ -205,12 +210,22 @@ impl BoxQp {
         Elimination::new(&rows, &eq_b.iter().zip(&rho).map(|(v, r)| v * r).collect::<Vec<_>>())
     }
 
-    /// Builds clarabel's solver for the current data and settings.
+    /// Builds clarabel's solver for the current data and settings, with the elimination it was built with; on an
+    /// error both stay as they were.
+    fn rebuild(&mut self) -> Result<()> {
+        let scaling = self.scaling();
+        let elimination = self.elimination(&scaling);
+        let solver = match &elimination {
+            Some(e) => self.setup_eliminated(e, &scaling)?,
+            None => self.setup()?,
+        };
+        (self.solver, self.elimination) = (Some(solver), elimination);
+        Ok(())
+    }
+
+    /// Builds clarabel's solver for the current data and settings, the equality rows (if any) as a zero cone.
     fn setup(&self) -> Result<DefaultSolver<f64>> {
         let scaling = self.scaling();
-        if let Some(elimination) = self.elimination(&scaling) {
-            return self.setup_eliminated(&elimination, &scaling);
-        }
         let (q, frictional) = (self.q, self.frictional);
         let k = if frictional { 2 * q } else { q };
         let (p, qv, mut b) = self.scaled_data();
@@ -399,7 +414,7 @@ impl BoxQp {
         self.bounds.copy_from_slice(g);
         if self.equality.is_some() {
             if self.solver.is_some() {
-                self.solver = Some(self.setup()?);
+                self.rebuild()?;
             }
             return Ok(());
         }
@@ -428,9 +443,8 @@ impl BoxQp {
             crate::error::Num(FALLBACK_TOL)
         );
         self.settings.tol = FALLBACK_TOL;
-        match self.setup() {
-            Ok(solver) => self.solver = Some(solver),
-            Err(_) => return out,
+        if self.rebuild().is_err() {
+            return out;
         }
         let mut again = self.solve_once();
         again.iterations += out.iterations;
@@ -443,7 +457,7 @@ impl BoxQp {
         let k = if self.frictional { 2 * q } else { q };
         let scaling = self.scaling();
         let (_, rho) = self.scaled_equality(&scaling.w);
-        let elimination = self.elimination(&scaling);
+        let elimination = self.elimination.clone();
         let Some(solver) = self.solver.as_mut() else {
             // Nothing pushes (c = 0, no load on a body held by the contact): ν = 0, α = 0.
             return QpOutcome {
@@ -565,7 +579,7 @@ mod tests {
         assert_eq!(qp.solve().status, QpStatus::Solved, "a well-conditioned QP reaches 1e-12");
         // What solve() does when clarabel fails at the requested tolerance.
         qp.settings.tol = FALLBACK_TOL;
-        qp.solver = Some(qp.setup().expect("set up"));
+        qp.rebuild().expect("set up");
         for bounds in [[0.2, 0.2], [0.1, 0.3]] {
             qp.set_bounds(&bounds).expect("valid bounds");
             assert_eq!(qp.solve().status, QpStatus::Inaccurate, "bounds {bounds:?}");

@@ -13,8 +13,8 @@
 //! Gauss–Jordan elimination with complete pivoting picks r unknowns `x_p`, one per row, with the largest pivots,
 //! and writes the rows as `x_p = x₀ + M x_N` over the other unknowns `x_N`. The QP over `x_N` alone has the
 //! objective `½ x_Nᵀ (Tᵀ P T) x_N + (Tᵀ (P t₀ + q))ᵀ x_N` (`x = T x_N + t₀`), its own box rows, and the box rows of
-//! the pivots, which become dense rows over `x_N`: a QP with inequality rows only, which clarabel solves with the
-//! regularization of the box QPs. The equality rows' duals y (the rigid motions) follow from stationarity at the
+//! the pivots, which become dense rows over `x_N`: a QP with inequality rows only, which clarabel solves with a
+//! smaller regularization than a zero cone needs (`ELIMINATED_REGULARIZATION`, 1e-10). The equality rows' duals y (the rigid motions) follow from stationarity at the
 //! pivots, `G̃_pᵀ y = −(P x + q + Ãᵀ z)_p`, z the duals of the pivots' box rows.
 
 use nalgebra::{DMatrix, DVector};
@@ -39,12 +39,16 @@ pub(crate) struct Elimination {
 }
 
 impl Elimination {
-    /// Solves the rows `rows` (r × k) with right-hand side `b` for r pivots; `None` if the rows are dependent.
+    /// Solves the rows `rows` (r × k) with right-hand side `b` for r pivots; `None` if the rows are dependent, not
+    /// finite, or leave no unknown over (r ≥ k: the QP keeps them as a zero cone).
     pub(crate) fn new(rows: &[Vec<f64>], b: &[f64]) -> Option<Self> {
         let r = rows.len();
         let k = rows.first().map_or(0, Vec::len);
+        if r == 0 || r >= k || !rows.iter().flatten().chain(b).all(|v| v.is_finite()) {
+            return None;
+        }
         let largest = rows.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
-        if r == 0 || r > k || !(largest > 0.0 && largest.is_finite()) {
+        if largest == 0.0 {
             return None;
         }
         let (mut a, mut rhs) = (rows.to_vec(), b.to_vec());
@@ -176,12 +180,17 @@ mod tests {
         }
     }
 
-    /// Dependent rows are refused (the QP keeps them as a zero cone), and so are no rows.
+    /// Dependent rows are refused (the QP keeps them as a zero cone), and so are no rows, rows that leave no unknown
+    /// over and rows that are not finite.
     #[test]
     fn dependent_rows_are_refused() {
-        assert!(Elimination::new(&[vec![1.0, 2.0], vec![2.0, 4.0]], &[1.0, 2.0]).is_none());
+        assert!(Elimination::new(&[vec![1.0, 2.0, 0.0], vec![2.0, 4.0, 0.0]], &[1.0, 2.0]).is_none());
         assert!(Elimination::new(&[], &[]).is_none());
         assert!(Elimination::new(&[vec![0.0, 0.0]], &[1.0]).is_none());
+        assert!(Elimination::new(&[vec![1.0, 0.0], vec![0.0, 1.0]], &[1.0, 2.0]).is_none());
+        assert!(Elimination::new(&[vec![1.0, f64::NAN, 0.0]], &[1.0]).is_none());
+        assert!(Elimination::new(&[vec![1.0, 2.0, 0.0]], &[f64::INFINITY]).is_none());
+        assert!(Elimination::new(&[vec![1.0, 2.0, 0.0]], &[1.0]).is_some());
     }
 
     /// The duals solve stationarity at the pivots: with s_p = −G̃_pᵀ y for a known y, y comes back.
