@@ -71,9 +71,9 @@ fn status_name(s: SolverStatus) -> &'static str {
     }
 }
 
-/// clarabel's static regularization of the KKT systems of a QP with boxes only (the QPs of the bodies held only by the
-/// contact take [`ELIMINATED_REGULARIZATION`] once their equality rows are eliminated, and clarabel's default, 1e-8,
-/// where those rows are dependent and kept as a zero cone, whose zero block needs it). clarabel solves the
+/// clarabel's static regularization of the KKT systems of a QP with inequality rows only: boxes, and the rows of the
+/// bodies held only by the contact once eliminated ([`crate::qp::equality`]; where those rows are dependent and kept
+/// as a zero cone, clarabel's default 1e-8, which its zero block needs). clarabel solves the
 /// regularized system and refines the answer against the exact one; where the scaled H is as ill-conditioned as on fine
 /// graded meshes, 1e-8 is more than the refinement corrects, the search directions are inexact and the interior-point
 /// method stalls short of `tol`. Measured (Hertz, Coulomb μ = 1, ν = 0, P0, the levels of an adaptive loop, clarabel
@@ -82,17 +82,12 @@ fn status_name(s: SolverStatus) -> &'static str {
 /// each fixed point converged (26 to 37 iterations, KKT residuals 1.4e-9 to 5.3e-8), in less time. With 1e-12 for
 /// the equality rows kept as a zero cone, 11 tests of bodies held only by the contact failed (`held_by_contact.rs`
 /// among them). A QP that fails is solved again at `FALLBACK_TOL` with clarabel's default, as before.
+///
+/// The eliminated rows, measured on a block (0, 2) × (0, 1) held only by the contact, 40 × 20 to 320 × 160 cells,
+/// Coulomb: as a zero cone (1e-8) the first Coulomb QP failed from 160 × 80 cells on at μ = 0.3, ν = 0.3, and 14 of 29
+/// and 23 of 36 QPs met only `FALLBACK_TOL` at ν = 0, μ = 1; eliminated, every fixed point converges, with 0 and 5 of
+/// 26 and 27 QPs at `FALLBACK_TOL` only there (with 1e-10 instead of 1e-12: 15 of 26 and 17 of 37).
 const BOX_REGULARIZATION: f64 = 1e-12;
-
-/// clarabel's static regularization of a QP whose equality rows were eliminated ([`crate::qp::equality`]). Its
-/// pivots' box rows are dense rows over the other unknowns, and 1e-12 left a sticking λ_t of two stacked blocks on a
-/// foundation (`bodies_and_pairs.rs`'s patch test) 2.8e-6 p from 0, above the √qp_tol that `converged` grants; 1e-10
-/// and 1e-9 keep it within. Measured on a block (0, 2) × (0, 1) held only by the contact, 40 × 20 to 320 × 160
-/// cells, Coulomb: with the rows as a zero cone (1e-8), the first Coulomb QP failed from 160 × 80 cells on at
-/// μ = 0.3, ν = 0.3, and 14 of 29 and 23 of 36 QPs met only `FALLBACK_TOL` at ν = 0, μ = 1; eliminated, every fixed
-/// point converges, the QPs at 1e-10 only being 15 of 26 and 17 of 37 there (1e-12: 0 and 5; 1e-8: 15 of 34, 19 of 31).
-/// The retry of a QP that failed keeps clarabel's default, as for the box QPs.
-const ELIMINATED_REGULARIZATION: f64 = 1e-10;
 
 /// clarabel's settings for our tolerances: presolve off (so data updates work), its KKT solver, and
 /// *reduced* tolerances no looser than ours. clarabel stops early ("almost solved") when it cannot make
@@ -343,7 +338,7 @@ impl BoxQp {
         }
         let p = CscMatrix::new(n, n, pcol, prow, p);
         let a = CscMatrix::new(rows, n, colptr, rowval, nzval);
-        let cs = self.solver_settings(Some(ELIMINATED_REGULARIZATION));
+        let cs = self.solver_settings(Some(BOX_REGULARIZATION));
         DefaultSolver::new(&p, &qn, &a, &b, &[NonnegativeConeT(rows)], cs)
             .map_err(|e| Error::QpSetup { what: e.to_string() })
     }

@@ -13,8 +13,8 @@
 //! Gauss–Jordan elimination with complete pivoting picks r unknowns `x_p`, one per row, with the largest pivots,
 //! and writes the rows as `x_p = x₀ + M x_N` over the other unknowns `x_N`. The QP over `x_N` alone has the
 //! objective `½ x_Nᵀ (Tᵀ P T) x_N + (Tᵀ (P t₀ + q))ᵀ x_N` (`x = T x_N + t₀`), its own box rows, and the box rows of
-//! the pivots, which become dense rows over `x_N`: a QP with inequality rows only, which clarabel solves with a
-//! smaller regularization than a zero cone needs (`ELIMINATED_REGULARIZATION`, 1e-10). The equality rows' duals y (the rigid motions) follow from stationarity at the
+//! the pivots, which become dense rows over `x_N`: a QP with inequality rows only, which clarabel solves with the
+//! regularization of the box QPs (`BOX_REGULARIZATION`, 1e-12). The equality rows' duals y (the rigid motions) follow from stationarity at the
 //! pivots, `G̃_pᵀ y = −(P x + q + Ãᵀ z)_p`, z the duals of the pivots' box rows.
 
 use nalgebra::{DMatrix, DVector};
