@@ -25,6 +25,12 @@
 //! substitution along one path of the elimination tree per unknown of J and the products between
 //! them, 1–2 ms at 55k against 7–8 ms for a bordered solve.
 //!
+//! From a zone much too large, the operator lists the unknowns in order along Γ_C (normal, then tangential,
+//! consecutive multipliers neighbours) for the rule that moves each edge twice as far
+//! ([`active_set::beyond_edges`]). Where T_H has several pieces (several contact pairs or sides),
+//! the last multiplier of one and the first of the next count as neighbours: a zone there may be read as one
+//! and its edges moved less well, never wrongly (each step is an ordinary Newton step).
+//!
 //! The method also uses diag H (its prediction from a non-Newton start, the projected-gradient safeguard
 //! and the scaling of the optimality test). Its exact value costs a solve per dof, so it is estimated
 //! ([`Factor::h_diagonal_estimate`]). The estimate enters the certification only through the
@@ -173,6 +179,11 @@ impl QpOperator for SaddleOperator<'_> {
         true
     }
 
+    fn beyond(&self, free: &[bool], xn: &[f64], bounds: &Bounds) -> Vec<(usize, active_set::Place)> {
+        let [normal, tangential] = self.lines();
+        active_set::beyond_edges(&[&normal, &tangential], free, xn, bounds)
+    }
+
     /// J: the unknowns outside their box and the free unknowns of the same kind (normal or tangential)
     /// within [`FRONT_REACH`] multipliers of them along Γ_C, at most [`FRONT_MAX`]; `[H_FF⁻¹]_JJ` from the
     /// bordered factorization of F ([`SaddleSystem::inverse_block`]), which the Newton point just used.
@@ -198,6 +209,17 @@ impl QpOperator for SaddleOperator<'_> {
         let multipliers: Vec<usize> = dofs.iter().map(|&a| self.idx[a]).collect();
         let inverse = self.saddle.inverse_block(&free_all, &multipliers).ok()?;
         Some((dofs, inverse))
+    }
+}
+
+impl SaddleOperator<'_> {
+    /// The unknowns in order along Γ_C: the normal ones, then the tangential ones (`idx` is increasing, normal
+    /// multipliers first).
+    fn lines(&self) -> [Vec<usize>; 2] {
+        let q = self.factor.e_rows.len() / 2;
+        let normal: Vec<usize> = (0..self.idx.len()).filter(|&a| self.idx[a] < q).collect();
+        let tangential: Vec<usize> = (0..self.idx.len()).filter(|&a| self.idx[a] >= q).collect();
+        [normal, tangential]
     }
 }
 
