@@ -25,6 +25,15 @@ pub(super) enum Direct {
 }
 
 impl Direct {
+    /// The fill-reducing order of A's dofs its factor was analysed with (`order[new] = old`), where it has one
+    /// of its own (not the partial factorization's, which orders the Γ_C dofs last).
+    pub(super) fn order(&self) -> Option<&[usize]> {
+        match self {
+            Self::Columns(symbolic, _) | Self::Ldlt(symbolic, _) => symbolic.perm().map(|p| p.arrays().0),
+            Self::Schur(_) => None,
+        }
+    }
+
     /// Bytes of the factor's values: what [`fits_budget`] counted for it before they were allocated.
     pub(super) fn value_bytes(&self) -> f64 {
         let len = match self {

@@ -296,9 +296,12 @@ impl Factor {
         // columns of nearby partitions.
         let beside = (budget as f64 - direct.value_bytes()).max(0.0) as usize / 2;
         let saddle = match condensation {
-            Condensation::Saddle => Some(saddle_system(a, &e_rows, &d_cols, [beside / 8, beside, pressures])?),
+            Condensation::Saddle => {
+                Some(saddle_system(a, &e_rows, &d_cols, [beside / 8, beside, pressures], direct.order())?)
+            }
             Condensation::Auto if !use_schur && prefer_saddle(nnz_k, pushed, warm) && definite => {
-                saddle_system(a, &e_rows, &d_cols, [2 * CHOLESKY_FILL * nnz_k, beside, pressures]).ok()
+                let limits = [2 * CHOLESKY_FILL * nnz_k, beside, pressures];
+                saddle_system(a, &e_rows, &d_cols, limits, direct.order()).ok()
             }
             _ => None,
         };

@@ -24,12 +24,14 @@ fn saddle_error(e: SaddleError) -> Error {
 
 /// The saddle-point system of `A`, `E` and `Dγ` (by columns), refused beyond `max_len` factor values
 /// (and beyond `budget` bytes, as [`Error::MemoryBudget`]); A's last `pressures` unknowns are a mixed
-/// formulation's (A quasi-definite).
+/// formulation's (A quasi-definite). Its displacement dofs take `order`, the fill-reducing order of A's own
+/// factor, where there is one ([`SaddleSystem::with_order`]).
 pub(super) fn saddle_system(
     a: SparseColMatRef<'_, usize, f64>,
     e_rows: &[Vec<(usize, f64)>],
     d_cols: &[Vec<(usize, f64)>],
     [max_len, budget, pressures]: [usize; 3],
+    order: Option<&[usize]>,
 ) -> Result<SaddleSystem> {
     let d: Vec<(usize, usize, f64)> =
         d_cols.iter().enumerate().flat_map(|(j, col)| col.iter().map(move |&(i, v)| (i, j, v))).collect();
@@ -42,7 +44,7 @@ pub(super) fn saddle_system(
         );
         return Err(Error::MemoryBudget { what, needed: 8.0 * clique as f64, budget: budget as f64 });
     }
-    SaddleSystem::with_options(a, e_rows, &d, opts).map_err(|e| match e {
+    SaddleSystem::with_order(a, e_rows, &d, opts, order).map_err(|e| match e {
         SaddleError::FactorTooLarge { values } => Error::MemoryBudget {
             what: "the sparse factor of the saddle-point system [[A, Eᵀ], [E, −Dγ]], in half the budget left beside \
                    the factor of A"

@@ -455,3 +455,38 @@ fn the_inverse_block_of_a_nearby_partition_matches_the_dense_inverse() -> Result
     }
     Ok(())
 }
+
+/// The displacement dofs in a given order of A (its own Cholesky factor's, or any permutation) solve the same
+/// system as the AMD of `A + EᵀE`, on every partition; an order that is not a permutation of A's dofs is refused.
+#[test]
+fn a_given_order_of_a_solves_the_same_system() {
+    let p = contact_problem(12, 6, true);
+    let symbolic = faer::sparse::linalg::cholesky::factorize_symbolic_cholesky(
+        p.a.symbolic(),
+        faer::Side::Lower,
+        Default::default(),
+        Default::default(),
+    )
+    .unwrap();
+    let amd: Vec<usize> = symbolic.perm().map_or_else(|| (0..p.n).collect(), |q| q.arrays().0.to_vec());
+    let reversed: Vec<usize> = (0..p.n).rev().collect();
+    let mut reference = SaddleSystem::with_options(p.a.as_ref(), &p.e_rows, &p.d, seq_opts()).unwrap();
+    let mut rng = Rng(7);
+    for order in [&amd, &reversed] {
+        let mut sys = SaddleSystem::with_order(p.a.as_ref(), &p.e_rows, &p.d, seq_opts(), Some(order)).unwrap();
+        for trial in 0..6 {
+            let free: Vec<bool> = (0..p.m).map(|j| trial == 0 || rng.unif() < 0.6 || j == 0).collect();
+            let f: Vec<f64> = (0..p.n).map(|_| rng.sym() * p.h * p.h).collect();
+            let d: Vec<f64> = (0..p.m).map(|_| rng.sym() * p.h * 1e-3).collect();
+            let nu_b: Vec<f64> = (0..p.m).map(|_| rng.sym() * p.h * 1e-2).collect();
+            reference.factorize(&free).unwrap();
+            sys.factorize(&free).unwrap();
+            let (a, b) = (reference.solve(&f, &d, &nu_b).unwrap(), sys.solve(&f, &d, &nu_b).unwrap());
+            assert!(rel_err(&a.u, &b.u) < 1e-10 && rel_err(&a.nu, &b.nu) < 1e-10, "trial {trial}");
+        }
+    }
+    for bad in [vec![0; p.n], (0..p.n - 1).collect(), (1..=p.n).collect::<Vec<usize>>()] {
+        let got = SaddleSystem::with_order(p.a.as_ref(), &p.e_rows, &p.d, seq_opts(), Some(&bad));
+        assert!(matches!(got, Err(SaddleError::InvalidInput(_))));
+    }
+}
