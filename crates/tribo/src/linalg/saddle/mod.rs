@@ -71,7 +71,7 @@ mod ordering;
 mod testgen;
 
 use border::{Blocks, Border};
-use ordering::{constrained_amd, interleaved, inverse_of};
+use ordering::{constrained_amd, interleaved, inverse_of, rows_within_two_steps};
 
 /// Errors of [`SaddleSystem`].
 #[derive(Clone, Debug, PartialEq)]
@@ -272,10 +272,14 @@ impl SaddleSystem {
     /// [`Self::with_options`], with [`SaddleOrdering::ConstrainedAmd`] taking the displacement dofs in the
     /// fill-reducing order `order` of A (`order[new] = old`, the one A's own Cholesky factor was analysed with)
     /// instead of running AMD on the pattern of `A + EᵀE`: the multipliers are placed as usual, each right after
-    /// the last displacement dof of its row. `E` adds couplings only between the dofs one multiplier sees, a
-    /// few neighbours along Γ_C, so A's order serves the saddle-point factor as well: on the graded Hertz
-    /// family it fills it less than AMD on `A + EᵀE` (8k, 28k, 55k, 109k unknowns: 9 %, 1 %, 7 %, 10 % fewer
-    /// values), and the AMD it saves took 14–25 ms at 55k.
+    /// the last displacement dof of its row. Where every row of `E` couples only dofs within two steps of each
+    /// other in A's graph (the neighbours along Γ_C one multiplier sees on one body), `E` adds nothing A's
+    /// order has not seen, and it serves the saddle-point factor as well: on the graded Hertz family it fills
+    /// it less than AMD on `A + EᵀE` (8k, 28k, 55k, 109k unknowns: 9 %, 1 %, 7 %, 10 % fewer values), and
+    /// the AMD it saves took 14–25 ms at 55k. Elsewhere (two bodies, whose dofs E couples and A does not; a
+    /// T_H coarser than the FE edges) the AMD of `A + EᵀE` orders them: with A's order, study 8's two bodies
+    /// at 10k unknowns filled 4.6 times A's factor instead of 1.7, and from 16k on beyond the saddle path's
+    /// limit.
     ///
     /// # Errors
     /// As [`Self::with_options`]; [`SaddleError::InvalidInput`] when `order` is not a permutation of A's dofs.
@@ -431,9 +435,12 @@ impl SaddleSystem {
                     .map_err(too_large)?
             }
             SaddleOrdering::ConstrainedAmd => {
-                let (fwd, inv) = match order {
-                    Some(order) => interleaved(order, &inverse_of(order, n)?, &e_merged),
-                    None => constrained_amd(ar, &e_merged)?,
+                let given = order.map(|order| inverse_of(order, n).map(|inverse| (order, inverse))).transpose()?;
+                let (fwd, inv) = match given {
+                    Some((order, inverse)) if rows_within_two_steps(ar, &e_merged) => {
+                        interleaved(order, &inverse, &e_merged)
+                    }
+                    _ => constrained_amd(ar, &e_merged)?,
                 };
                 let perm = PermRef::new_checked(&fwd, &inv, nk);
                 factorize_symbolic_cholesky(k.symbolic(), Side::Lower, SymmetricOrdering::Custom(perm), params)

@@ -105,3 +105,22 @@ pub(super) fn interleaved(p: &[usize], pinv: &[usize], e_rows: &[Vec<(usize, f64
     }
     (fwd, inv)
 }
+
+/// Whether every row of `E` couples only dofs within two steps of each other in the graph of `a` (each of
+/// them next to the row's first dof, or next to one of its neighbours).
+pub(super) fn rows_within_two_steps(
+    a: faer::sparse::SparseColMatRef<'_, usize, f64>,
+    e_rows: &[Vec<(usize, f64)>],
+) -> bool {
+    let n = a.nrows();
+    let neighbours = |c: usize| a.symbolic().row_idx_of_col_raw(c);
+    let mut stamp = vec![usize::MAX; n];
+    e_rows.iter().enumerate().all(|(r, row)| {
+        let Some(&(first, _)) = row.first() else { return true };
+        stamp[first] = r;
+        for &k in neighbours(first) {
+            stamp[k] = r;
+        }
+        row.iter().all(|&(c, _)| stamp[c] == r || neighbours(c).iter().any(|&k| stamp[k] == r))
+    })
+}
