@@ -34,7 +34,8 @@
 //!
 //! # The safeguard
 //! Plain PDAS may cycle when H is not an M-matrix, as here. A Newton point is accepted only if its
-//! projection does not raise f; otherwise the projected Newton arc `P(x + α (x_N − x))` is searched
+//! projection does not raise f (the first one from the places of a neighbouring answer excepted, which is
+//! taken as it comes: see `solve`); otherwise the projected Newton arc `P(x + α (x_N − x))` is searched
 //! (Armijo, α halved), and if that fails too, a projected-gradient step `P(x − α D⁻¹ g)` (D = diag H)
 //! with Armijo backtracking, which always descends. Since f is convex and every accepted step lowers
 //! it, the iterates cannot cycle.
@@ -406,6 +407,8 @@ pub(crate) fn solve(
     // the gradient costs is saved (one per fixed-point QP after the first). Elsewhere they are formed now.
     let named = start.places.is_some_and(|p| (0..k).all(|i| bounds.fixed(i) || p.get(i).is_some_and(Option::is_some)));
     let (mut g, mut fx) = if named { (Vec::new(), f64::INFINITY) } else { gradient_and_objective(op, &x, c) };
+    // Whether g and fx are those of x (not so only before the first step from named places).
+    let mut known = !named;
     // A scaling that is not a positive finite number certifies nothing (every scaled residual would be 0).
     let base = if scaling.root_phi.is_finite() && scaling.root_phi > 0.0 { threshold(scaling, tol) } else { -1.0 };
     let mut threshold = base;
@@ -418,12 +421,12 @@ pub(crate) fn solve(
     // The places the last Newton point's front resolved ([`front_places`]), if any.
     let mut front: Vec<Option<Place>> = vec![None; k];
     loop {
-        let r = if g.is_empty() { f64::INFINITY } else { residual(&x, &g, bounds, scaling) };
+        let r = if known { residual(&x, &g, bounds, scaling) } else { f64::INFINITY };
         if r <= threshold {
             out.certified = true;
             break;
         }
-        if !(r.is_finite() || g.is_empty()) || out.newton_steps + out.gradient_steps >= max_steps {
+        if (known && !r.is_finite()) || out.newton_steps + out.gradient_steps >= max_steps {
             break;
         }
         // The active-set prediction from the PDAS iterate: a free dof outside its box becomes active, an
@@ -494,8 +497,9 @@ pub(crate) fn solve(
                 xk = xn;
                 (x, g, fx, accepted) = (t, gt, ft, true);
             } else {
-                if g.is_empty() {
+                if !known {
                     (g, fx) = gradient_and_objective(op, &x, c);
+                    known = true;
                 }
                 let d: Vec<f64> = xn.iter().zip(&x).map(|(a, b)| a - b).collect();
                 if let Some((t, gt, ft)) = arc_search(op, c, bounds, &x, &g, fx, &d) {
@@ -506,7 +510,7 @@ pub(crate) fn solve(
         }
         last_free = Some(free);
         if !accepted {
-            if g.is_empty() {
+            if !known {
                 (g, fx) = gradient_and_objective(op, &x, c);
             }
             out.gradient_steps += 1;
@@ -520,6 +524,8 @@ pub(crate) fn solve(
             }
             (xk, gk) = (x.clone(), g.clone());
         }
+        // Every branch above leaves g and fx those of x.
+        known = true;
     }
     out.x = x;
     out
@@ -602,27 +608,43 @@ mod tests {
     }
 
     /// A QP whose bounds moved a little, started from the places of the previous answer, is solved by
-    /// one Newton step when those places are still right, and certified in any case.
+    /// one Newton step when those places are still right, and certified in any case. Such a start takes its
+    /// first step without the gradient at the start point: one gradient per step (at its projected point),
+    /// where a start without places forms one more. A QP without unknowns started so is certified after its
+    /// one (empty) step.
     #[test]
     fn the_places_of_a_neighbouring_answer_start_the_next_qp() {
         let mut one_step = 0;
         for seed in 1..20u64 {
             let ((h, c, first), (_, _, second)) = (test_qp(seed, 0.05), test_qp(seed, 0.051));
             let k = c.len();
-            let mut op = DenseBlock::new(h.clone(), c.clone());
+            let gradients = Default::default();
+            let mut op =
+                Fronted { inner: DenseBlock::new(h.clone(), c.clone()), reach: 4, fronts: 0, edges: false, gradients };
             let a = solve(&mut op, &c, &first, cold(&vec![0.0; k]), &unit_scaling(k), 1e-12, 100);
             let b = solve(&mut op, &c, &second, cold(&vec![0.0; k]), &unit_scaling(k), 1e-12, 100);
             let (pa, pb) = (places(&a.x, &first), places(&b.x, &second));
+            let before = op.gradients.get();
+            let unnamed = solve(&mut op, &c, &second, cold(&a.x), &unit_scaling(k), 1e-12, 100);
+            let cold_gradients = op.gradients.get() - before;
+            assert!(cold_gradients > unnamed.newton_steps + unnamed.gradient_steps, "seed {seed}");
             let warm = Start { x: &a.x, places: Some(&pa) };
+            let before = op.gradients.get();
             let w = solve(&mut op, &c, &second, warm, &unit_scaling(k), 1e-12, 100);
             assert!(w.certified, "seed {seed}");
             assert!(w.x.iter().zip(&b.x).all(|(x, y)| (x - y).abs() <= 1e-10), "seed {seed}");
             if pa == pb {
                 assert_eq!(w.newton_steps + w.gradient_steps, 1, "seed {seed}: the places were right");
+                assert_eq!(op.gradients.get() - before, 1, "seed {seed}: the certifying gradient only");
                 one_step += 1;
             }
         }
         assert!(one_step > 10, "the bounds moved too much to test the start ({one_step} of 19)");
+        let none = Bounds { lo: Vec::new(), hi: Vec::new() };
+        let named: [Option<Place>; 0] = [];
+        let start = Start { x: &[], places: Some(&named) };
+        let out = solve(&mut DenseBlock::new(Vec::new(), Vec::new()), &[], &none, start, &unit_scaling(0), 1e-12, 10);
+        assert!(out.certified && out.newton_steps + out.gradient_steps <= 1, "{out:?}");
     }
 
     /// The rule for the edges on one line: bands at the ends of a zone (a single unknown inside the box
@@ -699,7 +721,13 @@ mod tests {
             let (h, c) = half_plane_hertz(n, 0.25);
             let bounds = Bounds { lo: vec![0.0; n], hi: vec![f64::INFINITY; n] };
             let steps = |edges: bool| {
-                let mut op = Fronted { inner: DenseBlock::new(h.clone(), c.clone()), reach: 4, fronts: 0, edges };
+                let mut op = Fronted {
+                    inner: DenseBlock::new(h.clone(), c.clone()),
+                    reach: 4,
+                    fronts: 0,
+                    edges,
+                    gradients: Default::default(),
+                };
                 let out = solve(&mut op, &c, &bounds, cold(&vec![0.0; n]), &unit_scaling(n), 1e-12, 200);
                 assert!(out.certified, "n {n}, edges {edges}: {out:?}");
                 (out.x, out.newton_steps + out.gradient_steps)
@@ -776,10 +804,13 @@ mod tests {
         fronts: u32,
         /// Whether the edges of a zone much too large move twice as far (the unknowns on one line).
         edges: bool,
+        /// Gradients asked for.
+        gradients: std::cell::Cell<u32>,
     }
 
     impl QpOperator for Fronted {
         fn gradient(&self, x: &[f64]) -> Vec<f64> {
+            self.gradients.set(self.gradients.get() + 1);
             self.inner.gradient(x)
         }
         fn newton_point(&mut self, free: &[bool], x: &[f64]) -> Option<Vec<f64>> {
@@ -826,7 +857,13 @@ mod tests {
             let pushed: Vec<f64> = c.iter().map(|v| if *v < 0.0 { 1.0 } else { 0.0 }).collect();
             let mut plain = DenseBlock::new(h.clone(), c.clone());
             let a = solve(&mut plain, &c, &bounds, cold(&pushed), &unit_scaling(k), 1e-12, 200);
-            let mut fronted = Fronted { inner: DenseBlock::new(h, c.clone()), reach: 4, fronts: 0, edges: false };
+            let mut fronted = Fronted {
+                inner: DenseBlock::new(h, c.clone()),
+                reach: 4,
+                fronts: 0,
+                edges: false,
+                gradients: Default::default(),
+            };
             let b = solve(&mut fronted, &c, &bounds, cold(&pushed), &unit_scaling(k), 1e-12, 200);
             assert!(a.certified && b.certified, "k = {k}");
             assert_eq!(places(&a.x, &bounds), places(&b.x, &bounds), "k = {k}");
