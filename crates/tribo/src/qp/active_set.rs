@@ -88,6 +88,11 @@ pub(crate) trait QpOperator {
     fn beyond(&self, _free: &[bool], _xn: &[f64], _bounds: &Bounds) -> Vec<(usize, Place)> {
         Vec::new()
     }
+    /// `dᵀ H d` for `d` given by its nonzero entries (indices into the QP's unknowns), where the operator has it
+    /// for less than a gradient (the sparse operator: half a solve with A); `None` elsewhere.
+    fn curvature(&self, _d: &[(usize, f64)]) -> Option<f64> {
+        None
+    }
 }
 
 /// At most this many free unknowns outside their box for a Newton point to have its front resolved: a
@@ -479,8 +484,26 @@ pub(crate) fn solve(
             // free set of the step before again (PDAS at its fixed point), or a point inside the box.
             // Elsewhere the Newton point's gradient only predicts the next free set, and an operator
             // that has it from its solve hands it over.
-            let gt = op.gradient(&t);
             let measure = op.measures_round_off() && (t == xn || last_free.as_ref() == Some(&free));
+            // Where the projection moved the point and the answer cannot be near (no round-off to measure), its
+            // objective comes from the Newton point's own gradient and the curvature along the move,
+            // `f(t) = f(x_N) + g_Nᵀ d + ½ dᵀ H d` with `d = t − x_N` on the unknowns that left their box: half a
+            // solve with A instead of the gradient at t, which only a certification would need.
+            let moved: Vec<(usize, f64)> = (0..k).filter(|&i| t[i] != xn[i]).map(|i| (i, t[i] - xn[i])).collect();
+            let cheap = if moved.is_empty() || measure { None } else { op.newton_gradient(&xn) }
+                .and_then(|gn| op.curvature(&moved).map(|curvature| (gn, curvature)));
+            if let Some((gn, curvature)) = cheap {
+                let (fxn, size) = objective(&xn, &gn, c);
+                let ft = fxn + moved.iter().map(|&(i, di)| gn[i] * di).sum::<f64>() + 0.5 * curvature;
+                if ft <= fx + 64.0 * f64::EPSILON * size.max(curvature.abs()) {
+                    (gk, xk) = (gn, xn);
+                    (x, fx) = (t, ft);
+                    last_free = Some(free);
+                    known = false;
+                    continue;
+                }
+            }
+            let gt = op.gradient(&t);
             let gn = match op.newton_gradient(&xn) {
                 _ if t == xn => gt.clone(),
                 Some(g) if !measure => g,
