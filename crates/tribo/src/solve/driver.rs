@@ -34,6 +34,9 @@ pub(super) struct QpPhase {
     pub(super) qp_inaccurate: usize,
     /// The rigid motion of the bodies held only by the contact, of the last QP (empty without them).
     pub(super) alpha: Vec<f64>,
+    /// Whether `lambda` is a nearby load case's Coulomb answer (the previous step of a history) rather than
+    /// the frictionless start.
+    pub(super) neighbour: bool,
 }
 
 impl QpPhase {
@@ -240,6 +243,7 @@ impl Condensed<'_> {
             qp_fallbacks: 0,
             qp_inaccurate: 0,
             alpha: vec![0.0; loading.rigid.load.len()],
+            neighbour: false,
         };
         // The tangential rows hold a motion where the dof's pair has friction (a pair's own μ = 0 has none).
         let frictional = |j: usize| match friction {
@@ -262,6 +266,7 @@ impl Condensed<'_> {
             (Friction::Coulomb { .. }, Some(start)) => {
                 // A warm start: the fixed point starts from the nearby answer.
                 phase.lambda.copy_from_slice(start);
+                phase.neighbour = true;
             }
             (Friction::Frictionless | Friction::Coulomb { .. }, _) => {
                 // Coulomb starts from the frictionless λ_n.
