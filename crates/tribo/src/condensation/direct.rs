@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
-use faer::sparse::linalg::cholesky::{LdltRef, LltRef, SymbolicCholesky, SymbolicCholeskyRaw};
+use faer::sparse::linalg::cholesky::{LdltRef, LltRef, SymbolicCholesky};
 use faer::sparse::SparseColMatRef;
 use faer::{Conj, Mat, MatMut, MatRef, Par, Side};
 
@@ -44,15 +44,17 @@ impl Direct {
     }
 
     /// `x_jᵀ A⁻¹ x_j = ‖L⁻¹ P x_j‖²` for each column of `x` (A = Pᵀ L Lᵀ P): one forward substitution, half a
-    /// solve. `None` for a factor other than the simplicial Cholesky one (a solve gives it there).
+    /// solve, over the elimination-tree paths above `x_j`'s entries ([`super::substitution`]). `None` for a
+    /// factor other than the simplicial Cholesky one (a solve gives it there).
     pub(super) fn energies(&self, x: MatRef<'_, f64>) -> Option<Vec<f64>> {
-        let Self::Columns(symbolic, values) = self else { return None };
-        let SymbolicCholeskyRaw::Simplicial(simplicial) = symbolic.raw() else { return None };
-        let order = symbolic.perm().map(|p| p.arrays().0);
-        let mut y = Mat::from_fn(x.nrows(), x.ncols(), |i, j| x[(order.map_or(i, |o| o[i]), j)]);
-        let l = SparseColMatRef::new(simplicial.factor(), values);
-        faer::sparse::linalg::triangular_solve::solve_lower_triangular_in_place(l, Conj::No, y.as_mut(), Par::Seq);
-        Some((0..x.ncols()).map(|j| y.col(j).squared_norm_l2()).collect())
+        let simplicial = self.simplicial()?;
+        let energy = |j: usize| {
+            let column: Vec<f64> = x.col(j).iter().copied().collect();
+            let mut y = simplicial.permuted(&column);
+            simplicial.forward(&mut y);
+            y.iter().map(|v| v * v).sum::<f64>()
+        };
+        Some((0..x.ncols()).map(energy).collect())
     }
 
     pub(super) fn solve_in_place(&self, x: MatMut<'_, f64>) -> Result<()> {

@@ -32,6 +32,7 @@ mod choose;
 mod diagonal;
 mod direct;
 mod saddle;
+mod substitution;
 
 use direct::{factorize_plain, factorize_quasi_definite, fits_budget, schur_error, solve, Direct};
 use saddle::saddle_system;
@@ -100,6 +101,9 @@ pub struct Factor {
     /// The estimates of diag H the sparse QPs use, by number k of leading unknowns (`0..k`: q for a
     /// frictionless QP, 2q with friction), formed once rather than for every QP of the fixed point.
     h_diagonal_estimates: Mutex<Vec<(usize, Vec<f64>)>>,
+    /// The positions in the simplicial factor of A of the dofs E reads, closed under the elimination tree
+    /// ([`Factor::e_displacement`]), found once.
+    e_closure: OnceLock<Vec<usize>>,
 }
 
 impl std::fmt::Debug for Factor {
@@ -342,6 +346,7 @@ impl Factor {
             saddle_bytes: AtomicU64::new(saddle.as_ref().map_or(0.0, SaddleSystem::held_bytes).to_bits()),
             saddle: Mutex::new(saddle),
             h_diagonal_estimates: Mutex::new(Vec::new()),
+            e_closure: OnceLock::new(),
             auto_saddle,
         })
     }

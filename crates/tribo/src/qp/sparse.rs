@@ -10,7 +10,9 @@
 //! The active-set method needs of H only the gradient and the Newton point ([`QpOperator`]):
 //!
 //! * the gradient `H ν + c = −E u(ν) + Dγ ν + d`, with `u(ν) = A⁻¹ (f − Eᵀ ν)` — one solve with the
-//!   Cholesky factor of A (the gradient is minus the stabilized gap and slip `r = E u − d − Dγ ν`);
+//!   Cholesky factor of A (the gradient is minus the stabilized gap and slip `r = E u − d − Dγ ν`), of which
+//!   only `E u` is formed ([`Factor::e_displacement`]: the substitutions visit what `Eᵀ ν` reaches and
+//!   what E reads, 4.9 ms instead of 7.5 ms for the full solve at 55k);
 //! * the Newton point for a free set F, `H_FF ν_F = −c_F − H_FB ν_B`, which is the sparse saddle-point
 //!   system `A u + E_Fᵀ ν_F = f − E_Bᵀ ν_B`, `E_F u − Dγ_FF ν_F = d_F + Dγ_FB ν_B` ([`crate::linalg::saddle`]):
 //!   one sparse LDLᵀ of about the cost of a Cholesky of A, on a pattern analysed once per problem. When
@@ -109,7 +111,12 @@ impl<'a> SaddleOperator<'a> {
 
     /// `H ν + c = −E u + Dγ ν + d` on the unknowns, for the displacement `u` of the multipliers `nu` (2q).
     fn gradient_from(&self, u: &[f64], nu: &[f64]) -> Vec<f64> {
-        let (eu, dnu) = (self.factor.apply_e(u), self.factor.apply_d(nu));
+        self.gradient_from_e_u(&self.factor.apply_e(u), nu)
+    }
+
+    /// The same from `E u` (2q).
+    fn gradient_from_e_u(&self, eu: &[f64], nu: &[f64]) -> Vec<f64> {
+        let dnu = self.factor.apply_d(nu);
         self.idx.iter().map(|&i| dnu[i] + self.d[i] - eu[i]).collect()
     }
 
@@ -140,10 +147,10 @@ impl QpOperator for SaddleOperator<'_> {
             }
         }
         let nu = self.expand(x);
-        let Ok(u) = self.factor.displacement(self.f, &nu) else {
+        let Ok(eu) = self.factor.e_displacement(self.f, &nu) else {
             return vec![f64::NAN; x.len()];
         };
-        let g = self.gradient_from(&u, &nu);
+        let g = self.gradient_from_e_u(&eu, &nu);
         *self.last_gradient.borrow_mut() = Some((x.to_vec(), g.clone()));
         g
     }

@@ -58,12 +58,11 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
 use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholesky, SymbolicCholeskyRaw,
-    SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMat};
-use faer::{Conj, MatMut, Par, Side};
+use faer::{Par, Side};
 
 mod border;
 mod ordering;
@@ -560,17 +559,8 @@ impl SaddleSystem {
             return Err(SaddleError::NotFactorized);
         }
         let b = self.rhs(&self.free, f, d_rhs, nu_fixed)?;
-        let ldlt = LdltRef::new(&self.symbolic, &self.l_values);
-        let nk = self.n + self.m;
-        let mut mem =
-            MemBuffer::try_new(self.symbolic.solve_in_place_scratch::<f64>(1, self.opts.par)).map_err(too_large)?;
         self.refine(&self.free, &b, nu_fixed, |r| {
-            ldlt.solve_in_place_with_conj(
-                Conj::No,
-                MatMut::from_column_major_slice_mut(r, nk, 1),
-                self.opts.par,
-                MemStack::new(&mut mem),
-            );
+            self.substitute(r);
             Ok(())
         })
     }
