@@ -540,16 +540,16 @@ mod tests {
     /// on their bounds, one step reaches the QP's answer; from its places as they fall (a slip dof just inside its
     /// new bound is free) it takes more. Both end on the answer the prediction from the gradient finds.
     #[test]
-    fn a_qp_started_from_a_nearby_answer_keeps_its_slip_dofs_on_their_bounds() {
-        let mesh = rectangle([0.0, 4.0], [0.0, 1.0], 40, 10, Diagonal::Alternating).expect("a valid block");
+    fn a_qp_started_from_a_nearby_answer_keeps_its_slip_dofs_on_their_bounds() -> Result<()> {
+        let mesh = rectangle([0.0, 4.0], [0.0, 1.0], 40, 10, Diagonal::Alternating)?;
         let spec = ProblemSpec::new(Material { young: 1.0, poisson: 0.3 }, "bottom")
             .clamped(["top"])
             .approach(0.01)
             .shift(0.002)
             .multipliers(MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1);
-        let problem = Problem::new(mesh, spec).expect("a valid problem");
+        let problem = Problem::new(mesh, spec)?;
         let (mu, settings) = (0.3, SolverSettings::default());
-        let sol = problem.solve(&Friction::Coulomb { mu }, &settings, None).expect("solved");
+        let sol = problem.solve(&Friction::Coulomb { mu }, &settings, None)?;
         assert_eq!(sol.report.status, SolveStatus::Converged);
         let q = sol.lambda_n.len();
         let answer: Vec<f64> = sol.lambda_n.iter().chain(&sol.lambda_t).copied().collect();
@@ -557,7 +557,7 @@ mod tests {
         let slipping = (0..q).filter(|&j| bounds[j] > 0.0 && sol.lambda_t[j].abs() >= bounds[j] * (1.0 - 1e-6)).count();
         let sticking = (0..q).filter(|&j| sol.lambda_t[j].abs() < bounds[j] * (1.0 - 1e-6)).count();
         assert!(slipping >= 4 && sticking >= 4, "partial slip: {slipping} slipping, {sticking} sticking");
-        let condensed = problem.condense(Stabilization::default()).expect("condensed");
+        let condensed = problem.condense(Stabilization::default())?;
         let loading = LoadCase::of_problem(&problem, condensed.factor());
         let solve = |tol: Option<f64>| {
             let mut qp = super::ContactQp::new(
@@ -567,14 +567,13 @@ mod tests {
                 &settings.qp,
                 settings.memory_budget,
                 Some(&answer),
-            )
-            .expect("a valid QP");
+            )?;
             if let Some(tol) = tol {
                 qp.start_from_answer(tol);
             }
-            qp.solve().expect("solved")
+            qp.solve()
         };
-        let (snapped, as_they_fall, predicted) = (solve(Some(settings.fp.tol)), solve(Some(0.0)), solve(None));
+        let (snapped, as_they_fall, predicted) = (solve(Some(settings.fp.tol))?, solve(Some(0.0))?, solve(None)?);
         assert_eq!(snapped.iterations, 1, "from the answer's places, its slip dofs on their bounds");
         assert!(as_they_fall.iterations > 1, "{} steps from the places as they fall", as_they_fall.iterations);
         let scale = answer.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
@@ -582,5 +581,6 @@ mod tests {
             let diff = other.nu.iter().zip(&snapped.nu).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
             assert!(diff <= 1e-9 * scale, "the same answer: {diff:e} of {scale:e}");
         }
+        Ok(())
     }
 }
