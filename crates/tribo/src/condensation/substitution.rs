@@ -37,12 +37,7 @@ impl Factor {
     pub(crate) fn e_displacement(&self, f: &[f64], lambda: &[f64]) -> Result<Vec<f64>> {
         let Some(s) = self.direct.simplicial() else { return Ok(self.apply_e(&self.displacement(f, lambda)?)) };
         let closed = self.e_closure.get_or_init(|| s.closure(self.e_rows.iter().flatten().map(|&(i, _)| i)));
-        let mut rhs = f.to_vec();
-        for (row, &l) in self.e_rows.iter().zip(lambda).filter(|(_, l)| **l != 0.0) {
-            for &(d, v) in row {
-                rhs[d] -= v * l;
-            }
-        }
+        let rhs: Vec<f64> = f.iter().zip(self.apply_et(lambda)).map(|(fi, ei)| fi - ei).collect();
         let mut y = s.permuted(&rhs);
         s.forward(&mut y);
         s.backward_on(&mut y, closed);
@@ -139,7 +134,9 @@ impl Simplicial<'_> {
     }
 }
 
-/// `Σ_k l_k y_{rows_k}`, in four independent sums (a single sum waits on each addition in turn).
+/// `Σ_k l_k y_{rows_k}`, in four independent sums (a single sum waits on each addition in turn), from the last
+/// term to the first: [`Simplicial::backward_on`] takes the columns from the last, so the pass then goes down
+/// through memory (about 3.7 ms instead of 7 ms at 55k, reading each column upward).
 fn gather_dot(rows: &[usize], l: &[f64], y: &[f64]) -> f64 {
     let mut acc = [0.0; 4];
     let (rc, lc) = (rows.rchunks_exact(4), l.rchunks_exact(4));
