@@ -15,7 +15,9 @@
 //! [`Problem::condense`] work (numeric factorization of K − G + condensation onto Γ_C, including the
 //! columns of H formed on demand by the QPs), `qp` (all QPs of the fixed point), `recovery`, the whole solve
 //! `total` (wall clock of `Problem::new` + `solve`), the Cholesky reference (symbolic + numeric sparse
-//! Cholesky of K + one solve, best of 3 at small sizes) and the ratio of the two.
+//! Cholesky of K + one solve with faer's defaults, best of 3 at small sizes) and the ratio of the two; then
+//! the same with faer's supernodal Cholesky, sequential (`cholesky_supernodal`, `ratio_supernodal`): the analysis
+//! tribo's own factor of A takes, faster than faer's automatic choice on these meshes.
 //!
 //! `two_bodies`: study 8's two-body Hertz with equal materials (`tribo_testkit::two_body_hertz`: the Hertz
 //! block under an elastic block (−2, 2) × (0, 1) pushed down 0.01, a parabolic gap, both graded at growth
@@ -83,17 +85,54 @@ fn spec() -> ProblemSpec {
     hertz_spec(hertz_scene().approach, 0.004, MultiplierPoints::RatioToFe(1.0), MultiplierSpace::P1)
 }
 
-/// Symbolic + numeric sparse Cholesky of K and one solve; returns the time in seconds (best of `reps`).
-fn cholesky_seconds(problem: &Problem, reps: usize) -> f64 {
+/// Symbolic + numeric sparse Cholesky of K and one solve with faer's defaults (its automatic choice between the
+/// simplicial and the supernodal factor; simplicial on these meshes), and with the supernodal factor, sequential
+/// (the analysis tribo's factor of A takes): the two times in seconds (each the best of `reps`, alternated).
+fn cholesky_seconds(problem: &Problem, reps: usize) -> [f64; 2] {
+    use faer::dyn_stack::{MemBuffer, MemStack};
+    use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef};
+    use faer::sparse::linalg::SupernodalThreshold;
     let n = problem.n_free;
+    let k = problem.k_matrix.as_ref();
     let f: Vec<f64> = (0..n).map(|i| ((i % 7) as f64) - 3.0).collect();
-    let mut best = f64::INFINITY;
+    let mut best = [f64::INFINITY; 2];
     for _ in 0..reps {
         let clock = Instant::now();
         let llt = problem.k_matrix.sp_cholesky(faer::Side::Lower).expect("K is positive definite");
         let mut x = Mat::from_fn(n, 1, |i, _| f[i]);
         llt.solve_in_place(x.as_mut());
-        best = best.min(clock.elapsed().as_secs_f64());
+        best[0] = best[0].min(clock.elapsed().as_secs_f64());
+        std::hint::black_box(&x);
+        let clock = Instant::now();
+        let params = CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        };
+        let symbolic = factorize_symbolic_cholesky(k.symbolic(), faer::Side::Lower, Default::default(), params)
+            .expect("K's pattern is valid");
+        let mut values = vec![0.0; symbolic.len_val()];
+        let par = faer::Par::Seq;
+        let mut mem = MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()));
+        symbolic
+            .factorize_numeric_llt(
+                &mut values,
+                k,
+                faer::Side::Lower,
+                Default::default(),
+                par,
+                MemStack::new(&mut mem),
+                Default::default(),
+            )
+            .expect("K is positive definite");
+        let mut x = Mat::from_fn(n, 1, |i, _| f[i]);
+        let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, par));
+        LltRef::new(&symbolic, &values).solve_in_place_with_conj(
+            faer::Conj::No,
+            x.as_mut(),
+            par,
+            MemStack::new(&mut mem),
+        );
+        best[1] = best[1].min(clock.elapsed().as_secs_f64());
         std::hint::black_box(&x);
     }
     best
@@ -115,28 +154,30 @@ fn case(family: &str, index: usize, friction: &str) -> Result<()> {
     let sol = problem.solve(&law, &settings, None)?;
     let total = setup + clock.elapsed().as_secs_f64();
     let solve_mb = peak_mb();
-    let chol = cholesky_seconds(&problem, if problem.n_free < 50_000 { 3 } else { 1 });
+    let [chol, chol_supernodal] = cholesky_seconds(&problem, if problem.n_free < 50_000 { 3 } else { 1 });
     let t = &sol.report.timings;
     let status = sol.report.status.name();
     let cols = [t.assembly + t.contact_matrices, t.factorization + t.condensation, t.qp, t.recovery, total, chol];
     println!(
-        "{family:<10} {h:>9.6} {:>7} {:>5} {friction:>12} {status:>13} {:>4} {:>8.4} {:>8.4} {:>8.4} {:>8.4} {:>8.4} {:>8.4} {:>6.1} {solve_mb:>7.0}",
+        "{family:<10} {h:>9.6} {:>7} {:>5} {friction:>12} {status:>13} {:>4} {:>8.4} {:>8.4} {:>8.4} {:>8.4} {:>8.4} {:>8.4} {:>6.1} {solve_mb:>7.0} {:>6.1}",
         problem.n_free,
         problem.n_multipliers(),
         sol.report.iterations,
-        cols[0], cols[1], cols[2], cols[3], cols[4], cols[5], total / chol
+        cols[0], cols[1], cols[2], cols[3], cols[4], cols[5], total / chol, total / chol_supernodal
     );
     let by = |m: QpMethod| sol.report.qp_methods.iter().filter(|x| **x == m).count();
     let cols: Vec<String> = cols.iter().chain([&(total / chol)]).map(|v| format!("{v:.6}")).collect();
+    let supernodal = [chol_supernodal, total / chol_supernodal].map(|v| format!("{v:.6}"));
     println!(
-        "ROW {family},{h},{},{},{friction},{status},{},{},{},{},{},{setup_mb:.1},{solve_mb:.1}",
+        "ROW {family},{h},{},{},{friction},{status},{},{},{},{},{},{setup_mb:.1},{solve_mb:.1},{}",
         problem.n_free,
         problem.n_multipliers(),
         sol.report.iterations,
         sol.report.condensation,
         by(QpMethod::ActiveSet),
         by(QpMethod::Clarabel),
-        cols.join(",")
+        cols.join(","),
+        supernodal.join(",")
     );
     Ok(())
 }
@@ -153,11 +194,11 @@ fn main() -> Result<()> {
     let mut csv = std::fs::File::create(&path).expect("docs/cost.csv is writable");
     writeln!(
         csv,
-        "family,h,n_free,q,friction,status,iterations,condensation,qp_active_set,qp_clarabel,problem_new,condensed,qp,recovery,total,cholesky,ratio,setup_mb,peak_mb"
+        "family,h,n_free,q,friction,status,iterations,condensation,qp_active_set,qp_clarabel,problem_new,condensed,qp,recovery,total,cholesky,ratio,setup_mb,peak_mb,cholesky_supernodal,ratio_supernodal"
     )
     .unwrap();
     println!(
-        "{:<10} {:>9} {:>7} {:>5} {:>12} {:>13} {:>4} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>7}",
+        "{:<10} {:>9} {:>7} {:>5} {:>12} {:>13} {:>4} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>6} {:>7} {:>6}",
         "family",
         "h",
         "n_free",
@@ -172,7 +213,8 @@ fn main() -> Result<()> {
         "total[s]",
         "chol [s]",
         "ratio",
-        "peak MB"
+        "peak MB",
+        "× sn"
     );
     let me = std::env::current_exe().expect("the running example has a path");
     for family in ["uniform", "graded", "block", "two_bodies"] {

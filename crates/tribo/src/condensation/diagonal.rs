@@ -2,8 +2,8 @@
 //! saddle-point system, [`crate::qp`]): its prediction from a non-Newton start, its projected-gradient
 //! safeguard and the scaling of its optimality test need diag H, whose exact value costs a solve per
 //! dof. The estimate is `J_i = Σ_k E_ik² / A_kk + Dγ_ii` (the Jacobi approximation of A⁻¹) calibrated by
-//! the exact `H_ii` of a few sampled unknowns (their median ratio), each `‖L⁻¹ P E_iᵀ‖² + Dγ_ii` by one forward
-//! substitution with the simplicial Cholesky factor of A (`Factor::h_diagonal_of`; the columns of H with
+//! the exact `H_ii` of a few sampled unknowns (their median ratio), each `yᵀ D⁻¹ y + Dγ_ii` (`y = L⁻¹ P E_iᵀ`) by one forward
+//! substitution with the LDLᵀ factor of A (`Factor::h_diagonal_of`; the columns of H with
 //! another factor). The same substitution gives `νᵀ H ν` for a ν on a few multipliers (`Factor::h_quadratic`),
 //! which the active-set method on the saddle-point system uses for the objective at a projected point.
 
@@ -32,7 +32,7 @@ impl Factor {
 
 impl Factor {
     /// The exact `H_jj = E_j A⁻¹ E_jᵀ + Dγ_jj` of the multipliers `cols`: by a forward substitution each with the
-    /// simplicial Cholesky factor of A (half a solve, no column of H formed), else from their columns of H.
+    /// LDLᵀ factor of A (half a solve, no column of H formed), else from their columns of H.
     pub(crate) fn h_diagonal_of(&self, cols: &[usize]) -> Vec<f64> {
         let mut rhs = faer::Mat::<f64>::zeros(self.n, cols.len());
         for (b, &j) in cols.iter().enumerate() {
@@ -52,8 +52,8 @@ impl Factor {
 }
 
 impl Factor {
-    /// `νᵀ H ν = ‖L⁻¹ P Eᵀ ν‖² + νᵀ Dγ ν` for the multipliers `nu` (nonzero entries, 2q indices) by one forward
-    /// substitution with the simplicial Cholesky factor of A; `None` with another factor.
+    /// `νᵀ H ν = yᵀ D⁻¹ y + νᵀ Dγ ν` (`y = L⁻¹ P Eᵀ ν`) for the multipliers `nu` (nonzero entries, 2q indices) by one forward
+    /// substitution with the LDLᵀ factor of A; `None` with the partial factor.
     pub(crate) fn h_quadratic(&self, nu: &[(usize, f64)]) -> Option<f64> {
         let mut rhs = faer::Mat::<f64>::zeros(self.n, 1);
         let mut dense = vec![0.0; self.e_rows.len()];
@@ -96,7 +96,7 @@ mod tests {
         Side, Stabilization,
     };
 
-    /// Two paths to `H_jj`: the forward substitution with the simplicial factor of A and the columns of H, on a
+    /// Two paths to `H_jj`: the forward substitution with the LDLᵀ factor of A and the columns of H, on a
     /// graded Hertz problem, normal and tangential multipliers, with and without the stabilization's Dγ.
     #[test]
     fn the_forward_substitution_gives_the_diagonal_of_h() {
@@ -111,7 +111,7 @@ mod tests {
         for stabilization in [Stabilization::Fraction(0.5), Stabilization::None] {
             let condensed = problem.condense_with(stabilization, Condensation::Columns, usize::MAX).expect("condenses");
             let factor = condensed.factor();
-            assert!(factor.direct.energies(faer::Mat::<f64>::zeros(factor.n, 1).as_ref()).is_some(), "simplicial");
+            assert!(factor.direct.energies(faer::Mat::<f64>::zeros(factor.n, 1).as_ref()).is_some(), "LDLᵀ");
             let cols: Vec<usize> = (0..2 * condensed.q()).step_by(3).collect();
             let (fast, s) = (factor.h_diagonal_of(&cols), cols.len());
             let h = factor.h_block(&cols, &cols);
@@ -126,7 +126,7 @@ mod tests {
                 .flat_map(|a| (0..nu.len()).map(move |b| (a, b)))
                 .map(|(a, b)| nu[a].1 * h[b * s + a] * nu[b].1)
                 .sum();
-            let fast = factor.h_quadratic(&nu).expect("the simplicial factor");
+            let fast = factor.h_quadratic(&nu).expect("the LDLᵀ factor");
             assert!((fast - exact).abs() <= 1e-12 * exact.abs(), "{fast} against {exact}");
         }
     }

@@ -1,27 +1,31 @@
-//! The sparse Cholesky factor of `A = K − G` in its two orderings (fill-reducing, or the dofs `E`
-//! touches last for all of H at once), its solves, and the check that a factor fits the memory budget
-//! before its values are allocated.
+//! The sparse factor of `A = K − G` in its two orderings (fill-reducing, or the dofs `E` touches last for all
+//! of H at once), its solves, and the check that a factor fits the memory budget before its values are
+//! allocated.
 
 use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
-use faer::sparse::linalg::cholesky::{LdltRef, LltRef, SymbolicCholesky};
-use faer::sparse::SparseColMatRef;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholesky, SymmetricOrdering,
+};
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, Mat, MatMut, MatRef, Par, Side};
 
 use crate::error::{Error, Result};
+use crate::linalg::blocks::Ldlt;
 use crate::linalg::schur;
 
-/// The sparse Cholesky factorization of A, in one of two orderings.
+/// The sparse factorization of A, in one of two orderings.
 pub(super) enum Direct {
-    /// Fill-reducing (AMD) ordering, the symbolic factorization of K's pattern: columns of H are solves.
-    Columns(Arc<SymbolicCholesky<usize>>, Vec<f64>),
-    /// The dofs E touches ordered last ([`crate::linalg::schur`]): all of `E A⁻¹ Eᵀ` from the trailing block.
+    /// The LDLᵀ factorization in the fill-reducing (AMD) ordering, the symbolic analysis of K's pattern: columns
+    /// of H are solves. A is positive definite, or quasi-definite for the mixed formulation
+    /// ([`crate::fem::mixed`]). Its symbolic analysis, its values and the inverses of its pivots.
+    Ldlt(Arc<SymbolicCholesky<usize>>, Vec<f64>, Vec<f64>),
+    /// The Cholesky factorization with the dofs E touches ordered last ([`crate::linalg::schur`]): all of
+    /// `E A⁻¹ Eᵀ` from the trailing block.
     Schur(schur::SchurFactor),
-    /// The LDLᵀ factorization of a quasi-definite A (the mixed formulation, [`crate::fem::mixed`]) in the
-    /// fill-reducing ordering: columns of H are solves.
-    Ldlt(Arc<SymbolicCholesky<usize>>, Vec<f64>),
 }
 
 impl Direct {
@@ -29,30 +33,38 @@ impl Direct {
     /// of its own (not the partial factorization's, which orders the Γ_C dofs last).
     pub(super) fn order(&self) -> Option<&[usize]> {
         match self {
-            Self::Columns(symbolic, _) | Self::Ldlt(symbolic, _) => symbolic.perm().map(|p| p.arrays().0),
+            Self::Ldlt(symbolic, ..) => symbolic.perm().map(|p| p.arrays().0),
             Self::Schur(_) => None,
         }
     }
 
-    /// Bytes of the factor's values: what [`fits_budget`] counted for it before they were allocated.
+    /// Bytes of the factor's values (and its pivots' inverses): what [`fits_budget`] counted for it before they
+    /// were allocated.
     pub(super) fn value_bytes(&self) -> f64 {
         let len = match self {
-            Self::Columns(_, values) | Self::Ldlt(_, values) => values.len(),
+            Self::Ldlt(_, values, d_inv) => values.len() + d_inv.len(),
             Self::Schur(f) => f.len_values(),
         };
         8.0 * len as f64
     }
 
-    /// `x_jᵀ A⁻¹ x_j = ‖L⁻¹ P x_j‖²` for each column of `x` (A = Pᵀ L Lᵀ P): one forward substitution, half a
-    /// solve, over the elimination-tree paths above `x_j`'s entries ([`super::substitution`]). `None` for a
-    /// factor other than the simplicial Cholesky one (a solve gives it there).
+    /// The LDLᵀ factor of A read block by block, for solves that read little of it ([`super::substitution`]),
+    /// and the inverses of its pivots; `None` for the partial Cholesky factor.
+    pub(super) fn blocks(&self) -> Option<(Ldlt<'_>, &[f64])> {
+        let Self::Ldlt(symbolic, values, d_inv) = self else { return None };
+        Some((Ldlt::new(symbolic, values), d_inv))
+    }
+
+    /// `x_jᵀ A⁻¹ x_j = (L⁻¹ P x_j)ᵀ D⁻¹ (L⁻¹ P x_j)` for each column of `x` (A = Pᵀ L D Lᵀ P): one forward
+    /// substitution, half a solve, over the blocks `x_j`'s entries reach ([`super::substitution`]). `None` for
+    /// the partial factor (a solve gives it there).
     pub(super) fn energies(&self, x: MatRef<'_, f64>) -> Option<Vec<f64>> {
-        let simplicial = self.simplicial()?;
+        let (factor, d_inv) = self.blocks()?;
         let energy = |j: usize| {
             let column: Vec<f64> = x.col(j).iter().copied().collect();
-            let mut y = simplicial.permuted(&column);
-            simplicial.forward(&mut y);
-            y.iter().map(|v| v * v).sum::<f64>()
+            let mut y = factor.permuted(&column);
+            factor.forward(&mut y);
+            y.iter().zip(d_inv).map(|(v, d)| v * v * d).sum::<f64>()
         };
         Some((0..x.ncols()).map(energy).collect())
     }
@@ -69,11 +81,14 @@ impl Direct {
             })
         };
         match self {
-            Self::Columns(symbolic, values) => {
-                let mut mem = workspace(symbolic)?;
-                LltRef::new(symbolic, values).solve_in_place_with_conj(Conj::No, x, par, MemStack::new(&mut mem));
+            // One right-hand side: the block substitutions, which read the factor downward (faer's supernodal
+            // solve reads each column upward, about twice as slow at 55k).
+            Self::Ldlt(symbolic, values, d_inv) if x.ncols() == 1 => {
+                let b: Vec<f64> = x.as_ref().col(0).iter().copied().collect();
+                let y = Ldlt::new(symbolic, values).solve(&b, d_inv);
+                x.col_mut(0).iter_mut().zip(y).for_each(|(xi, yi)| *xi = yi);
             }
-            Self::Ldlt(symbolic, values) => {
+            Self::Ldlt(symbolic, values, _) => {
                 let mut mem = workspace(symbolic)?;
                 LdltRef::new(symbolic, values).solve_in_place_with_conj(Conj::No, x, par, MemStack::new(&mut mem));
             }
@@ -125,50 +140,48 @@ pub(super) fn schur_error(e: schur::SchurError) -> Error {
     }
 }
 
-/// The numeric Cholesky factorization of `a` with the symbolic analysis of its pattern, after checking that
-/// the factor's values and the factorization's workspace fit `budget` bytes (they are the largest
-/// allocation of a solve: about 1.1 kB per unknown on 2D meshes, see docs/scale.md).
+/// The symbolic analysis of A's pattern (K's) in the fill-reducing (AMD) ordering, supernodal: faer's own
+/// choice (by the ratio of flops to non-zeros) takes the simplicial factorization on tribo's meshes, whose
+/// numeric factorization is 1.5–2 times slower (graded Hertz meshes of 15k–109k unknowns, measured).
 ///
 /// # Errors
-/// [`Error::MemoryBudget`] naming the size before anything of it is allocated;
-/// [`Error::NotPositiveDefinite`] for a non-positive pivot.
-pub(super) fn factorize_plain(
-    symbolic: &SymbolicCholesky<usize>,
-    a: SparseColMatRef<'_, usize, f64>,
-    budget: usize,
-) -> Result<Vec<f64>> {
-    let par = faer::get_global_parallelism();
-    let req = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
-    fits_budget("the sparse Cholesky factor of A = K − G", symbolic.len_val(), req, 0.0, a.nrows(), budget)?;
-    schur::numeric_llt(symbolic, a, par).map_err(|e| match e {
-        schur::SchurError::TooLarge { what, bytes } => Error::MemoryBudget {
-            what: format!("the sparse Cholesky factor of A = K − G: {what} (the allocation failed)"),
-            needed: bytes as f64,
-            budget: budget as f64,
-        },
-        e => schur_error(e),
-    })
+/// [`Error::Assembly`] if faer refuses the pattern.
+pub(super) fn analyse(pattern: SymbolicSparseColMatRef<'_, usize>) -> Result<SymbolicCholesky<usize>> {
+    let params = CholeskySymbolicParams {
+        supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+        ..Default::default()
+    };
+    factorize_symbolic_cholesky(pattern, Side::Lower, SymmetricOrdering::Amd, params)
+        .map_err(|e| Error::Assembly { matrix: "the symbolic Cholesky factor of K", what: format!("{e:?}") })
 }
 
-/// The numeric LDLᵀ factorization of a symmetric quasi-definite `a` (its last `negative` unknowns the
-/// pressures of the mixed formulation) with the symbolic analysis of its pattern, after the budget check
-/// of [`factorize_plain`]. No pivoting is needed: a quasi-definite matrix has an LDLᵀ factorization in every
-/// symmetric ordering, with as many negative pivots as its negative definite block has rows. The inertia
-/// is checked, so a γ0 beyond the bound (an unchecked one) or a matrix at the limits of floating point is
-/// an error, not a wrong H.
+/// The numeric LDLᵀ factorization of a symmetric `a`, positive definite or quasi-definite (its last `negative`
+/// unknowns the pressures of the mixed formulation), with the symbolic analysis of its pattern, after checking
+/// that the factor's values and the factorization's workspace fit `budget` bytes (they are the largest
+/// allocation of a solve: about 1.1 kB per unknown on 2D meshes, see docs/scale.md). No pivoting is needed: a
+/// quasi-definite matrix has an LDLᵀ factorization in every symmetric ordering, with as many negative pivots
+/// as its negative definite block has rows. The inertia is checked, so a γ0 beyond the bound (an unchecked
+/// one) or a matrix at the limits of floating point is an error, not a wrong H.
 ///
 /// # Errors
-/// [`Error::MemoryBudget`] naming the size; [`Error::NotPositiveDefinite`] for a zero pivot or an inertia
-/// other than (n − negative, negative).
-pub(super) fn factorize_quasi_definite(
+/// [`Error::MemoryBudget`] naming the size before anything of it is allocated; [`Error::NotPositiveDefinite`]
+/// for a zero pivot or an inertia other than (n − negative, negative).
+pub(super) fn factorize(
     symbolic: &SymbolicCholesky<usize>,
     a: SparseColMatRef<'_, usize, f64>,
     negative: usize,
     budget: usize,
-) -> Result<Vec<f64>> {
-    let par = faer::get_global_parallelism();
+) -> Result<(Vec<f64>, Vec<f64>)> {
+    // Sequential, as the saddle-point system's (`SaddleOptions::par`): the fronts of a 2D mesh are narrow, and with
+    // faer's rayon kernels the factorization phase of the graded Coulomb solve took longer on two cores (best of
+    // four fresh runs: 0.073 and 0.136 s at 28k and 55k unknowns, against 0.061 and 0.115 s sequential).
+    let par = Par::Seq;
     let req = symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default());
-    let what = "the sparse LDLᵀ factor of the mixed A = K − G";
+    let what = if negative == 0 {
+        "the sparse LDLᵀ factor of A = K − G"
+    } else {
+        "the sparse LDLᵀ factor of the mixed A = K − G"
+    };
     fits_budget(what, symbolic.len_val(), req, 0.0, a.nrows(), budget)?;
     let too_large = |bytes: f64| Error::MemoryBudget {
         what: format!("{what} (the allocation failed)"),
@@ -189,16 +202,23 @@ pub(super) fn factorize_quasi_definite(
             what: format!("zero pivot at position {index} of the LDLᵀ factor")
         });
     }
-    let pivots = crate::linalg::saddle::ldlt_pivots(symbolic, &values);
+    let pivots = Ldlt::new(symbolic, &values).diagonal();
     let below = pivots.iter().filter(|d| **d < 0.0).count();
-    if below != negative || pivots.iter().any(|d| !d.is_finite() || *d == 0.0) {
+    let bad = pivots.iter().position(|d| !d.is_finite() || *d == 0.0);
+    if negative == 0 {
+        if let Some(p) = bad.or_else(|| pivots.iter().position(|d| *d < 0.0)) {
+            let dof = symbolic.perm().map_or(p, |perm| perm.arrays().0[p]);
+            return Err(Error::NotPositiveDefinite { what: format!("non-positive pivot at unknown {dof}") });
+        }
+    } else if below != negative || bad.is_some() {
         return Err(Error::NotPositiveDefinite {
             what: format!(
                 "the mixed A = K − G is not quasi-definite: {below} negative pivots for {negative} pressures"
             ),
         });
     }
-    Ok(values)
+    let d_inv = pivots.iter().map(|d| 1.0 / d).collect();
+    Ok((values, d_inv))
 }
 
 /// A sparse factor of `len_val` values with a workspace `req`, and `extra` bytes beside them, must fit

@@ -19,9 +19,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
-use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, SymbolicCholesky};
+use faer::sparse::linalg::cholesky::SymbolicCholesky;
 use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
-use faer::{Mat, Par, Side};
+use faer::{Mat, Par};
 
 use crate::error::{Error, Num, Result};
 use crate::linalg::saddle::SaddleSystem;
@@ -34,7 +34,7 @@ mod direct;
 mod saddle;
 mod substitution;
 
-use direct::{factorize_plain, factorize_quasi_definite, fits_budget, schur_error, solve, Direct};
+use direct::{analyse, factorize, fits_budget, schur_error, solve, Direct};
 use saddle::saddle_system;
 
 pub(crate) use choose::Expected;
@@ -101,7 +101,7 @@ pub struct Factor {
     /// The estimates of diag H the sparse QPs use, by number k of leading unknowns (`0..k`: q for a
     /// frictionless QP, 2q with friction), formed once rather than for every QP of the fixed point.
     h_diagonal_estimates: Mutex<Vec<(usize, Vec<f64>)>>,
-    /// The positions in the simplicial factor of A of the dofs E reads, closed under the elimination tree
+    /// The blocks of the LDLᵀ factor of A holding the dofs E reads, closed under the tree of blocks
     /// ([`Factor::e_displacement`]), found once.
     e_closure: OnceLock<Vec<usize>>,
 }
@@ -254,20 +254,12 @@ impl Factor {
             let symbolic = match symbolic.get() {
                 Some(s) => s,
                 None => {
-                    let s =
-                        factorize_symbolic_cholesky(k.symbolic(), Side::Lower, Default::default(), Default::default())
-                            .map_err(|e| Error::Assembly {
-                                matrix: "the symbolic Cholesky factor of K",
-                                what: format!("{e:?}"),
-                            })?;
+                    let s = analyse(k.symbolic())?;
                     symbolic.get_or_init(|| Arc::new(s))
                 }
             };
-            let direct = if pressures > 0 {
-                Direct::Ldlt(symbolic.clone(), factorize_quasi_definite(symbolic, a, pressures, budget)?)
-            } else {
-                Direct::Columns(symbolic.clone(), factorize_plain(symbolic, a, budget)?)
-            };
+            let (values, d_inv) = factorize(symbolic, a, pressures, budget)?;
+            let direct = Direct::Ldlt(symbolic.clone(), values, d_inv);
             (direct, clock.elapsed().as_secs_f64(), 0.0)
         };
         let clock = Instant::now();

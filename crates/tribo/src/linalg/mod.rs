@@ -5,6 +5,8 @@
 //!   trailing block gives all of `E A⁻¹ Eᵀ` at once;
 //! * `llt`: the numeric Cholesky factorization for a given symbolic analysis, and the flops and non-zeros
 //!   a symbolic analysis predicts (re-exported by [`schur`]);
+//! * `blocks`: an LDLᵀ factor read block by block (simplicial columns or supernodes), and its substitutions
+//!   restricted to what a sparse right-hand side reaches and what the caller reads;
 //! * `saddle`: the sparse LDLᵀ of the saddle-point system `[[A, E_Fᵀ], [E_F, −Dγ_FF]]` on one pattern,
 //!   with bordered solves near the factorized partition;
 //! * [`gram_split`]: which combinations of a few vectors a set of rows sees (the rigid motions of bodies
@@ -13,6 +15,7 @@
 //! These files may hold up to 800 lines of code (the crate's limit is 600): a supernodal sweep, its
 //! symbolic analysis and its refinement read best in one place.
 
+pub(crate) mod blocks;
 mod llt;
 pub(crate) mod saddle;
 pub mod schur;

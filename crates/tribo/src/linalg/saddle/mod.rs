@@ -69,7 +69,8 @@ mod ordering;
 #[cfg(test)]
 mod testgen;
 
-use border::{Blocks, Border};
+use super::blocks::Blocks;
+use border::Border;
 use ordering::{constrained_amd, interleaved, inverse_of, rows_within_two_steps};
 
 /// Errors of [`SaddleSystem`].
@@ -691,8 +692,3 @@ fn backward_error(n: usize, b: &[f64], r: &[f64], absk: &[f64]) -> f64 {
 
 #[cfg(test)]
 mod tests;
-
-/// The pivots D of an LDLᵀ factor (`values` of faer's numeric LDLᵀ with `symbolic`), in the factor's order.
-pub(crate) fn ldlt_pivots(symbolic: &SymbolicCholesky<usize>, values: &[f64]) -> Vec<f64> {
-    Blocks::new(symbolic, values).diagonal()
-}
