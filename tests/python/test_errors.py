@@ -227,7 +227,7 @@ def test_progress_callback_errors_propagate(hertz: tribo.Problem) -> None:
 
 
 def test_solver_error_beyond_the_admissible_bound(hertz: tribo.Problem) -> None:
-    # Far above the bound K − G is indefinite: with the bound check off the Cholesky factorization fails.
+    # Far above the bound K − G is indefinite: with the bound check off the factorization of A fails.
     e = raises(
         tribo.SolverError,
         "NotPositiveDefinite",

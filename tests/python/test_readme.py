@@ -354,7 +354,8 @@ def test_the_docs_quote_the_output_cost_as_measured() -> None:
 
 
 def test_the_docs_quote_the_cost_study_as_measured() -> None:
-    """Study 4: the table of measured.md (the whole Coulomb solve and its ratio to a Cholesky of K), the two-body
+    """Study 4: the table of measured.md (the whole Coulomb solve and its ratios to faer's default and supernodal
+    Cholesky of K), the two-body
     cost and the peak memory of STUDIES.md, are those of docs/cost.csv, each to the digits the page gives."""
     cost = _script("plot_cost")
     # The default solves (the fixed point for Coulomb); the Newton method's runs are quoted on their own, below.
@@ -362,7 +363,7 @@ def test_the_docs_quote_the_cost_study_as_measured() -> None:
     rows = [r for r in every if r["friction"] != "coulomb_newton"]
     text = (DOCS / "measured.md").read_text(encoding="utf-8")
     table = re.findall(r"^\| (Hertz, uniform|Hertz, graded|block on a foundation)[^|]*\| ([\d.]+)k \| ([\d.]+) s \| "
-                       r"([\d.]+) \| ([^|]+) \|$", text, flags=re.M)
+                       r"([\d.]+) \| ([\d.]+) \| ([^|]+) \|$", text, flags=re.M)
     assert len(table) == 7, table
     family = {"Hertz, uniform": "uniform", "Hertz, graded": "graded", "block on a foundation": "block"}
     by = {"partial factorization": "schur", "not formed (saddle)": "saddle"}
@@ -371,10 +372,11 @@ def test_the_docs_quote_the_cost_study_as_measured() -> None:
         digits = len(quoted.partition(".")[2])
         return f"{value:.{digits}f}" == quoted
 
-    for scene, n, total, ratio, path in table:
+    for scene, n, total, ratio, supernodal, path in table:
         (r,) = [r for r in rows if r["family"] == family[scene] and r["friction"] == "coulomb"
                 and abs(r["n_free"] / 1000 / float(n) - 1) < 0.02]
         assert same(r["total"], total) and same(r["ratio"], ratio), (scene, n, r["total"], r["ratio"])
+        assert same(r["ratio_supernodal"], supernodal), (scene, n, r["ratio_supernodal"])
         assert r["condensation"] == by[path.strip()], (scene, n, r["condensation"])
     graded = [r for r in rows if r["family"] == "graded" and r["friction"] == "coulomb" and r["n_free"] >= cost.FROM]
     assert f"like n^{cost.exponent(graded, 'total'):.2f} on the graded one" in " ".join(text.split())
