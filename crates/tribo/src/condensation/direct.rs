@@ -182,7 +182,8 @@ pub(super) fn factorize(
     } else {
         "the sparse LDLᵀ factor of the mixed A = K − G"
     };
-    fits_budget(what, symbolic.len_val(), req, 0.0, a.nrows(), budget)?;
+    // The inverse pivots, n values, sit beside the factor's.
+    fits_budget(what, symbolic.len_val(), req, 8.0 * a.nrows() as f64, a.nrows(), budget)?;
     let too_large = |bytes: f64| Error::MemoryBudget {
         what: format!("{what} (the allocation failed)"),
         needed: bytes,
