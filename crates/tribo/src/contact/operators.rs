@@ -99,10 +99,10 @@ impl ContactStress {
     /// `vᵀ G v = γ0 Σ_k h_T |E_k| (σ_n(v)² + σ_t(v)²)` (`h_T ∫_{E_k} 2π r` for `|E_k|` in axisymmetry: σ is
     /// constant on the edge).
     pub fn stiffness_triplets(&self, mortar: &MortarMatrices, gamma0: f64) -> Vec<Triplet<usize, usize, f64>> {
-        let mut trip = Vec::new();
         if gamma0 == 0.0 {
-            return trip;
+            return Vec::new();
         }
+        let mut trip = Vec::with_capacity(self.triplet_count());
         for ((ops, dofs), g_h) in self.ops.iter().zip(&self.dofs).zip(&mortar.g_h) {
             let w = gamma0 * g_h;
             for s in ops {
@@ -114,6 +114,31 @@ impl ContactStress {
             }
         }
         trip
+    }
+
+    /// The number of triplets [`Self::stiffness_triplets`] makes (at γ0 ≠ 0).
+    pub fn triplet_count(&self) -> usize {
+        self.ops.iter().zip(&self.dofs).map(|(ops, dofs)| ops.len() * dofs.len() * dofs.len()).sum()
+    }
+
+    /// `out += −G x` on the dofs below `out.len()`, `x` read at each dof by `x`: the product with the matrix of
+    /// [`Self::stiffness_triplets`] without forming it, one stress component of one edge at a time
+    /// (`−G = −Σ w s sᵀ`): 12 products per component instead of 36 triplets.
+    pub fn add_minus_g_times(&self, mortar: &MortarMatrices, gamma0: f64, x: impl Fn(usize) -> f64, out: &mut [f64]) {
+        if gamma0 == 0.0 {
+            return;
+        }
+        for ((ops, dofs), g_h) in self.ops.iter().zip(&self.dofs).zip(&mortar.g_h) {
+            let w = gamma0 * g_h;
+            for s in ops {
+                let sx: f64 = s.iter().zip(dofs).map(|(sb, &db)| sb * x(db)).sum();
+                for (sa, &da) in s.iter().zip(dofs) {
+                    if let Some(o) = out.get_mut(da) {
+                        *o -= w * sa * sx;
+                    }
+                }
+            }
+        }
     }
 
     /// Rows of the coupling `E = B − γ0 Cγ S` over all dofs: `2q` sparse rows (normal then

@@ -273,7 +273,20 @@ impl Problem {
 
     /// Triplets of `−G` over all dofs, summed over the pairs.
     pub(crate) fn minus_g_triplets(&self, gamma0: f64) -> Vec<faer::sparse::Triplet<usize, usize, f64>> {
-        self.pairs().iter().flat_map(|p| p.stress.stiffness_triplets(p.mortar, gamma0)).collect()
+        let pairs = self.pairs();
+        let further: usize = pairs.iter().skip(1).map(|p| p.stress.triplet_count()).sum();
+        let mut parts = pairs.iter().map(|p| p.stress.stiffness_triplets(p.mortar, gamma0));
+        let mut all = parts.next().unwrap_or_default();
+        all.reserve(further);
+        parts.for_each(|p| all.extend(p));
+        all
+    }
+
+    /// `out += −G x` over the pairs, on the dofs below `out.len()` ([`ContactStress::add_minus_g_times`]).
+    pub(crate) fn add_minus_g_times(&self, gamma0: f64, x: impl Fn(usize) -> f64 + Copy, out: &mut [f64]) {
+        for p in self.pairs() {
+            p.stress.add_minus_g_times(p.mortar, gamma0, x, out);
+        }
     }
 
     /// The rows of E over all dofs, stacked: the normal rows of every pair, then the tangential ones.
@@ -397,4 +410,43 @@ pub fn pair_slice<T: Clone>(stacked: &[T], offsets: &[usize], k: usize) -> Vec<T
     let q = offsets[offsets.len() - 1];
     let (a, b) = (offsets[k], offsets[k + 1]);
     stacked[a..b].iter().chain(&stacked[q + a..q + b]).cloned().collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::fem::mixed::Formulation;
+    use crate::{graded_rectangle, Grading, Material, Problem, ProblemSpec, Side};
+
+    /// `−G x` formed one stress component at a time is the product with the triplets of −G, for the plain and the
+    /// mixed formulation (whose stress terms read the pressures, dofs beyond the displacements' 2N), and it leaves
+    /// the dofs beyond `out` alone.
+    #[test]
+    fn minus_g_times_is_the_triplets_product() {
+        for formulation in [Formulation::Displacement, Formulation::Mixed] {
+            let grading = Grading { side: Side::Top, segment: [-0.3, 0.3], h_min: 0.05, h_max: 0.5, growth: 0.3 };
+            let mesh = graded_rectangle([-1.0, 1.0], [-1.0, 0.0], &grading).expect("valid mesh");
+            let spec = ProblemSpec::new(Material { young: 10.0, poisson: 0.45 }, "top")
+                .clamped(["bottom"])
+                .approach(0.01)
+                .formulation(formulation);
+            let problem = Problem::new(mesh, spec).expect("valid problem");
+            let all = 3 * problem.mesh.n_nodes();
+            let x = |d: usize| ((d * 7919) % 101) as f64 / 50.0 - 1.0;
+            let triplets = problem.minus_g_triplets(0.7);
+            assert!(!triplets.is_empty());
+            for len in [all, 2 * problem.mesh.n_nodes()] {
+                let mut expected = vec![1.0; len];
+                for t in triplets.iter().filter(|t| t.row < len) {
+                    expected[t.row] += t.val * x(t.col);
+                }
+                let mut out = vec![1.0; len];
+                problem.add_minus_g_times(0.7, x, &mut out);
+                let scale = expected.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                for (a, b) in out.iter().zip(&expected) {
+                    assert!((a - b).abs() <= 1e-13 * scale, "{a} against {b} ({formulation:?})");
+                }
+                assert!(out.iter().zip(&expected).any(|(a, _)| *a != 1.0), "G touches some dof");
+            }
+        }
+    }
 }

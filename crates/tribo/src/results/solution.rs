@@ -146,11 +146,7 @@ impl Solution {
         }
         let n = reactions.len();
         let at = |dof: usize| if dof < n { displacement[dof] } else { pressure[dof - n] };
-        for t in problem.minus_g_triplets(condensed.gamma0) {
-            if t.row < n {
-                reactions[t.row] += t.val * at(t.col);
-            }
-        }
+        problem.add_minus_g_times(condensed.gamma0, at, &mut reactions);
         for (row, l) in problem.coupling_rows(condensed.gamma0).iter().zip(&lambda) {
             row.iter().filter(|(dof, _)| *dof < n).for_each(|&(dof, v)| reactions[dof] += v * l);
         }
