@@ -654,16 +654,26 @@ impl SaddleSystem {
         let k = self.k.as_ref();
         for j in 0..self.n + self.m {
             let xj = x[j];
-            for (&i, &v) in k.symbolic().row_idx_of_col_raw(j).iter().zip(k.val_of_col(j)) {
+            // Row j's part from the column's entries below the diagonal, summed here and written once.
+            // The column's rows are sorted: its diagonal entry, where stored, comes first.
+            let (mut rows, mut vals) = (k.symbolic().row_idx_of_col_raw(j), k.val_of_col(j));
+            if rows.first() == Some(&j) {
+                let t = vals[0] * xj;
+                r[j] -= t;
+                absk[j] += t.abs();
+                (rows, vals) = (&rows[1..], &vals[1..]);
+            }
+            let (mut rj, mut aj) = (0.0, 0.0);
+            for (&i, &v) in rows.iter().zip(vals) {
                 let t = v * xj;
                 r[i] -= t;
                 absk[i] += t.abs();
-                if i != j {
-                    let t = v * x[i];
-                    r[j] -= t;
-                    absk[j] += t.abs();
-                }
+                let s = v * x[i];
+                rj += s;
+                aj += s.abs();
             }
+            r[j] -= rj;
+            absk[j] += aj;
         }
     }
 }
